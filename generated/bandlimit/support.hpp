@@ -1,0 +1,739 @@
+// bandlimit runtime support: numerically stable building blocks that the generated table calls.
+// Copied verbatim into generated/bandlimit/support.hpp by `rulegen emit`. Header-only, C++17,
+// no dependency beyond <cmath>/<limits>/<cstdint>. Every routine is a template over the scalar T
+// (float, double, boost::multiprecision::cpp_bin_float_50): math functions are called unqualified
+// after `using std::...` so ADL finds Boost's overloads, and float stays float throughout (the
+// float result is what a GPU computes; rulegen/templates/support.glsl is the same code in GLSL).
+//
+// Conventions (shared with ../shared/DESIGN.md):
+//   sigma is the kernel's standard deviation. Gaussian: N(0, sigma^2). Box: U[-h, h], h = sqrt(3) sigma.
+//   Tent: triangle on [-w, w], w = sqrt(6) sigma, density (w - |u|) / w^2.
+//   kernel(x, sigma) = E[f(x + U)]. sigma == 0 returns f(x) (right-continuous at a jump).
+//   A polynomial piece is f(t) = sum_k c[k] t^k on [lo, hi) in the *absolute* coordinate t;
+//   lo may be -inf and hi +inf (std::numeric_limits<T>::infinity()).
+//
+// Internally every per-piece primitive works on the *offsets* of the piece ends from the kernel
+// centre (dl = lo - x, dh = hi - x) and keeps the polynomial in its own coordinate. The periodic
+// routines shift whole periods by computing (lo + m T) - x_r, which is exact or nearly so, instead
+// of x_r - m T, whose rounding (eps T) would be divided by a tiny kernel width.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace bl {
+namespace detail {
+
+inline constexpr int kMaxCoef = 8;  // polynomial pieces have degree <= 7
+
+template <class T>
+struct Piece {
+  T lo;
+  T hi;
+  T c[kMaxCoef];
+};
+
+template <class T>
+constexpr T inf() {
+  return std::numeric_limits<T>::infinity();
+}
+
+// Truncation tolerance the series/sums aim for: 1e-13 in double, 1e-8 in float.
+template <class T>
+constexpr T series_tol() {
+  return sizeof(T) >= 8 ? T(1e-13) : T(1e-8);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Constants. For float/double a rounded double literal (folded at compile time); for wider types
+// computed in T so that multiprecision evaluation is not limited to double accuracy.
+template <class T>
+inline constexpr bool kWide = (std::numeric_limits<T>::digits > 53);
+
+template <class T>
+inline T k_pi() {
+  using std::acos;
+  if constexpr (kWide<T>) return acos(T(-1));
+  else return T(3.141592653589793238462643);
+}
+template <class T>
+inline T k_inv_sqrt2() {  // 1/sqrt(2)
+  using std::sqrt;
+  if constexpr (kWide<T>) return T(1) / sqrt(T(2));
+  else return T(0.7071067811865475244008444);
+}
+template <class T>
+inline T k_inv_sqrt_2pi() {  // 1/sqrt(2 pi)
+  using std::sqrt;
+  if constexpr (kWide<T>) return T(1) / sqrt(T(2) * k_pi<T>());
+  else return T(0.3989422804014326779399461);
+}
+template <class T>
+inline T k_sqrt3() {
+  using std::sqrt;
+  if constexpr (kWide<T>) return sqrt(T(3));
+  else return T(1.732050807568877293527446);
+}
+template <class T>
+inline T k_sqrt6() {
+  using std::sqrt;
+  if constexpr (kWide<T>) return sqrt(T(6));
+  else return T(2.449489742783178098197284);
+}
+template <class T>
+inline T k_ln2() {
+  using std::log;
+  if constexpr (kWide<T>) return log(T(2));
+  else return T(0.6931471805599453094172321);
+}
+
+template <class T>
+inline T min_of(T a, T b) {
+  return b < a ? b : a;
+}
+template <class T>
+inline T abs_of(T a) {
+  return a < T(0) ? -a : a;
+}
+
+// Threshold below which the 5-term Taylor series of sin(t)/t or sinh(t)/t (up to t^8) is exact to
+// rounding: the first neglected term t^10/11! must be below eps.
+template <class T>
+inline T small_series_limit() {
+  using std::pow;
+  if constexpr (std::numeric_limits<T>::digits <= 24) {
+    return T(0.5);  // 0.5^10 / 11! = 2.4e-11 < float eps
+  } else if constexpr (std::numeric_limits<T>::digits <= 53) {
+    return T(0.1);  // 0.1^10 / 11! = 2.5e-18 < double eps
+  } else {
+    static const T lim = pow(T(39916800) * std::numeric_limits<T>::epsilon(), T(1) / T(10));
+    return lim;
+  }
+}
+
+// Highest index with a nonzero coefficient (0 for the zero polynomial). Loops stop there so that
+// 0 * sigma^7 never turns into 0 * inf = NaN.
+template <class T>
+inline int degree(const T* c) {
+  int d = kMaxCoef - 1;
+  while (d > 0 && c[d] == T(0)) --d;
+  return d;
+}
+
+// g[k] = q^(k)(t0) / k! (Taylor coefficients about t0), by repeated synthetic division: O(deg^2)
+// multiply-adds, no powers of t0 formed separately.
+template <class T>
+inline void taylor_shift(const T* c, int deg, T t0, T* g) {
+  for (int k = 0; k <= deg; ++k) g[k] = c[k];
+  if (t0 == T(0)) return;
+  for (int i = 0; i < deg; ++i)
+    for (int j = deg - 1; j >= i; --j) g[j] += t0 * g[j + 1];
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scalar helpers
+
+// Horner: one rounding per coefficient, the standard stable evaluation.
+template <class T>
+inline T poly(const T* c, T t) {
+  T r = c[kMaxCoef - 1];
+  for (int k = kMaxCoef - 2; k >= 0; --k) r = r * t + c[k];
+  return r;
+}
+
+// Standard normal pdf. exp(-z^2/2) underflows to 0 (never NaN) for huge or infinite |z|.
+template <class T>
+inline T phi(T z) {
+  using std::exp;
+  return k_inv_sqrt_2pi<T>() * exp(-(z * z) * T(0.5));
+}
+
+// Phi and its complement through erfc of the side where the result is small, so both tails keep
+// full relative accuracy (1 - erf would cancel).
+template <class T>
+inline T Phi(T z) {
+  using std::erfc;
+  return T(0.5) * erfc(-z * k_inv_sqrt2<T>());
+}
+template <class T>
+inline T Phic(T z) {
+  using std::erfc;
+  return T(0.5) * erfc(z * k_inv_sqrt2<T>());
+}
+
+// sin(t)/t: Taylor series near 0 (exactly 1 at 0, no 0/0), the quotient elsewhere.
+template <class T>
+inline T sinc(T t) {
+  using std::sin;
+  if (abs_of(t) < small_series_limit<T>()) {
+    T t2 = t * t;
+    return T(1) +
+           t2 * (T(-1) / T(6) +
+                 t2 * (T(1) / T(120) + t2 * (T(-1) / T(5040) + t2 * (T(1) / T(362880)))));
+  }
+  return sin(t) / t;
+}
+
+// sinh(t)/t: series near 0, the quotient for moderate |t|, and exp(|t| - log 2|t|) (1 - e^{-2|t|})
+// beyond, which stays finite past the point where sinh(t) alone overflows; +inf when the true
+// value overflows, never inf/inf.
+template <class T>
+inline T sinhc(T t) {
+  using std::exp;
+  using std::expm1;
+  using std::log;
+  using std::sinh;
+  T a = abs_of(t);
+  if (a < small_series_limit<T>()) {
+    T t2 = t * t;
+    return T(1) +
+           t2 * (T(1) / T(6) +
+                 t2 * (T(1) / T(120) + t2 * (T(1) / T(5040) + t2 * (T(1) / T(362880)))));
+  }
+  if (a < T(40)) return sinh(a) / a;
+  if (a == inf<T>()) return inf<T>();
+  return exp(a - log(T(2) * a)) * (-expm1(T(-2) * a));
+}
+
+// exp(u) sinhc(v), v >= 0 (the sign of v is ignored: sinhc is even). For v > 1 the exponentials
+// are merged, exp(u + v - log 2v) (1 - e^{-2v}), so e.g. u = -800, v = 800 gives 1/1600 instead
+// of 0 * inf.
+template <class T>
+inline T exp_sinhc(T u, T v) {
+  using std::exp;
+  using std::expm1;
+  using std::log;
+  v = abs_of(v);
+  if (!(v > T(1))) return exp(u) * sinhc(v);
+  if (v == inf<T>()) return u == -inf<T>() ? T(0) : inf<T>();
+  return exp(u + v - log(T(2) * v)) * (-expm1(T(-2) * v));
+}
+
+// exp(u) sinhc(v)^2, same merging: exp(u + 2v - 2 log 2v) (1 - e^{-2v})^2.
+template <class T>
+inline T exp_sinhc2(T u, T v) {
+  using std::exp;
+  using std::expm1;
+  using std::log;
+  v = abs_of(v);
+  if (!(v > T(1))) {
+    T s = sinhc(v);
+    return exp(u) * s * s;
+  }
+  if (v == inf<T>()) return u == -inf<T>() ? T(0) : inf<T>();
+  T e = -expm1(T(-2) * v);
+  return exp(u + T(2) * v - T(2) * log(T(2) * v)) * e * e;
+}
+
+// log(cosh x). |x| >= 1: |x| + log1p(e^{-2|x|}) - log 2 (no overflow of cosh, no cancellation since
+// |x| - log 2 > 0.3). |x| < 1: log1p(2 sinh^2(x/2)) = log1p(cosh x - 1), full relative accuracy
+// near 0 where the first form would cancel to an absolute error of eps.
+template <class T>
+inline T logcosh(T x) {
+  using std::exp;
+  using std::log1p;
+  using std::sinh;
+  T a = abs_of(x);
+  if (a < T(1)) {
+    T s = sinh(T(0.5) * a);
+    return log1p(T(2) * s * s);
+  }
+  return a + log1p(exp(T(-2) * a)) - k_ln2<T>();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Gauss-Legendre rule for narrow Gaussian pieces. float/double: 20 points (embedded; exact for the
+// degree-7 polynomial times a degree-32 Taylor polynomial of the Gaussian factor). Wider types:
+// 48 points computed once by Newton's method in T, so multiprecision keeps its accuracy.
+inline constexpr double kGL20x[10] = {
+    0.076526521133497338, 0.22778585114164507, 0.37370608871541955, 0.51086700195082713,
+    0.63605368072651502,  0.7463319064601508,  0.83911697182221878, 0.91223442825132595,
+    0.96397192727791381,  0.99312859918509488};
+inline constexpr double kGL20w[10] = {
+    0.15275338713072584,  0.14917298647260374, 0.14209610931838204, 0.13168863844917664,
+    0.11819453196151841,  0.10193011981724044, 0.083276741576704755, 0.062672048334109068,
+    0.040601429800386939, 0.017614007139152118};
+
+template <class T, bool Wide = kWide<T>>
+struct GaussLegendre {
+  static constexpr int kHalf = 10;
+  static T x(int i) { return T(kGL20x[i]); }
+  static T w(int i) { return T(kGL20w[i]); }
+};
+
+template <class T>
+struct GaussLegendre<T, true> {
+  static constexpr int kHalf = 24;
+  struct Table {
+    T x[kHalf];
+    T w[kHalf];
+  };
+  static const Table& table() {
+    static const Table t = make();
+    return t;
+  }
+  static Table make() {
+    using std::abs;
+    using std::cos;
+    const int n = 2 * kHalf;
+    Table t;
+    for (int i = 0; i < kHalf; ++i) {
+      T x = cos(k_pi<T>() * (T(i) + T(0.75)) / (T(n) + T(0.5)));
+      T dp = T(1);
+      for (int it = 0; it < 100; ++it) {
+        T p0 = T(1), p1 = x;
+        for (int k = 2; k <= n; ++k) {
+          T p2 = (T(2 * k - 1) * x * p1 - T(k - 1) * p0) / T(k);
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = T(n) * (x * p1 - p0) / (x * x - T(1));
+        T dx = p1 / dp;
+        x -= dx;
+        if (abs(dx) <= std::numeric_limits<T>::epsilon()) {
+          if (it > 0) break;
+        }
+      }
+      T p0 = T(1), p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        T p2 = (T(2 * k - 1) * x * p1 - T(k - 1) * p0) / T(k);
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = T(n) * (x * p1 - p0) / (x * x - T(1));
+      t.x[i] = x;
+      t.w[i] = T(2) / ((T(1) - x * x) * dp * dp);
+    }
+    return t;
+  }
+  static T x(int i) { return table().x[i]; }
+  static T w(int i) { return table().w[i]; }
+};
+
+// U[k] = int_t^inf z^k phi(z) dz for t >= 0 (t may be +inf), k <= deg, by the upper-tail
+// recursion U_k = t^{k-1} phi(t) + (k-1) U_{k-2}, U_0 = Phic(t), U_1 = phi(t). For t >= 0 every
+// term is positive, so the recursion never cancels; t^{k-1} phi(t) is built as phi(t) t t ..., so
+// an underflowed phi stays 0 instead of 0 * inf.
+template <class T>
+inline void upper_moments(T t, int deg, T* U) {
+  if (t == inf<T>()) {
+    for (int k = 0; k <= deg; ++k) U[k] = T(0);
+    return;
+  }
+  T e = phi(t);
+  U[0] = Phic(t);
+  if (deg >= 1) U[1] = e;
+  for (int k = 2; k <= deg; ++k) {
+    e *= t;
+    U[k] = e + T(k - 1) * U[k - 2];
+  }
+}
+
+// Core of gauss_piece on offsets: the piece [lo, hi) lies at [x + dl, x + dh) relative to the
+// kernel centre, xq is the centre in the polynomial's own coordinate.
+template <class T>
+inline T gauss_core(T xq, T sigma, T dl, T dh, T lo, T hi, const T* c) {
+  const int deg = degree(c);
+  if (!(hi > lo)) return T(0);
+  const T a = dl / sigma, b = dh / sigma;  // alpha, beta (possibly infinite)
+  const T width = hi - lo;
+  if (width < inf<T>()) {
+    // Narrow piece (<= 2 standard deviations wide) not deep in a tail: the moment recursion would
+    // subtract O(1) tail integrals to get an O(width/sigma) result while d_k ~ sigma^k, so use
+    // Gauss-Legendre on q(t) phi((t - x)/sigma) directly. The Gaussian factor varies like
+    // exp(-cz hw s), s in [-1, 1]; with |cz| hw <= 10 the 20-point rule is exact to rounding.
+    const T hw = width / (T(2) * sigma);
+    const T cz = (dl + dh) / (T(2) * sigma);
+    if (hw <= T(1) && abs_of(cz) * hw <= T(10)) {
+      using GL = GaussLegendre<T>;
+      const T mid = (lo + hi) / T(2), half = width / T(2);
+      T s = T(0);
+      for (int i = 0; i < GL::kHalf; ++i) {
+        const T xi = GL::x(i);
+        s += GL::w(i) * (poly(c, mid + half * xi) * phi(cz + hw * xi) +
+                         poly(c, mid - half * xi) * phi(cz - hw * xi));
+      }
+      return hw * s;
+    }
+  }
+  // Wide piece (or narrow deep in a tail): q(x + sigma z) = sum d_k z^k, d_k = q^(k)(x) sigma^k/k!,
+  // against the partial moments I_k = int_a^b z^k phi. Each I_k comes from tails evaluated at
+  // non-negative arguments: straddling 0 it is m_k - tail_left - tail_right (full moment minus
+  // two tails, no cancellation of nearly equal numbers), otherwise the difference of two tails on
+  // the side of the interval, whose ratio is small once the interval is wider than 2 sd or deep
+  // in a tail.
+  T g[kMaxCoef];
+  taylor_shift(c, deg, xq, g);
+  T Ua[kMaxCoef], Ub[kMaxCoef];
+  T sum = T(0), sk = T(1);
+  if (a < T(0) && b > T(0)) {
+    upper_moments(-a, deg, Ua);
+    upper_moments(b, deg, Ub);
+    T m[kMaxCoef];  // full moments: m_0 = 1, m_1 = 0, m_k = (k-1) m_{k-2}
+    for (int k = 0; k <= deg; ++k) {
+      m[k] = k == 0 ? T(1) : (k == 1 ? T(0) : T(k - 1) * m[k - 2]);
+      const T Ik = m[k] - ((k & 1) ? -Ua[k] : Ua[k]) - Ub[k];
+      if (g[k] != T(0)) sum += g[k] * sk * Ik;
+      if (k < deg) sk *= sigma;
+    }
+    return sum;
+  }
+  if (a >= T(0)) {
+    upper_moments(a, deg, Ua);
+    upper_moments(b, deg, Ub);
+    for (int k = 0; k <= deg; ++k) {
+      if (g[k] != T(0)) sum += g[k] * sk * (Ua[k] - Ub[k]);
+      if (k < deg) sk *= sigma;
+    }
+    return sum;
+  }
+  // b <= 0: mirror, I_k = (-1)^k (U_k(-b) - U_k(-a)).
+  upper_moments(-b, deg, Ub);
+  upper_moments(-a, deg, Ua);
+  for (int k = 0; k <= deg; ++k) {
+    const T Ik = Ub[k] - Ua[k];
+    if (g[k] != T(0)) sum += g[k] * sk * ((k & 1) ? -Ik : Ik);
+    if (k < deg) sk *= sigma;
+  }
+  return sum;
+}
+
+// Core of box_piece on offsets. The covered length is formed from offsets (h - dl, dh + h, 2h,
+// hi - lo), never as a difference of the rounded ends x +- h, so it survives |x| >> h; the mean of
+// t^k over [a, b] uses the divided difference S_k = sum_j a^j b^{k-j} (S_k = b S_{k-1} + a^k),
+// which has no 1/(b - a).
+template <class T>
+inline T box_core(T xq, T h, T dl, T dh, T lo, T hi, const T* c) {
+  if (!(dl < h) || !(dh > -h)) return T(0);
+  const bool cl = dl > -h, cr = dh < h;
+  const T a = cl ? lo : xq - h;
+  const T b = cr ? hi : xq + h;
+  const T len = cl ? (cr ? hi - lo : h - dl) : (cr ? dh + h : T(2) * h);
+  const int deg = degree(c);
+  T S = T(1), ak = T(1), mean = c[0];
+  for (int k = 1; k <= deg; ++k) {
+    ak *= a;
+    S = b * S + ak;
+    mean += c[k] * S / T(k + 1);
+  }
+  return len / (T(2) * h) * mean;
+}
+
+// One side of the tent: int_0^L q(t0 + s v) (G - v) dv / w^2, s = +1 (right) or -1 (left), where
+// t0 is the end of the integration interval nearest the kernel centre and G the distance from t0
+// to the support edge (G >= L). Expanding q about t0 keeps every term local to the interval:
+// sum_k g_k s^k L^k (L/w) (G/w/(k+1) - L/w/(k+2)); the bracket is >= (L/w)/((k+1)(k+2)), so it
+// does not cancel, and nothing is divided by a tiny w beyond the ratios L/w, G/w <= 1.
+template <class T>
+inline T tent_side(const T* c, int deg, T t0, T G, T L, T w, bool left) {
+  T g[kMaxCoef];
+  taylor_shift(c, deg, t0, g);
+  const T ell = L / w, gam = G / w;
+  T sum = T(0), Lk = T(1);
+  for (int k = 0; k <= deg; ++k) {
+    if (g[k] != T(0)) {
+      T term = g[k] * Lk * (gam / T(k + 1) - ell / T(k + 2));
+      sum += (left && (k & 1)) ? -term : term;
+    }
+    if (k < deg) Lk *= L;
+  }
+  return sum * ell;
+}
+
+// Core of tent_piece on offsets: split at the kernel centre, each side handled by tent_side.
+template <class T>
+inline T tent_core(T xq, T w, T dl, T dh, T lo, T hi, const T* c) {
+  if (!(dl < w) || !(dh > -w)) return T(0);
+  const int deg = degree(c);
+  T r = T(0);
+  if (dh > T(0)) {  // right half: t in [max(lo, x), min(hi, x + w)]
+    if (dl > T(0)) {
+      const T G = w - dl;
+      r += tent_side(c, deg, lo, G, min_of(hi - lo, G), w, false);
+    } else {
+      r += tent_side(c, deg, xq, w, min_of(dh, w), w, false);
+    }
+  }
+  if (dl < T(0)) {  // left half: t in [max(lo, x - w), min(hi, x)]
+    if (dh < T(0)) {
+      const T G = w + dh;
+      r += tent_side(c, deg, hi, G, min_of(hi - lo, G), w, true);
+    } else {
+      r += tent_side(c, deg, xq, w, min_of(-dl, w), w, true);
+    }
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Per-piece primitives (public).
+
+// int_lo^hi q(t) phi((t - mu)/sigma)/sigma dt, sigma > 0. See gauss_core for the two regimes.
+template <class T>
+inline T gauss_piece(T mu, T sigma, T lo, T hi, const T* c) {
+  return gauss_core(mu, sigma, lo - mu, hi - mu, lo, hi, c);
+}
+
+// (1/2h) int over [lo, hi) cap [x - h, x + h] of q. See box_core.
+template <class T>
+inline T box_piece(T x, T h, T lo, T hi, const T* c) {
+  return box_core(x, h, lo - x, hi - x, lo, hi, c);
+}
+
+// int over [lo, hi) cap [x - w, x + w] of q(t) (w - |t - x|)/w^2. See tent_core.
+template <class T>
+inline T tent_piece(T x, T w, T lo, T hi, const T* c) {
+  return tent_core(x, w, lo - x, hi - x, lo, hi, c);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Whole-line piecewise polynomials (sorted contiguous pieces, first lo = -inf, last hi = +inf).
+
+// Right-continuous: the piece whose [lo, hi) contains x.
+template <class T, int N>
+inline T pw_eval(T x, const Piece<T> (&p)[N]) {
+  for (int i = 0; i < N - 1; ++i)
+    if (x < p[i].hi) return poly(p[i].c, x);
+  return poly(p[N - 1].c, x);
+}
+
+template <class T, int N>
+inline T gauss_pw(T x, T sigma, const Piece<T> (&p)[N]) {
+  if (sigma == T(0)) return pw_eval(x, p);
+  T s = T(0);
+  for (int i = 0; i < N; ++i) s += gauss_core(x, sigma, p[i].lo - x, p[i].hi - x, p[i].lo, p[i].hi, p[i].c);
+  return s;
+}
+
+// Only pieces meeting the support [x - h, x + h] are integrated (sorted: stop at the first piece
+// beyond it).
+template <class T, int N>
+inline T box_pw(T x, T sigma, const Piece<T> (&p)[N]) {
+  if (sigma == T(0)) return pw_eval(x, p);
+  const T h = k_sqrt3<T>() * sigma;
+  T s = T(0);
+  for (int i = 0; i < N; ++i) {
+    const T dl = p[i].lo - x, dh = p[i].hi - x;
+    if (!(dh > -h)) continue;
+    if (!(dl < h)) break;
+    s += box_core(x, h, dl, dh, p[i].lo, p[i].hi, p[i].c);
+  }
+  return s;
+}
+
+template <class T, int N>
+inline T tent_pw(T x, T sigma, const Piece<T> (&p)[N]) {
+  if (sigma == T(0)) return pw_eval(x, p);
+  const T w = k_sqrt6<T>() * sigma;
+  T s = T(0);
+  for (int i = 0; i < N; ++i) {
+    const T dl = p[i].lo - x, dh = p[i].hi - x;
+    if (!(dh > -w)) continue;
+    if (!(dl < w)) break;
+    s += tent_core(x, w, dl, dh, p[i].lo, p[i].hi, p[i].c);
+  }
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Periodic functions given by one period: pieces cover [0, period).
+
+// r in [0, period) and the integer n (held in T) with y = n period + r. fmod is exact in IEEE
+// arithmetic, so r is the true remainder of the given y and period even for |y| >> period (a
+// computed y - period floor(y/period) can be off by several periods when y/period rounds). n is
+// recovered from the exact r, so (n, r) always describe the same y.
+template <class T>
+inline T reduce_period(T y, T period, T& n) {
+  using std::floor;
+  using std::fmod;
+  T r = fmod(y, period);
+  if (r < T(0)) r += period;
+  if (!(r < period)) r = T(0);  // r + period rounded up to period: y is a multiple within rounding
+  n = floor((y - r) / period + T(0.5));
+  return r;
+}
+
+template <class T, int N>
+inline T periodic_piece_eval(T r, const Piece<T> (&p)[N]) {  // r in [0, period)
+  for (int i = 0; i < N - 1; ++i)
+    if (r < p[i].hi) return poly(p[i].c, r);
+  return poly(p[N - 1].c, r);
+}
+
+// f(x - period floor(x/period)) through the exact reduction above: the argument handed to the
+// polynomial always lies in [0, period), so the result stays in the range of f for any |x|.
+template <class T, int N>
+inline T periodic_eval(T x, T period, const Piece<T> (&p)[N]) {
+  T n;
+  return periodic_piece_eval(reduce_period(x, period, n), p);
+}
+
+// Gaussian tail multiple z with P(|Z| > z) <= tol/fmax. Mills: Phic(z) <= phi(z)/z <= phi(z) for
+// z >= 1, so 2 phi(z) <= tol/fmax suffices: z = sqrt(2 log(sqrt(2/pi) fmax/tol)), at least 1.
+template <class T>
+inline T image_z(T fmax, T tol) {
+  using std::log;
+  using std::sqrt;
+  const T arg = T(0.7978845608028654) * fmax / tol;
+  if (!(arg > T(1.6487212707001282))) return T(1);  // e^{1/2}: z would be < 1
+  return sqrt(T(2) * log(arg));
+}
+
+// Image sum: f smoothed = sum over periods m of the pieces shifted by m period. Only pieces that
+// meet [x_r - z sigma, x_r + z sigma] are summed, z = image_z(fmax, series_tol): the neglected
+// ones carry at most fmax P(|Z| > z) <= series_tol in total. Shifted ends are formed as
+// (lo + m period) - x_r (see the header note).
+template <class T, int N>
+inline T gauss_periodic_image(T x, T sigma, T period, const Piece<T> (&p)[N], T fmax) {
+  using std::floor;
+  if (sigma == T(0)) return periodic_eval(x, period, p);
+  T n;
+  const T xr = reduce_period(x, period, n);
+  const T R = image_z(fmax, series_tol<T>()) * sigma;
+  const T m0 = floor((xr - R) / period), m1 = floor((xr + R) / period);
+  T s = T(0);
+  for (T m = m0; m <= m1; m += T(1)) {
+    const T shift = m * period;
+    for (int i = 0; i < N; ++i) {
+      const T dl = (p[i].lo + shift) - xr, dh = (p[i].hi + shift) - xr;
+      if (!(dh > -R) || !(dl < R)) continue;
+      s += gauss_core(xr - shift, sigma, dl, dh, p[i].lo, p[i].hi, p[i].c);
+    }
+  }
+  return s;
+}
+
+// Number of Fourier terms K for the Gaussian-smoothed series: the tail sum_{k>K} B e^{-a k^2},
+// a = 2 pi^2 s^2, is bounded by the geometric majorant
+//   sum_{k>K} e^{-a k^2} <= e^{-a (K+1)^2} sum_{j>=0} e^{-2 a (K+1) j} = e^{-a(K+1)^2} / (1 - e^{-2a(K+1)})
+// (since (K+1+j)^2 >= (K+1)^2 + 2(K+1)j). Returns the smallest K >= 0 for which B times the
+// majorant is <= tol (so the true tail is certified; K is at most one above the true minimum).
+// The start value solves (K+1)^2 = log(B/tol)/a refined by a few fixed-point steps for the
+// geometric factor; a tiny s (K beyond 2^30) returns 2^30.
+template <class T>
+inline int fourier_terms(T s, T coef_bound, T tol) {
+  using std::ceil;
+  using std::exp;
+  using std::expm1;
+  using std::log;
+  using std::sqrt;
+  constexpr int kBig = 1 << 30;
+  if (!(coef_bound > T(0))) return 0;
+  const T a = T(2) * k_pi<T>() * k_pi<T>() * s * s;
+  if (!(a > T(0))) return kBig;
+  auto bound = [&](int K) {
+    const T u = T(K) + T(1);
+    return coef_bound * exp(-a * u * u) / (-expm1(T(-2) * a * u));
+  };
+  const T L = log(coef_bound / tol);
+  T u = sqrt((L > T(0) ? L : T(0)) / a);
+  for (int it = 0; it < 4; ++it) {
+    const T uu = u > T(1) ? u : T(1);
+    const T Lg = L - log(-expm1(T(-2) * a * uu));
+    u = sqrt((Lg > T(0) ? Lg : T(0)) / a);
+  }
+  if (!(u < T(kBig))) return kBig;
+  int K = static_cast<int>(ceil(u)) - 1;
+  if (K < 0) K = 0;
+  while (K > 0 && bound(K - 1) <= tol) --K;
+  while (!(bound(K) <= tol) && K < kBig) ++K;
+  return K;
+}
+
+// Periods the image sum visits in the worst case over x_r in [0, period): the window
+// [x_r - z sigma, x_r + z sigma] (z = image_z(fmax, tol)) meets at most ceil(2 z s) + 1 periods.
+template <class T>
+inline int image_periods(T s, T fmax, T tol) {
+  using std::ceil;
+  const T v = ceil(T(2) * image_z(fmax, tol) * s) + T(1);
+  if (!(v < T(1 << 30))) return 1 << 30;
+  return static_cast<int>(v);
+}
+
+// Cost model: one Fourier term ~ one sin + one cos, one image piece ~ one erfc + one exp (the
+// narrow-piece quadrature is costlier, which only widens the margin where Fourier wins). Both at
+// series_tol<T>().
+template <class T>
+inline bool prefer_fourier(T s, int npieces, T coef_bound, T fmax) {
+  const int K = fourier_terms(s, coef_bound, series_tol<T>());
+  const int P = image_periods(s, fmax, series_tol<T>());
+  return double(K) < double(P) * double(npieces);
+}
+
+// Box over a periodic f. (a) Support 2h <= 4 periods: integrate the pieces of the (at most 6)
+// periods it meets directly (box_core on exact shifted offsets); no difference of F is formed,
+// so tiny h is exact. (b) Wider: Appendix C, F(y) = n F_p(T) + F_p(y - nT), with the difference
+// F(x_r + h) - F(x_r - h) = (n2 - n1) F_p(T) + F_p(r2) - F_p(r1) taken on the reduced argument and
+// with the integer parts subtracted as integers: nothing of size |x| is formed, and the rounding
+// of x_r +- h (eps h) is divided by 2h.
+template <class T, int N>
+inline T box_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Piece<T> (&P1)[N]) {
+  using std::floor;
+  if (sigma == T(0)) return periodic_eval(x, period, p);
+  const T h = k_sqrt3<T>() * sigma;
+  T n;
+  const T xr = reduce_period(x, period, n);
+  if (h <= T(2) * period) {
+    const T m0 = floor((xr - h) / period), m1 = floor((xr + h) / period);
+    T s = T(0);
+    for (T m = m0; m <= m1; m += T(1)) {
+      const T shift = m * period;
+      for (int i = 0; i < N; ++i) {
+        const T dl = (p[i].lo + shift) - xr, dh = (p[i].hi + shift) - xr;
+        if (!(dh > -h) || !(dl < h)) continue;
+        s += box_core(xr - shift, h, dl, dh, p[i].lo, p[i].hi, p[i].c);
+      }
+    }
+    return s;
+  }
+  T n1, n2;
+  const T r1 = reduce_period(xr - h, period, n1);
+  const T r2 = reduce_period(xr + h, period, n2);
+  const T FT = poly(P1[N - 1].c, period);
+  return ((n2 - n1) * FT + (periodic_piece_eval(r2, P1) - periodic_piece_eval(r1, P1))) /
+         (T(2) * h);
+}
+
+// Tent over a periodic f. (a) Support 2w <= 4 periods: direct tent_core over the shifted pieces.
+// (b) Appendix C second integral F_2(y) = A (T q(q-1)/2 + r q) + B q + F_p2(r), y = qT + r,
+// A = F_p(T), B = F_p2(T), at y = x_r - w, x_r, x_r + w with x_r in [0, T) (so q0 = 0, r0 = x_r):
+//   F_2(x_r+w) - 2F_2(x_r) + F_2(x_r-w)
+//     = A (g(q2) + g(q1) + r2 q2 + r1 q1) + B (q2 + q1) + F_p2(r2) - 2 F_p2(x_r) + F_p2(r1),
+// g(q) = T q (q-1)/2. Every term is O(w^2 A / T) or bounded, so the w^2 division loses nothing.
+template <class T, int N>
+inline T tent_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Piece<T> (&P1)[N],
+                       const Piece<T> (&P2)[N]) {
+  using std::floor;
+  if (sigma == T(0)) return periodic_eval(x, period, p);
+  const T w = k_sqrt6<T>() * sigma;
+  T n;
+  const T xr = reduce_period(x, period, n);
+  if (w <= T(2) * period) {
+    const T m0 = floor((xr - w) / period), m1 = floor((xr + w) / period);
+    T s = T(0);
+    for (T m = m0; m <= m1; m += T(1)) {
+      const T shift = m * period;
+      for (int i = 0; i < N; ++i) {
+        const T dl = (p[i].lo + shift) - xr, dh = (p[i].hi + shift) - xr;
+        if (!(dh > -w) || !(dl < w)) continue;
+        s += tent_core(xr - shift, w, dl, dh, p[i].lo, p[i].hi, p[i].c);
+      }
+    }
+    return s;
+  }
+  T q1, q2;
+  const T r1 = reduce_period(xr - w, period, q1);
+  const T r2 = reduce_period(xr + w, period, q2);
+  const T A = poly(P1[N - 1].c, period);
+  const T B = poly(P2[N - 1].c, period);
+  const T g1 = period * q1 * (q1 - T(1)) * T(0.5);
+  const T g2 = period * q2 * (q2 - T(1)) * T(0.5);
+  const T num = A * ((g2 + g1) + (r2 * q2 + r1 * q1)) + B * (q2 + q1) +
+                ((periodic_piece_eval(r2, P2) + periodic_piece_eval(r1, P2)) -
+                 T(2) * periodic_piece_eval(xr, P2));
+  return num / (w * w);
+}
+
+}  // namespace detail
+}  // namespace bl

@@ -1,0 +1,331 @@
+#include "emit_common.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "exp_poly.hpp"
+#include "functions.hpp"
+
+namespace bl::rulegen {
+using namespace GiNaC;
+using sym::Body;
+using sym::Bound;
+using sym::Kernel;
+using sym::PolyPiece;
+
+std::string impl_name(const Derived& d) {
+  return std::string(sym::to_string(d.kernel)) + "_" + d.fn_suffix();
+}
+std::string plain_impl_name(const std::string& atomic) { return "plain_" + atomic; }
+
+namespace {
+
+// Language-specific spelling of the few constructs the bodies use.
+struct Syntax {
+  Lang lang;
+  bool cpp() const { return lang == Lang::Cpp; }
+  std::string T() const { return cpp() ? "T" : "float"; }
+  std::string ex(const GiNaC::ex& e) const { return sym::print(e, lang); }
+  std::string num(const GiNaC::ex& e) const { return sym::print(e, lang); }
+  std::string dbl(double v) const {
+    // Shortest text that reads back as v.
+    std::string t;
+    for (int prec = 6; prec <= 17; ++prec) {
+      std::ostringstream s;
+      s.precision(prec);
+      s << v;
+      t = s.str();
+      if (std::stod(t) == v) break;
+    }
+    if (t.find_first_of(".e") == std::string::npos) t += ".0";
+    return cpp() ? "T(" + t + ")" : "(" + t + ")";
+  }
+  std::string helper(const std::string& n) const { return cpp() ? "detail::" + n : "bl_" + n; }
+  std::string nan() const { return cpp() ? "detail::nan<T>()" : "bl_nan()"; }
+  std::string pi() const { return cpp() ? "detail::pi<T>()" : "bl_pi()"; }
+  std::string min(const std::string& a, const std::string& b) const {
+    return cpp() ? "detail::min2(" + a + ", " + b + ")" : "min(" + a + ", " + b + ")";
+  }
+  std::string bound(const Bound& b) const {
+    if (b.inf) return std::string(b.inf < 0 ? "-" : "") + (cpp() ? "detail::inf<T>()" : "1e30");
+    return ex(b.value);
+  }
+  std::string fn(const std::string& impl) const { return cpp() ? impl + "<T>" : "bl_" + impl; }
+  std::string decl(const std::string& name, const std::string& value) const {
+    // GLSL ES only allows constant expressions after const: plain locals there.
+    return std::string("  ") + (cpp() ? "const " : "") + T() + " " + name + " = " + value + ";\n";
+  }
+};
+
+std::string piece_table(const Syntax& s, const std::string& name, const std::vector<PolyPiece>& ps) {
+  auto coeffs = [&](const PolyPiece& p) {
+    std::string c;
+    for (int k = 0; k < 8; ++k) {
+      const GiNaC::ex v = k < static_cast<int>(p.c.size()) ? GiNaC::ex(p.c[k]) : GiNaC::ex(0);
+      c += (k ? ", " : "") + s.num(v);
+    }
+    return c;
+  };
+  if (ps.size() > 4) throw std::runtime_error("more than 4 pieces: the GLSL runtime takes at most 4");
+  std::string out;
+  if (s.cpp()) {
+    out = "  const detail::Piece<T> " + name + "[" + std::to_string(ps.size()) + "] = {\n";
+    for (const auto& p : ps)
+      out += "      {" + s.bound(p.lo) + ", " + s.bound(p.hi) + ", {" + coeffs(p) + "}},\n";
+    return out + "  };\n";
+  }
+  out = "  BlPiece " + name + "[4] = BlPiece[4](\n";
+  for (size_t i = 0; i < 4; ++i) {
+    if (i < ps.size())
+      out += "      BlPiece(" + s.bound(ps[i].lo) + ", " + s.bound(ps[i].hi) + ", float[8](" + coeffs(ps[i]) + "))";
+    else
+      out += "      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0))";
+    out += i < 3 ? ",\n" : ");\n";
+  }
+  return out;
+}
+
+// Arguments of a piecewise runtime call: C++ passes the array (size deduced), GLSL the count too.
+std::string pieces_arg(const Syntax& s, const std::string& name, size_t n) {
+  return s.cpp() ? name : std::to_string(n) + ", " + name;
+}
+
+std::string guard_sigma(const Syntax& s) {
+  return "  if (!(sigma >= " + s.dbl(0) + ")) return " + s.nan() + ";  // sigma < 0 or NaN\n";
+}
+
+std::string body_closed(const Derived& d, const Syntax& s) {
+  return guard_sigma(s) + "  return " + s.ex(d.closed) + ";\n";
+}
+
+std::string body_piecewise(const Derived& d, const Syntax& s) {
+  const std::string P = pieces_arg(s, "p", d.pieces.size());
+  std::string call = d.kernel == Kernel::Gaussian ? "gauss_pw" : d.kernel == Kernel::Box ? "box_pw" : "tent_pw";
+  return piece_table(s, "p", d.pieces) + guard_sigma(s) + "  if (sigma == " + s.dbl(0) +
+         ") return " + s.helper("pw_eval") + "(x, " + P + ");\n  return " + s.helper(call) +
+         "(x, sigma, " + P + ");\n";
+}
+
+std::string body_periodic(const Derived& d, const Syntax& s) {
+  const size_t n = d.pieces.size();
+  std::string out = piece_table(s, "p", d.pieces);
+  if (d.kernel != Kernel::Gaussian) out += piece_table(s, "p1", d.P1);
+  if (d.kernel == Kernel::Tent) out += piece_table(s, "p2", d.P2);
+  out += s.decl("period", s.ex(d.period));
+  out += guard_sigma(s);
+  out += "  if (sigma == " + s.dbl(0) + ") return " + s.helper("periodic_eval") + "(x, period, " +
+         pieces_arg(s, "p", n) + ");\n";
+  if (d.kernel == Kernel::Box)
+    return out + "  return " + s.helper("box_periodic") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
+           ", p1);\n";
+  if (d.kernel == Kernel::Tent)
+    return out + "  return " + s.helper("tent_periodic") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
+           ", p1, p2);\n";
+  // Gaussian: the dual series, whichever needs fewer terms for the tolerance.
+  const std::string T = s.T();
+  const std::string cb = s.dbl(d.coef_bound), fm = s.dbl(d.fmax);
+  out += s.decl("s", "sigma / period");
+  out += "  if (" + s.helper("prefer_fourier") + "(s, " + std::to_string(n) + ", " + cb + ", " + fm + ")) {\n";
+  out += "  " + s.decl("xr", "x - period * floor(x / period)");
+  out += std::string("    ") + (s.cpp() ? "const " : "") + "int K = " + s.helper("fourier_terms") + "(s, " + cb + ", " +
+         (s.cpp() ? "detail::series_tol<T>()" : "BL_SERIES_TOL") + ");\n";
+  out += "    " + T + " acc = " + s.ex(d.a0) + ";\n";
+  out += "    for (int k = 1; k <= K; ++k) {\n";
+  out += "    " + s.decl("kf", s.cpp() ? "T(k)" : "float(k)");
+  const bool uses_pk = d.ak.has(sym::var_pk()) || d.bk.has(sym::var_pk());
+  if (uses_pk) out += "    " + s.decl("pk", std::string("(k % 2 == 1) ? ") + s.dbl(-1) + " : " + s.dbl(1));
+  out += "    " + s.decl("th", s.dbl(2) + " * " + s.pi() + " * kf * xr / period");
+  out += "    " + s.decl("damp", "exp(" + s.dbl(-2) + " * " + s.pi() + " * " + s.pi() + " * kf * kf * s * s)");
+  std::string terms;
+  if (!d.ak.is_zero()) terms = s.ex(d.ak) + " * cos(th)";
+  if (!d.bk.is_zero()) terms += (terms.empty() ? "" : " + ") + s.ex(d.bk) + " * sin(th)";
+  if (terms.empty()) terms = s.dbl(0);
+  out += "      acc += damp * (" + terms + ");\n";
+  out += "    }\n    return acc;\n  }\n";
+  out += "  return " + s.helper("gauss_periodic_image") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
+         ", " + fm + ");\n";
+  return out;
+}
+
+std::string body_combination(const Derived& d, const Syntax& s) {
+  std::string out = guard_sigma(s) + "  return " + s.ex(d.closed);
+  for (const auto& t : d.terms) {
+    Derived other;
+    other.atomic_name = t.atomic;
+    other.kernel = d.kernel;
+    out += " + " + s.num(t.coeff) + " * " + s.fn(impl_name(other)) + "(" + (t.arg_sign < 0 ? "-x" : "x") +
+           ", sigma)";
+  }
+  return out + ";\n";
+}
+
+// Common subexpressions g(x) of the Taylor coefficients become locals u0, u1, ...
+GiNaC::ex cse_calls(const GiNaC::ex& e, std::map<std::string, std::pair<GiNaC::symbol, GiNaC::ex>>& calls) {
+  if (is_a<function>(e) && e.nops() == 1 && e.op(0).is_equal(sym::var_x())) {
+    std::ostringstream k;
+    k << ex_to<function>(e).get_name();
+    auto it = calls.find(k.str());
+    if (it == calls.end())
+      it = calls.emplace(k.str(), std::make_pair(GiNaC::symbol("u_" + k.str()), e)).first;
+    return it->second.first;
+  }
+  struct Recurse : GiNaC::map_function {
+    std::map<std::string, std::pair<GiNaC::symbol, GiNaC::ex>>& calls;
+    explicit Recurse(std::map<std::string, std::pair<GiNaC::symbol, GiNaC::ex>>& c) : calls(c) {}
+    GiNaC::ex operator()(const GiNaC::ex& sub) override { return cse_calls(sub, calls); }
+  } recurse(calls);
+  return e.map(recurse);
+}
+
+std::string body_antiderivative(const Derived& d, const Syntax& s) {
+  const sym::Atomic& a = *d.atomic;
+  const symbol& x = sym::var_x();
+  const GiNaC::ex hh = sym::var_hh();
+  std::string out = guard_sigma(s);
+  if (a.domain_lo.finite()) out += "  if (x < " + s.ex(a.domain_lo.value) + ") return " + s.nan() + ";  // outside the domain\n";
+  if (a.domain_hi.finite()) out += "  if (x > " + s.ex(a.domain_hi.value) + ") return " + s.nan() + ";  // outside the domain\n";
+  const std::string width = s.ex(sym::half_width(d.kernel));
+  bool has_r = !a.singular.empty();
+  if (has_r) {
+    // Distance to the nearest singularity (repeating with the period when there is one).
+    std::string r;
+    if (a.period) {
+      out += s.decl("period", s.ex(*a.period));
+      out += s.decl("xr", "x - period * floor(x / period)");
+      for (size_t i = 0; i < a.singular.size(); ++i) {
+        const std::string di = "abs(xr - " + s.ex(a.singular[i]) + ")";
+        const std::string ri = s.min(di, "period - " + di);
+        r = r.empty() ? ri : s.min(r, ri);
+      }
+    } else {
+      for (size_t i = 0; i < a.singular.size(); ++i) {
+        const std::string ri = "abs(x - " + s.ex(a.singular[i]) + ")";
+        r = r.empty() ? ri : s.min(r, ri);
+      }
+    }
+    out += s.decl("r", r);
+    out += s.decl("hh", s.min(width, s.dbl(d.lambda) + " * r"));  // compact kernel
+  } else {
+    out += s.decl("hh", width);
+  }
+  if (a.flat) {
+    const double l = d.squared ? a.flat->left * a.flat->left : a.flat->left;
+    const double rr = d.squared ? a.flat->right * a.flat->right : a.flat->right;
+    out += "  if (x - hh > " + s.dbl(a.flat->beyond) + ") return " + s.dbl(rr) + ";  // flat to machine precision\n";
+    out += "  if (x + hh < " + s.dbl(-a.flat->beyond) + ") return " + s.dbl(l) + ";\n";
+  }
+  std::string rho;
+  if (has_r) rho = "r";
+  if (a.scale) rho = rho.empty() ? s.ex(*a.scale) : s.min(rho, s.ex(*a.scale));
+  // Taylor series where the difference quotient would cancel (hh <= rho/20: 7 terms reach 1e-18).
+  std::map<std::string, std::pair<GiNaC::symbol, GiNaC::ex>> calls;
+  std::vector<GiNaC::ex> terms;
+  for (const auto& t : d.series) terms.push_back(cse_calls(t, calls));
+  out += "  if (hh <= " + s.dbl(0.05) + " * " + rho + ") {\n";
+  for (auto& [name, sc] : calls) out += "  " + s.decl(sc.first.get_name(), s.ex(sc.second));
+  out += "  " + s.decl("q", "hh * hh");
+  std::string horner = s.ex(terms.back());
+  for (int j = static_cast<int>(terms.size()) - 2; j >= 0; --j)
+    horner = s.ex(terms[j]) + " + q * (" + horner + ")";
+  out += "    return " + horner + ";\n  }\n";
+  const GiNaC::ex Fp = d.F_any.subs(x == x + hh), Fm = d.F_any.subs(x == x - hh);
+  if (d.kernel == Kernel::Box)
+    out += "  return (" + s.ex(Fp) + " - " + s.ex(Fm) + ") / (" + s.dbl(2) + " * hh);\n";
+  else
+    out += "  return (" + s.ex(Fp) + " - " + s.dbl(2) + " * " + s.ex(d.F_any) + " + " + s.ex(Fm) +
+           ") / (hh * hh);\n";
+  return out;
+}
+
+}  // namespace
+
+std::string body(const Derived& d, Lang lang) {
+  const Syntax s{lang};
+  std::string b;
+  switch (d.body) {
+    case Body::Closed: b = body_closed(d, s); break;
+    case Body::PiecewiseTable: b = body_piecewise(d, s); break;
+    case Body::PeriodicTable: b = body_periodic(d, s); break;
+    case Body::Combination: b = body_combination(d, s); break;
+    case Body::Antiderivative: b = body_antiderivative(d, s); break;
+  }
+  return (s.cpp() ? "  BL_MATH_USING\n" : "") + b;
+}
+
+std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lang lang) {
+  const Syntax s{lang};
+  std::string pre = s.cpp() ? "  BL_MATH_USING\n" : "";
+  switch (a.cls) {
+    case sym::AtomicClass::Entire:
+    case sym::AtomicClass::Antiderivative:
+      return pre + "  return " + s.ex(a.f) + ";\n";
+    case sym::AtomicClass::Piecewise: {
+      std::vector<PolyPiece> ps;
+      for (const auto& p : a.pieces) {
+        PolyPiece q{p.lo, p.hi, {}};
+        const GiNaC::ex f = p.f.expand();
+        for (int k = 0; k <= f.degree(sym::var_x()); ++k) q.c.push_back(ex_to<numeric>(f.coeff(sym::var_x(), k)));
+        ps.push_back(q);
+      }
+      return pre + piece_table(s, "p", ps) + "  return " + s.helper("pw_eval") + "(x, " +
+             pieces_arg(s, "p", ps.size()) + ");\n";
+    }
+    case sym::AtomicClass::Periodic: {
+      std::vector<PolyPiece> ps;
+      for (const auto& p : a.pieces) {
+        PolyPiece q{p.lo, p.hi, {}};
+        const GiNaC::ex f = p.f.expand();
+        for (int k = 0; k <= f.degree(sym::var_x()); ++k) q.c.push_back(ex_to<numeric>(f.coeff(sym::var_x(), k)));
+        ps.push_back(q);
+      }
+      return pre + piece_table(s, "p", ps) + "  return " + s.helper("periodic_eval") + "(x, " +
+             s.ex(*a.period) + ", " + pieces_arg(s, "p", ps.size()) + ");\n";
+    }
+    case sym::AtomicClass::Combination: {
+      // Same identity as the smoothed form, with the plain atomics.
+      for (const Derived& d : ds) {
+        if (d.atomic != &a) continue;
+        std::string out = pre + "  return " + s.ex(d.poly);
+        for (const auto& t : d.terms)
+          out += " + " + s.num(t.coeff) + " * " + s.fn(plain_impl_name(t.atomic)) + "(" +
+                 (t.arg_sign < 0 ? "-x" : "x") + ")";
+        return out + ";\n";
+      }
+      throw std::runtime_error("combination " + a.name + " was not derived");
+    }
+  }
+  return pre + "  return " + s.nan() + ";\n";
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_file(const std::string& path, const std::string& content) {
+  namespace fs = std::filesystem;
+  if (fs::exists(path)) {
+    try {
+      if (read_file(path) == content) return;
+    } catch (...) {
+    }
+  }
+  fs::create_directories(fs::path(path).parent_path());
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error("cannot write " + tmp);
+    out << content;
+    if (!out) throw std::runtime_error("write failed: " + tmp);
+  }
+  fs::rename(tmp, path);  // never leave a half-written file
+}
+
+}  // namespace bl::rulegen

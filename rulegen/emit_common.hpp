@@ -1,0 +1,35 @@
+// Shared by the C++ and GLSL emitters: prints the body of one derived entry in either language.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "derived.hpp"
+#include "printer.hpp"
+
+namespace bl::rulegen {
+
+using sym::Derived;
+using sym::Lang;
+
+// Internal function name: gaussian_sin_sq, plain_fract, gaussian_moment.
+std::string impl_name(const Derived& d);
+std::string plain_impl_name(const std::string& atomic);
+
+// The statements of the function body, in C++ (template over T, with x and sigma in scope) or
+// GLSL (float).
+std::string body(const Derived& d, Lang lang);
+// Body of the plain (unsmoothed) function f(x).
+std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lang lang);
+
+std::string read_file(const std::string& path);
+// Writes only if the content changed; creates parent directories.
+void write_file(const std::string& path, const std::string& content);
+
+// Emitters.
+void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std::string& out_dir);
+void emit_glsl(const sym::Catalog& cat, const std::vector<Derived>& ds, const std::string& out_dir);
+void emit_manifest(const sym::Catalog& cat, const std::vector<Derived>& ds, const std::string& out_dir,
+                   const std::string& catalog_label);
+
+}  // namespace bl::rulegen

@@ -1,0 +1,3 @@
+// Helpers of the generated GLSL besides the support functions.
+float bl_nan() { return uintBitsToFloat(0x7fc00000u); }
+float bl_pi() { return 3.14159265358979; }

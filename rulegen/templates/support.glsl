@@ -1,0 +1,530 @@
+// bandlimit runtime support, GLSL (float). Copied verbatim into the generated GLSL include by
+// `rulegen emit`. The same routines, with the same stability tricks, as support.hpp (read the
+// comments there); this file has no #version line: the includer supplies `#version 450` or
+// `#version 320 es` (with `precision highp float;`). Valid in both.
+//
+// Conventions: sigma is the kernel's standard deviation (Gaussian N(0, sigma^2), box U[-h, h] with
+// h = sqrt(3) sigma, tent on [-w, w] with w = sqrt(6) sigma); kernel(x, sigma) = E[f(x + U)];
+// sigma == 0 returns f(x), right-continuous at a jump. A piece is sum_k c[k] t^k on [lo, hi) in the
+// absolute coordinate t. Infinity is the sentinel 1.0e30: |lo| >= 1.0e30 means an infinite end.
+// Piecewise routines take `int n, BlPiece p[4]` (n <= 4 pieces; unused entries are ignored).
+//
+// Written in the subset of GLSL that is also C++ (no array constructors, no swizzles beyond
+// vec2 .x/.y, `out` only on arrays, no `const` on computed locals): the test suite compiles this
+// file as C++ float code and runs it against the same references as support.hpp.
+
+struct BlPiece {
+  float lo;
+  float hi;
+  float c[8];
+};
+
+const float BL_INF = 1.0e30;
+const float BL_PI = 3.14159265358979;
+const float BL_INV_SQRT2 = 0.707106781186548;
+const float BL_INV_SQRT_2PI = 0.398942280401433;
+const float BL_SQRT3 = 1.73205080756888;
+const float BL_SQRT6 = 2.44948974278318;
+const float BL_LN2 = 0.693147180559945;
+const float BL_SERIES_TOL = 1.0e-8;  // series_tol<float>()
+const float BL_ZMAX = 40.0;          // phi(40) and Phic(40) are 0 in float
+
+bool bl_is_inf(float v) { return abs(v) >= BL_INF; }
+
+// Highest index with a nonzero coefficient (loops stop there: no 0 * overflow).
+int bl_degree(float c[8]) {
+  int d = 7;
+  while (d > 0 && c[d] == 0.0) d -= 1;
+  return d;
+}
+
+// Horner.
+float bl_poly(float c[8], float t) {
+  float r = c[7];
+  for (int k = 6; k >= 0; --k) r = r * t + c[k];
+  return r;
+}
+
+// Taylor coefficients g[k] = q^(k)(t0)/k! by repeated synthetic division.
+void bl_taylor_shift(float c[8], int deg, float t0, out float g[8]) {
+  for (int k = 0; k < 8; ++k) g[k] = c[k];
+  for (int i = 0; i < deg; ++i)
+    for (int j = deg - 1; j >= i; --j) g[j] += t0 * g[j + 1];
+}
+
+// erfc with relative error < 1.2e-7 on the whole line (Numerical Recipes' Chebyshev fit of
+// erfc(z) e^{z^2}): GLSL has no erfc, and this keeps the Gaussian tails relatively accurate.
+float bl_erfc(float x) {
+  float z = min(abs(x), 10.0);  // erfc(10) = 2e-45: 0 in float
+  float t = 1.0 / (1.0 + 0.5 * z);
+  float r = t * exp(-z * z - 1.26551223 +
+                    t * (1.00002368 +
+                         t * (0.37409196 +
+                              t * (0.09678418 +
+                                   t * (-0.18628806 +
+                                        t * (0.27886807 +
+                                             t * (-1.13520398 +
+                                                  t * (1.48851587 +
+                                                       t * (-0.82215223 + t * 0.17087277)))))))));
+  return x >= 0.0 ? r : 2.0 - r;
+}
+
+float bl_phi(float z) {
+  float a = min(abs(z), BL_ZMAX);
+  return BL_INV_SQRT_2PI * exp(-0.5 * a * a);
+}
+// Both tails through erfc of the small side.
+float bl_Phi(float z) { return 0.5 * bl_erfc(-z * BL_INV_SQRT2); }
+float bl_Phic(float z) { return 0.5 * bl_erfc(z * BL_INV_SQRT2); }
+
+// sin(t)/t: series for |t| < 1 (GPU sin has an absolute, not relative, error bound), quotient
+// beyond.
+float bl_sinc(float t) {
+  float a = abs(t);
+  if (a < 1.0) {
+    float t2 = t * t;
+    return 1.0 +
+           t2 * (-1.0 / 6.0 +
+                 t2 * (1.0 / 120.0 +
+                       t2 * (-1.0 / 5040.0 + t2 * (1.0 / 362880.0 + t2 * (-1.0 / 39916800.0)))));
+  }
+  return sin(t) / t;
+}
+
+// sinh(t)/t: series for |t| < 1 (GPU sinh cancels near 0), quotient up to 20, then
+// exp(|t| - log 2|t|) (overflows to +inf only when the true value does).
+float bl_sinhc(float t) {
+  float a = abs(t);
+  if (a < 1.0) {
+    float t2 = t * t;
+    return 1.0 +
+           t2 * (1.0 / 6.0 +
+                 t2 * (1.0 / 120.0 +
+                       t2 * (1.0 / 5040.0 + t2 * (1.0 / 362880.0 + t2 * (1.0 / 39916800.0)))));
+  }
+  if (a < 20.0) return sinh(a) / a;
+  return exp(a - log(2.0 * a));
+}
+
+// exp(u) sinhc(v), v >= 0, merged exponent for v > 1 (no inf * 0).
+float bl_exp_sinhc(float u, float v) {
+  float a = abs(v);
+  if (a <= 1.0) return exp(u) * bl_sinhc(a);
+  return exp(u + a - log(2.0 * a)) * (1.0 - exp(-2.0 * a));
+}
+
+// exp(u) sinhc(v)^2, merged exponent for v > 1.
+float bl_exp_sinhc2(float u, float v) {
+  float a = abs(v);
+  if (a <= 1.0) {
+    float s = bl_sinhc(a);
+    return exp(u) * s * s;
+  }
+  float e = 1.0 - exp(-2.0 * a);
+  return exp(u + 2.0 * a - 2.0 * log(2.0 * a)) * e * e;
+}
+
+// log(1 + u) for u >= 0: series below 0.05 (GLSL has no log1p).
+float bl_log1p(float u) {
+  if (u < 0.05) return u * (1.0 - u * (0.5 - u * (1.0 / 3.0 - u * (0.25 - u * 0.2))));
+  return log(1.0 + u);
+}
+
+// log(cosh x): log1p(2 sinh^2(x/2)) for |x| < 1, |x| + log1p(e^{-2|x|}) - log 2 beyond.
+float bl_logcosh(float x) {
+  float a = abs(x);
+  if (a < 1.0) {
+    float s = 0.5 * a * bl_sinhc(0.5 * a);
+    return bl_log1p(2.0 * s * s);
+  }
+  return a + bl_log1p(exp(-2.0 * a)) - BL_LN2;
+}
+
+// U[k] = int_t^inf z^k phi, t >= 0 (clamped to 40, where everything is 0 in float), by the
+// positive upper-tail recursion.
+void bl_upper_moments(float t, int deg, out float U[8]) {
+  float tt = min(t, BL_ZMAX);
+  float e = bl_phi(tt);
+  U[0] = bl_Phic(tt);
+  U[1] = e;
+  for (int k = 2; k < 8; ++k) {
+    e *= tt;
+    U[k] = (k <= deg) ? e + float(k - 1) * U[k - 2] : 0.0;
+  }
+}
+
+// Gaussian integral of one piece on offsets (see gauss_core in support.hpp): 20-point
+// Gauss-Legendre for narrow pieces not deep in a tail, otherwise Taylor coefficients about the
+// centre times partial moments built from non-negative tails.
+float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float hi, float c[8]) {
+  if (!(hi > lo)) return 0.0;
+  bool loinf = bl_is_inf(lo);
+  bool hiinf = bl_is_inf(hi);
+  int deg = bl_degree(c);
+  if (!loinf && !hiinf) {
+    float hw = (hi - lo) / (2.0 * sigma);
+    float cz = (dl + dh) / (2.0 * sigma);
+    if (hw <= 1.0 && abs(cz) * hw <= 10.0) {
+      float gx[10];
+      float gw[10];
+      gx[0] = 0.076526521133497338;
+      gx[1] = 0.22778585114164507;
+      gx[2] = 0.37370608871541955;
+      gx[3] = 0.51086700195082713;
+      gx[4] = 0.63605368072651502;
+      gx[5] = 0.7463319064601508;
+      gx[6] = 0.83911697182221878;
+      gx[7] = 0.91223442825132595;
+      gx[8] = 0.96397192727791381;
+      gx[9] = 0.99312859918509488;
+      gw[0] = 0.15275338713072584;
+      gw[1] = 0.14917298647260374;
+      gw[2] = 0.14209610931838204;
+      gw[3] = 0.13168863844917664;
+      gw[4] = 0.11819453196151841;
+      gw[5] = 0.10193011981724044;
+      gw[6] = 0.083276741576704755;
+      gw[7] = 0.062672048334109068;
+      gw[8] = 0.040601429800386939;
+      gw[9] = 0.017614007139152118;
+      float mid = 0.5 * (lo + hi);
+      float hr = 0.5 * (hi - lo);
+      float s = 0.0;
+      for (int i = 0; i < 10; ++i) {
+        s += gw[i] * (bl_poly(c, mid + hr * gx[i]) * bl_phi(cz + hw * gx[i]) +
+                      bl_poly(c, mid - hr * gx[i]) * bl_phi(cz - hw * gx[i]));
+      }
+      return hw * s;
+    }
+  }
+  float a = loinf ? -BL_ZMAX : clamp(dl / sigma, -BL_ZMAX, BL_ZMAX);
+  float b = hiinf ? BL_ZMAX : clamp(dh / sigma, -BL_ZMAX, BL_ZMAX);
+  float g[8];
+  bl_taylor_shift(c, deg, xq, g);
+  float Ua[8];
+  float Ub[8];
+  float sum = 0.0;
+  float sk = 1.0;
+  if (a < 0.0 && b > 0.0) {
+    bl_upper_moments(-a, deg, Ua);
+    bl_upper_moments(b, deg, Ub);
+    float m[8];
+    for (int k = 0; k <= deg; ++k) {
+      m[k] = (k == 0) ? 1.0 : ((k == 1) ? 0.0 : float(k - 1) * m[k - 2]);
+      float ik = m[k] - (((k & 1) == 1) ? -Ua[k] : Ua[k]) - Ub[k];
+      if (g[k] != 0.0) sum += g[k] * sk * ik;
+      if (k < deg) sk *= sigma;
+    }
+    return sum;
+  }
+  if (a >= 0.0) {
+    bl_upper_moments(a, deg, Ua);
+    bl_upper_moments(b, deg, Ub);
+    for (int k = 0; k <= deg; ++k) {
+      if (g[k] != 0.0) sum += g[k] * sk * (Ua[k] - Ub[k]);
+      if (k < deg) sk *= sigma;
+    }
+    return sum;
+  }
+  bl_upper_moments(-b, deg, Ub);
+  bl_upper_moments(-a, deg, Ua);
+  for (int k = 0; k <= deg; ++k) {
+    float ik = Ub[k] - Ua[k];
+    if (g[k] != 0.0) sum += g[k] * sk * (((k & 1) == 1) ? -ik : ik);
+    if (k < deg) sk *= sigma;
+  }
+  return sum;
+}
+
+// Box integral of one piece on offsets: covered length from offsets, mean of t^k by divided
+// differences S_k = b S_{k-1} + a^k.
+float bl_box_core(float xq, float h, float dl, float dh, float lo, float hi, float c[8]) {
+  if (!(dl < h) || !(dh > -h)) return 0.0;
+  bool cl = dl > -h;
+  bool cr = dh < h;
+  float a = cl ? lo : xq - h;
+  float b = cr ? hi : xq + h;
+  float len = cl ? (cr ? hi - lo : h - dl) : (cr ? dh + h : 2.0 * h);
+  int deg = bl_degree(c);
+  float S = 1.0;
+  float ak = 1.0;
+  float mean = c[0];
+  for (int k = 1; k <= deg; ++k) {
+    ak *= a;
+    S = b * S + ak;
+    mean += c[k] * S / float(k + 1);
+  }
+  return len / (2.0 * h) * mean;
+}
+
+// One tent side, Taylor expansion about the interval end t0 nearest the centre (see support.hpp).
+float bl_tent_side(float c[8], int deg, float t0, float G, float L, float w, bool left) {
+  float g[8];
+  bl_taylor_shift(c, deg, t0, g);
+  float ell = L / w;
+  float gam = G / w;
+  float sum = 0.0;
+  float Lk = 1.0;
+  for (int k = 0; k <= deg; ++k) {
+    if (g[k] != 0.0) {
+      float term = g[k] * Lk * (gam / float(k + 1) - ell / float(k + 2));
+      sum += (left && (k & 1) == 1) ? -term : term;
+    }
+    if (k < deg) Lk *= L;
+  }
+  return sum * ell;
+}
+
+float bl_tent_core(float xq, float w, float dl, float dh, float lo, float hi, float c[8]) {
+  if (!(dl < w) || !(dh > -w)) return 0.0;
+  int deg = bl_degree(c);
+  float r = 0.0;
+  if (dh > 0.0) {
+    if (dl > 0.0) {
+      float G = w - dl;
+      r += bl_tent_side(c, deg, lo, G, min(hi - lo, G), w, false);
+    } else {
+      r += bl_tent_side(c, deg, xq, w, min(dh, w), w, false);
+    }
+  }
+  if (dl < 0.0) {
+    if (dh < 0.0) {
+      float G = w + dh;
+      r += bl_tent_side(c, deg, hi, G, min(hi - lo, G), w, true);
+    } else {
+      r += bl_tent_side(c, deg, xq, w, min(-dl, w), w, true);
+    }
+  }
+  return r;
+}
+
+float bl_gauss_piece(float mu, float sigma, float lo, float hi, float c[8]) {
+  return bl_gauss_core(mu, sigma, lo - mu, hi - mu, lo, hi, c);
+}
+float bl_box_piece(float x, float h, float lo, float hi, float c[8]) {
+  return bl_box_core(x, h, lo - x, hi - x, lo, hi, c);
+}
+float bl_tent_piece(float x, float w, float lo, float hi, float c[8]) {
+  return bl_tent_core(x, w, lo - x, hi - x, lo, hi, c);
+}
+
+// Whole-line piecewise polynomials: n sorted contiguous pieces, p[0].lo = -1e30, p[n-1].hi = 1e30.
+float bl_pw_eval(float x, int n, BlPiece p[4]) {
+  for (int i = 0; i < 3; ++i) {
+    if (i >= n - 1) break;
+    if (x < p[i].hi) return bl_poly(p[i].c, x);
+  }
+  return bl_poly(p[n - 1].c, x);
+}
+
+float bl_gauss_pw(float x, float sigma, int n, BlPiece p[4]) {
+  if (sigma == 0.0) return bl_pw_eval(x, n, p);
+  float s = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    if (i >= n) break;
+    s += bl_gauss_core(x, sigma, p[i].lo - x, p[i].hi - x, p[i].lo, p[i].hi, p[i].c);
+  }
+  return s;
+}
+
+float bl_box_pw(float x, float sigma, int n, BlPiece p[4]) {
+  if (sigma == 0.0) return bl_pw_eval(x, n, p);
+  float h = BL_SQRT3 * sigma;
+  float s = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    if (i >= n) break;
+    float dl = p[i].lo - x;
+    float dh = p[i].hi - x;
+    if (!(dh > -h)) continue;
+    if (!(dl < h)) break;
+    s += bl_box_core(x, h, dl, dh, p[i].lo, p[i].hi, p[i].c);
+  }
+  return s;
+}
+
+float bl_tent_pw(float x, float sigma, int n, BlPiece p[4]) {
+  if (sigma == 0.0) return bl_pw_eval(x, n, p);
+  float w = BL_SQRT6 * sigma;
+  float s = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    if (i >= n) break;
+    float dl = p[i].lo - x;
+    float dh = p[i].hi - x;
+    if (!(dh > -w)) continue;
+    if (!(dl < w)) break;
+    s += bl_tent_core(x, w, dl, dh, p[i].lo, p[i].hi, p[i].c);
+  }
+  return s;
+}
+
+// Periodic functions: pieces cover [0, period). Returns vec2(r, q), y = q period + r,
+// r in [0, period); q is adjusted with r so the pair stays consistent after rounding.
+vec2 bl_reduce_period(float y, float period) {
+  float q = floor(y / period);
+  float r = y - q * period;
+  if (r < 0.0) {
+    r += period;
+    q -= 1.0;
+  }
+  if (r >= period) {
+    r -= period;
+    q += 1.0;
+  }
+  r = clamp(r, 0.0, period);
+  if (r >= period) r = 0.0;
+  return vec2(r, q);
+}
+
+float bl_period_piece_eval(float r, int n, BlPiece p[4]) {
+  for (int i = 0; i < 3; ++i) {
+    if (i >= n - 1) break;
+    if (r < p[i].hi) return bl_poly(p[i].c, r);
+  }
+  return bl_poly(p[n - 1].c, r);
+}
+
+float bl_periodic_eval(float x, float period, int n, BlPiece p[4]) {
+  vec2 rq = bl_reduce_period(x, period);
+  return bl_period_piece_eval(rq.x, n, p);
+}
+
+// Tail multiple z with P(|Z| > z) <= tol/fmax (Mills: 2 phi(z) <= tol/fmax suffices for z >= 1).
+float bl_image_z(float fmax, float tol) {
+  float arg = 0.7978845608 * fmax / tol;
+  if (!(arg > 1.6487212707)) return 1.0;
+  return sqrt(2.0 * log(arg));
+}
+
+float bl_gauss_periodic_image(float x, float sigma, float period, int n, BlPiece p[4],
+                              float fmax) {
+  if (sigma == 0.0) return bl_periodic_eval(x, period, n, p);
+  float xr = bl_reduce_period(x, period).x;
+  float R = bl_image_z(fmax, BL_SERIES_TOL) * sigma;
+  int m0 = int(floor((xr - R) / period));
+  int m1 = int(floor((xr + R) / period));
+  float s = 0.0;
+  for (int m = m0; m <= m1; ++m) {
+    float shift = float(m) * period;
+    for (int i = 0; i < 4; ++i) {
+      if (i >= n) break;
+      float dl = (p[i].lo + shift) - xr;
+      float dh = (p[i].hi + shift) - xr;
+      if (!(dh > -R) || !(dl < R)) continue;
+      s += bl_gauss_core(xr - shift, sigma, dl, dh, p[i].lo, p[i].hi, p[i].c);
+    }
+  }
+  return s;
+}
+
+// 1 - e^{-y}, y >= 0, without cancellation for small y (GLSL has no expm1).
+float bl_one_minus_exp_neg(float y) {
+  if (y < 1.0e-3) return y * (1.0 - y * (0.5 - y * (1.0 / 6.0)));
+  return 1.0 - exp(-y);
+}
+
+float bl_fourier_bound(float a, float coef_bound, int K) {
+  float u = float(K) + 1.0;
+  return coef_bound * exp(-a * u * u) / bl_one_minus_exp_neg(2.0 * a * u);
+}
+
+// Smallest K with coef_bound e^{-a(K+1)^2} / (1 - e^{-2a(K+1)}) <= tol, a = 2 pi^2 s^2 (geometric
+// majorant of the tail, see support.hpp); 2^30 when s is too small.
+int bl_fourier_terms(float s, float coef_bound, float tol) {
+  if (!(coef_bound > 0.0)) return 0;
+  float a = 2.0 * BL_PI * BL_PI * s * s;
+  if (!(a > 0.0)) return 1073741824;
+  float L = log(coef_bound / tol);
+  float u = sqrt(max(L, 0.0) / a);
+  for (int it = 0; it < 4; ++it) {
+    float Lg = L - log(bl_one_minus_exp_neg(2.0 * a * max(u, 1.0)));
+    u = sqrt(max(Lg, 0.0) / a);
+  }
+  if (!(u < 1.0e9)) return 1073741824;
+  int K = max(int(ceil(u)) - 1, 0);
+  for (int it = 0; it < 64; ++it) {
+    if (K > 0 && bl_fourier_bound(a, coef_bound, K - 1) <= tol) K -= 1;
+    else break;
+  }
+  for (int it = 0; it < 64; ++it) {
+    if (!(bl_fourier_bound(a, coef_bound, K) <= tol)) K += 1;
+    else break;
+  }
+  return K;
+}
+
+int bl_image_periods(float s, float fmax, float tol) {
+  float v = ceil(2.0 * bl_image_z(fmax, tol) * s) + 1.0;
+  if (!(v < 1.0e9)) return 1073741824;
+  return int(v);
+}
+
+bool bl_prefer_fourier(float s, int npieces, float coef_bound, float fmax) {
+  int K = bl_fourier_terms(s, coef_bound, BL_SERIES_TOL);
+  int P = bl_image_periods(s, fmax, BL_SERIES_TOL);
+  return float(K) < float(P) * float(npieces);
+}
+
+// Box over a periodic f: direct shifted pieces when 2h <= 4 periods, else Appendix C with the
+// integer parts subtracted as integers on the reduced argument (see support.hpp).
+float bl_box_periodic(float x, float sigma, float period, int n, BlPiece p[4], BlPiece P1[4]) {
+  if (sigma == 0.0) return bl_periodic_eval(x, period, n, p);
+  float h = BL_SQRT3 * sigma;
+  float xr = bl_reduce_period(x, period).x;
+  if (h <= 2.0 * period) {
+    int m0 = int(floor((xr - h) / period));
+    int m1 = int(floor((xr + h) / period));
+    float s = 0.0;
+    for (int m = m0; m <= m1; ++m) {
+      float shift = float(m) * period;
+      for (int i = 0; i < 4; ++i) {
+        if (i >= n) break;
+        float dl = (p[i].lo + shift) - xr;
+        float dh = (p[i].hi + shift) - xr;
+        if (!(dh > -h) || !(dl < h)) continue;
+        s += bl_box_core(xr - shift, h, dl, dh, p[i].lo, p[i].hi, p[i].c);
+      }
+    }
+    return s;
+  }
+  vec2 y1 = bl_reduce_period(xr - h, period);
+  vec2 y2 = bl_reduce_period(xr + h, period);
+  float FT = bl_poly(P1[n - 1].c, period);
+  return ((y2.y - y1.y) * FT +
+          (bl_period_piece_eval(y2.x, n, P1) - bl_period_piece_eval(y1.x, n, P1))) /
+         (2.0 * h);
+}
+
+// Tent over a periodic f: direct shifted pieces when 2w <= 4 periods, else the Appendix C second
+// difference expanded with q0 = 0 (see support.hpp).
+float bl_tent_periodic(float x, float sigma, float period, int n, BlPiece p[4], BlPiece P1[4],
+                       BlPiece P2[4]) {
+  if (sigma == 0.0) return bl_periodic_eval(x, period, n, p);
+  float w = BL_SQRT6 * sigma;
+  float xr = bl_reduce_period(x, period).x;
+  if (w <= 2.0 * period) {
+    int m0 = int(floor((xr - w) / period));
+    int m1 = int(floor((xr + w) / period));
+    float s = 0.0;
+    for (int m = m0; m <= m1; ++m) {
+      float shift = float(m) * period;
+      for (int i = 0; i < 4; ++i) {
+        if (i >= n) break;
+        float dl = (p[i].lo + shift) - xr;
+        float dh = (p[i].hi + shift) - xr;
+        if (!(dh > -w) || !(dl < w)) continue;
+        s += bl_tent_core(xr - shift, w, dl, dh, p[i].lo, p[i].hi, p[i].c);
+      }
+    }
+    return s;
+  }
+  vec2 y1 = bl_reduce_period(xr - w, period);
+  vec2 y2 = bl_reduce_period(xr + w, period);
+  float A = bl_poly(P1[n - 1].c, period);
+  float B = bl_poly(P2[n - 1].c, period);
+  float g1 = period * y1.y * (y1.y - 1.0) * 0.5;
+  float g2 = period * y2.y * (y2.y - 1.0) * 0.5;
+  float num = A * ((g2 + g1) + (y2.x * y2.y + y1.x * y1.y)) + B * (y2.y + y1.y) +
+              ((bl_period_piece_eval(y2.x, n, P2) + bl_period_piece_eval(y1.x, n, P2)) -
+               2.0 * bl_period_piece_eval(xr, n, P2));
+  return num / (w * w);
+}

@@ -1,0 +1,370 @@
+#include "derived.hpp"
+
+#include <cmath>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+#include "exp_poly.hpp"
+#include "functions.hpp"
+#include "printer.hpp"
+
+namespace bl::sym {
+using namespace GiNaC;
+
+const symbol& var_k() {
+  static const realsymbol k("kf");
+  return k;
+}
+const symbol& var_pk() {
+  static const realsymbol pk("pk");
+  return pk;
+}
+const symbol& var_hh() {
+  static const symbol hh("hh");
+  return hh;
+}
+
+std::string Derived::fn_suffix() const {
+  if (rule == "moment") return "moment";
+  return atomic_name + (squared ? "_sq" : "");
+}
+std::string Derived::cpp_name() const {
+  return std::string("bl::") + to_string(kernel) + "::" + fn_suffix();
+}
+std::string Derived::glsl_name() const {
+  return std::string("bl_") + to_string(kernel) + "_" + fn_suffix();
+}
+
+namespace {
+
+[[noreturn]] void fail(const Atomic& a, const std::string& field, const std::string& msg) {
+  throw CatalogError("catalog entry '" + a.name + "', field '" + field + "': " + msg);
+}
+
+std::vector<numeric> coefficients(const ex& poly) {
+  const symbol& x = var_x();
+  const ex p = poly.expand();
+  std::vector<numeric> c;
+  for (int k = 0; k <= p.degree(x); ++k) {
+    const ex ck = p.coeff(x, k);
+    if (!is_a<numeric>(ck)) throw std::invalid_argument("non-numeric polynomial coefficient");
+    c.push_back(ex_to<numeric>(ck));
+  }
+  return c;
+}
+
+// t^n with t^0 = 1 also for t = 0 (GiNaC leaves 0^0 undefined).
+ex ipow(const ex& t, int n) { return n == 0 ? ex(1) : pow(t, n); }
+
+ex from_coefficients(const std::vector<numeric>& c, const ex& t) {
+  ex r = 0;
+  for (size_t k = 0; k < c.size(); ++k) r += c[k] * ipow(t, static_cast<int>(k));
+  return r;
+}
+
+// Antiderivative G of q with G(anchor) = value.
+std::vector<numeric> integrate(const std::vector<numeric>& q, const ex& anchor, const ex& value) {
+  std::vector<numeric> g(q.size() + 1, 0);
+  for (size_t k = 0; k < q.size(); ++k) g[k + 1] = q[k] / numeric(static_cast<long>(k + 1));
+  const ex at = from_coefficients(g, anchor);
+  g[0] = ex_to<numeric>((value - at).expand().evalf().is_zero() ? ex(0) : (value - at).expand());
+  return g;
+}
+
+std::vector<PolyPiece> polynomial_pieces(const Atomic& a, bool squared) {
+  std::vector<PolyPiece> out;
+  for (const Piece& p : a.pieces) {
+    const ex f = squared ? pow(p.f, 2).expand() : p.f;
+    out.push_back({p.lo, p.hi, coefficients(f)});
+  }
+  return out;
+}
+
+std::string text(const ex& e) { return print(e, Lang::Text); }
+
+std::string bound_text(const Bound& b) { return b.inf ? (b.inf > 0 ? "inf" : "-inf") : text(b.value); }
+
+std::string pieces_text(const std::vector<PolyPiece>& ps, const std::string& var) {
+  const symbol t(var);
+  std::string s = "{";
+  for (size_t i = 0; i < ps.size(); ++i)
+    s += (i ? "; " : "") + text(from_coefficients(ps[i].c, t)) + " on [" + bound_text(ps[i].lo) +
+         ", " + bound_text(ps[i].hi) + ")";
+  return s + "}";
+}
+
+// Closed form of the Gaussian convolution of polynomial pieces: with t = x + sigma z,
+// q(x + sigma z) = sum_k d_k z^k and  int z^k phi = A_k Phi(z) + B_k(z) phi(z)  by
+// J_0 = Phi, J_1 = -phi, J_k = -z^{k-1} phi + (k-1) J_{k-2}.
+ex gaussian_closed_form(const std::vector<PolyPiece>& ps) {
+  const symbol& x = var_x();
+  const ex sig = var_sigma();
+  const symbol z("z");
+  ex result = 0;
+  for (const PolyPiece& p : ps) {
+    const ex q = from_coefficients(p.c, x + sig * z).expand();
+    const int deg = q.degree(z);
+    std::vector<ex> A(deg + 1), B(deg + 1);  // J_k = A_k Phi + B_k phi
+    for (int k = 0; k <= deg; ++k) {
+      if (k == 0) { A[0] = 1; B[0] = 0; }
+      else if (k == 1) { A[1] = 0; B[1] = -1; }
+      else { A[k] = (k - 1) * A[k - 2]; B[k] = -pow(z, k - 1) + (k - 1) * B[k - 2]; }
+    }
+    auto J = [&](const Bound& b) -> ex {
+      ex r = 0;
+      for (int k = 0; k <= deg; ++k) {
+        const ex d = q.coeff(z, k);
+        if (b.inf == 1) r += d * A[k];  // Phi(inf) = 1, phi(inf) z^m = 0
+        else if (b.inf == -1) continue;
+        else {
+          const ex zb = (b.value - x) / sig;
+          r += d * (A[k] * Phi(zb) + B[k].subs(z == zb) * phi(zb));
+        }
+      }
+      return r;
+    };
+    result += J(p.hi) - J(p.lo);
+  }
+  return result;
+}
+
+void derive_piecewise(const Atomic& a, Kernel k, bool sq, Derived& d) {
+  d.body = Body::PiecewiseTable;
+  d.pieces = polynomial_pieces(a, sq);
+  if (k == Kernel::Gaussian) {
+    d.closed = gaussian_closed_form(d.pieces).expand();
+    d.formula = text(d.closed) +
+                "  [Phi, phi: standard normal CDF and density]";
+    return;
+  }
+  // Box/tent by repeated integration of the pieces (Heckbert): F continuous, F(0) = 0.
+  std::vector<PolyPiece> F, F2;
+  ex value = 0;
+  for (size_t i = 0; i < d.pieces.size(); ++i) {
+    const PolyPiece& p = d.pieces[i];
+    const ex anchor = p.lo.finite() ? p.lo.value : p.hi.value;
+    const ex start = p.lo.finite() ? value : ex(0);
+    F.push_back({p.lo, p.hi, integrate(p.c, anchor, start)});
+    if (p.hi.finite()) value = from_coefficients(F.back().c, p.hi.value).expand();
+  }
+  value = 0;
+  for (size_t i = 0; i < F.size(); ++i) {
+    const PolyPiece& p = F[i];
+    const ex anchor = p.lo.finite() ? p.lo.value : p.hi.value;
+    const ex start = p.lo.finite() ? value : ex(0);
+    F2.push_back({p.lo, p.hi, integrate(p.c, anchor, start)});
+    if (p.hi.finite()) value = from_coefficients(F2.back().c, p.hi.value).expand();
+  }
+  if (k == Kernel::Box)
+    d.formula = "(F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = " + pieces_text(F, "t");
+  else
+    d.formula = "(F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = " + pieces_text(F2, "t");
+}
+
+// e^{-2 pi i k r} for a piece boundary r T: 1 or (-1)^k.
+ex boundary_phase(const Atomic& a, const ex& t) {
+  const ex r = (t / *a.period).normal();
+  if (!is_a<numeric>(r) || !ex_to<numeric>(2 * ex_to<numeric>(r)).is_integer())
+    fail(a, "pieces", "periodic piece boundaries must be multiples of half the period (for the Fourier form)");
+  return ex_to<numeric>(r).is_integer() ? ex(1) : ex(var_pk());
+}
+
+void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
+  d.body = Body::PeriodicTable;
+  d.period = *a.period;
+  d.pieces = polynomial_pieces(a, sq);
+  const ex T = *a.period;
+  // First and second integrals over one period (smoothing paper, Appendix C).
+  ex v1 = 0, v2 = 0;
+  for (const PolyPiece& p : d.pieces) {
+    auto g1 = integrate(p.c, p.lo.value, v1);
+    auto g2 = integrate(g1, p.lo.value, v2);
+    d.P1.push_back({p.lo, p.hi, g1});
+    d.P2.push_back({p.lo, p.hi, g2});
+    v1 = from_coefficients(g1, p.hi.value).expand();
+    v2 = from_coefficients(g2, p.hi.value).expand();
+  }
+  const double rmax = std::max(std::abs(a.range_lo.to_double()), std::abs(a.range_hi.to_double()));
+  if (!std::isfinite(rmax)) fail(a, "range", "a periodic atomic needs a finite range");
+  d.fmax = sq ? rmax * rmax : rmax;
+  d.coef_bound = 4 * d.fmax;  // |a_k|, |b_k| <= (2/T) int |f| <= 2 max|f|
+  if (k != Kernel::Gaussian) {
+    d.formula = std::string(k == Kernel::Box ? "(F(x+h) - F(x-h))/(2h)" : "(F2(x+w) - 2F2(x) + F2(x-w))/w^2") +
+                ", F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) + F_p2(T) q + "
+                "F_p2(x - qT), q = floor(x/T), T = " + text(T) + ", F_p = " + pieces_text(d.P1, "t") +
+                ", F_p2 = " + pieces_text(d.P2, "t");
+    return;
+  }
+  // Fourier coefficients: c_k = (1/T) int_0^T f e^{b t} dt, b = -2 pi i k / T, by parts:
+  // int t^n e^{bt} = e^{bt} sum_j (-1)^j n!/(n-j)! t^{n-j} / b^{j+1}.
+  const ex kk = var_k();
+  const ex b = -2 * Pi * I * kk / T;
+  ex ck = 0, c0 = 0;
+  for (const PolyPiece& p : d.pieces) {
+    const int n = static_cast<int>(p.c.size()) - 1;
+    for (int m = 0; m <= n; ++m) {
+      if (p.c[m].is_zero()) continue;
+      ex prim_hi = 0, prim_lo = 0;
+      for (int j = 0; j <= m; ++j) {
+        const ex coef = pow(-1, j) * factorial(m) / factorial(m - j) / pow(b, j + 1);
+        prim_hi += coef * ipow(p.hi.value, m - j);
+        prim_lo += coef * ipow(p.lo.value, m - j);
+      }
+      ck += p.c[m] * (boundary_phase(a, p.hi.value) * prim_hi - boundary_phase(a, p.lo.value) * prim_lo);
+      c0 += p.c[m] * (ipow(p.hi.value, m + 1) - ipow(p.lo.value, m + 1)) / (m + 1);
+    }
+  }
+  ck = (ck / T).expand();
+  d.a0 = (c0 / T).normal();
+  d.ak = (2 * ck.real_part()).normal();
+  d.bk = (-2 * ck.imag_part()).normal();
+  d.formula = text(d.a0) + " + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), "
+              "a_k = " + text(d.ak) + ", b_k = " + text(d.bk) + " (pk = (-1)^k), T = " + text(T) +
+              " [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of "
+              "the pieces " + pieces_text(d.pieces, "t") + " [for small sigma/T]";
+}
+
+void derive_combination(const Atomic& a, Kernel k, const Catalog& cat, Derived& d) {
+  d.body = Body::Combination;
+  // Replace atomic(x) / atomic(-x) by symbols, then require a linear combination of them.
+  std::string s = a.of;
+  std::map<std::string, std::pair<std::string, int>> calls;
+  std::regex call("([a-z][a-z0-9_]*)\\(\\s*(-?)\\s*x\\s*\\)");
+  std::smatch m;
+  std::string rest = s, rebuilt;
+  while (std::regex_search(rest, m, call)) {
+    const std::string name = m[1];
+    if (name == "sin" || name == "cos" || name == "exp") {  // GiNaC's own
+      rebuilt += m.prefix().str() + m[0].str();
+    } else {
+      const Atomic* other = cat.find(name);
+      if (!other) fail(a, "of", "unknown atomic '" + name + "'");
+      if (other->cls == AtomicClass::Combination) fail(a, "of", "combinations of combinations are not supported");
+      const std::string sym = "A_" + name + (m[2].length() ? "_neg" : "_pos");
+      calls[sym] = {name, m[2].length() ? -1 : 1};
+      rebuilt += m.prefix().str() + sym;
+    }
+    rest = m.suffix();
+  }
+  rebuilt += rest;
+  symtab table;
+  table["x"] = var_x();
+  std::map<std::string, symbol> syms;
+  for (auto& [n, c] : calls) {
+    syms.emplace(n, symbol(n));
+    table[n] = syms.at(n);
+  }
+  ex e;
+  try {
+    parser reader(table, true);
+    e = reader(rebuilt).expand();
+  } catch (const std::exception& ex_) {
+    fail(a, "of", std::string("cannot parse: ") + ex_.what());
+  }
+  ex poly = e;
+  for (auto& [n, sym] : syms) {
+    if (e.degree(sym) > 1) fail(a, "of", "must be linear in the atomics it uses");
+    const ex c = e.coeff(sym, 1);
+    if (!is_a<numeric>(c)) fail(a, "of", "coefficients of atomics must be constants");
+    d.terms.push_back({ex_to<numeric>(c), calls[n].first, calls[n].second});
+    poly = poly.subs(sym == 0);
+  }
+  d.poly = poly;
+  try {
+    d.closed = ExpPoly::from(poly).convolve(k);
+  } catch (const std::exception& ex_) {
+    fail(a, "of", ex_.what());
+  }
+  std::string f = text(d.closed);
+  for (auto& t : d.terms)
+    f += " + " + text(t.coeff) + " * " + t.atomic + "~(" + (t.arg_sign < 0 ? "-x" : "x") + ")";
+  d.formula = f + "  [~: the same kernel's smoothed atomic]";
+}
+
+void derive_antiderivative(const Atomic& a, Kernel k, bool sq, Derived& d) {
+  d.body = Body::Antiderivative;
+  const symbol& x = var_x();
+  const ex hh = var_hh();
+  d.f_here = sq ? pow(a.f, 2) : a.f;
+  d.F_any = k == Kernel::Box ? (sq ? a.F_sq : a.F) : (sq ? a.F2_sq : a.F2);
+  // Taylor series in the half-width: E[f(x+U)] = sum_j f^(2j)(x) E[U^2j] / (2j)!, with
+  // E[U^2j] = hh^2j/(2j+1) (box) and 2 hh^2j/((2j+1)(2j+2)) (tent).
+  ex deriv = d.f_here;
+  for (int j = 0; j <= 6; ++j) {
+    const numeric mom = k == Kernel::Box ? numeric(1, 2 * j + 1) : numeric(2, (2 * j + 1) * (2 * j + 2));
+    d.series.push_back((deriv * mom / factorial(2 * j)).normal());
+    deriv = deriv.diff(x, 2);
+  }
+  const std::string F = text(d.F_any);
+  if (k == Kernel::Box)
+    d.formula = "(F(x+hh) - F(x-hh))/(2 hh), F = " + F;
+  else
+    d.formula = "(F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = " + F;
+  const std::string width = std::string(k == Kernel::Box ? "sqrt(3)" : "sqrt(6)") + " sigma";
+  if (a.singular.empty())
+    d.formula += ", hh = " + width;
+  else
+    d.formula += ", hh = min(" + width + ", r/2) with r the distance to the nearest singularity (compact kernel)";
+  d.formula += "; Taylor series in hh (7 terms) where the difference cancels (hh <= scale/20)";
+  (void)hh;
+}
+
+}  // namespace
+
+std::vector<Derived> derive_all(const Catalog& cat, int max_moment) {
+  std::vector<Derived> out;
+  for (const Atomic& a : cat.atomics) {
+    for (Kernel k : kAllKernels) {
+      for (bool sq : {false, true}) {
+        Derived d;
+        d.atomic = &a;
+        d.atomic_name = a.name;
+        d.kernel = k;
+        d.squared = sq;
+        switch (a.cls) {
+          case AtomicClass::Entire: {
+            try {
+              ExpPoly f = ExpPoly::from(a.f.expand());
+              if (sq) f = f * f;
+              d.body = Body::Closed;
+              d.closed = f.convolve(k);
+            } catch (const std::invalid_argument& e) {
+              fail(a, "f", e.what());
+            }
+            d.formula = text(d.closed);
+            break;
+          }
+          case AtomicClass::Piecewise: derive_piecewise(a, k, sq, d); break;
+          case AtomicClass::Periodic: derive_periodic(a, k, sq, d); break;
+          case AtomicClass::Combination:
+            if (sq) continue;  // f^2 of a combination is a product of atomics: not derived
+            derive_combination(a, k, cat, d);
+            break;
+          case AtomicClass::Antiderivative:
+            if (k == Kernel::Gaussian) continue;  // from the rules (issue 3), no closed form
+            if (k == Kernel::Tent && (sq ? a.F2_sq : a.F2).is_zero()) continue;
+            derive_antiderivative(a, k, sq, d);
+            break;
+        }
+        out.push_back(std::move(d));
+      }
+    }
+  }
+  for (Kernel k : kAllKernels) {
+    for (int n = 0; n <= max_moment; ++n) {
+      Derived d;
+      d.atomic_name = "moment";
+      d.kernel = k;
+      d.rule = "moment";
+      d.order = n;
+      d.body = Body::Closed;
+      d.closed = ExpPoly::from(pow(var_x(), n)).convolve(k);
+      d.formula = text(d.closed);
+      out.push_back(std::move(d));
+    }
+  }
+  return out;
+}
+
+}  // namespace bl::sym

@@ -1,0 +1,76 @@
+// What the engine derives for one (atomic, kernel, f or f^2) entry: the formula as text for the
+// manifest, and the structured form the emitters print as stable C++ and GLSL.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <string>
+#include <vector>
+
+#include "catalog.hpp"
+#include "kernels.hpp"
+
+namespace bl::sym {
+
+// A polynomial piece sum_k c[k] t^k on [lo, hi), exact coefficients.
+struct PolyPiece {
+  Bound lo, hi;
+  std::vector<GiNaC::numeric> c;
+};
+
+enum class Body {
+  Closed,          // one closed-form expression in x and sigma (exp-polynomial class, moments)
+  PiecewiseTable,  // whole-line polynomial pieces, evaluated by the runtime's stable primitives
+  PeriodicTable,   // one period of pieces + first/second integrals + Fourier coefficients
+  Combination,     // polynomial part + linear combination of other entries of the same kernel
+  Antiderivative   // box/tent from F or F2, Taylor series in the half-width where it cancels
+};
+
+struct CombinationTerm {
+  GiNaC::numeric coeff;
+  std::string atomic;
+  int arg_sign;  // +1: atomic(x), -1: atomic(-x)
+};
+
+struct Derived {
+  const Atomic* atomic = nullptr;  // null for moments
+  std::string atomic_name;
+  Kernel kernel{};
+  bool squared = false;
+  std::string rule = "convolution";
+  int order = 0;  // moment order
+  std::string formula;
+  Body body{};
+
+  GiNaC::ex closed;  // Closed; Combination: the polynomial part's convolution; PiecewiseTable
+                     // (Gaussian): the erf/exp closed form the runtime evaluates stably
+
+  std::vector<PolyPiece> pieces, P1, P2;  // tables (P1, P2: first/second integral over a period)
+  GiNaC::ex period;                       // PeriodicTable
+  double fmax = 0;                        // max |f| (image-sum tolerance)
+  double coef_bound = 0;                  // bound on |a_k| + |b_k|
+  GiNaC::ex a0, ak, bk;                   // Fourier coefficients in k (and (-1)^k)
+
+  std::vector<CombinationTerm> terms;  // Combination
+  GiNaC::ex poly;                      // Combination: the polynomial part, unsmoothed
+
+  // Antiderivative: value = (F(x+hh) - F(x-hh)) / (2 hh) (box) or the tent's second difference of
+  // F2; series[j] multiplies hh^(2j) where that difference cancels.
+  GiNaC::ex f_here, F_any;
+  std::vector<GiNaC::ex> series;
+  double lambda = 0.5;
+
+  std::string cpp_name() const;   // e.g. bl::gaussian::sin
+  std::string glsl_name() const;  // e.g. bl_gaussian_sin
+  std::string fn_suffix() const;  // e.g. sin_sq
+};
+
+const GiNaC::symbol& var_k();   // Fourier index
+const GiNaC::symbol& var_pk();  // (-1)^k
+const GiNaC::symbol& var_hh();  // the (possibly compacted) half-width in antiderivative rules
+
+// Derives every entry of the catalog, plus raw moments n <= max_moment. Throws CatalogError
+// (naming entry and field) when an entry's definition is outside what its class can derive.
+std::vector<Derived> derive_all(const Catalog& cat, int max_moment = 16);
+
+}  // namespace bl::sym

@@ -1,0 +1,107 @@
+// The catalog loader rejects bad entries with a message that names the entry and the field.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "catalog.hpp"
+#include "derived.hpp"
+
+namespace {
+using bl::sym::CatalogError;
+
+std::string wrap(const std::string& entry) { return R"({"atomics": [)" + entry + "]}"; }
+
+// Returns the error message of loading (and deriving) a one-entry catalog, or "" when accepted.
+std::string error_of(const std::string& json) {
+  try {
+    auto cat = bl::sym::parse_catalog(json, "test");
+    bl::sym::derive_all(cat, 0);
+  } catch (const CatalogError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_error(const std::string& json, const std::string& entry, const std::string& field,
+                  const std::string& detail = "") {
+  const std::string msg = error_of(json);
+  ASSERT_FALSE(msg.empty()) << "accepted: " << json;
+  EXPECT_NE(msg.find("'" + entry + "'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("field '" + field + "'"), std::string::npos) << msg;
+  if (!detail.empty()) EXPECT_NE(msg.find(detail), std::string::npos) << msg;
+}
+
+TEST(Catalog, ProjectCatalogLoadsAndDerives) {
+  auto cat = bl::sym::load_catalog(BL_DEFAULT_CATALOG);
+  EXPECT_GE(cat.atomics.size(), 29u);
+  for (const char* name : {"sin", "cos", "tan", "exp", "log", "sqrt", "sinh", "cosh", "tanh", "abs", "sign",
+                           "step", "floor", "ceil", "fract", "trunc", "saturate", "smoothstep", "pow2",
+                           "pow3", "pow4", "pow5", "pow6", "pow7", "pow8", "inv", "inv2", "triangle", "square"})
+    EXPECT_NE(cat.find(name), nullptr) << name;
+  EXPECT_GT(bl::sym::derive_all(cat).size(), 150u);
+}
+
+TEST(Catalog, WrongAntiderivativeIsRejected) {
+  expect_error(wrap(R"({"name": "badtan", "class": "antiderivative", "f": "tan(x)", "F": "log(abs(cos(x)))",
+    "F_sq": "tan(x) - x", "domain": ["-inf", "inf"], "period": "Pi", "singular": ["Pi/2"], "range": ["-inf", "inf"]})"),
+               "badtan", "F", "differs from the integrand");
+  expect_error(wrap(R"({"name": "badlog", "class": "antiderivative", "f": "log(x)", "F": "x*log(x) - x",
+    "F_sq": "x*log(x)^2", "domain": [0, "inf"], "singular": [0], "range": ["-inf", "inf"]})"),
+               "badlog", "F_sq");
+}
+
+TEST(Catalog, MissingDomainIsRejected) {
+  expect_error(wrap(R"({"name": "nodomain", "class": "entire", "f": "sin(x)", "range": [-1, 1]})"), "nodomain",
+               "domain", "missing");
+}
+
+TEST(Catalog, PeriodThatDoesNotMatchPiecesIsRejected) {
+  expect_error(wrap(R"({"name": "saw", "class": "periodic", "period": 2, "domain": ["-inf", "inf"], "range": [0, 1],
+    "jumps": [0], "pieces": [{"on": [0, 1], "f": "x"}]})"),
+               "saw", "period", "period is 2");
+}
+
+TEST(Catalog, UnknownNamesAreRejected) {
+  expect_error(wrap(R"({"name": "flr", "class": "combination", "of": "x - frac(x)", "domain": ["-inf", "inf"],
+    "range": ["-inf", "inf"]})"),
+               "flr", "of", "unknown atomic 'frac'");
+  expect_error(wrap(R"({"name": "odd", "class": "entire", "f": "sin(x) + erfx(x)", "domain": ["-inf", "inf"],
+    "range": [-1, 1]})"),
+               "odd", "f");
+  expect_error(wrap(R"({"name": "odd", "class": "wavy", "domain": ["-inf", "inf"], "range": [-1, 1]})"), "odd",
+               "class", "unknown class");
+  expect_error(wrap(R"({"name": "odd", "class": "entire", "f": "x", "domian": [0, 1], "domain": ["-inf", "inf"],
+    "range": [-1, 1]})"),
+               "odd", "domian", "unknown field");
+}
+
+TEST(Catalog, DeclaredBreaksMustMatchThePieces) {
+  expect_error(wrap(R"({"name": "ramp", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, "inf"],
+    "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "x"}]})"),
+               "ramp", "kinks", "kinks at [0]");
+  expect_error(wrap(R"({"name": "hop", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "kinks": [0], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "1"}]})"),
+               "hop", "jumps");
+}
+
+TEST(Catalog, OutsideTheDerivableClassIsRejected) {
+  expect_error(wrap(R"({"name": "gauss", "class": "entire", "f": "exp(x^2)", "domain": ["-inf", "inf"],
+    "range": [1, "inf"]})"),
+               "gauss", "f", "rational multiple of x");
+  expect_error(wrap(R"({"name": "third", "class": "periodic", "period": 3, "domain": ["-inf", "inf"], "range": [0, 1],
+    "jumps": [0, 1], "pieces": [{"on": [0, 1], "f": "1"}, {"on": [1, 3], "f": "0"}]})"),
+               "third", "pieces", "multiples of half the period");
+  expect_error(wrap(R"({"name": "flt", "class": "entire", "f": "x", "domain": ["-inf", "inf"], "range": [-0.5, 1]})"),
+               "flt", "range", "exact expressions");
+}
+
+TEST(Catalog, NotJsonIsRejectedWithTheFileName) {
+  try {
+    bl::sym::parse_catalog("{\"atomics\": [", "broken.json");
+    FAIL() << "accepted broken JSON";
+  } catch (const CatalogError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.json"), std::string::npos);
+  }
+}
+
+}  // namespace
