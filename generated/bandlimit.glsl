@@ -538,6 +538,7 @@ float bl_tent_periodic(float x, float sigma, float period, int n, BlPiece p[4], 
 // Helpers of the generated GLSL besides the support functions.
 float bl_nan() { return uintBitsToFloat(0x7fc00000u); }
 float bl_pi() { return 3.14159265358979; }
+float bl_series_reach() { return 0.35; }  // see emit_helpers.hpp
 
 // ---- entries ----
 
@@ -1670,10 +1671,10 @@ float bl_box_tan(float x, float sigma) {
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= (0.05) * min(r, ((1.0/2.0)*bl_pi()))) {
+  if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
     float u_tan = tan(x);
     float q = hh * hh;
-    return u_tan + q * (((1.0/3.0)*((u_tan*u_tan) + 1.0)*u_tan) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan)) + ((1.0/5.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/15.0)*u_tan)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/7.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((11.0/45.0)*(u_tan*u_tan*u_tan)) + ((17.0/315.0)*u_tan)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/9.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((16.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((62.0/2835.0)*u_tan) + ((88.0/567.0)*(u_tan*u_tan*u_tan))) + q * ((((1.0/11.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1282.0/14175.0)*(u_tan*u_tan*u_tan)) + ((1382.0/155925.0)*u_tan) + ((289.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((7.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((1.0/13.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((133.0/2673.0)*(u_tan*u_tan*u_tan)) + ((21844.0/6081075.0)*u_tan) + ((26.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((467.0/2025.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((478.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+    return u_tan + q * (((-1.0/3.0)*((-(u_tan*u_tan)) + (-1.0))*u_tan) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan)) + ((1.0/5.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/15.0)*u_tan)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/7.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((11.0/45.0)*(u_tan*u_tan*u_tan)) + ((17.0/315.0)*u_tan)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/9.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((16.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((62.0/2835.0)*u_tan) + ((88.0/567.0)*(u_tan*u_tan*u_tan))) + q * ((((1.0/11.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1282.0/14175.0)*(u_tan*u_tan*u_tan)) + ((1382.0/155925.0)*u_tan) + ((289.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((7.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((1.0/13.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((133.0/2673.0)*(u_tan*u_tan*u_tan)) + ((21844.0/6081075.0)*u_tan) + ((26.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((467.0/2025.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((478.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
   }
   return ((-log(abs(cos((hh + x))))) - (-log(abs(cos(((-hh) + x)))))) / ((2.0) * hh);
 }
@@ -1684,7 +1685,7 @@ float bl_box_tan_sq(float x, float sigma) {
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= (0.05) * min(r, ((1.0/2.0)*bl_pi()))) {
+  if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
     float u_tan = tan(x);
     float q = hh * hh;
     return (u_tan*u_tan) + q * ((((4.0/3.0)*(u_tan*u_tan)) + (1.0/3.0) + (u_tan*u_tan*u_tan*u_tan)) + q * ((((17.0/15.0)*(u_tan*u_tan)) + (2.0*(u_tan*u_tan*u_tan*u_tan)) + (2.0/15.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((12.0/5.0)*(u_tan*u_tan*u_tan*u_tan)) + ((248.0/315.0)*(u_tan*u_tan)) + ((8.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (17.0/315.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((10.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1382.0/2835.0)*(u_tan*u_tan)) + ((37.0/9.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((424.0/189.0)*(u_tan*u_tan*u_tan*u_tan)) + (62.0/2835.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((43688.0/155925.0)*(u_tan*u_tan)) + ((4532.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((8507.0/4725.0)*(u_tan*u_tan*u_tan*u_tan)) + ((94.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (1382.0/155925.0) + (4.0*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((133.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((14.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1901.0/405.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1934.0/1485.0)*(u_tan*u_tan*u_tan*u_tan)) + ((236.0/27.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((929569.0/6081075.0)*(u_tan*u_tan)) + (21844.0/6081075.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))))))));
@@ -1698,12 +1699,12 @@ float bl_tent_tan_sq(float x, float sigma) {
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= (0.05) * min(r, ((1.0/2.0)*bl_pi()))) {
+  if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
     float u_tan = tan(x);
     float q = hh * hh;
     return (u_tan*u_tan) + q * ((((1.0/2.0)*(u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan)) + (1.0/6.0)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((17.0/45.0)*(u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan)) + (2.0/45.0)) + q * ((((1.0/4.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((3.0/5.0)*(u_tan*u_tan*u_tan*u_tan)) + ((62.0/315.0)*(u_tan*u_tan)) + (17.0/1260.0)) + q * ((((1.0/5.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1382.0/14175.0)*(u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((37.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((424.0/945.0)*(u_tan*u_tan*u_tan*u_tan)) + (62.0/14175.0)) + q * ((((1.0/6.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((21844.0/467775.0)*(u_tan*u_tan)) + ((2266.0/2835.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((47.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((8507.0/28350.0)*(u_tan*u_tan*u_tan*u_tan)) + (691.0/467775.0)) + q * ((((1.0/7.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((19.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1901.0/2835.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1934.0/10395.0)*(u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((236.0/189.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((929569.0/42567525.0)*(u_tan*u_tan)) + (21844.0/42567525.0))))))));
   }
-  return ((((-1.0/2.0)*((hh + x)*(hh + x))) + (-log(abs(cos((hh + x)))))) - (2.0) * (((-1.0/2.0)*(x*x)) + (-log(abs(cos(x))))) + (((-1.0/2.0)*(((-hh) + x)*((-hh) + x))) + (-log(abs(cos(((-hh) + x))))))) / (hh * hh);
+  return ((((-1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))) + (-log(abs(cos((hh + x)))))) - (2.0) * (((-1.0/2.0)*(x*x)) + (-log(abs(cos(x))))) + (((-1.0/2.0)*(((-hh) + x)*((-hh) + x))) + (-log(abs(cos(((-hh) + x))))))) / (hh * hh);
 }
 
 float bl_box_tanh(float x, float sigma) {
@@ -1711,10 +1712,10 @@ float bl_box_tanh(float x, float sigma) {
   float hh = (sigma*sqrt(3.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (-1.0);
-  if (hh <= (0.05) * ((1.0/2.0)*bl_pi())) {
+  if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
     float u_tanh = tanh(x);
     float q = hh * hh;
-    return u_tanh + q * (((1.0/3.0)*((-1.0) + (u_tanh*u_tanh))*u_tanh) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((2.0/15.0)*u_tanh)) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-17.0/315.0)*u_tanh) + ((1.0/7.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((11.0/45.0)*(u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-88.0/567.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/9.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((16.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((62.0/2835.0)*u_tanh)) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-1382.0/155925.0)*u_tanh) + ((-289.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/11.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1282.0/14175.0)*(u_tanh*u_tanh*u_tanh)) + ((7.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-133.0/2673.0)*(u_tanh*u_tanh*u_tanh)) + ((-478.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/13.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((21844.0/6081075.0)*u_tanh) + ((26.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((467.0/2025.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
+    return u_tanh + q * (((-1.0/3.0)*((-(u_tanh*u_tanh)) + 1.0)*u_tanh) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((2.0/15.0)*u_tanh)) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-17.0/315.0)*u_tanh) + ((1.0/7.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((11.0/45.0)*(u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-88.0/567.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/9.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((16.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((62.0/2835.0)*u_tanh)) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-1382.0/155925.0)*u_tanh) + ((-289.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/11.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1282.0/14175.0)*(u_tanh*u_tanh*u_tanh)) + ((7.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-133.0/2673.0)*(u_tanh*u_tanh*u_tanh)) + ((-478.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/13.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((21844.0/6081075.0)*u_tanh) + ((26.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((467.0/2025.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
   }
   return (bl_logcosh((hh + x)) - bl_logcosh(((-hh) + x))) / ((2.0) * hh);
 }
@@ -1724,7 +1725,7 @@ float bl_box_tanh_sq(float x, float sigma) {
   float hh = (sigma*sqrt(3.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (1.0);
-  if (hh <= (0.05) * ((1.0/2.0)*bl_pi())) {
+  if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
     float u_tanh = tanh(x);
     float q = hh * hh;
     return (u_tanh*u_tanh) + q * ((((-4.0/3.0)*(u_tanh*u_tanh)) + (1.0/3.0) + (u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-2.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((17.0/15.0)*(u_tanh*u_tanh)) + (-2.0/15.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-248.0/315.0)*(u_tanh*u_tanh)) + ((-8.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((12.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (17.0/315.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-10.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-424.0/189.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1382.0/2835.0)*(u_tanh*u_tanh)) + ((37.0/9.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (-62.0/2835.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-4.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-43688.0/155925.0)*(u_tanh*u_tanh)) + ((-4532.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((8507.0/4725.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((94.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (1382.0/155925.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-14.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-1934.0/1485.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((-236.0/27.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((133.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1901.0/405.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((929569.0/6081075.0)*(u_tanh*u_tanh)) + (-21844.0/6081075.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))))))));
@@ -1737,12 +1738,12 @@ float bl_tent_tanh_sq(float x, float sigma) {
   float hh = (sigma*sqrt(6.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (1.0);
-  if (hh <= (0.05) * ((1.0/2.0)*bl_pi())) {
+  if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
     float u_tanh = tanh(x);
     float q = hh * hh;
     return (u_tanh*u_tanh) + q * ((((-2.0/3.0)*(u_tanh*u_tanh)) + ((1.0/2.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (1.0/6.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((17.0/45.0)*(u_tanh*u_tanh)) + (-2.0/45.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-62.0/315.0)*(u_tanh*u_tanh)) + ((1.0/4.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((3.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (17.0/1260.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-424.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1382.0/14175.0)*(u_tanh*u_tanh)) + ((37.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (-62.0/14175.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-21844.0/467775.0)*(u_tanh*u_tanh)) + ((-2266.0/2835.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/6.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((47.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((8507.0/28350.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (691.0/467775.0)) + q * ((((-1934.0/10395.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-236.0/189.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/7.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((19.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1901.0/2835.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((929569.0/42567525.0)*(u_tanh*u_tanh)) + (-21844.0/42567525.0))))))));
   }
-  return ((((1.0/2.0)*((hh + x)*(hh + x))) + (-bl_logcosh((hh + x)))) - (2.0) * (((1.0/2.0)*(x*x)) + (-bl_logcosh(x))) + (((1.0/2.0)*(((-hh) + x)*((-hh) + x))) + (-bl_logcosh(((-hh) + x))))) / (hh * hh);
+  return ((((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))) + (-bl_logcosh((hh + x)))) - (2.0) * (((1.0/2.0)*(x*x)) + (-bl_logcosh(x))) + (((1.0/2.0)*(((-hh) + x)*((-hh) + x))) + (-bl_logcosh(((-hh) + x))))) / (hh * hh);
 }
 
 float bl_box_log(float x, float sigma) {
@@ -1750,12 +1751,12 @@ float bl_box_log(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float u_log = log(x);
     float q = hh * hh;
     return u_log + q * (((-1.0/6.0)*(1.0/(x*x))) + q * (((-1.0/20.0)*(1.0/(x*x*x*x))) + q * (((-1.0/42.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/72.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/110.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/156.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return ((((hh + x)*log((hh + x))) + (-hh) + (-x)) - ((((-hh) + x)*log(((-hh) + x))) + (-x) + hh)) / ((2.0) * hh);
+  return (((-((-hh) + (-x))*log((hh + x))) + (-hh) + (-x)) - ((((-hh) + x)*log(((-hh) + x))) + (-x) + hh)) / ((2.0) * hh);
 }
 
 float bl_box_log_sq(float x, float sigma) {
@@ -1763,12 +1764,12 @@ float bl_box_log_sq(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float u_log = log(x);
     float q = hh * hh;
-    return (u_log*u_log) + q * (((-1.0/3.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((-1.0/60.0)*((-11.0) + (6.0*u_log))*(1.0/(x*x*x*x))) + q * (((-1.0/1260.0)*((-137.0) + (60.0*u_log))*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/5040.0)*((-363.0) + (140.0*u_log))*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/138600.0)*((-7129.0) + (2520.0*u_log))*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/2162160.0)*((-83711.0) + (27720.0*u_log))*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return (u_log*u_log) + q * (((-1.0/3.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/60.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/1260.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/5040.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/138600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/2162160.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return ((((-2.0)*(hh + x)*log((hh + x))) + ((hh + x)*(log((hh + x))*log((hh + x)))) + (2.0*hh) + (2.0*x)) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((-2.0)*((-hh) + x)*log(((-hh) + x))) + ((-2.0)*hh) + (2.0*x))) / ((2.0) * hh);
+  return (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (2.0*((-hh) + (-x))*log((hh + x))) + (2.0*hh) + (2.0*x)) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((-2.0)*((-hh) + x)*log(((-hh) + x))) + ((-2.0)*hh) + (2.0*x))) / ((2.0) * hh);
 }
 
 float bl_tent_log(float x, float sigma) {
@@ -1776,12 +1777,12 @@ float bl_tent_log(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float u_log = log(x);
     float q = hh * hh;
     return u_log + q * (((-1.0/12.0)*(1.0/(x*x))) + q * (((-1.0/60.0)*(1.0/(x*x*x*x))) + q * (((-1.0/168.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/360.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/660.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/1092.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return ((((-3.0/4.0)*((hh + x)*(hh + x))) + ((1.0/2.0)*((hh + x)*(hh + x))*log((hh + x)))) - (2.0) * (((-3.0/4.0)*(x*x)) + ((1.0/2.0)*(x*x)*log(x))) + (((-3.0/4.0)*(((-hh) + x)*((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))))) / (hh * hh);
+  return ((((-3.0/4.0)*(((-hh) + (-x))*((-hh) + (-x)))) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x)))) - (2.0) * (((-3.0/4.0)*(x*x)) + ((1.0/2.0)*(x*x)*log(x))) + (((-3.0/4.0)*(((-hh) + x)*((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))))) / (hh * hh);
 }
 
 float bl_tent_log_sq(float x, float sigma) {
@@ -1789,12 +1790,12 @@ float bl_tent_log_sq(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float u_log = log(x);
     float q = hh * hh;
-    return (u_log*u_log) + q * (((-1.0/6.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((-1.0/180.0)*((-11.0) + (6.0*u_log))*(1.0/(x*x*x*x))) + q * (((-1.0/5040.0)*((-137.0) + (60.0*u_log))*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/25200.0)*((-363.0) + (140.0*u_log))*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/831600.0)*((-7129.0) + (2520.0*u_log))*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/15135120.0)*((-83711.0) + (27720.0*u_log))*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return (u_log*u_log) + q * (((-1.0/6.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/180.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/5040.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/25200.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/831600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/15135120.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return ((((-3.0/2.0)*((hh + x)*(hh + x))*log((hh + x))) + ((1.0/2.0)*((hh + x)*(hh + x))*(log((hh + x))*log((hh + x)))) + ((7.0/4.0)*((hh + x)*(hh + x)))) - (2.0) * (((-3.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(log(x)*log(x))*(x*x)) + ((7.0/4.0)*(x*x))) + (((-3.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))) + ((7.0/4.0)*(((-hh) + x)*((-hh) + x))))) / (hh * hh);
+  return ((((-3.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x)))) + ((7.0/4.0)*(((-hh) + (-x))*((-hh) + (-x))))) - (2.0) * (((-3.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(log(x)*log(x))*(x*x)) + ((7.0/4.0)*(x*x))) + (((-3.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))) + ((7.0/4.0)*(((-hh) + x)*((-hh) + x))))) / (hh * hh);
 }
 
 float bl_box_sqrt(float x, float sigma) {
@@ -1802,7 +1803,7 @@ float bl_box_sqrt(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return sqrt(x) + q * (((-1.0/24.0)*((1.0/(x*x))*sqrt(x))) + q * (((-1.0/128.0)*((1.0/(x*x*x*x))*sqrt(x))) + q * (((-3.0/1024.0)*((1.0/(x*x*x*x*x*x))*sqrt(x))) + q * (((-143.0/98304.0)*((1.0/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-221.0/262144.0)*((1.0/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-2261.0/4194304.0)*((1.0/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
   }
@@ -1814,11 +1815,11 @@ float bl_box_sqrt_sq(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
   }
-  return (((1.0/2.0)*((hh + x)*(hh + x))) - ((1.0/2.0)*(((-hh) + x)*((-hh) + x)))) / ((2.0) * hh);
+  return (((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))) - ((1.0/2.0)*(((-hh) + x)*((-hh) + x)))) / ((2.0) * hh);
 }
 
 float bl_tent_sqrt(float x, float sigma) {
@@ -1826,7 +1827,7 @@ float bl_tent_sqrt(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return sqrt(x) + q * (((-1.0/48.0)*((1.0/(x*x))*sqrt(x))) + q * (((-1.0/384.0)*((1.0/(x*x*x*x))*sqrt(x))) + q * (((-3.0/4096.0)*((1.0/(x*x*x*x*x*x))*sqrt(x))) + q * (((-143.0/491520.0)*((1.0/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-221.0/1572864.0)*((1.0/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-323.0/4194304.0)*((1.0/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
   }
@@ -1838,18 +1839,18 @@ float bl_tent_sqrt_sq(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
   }
-  return (((1.0/6.0)*((hh + x)*(hh + x)*(hh + x))) - (2.0) * ((1.0/6.0)*(x*x*x)) + ((1.0/6.0)*(((-hh) + x)*((-hh) + x)*((-hh) + x)))) / (hh * hh);
+  return (((-1.0/6.0)*(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x)))) - (2.0) * ((1.0/6.0)*(x*x*x)) + ((1.0/6.0)*(((-hh) + x)*((-hh) + x)*((-hh) + x)))) / (hh * hh);
 }
 
 float bl_box_inv(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return (1.0/(x)) + q * (((1.0/3.0)*(1.0/(x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/9.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/11.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/13.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
@@ -1860,29 +1861,29 @@ float bl_box_inv_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return (1.0/(x*x)) + q * ((1.0/(x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
   }
-  return ((-(1.0/((hh + x)))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
+  return (((1.0/(((-hh) + (-x))))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
 }
 
 float bl_tent_inv(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return (1.0/(x)) + q * (((1.0/6.0)*(1.0/(x*x*x))) + q * (((1.0/15.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/28.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/45.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/66.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/91.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return ((((hh + x)*log(abs((hh + x)))) + (-hh) + (-x)) - (2.0) * ((-x) + (log(abs(x))*x)) + ((((-hh) + x)*log(abs(((-hh) + x)))) + (-x) + hh)) / (hh * hh);
+  return (((-((-hh) + (-x))*log(abs((hh + x)))) + (-hh) + (-x)) - (2.0) * ((-x) + (log(abs(x))*x)) + ((((-hh) + x)*log(abs(((-hh) + x)))) + (-x) + hh)) / (hh * hh);
 }
 
 float bl_tent_inv_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x*x*x))) + q * (((1.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/4.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/6.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
@@ -1893,29 +1894,29 @@ float bl_box_inv2(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return (1.0/(x*x)) + q * ((1.0/(x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
   }
-  return ((-(1.0/((hh + x)))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
+  return (((1.0/(((-hh) + (-x))))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
 }
 
 float bl_box_inv2_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return (1.0/(x*x*x*x)) + q * (((10.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * ((7.0*(1.0/(x*x*x*x*x*x*x*x))) + q * ((12.0*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((55.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((26.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((35.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return (((-1.0/3.0)*(1.0/((hh + x)*(hh + x)*(hh + x)))) - ((-1.0/3.0)*(1.0/(((-hh) + x)*((-hh) + x)*((-hh) + x))))) / ((2.0) * hh);
+  return (((1.0/3.0)*(1.0/(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x))))) - ((-1.0/3.0)*(1.0/(((-hh) + x)*((-hh) + x)*((-hh) + x))))) / ((2.0) * hh);
 }
 
 float bl_tent_inv2(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x*x*x))) + q * (((1.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/4.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/6.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
@@ -1926,11 +1927,11 @@ float bl_tent_inv2_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= (0.05) * r) {
+  if (hh <= bl_series_reach() * r) {
     float q = hh * hh;
     return (1.0/(x*x*x*x)) + q * (((5.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((7.0/3.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * ((3.0*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((11.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((13.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((5.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return (((1.0/6.0)*(1.0/((hh + x)*(hh + x)))) - (2.0) * ((1.0/6.0)*(1.0/(x*x))) + ((1.0/6.0)*(1.0/(((-hh) + x)*((-hh) + x))))) / (hh * hh);
+  return (((1.0/6.0)*(1.0/(((-hh) + (-x))*((-hh) + (-x))))) - (2.0) * ((1.0/6.0)*(1.0/(x*x))) + ((1.0/6.0)*(1.0/(((-hh) + x)*((-hh) + x))))) / (hh * hh);
 }
 
 float bl_gaussian_moment(int n, float x, float sigma) {

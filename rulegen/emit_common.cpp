@@ -221,11 +221,11 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   std::string rho;
   if (has_r) rho = "r";
   if (a.scale) rho = rho.empty() ? s.ex(*a.scale) : s.min(rho, s.ex(*a.scale));
-  // Taylor series where the difference quotient would cancel (hh <= rho/20: 7 terms reach 1e-18).
+  // Taylor series where the difference quotient would cancel (reach: emit_helpers.hpp).
   std::map<std::string, std::pair<GiNaC::symbol, GiNaC::ex>> calls;
   std::vector<GiNaC::ex> terms;
   for (const auto& t : d.series) terms.push_back(cse_calls(t, calls));
-  out += "  if (hh <= " + s.dbl(0.05) + " * " + rho + ") {\n";
+  out += "  if (hh <= " + s.helper(s.cpp() ? "series_reach<T>" : "series_reach") + "() * " + rho + ") {\n";
   for (auto& [name, sc] : calls) out += "  " + s.decl(sc.first.get_name(), s.ex(sc.second));
   out += "  " + s.decl("q", "hh * hh");
   std::string horner = s.ex(terms.back());

@@ -2,30 +2,58 @@
 
 #include <cln/float.h>
 
+#include <cmath>
+
 namespace bl::sym {
 using namespace GiNaC;
 
 namespace {
 
-// erf by its Maclaurin series in CLN with guard digits; the engine only evaluates it for checks.
-numeric erf_numeric(const numeric& z) {
+// Lifts a (possibly double-precision) numeric to a float of the current Digits.
+numeric lift(const numeric& v) {
+  const numeric exact = v.is_rational() ? v : numeric(cln::rational(cln::the<cln::cl_F>(v.to_cl_N())));
+  return ex_to<numeric>(ex(exact).evalf());
+}
+
+// Standard normal CDF at the current Digits. |z| <= 15: Maclaurin series of erf with guard digits
+// for its alternation (~e^{z^2}) and for the cancellation in 1 + erf (~e^{-z^2/2}); |z| > 15: the
+// asymptotic series of the Mills ratio, whose smallest term is below 1e-48 relative there.
+numeric Phi_numeric(const numeric& z_in) {
   const int saved = Digits;
-  Digits = saved + 30 + static_cast<int>(abs(z).to_double() * abs(z).to_double() / 2.3);
-  numeric term = z, sum = z, z2 = z * z;
-  for (int n = 1; n < 100000; ++n) {
-    term = -term * z2 / n;
-    const numeric add = term / (2 * n + 1);
-    sum += add;
-    if (abs(add) < pow(numeric(10), -(Digits + 2)) * abs(sum)) break;
+  const double zd = z_in.to_double();
+  numeric result;
+  if (std::abs(zd) > 15) {
+    Digits = saved + 10;
+    const numeric t = lift(abs(z_in));
+    const numeric pdf = ex_to<numeric>(exp(-t * t / 2).evalf()) / ex_to<numeric>(sqrt(2 * Pi).evalf());
+    numeric term = 1, sum = 1;
+    for (int n = 1; n < 200; ++n) {
+      const numeric next = -term * (2 * n - 1) / (t * t);
+      if (abs(next) >= abs(term)) break;
+      term = next;
+      sum += term;
+    }
+    const numeric tail = pdf / t * sum;
+    result = zd > 0 ? 1 - tail : tail;
+  } else {
+    Digits = saved + 30 + static_cast<int>(zd * zd * 0.65);
+    const numeric x = lift(z_in) / ex_to<numeric>(sqrt(ex(2)).evalf());
+    numeric term = x, sum = x, x2 = x * x;
+    for (int n = 1; n < 100000; ++n) {
+      term = -term * x2 / n;
+      const numeric add = term / (2 * n + 1);
+      sum += add;
+      if (abs(add) < pow(numeric(10), -(Digits + 2)) * abs(sum)) break;
+    }
+    result = (1 + sum * 2 / sqrt(ex_to<numeric>(Pi.evalf()))) / 2;
   }
-  const numeric r = sum * 2 / sqrt(ex_to<numeric>(Pi.evalf()));
   Digits = saved;
-  return r;
+  return ex_to<numeric>(ex(result).evalf());
 }
 
 ex Phi_evalf(const ex& z) {
   if (!is_a<numeric>(z)) return Phi(z).hold();
-  return (1 + erf_numeric(ex_to<numeric>(z) / sqrt(numeric(2)))) / 2;
+  return Phi_numeric(ex_to<numeric>(z));
 }
 ex Phi_deriv(const ex& z, unsigned) { return phi(z); }
 ex phi_evalf(const ex& z) {

@@ -52,6 +52,26 @@ std::string helper(const std::string& name, Lang lang) {
 }
 
 std::string pr(const ex& e, Lang lang);
+std::string print_power(const ex& base, const ex& expo, Lang lang);
+
+// GiNaC keeps a - b, and (a - b)^n, as either itself or -(b - a) (times (-1)^n) depending on hash
+// order, i.e. on the run. Returns the sign s and text t with f = s * t, choosing between the two
+// forms by their text, so that the output does not depend on the run.
+std::pair<int, std::string> signed_print(const ex& f, Lang lang) {
+  if (is_a<add>(f)) {
+    const ex neg = (-f).expand();
+    const std::string pf = pr(f, lang), pn = pr(neg, lang);
+    return pn < pf ? std::make_pair(-1, pn) : std::make_pair(1, pf);
+  }
+  if (is_a<power>(f) && is_a<add>(f.op(0)) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_integer()) {
+    const ex neg = (-f.op(0)).expand();
+    if (pr(neg, lang) < pr(f.op(0), lang))
+      return {ex_to<numeric>(f.op(1)).is_even() ? 1 : -1, print_power(neg, f.op(1), lang)};
+    return {1, print_power(f.op(0), f.op(1), lang)};
+  }
+  if (is_a<power>(f)) return {1, print_power(f.op(0), f.op(1), lang)};
+  return {1, pr(f, lang)};
+}
 
 std::string print_power(const ex& base, const ex& expo, Lang lang) {
   const std::string b = pr(base, lang);
@@ -103,10 +123,16 @@ std::string pr(const ex& e, Lang lang) {
     std::vector<std::string> factors;
     numeric coeff = 1;
     for (size_t i = 0; i < e.nops(); ++i) {
-      if (is_a<numeric>(e.op(i)))
-        coeff *= ex_to<numeric>(e.op(i));
-      else
-        factors.push_back(pr(e.op(i), lang));
+      const ex f = e.op(i);
+      if (is_a<numeric>(f)) {
+        coeff *= ex_to<numeric>(f);
+      } else if (is_a<add>(f) || is_a<power>(f)) {
+        const auto [sign, text] = signed_print(f, lang);
+        if (sign < 0) coeff = -coeff;
+        factors.push_back(text);
+      } else {
+        factors.push_back(pr(f, lang));
+      }
     }
     std::sort(factors.begin(), factors.end());
     std::string s;
@@ -115,7 +141,10 @@ std::string pr(const ex& e, Lang lang) {
     if (coeff.is_equal(-1)) return "(-" + s + ")";
     return "(" + numeric_literal(coeff, lang) + "*" + s + ")";
   }
-  if (is_a<power>(e)) return print_power(e.op(0), e.op(1), lang);
+  if (is_a<power>(e)) {
+    const auto [sign, text] = signed_print(e, lang);
+    return sign < 0 ? "(-" + text + ")" : text;
+  }
   if (is_a<function>(e)) {
     const std::string name = ex_to<function>(e).get_name();
     std::vector<std::string> args;

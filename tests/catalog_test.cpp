@@ -9,7 +9,7 @@
 namespace {
 using bl::sym::CatalogError;
 
-std::string wrap(const std::string& entry) { return R"({"atomics": [)" + entry + "]}"; }
+std::string wrap(const std::string& entry) { return R"J({"atomics": [)J" + entry + "]}"; }
 
 // Returns the error message of loading (and deriving) a one-entry catalog, or "" when accepted.
 std::string error_of(const std::string& json) {
@@ -42,56 +42,56 @@ TEST(Catalog, ProjectCatalogLoadsAndDerives) {
 }
 
 TEST(Catalog, WrongAntiderivativeIsRejected) {
-  expect_error(wrap(R"({"name": "badtan", "class": "antiderivative", "f": "tan(x)", "F": "log(abs(cos(x)))",
-    "F_sq": "tan(x) - x", "domain": ["-inf", "inf"], "period": "Pi", "singular": ["Pi/2"], "range": ["-inf", "inf"]})"),
+  expect_error(wrap(R"J({"name": "badtan", "class": "antiderivative", "f": "tan(x)", "F": "log(abs(cos(x)))",
+    "F_sq": "tan(x) - x", "domain": ["-inf", "inf"], "period": "Pi", "singular": ["Pi/2"], "range": ["-inf", "inf"]})J"),
                "badtan", "F", "differs from the integrand");
-  expect_error(wrap(R"({"name": "badlog", "class": "antiderivative", "f": "log(x)", "F": "x*log(x) - x",
-    "F_sq": "x*log(x)^2", "domain": [0, "inf"], "singular": [0], "range": ["-inf", "inf"]})"),
+  expect_error(wrap(R"J({"name": "badlog", "class": "antiderivative", "f": "log(x)", "F": "x*log(x) - x",
+    "F_sq": "x*log(x)^2", "domain": [0, "inf"], "singular": [0], "range": ["-inf", "inf"]})J"),
                "badlog", "F_sq");
 }
 
 TEST(Catalog, MissingDomainIsRejected) {
-  expect_error(wrap(R"({"name": "nodomain", "class": "entire", "f": "sin(x)", "range": [-1, 1]})"), "nodomain",
+  expect_error(wrap(R"J({"name": "nodomain", "class": "entire", "f": "sin(x)", "range": [-1, 1]})J"), "nodomain",
                "domain", "missing");
 }
 
 TEST(Catalog, PeriodThatDoesNotMatchPiecesIsRejected) {
-  expect_error(wrap(R"({"name": "saw", "class": "periodic", "period": 2, "domain": ["-inf", "inf"], "range": [0, 1],
-    "jumps": [0], "pieces": [{"on": [0, 1], "f": "x"}]})"),
+  expect_error(wrap(R"J({"name": "saw", "class": "periodic", "period": 2, "domain": ["-inf", "inf"], "range": [0, 1],
+    "jumps": [0], "pieces": [{"on": [0, 1], "f": "x"}]})J"),
                "saw", "period", "period is 2");
 }
 
 TEST(Catalog, UnknownNamesAreRejected) {
-  expect_error(wrap(R"({"name": "flr", "class": "combination", "of": "x - frac(x)", "domain": ["-inf", "inf"],
-    "range": ["-inf", "inf"]})"),
+  expect_error(wrap(R"J({"name": "flr", "class": "combination", "of": "x - frac(x)", "domain": ["-inf", "inf"],
+    "range": ["-inf", "inf"]})J"),
                "flr", "of", "unknown atomic 'frac'");
-  expect_error(wrap(R"({"name": "odd", "class": "entire", "f": "sin(x) + erfx(x)", "domain": ["-inf", "inf"],
-    "range": [-1, 1]})"),
+  expect_error(wrap(R"J({"name": "odd", "class": "entire", "f": "sin(x) + erfx(x)", "domain": ["-inf", "inf"],
+    "range": [-1, 1]})J"),
                "odd", "f");
-  expect_error(wrap(R"({"name": "odd", "class": "wavy", "domain": ["-inf", "inf"], "range": [-1, 1]})"), "odd",
+  expect_error(wrap(R"J({"name": "odd", "class": "wavy", "domain": ["-inf", "inf"], "range": [-1, 1]})J"), "odd",
                "class", "unknown class");
-  expect_error(wrap(R"({"name": "odd", "class": "entire", "f": "x", "domian": [0, 1], "domain": ["-inf", "inf"],
-    "range": [-1, 1]})"),
+  expect_error(wrap(R"J({"name": "odd", "class": "entire", "f": "x", "domian": [0, 1], "domain": ["-inf", "inf"],
+    "range": [-1, 1]})J"),
                "odd", "domian", "unknown field");
 }
 
 TEST(Catalog, DeclaredBreaksMustMatchThePieces) {
-  expect_error(wrap(R"({"name": "ramp", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, "inf"],
-    "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "x"}]})"),
+  expect_error(wrap(R"J({"name": "ramp", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, "inf"],
+    "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "x"}]})J"),
                "ramp", "kinks", "kinks at [0]");
-  expect_error(wrap(R"({"name": "hop", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
-    "kinks": [0], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "1"}]})"),
+  expect_error(wrap(R"J({"name": "hop", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "kinks": [0], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "1"}]})J"),
                "hop", "jumps");
 }
 
 TEST(Catalog, OutsideTheDerivableClassIsRejected) {
-  expect_error(wrap(R"({"name": "gauss", "class": "entire", "f": "exp(x^2)", "domain": ["-inf", "inf"],
-    "range": [1, "inf"]})"),
+  expect_error(wrap(R"J({"name": "gauss", "class": "entire", "f": "exp(x^2)", "domain": ["-inf", "inf"],
+    "range": [1, "inf"]})J"),
                "gauss", "f", "rational multiple of x");
-  expect_error(wrap(R"({"name": "third", "class": "periodic", "period": 3, "domain": ["-inf", "inf"], "range": [0, 1],
-    "jumps": [0, 1], "pieces": [{"on": [0, 1], "f": "1"}, {"on": [1, 3], "f": "0"}]})"),
+  expect_error(wrap(R"J({"name": "third", "class": "periodic", "period": 3, "domain": ["-inf", "inf"], "range": [0, 1],
+    "jumps": [0, 1], "pieces": [{"on": [0, 1], "f": "1"}, {"on": [1, 3], "f": "0"}]})J"),
                "third", "pieces", "multiples of half the period");
-  expect_error(wrap(R"({"name": "flt", "class": "entire", "f": "x", "domain": ["-inf", "inf"], "range": [-0.5, 1]})"),
+  expect_error(wrap(R"J({"name": "flt", "class": "entire", "f": "x", "domain": ["-inf", "inf"], "range": [-0.5, 1]})J"),
                "flt", "range", "exact expressions");
 }
 
