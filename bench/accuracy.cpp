@@ -33,9 +33,15 @@ double rms_error(const EntryView<T>& v, const EntryView<double>& ref,
       if (!std::isfinite(r)) continue;
       T value;
       switch (m) {
-        case Method::Plain: value = eval_plain(v, x, sigma); break;
-        case Method::Smoothed: value = eval_smoothed(v, x, sigma); break;
-        default: value = eval_mc(v, x, sigma, mc_samples(m), rng); break;
+        case Method::Plain:
+          value = eval_plain(v, x, sigma);
+          break;
+        case Method::Smoothed:
+          value = eval_smoothed(v, x, sigma);
+          break;
+        default:
+          value = eval_mc(v, x, sigma, mc_samples(m), rng);
+          break;
       }
       const double d = static_cast<double>(value) - r;
       sum += d * d;

@@ -19,14 +19,18 @@ Kernel parse_kernel(const char* k) {
 
 std::string family_of(const std::string& atomic) {
   static const std::map<std::string, std::string> kFamily = {
-      {"sin", "trig"},           {"cos", "trig"},          {"exp", "exp-like"},
-      {"sinh", "exp-like"},      {"cosh", "exp-like"},     {"abs", "piecewise"},
-      {"sign", "piecewise"},     {"step", "piecewise"},    {"saturate", "piecewise"},
-      {"smoothstep", "piecewise"}, {"fract", "periodic"},  {"triangle", "periodic"},
-      {"square", "periodic"},    {"floor", "periodic"},    {"ceil", "periodic"},
-      {"trunc", "periodic"},     {"tan", "singular"},      {"tanh", "singular"},
-      {"log", "singular"},       {"sqrt", "singular"},     {"inv", "singular"},
-      {"inv2", "singular"},      {"moment", "powers"}};
+      {"sin", "trig"},           {"cos", "trig"},
+      {"exp", "exp-like"},       {"sinh", "exp-like"},
+      {"cosh", "exp-like"},      {"abs", "piecewise"},
+      {"sign", "piecewise"},     {"step", "piecewise"},
+      {"saturate", "piecewise"}, {"smoothstep", "piecewise"},
+      {"fract", "periodic"},     {"triangle", "periodic"},
+      {"square", "periodic"},    {"floor", "periodic"},
+      {"ceil", "periodic"},      {"trunc", "periodic"},
+      {"tan", "singular"},       {"tanh", "singular"},
+      {"log", "singular"},       {"sqrt", "singular"},
+      {"inv", "singular"},       {"inv2", "singular"},
+      {"moment", "powers"}};
   if (atomic.rfind("pow", 0) == 0) return "powers";
   auto it = kFamily.find(atomic);
   return it == kFamily.end() ? "other" : it->second;
@@ -66,7 +70,7 @@ const std::vector<EntryView<float>>& float_entries() {
 }
 
 const std::vector<std::string>& families() {
-  static const std::vector<std::string> f = {"trig",     "exp-like", "powers",
+  static const std::vector<std::string> f = {"trig",      "exp-like", "powers",
                                              "piecewise", "periodic", "singular"};
   return f;
 }

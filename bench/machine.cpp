@@ -30,7 +30,9 @@ MachineInfo machine_info() {
 #else
   m.compiler = "unknown compiler";
 #endif
-  m.compiler += ", " BLB_BUILD_TYPE " build, flags: " BLB_CXX_FLAGS;
+  std::string flags = BLB_CXX_FLAGS;
+  flags.erase(0, flags.find_first_not_of(' '));
+  m.compiler += ", " BLB_BUILD_TYPE " build, flags: " + flags;
   return m;
 }
 

@@ -24,11 +24,16 @@ inline constexpr int kNumMethods = 5;
 
 inline const char* method_name(Method m) {
   switch (m) {
-    case Method::Plain: return "plain";
-    case Method::Smoothed: return "smoothed";
-    case Method::MC4: return "mc4";
-    case Method::MC16: return "mc16";
-    case Method::MC64: return "mc64";
+    case Method::Plain:
+      return "plain";
+    case Method::Smoothed:
+      return "smoothed";
+    case Method::MC4:
+      return "mc4";
+    case Method::MC16:
+      return "mc16";
+    case Method::MC64:
+      return "mc64";
   }
   return "?";
 }

@@ -28,6 +28,7 @@ struct RunInfo {
   int error_seeds;
   double wall_s;
   std::string command;  // how the summary was produced
+  std::string prefix;   // the files written: prefix.{md,csv,png}
 };
 
 void write_csv(const std::string& path, const std::vector<Row>& rows);

@@ -157,8 +157,17 @@ std::string body_combination(const Derived& d, const Syntax& s) {
     Derived other;
     other.atomic_name = t.atomic;
     other.kernel = d.kernel;
-    out += " + " + s.num(t.coeff) + " * " + s.fn(impl_name(other)) + "(" + (t.arg_sign < 0 ? "-x" : "x") +
-           ", sigma)";
+    other.squared = t.squared;
+    const std::string arg = t.arg_sign < 0 ? "-x" : "x";
+    const std::string A = s.fn(impl_name(other)) + "(" + arg + ", sigma)";
+    out += " + " + s.num(t.coeff) + " * ";
+    if (t.xpow == 1) {
+      // E[(x+U) A(x+U)] = x A~(x) + E[U A(x+U)]; for A(-x) the first moment flips sign.
+      const std::string Au = s.fn(impl_name(other) + "_u") + "(" + arg + ", sigma)";
+      out += "(x * " + A + (t.arg_sign < 0 ? " - " : " + ") + Au + ")";
+    } else {
+      out += A;
+    }
   }
   return out + ";\n";
 }
@@ -241,7 +250,42 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   return out;
 }
 
+// E[U g(x+U)] for a periodic g: Stein's identity sigma^2 E[g'(x+U)] on the termwise-differentiated
+// Fourier series when sigma/T is large, the runtime's image sums otherwise.
+std::string body_first_moment(const Derived& d, const Syntax& s) {
+  const size_t n = d.pieces.size();
+  std::string out = piece_table(s, "p", d.pieces) + s.decl("period", s.ex(d.period)) + guard_sigma(s);
+  out += "  if (sigma == " + s.dbl(0) + ") return " + s.dbl(0) + ";\n";
+  if (d.kernel == Kernel::Box) return out + "  return " + s.helper("box_periodic_u") + "(x, sigma, period, " + pieces_arg(s, "p", n) + ");\n";
+  if (d.kernel == Kernel::Tent) return out + "  return " + s.helper("tent_periodic_u") + "(x, sigma, period, " + pieces_arg(s, "p", n) + ");\n";
+  const std::string cb = s.dbl(d.coef_bound), fm = s.dbl(d.fmax);
+  out += s.decl("s", "sigma / period");
+  out += "  if (" + s.helper("prefer_fourier") + "(s, " + std::to_string(n) + ", " + cb + ", " + fm + ")) {\n";
+  out += "  " + s.decl("xr", "x - period * floor(x / period)");
+  out += std::string("    ") + (s.cpp() ? "const " : "") + "int K = 2 + " + s.helper("fourier_terms") + "(s, " + cb + ", " +
+         (s.cpp() ? "detail::series_tol<T>()" : "BL_SERIES_TOL") + ");  // +2: the k factor of g'\n";
+  out += "    " + s.T() + " acc = " + s.dbl(0) + ";\n";
+  out += "    for (int k = 1; k <= K; ++k) {\n";
+  out += "    " + s.decl("kf", s.cpp() ? "T(k)" : "float(k)");
+  const bool uses_pk = d.ak.has(sym::var_pk()) || d.bk.has(sym::var_pk());
+  if (uses_pk) out += "    " + s.decl("pk", std::string("(k % 2 == 1) ? ") + s.dbl(-1) + " : " + s.dbl(1));
+  out += "    " + s.decl("w", s.dbl(2) + " * " + s.pi() + " * kf / period");
+  out += "    " + s.decl("th", "w * xr");
+  out += "    " + s.decl("damp", "exp(" + s.dbl(-2) + " * " + s.pi() + " * " + s.pi() + " * kf * kf * s * s)");
+  std::string terms;
+  if (!d.bk.is_zero()) terms = s.ex(d.bk) + " * cos(th)";
+  if (!d.ak.is_zero()) terms += (terms.empty() ? "-" : " - ") + s.ex(d.ak) + " * sin(th)";
+  if (terms.empty()) terms = s.dbl(0);
+  out += "      acc += damp * w * (" + terms + ");\n    }\n    return sigma * sigma * acc;\n  }\n";
+  return out + "  return " + s.helper("gauss_periodic_u_image") + "(x, sigma, period, " + pieces_arg(s, "p", n) + ", " + fm + ");\n";
+}
+
 }  // namespace
+
+std::string body_u(const Derived& d, Lang lang) {
+  const Syntax s{lang};
+  return (s.cpp() ? "  BL_MATH_USING\n" : "") + body_first_moment(d, s);
+}
 
 std::string body(const Derived& d, Lang lang) {
   const Syntax s{lang};

@@ -19,6 +19,10 @@ std::string plain_impl_name(const std::string& atomic);
 // The statements of the function body, in C++ (template over T, with x and sigma in scope) or
 // GLSL (float).
 std::string body(const Derived& d, Lang lang);
+// Body of E[U g(x+U)] for a periodic entry (not squared): impl_name(d) + "_u".
+std::string body_u(const Derived& d, Lang lang);
+// True for the entries that get such a first-moment companion.
+inline bool has_first_moment(const Derived& d) { return d.body == sym::Body::PeriodicTable && !d.squared; }
 // Body of the plain (unsmoothed) function f(x).
 std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lang lang);
 
@@ -29,7 +33,8 @@ void write_file(const std::string& path, const std::string& content);
 // Emitters.
 void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std::string& out_dir);
 void emit_glsl(const sym::Catalog& cat, const std::vector<Derived>& ds, const std::string& out_dir);
-void emit_manifest(const sym::Catalog& cat, const std::vector<Derived>& ds, const std::string& out_dir,
+void emit_manifest(const sym::Catalog& cat, const std::vector<Derived>& ds,
+                   const std::vector<sym::NotDerived>& not_derived, const std::string& out_dir,
                    const std::string& catalog_label);
 
 }  // namespace bl::rulegen

@@ -67,6 +67,7 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
       continue;
     }
     t << "template <class T>\nT " << impl_name(d) << "(T x, T sigma);\n";
+    if (has_first_moment(d)) t << "template <class T>\nT " << impl_name(d) << "_u(T x, T sigma);\n";
   }
   t << "\n";
   for (const auto& a : cat.atomics)
@@ -89,6 +90,9 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
     }
     t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
       << body(d, Lang::Cpp) << "}\n\n";
+    if (has_first_moment(d))
+      t << "// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.\ntemplate <class T>\nT "
+        << impl_name(d) << "_u(T x, T sigma) {\n" << body_u(d, Lang::Cpp) << "}\n\n";
   }
   t << "}  // namespace gen\n}  // namespace detail\n\n";
   // Public float/double overloads.

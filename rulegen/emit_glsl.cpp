@@ -32,6 +32,8 @@ void emit_glsl(const sym::Catalog& cat, const std::vector<Derived>& ds, const st
       continue;
     }
     g << "float " << d.glsl_name() << "(float x, float sigma) {\n" << body(d, Lang::Glsl) << "}\n\n";
+    if (has_first_moment(d))
+      g << "float " << d.glsl_name() << "_u(float x, float sigma) {\n" << body_u(d, Lang::Glsl) << "}\n\n";
   }
   write_file(out_dir + "/bandlimit.glsl", g.str());
 }

@@ -6,7 +6,8 @@
 
 namespace bl::rulegen {
 
-void emit_manifest(const sym::Catalog& cat, const std::vector<Derived>& ds, const std::string& out_dir,
+void emit_manifest(const sym::Catalog& cat, const std::vector<Derived>& ds,
+                   const std::vector<sym::NotDerived>& not_derived, const std::string& out_dir,
                    const std::string& catalog_label) {
   (void)cat;
   nlohmann::ordered_json m;
@@ -41,6 +42,9 @@ void emit_manifest(const sym::Catalog& cat, const std::vector<Derived>& ds, cons
     e["formula"] = d.formula;
     entries.push_back(e);
   }
+  auto& nd = m["not_derived"] = nlohmann::ordered_json::array();
+  for (const auto& n : not_derived)
+    nd.push_back({{"atomic", n.atomic}, {"kernel", n.kernel}, {"squared", n.squared}, {"reason", n.reason}});
   write_file(out_dir + "/manifest.json", m.dump(2) + "\n");
 }
 

@@ -30,7 +30,8 @@ int main(int argc, char** argv) {
   try {
     const bl::sym::Catalog cat = bl::sym::load_catalog(catalog);
     const auto t1 = clock::now();
-    const auto ds = bl::sym::derive_all(cat);
+    std::vector<bl::sym::NotDerived> nd;
+    const auto ds = bl::sym::derive_all(cat, 16, &nd);
     const auto t2 = clock::now();
     if (!quiet)
       for (const auto& d : ds)
@@ -41,11 +42,14 @@ int main(int argc, char** argv) {
       const auto t3 = clock::now();
       bl::rulegen::emit_cpp(cat, ds, out);
       bl::rulegen::emit_glsl(cat, ds, out);
-      bl::rulegen::emit_manifest(cat, ds, out, label);
+      bl::rulegen::emit_manifest(cat, ds, nd, out, label);
       emit_s = std::chrono::duration<double>(clock::now() - t3).count();
     }
+    if (!quiet)
+      for (const auto& n : nd)
+        std::cout << "not derived: " << n.kernel << " " << n.atomic << (n.squared ? "^2" : "") << ": " << n.reason << "\n";
     auto sec = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
-    std::cerr << "rulegen: " << cat.atomics.size() << " atomics, " << ds.size() << " entries; catalog "
+    std::cerr << "rulegen: " << cat.atomics.size() << " atomics, " << ds.size() << " entries (" << nd.size() << " not derivable, see the manifest); catalog "
               << sec(t0, t1) << " s, derive " << sec(t1, t2) << " s"
               << (emit->parsed() ? ", emit " + std::to_string(emit_s) + " s into " + out : std::string()) << "\n";
   } catch (const bl::sym::CatalogError& e) {

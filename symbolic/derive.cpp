@@ -4,6 +4,8 @@
 #include <regex>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
+#include <algorithm>
 
 #include "exp_poly.hpp"
 #include "functions.hpp"
@@ -225,7 +227,7 @@ void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
               "the pieces " + pieces_text(d.pieces, "t") + " [for small sigma/T]";
 }
 
-void derive_combination(const Atomic& a, Kernel k, const Catalog& cat, Derived& d) {
+void derive_combination(const Atomic& a, Kernel k, bool sq, const Catalog& cat, Derived& d) {
   d.body = Body::Combination;
   // Replace atomic(x) / atomic(-x) by symbols, then require a linear combination of them.
   std::string s = a.of;
@@ -262,14 +264,45 @@ void derive_combination(const Atomic& a, Kernel k, const Catalog& cat, Derived& 
   } catch (const std::exception& ex_) {
     fail(a, "of", std::string("cannot parse: ") + ex_.what());
   }
-  ex poly = e;
-  for (auto& [n, sym] : syms) {
-    if (e.degree(sym) > 1) fail(a, "of", "must be linear in the atomics it uses");
-    const ex c = e.coeff(sym, 1);
-    if (!is_a<numeric>(c)) fail(a, "of", "coefficients of atomics must be constants");
-    d.terms.push_back({ex_to<numeric>(c), calls[n].first, calls[n].second});
-    poly = poly.subs(sym == 0);
+  if (sq) e = pow(e, 2).expand();
+  // Sort the monomials: polynomial part, c A(+-x), c x A(+-x) (A periodic), c A(+-x)^2.
+  ex poly = 0;
+  std::vector<std::pair<std::string, ex>> monomials;  // sorted by text: GiNaC's order varies by run
+  if (is_a<GiNaC::add>(e))
+    for (size_t i = 0; i < e.nops(); ++i) monomials.push_back({text(e.op(i)), e.op(i)});
+  else
+    monomials.push_back({text(e), e});
+  std::sort(monomials.begin(), monomials.end(),
+            [](const auto& p, const auto& q) { return p.first < q.first; });
+  for (const auto& [key, t] : monomials) {
+    std::vector<std::pair<std::string, int>> used;
+    ex rest = t;
+    for (auto& [n, sym] : syms) {
+      const int deg = t.degree(sym);
+      if (deg > 0) used.push_back({n, deg});
+      rest = rest.subs(sym == 1);
+    }
+    if (used.empty()) {
+      poly += t;
+      continue;
+    }
+    const int xpow = rest.degree(var_x());
+    const ex c = (rest / pow(var_x(), xpow)).expand();
+    const std::string what = text(t);
+    if (used.size() > 1)
+      throw std::invalid_argument("the product " + what + " of two different atomics has no rule");
+    if (!is_a<numeric>(c) || !rest.is_polynomial(var_x()) || (rest - c * pow(var_x(), xpow)).expand() != 0)
+      throw std::invalid_argument("coefficient of " + what + " is not c x^n");
+    const auto& [n, deg] = used.front();
+    const Atomic* other = cat.find(calls[n].first);
+    if (deg > 2 || (deg == 2 && xpow > 0) || xpow > 1 || (xpow == 1 && other->cls != AtomicClass::Periodic))
+      throw std::invalid_argument("the term " + what + " has no rule (supported: A, x A with A periodic, A^2)");
+    d.terms.push_back({ex_to<numeric>(c), calls[n].first, calls[n].second, xpow, deg == 2});
   }
+  // GiNaC's term order depends on the run: sort so the emitted code does not.
+  std::sort(d.terms.begin(), d.terms.end(), [](const CombinationTerm& p, const CombinationTerm& q) {
+    return std::make_tuple(p.atomic, p.arg_sign, p.xpow, p.squared) < std::make_tuple(q.atomic, q.arg_sign, q.xpow, q.squared);
+  });
   d.poly = poly;
   try {
     d.closed = ExpPoly::from(poly).convolve(k);
@@ -277,8 +310,17 @@ void derive_combination(const Atomic& a, Kernel k, const Catalog& cat, Derived& 
     fail(a, "of", ex_.what());
   }
   std::string f = text(d.closed);
-  for (auto& t : d.terms)
-    f += " + " + text(t.coeff) + " * " + t.atomic + "~(" + (t.arg_sign < 0 ? "-x" : "x") + ")";
+  for (auto& t : d.terms) {
+    const std::string arg = t.arg_sign < 0 ? "-x" : "x";
+    f += " + " + text(t.coeff) + " * ";
+    if (t.squared)
+      f += "(" + t.atomic + "^2)~(" + arg + ")";
+    else if (t.xpow == 1)
+      f += "(x " + t.atomic + ")~(" + arg + ") [= x " + t.atomic + "~(" + arg + ")" + (t.arg_sign < 0 ? " - " : " + ") +
+           "E[U " + t.atomic + "(" + arg + "+U)]]";
+    else
+      f += t.atomic + "~(" + arg + ")";
+  }
   d.formula = f + "  [~: the same kernel's smoothed atomic]";
 }
 
@@ -312,7 +354,7 @@ void derive_antiderivative(const Atomic& a, Kernel k, bool sq, Derived& d) {
 
 }  // namespace
 
-std::vector<Derived> derive_all(const Catalog& cat, int max_moment) {
+std::vector<Derived> derive_all(const Catalog& cat, int max_moment, std::vector<NotDerived>* not_derived) {
   std::vector<Derived> out;
   for (const Atomic& a : cat.atomics) {
     for (Kernel k : kAllKernels) {
@@ -338,12 +380,28 @@ std::vector<Derived> derive_all(const Catalog& cat, int max_moment) {
           case AtomicClass::Piecewise: derive_piecewise(a, k, sq, d); break;
           case AtomicClass::Periodic: derive_periodic(a, k, sq, d); break;
           case AtomicClass::Combination:
-            if (sq) continue;  // f^2 of a combination is a product of atomics: not derived
-            derive_combination(a, k, cat, d);
+            try {
+              derive_combination(a, k, sq, cat, d);
+            } catch (const std::invalid_argument& e) {
+              if (!sq) fail(a, "of", e.what());
+              if (not_derived) not_derived->push_back({a.name, to_string(k), sq, e.what()});
+              continue;
+            }
             break;
           case AtomicClass::Antiderivative:
-            if (k == Kernel::Gaussian) continue;  // from the rules (issue 3), no closed form
-            if (k == Kernel::Tent && (sq ? a.F2_sq : a.F2).is_zero()) continue;
+            if (k == Kernel::Gaussian) {
+              if (not_derived)
+                not_derived->push_back({a.name, to_string(k), sq,
+                                        "no closed form: the Gaussian of this atomic comes from the rules "
+                                        "(Rule 2 mode fit, Rule 3 Taylor, compact kernels)"});
+              continue;
+            }
+            if (k == Kernel::Tent && (sq ? a.F2_sq : a.F2).is_zero()) {
+              if (not_derived)
+                not_derived->push_back({a.name, to_string(k), sq,
+                                        "the catalog gives no second antiderivative F2 (not elementary)"});
+              continue;
+            }
             derive_antiderivative(a, k, sq, d);
             break;
         }

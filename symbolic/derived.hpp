@@ -26,10 +26,20 @@ enum class Body {
   Antiderivative   // box/tent from F or F2, Taylor series in the half-width where it cancels
 };
 
+// coeff * x^xpow * atomic(arg_sign x)^(squared ? 2 : 1); xpow = 1 needs a periodic atomic.
 struct CombinationTerm {
   GiNaC::numeric coeff;
   std::string atomic;
   int arg_sign;  // +1: atomic(x), -1: atomic(-x)
+  int xpow = 0;
+  bool squared = false;
+};
+
+// An entry the engine cannot derive, and why (reported by rulegen and in the manifest).
+struct NotDerived {
+  std::string atomic, kernel;
+  bool squared;
+  std::string reason;
 };
 
 struct Derived {
@@ -71,6 +81,7 @@ const GiNaC::symbol& var_hh();  // the (possibly compacted) half-width in antide
 
 // Derives every entry of the catalog, plus raw moments n <= max_moment. Throws CatalogError
 // (naming entry and field) when an entry's definition is outside what its class can derive.
-std::vector<Derived> derive_all(const Catalog& cat, int max_moment = 16);
+std::vector<Derived> derive_all(const Catalog& cat, int max_moment = 16,
+                                std::vector<NotDerived>* not_derived = nullptr);
 
 }  // namespace bl::sym

@@ -375,6 +375,14 @@ vec2 bl_reduce_period(float y, float period) {
   return vec2(r, q);
 }
 
+// Signed remainder in (-period, period): y itself when |y| < period, so a tiny negative y (just
+// below a period boundary) is not rounded by "+ period" before a tiny kernel magnifies it.
+float bl_reduce_signed(float y, float period) {
+  float r = y - period * trunc(y / period);
+  if (abs(r) >= period) r = 0.0;
+  return r;
+}
+
 float bl_period_piece_eval(float r, int n, BlPiece p[4]) {
   for (int i = 0; i < 3; ++i) {
     if (i >= n - 1) break;
@@ -383,9 +391,15 @@ float bl_period_piece_eval(float r, int n, BlPiece p[4]) {
   return bl_poly(p[n - 1].c, r);
 }
 
+// Piece chosen on the signed remainder (see support.hpp): r < 0 compares with hi - period.
 float bl_periodic_eval(float x, float period, int n, BlPiece p[4]) {
-  vec2 rq = bl_reduce_period(x, period);
-  return bl_period_piece_eval(rq.x, n, p);
+  float r = bl_reduce_signed(x, period);
+  if (!(r < 0.0)) return bl_period_piece_eval(r, n, p);
+  for (int i = 0; i < 3; ++i) {
+    if (i >= n - 1) break;
+    if (r < p[i].hi - period) return bl_poly(p[i].c, r + period);
+  }
+  return bl_poly(p[n - 1].c, r + period);
 }
 
 // Tail multiple z with P(|Z| > z) <= tol/fmax (Mills: 2 phi(z) <= tol/fmax suffices for z >= 1).
@@ -395,10 +409,13 @@ float bl_image_z(float fmax, float tol) {
   return sqrt(2.0 * log(arg));
 }
 
+// Image sum over the periods within image_z(fmax, 1e-8) sigma of x (see support.hpp). It loops over
+// about 12 sigma/period periods: use it where bl_prefer_fourier is false (Mesa's llvmpipe also
+// stops any loop after 65535 iterations per invocation, reached near sigma ~ 500 period).
 float bl_gauss_periodic_image(float x, float sigma, float period, int n, BlPiece p[4],
                               float fmax) {
   if (sigma == 0.0) return bl_periodic_eval(x, period, n, p);
-  float xr = bl_reduce_period(x, period).x;
+  float xr = bl_reduce_signed(x, period);
   float R = bl_image_z(fmax, BL_SERIES_TOL) * sigma;
   int m0 = int(floor((xr - R) / period));
   int m1 = int(floor((xr + R) / period));
@@ -469,8 +486,8 @@ bool bl_prefer_fourier(float s, int npieces, float coef_bound, float fmax) {
 float bl_box_periodic(float x, float sigma, float period, int n, BlPiece p[4], BlPiece P1[4]) {
   if (sigma == 0.0) return bl_periodic_eval(x, period, n, p);
   float h = BL_SQRT3 * sigma;
-  float xr = bl_reduce_period(x, period).x;
   if (h <= 2.0 * period) {
+    float xr = bl_reduce_signed(x, period);
     int m0 = int(floor((xr - h) / period));
     int m1 = int(floor((xr + h) / period));
     float s = 0.0;
@@ -486,6 +503,7 @@ float bl_box_periodic(float x, float sigma, float period, int n, BlPiece p[4], B
     }
     return s;
   }
+  float xr = bl_reduce_period(x, period).x;
   vec2 y1 = bl_reduce_period(xr - h, period);
   vec2 y2 = bl_reduce_period(xr + h, period);
   float FT = bl_poly(P1[n - 1].c, period);
@@ -500,8 +518,8 @@ float bl_tent_periodic(float x, float sigma, float period, int n, BlPiece p[4], 
                        BlPiece P2[4]) {
   if (sigma == 0.0) return bl_periodic_eval(x, period, n, p);
   float w = BL_SQRT6 * sigma;
-  float xr = bl_reduce_period(x, period).x;
   if (w <= 2.0 * period) {
+    float xr = bl_reduce_signed(x, period);
     int m0 = int(floor((xr - w) / period));
     int m1 = int(floor((xr + w) / period));
     float s = 0.0;
@@ -517,6 +535,7 @@ float bl_tent_periodic(float x, float sigma, float period, int n, BlPiece p[4], 
     }
     return s;
   }
+  float xr = bl_reduce_period(x, period).x;
   vec2 y1 = bl_reduce_period(xr - w, period);
   vec2 y2 = bl_reduce_period(xr + w, period);
   float A = bl_poly(P1[n - 1].c, period);

@@ -6,9 +6,10 @@
 // float result is what a GPU computes; rulegen/templates/support.glsl is the same code in GLSL).
 //
 // Conventions (shared with ../shared/DESIGN.md):
-//   sigma is the kernel's standard deviation. Gaussian: N(0, sigma^2). Box: U[-h, h], h = sqrt(3) sigma.
-//   Tent: triangle on [-w, w], w = sqrt(6) sigma, density (w - |u|) / w^2.
-//   kernel(x, sigma) = E[f(x + U)]. sigma == 0 returns f(x) (right-continuous at a jump).
+//   sigma >= 0 is the kernel's standard deviation. Gaussian: N(0, sigma^2).
+//   Box: U[-h, h], h = sqrt(3) sigma. Tent: triangle on [-w, w], w = sqrt(6) sigma,
+//   density (w - |u|) / w^2. kernel(x, sigma) = E[f(x + U)].
+//   sigma == 0 returns f(x) (right-continuous at a jump: the piece whose [lo, hi) contains x).
 //   A polynomial piece is f(t) = sum_k c[k] t^k on [lo, hi) in the *absolute* coordinate t;
 //   lo may be -inf and hi +inf (std::numeric_limits<T>::infinity()).
 //
@@ -54,38 +55,50 @@ inline constexpr bool kWide = (std::numeric_limits<T>::digits > 53);
 template <class T>
 inline T k_pi() {
   using std::acos;
-  if constexpr (kWide<T>) return acos(T(-1));
-  else return T(3.141592653589793238462643);
+  if constexpr (kWide<T>)
+    return acos(T(-1));
+  else
+    return T(3.141592653589793238462643);
 }
 template <class T>
 inline T k_inv_sqrt2() {  // 1/sqrt(2)
   using std::sqrt;
-  if constexpr (kWide<T>) return T(1) / sqrt(T(2));
-  else return T(0.7071067811865475244008444);
+  if constexpr (kWide<T>)
+    return T(1) / sqrt(T(2));
+  else
+    return T(0.7071067811865475244008444);
 }
 template <class T>
 inline T k_inv_sqrt_2pi() {  // 1/sqrt(2 pi)
   using std::sqrt;
-  if constexpr (kWide<T>) return T(1) / sqrt(T(2) * k_pi<T>());
-  else return T(0.3989422804014326779399461);
+  if constexpr (kWide<T>)
+    return T(1) / sqrt(T(2) * k_pi<T>());
+  else
+    return T(0.3989422804014326779399461);
 }
 template <class T>
 inline T k_sqrt3() {
   using std::sqrt;
-  if constexpr (kWide<T>) return sqrt(T(3));
-  else return T(1.732050807568877293527446);
+  if constexpr (kWide<T>)
+    return sqrt(T(3));
+  else
+    return T(1.732050807568877293527446);
 }
 template <class T>
 inline T k_sqrt6() {
   using std::sqrt;
-  if constexpr (kWide<T>) return sqrt(T(6));
-  else return T(2.449489742783178098197284);
+  if constexpr (kWide<T>)
+    return sqrt(T(6));
+  else
+    return T(2.449489742783178098197284);
 }
 template <class T>
 inline T k_ln2() {
   using std::log;
-  if constexpr (kWide<T>) return log(T(2));
-  else return T(0.6931471805599453094172321);
+  if constexpr (kWide<T>)
+    return log(T(2));
+  else
+    return T(0.6931471805599453094172321);
 }
 
 template <class T>
@@ -168,9 +181,8 @@ inline T sinc(T t) {
   using std::sin;
   if (abs_of(t) < small_series_limit<T>()) {
     T t2 = t * t;
-    return T(1) +
-           t2 * (T(-1) / T(6) +
-                 t2 * (T(1) / T(120) + t2 * (T(-1) / T(5040) + t2 * (T(1) / T(362880)))));
+    return T(1) + t2 * (T(-1) / T(6) +
+                        t2 * (T(1) / T(120) + t2 * (T(-1) / T(5040) + t2 * (T(1) / T(362880)))));
   }
   return sin(t) / t;
 }
@@ -187,9 +199,8 @@ inline T sinhc(T t) {
   T a = abs_of(t);
   if (a < small_series_limit<T>()) {
     T t2 = t * t;
-    return T(1) +
-           t2 * (T(1) / T(6) +
-                 t2 * (T(1) / T(120) + t2 * (T(1) / T(5040) + t2 * (T(1) / T(362880)))));
+    return T(1) + t2 * (T(1) / T(6) +
+                        t2 * (T(1) / T(120) + t2 * (T(1) / T(5040) + t2 * (T(1) / T(362880)))));
   }
   if (a < T(40)) return sinh(a) / a;
   if (a == inf<T>()) return inf<T>();
@@ -251,7 +262,7 @@ inline constexpr double kGL20x[10] = {
     0.63605368072651502,  0.7463319064601508,  0.83911697182221878, 0.91223442825132595,
     0.96397192727791381,  0.99312859918509488};
 inline constexpr double kGL20w[10] = {
-    0.15275338713072584,  0.14917298647260374, 0.14209610931838204, 0.13168863844917664,
+    0.15275338713072584,  0.14917298647260374, 0.14209610931838204,  0.13168863844917664,
     0.11819453196151841,  0.10193011981724044, 0.083276741576704755, 0.062672048334109068,
     0.040601429800386939, 0.017614007139152118};
 
@@ -278,23 +289,8 @@ struct GaussLegendre<T, true> {
     using std::cos;
     const int n = 2 * kHalf;
     Table t;
-    for (int i = 0; i < kHalf; ++i) {
-      T x = cos(k_pi<T>() * (T(i) + T(0.75)) / (T(n) + T(0.5)));
-      T dp = T(1);
-      for (int it = 0; it < 100; ++it) {
-        T p0 = T(1), p1 = x;
-        for (int k = 2; k <= n; ++k) {
-          T p2 = (T(2 * k - 1) * x * p1 - T(k - 1) * p0) / T(k);
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = T(n) * (x * p1 - p0) / (x * x - T(1));
-        T dx = p1 / dp;
-        x -= dx;
-        if (abs(dx) <= std::numeric_limits<T>::epsilon()) {
-          if (it > 0) break;
-        }
-      }
+    // P_n(x) by the three-term recurrence; returns P_n, sets dp = P_n'(x).
+    auto legendre = [n](const T& x, T& dp) {
       T p0 = T(1), p1 = x;
       for (int k = 2; k <= n; ++k) {
         T p2 = (T(2 * k - 1) * x * p1 - T(k - 1) * p0) / T(k);
@@ -302,6 +298,17 @@ struct GaussLegendre<T, true> {
         p1 = p2;
       }
       dp = T(n) * (x * p1 - p0) / (x * x - T(1));
+      return p1;
+    };
+    for (int i = 0; i < kHalf; ++i) {
+      // Newton from the classical cos((i + 3/4) pi / (n + 1/2)) guess (quadratic convergence).
+      T x = cos(k_pi<T>() * (T(i) + T(0.75)) / (T(n) + T(0.5))), dp;
+      for (int it = 0; it < 100; ++it) {
+        const T dx = legendre(x, dp) / dp;
+        x -= dx;
+        if (abs(dx) <= T(4) * std::numeric_limits<T>::epsilon()) break;
+      }
+      legendre(x, dp);
       t.x[i] = x;
       t.w[i] = T(2) / ((T(1) - x * x) * dp * dp);
     }
@@ -362,7 +369,8 @@ inline T gauss_core(T xq, T sigma, T dl, T dh, T lo, T hi, const T* c) {
   // non-negative arguments: straddling 0 it is m_k - tail_left - tail_right (full moment minus
   // two tails, no cancellation of nearly equal numbers), otherwise the difference of two tails on
   // the side of the interval, whose ratio is small once the interval is wider than 2 sd or deep
-  // in a tail.
+  // in a tail. Limitation: a piece many sd away (result < ~1e-15 of the scale) keeps absolute,
+  // not relative, accuracy: the Taylor terms about x are then much larger than q on the piece.
   T g[kMaxCoef];
   taylor_shift(c, deg, xq, g);
   T Ua[kMaxCoef], Ub[kMaxCoef];
@@ -502,7 +510,8 @@ template <class T, int N>
 inline T gauss_pw(T x, T sigma, const Piece<T> (&p)[N]) {
   if (sigma == T(0)) return pw_eval(x, p);
   T s = T(0);
-  for (int i = 0; i < N; ++i) s += gauss_core(x, sigma, p[i].lo - x, p[i].hi - x, p[i].lo, p[i].hi, p[i].c);
+  for (int i = 0; i < N; ++i)
+    s += gauss_core(x, sigma, p[i].lo - x, p[i].hi - x, p[i].lo, p[i].hi, p[i].c);
   return s;
 }
 
@@ -554,6 +563,15 @@ inline T reduce_period(T y, T period, T& n) {
   return r;
 }
 
+// Signed remainder r = fmod(y, period) in (-period, period): exact, with no "+ period" that would
+// round a tiny negative r (x just below a period boundary) to a multiple of eps * period, which a
+// tiny kernel width would then magnify. Used where the kernel is narrow.
+template <class T>
+inline T reduce_signed(T y, T period) {
+  using std::fmod;
+  return fmod(y, period);
+}
+
 template <class T, int N>
 inline T periodic_piece_eval(T r, const Piece<T> (&p)[N]) {  // r in [0, period)
   for (int i = 0; i < N - 1; ++i)
@@ -561,12 +579,18 @@ inline T periodic_piece_eval(T r, const Piece<T> (&p)[N]) {  // r in [0, period)
   return poly(p[N - 1].c, r);
 }
 
-// f(x - period floor(x/period)) through the exact reduction above: the argument handed to the
-// polynomial always lies in [0, period), so the result stays in the range of f for any |x|.
+// f(x - period floor(x/period)). The piece is chosen on the exact signed remainder r = fmod(x, T):
+// for r < 0 the position is T + r, whose rounding may land on T itself, so the piece is found by
+// comparing r with hi - T instead (a jump just below a period boundary stays on the correct side).
+// The polynomial is evaluated at r or T + r (up to one rounding, in [0, period]), so the result
+// stays in the range of f for any |x|.
 template <class T, int N>
 inline T periodic_eval(T x, T period, const Piece<T> (&p)[N]) {
-  T n;
-  return periodic_piece_eval(reduce_period(x, period, n), p);
+  const T r = reduce_signed(x, period);
+  if (!(r < T(0))) return periodic_piece_eval(r, p);
+  for (int i = 0; i < N - 1; ++i)
+    if (r < p[i].hi - period) return poly(p[i].c, r + period);
+  return poly(p[N - 1].c, r + period);
 }
 
 // Gaussian tail multiple z with P(|Z| > z) <= tol/fmax. Mills: Phic(z) <= phi(z)/z <= phi(z) for
@@ -582,14 +606,13 @@ inline T image_z(T fmax, T tol) {
 
 // Image sum: f smoothed = sum over periods m of the pieces shifted by m period. Only pieces that
 // meet [x_r - z sigma, x_r + z sigma] are summed, z = image_z(fmax, series_tol): the neglected
-// ones carry at most fmax P(|Z| > z) <= series_tol in total. Shifted ends are formed as
-// (lo + m period) - x_r (see the header note).
+// ones carry at most fmax P(|Z| > z) <= series_tol in total. x_r is the exact signed remainder
+// and shifted ends are formed as (lo + m period) - x_r (see the header note).
 template <class T, int N>
 inline T gauss_periodic_image(T x, T sigma, T period, const Piece<T> (&p)[N], T fmax) {
   using std::floor;
   if (sigma == T(0)) return periodic_eval(x, period, p);
-  T n;
-  const T xr = reduce_period(x, period, n);
+  const T xr = reduce_signed(x, period);
   const T R = image_z(fmax, series_tol<T>()) * sigma;
   const T m0 = floor((xr - R) / period), m1 = floor((xr + R) / period);
   T s = T(0);
@@ -605,9 +628,9 @@ inline T gauss_periodic_image(T x, T sigma, T period, const Piece<T> (&p)[N], T 
 }
 
 // Number of Fourier terms K for the Gaussian-smoothed series: the tail sum_{k>K} B e^{-a k^2},
-// a = 2 pi^2 s^2, is bounded by the geometric majorant
-//   sum_{k>K} e^{-a k^2} <= e^{-a (K+1)^2} sum_{j>=0} e^{-2 a (K+1) j} = e^{-a(K+1)^2} / (1 - e^{-2a(K+1)})
-// (since (K+1+j)^2 >= (K+1)^2 + 2(K+1)j). Returns the smallest K >= 0 for which B times the
+// a = 2 pi^2 s^2, is bounded by the geometric majorant (u = K + 1)
+//   sum_{k>K} e^{-a k^2} <= e^{-a u^2} sum_{j>=0} e^{-2 a u j} = e^{-a u^2} / (1 - e^{-2 a u})
+// (since (u + j)^2 >= u^2 + 2 u j). Returns the smallest K >= 0 for which B times the
 // majorant is <= tol (so the true tail is certified; K is at most one above the true minimum).
 // The start value solves (K+1)^2 = log(B/tol)/a refined by a few fixed-point steps for the
 // geometric factor; a tiny s (K beyond 2^30) returns 2^30.
@@ -662,19 +685,18 @@ inline bool prefer_fourier(T s, int npieces, T coef_bound, T fmax) {
 }
 
 // Box over a periodic f. (a) Support 2h <= 4 periods: integrate the pieces of the (at most 6)
-// periods it meets directly (box_core on exact shifted offsets); no difference of F is formed,
-// so tiny h is exact. (b) Wider: Appendix C, F(y) = n F_p(T) + F_p(y - nT), with the difference
-// F(x_r + h) - F(x_r - h) = (n2 - n1) F_p(T) + F_p(r2) - F_p(r1) taken on the reduced argument and
-// with the integer parts subtracted as integers: nothing of size |x| is formed, and the rounding
-// of x_r +- h (eps h) is divided by 2h.
+// periods it meets directly (box_core on exact shifted offsets around the exact signed remainder);
+// no difference of F is formed, so tiny h is exact. (b) Wider: Appendix C, F(y) = n F_p(T) + F_p(y
+// - nT), with the difference F(x_r + h) - F(x_r - h) = (n2 - n1) F_p(T) + F_p(r2) - F_p(r1) taken
+// on the reduced argument and with the integer parts subtracted as integers: nothing of size |x| is
+// formed, and the rounding of x_r +- h (eps h) is divided by 2h.
 template <class T, int N>
 inline T box_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Piece<T> (&P1)[N]) {
   using std::floor;
   if (sigma == T(0)) return periodic_eval(x, period, p);
   const T h = k_sqrt3<T>() * sigma;
-  T n;
-  const T xr = reduce_period(x, period, n);
   if (h <= T(2) * period) {
+    const T xr = reduce_signed(x, period);
     const T m0 = floor((xr - h) / period), m1 = floor((xr + h) / period);
     T s = T(0);
     for (T m = m0; m <= m1; m += T(1)) {
@@ -687,7 +709,8 @@ inline T box_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Piec
     }
     return s;
   }
-  T n1, n2;
+  T n, n1, n2;
+  const T xr = reduce_period(x, period, n);
   const T r1 = reduce_period(xr - h, period, n1);
   const T r2 = reduce_period(xr + h, period, n2);
   const T FT = poly(P1[N - 1].c, period);
@@ -707,9 +730,8 @@ inline T tent_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Pie
   using std::floor;
   if (sigma == T(0)) return periodic_eval(x, period, p);
   const T w = k_sqrt6<T>() * sigma;
-  T n;
-  const T xr = reduce_period(x, period, n);
   if (w <= T(2) * period) {
+    const T xr = reduce_signed(x, period);
     const T m0 = floor((xr - w) / period), m1 = floor((xr + w) / period);
     T s = T(0);
     for (T m = m0; m <= m1; m += T(1)) {
@@ -722,7 +744,8 @@ inline T tent_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Pie
     }
     return s;
   }
-  T q1, q2;
+  T n, q1, q2;
+  const T xr = reduce_period(x, period, n);
   const T r1 = reduce_period(xr - w, period, q1);
   const T r2 = reduce_period(xr + w, period, q2);
   const T A = poly(P1[N - 1].c, period);

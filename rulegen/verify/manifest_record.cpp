@@ -1,6 +1,7 @@
 // blverify: manifest matching and --record (see manifest_record.hpp).
 #include "manifest_record.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>

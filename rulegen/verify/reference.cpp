@@ -15,9 +15,10 @@ namespace blv {
 namespace {
 
 constexpr double kTol = 1e-14;              // tanh_sinh termination tolerance (relative to L1)
-constexpr std::size_t kPieceCap = 20000;    // most pieces one direct reference may use
+constexpr std::size_t kPieceCap = 4000;     // most pieces one direct reference may use
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInvSqrt2Pi = 0.39894228040143267794;
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 boost::math::quadrature::tanh_sinh<double>& integrator() {
   thread_local boost::math::quadrature::tanh_sinh<double> ts;  // not const-callable in Boost 1.74
@@ -85,28 +86,35 @@ struct RefEngine::Impl {
                                        double* l) { return quad(f, a, b, e, l); });
   }
 
-  double anchor(int m, double k, bool* ok) {
+  double anchor(int m, double k, bool* ok, double* noise = nullptr) {
     const double T = sp.period;
     bool capped = false;
     QuadSum<double> q = direct(k * T, T, {0.0, 1.0}, [m, T](double t) { return std::pow(T * t, m); }, &capped);
     *ok = !capped && q.finite;
+    if (noise) *noise = (q.err + 64 * std::numeric_limits<double>::epsilon() * q.l1) * T;
     return q.value * T;  // dtau = T dt
   }
 
   void fit_side(Side* sd, double k0, double d) {
     const double T = sp.period;
     for (int m = 0; m < 3; ++m) {
-      double ks[3] = {k0, k0 + d, k0 + 2 * d}, y[3];
+      double ks[3] = {k0, k0 + d, k0 + 2 * d}, y[3], noise = 0;
       for (int i = 0; i < 3; ++i) {
         bool ok = true;
-        y[i] = anchor(m, ks[i], &ok);
+        double nz = 0;
+        y[i] = anchor(m, ks[i], &ok, &nz);
+        noise = std::fmax(noise, nz);
         if (!ok || !std::isfinite(y[i])) {
           sd->why = "the integral over period " + fmt("%.0f", ks[i]) + " is not finite";
           return;
         }
       }
       double p2 = (y[0] - 2 * y[1] + y[2]) / 2;  // second difference of k^2 with step +-1 is 2
+      // Coefficients at the noise level of the anchors are zero (else k^2 amplifies the noise).
+      noise *= 4;
+      if (std::fabs(p2) <= noise) p2 = 0;
       double p1 = (y[1] - y[0]) / (ks[1] - ks[0]) - p2 * (ks[1] + ks[0]);
+      if (std::fabs(p1) <= noise) p1 = 0;
       double p0 = y[0] - p1 * ks[0] - p2 * ks[0] * ks[0];
       sd->p[m][0] = p0;
       sd->p[m][1] = p1;
@@ -121,8 +129,9 @@ struct RefEngine::Impl {
       }
       for (double k : far) {
         bool ok = true;
-        double yk = anchor(m, k, &ok), pk = p0 + p1 * k + p2 * k * k;
+        double nk = 0, yk = anchor(m, k, &ok, &nk), pk = p0 + p1 * k + p2 * k * k;
         double scale = std::fmax(1.0, std::fmax(std::fabs(yk), std::fabs(p0) + std::fabs(p1 * k) + std::fabs(p2 * k * k)));
+        scale = std::fmax(scale, nk / (64 * std::numeric_limits<double>::epsilon()));
         if (!ok || !(std::fabs(yk - pk) <= 1e-11 * scale)) {
           sd->why = fmt("the integral over a period is not quadratic in the period index (k = %.0f: %.3g off)", k,
                         std::fabs(yk - pk) / scale);
@@ -205,38 +214,68 @@ struct RefEngine::Impl {
     Ref d = gaussian_direct(x, sigma);
     if (!d.ok && d.why.find("pieces") != std::string::npos)
       d.why = "no reference: f has a different period structure on each side of 0 and sigma/T is too large for "
-              "direct quadrature (" + (pos.valid ? neg.why : pos.why) + ")";
+              "direct quadrature (" + (!pos.valid ? pos.why : !neg.valid ? neg.why : "f differs between k < 0 and k >= 0") + ")";
     return d;
   }
 
   Ref gaussian_direct(double x, double sigma) {
     Ref r;
-    const bool unb = !sp.bounded();
-    const double L = unb ? kGaussWindowWide : kGaussWindow;
-    std::vector<double> fixed = unb ? std::vector<double>{-L, -kGaussWindow, kGaussWindow, L} : std::vector<double>{-L, L};
     bool capped = false;
-    QuadSum<double> q = direct(x, sigma, fixed, phi, &capped);
-    if (capped) { r.why = "too many pieces for direct quadrature"; return r; }
-    r.pieces = q.pieces;
     r.method = "direct";
+    QuadSum<double> q = direct(x, sigma, {-kGaussWindow, kGaussWindow}, phi, &capped);
+    if (capped) { r.why = "too many pieces for direct quadrature"; return r; }
     if (!q.finite) { r.why = "integrand not finite on the support"; return r; }
-    if (unb) {
-      double tail = std::fmax(std::fabs(phi(L) * sp.g(x + sigma * L)), std::fabs(phi(L) * sp.g(x - sigma * L)));
-      if (!(tail <= 1e-22 * std::fmax(1.0, std::fabs(q.value)))) {
-        r.why = "Gaussian tail at +-40 sigma not negligible";
-        return r;
+    if (!sp.bounded()) {
+      // Unbounded g: the mass may lie beyond 12 sigma (for exp-like growth the peak sits near
+      // t = a sigma). Probe the log of the integrand at t = 12, 16, .., 40, 80, .., 40 * 2^24 on both
+      // sides. Where g overflows (or between probes) it is bounded by assuming log|g| grows at most
+      // like 4 |s| from the last probe (e^{2s}, cosh^2, polynomials are well inside).
+      auto negligible = [&](double from, double lim) {
+        const double log_lim = std::log(lim), log_norm = std::log(kInvSqrt2Pi);
+        for (double side : {1.0, -1.0}) {
+          double last_s = x, last_log = std::log(std::fabs(sp.g(x)));  // may be -inf
+          if (!(last_log < kInf)) last_log = 710;
+          for (double t = from; t < 1.01 * kGaussWindowWide * 16777216.0; t = t < kGaussWindowWide ? t + 4 : 2 * t) {
+            double s = x + side * sigma * t, gv = sp.g(s);
+            if (std::isnan(gv) && !sp.in_domain(s)) break;
+            double lg = std::log(std::fabs(gv));
+            if (std::isnan(lg)) return false;
+            if (lg == kInf) lg = std::fmax(last_log, -745.0) + 4 * std::fabs(s - last_s);  // overflow: bound it
+            if (lg - 0.5 * t * t + log_norm > log_lim) return false;
+            last_s = s;
+            last_log = lg;
+          }
+        }
+        return true;
+      };
+      if (!negligible(kGaussWindow, 1e-22 * std::fmax(1.0, std::fabs(q.value)))) {
+        for (auto [a, b] : {std::pair<double, double>{-kGaussWindowWide, -kGaussWindow}, {kGaussWindow, kGaussWindowWide}}) {
+          QuadSum<double> t = direct(x, sigma, {a, b}, phi, &capped);
+          if (capped) { r.why = "too many pieces for direct quadrature"; return r; }
+          if (!t.finite) { r.why = "integrand not finite on the support"; return r; }
+          q.value += t.value;
+          q.err += t.err;
+          q.l1 += t.l1;
+          q.pieces += t.pieces;
+        }
+        if (!negligible(kGaussWindowWide, 1e-22 * std::fmax(1.0, std::fabs(q.value)))) {
+          r.why = "Gaussian tail beyond 40 sigma not negligible";
+          return r;
+        }
       }
     }
+    r.pieces = q.pieces;
     r.ok = true;
     r.value = q.value;
     r.err = q.err;
+    r.l1 = q.l1;
     return r;
   }
 
   // int over t in [t0, t1] of w(t) g(x + hw t) with w(t) = wa + wb t, summing whole periods by the
   // period model. (ds measure: alpha + beta (s - x) with alpha = wa / hw, beta = wb / hw^2.)
   bool periods_piece(double x, double hw, double t0, double t1, double wa, double wb, double* val, double* err,
-                     std::string* why) {
+                     double* l1, std::string* why) {
     const double T = sp.period;
     auto w = [wa, wb](double t) { return wa + wb * t; };
     double A = x + hw * t0, B = x + hw * t1;
@@ -247,6 +286,7 @@ struct RefEngine::Impl {
       if (capped || !q.finite) { *why = capped ? "too many pieces" : "integrand not finite"; return false; }
       *val += q.value;
       *err += q.err;
+      *l1 += q.l1;
       return true;
     }
     double tK1 = (K1 * T - x) / hw, tK2 = (K2 * T - x) / hw;
@@ -256,6 +296,7 @@ struct RefEngine::Impl {
       if (capped || !q.finite) { *why = "partial period: integrand not finite"; return false; }
       *val += q.value;
       *err += q.err;
+      *l1 += q.l1;
     }
     const long double alpha = wa / hw, beta = wb / (static_cast<long double>(hw) * hw);
     auto side_sum = [&](const Side& sd, long double klo, long double khi) -> long double {
@@ -298,19 +339,34 @@ struct RefEngine::Impl {
       r.ok = true;
       r.value = q.value;
       r.err = q.err;
+      r.l1 = q.l1;
       return r;
     }
     build_model();
-    double v = 0, e = 0;
+    double v = 0, e = 0, l1 = 0;
     std::string why;
-    bool ok = tent ? periods_piece(x, hw, -1, 0, 1, 1, &v, &e, &why) && periods_piece(x, hw, 0, 1, 1, -1, &v, &e, &why)
-                   : periods_piece(x, hw, -1, 1, 0.5, 0, &v, &e, &why);
+    bool ok = tent ? periods_piece(x, hw, -1, 0, 1, 1, &v, &e, &l1, &why) && periods_piece(x, hw, 0, 1, 1, -1, &v, &e, &l1, &why)
+                   : periods_piece(x, hw, -1, 1, 0.5, 0, &v, &e, &l1, &why);
     r.method = "period-sum";
     if (!ok) { r.why = "no reference: " + why; return r; }
     r.ok = true;
     r.value = v;
     r.err = e;
+    r.l1 = l1;
     return r;
+  }
+
+  // Rounding sensitivity: how much g moves when its argument moves by one ulp, at the centre and
+  // at the ends of the support (one-sided, so that a jump exactly there does not count).
+  double sensitivity(double x, double c) const {
+    double worst = 0;
+    for (double s : {x, x - c, x + c}) {
+      if (!sp.in_domain(s)) continue;
+      double g0 = sp.g(s), gu = sp.g(std::nextafter(s, kInf)), gd = sp.g(std::nextafter(s, -kInf));
+      double d = std::fmin(std::fabs(gu - g0), std::fabs(g0 - gd));
+      if (std::isfinite(d)) worst = std::fmax(worst, d);
+    }
+    return worst;
   }
 
   Ref at(double x, double sigma) {
@@ -326,9 +382,12 @@ struct RefEngine::Impl {
     }
     if (sp.kernel == Kernel::Gaussian) {
       if (sp.period > 0 && 2 * kGaussWindow * sigma / sp.period > kManyPeriods) return gaussian_many(x, sigma);
-      return gaussian_direct(x, sigma);
+      r = gaussian_direct(x, sigma);
+    } else {
+      r = boxtent(x, c);
     }
-    return boxtent(x, c);
+    if (r.ok && r.method == "direct") r.sens = sensitivity(x, c);
+    return r;
   }
 };
 

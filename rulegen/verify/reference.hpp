@@ -31,6 +31,8 @@ struct Ref {
   bool ok = false;
   double value = std::numeric_limits<double>::quiet_NaN();
   double err = 0;          // absolute error estimate (sum over the quadrature pieces)
+  double l1 = 0;           // integral of |integrand|: rounding error ~ eps * l1 (cancellation)
+  double sens = 0;         // rounding sensitivity of g over the support: max |g(s+ulp) - g(s)|
   std::string why;         // when !ok
   std::string method;      // point | direct | fourier | period-mean | period-sum
   long pieces = 0;

@@ -1,7 +1,11 @@
 // blverify: adapter from the generated registry to EntryView (double and float instantiations).
 #include "registry_view.hpp"
 
-#if __has_include(<bandlimit/registry.hpp>)
+// BLVERIFY_HAVE_REGISTRY is set by CMakeLists.txt (whether generated/bandlimit/registry.hpp exists).
+#ifndef BLVERIFY_HAVE_REGISTRY
+#define BLVERIFY_HAVE_REGISTRY __has_include(<bandlimit/registry.hpp>)
+#endif
+#if BLVERIFY_HAVE_REGISTRY
 #include <bandlimit/registry.hpp>
 #define BLV_HAVE_REGISTRY 1
 #else
@@ -70,7 +74,7 @@ std::vector<EntryView> load_registry(std::string* error) {
 }
 #else
 std::vector<EntryView> load_registry(std::string* error) {
-  *error = "blverify was built without generated/bandlimit/registry.hpp: run `rulegen emit`, then rebuild blverify";
+  *error = "blverify was built without generated/bandlimit/registry.hpp: run `rulegen emit`, then rebuild (cmake --build build)";
   return {};
 }
 #endif

@@ -13,7 +13,7 @@ namespace blv {
 struct VerifyOptions {
   double bound_double = 1e-9;   // rel = |value - ref| / max(1, |ref|)
   double bound_float = 2e-5;
-  int mp_cap = 48;              // most 50-digit references per entry
+  int mp_cap = 160;             // most 50-digit references per entry
   bool use_mp = true;
 };
 
@@ -30,6 +30,7 @@ struct EntryResult {
   long float_points = 0, float_skipped = 0;
   long domain_checks = 0;                    // NaN checks outside the domain (compact entries)
   long mp_points = 0, mp_declined = 0;       // 50-digit references made / wanted but not possible
+  long undecided = 0;                        // double points judged against an undecided double reference
   long over_double = 0, over_float = 0;      // points over the bound
   double worst_d = 0, worst_f = 0;
   Where worst_d_at, worst_f_at;
