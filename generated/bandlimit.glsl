@@ -381,6 +381,14 @@ vec2 bl_reduce_period(float y, float period) {
   return vec2(r, q);
 }
 
+// Signed remainder in (-period, period): y itself when |y| < period, so a tiny negative y (just
+// below a period boundary) is not rounded by "+ period" before a tiny kernel magnifies it.
+float bl_reduce_signed(float y, float period) {
+  float r = y - period * trunc(y / period);
+  if (abs(r) >= period) r = 0.0;
+  return r;
+}
+
 float bl_period_piece_eval(float r, int n, BlPiece p[4]) {
   for (int i = 0; i < 3; ++i) {
     if (i >= n - 1) break;
@@ -389,9 +397,15 @@ float bl_period_piece_eval(float r, int n, BlPiece p[4]) {
   return bl_poly(p[n - 1].c, r);
 }
 
+// Piece chosen on the signed remainder (see support.hpp): r < 0 compares with hi - period.
 float bl_periodic_eval(float x, float period, int n, BlPiece p[4]) {
-  vec2 rq = bl_reduce_period(x, period);
-  return bl_period_piece_eval(rq.x, n, p);
+  float r = bl_reduce_signed(x, period);
+  if (!(r < 0.0)) return bl_period_piece_eval(r, n, p);
+  for (int i = 0; i < 3; ++i) {
+    if (i >= n - 1) break;
+    if (r < p[i].hi - period) return bl_poly(p[i].c, r + period);
+  }
+  return bl_poly(p[n - 1].c, r + period);
 }
 
 // Tail multiple z with P(|Z| > z) <= tol/fmax (Mills: 2 phi(z) <= tol/fmax suffices for z >= 1).
@@ -401,10 +415,13 @@ float bl_image_z(float fmax, float tol) {
   return sqrt(2.0 * log(arg));
 }
 
+// Image sum over the periods within image_z(fmax, 1e-8) sigma of x (see support.hpp). It loops over
+// about 12 sigma/period periods: use it where bl_prefer_fourier is false (Mesa's llvmpipe also
+// stops any loop after 65535 iterations per invocation, reached near sigma ~ 500 period).
 float bl_gauss_periodic_image(float x, float sigma, float period, int n, BlPiece p[4],
                               float fmax) {
   if (sigma == 0.0) return bl_periodic_eval(x, period, n, p);
-  float xr = bl_reduce_period(x, period).x;
+  float xr = bl_reduce_signed(x, period);
   float R = bl_image_z(fmax, BL_SERIES_TOL) * sigma;
   int m0 = int(floor((xr - R) / period));
   int m1 = int(floor((xr + R) / period));
@@ -475,8 +492,8 @@ bool bl_prefer_fourier(float s, int npieces, float coef_bound, float fmax) {
 float bl_box_periodic(float x, float sigma, float period, int n, BlPiece p[4], BlPiece P1[4]) {
   if (sigma == 0.0) return bl_periodic_eval(x, period, n, p);
   float h = BL_SQRT3 * sigma;
-  float xr = bl_reduce_period(x, period).x;
   if (h <= 2.0 * period) {
+    float xr = bl_reduce_signed(x, period);
     int m0 = int(floor((xr - h) / period));
     int m1 = int(floor((xr + h) / period));
     float s = 0.0;
@@ -492,6 +509,7 @@ float bl_box_periodic(float x, float sigma, float period, int n, BlPiece p[4], B
     }
     return s;
   }
+  float xr = bl_reduce_period(x, period).x;
   vec2 y1 = bl_reduce_period(xr - h, period);
   vec2 y2 = bl_reduce_period(xr + h, period);
   float FT = bl_poly(P1[n - 1].c, period);
@@ -506,8 +524,8 @@ float bl_tent_periodic(float x, float sigma, float period, int n, BlPiece p[4], 
                        BlPiece P2[4]) {
   if (sigma == 0.0) return bl_periodic_eval(x, period, n, p);
   float w = BL_SQRT6 * sigma;
-  float xr = bl_reduce_period(x, period).x;
   if (w <= 2.0 * period) {
+    float xr = bl_reduce_signed(x, period);
     int m0 = int(floor((xr - w) / period));
     int m1 = int(floor((xr + w) / period));
     float s = 0.0;
@@ -523,6 +541,7 @@ float bl_tent_periodic(float x, float sigma, float period, int n, BlPiece p[4], 
     }
     return s;
   }
+  float xr = bl_reduce_period(x, period).x;
   vec2 y1 = bl_reduce_period(xr - w, period);
   vec2 y2 = bl_reduce_period(xr + w, period);
   float A = bl_poly(P1[n - 1].c, period);
@@ -533,6 +552,286 @@ float bl_tent_periodic(float x, float sigma, float period, int n, BlPiece p[4], 
               ((bl_period_piece_eval(y2.x, n, P2) + bl_period_piece_eval(y1.x, n, P2)) -
                2.0 * bl_period_piece_eval(xr, n, P2));
   return num / (w * w);
+}
+
+// ---- first kernel moment of periodic functions ----
+// M = E[U g(x + U)] for a periodic g given by one period of pieces (n <= 4, degree <= 6, absolute
+// coordinate in [0, period)): bl_gauss_periodic_u_image, bl_box_periodic_u, bl_tent_periodic_u. The
+// same regimes and stability arguments as the section of the same name in support.hpp: reduced
+// argument only, mean removed (E[U c] = 0), each piece re-expanded about the kernel centre clamped
+// into it, closed-form sums over full periods for the wide box/tent. sigma == 0 gives 0; sigma < 0,
+// NaN or infinite, x not finite, or a piece of degree 7 give sqrt(-1) (NaN where the GPU has NaNs).
+// The wide box needs h = sqrt(3) sigma beyond float precision (its dM/dh is O(1)): hl =
+// fma(BL_SQRT3, sigma, -h) + BL_SQRT3_LO sigma and an fma reduction of h. A compiler that does not
+// fuse fma only loses that correction (the error becomes eps h, as without it), nothing else.
+// The Gaussian image sum loops over ~2 z sigma/period periods: use it where bl_prefer_fourier is
+// false (llvmpipe stops loops after 65535 iterations).
+
+const float BL_SQRT3_LO = 3.1087248875558696e-8;  // sqrt(3) - float(sqrt(3))
+
+float bl_u_nan(float s) { return sqrt(-1.0 - abs(s)); }
+
+bool bl_u_bad(float x, float sigma) {
+  return !(abs(x) < BL_INF) || !(sigma >= 0.0) || !(sigma < BL_INF);
+}
+
+// int_a^b s^j q(s) ds, 0 <= a <= b, divided differences (see support.hpp).
+float bl_u_piece_moment(float c[8], int deg, int j, float a, float b) {
+  float S = 1.0;
+  float an = 1.0;
+  float sum = 0.0;
+  for (int k = 0; k < 10; ++k) {
+    if (k > deg + j) break;
+    if (k > 0) {
+      an *= a;
+      S = b * S + an;
+    }
+    if (k >= j) sum += c[k - j] * S / float(k + 1);
+  }
+  return (b - a) * sum;
+}
+
+// Pieces minus the period mean (t), their degrees, I[j] = int_0^T s^j (g - gbar); false if a
+// degree exceeds 6.
+bool bl_u_period_data(float period, int n, BlPiece p[4], out BlPiece t[4], out int deg[4],
+                      out float I[3]) {
+  bool ok = true;
+  float I0 = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    t[i] = p[i];
+    deg[i] = 0;
+    if (i >= n) continue;
+    deg[i] = bl_degree(p[i].c);
+    if (deg[i] > 6) ok = false;
+    if (p[i].hi > p[i].lo) I0 += bl_u_piece_moment(p[i].c, deg[i], 0, p[i].lo, p[i].hi);
+  }
+  float gbar = I0 / period;
+  I[0] = 0.0;
+  I[1] = 0.0;
+  I[2] = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    if (i >= n) break;
+    t[i].c[0] -= gbar;
+    if (!(t[i].hi > t[i].lo)) continue;
+    for (int j = 0; j < 3; ++j) I[j] += bl_u_piece_moment(t[i].c, deg[i], j, t[i].lo, t[i].hi);
+  }
+  return ok;
+}
+
+// Coefficients in v of (v + e) q(o + v).
+void bl_u_coefs(float q[8], int deg, float o, float e, out float r[8]) {
+  float g[8];
+  bl_taylor_shift(q, deg, o, g);
+  for (int k = 0; k < 8; ++k) r[k] = 0.0;
+  r[0] = e * g[0];
+  for (int k = 1; k < 8; ++k) {
+    if (k > deg) break;
+    r[k] = g[k - 1] + e * g[k];
+  }
+  r[deg + 1] = g[deg];
+}
+
+// Tent with the centre inside the piece: both halves term by term, odd terms as differences
+// (exactly 0 when the support lies inside the piece), see u_tent_centre in support.hpp.
+float bl_u_tent_centre(float c[8], int deg, float Lr, float Ll, float w) {
+  float lr = Lr / w;
+  float ll = Ll / w;
+  float sum = 0.0;
+  float Lrk = 1.0;
+  float Llk = 1.0;
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
+    float ar = Lrk * lr * (1.0 / float(k + 1) - lr / float(k + 2));
+    float al = Llk * ll * (1.0 / float(k + 1) - ll / float(k + 2));
+    sum += c[k] * (((k & 1) == 1) ? ar - al : ar + al);
+    Lrk *= Lr;
+    Llk *= Ll;
+  }
+  return sum;
+}
+
+// One piece, expanded about the kernel centre clamped into it (kernel 0 Gaussian, 1 box, 2 tent;
+// s = sigma, h or w).
+float bl_u_piece(int kernel, float xq, float s, float dl, float dh, float lo, float hi, float q[8],
+                 int deg) {
+  float o = xq;
+  float e = 0.0;
+  float lo2 = dl;
+  float hi2 = dh;
+  if (!(dl < 0.0)) {
+    o = lo;
+    e = dl;
+    lo2 = 0.0;
+    hi2 = hi - lo;
+  } else if (!(dh > 0.0)) {
+    o = hi;
+    e = dh;
+    lo2 = lo - hi;
+    hi2 = 0.0;
+  }
+  float c[8];
+  bl_u_coefs(q, deg, o, e, c);
+  if (kernel == 2 && dl < 0.0 && dh > 0.0) return bl_u_tent_centre(c, deg + 1, min(dh, s), min(-dl, s), s);
+  if (kernel == 0) return bl_gauss_core(-e, s, dl, dh, lo2, hi2, c);
+  if (kernel == 1) return bl_box_core(-e, s, dl, dh, lo2, hi2, c);
+  return bl_tent_core(-e, s, dl, dh, lo2, hi2, c);
+}
+
+float bl_u_periods(int kernel, float xr, float s, float R, float period, int m0, int m1, int n,
+                   BlPiece t[4], int deg[4]) {
+  float sum = 0.0;
+  for (int m = m0; m <= m1; ++m) {
+    float shift = float(m) * period;
+    for (int i = 0; i < 4; ++i) {
+      if (i >= n) break;
+      if (!(t[i].hi > t[i].lo)) continue;
+      float dl = (t[i].lo + shift) - xr;
+      float dh = (t[i].hi + shift) - xr;
+      if (!(dh > -R) || !(dl < R)) continue;
+      sum += bl_u_piece(kernel, xr - shift, s, dl, dh, t[i].lo, t[i].hi, t[i].c, deg[i]);
+    }
+  }
+  return sum;
+}
+
+// int_0^L c(v) dv, either sign of L.
+float bl_u_integral0(float c[8], int deg, float L) {
+  float r = 0.0;
+  for (int k = 7; k >= 0; --k) {
+    if (k <= deg) r = r * L + c[k] / float(k + 1);
+  }
+  return r * L;
+}
+
+float bl_gauss_periodic_u_image(float x, float sigma, float period, int n, BlPiece p[4],
+                                float fmax) {
+  if (bl_u_bad(x, sigma)) return bl_u_nan(sigma);
+  if (sigma == 0.0) return 0.0;
+  BlPiece t[4];
+  int deg[4];
+  float I[3];
+  if (!bl_u_period_data(period, n, p, t, deg, I)) return bl_u_nan(sigma);
+  float xr = bl_reduce_signed(x, period);
+  float R = bl_image_z(2.0 * fmax * max(sigma, 1.0), BL_SERIES_TOL) * sigma;
+  int m0 = int(floor((xr - R) / period));
+  int m1 = int(floor((xr + R) / period));
+  return bl_u_periods(0, xr, sigma, R, period, m0, m1, n, t, deg);
+}
+
+// y = q period + r for y >= 0, remainder by fma (exact when fused).
+vec2 bl_u_reduce_fma(float y, float period) {
+  float q = floor(y / period);
+  float r = fma(-q, period, y);
+  if (r < 0.0) {
+    r += period;
+    q -= 1.0;
+  }
+  if (r >= period) {
+    r -= period;
+    q += 1.0;
+  }
+  return vec2(r, q);
+}
+
+float bl_box_periodic_u(float x, float sigma, float period, int n, BlPiece p[4]) {
+  if (bl_u_bad(x, sigma)) return bl_u_nan(sigma);
+  if (sigma == 0.0) return 0.0;
+  BlPiece t[4];
+  int deg[4];
+  float I[3];
+  if (!bl_u_period_data(period, n, p, t, deg, I)) return bl_u_nan(sigma);
+  float h = BL_SQRT3 * sigma;
+  if (h <= 2.0 * period) {
+    float xs = bl_reduce_signed(x, period);
+    int m0 = int(floor((xs - h) / period));
+    int m1 = int(floor((xs + h) / period));
+    return bl_u_periods(1, xs, h, h, period, m0, m1, n, t, deg);
+  }
+  float xr = bl_reduce_period(x, period).x;
+  float hl = fma(BL_SQRT3, sigma, -h) + BL_SQRT3_LO * sigma;
+  vec2 rq = bl_u_reduce_fma(h, period);
+  float q2 = rq.y;
+  float r2 = (rq.x + xr) + hl;
+  if (!(r2 < period)) {
+    r2 -= period;
+    q2 += 1.0;
+  } else if (r2 < 0.0) {
+    r2 += period;
+    q2 -= 1.0;
+    if (!(r2 < period)) {
+      r2 = 0.0;
+      q2 += 1.0;
+    }
+  }
+  float q1 = -rq.y;
+  float r1 = (xr - rq.x) - hl;
+  if (r1 < 0.0) {
+    r1 += period;
+    q1 -= 1.0;
+    if (!(r1 < period)) {
+      r1 = 0.0;
+      q1 += 1.0;
+    }
+  } else if (!(r1 < period)) {
+    r1 -= period;
+    q1 += 1.0;
+  }
+  float s = (q2 - q1 - 1.0) * (I[1] - I[0] * (r1 + r2) * 0.5);
+  float s1 = q1 * period;
+  float s2 = q2 * period;
+  for (int i = 0; i < 4; ++i) {
+    if (i >= n) break;
+    if (!(t[i].hi > t[i].lo)) continue;
+    float c[8];
+    if (t[i].lo < r2) {
+      float b = min(t[i].hi, r2);
+      bl_u_coefs(t[i].c, deg[i], t[i].lo, (t[i].lo + s2) - xr, c);
+      s += bl_u_integral0(c, deg[i] + 1, b - t[i].lo);
+    }
+    if (t[i].hi > r1) {
+      float a = max(t[i].lo, r1);
+      bl_u_coefs(t[i].c, deg[i], t[i].hi, (t[i].hi + s1) - xr, c);
+      s -= bl_u_integral0(c, deg[i] + 1, a - t[i].hi);
+    }
+  }
+  return s / (2.0 * h);
+}
+
+float bl_tent_periodic_u(float x, float sigma, float period, int n, BlPiece p[4]) {
+  if (bl_u_bad(x, sigma)) return bl_u_nan(sigma);
+  if (sigma == 0.0) return 0.0;
+  BlPiece t[4];
+  int deg[4];
+  float I[3];
+  if (!bl_u_period_data(period, n, p, t, deg, I)) return bl_u_nan(sigma);
+  float w = BL_SQRT6 * sigma;
+  if (w <= 2.0 * period) {
+    float xs = bl_reduce_signed(x, period);
+    int m0 = int(floor((xs - w) / period));
+    int m1 = int(floor((xs + w) / period));
+    return bl_u_periods(2, xs, w, w, period, m0, m1, n, t, deg);
+  }
+  float xr = bl_reduce_period(x, period).x;
+  vec2 y1 = bl_reduce_period(xr - w, period);
+  vec2 y2 = bl_reduce_period(xr + w, period);
+  int q1 = int(y1.y);
+  int q2 = int(y2.y);
+  float local = bl_u_periods(2, xr, w, w, period, q1, q1, n, t, deg) +
+                bl_u_periods(2, xr, w, w, period, 0, 0, n, t, deg) +
+                bl_u_periods(2, xr, w, w, period, q2, q2, n, t, deg);
+  float nr = y2.y - 1.0;
+  float nl = -y1.y - 1.0;
+  float S1r = nr * (nr + 1.0) * 0.5;
+  float S2r = S1r * (2.0 * nr + 1.0) / 3.0;
+  float S1l = nl * (nl + 1.0) * 0.5;
+  float S2l = S1l * (2.0 * nl + 1.0) / 3.0;
+  float sd = period * S1r - nr * xr;
+  float sd2 = period * period * S2r - 2.0 * period * xr * S1r + nr * xr * xr;
+  float se = period * S1l + nl * xr;
+  float se2 = period * period * S2l + 2.0 * period * xr * S1l + nl * xr * xr;
+  float full = I[1] * (nr * (xr + y2.x) - nl * (xr + y1.x)) +
+               I[0] * ((w * sd - sd2) - (w * se - se2)) + I[2] * (nl - nr);
+  return local + full / (w * w);
 }
 
 // Helpers of the generated GLSL besides the support functions.
@@ -914,14 +1213,8 @@ float bl_gaussian_abs(float x, float sigma) {
 }
 
 float bl_gaussian_abs_sq(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_gauss_pw(x, sigma, 2, p);
+  return ((sigma*sigma) + (x*x));
 }
 
 float bl_box_abs(float x, float sigma) {
@@ -936,14 +1229,8 @@ float bl_box_abs(float x, float sigma) {
 }
 
 float bl_box_abs_sq(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_box_pw(x, sigma, 2, p);
+  return ((sigma*sigma) + (x*x));
 }
 
 float bl_tent_abs(float x, float sigma) {
@@ -958,14 +1245,8 @@ float bl_tent_abs(float x, float sigma) {
 }
 
 float bl_tent_abs_sq(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_tent_pw(x, sigma, 2, p);
+  return ((sigma*sigma) + (x*x));
 }
 
 float bl_gaussian_sign(float x, float sigma) {
@@ -980,14 +1261,8 @@ float bl_gaussian_sign(float x, float sigma) {
 }
 
 float bl_gaussian_sign_sq(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_gauss_pw(x, sigma, 2, p);
+  return 1.0;
 }
 
 float bl_box_sign(float x, float sigma) {
@@ -1002,14 +1277,8 @@ float bl_box_sign(float x, float sigma) {
 }
 
 float bl_box_sign_sq(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_box_pw(x, sigma, 2, p);
+  return 1.0;
 }
 
 float bl_tent_sign(float x, float sigma) {
@@ -1024,14 +1293,8 @@ float bl_tent_sign(float x, float sigma) {
 }
 
 float bl_tent_sign_sq(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_tent_pw(x, sigma, 2, p);
+  return 1.0;
 }
 
 float bl_gaussian_step(float x, float sigma) {
@@ -1257,6 +1520,32 @@ float bl_gaussian_fract(float x, float sigma) {
   return bl_gauss_periodic_image(x, sigma, period, 1, p, (1.0));
 }
 
+float bl_gaussian_fract_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  float s = sigma / period;
+  if (bl_prefer_fourier(s, 1, (4.0), (1.0))) {
+    float xr = x - period * floor(x / period);
+    int K = 2 + bl_fourier_terms(s, (4.0), BL_SERIES_TOL);  // +2: the k factor of g'
+    float acc = (0.0);
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
+      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
+      acc += damp * w * ((-(1.0/(bl_pi()))*(1.0/(kf))) * cos(th));
+    }
+    return sigma * sigma * acc;
+  }
+  return bl_gauss_periodic_u_image(x, sigma, period, 1, p, (1.0));
+}
+
 float bl_gaussian_fract_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1299,6 +1588,18 @@ float bl_box_fract(float x, float sigma) {
   return bl_box_periodic(x, sigma, period, 1, p, p1);
 }
 
+float bl_box_fract_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  return bl_box_periodic_u(x, sigma, period, 1, p);
+}
+
 float bl_box_fract_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1336,6 +1637,18 @@ float bl_tent_fract(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   return bl_tent_periodic(x, sigma, period, 1, p, p1, p2);
+}
+
+float bl_tent_fract_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  return bl_tent_periodic_u(x, sigma, period, 1, p);
 }
 
 float bl_tent_fract_sq(float x, float sigma) {
@@ -1386,6 +1699,33 @@ float bl_gaussian_triangle(float x, float sigma) {
   return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
+float bl_gaussian_triangle_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 2.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  float s = sigma / period;
+  if (bl_prefer_fourier(s, 2, (4.0), (1.0))) {
+    float xr = x - period * floor(x / period);
+    int K = 2 + bl_fourier_terms(s, (4.0), BL_SERIES_TOL);  // +2: the k factor of g'
+    float acc = (0.0);
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      float pk = (k % 2 == 1) ? (-1.0) : (1.0);
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
+      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
+      acc += damp * w * (-(2.0*((-1.0) + pk)*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * sin(th));
+    }
+    return sigma * sigma * acc;
+  }
+  return bl_gauss_periodic_u_image(x, sigma, period, 2, p, (1.0));
+}
+
 float bl_gaussian_triangle_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1429,6 +1769,18 @@ float bl_box_triangle(float x, float sigma) {
   return bl_box_periodic(x, sigma, period, 2, p, p1);
 }
 
+float bl_box_triangle_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 2.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  return bl_box_periodic_u(x, sigma, period, 2, p);
+}
+
 float bl_box_triangle_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1466,6 +1818,18 @@ float bl_tent_triangle(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+}
+
+float bl_tent_triangle_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 2.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  return bl_tent_periodic_u(x, sigma, period, 2, p);
 }
 
 float bl_tent_triangle_sq(float x, float sigma) {
@@ -1516,6 +1880,33 @@ float bl_gaussian_square(float x, float sigma) {
   return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
+float bl_gaussian_square_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  float s = sigma / period;
+  if (bl_prefer_fourier(s, 2, (4.0), (1.0))) {
+    float xr = x - period * floor(x / period);
+    int K = 2 + bl_fourier_terms(s, (4.0), BL_SERIES_TOL);  // +2: the k factor of g'
+    float acc = (0.0);
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      float pk = (k % 2 == 1) ? (-1.0) : (1.0);
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
+      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
+      acc += damp * w * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * cos(th));
+    }
+    return sigma * sigma * acc;
+  }
+  return bl_gauss_periodic_u_image(x, sigma, period, 2, p, (1.0));
+}
+
 float bl_gaussian_square_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1559,6 +1950,18 @@ float bl_box_square(float x, float sigma) {
   return bl_box_periodic(x, sigma, period, 2, p, p1);
 }
 
+float bl_box_square_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  return bl_box_periodic_u(x, sigma, period, 2, p);
+}
+
 float bl_box_square_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1598,6 +2001,18 @@ float bl_tent_square(float x, float sigma) {
   return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
 }
 
+float bl_tent_square_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  return bl_tent_periodic_u(x, sigma, period, 2, p);
+}
+
 float bl_tent_square_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1625,9 +2040,19 @@ float bl_gaussian_floor(float x, float sigma) {
   return x + (-1.0) * bl_gaussian_fract(x, sigma);
 }
 
+float bl_gaussian_floor_sq(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + 1.0 * bl_gaussian_fract_sq(x, sigma) + (-2.0) * (x * bl_gaussian_fract(x, sigma) + bl_gaussian_fract_u(x, sigma));
+}
+
 float bl_box_floor(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + (-1.0) * bl_box_fract(x, sigma);
+}
+
+float bl_box_floor_sq(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + 1.0 * bl_box_fract_sq(x, sigma) + (-2.0) * (x * bl_box_fract(x, sigma) + bl_box_fract_u(x, sigma));
 }
 
 float bl_tent_floor(float x, float sigma) {
@@ -1635,9 +2060,19 @@ float bl_tent_floor(float x, float sigma) {
   return x + (-1.0) * bl_tent_fract(x, sigma);
 }
 
+float bl_tent_floor_sq(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + 1.0 * bl_tent_fract_sq(x, sigma) + (-2.0) * (x * bl_tent_fract(x, sigma) + bl_tent_fract_u(x, sigma));
+}
+
 float bl_gaussian_ceil(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + 1.0 * bl_gaussian_fract(-x, sigma);
+}
+
+float bl_gaussian_ceil_sq(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + 1.0 * bl_gaussian_fract_sq(-x, sigma) + 2.0 * (x * bl_gaussian_fract(-x, sigma) - bl_gaussian_fract_u(-x, sigma));
 }
 
 float bl_box_ceil(float x, float sigma) {
@@ -1645,9 +2080,19 @@ float bl_box_ceil(float x, float sigma) {
   return x + 1.0 * bl_box_fract(-x, sigma);
 }
 
+float bl_box_ceil_sq(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + 1.0 * bl_box_fract_sq(-x, sigma) + 2.0 * (x * bl_box_fract(-x, sigma) - bl_box_fract_u(-x, sigma));
+}
+
 float bl_tent_ceil(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + 1.0 * bl_tent_fract(-x, sigma);
+}
+
+float bl_tent_ceil_sq(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + 1.0 * bl_tent_fract_sq(-x, sigma) + 2.0 * (x * bl_tent_fract(-x, sigma) - bl_tent_fract_u(-x, sigma));
 }
 
 float bl_gaussian_trunc(float x, float sigma) {
@@ -1690,7 +2135,7 @@ float bl_box_tan_sq(float x, float sigma) {
     float q = hh * hh;
     return (u_tan*u_tan) + q * ((((4.0/3.0)*(u_tan*u_tan)) + (1.0/3.0) + (u_tan*u_tan*u_tan*u_tan)) + q * ((((17.0/15.0)*(u_tan*u_tan)) + (2.0*(u_tan*u_tan*u_tan*u_tan)) + (2.0/15.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((12.0/5.0)*(u_tan*u_tan*u_tan*u_tan)) + ((248.0/315.0)*(u_tan*u_tan)) + ((8.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (17.0/315.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((10.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1382.0/2835.0)*(u_tan*u_tan)) + ((37.0/9.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((424.0/189.0)*(u_tan*u_tan*u_tan*u_tan)) + (62.0/2835.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((43688.0/155925.0)*(u_tan*u_tan)) + ((4532.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((8507.0/4725.0)*(u_tan*u_tan*u_tan*u_tan)) + ((94.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (1382.0/155925.0) + (4.0*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((133.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((14.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1901.0/405.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1934.0/1485.0)*(u_tan*u_tan*u_tan*u_tan)) + ((236.0/27.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((929569.0/6081075.0)*(u_tan*u_tan)) + (21844.0/6081075.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))))))));
   }
-  return (((-hh) + (-x) + tan((hh + x))) - ((-x) + hh + tan(((-hh) + x)))) / ((2.0) * hh);
+  return (-1.0) + (tan((hh + x)) - tan(((-hh) + x))) / ((2.0) * hh);
 }
 
 float bl_tent_tan_sq(float x, float sigma) {
@@ -1704,7 +2149,7 @@ float bl_tent_tan_sq(float x, float sigma) {
     float q = hh * hh;
     return (u_tan*u_tan) + q * ((((1.0/2.0)*(u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan)) + (1.0/6.0)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((17.0/45.0)*(u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan)) + (2.0/45.0)) + q * ((((1.0/4.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((3.0/5.0)*(u_tan*u_tan*u_tan*u_tan)) + ((62.0/315.0)*(u_tan*u_tan)) + (17.0/1260.0)) + q * ((((1.0/5.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1382.0/14175.0)*(u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((37.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((424.0/945.0)*(u_tan*u_tan*u_tan*u_tan)) + (62.0/14175.0)) + q * ((((1.0/6.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((21844.0/467775.0)*(u_tan*u_tan)) + ((2266.0/2835.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((47.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((8507.0/28350.0)*(u_tan*u_tan*u_tan*u_tan)) + (691.0/467775.0)) + q * ((((1.0/7.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((19.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1901.0/2835.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1934.0/10395.0)*(u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((236.0/189.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((929569.0/42567525.0)*(u_tan*u_tan)) + (21844.0/42567525.0))))))));
   }
-  return ((((-1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))) + (-log(abs(cos((hh + x)))))) - (2.0) * (((-1.0/2.0)*(x*x)) + (-log(abs(cos(x))))) + (((-1.0/2.0)*(((-hh) + x)*((-hh) + x))) + (-log(abs(cos(((-hh) + x))))))) / (hh * hh);
+  return (-1.0) + ((-log(abs(cos((hh + x))))) - (2.0) * (-log(abs(cos(x)))) + (-log(abs(cos(((-hh) + x)))))) / (hh * hh);
 }
 
 float bl_box_tanh(float x, float sigma) {
@@ -1730,7 +2175,7 @@ float bl_box_tanh_sq(float x, float sigma) {
     float q = hh * hh;
     return (u_tanh*u_tanh) + q * ((((-4.0/3.0)*(u_tanh*u_tanh)) + (1.0/3.0) + (u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-2.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((17.0/15.0)*(u_tanh*u_tanh)) + (-2.0/15.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-248.0/315.0)*(u_tanh*u_tanh)) + ((-8.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((12.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (17.0/315.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-10.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-424.0/189.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1382.0/2835.0)*(u_tanh*u_tanh)) + ((37.0/9.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (-62.0/2835.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-4.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-43688.0/155925.0)*(u_tanh*u_tanh)) + ((-4532.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((8507.0/4725.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((94.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (1382.0/155925.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-14.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-1934.0/1485.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((-236.0/27.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((133.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1901.0/405.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((929569.0/6081075.0)*(u_tanh*u_tanh)) + (-21844.0/6081075.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))))))));
   }
-  return (((-tanh((hh + x))) + hh + x) - ((-hh) + (-tanh(((-hh) + x))) + x)) / ((2.0) * hh);
+  return 1.0 + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / ((2.0) * hh);
 }
 
 float bl_tent_tanh_sq(float x, float sigma) {
@@ -1743,7 +2188,7 @@ float bl_tent_tanh_sq(float x, float sigma) {
     float q = hh * hh;
     return (u_tanh*u_tanh) + q * ((((-2.0/3.0)*(u_tanh*u_tanh)) + ((1.0/2.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (1.0/6.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((17.0/45.0)*(u_tanh*u_tanh)) + (-2.0/45.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-62.0/315.0)*(u_tanh*u_tanh)) + ((1.0/4.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((3.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (17.0/1260.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-424.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1382.0/14175.0)*(u_tanh*u_tanh)) + ((37.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (-62.0/14175.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-21844.0/467775.0)*(u_tanh*u_tanh)) + ((-2266.0/2835.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/6.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((47.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((8507.0/28350.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (691.0/467775.0)) + q * ((((-1934.0/10395.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-236.0/189.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/7.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((19.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1901.0/2835.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((929569.0/42567525.0)*(u_tanh*u_tanh)) + (-21844.0/42567525.0))))))));
   }
-  return ((((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))) + (-bl_logcosh((hh + x)))) - (2.0) * (((1.0/2.0)*(x*x)) + (-bl_logcosh(x))) + (((1.0/2.0)*(((-hh) + x)*((-hh) + x))) + (-bl_logcosh(((-hh) + x))))) / (hh * hh);
+  return 1.0 + ((-bl_logcosh((hh + x))) - (2.0) * (-bl_logcosh(x)) + (-bl_logcosh(((-hh) + x)))) / (hh * hh);
 }
 
 float bl_box_log(float x, float sigma) {
@@ -1756,7 +2201,7 @@ float bl_box_log(float x, float sigma) {
     float q = hh * hh;
     return u_log + q * (((-1.0/6.0)*(1.0/(x*x))) + q * (((-1.0/20.0)*(1.0/(x*x*x*x))) + q * (((-1.0/42.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/72.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/110.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/156.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return (((-((-hh) + (-x))*log((hh + x))) + (-hh) + (-x)) - ((((-hh) + x)*log(((-hh) + x))) + (-x) + hh)) / ((2.0) * hh);
+  return (-1.0) + ((-((-hh) + (-x))*log((hh + x))) - (((-hh) + x)*log(((-hh) + x)))) / ((2.0) * hh);
 }
 
 float bl_box_log_sq(float x, float sigma) {
@@ -1769,7 +2214,7 @@ float bl_box_log_sq(float x, float sigma) {
     float q = hh * hh;
     return (u_log*u_log) + q * (((-1.0/3.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/60.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/1260.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/5040.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/138600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/2162160.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (2.0*((-hh) + (-x))*log((hh + x))) + (2.0*hh) + (2.0*x)) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((-2.0)*((-hh) + x)*log(((-hh) + x))) + ((-2.0)*hh) + (2.0*x))) / ((2.0) * hh);
+  return 2.0 + (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (2.0*((-hh) + (-x))*log((hh + x)))) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((-2.0)*((-hh) + x)*log(((-hh) + x))))) / ((2.0) * hh);
 }
 
 float bl_tent_log(float x, float sigma) {
@@ -1782,7 +2227,7 @@ float bl_tent_log(float x, float sigma) {
     float q = hh * hh;
     return u_log + q * (((-1.0/12.0)*(1.0/(x*x))) + q * (((-1.0/60.0)*(1.0/(x*x*x*x))) + q * (((-1.0/168.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/360.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/660.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/1092.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return ((((-3.0/4.0)*(((-hh) + (-x))*((-hh) + (-x)))) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x)))) - (2.0) * (((-3.0/4.0)*(x*x)) + ((1.0/2.0)*(x*x)*log(x))) + (((-3.0/4.0)*(((-hh) + x)*((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))))) / (hh * hh);
+  return (-3.0/2.0) + (((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) - (2.0) * ((1.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x)))) / (hh * hh);
 }
 
 float bl_tent_log_sq(float x, float sigma) {
@@ -1795,7 +2240,7 @@ float bl_tent_log_sq(float x, float sigma) {
     float q = hh * hh;
     return (u_log*u_log) + q * (((-1.0/6.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/180.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/5040.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/25200.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/831600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/15135120.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return ((((-3.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x)))) + ((7.0/4.0)*(((-hh) + (-x))*((-hh) + (-x))))) - (2.0) * (((-3.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(log(x)*log(x))*(x*x)) + ((7.0/4.0)*(x*x))) + (((-3.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))) + ((7.0/4.0)*(((-hh) + x)*((-hh) + x))))) / (hh * hh);
+  return (7.0/2.0) + ((((-3.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x))))) - (2.0) * (((-3.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(log(x)*log(x))*(x*x))) + (((-3.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))))) / (hh * hh);
 }
 
 float bl_box_sqrt(float x, float sigma) {
@@ -1819,7 +2264,7 @@ float bl_box_sqrt_sq(float x, float sigma) {
     float q = hh * hh;
     return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
   }
-  return (((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))) - ((1.0/2.0)*(((-hh) + x)*((-hh) + x)))) / ((2.0) * hh);
+  return x;
 }
 
 float bl_tent_sqrt(float x, float sigma) {
@@ -1843,7 +2288,7 @@ float bl_tent_sqrt_sq(float x, float sigma) {
     float q = hh * hh;
     return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
   }
-  return (((-1.0/6.0)*(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x)))) - (2.0) * ((1.0/6.0)*(x*x*x)) + ((1.0/6.0)*(((-hh) + x)*((-hh) + x)*((-hh) + x)))) / (hh * hh);
+  return x;
 }
 
 float bl_box_inv(float x, float sigma) {
@@ -1876,7 +2321,7 @@ float bl_tent_inv(float x, float sigma) {
     float q = hh * hh;
     return (1.0/(x)) + q * (((1.0/6.0)*(1.0/(x*x*x))) + q * (((1.0/15.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/28.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/45.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/66.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/91.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return (((-((-hh) + (-x))*log(abs((hh + x)))) + (-hh) + (-x)) - (2.0) * ((-x) + (log(abs(x))*x)) + ((((-hh) + x)*log(abs(((-hh) + x)))) + (-x) + hh)) / (hh * hh);
+  return ((-((-hh) + (-x))*log(abs((hh + x)))) - (2.0) * (log(abs(x))*x) + (((-hh) + x)*log(abs(((-hh) + x))))) / (hh * hh);
 }
 
 float bl_tent_inv_sq(float x, float sigma) {

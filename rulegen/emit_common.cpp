@@ -241,12 +241,33 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   for (int j = static_cast<int>(terms.size()) - 2; j >= 0; --j)
     horner = s.ex(terms[j]) + " + q * (" + horner + ")";
   out += "    return " + horner + ";\n  }\n";
-  const GiNaC::ex Fp = d.F_any.subs(x == x + hh), Fm = d.F_any.subs(x == x - hh);
+  // The polynomial part P of F has an exact difference quotient (expanded symbolically, nothing
+  // cancels at run time); only the rest R is differenced numerically.
+  GiNaC::ex P = 0, R = 0;
+  const GiNaC::ex Fx = d.F_any.expand();
+  const GiNaC::ex Fterms = is_a<GiNaC::add>(Fx) ? Fx : GiNaC::ex(GiNaC::lst{Fx});
+  for (size_t i = 0; i < Fterms.nops(); ++i) {
+    const GiNaC::ex t = Fterms.op(i);
+    if (t.is_polynomial(x)) P += t;
+    else R += t;
+  }
+  GiNaC::ex dP;
   if (d.kernel == Kernel::Box)
-    out += "  return (" + s.ex(Fp) + " - " + s.ex(Fm) + ") / (" + s.dbl(2) + " * hh);\n";
+    dP = ((P.subs(x == x + hh) - P.subs(x == x - hh)) / (2 * hh)).expand().normal().expand();
   else
-    out += "  return (" + s.ex(Fp) + " - " + s.dbl(2) + " * " + s.ex(d.F_any) + " + " + s.ex(Fm) +
-           ") / (hh * hh);\n";
+    dP = ((P.subs(x == x + hh) - 2 * P + P.subs(x == x - hh)) / (hh * hh)).expand().normal().expand();
+  std::string rest;
+  if (!R.is_zero()) {
+    const GiNaC::ex Rp = R.subs(x == x + hh), Rm = R.subs(x == x - hh);
+    if (d.kernel == Kernel::Box)
+      rest = "(" + s.ex(Rp) + " - " + s.ex(Rm) + ") / (" + s.dbl(2) + " * hh)";
+    else
+      rest = "(" + s.ex(Rp) + " - " + s.dbl(2) + " * " + s.ex(R) + " + " + s.ex(Rm) + ") / (hh * hh)";
+  }
+  std::string value = dP.is_zero() ? std::string() : s.ex(dP);
+  if (!rest.empty()) value += (value.empty() ? "" : " + ") + rest;
+  if (value.empty()) value = s.dbl(0);
+  out += "  return " + value + ";\n";
   return out;
 }
 

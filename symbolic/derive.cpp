@@ -133,7 +133,22 @@ ex gaussian_closed_form(const std::vector<PolyPiece>& ps) {
 
 void derive_piecewise(const Atomic& a, Kernel k, bool sq, Derived& d) {
   d.body = Body::PiecewiseTable;
-  d.pieces = polynomial_pieces(a, sq);
+  // Adjacent pieces with the same polynomial merge (abs^2 = x^2, sign^2 = 1 on the whole line).
+  for (const PolyPiece& p : polynomial_pieces(a, sq)) {
+    if (!d.pieces.empty() && d.pieces.back().c.size() == p.c.size() &&
+        std::equal(p.c.begin(), p.c.end(), d.pieces.back().c.begin(),
+                   [](const numeric& u, const numeric& v) { return u == v; }))
+      d.pieces.back().hi = p.hi;
+    else
+      d.pieces.push_back(p);
+  }
+  if (d.pieces.size() == 1) {  // one polynomial on the whole line: an exp-polynomial closed form
+    d.body = Body::Closed;
+    d.closed = ExpPoly::from(from_coefficients(d.pieces.front().c, var_x())).convolve(k);
+    d.formula = text(d.closed);
+    d.pieces.clear();
+    return;
+  }
   if (k == Kernel::Gaussian) {
     d.closed = gaussian_closed_form(d.pieces).expand();
     d.formula = text(d.closed) +

@@ -6,9 +6,10 @@
 // float result is what a GPU computes; rulegen/templates/support.glsl is the same code in GLSL).
 //
 // Conventions (shared with ../shared/DESIGN.md):
-//   sigma is the kernel's standard deviation. Gaussian: N(0, sigma^2). Box: U[-h, h], h = sqrt(3) sigma.
-//   Tent: triangle on [-w, w], w = sqrt(6) sigma, density (w - |u|) / w^2.
-//   kernel(x, sigma) = E[f(x + U)]. sigma == 0 returns f(x) (right-continuous at a jump).
+//   sigma >= 0 is the kernel's standard deviation. Gaussian: N(0, sigma^2).
+//   Box: U[-h, h], h = sqrt(3) sigma. Tent: triangle on [-w, w], w = sqrt(6) sigma,
+//   density (w - |u|) / w^2. kernel(x, sigma) = E[f(x + U)].
+//   sigma == 0 returns f(x) (right-continuous at a jump: the piece whose [lo, hi) contains x).
 //   A polynomial piece is f(t) = sum_k c[k] t^k on [lo, hi) in the *absolute* coordinate t;
 //   lo may be -inf and hi +inf (std::numeric_limits<T>::infinity()).
 //
@@ -54,38 +55,50 @@ inline constexpr bool kWide = (std::numeric_limits<T>::digits > 53);
 template <class T>
 inline T k_pi() {
   using std::acos;
-  if constexpr (kWide<T>) return acos(T(-1));
-  else return T(3.141592653589793238462643);
+  if constexpr (kWide<T>)
+    return acos(T(-1));
+  else
+    return T(3.141592653589793238462643);
 }
 template <class T>
 inline T k_inv_sqrt2() {  // 1/sqrt(2)
   using std::sqrt;
-  if constexpr (kWide<T>) return T(1) / sqrt(T(2));
-  else return T(0.7071067811865475244008444);
+  if constexpr (kWide<T>)
+    return T(1) / sqrt(T(2));
+  else
+    return T(0.7071067811865475244008444);
 }
 template <class T>
 inline T k_inv_sqrt_2pi() {  // 1/sqrt(2 pi)
   using std::sqrt;
-  if constexpr (kWide<T>) return T(1) / sqrt(T(2) * k_pi<T>());
-  else return T(0.3989422804014326779399461);
+  if constexpr (kWide<T>)
+    return T(1) / sqrt(T(2) * k_pi<T>());
+  else
+    return T(0.3989422804014326779399461);
 }
 template <class T>
 inline T k_sqrt3() {
   using std::sqrt;
-  if constexpr (kWide<T>) return sqrt(T(3));
-  else return T(1.732050807568877293527446);
+  if constexpr (kWide<T>)
+    return sqrt(T(3));
+  else
+    return T(1.732050807568877293527446);
 }
 template <class T>
 inline T k_sqrt6() {
   using std::sqrt;
-  if constexpr (kWide<T>) return sqrt(T(6));
-  else return T(2.449489742783178098197284);
+  if constexpr (kWide<T>)
+    return sqrt(T(6));
+  else
+    return T(2.449489742783178098197284);
 }
 template <class T>
 inline T k_ln2() {
   using std::log;
-  if constexpr (kWide<T>) return log(T(2));
-  else return T(0.6931471805599453094172321);
+  if constexpr (kWide<T>)
+    return log(T(2));
+  else
+    return T(0.6931471805599453094172321);
 }
 
 template <class T>
@@ -168,9 +181,8 @@ inline T sinc(T t) {
   using std::sin;
   if (abs_of(t) < small_series_limit<T>()) {
     T t2 = t * t;
-    return T(1) +
-           t2 * (T(-1) / T(6) +
-                 t2 * (T(1) / T(120) + t2 * (T(-1) / T(5040) + t2 * (T(1) / T(362880)))));
+    return T(1) + t2 * (T(-1) / T(6) +
+                        t2 * (T(1) / T(120) + t2 * (T(-1) / T(5040) + t2 * (T(1) / T(362880)))));
   }
   return sin(t) / t;
 }
@@ -187,9 +199,8 @@ inline T sinhc(T t) {
   T a = abs_of(t);
   if (a < small_series_limit<T>()) {
     T t2 = t * t;
-    return T(1) +
-           t2 * (T(1) / T(6) +
-                 t2 * (T(1) / T(120) + t2 * (T(1) / T(5040) + t2 * (T(1) / T(362880)))));
+    return T(1) + t2 * (T(1) / T(6) +
+                        t2 * (T(1) / T(120) + t2 * (T(1) / T(5040) + t2 * (T(1) / T(362880)))));
   }
   if (a < T(40)) return sinh(a) / a;
   if (a == inf<T>()) return inf<T>();
@@ -251,7 +262,7 @@ inline constexpr double kGL20x[10] = {
     0.63605368072651502,  0.7463319064601508,  0.83911697182221878, 0.91223442825132595,
     0.96397192727791381,  0.99312859918509488};
 inline constexpr double kGL20w[10] = {
-    0.15275338713072584,  0.14917298647260374, 0.14209610931838204, 0.13168863844917664,
+    0.15275338713072584,  0.14917298647260374, 0.14209610931838204,  0.13168863844917664,
     0.11819453196151841,  0.10193011981724044, 0.083276741576704755, 0.062672048334109068,
     0.040601429800386939, 0.017614007139152118};
 
@@ -278,23 +289,8 @@ struct GaussLegendre<T, true> {
     using std::cos;
     const int n = 2 * kHalf;
     Table t;
-    for (int i = 0; i < kHalf; ++i) {
-      T x = cos(k_pi<T>() * (T(i) + T(0.75)) / (T(n) + T(0.5)));
-      T dp = T(1);
-      for (int it = 0; it < 100; ++it) {
-        T p0 = T(1), p1 = x;
-        for (int k = 2; k <= n; ++k) {
-          T p2 = (T(2 * k - 1) * x * p1 - T(k - 1) * p0) / T(k);
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = T(n) * (x * p1 - p0) / (x * x - T(1));
-        T dx = p1 / dp;
-        x -= dx;
-        if (abs(dx) <= std::numeric_limits<T>::epsilon()) {
-          if (it > 0) break;
-        }
-      }
+    // P_n(x) by the three-term recurrence; returns P_n, sets dp = P_n'(x).
+    auto legendre = [n](const T& x, T& dp) {
       T p0 = T(1), p1 = x;
       for (int k = 2; k <= n; ++k) {
         T p2 = (T(2 * k - 1) * x * p1 - T(k - 1) * p0) / T(k);
@@ -302,6 +298,17 @@ struct GaussLegendre<T, true> {
         p1 = p2;
       }
       dp = T(n) * (x * p1 - p0) / (x * x - T(1));
+      return p1;
+    };
+    for (int i = 0; i < kHalf; ++i) {
+      // Newton from the classical cos((i + 3/4) pi / (n + 1/2)) guess (quadratic convergence).
+      T x = cos(k_pi<T>() * (T(i) + T(0.75)) / (T(n) + T(0.5))), dp;
+      for (int it = 0; it < 100; ++it) {
+        const T dx = legendre(x, dp) / dp;
+        x -= dx;
+        if (abs(dx) <= T(4) * std::numeric_limits<T>::epsilon()) break;
+      }
+      legendre(x, dp);
       t.x[i] = x;
       t.w[i] = T(2) / ((T(1) - x * x) * dp * dp);
     }
@@ -362,7 +369,8 @@ inline T gauss_core(T xq, T sigma, T dl, T dh, T lo, T hi, const T* c) {
   // non-negative arguments: straddling 0 it is m_k - tail_left - tail_right (full moment minus
   // two tails, no cancellation of nearly equal numbers), otherwise the difference of two tails on
   // the side of the interval, whose ratio is small once the interval is wider than 2 sd or deep
-  // in a tail.
+  // in a tail. Limitation: a piece many sd away (result < ~1e-15 of the scale) keeps absolute,
+  // not relative, accuracy: the Taylor terms about x are then much larger than q on the piece.
   T g[kMaxCoef];
   taylor_shift(c, deg, xq, g);
   T Ua[kMaxCoef], Ub[kMaxCoef];
@@ -502,7 +510,8 @@ template <class T, int N>
 inline T gauss_pw(T x, T sigma, const Piece<T> (&p)[N]) {
   if (sigma == T(0)) return pw_eval(x, p);
   T s = T(0);
-  for (int i = 0; i < N; ++i) s += gauss_core(x, sigma, p[i].lo - x, p[i].hi - x, p[i].lo, p[i].hi, p[i].c);
+  for (int i = 0; i < N; ++i)
+    s += gauss_core(x, sigma, p[i].lo - x, p[i].hi - x, p[i].lo, p[i].hi, p[i].c);
   return s;
 }
 
@@ -554,6 +563,15 @@ inline T reduce_period(T y, T period, T& n) {
   return r;
 }
 
+// Signed remainder r = fmod(y, period) in (-period, period): exact, with no "+ period" that would
+// round a tiny negative r (x just below a period boundary) to a multiple of eps * period, which a
+// tiny kernel width would then magnify. Used where the kernel is narrow.
+template <class T>
+inline T reduce_signed(T y, T period) {
+  using std::fmod;
+  return fmod(y, period);
+}
+
 template <class T, int N>
 inline T periodic_piece_eval(T r, const Piece<T> (&p)[N]) {  // r in [0, period)
   for (int i = 0; i < N - 1; ++i)
@@ -561,12 +579,18 @@ inline T periodic_piece_eval(T r, const Piece<T> (&p)[N]) {  // r in [0, period)
   return poly(p[N - 1].c, r);
 }
 
-// f(x - period floor(x/period)) through the exact reduction above: the argument handed to the
-// polynomial always lies in [0, period), so the result stays in the range of f for any |x|.
+// f(x - period floor(x/period)). The piece is chosen on the exact signed remainder r = fmod(x, T):
+// for r < 0 the position is T + r, whose rounding may land on T itself, so the piece is found by
+// comparing r with hi - T instead (a jump just below a period boundary stays on the correct side).
+// The polynomial is evaluated at r or T + r (up to one rounding, in [0, period]), so the result
+// stays in the range of f for any |x|.
 template <class T, int N>
 inline T periodic_eval(T x, T period, const Piece<T> (&p)[N]) {
-  T n;
-  return periodic_piece_eval(reduce_period(x, period, n), p);
+  const T r = reduce_signed(x, period);
+  if (!(r < T(0))) return periodic_piece_eval(r, p);
+  for (int i = 0; i < N - 1; ++i)
+    if (r < p[i].hi - period) return poly(p[i].c, r + period);
+  return poly(p[N - 1].c, r + period);
 }
 
 // Gaussian tail multiple z with P(|Z| > z) <= tol/fmax. Mills: Phic(z) <= phi(z)/z <= phi(z) for
@@ -582,14 +606,13 @@ inline T image_z(T fmax, T tol) {
 
 // Image sum: f smoothed = sum over periods m of the pieces shifted by m period. Only pieces that
 // meet [x_r - z sigma, x_r + z sigma] are summed, z = image_z(fmax, series_tol): the neglected
-// ones carry at most fmax P(|Z| > z) <= series_tol in total. Shifted ends are formed as
-// (lo + m period) - x_r (see the header note).
+// ones carry at most fmax P(|Z| > z) <= series_tol in total. x_r is the exact signed remainder
+// and shifted ends are formed as (lo + m period) - x_r (see the header note).
 template <class T, int N>
 inline T gauss_periodic_image(T x, T sigma, T period, const Piece<T> (&p)[N], T fmax) {
   using std::floor;
   if (sigma == T(0)) return periodic_eval(x, period, p);
-  T n;
-  const T xr = reduce_period(x, period, n);
+  const T xr = reduce_signed(x, period);
   const T R = image_z(fmax, series_tol<T>()) * sigma;
   const T m0 = floor((xr - R) / period), m1 = floor((xr + R) / period);
   T s = T(0);
@@ -605,9 +628,9 @@ inline T gauss_periodic_image(T x, T sigma, T period, const Piece<T> (&p)[N], T 
 }
 
 // Number of Fourier terms K for the Gaussian-smoothed series: the tail sum_{k>K} B e^{-a k^2},
-// a = 2 pi^2 s^2, is bounded by the geometric majorant
-//   sum_{k>K} e^{-a k^2} <= e^{-a (K+1)^2} sum_{j>=0} e^{-2 a (K+1) j} = e^{-a(K+1)^2} / (1 - e^{-2a(K+1)})
-// (since (K+1+j)^2 >= (K+1)^2 + 2(K+1)j). Returns the smallest K >= 0 for which B times the
+// a = 2 pi^2 s^2, is bounded by the geometric majorant (u = K + 1)
+//   sum_{k>K} e^{-a k^2} <= e^{-a u^2} sum_{j>=0} e^{-2 a u j} = e^{-a u^2} / (1 - e^{-2 a u})
+// (since (u + j)^2 >= u^2 + 2 u j). Returns the smallest K >= 0 for which B times the
 // majorant is <= tol (so the true tail is certified; K is at most one above the true minimum).
 // The start value solves (K+1)^2 = log(B/tol)/a refined by a few fixed-point steps for the
 // geometric factor; a tiny s (K beyond 2^30) returns 2^30.
@@ -662,19 +685,18 @@ inline bool prefer_fourier(T s, int npieces, T coef_bound, T fmax) {
 }
 
 // Box over a periodic f. (a) Support 2h <= 4 periods: integrate the pieces of the (at most 6)
-// periods it meets directly (box_core on exact shifted offsets); no difference of F is formed,
-// so tiny h is exact. (b) Wider: Appendix C, F(y) = n F_p(T) + F_p(y - nT), with the difference
-// F(x_r + h) - F(x_r - h) = (n2 - n1) F_p(T) + F_p(r2) - F_p(r1) taken on the reduced argument and
-// with the integer parts subtracted as integers: nothing of size |x| is formed, and the rounding
-// of x_r +- h (eps h) is divided by 2h.
+// periods it meets directly (box_core on exact shifted offsets around the exact signed remainder);
+// no difference of F is formed, so tiny h is exact. (b) Wider: Appendix C, F(y) = n F_p(T) + F_p(y
+// - nT), with the difference F(x_r + h) - F(x_r - h) = (n2 - n1) F_p(T) + F_p(r2) - F_p(r1) taken
+// on the reduced argument and with the integer parts subtracted as integers: nothing of size |x| is
+// formed, and the rounding of x_r +- h (eps h) is divided by 2h.
 template <class T, int N>
 inline T box_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Piece<T> (&P1)[N]) {
   using std::floor;
   if (sigma == T(0)) return periodic_eval(x, period, p);
   const T h = k_sqrt3<T>() * sigma;
-  T n;
-  const T xr = reduce_period(x, period, n);
   if (h <= T(2) * period) {
+    const T xr = reduce_signed(x, period);
     const T m0 = floor((xr - h) / period), m1 = floor((xr + h) / period);
     T s = T(0);
     for (T m = m0; m <= m1; m += T(1)) {
@@ -687,7 +709,8 @@ inline T box_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Piec
     }
     return s;
   }
-  T n1, n2;
+  T n, n1, n2;
+  const T xr = reduce_period(x, period, n);
   const T r1 = reduce_period(xr - h, period, n1);
   const T r2 = reduce_period(xr + h, period, n2);
   const T FT = poly(P1[N - 1].c, period);
@@ -707,9 +730,8 @@ inline T tent_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Pie
   using std::floor;
   if (sigma == T(0)) return periodic_eval(x, period, p);
   const T w = k_sqrt6<T>() * sigma;
-  T n;
-  const T xr = reduce_period(x, period, n);
   if (w <= T(2) * period) {
+    const T xr = reduce_signed(x, period);
     const T m0 = floor((xr - w) / period), m1 = floor((xr + w) / period);
     T s = T(0);
     for (T m = m0; m <= m1; m += T(1)) {
@@ -722,7 +744,8 @@ inline T tent_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Pie
     }
     return s;
   }
-  T q1, q2;
+  T n, q1, q2;
+  const T xr = reduce_period(x, period, n);
   const T r1 = reduce_period(xr - w, period, q1);
   const T r2 = reduce_period(xr + w, period, q2);
   const T A = poly(P1[N - 1].c, period);
@@ -733,6 +756,331 @@ inline T tent_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Pie
                 ((periodic_piece_eval(r2, P2) + periodic_piece_eval(r1, P2)) -
                  T(2) * periodic_piece_eval(xr, P2));
   return num / (w * w);
+}
+
+}  // namespace detail
+}  // namespace bl
+
+// ---- first kernel moment of periodic functions ----
+namespace bl {
+namespace detail {
+
+// M_K(x, sigma) = E[U g(x + U)] for a periodic g given by one period of polynomial pieces (the same
+// Piece<T> input as the periodic routines above: absolute coordinate t in [0, period), degree <= 6
+// here, since the integrand (t - x) q(t) gains one degree; a piece of degree 7 gives NaN). With it
+// the engine forms E[(x+U) g(x+U)] = x E[g(x+U)] + M_K (floor^2 = x^2 - 2 x fract + fract^2, ceil^2).
+// sigma == 0: U = 0, so 0. sigma < 0, NaN or +inf, or x not finite: NaN.
+//
+// Conventions of this section (c.f. the header note):
+//  * M depends on x only through x_r = x mod period (exact fmod; the signed remainder
+//    reduce_signed where the kernel is narrow, as above, so x just below a period boundary is not
+//    rounded onto it; [0, period) in the wide branches): with d_m = m period - x_r the
+//    integrand on period m in the piece's own coordinate s is (s + d_m) q(s) w(s + d_m); t g(t) is
+//    never formed in absolute coordinates, so nothing of size |x| appears anywhere.
+//  * Mean removal: g is replaced by g - gbar (gbar = I0/period, computed from the pieces). E[U c] = 0
+//    for every constant c and symmetric kernel, so M is unchanged exactly (whatever the rounding of
+//    gbar), but the terms become mean-free: sums over many periods no longer carry O(sigma) or
+//    O(w/period) parts that cancel (sawtooth: every period's term is small; tent: the d^2 I0 sums
+//    of the two sides no longer cancel from O(w/period)).
+//  * Per piece, the polynomial is re-expanded about o = the kernel centre clamped into the piece
+//    (o = lo, o = hi or o = the centre), in v = t - o, as (v + e) q(o + v) with e = o - centre taken
+//    from the exact offsets (dl, dh or 0). Coefficients stay local to the piece (no powers of a far
+//    centre), and when the centre lies inside the piece the constant term is exactly 0, so a tiny
+//    kernel gives M ~ sigma^2 q'(x) to relative accuracy instead of an absolute eps |x_r q|. The
+//    result is handed to gauss_core/box_core/tent_core with centre -e and ends lo - o, hi - o.
+
+// Pieces minus the period mean, their degrees, and the period moments I_j = int_0^T s^j (g - gbar).
+template <class T, int N>
+struct UPeriodData {
+  Piece<T> p[N];
+  int deg[N];
+  T I0 = T(0), I1 = T(0), I2 = T(0);
+  bool ok = true;
+};
+
+// int_a^b s^j q(s) ds for 0 <= a <= b, by box_core's divided differences S_n = sum_i a^i b^(n-i)
+// (all terms >= 0: no cancellation; (b - a) is the only difference formed).
+template <class T>
+inline T u_piece_moment(const T* c, int deg, int j, T a, T b) {
+  T S = T(1), an = T(1), sum = T(0);
+  for (int n = 0; n <= deg + j; ++n) {
+    if (n > 0) {
+      an *= a;
+      S = b * S + an;
+    }
+    if (n >= j && c[n - j] != T(0)) sum += c[n - j] * S / T(n + 1);
+  }
+  return (b - a) * sum;
+}
+
+template <class T, int N>
+inline UPeriodData<T, N> u_period_data(T period, const Piece<T> (&p)[N]) {
+  UPeriodData<T, N> d;
+  T I0 = T(0);
+  for (int i = 0; i < N; ++i) {
+    d.p[i] = p[i];
+    d.deg[i] = degree(p[i].c);
+    if (d.deg[i] > kMaxCoef - 2) d.ok = false;
+    if (p[i].hi > p[i].lo) I0 += u_piece_moment(p[i].c, d.deg[i], 0, p[i].lo, p[i].hi);
+  }
+  const T gbar = I0 / period;
+  for (int i = 0; i < N; ++i) {
+    d.p[i].c[0] -= gbar;
+    if (!(p[i].hi > p[i].lo)) continue;
+    d.I0 += u_piece_moment(d.p[i].c, d.deg[i], 0, p[i].lo, p[i].hi);
+    d.I1 += u_piece_moment(d.p[i].c, d.deg[i], 1, p[i].lo, p[i].hi);
+    d.I2 += u_piece_moment(d.p[i].c, d.deg[i], 2, p[i].lo, p[i].hi);
+  }
+  return d;
+}
+
+// Coefficients in v of (v + e) q(o + v) (degree deg + 1 <= 7).
+template <class T>
+inline void u_coefs(const T* q, int deg, T o, T e, T* out) {
+  T g[kMaxCoef];
+  for (int k = 0; k < kMaxCoef; ++k) g[k] = out[k] = T(0);
+  taylor_shift(q, deg, o, g);
+  out[0] = e * g[0];
+  for (int k = 1; k <= deg; ++k) out[k] = g[k - 1] + e * g[k];
+  out[deg + 1] = g[deg];
+}
+
+// Tent with its centre inside the piece, c in v = t - centre: both halves term by term,
+// sum_k c_k (A_k(Lr) + (-1)^k A_k(Ll)), A_k(L) = int_0^L v^k (w - v) dv / w^2
+// = L^k (L/w) (1/(k+1) - (L/w)/(k+2)) (tent_side's terms with G = w). For odd k and Lr == Ll (the
+// support inside the piece) the bracket is exactly 0, so the odd part of the integrand, of size
+// w |q|, cancels before any rounding: a tiny tent keeps relative accuracy (M = sigma^2 q' + ...),
+// where summing the two tent_side halves would leave eps w |q| against sigma^2 |q'|.
+template <class T>
+inline T u_tent_centre(const T* c, int deg, T Lr, T Ll, T w) {
+  const T lr = Lr / w, ll = Ll / w;
+  T sum = T(0), Lrk = T(1), Llk = T(1);
+  for (int k = 0; k <= deg; ++k) {
+    if (c[k] != T(0)) {
+      const T ar = Lrk * lr * (T(1) / T(k + 1) - lr / T(k + 2));
+      const T al = Llk * ll * (T(1) / T(k + 1) - ll / T(k + 2));
+      sum += c[k] * ((k & 1) ? ar - al : ar + al);
+    }
+    if (k < deg) {
+      Lrk *= Lr;
+      Llk *= Ll;
+    }
+  }
+  return sum;
+}
+
+// One piece against one kernel, centre xq in the piece's coordinate, exact offsets dl, dh of the
+// piece ends from the centre. Kernel: 0 Gaussian (s = sigma), 1 box (s = h), 2 tent (s = w).
+template <class T>
+inline T u_piece(int kernel, T xq, T s, T dl, T dh, T lo, T hi, const T* q, int deg) {
+  T o = xq, e = T(0), lo2 = dl, hi2 = dh;  // centre inside the piece: about the centre, e = 0
+  if (!(dl < T(0))) {  // centre at or left of the piece: about lo
+    o = lo;
+    e = dl;
+    lo2 = T(0);
+    hi2 = hi - lo;
+  } else if (!(dh > T(0))) {  // right of it: about hi
+    o = hi;
+    e = dh;
+    lo2 = lo - hi;
+    hi2 = T(0);
+  }
+  T c[kMaxCoef];
+  u_coefs(q, deg, o, e, c);
+  if (kernel == 2 && dl < T(0) && dh > T(0))
+    return u_tent_centre(c, deg + 1, min_of(dh, s), min_of(-dl, s), s);
+  if (kernel == 0) return gauss_core(-e, s, dl, dh, lo2, hi2, c);
+  if (kernel == 1) return box_core(-e, s, dl, dh, lo2, hi2, c);
+  return tent_core(-e, s, dl, dh, lo2, hi2, c);
+}
+
+// Sum of u_piece over the periods m0..m1 and the pieces meeting (x_r - R, x_r + R), shifted ends
+// formed as (lo + m T) - x_r (header note).
+template <class T, int N>
+inline T u_periods(int kernel, T xr, T s, T R, T period, T m0, T m1, const UPeriodData<T, N>& g) {
+  T sum = T(0);
+  for (T m = m0; m <= m1; m += T(1)) {
+    const T shift = m * period;
+    for (int i = 0; i < N; ++i) {
+      const Piece<T>& P = g.p[i];
+      if (!(P.hi > P.lo)) continue;
+      const T dl = (P.lo + shift) - xr, dh = (P.hi + shift) - xr;
+      if (!(dh > -R) || !(dl < R)) continue;
+      sum += u_piece(kernel, xr - shift, s, dl, dh, P.lo, P.hi, P.c, g.deg[i]);
+    }
+  }
+  return sum;
+}
+
+// int_0^L c(v) dv for either sign of L (Horner in L).
+template <class T>
+inline T u_integral0(const T* c, int deg, T L) {
+  T r = T(0);
+  for (int k = deg; k >= 0; --k) r = r * L + c[k] / T(k + 1);
+  return r * L;
+}
+
+template <class T>
+inline bool u_bad_args(T x, T sigma) {
+  return !(x - x == T(0)) || !(sigma >= T(0)) || !(sigma < inf<T>());
+}
+
+// Gaussian, image sum over periods: sum_m sum_i int (s + d_m)(q_i(s) - gbar) phi((s + d_m)/sigma)
+// /sigma ds over the pieces meeting [x_r - R, x_r + R]. Truncation: the neglected part is at most
+// max|g - gbar| E[|U|; |U| > R] <= 2 fmax * 2 sigma phi(z), R = z sigma, and z = image_z(2 fmax
+// max(1, sigma), series_tol) makes that <= series_tol * min(sigma, 1): relative series_tol for small
+// sigma (M ~ sigma fmax), absolute series_tol beyond. Error: each piece term is computed to a few
+// eps of its size; the terms are O(sigma fmax width/period) at most, and after the mean removal a
+// single-piece period (sawtooth, fract^2) is mean-free within its piece, so the sum does not grow
+// with sigma; with several pieces per period (square wave) adjacent pieces still cancel from
+// ~0.4 sigma fmax in total, an absolute error ~ eps sigma fmax (the caller's Fourier form takes
+// over long before that matters: cost ~ 2 z sigma / period periods).
+template <class T, int N>
+inline T gauss_periodic_u_image(T x, T sigma, T period, const Piece<T> (&p)[N], T fmax) {
+  using std::floor;
+  if (u_bad_args(x, sigma)) return std::numeric_limits<T>::quiet_NaN();
+  if (sigma == T(0)) return T(0);
+  const UPeriodData<T, N> g = u_period_data(period, p);
+  if (!g.ok) return std::numeric_limits<T>::quiet_NaN();
+  const T xr = reduce_signed(x, period);  // exact, in (-T, T): no "+ T" rounding near 0
+  const T big = sigma > T(1) ? sigma : T(1);
+  const T R = image_z(T(2) * fmax * big, series_tol<T>()) * sigma;
+  const T m0 = floor((xr - R) / period), m1 = floor((xr + R) / period);
+  return u_periods(0, xr, sigma, R, period, m0, m1, g);
+}
+
+// sqrt(3) sigma as hh + hl with |hl| <~ eps hh (fma for the rounding error of the product, then the
+// low part of sqrt(3)). Multiprecision: hl = 0 (not needed).
+template <class T>
+inline T u_sqrt3_lo_times(T sigma, T hh) {
+  if constexpr (kWide<T>) {
+    (void)sigma;
+    (void)hh;
+    return T(0);
+  } else {
+    using std::fma;
+    const T lo = sizeof(T) >= 8 ? T(1.0035084221806902653e-16) : T(3.1087248875558696342e-8);
+    return fma(k_sqrt3<T>(), sigma, -hh) + lo * sigma;
+  }
+}
+
+// Box. (a) 2h <= 4 periods: every piece of the (at most 6) periods met, u_piece on exact offsets
+// (box_core clips to [x - h, x + h]; relative accuracy for tiny h, see the section note).
+// (b) Wider: [x_r - h, x_r + h] = [q1 T + r1, q2 T + r2] is the left end [r1, T) of period q1, the
+// full periods q1+1..q2-1 and the right end [0, r2) of period q2. A full period contributes
+// int_0^T (s + d_m) g~(s) ds = I1 + d_m I0; summed in closed form with sum_m d_m = -n (r1 + r2)/2
+// (from (q1 + q2) T = 2 x_r - r1 - r2), so the full part is n (I1 - I0 (r1 + r2)/2) with n =
+// q2 - q1 - 1: no term of size h is formed. The ends are int (s + d) g~ over [lo, min(hi, r2)) and
+// [max(lo, r1), hi), in v = s - lo / v = s - hi (local coefficients, |d| ~ h only as the factor e).
+// All terms are O(h T max|g~|) before the division by 2h: error ~ eps T max|g|.
+// Conditioning: dM/dh = (g(x+h) - g(x-h))/2 = O(1), so the rounding of h = sqrt(3) sigma itself
+// (eps h) would cost eps h absolute (float, sigma = 1e4: 1e-3). Hence h is carried as hh + hl and
+// the ends as hh mod T (exact fmod) + x_r + hl: r1, r2 are right to eps T.
+template <class T, int N>
+inline T box_periodic_u(T x, T sigma, T period, const Piece<T> (&p)[N]) {
+  using std::floor;
+  if (u_bad_args(x, sigma)) return std::numeric_limits<T>::quiet_NaN();
+  if (sigma == T(0)) return T(0);
+  const UPeriodData<T, N> g = u_period_data(period, p);
+  if (!g.ok) return std::numeric_limits<T>::quiet_NaN();
+  const T h = k_sqrt3<T>() * sigma;
+  if (h <= T(2) * period) {
+    const T xs = reduce_signed(x, period);  // exact, in (-T, T)
+    const T m0 = floor((xs - h) / period), m1 = floor((xs + h) / period);
+    return u_periods(1, xs, h, h, period, m0, m1, g);
+  }
+  T n;
+  const T xr = reduce_period(x, period, n);  // in [0, T)
+  const T hl = u_sqrt3_lo_times(sigma, h);
+  T nh;
+  const T rh = reduce_period(h, period, nh);
+  T q2 = nh, r2 = (rh + xr) + hl;  // x_r + h = q2 T + r2
+  if (!(r2 < period)) {
+    r2 -= period;
+    q2 += T(1);
+  } else if (r2 < T(0)) {
+    r2 += period;
+    q2 -= T(1);
+    if (!(r2 < period)) {
+      r2 = T(0);
+      q2 += T(1);
+    }
+  }
+  T q1 = -nh, r1 = (xr - rh) - hl;  // x_r - h = q1 T + r1
+  if (r1 < T(0)) {
+    r1 += period;
+    q1 -= T(1);
+    if (!(r1 < period)) {
+      r1 = T(0);
+      q1 += T(1);
+    }
+  } else if (!(r1 < period)) {
+    r1 -= period;
+    q1 += T(1);
+  }
+  const T nfull = q2 - q1 - T(1);
+  T s = nfull * (g.I1 - g.I0 * (r1 + r2) * T(0.5));
+  const T s1 = q1 * period, s2 = q2 * period;
+  for (int i = 0; i < N; ++i) {
+    const Piece<T>& P = g.p[i];
+    if (!(P.hi > P.lo)) continue;
+    T c[kMaxCoef];
+    if (P.lo < r2) {  // right end: [lo, min(hi, r2)) of period q2
+      const T b = P.hi < r2 ? P.hi : r2;
+      u_coefs(P.c, g.deg[i], P.lo, (P.lo + s2) - xr, c);
+      s += u_integral0(c, g.deg[i] + 1, b - P.lo);
+    }
+    if (P.hi > r1) {  // left end: [max(lo, r1), hi) of period q1
+      const T a = P.lo > r1 ? P.lo : r1;
+      u_coefs(P.c, g.deg[i], P.hi, (P.hi + s1) - xr, c);
+      s -= u_integral0(c, g.deg[i] + 1, a - P.hi);
+    }
+  }
+  return s / (T(2) * h);
+}
+
+// Tent. (a) 2w <= 4 periods: u_piece over the periods met (tent_core splits at the kink).
+// (b) Wider: periods q1 (left edge), 0 (the kink, x_r is in it) and q2 (right edge) by u_piece; the
+// full periods right of the kink, m = 1..n_r (n_r = q2 - 1, d = m T - x_r), weight (w - s - d)/w^2,
+// contribute (w - 2d) I1 + d (w - d) I0 - I2; those left of it, m = -1..-n_l (n_l = -q1 - 1,
+// e = -d = |m| T + x_r), weight (w + s + d)/w^2, contribute (w - 2e) I1 - e (w - e) I0 + I2. Summed
+// in closed form with the arithmetic and square sums:
+//   sum_r (w - 2d) = n_r (w - q2 T + 2 x_r) = n_r (x_r + r2),  sum_l (w - 2e) = -n_l (x_r + r1),
+//   (x_r + w = q2 T + r2, x_r - w = q1 T + r1), so the I1 part is O(w) before the division by w^2
+// instead of a difference of two O(w^2/T) sums; the I0 part (I0 ~ eps after the mean removal) is
+// w sum d - sum d^2 per side; the I2 part is (n_l - n_r) I2. Every term is O(T max|g|) or smaller,
+// error ~ eps T max|g|. The tent's weight vanishes at the support edges, so dM/dw = O(T/w): the
+// rounding of w and of x_r +- w costs only eps T (no extra precision needed, unlike the box).
+template <class T, int N>
+inline T tent_periodic_u(T x, T sigma, T period, const Piece<T> (&p)[N]) {
+  using std::floor;
+  if (u_bad_args(x, sigma)) return std::numeric_limits<T>::quiet_NaN();
+  if (sigma == T(0)) return T(0);
+  const UPeriodData<T, N> g = u_period_data(period, p);
+  if (!g.ok) return std::numeric_limits<T>::quiet_NaN();
+  const T w = k_sqrt6<T>() * sigma;
+  if (w <= T(2) * period) {
+    const T xs = reduce_signed(x, period);  // exact, in (-T, T)
+    const T m0 = floor((xs - w) / period), m1 = floor((xs + w) / period);
+    return u_periods(2, xs, w, w, period, m0, m1, g);
+  }
+  T n;
+  const T xr = reduce_period(x, period, n);  // in [0, T)
+  T q1, q2;
+  const T r1 = reduce_period(xr - w, period, q1);
+  const T r2 = reduce_period(xr + w, period, q2);
+  T local = u_periods(2, xr, w, w, period, q1, q1, g) + u_periods(2, xr, w, w, period, T(0), T(0), g) +
+            u_periods(2, xr, w, w, period, q2, q2, g);
+  const T nr = q2 - T(1), nl = -q1 - T(1);
+  const T S1r = nr * (nr + T(1)) * T(0.5), S2r = S1r * (T(2) * nr + T(1)) / T(3);
+  const T S1l = nl * (nl + T(1)) * T(0.5), S2l = S1l * (T(2) * nl + T(1)) / T(3);
+  const T sd = period * S1r - nr * xr;
+  const T sd2 = period * period * S2r - T(2) * period * xr * S1r + nr * xr * xr;
+  const T se = period * S1l + nl * xr;
+  const T se2 = period * period * S2l + T(2) * period * xr * S1l + nl * xr * xr;
+  const T full = g.I1 * (nr * (xr + r2) - nl * (xr + r1)) +
+                 g.I0 * ((w * sd - sd2) - (w * se - se2)) + g.I2 * (nl - nr);
+  return local + full / (w * w);
 }
 
 }  // namespace detail

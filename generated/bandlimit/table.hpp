@@ -277,51 +277,81 @@ T tent_smoothstep_sq(T x, T sigma);
 template <class T>
 T gaussian_fract(T x, T sigma);
 template <class T>
+T gaussian_fract_u(T x, T sigma);
+template <class T>
 T gaussian_fract_sq(T x, T sigma);
 template <class T>
 T box_fract(T x, T sigma);
+template <class T>
+T box_fract_u(T x, T sigma);
 template <class T>
 T box_fract_sq(T x, T sigma);
 template <class T>
 T tent_fract(T x, T sigma);
 template <class T>
+T tent_fract_u(T x, T sigma);
+template <class T>
 T tent_fract_sq(T x, T sigma);
 template <class T>
 T gaussian_triangle(T x, T sigma);
+template <class T>
+T gaussian_triangle_u(T x, T sigma);
 template <class T>
 T gaussian_triangle_sq(T x, T sigma);
 template <class T>
 T box_triangle(T x, T sigma);
 template <class T>
+T box_triangle_u(T x, T sigma);
+template <class T>
 T box_triangle_sq(T x, T sigma);
 template <class T>
 T tent_triangle(T x, T sigma);
+template <class T>
+T tent_triangle_u(T x, T sigma);
 template <class T>
 T tent_triangle_sq(T x, T sigma);
 template <class T>
 T gaussian_square(T x, T sigma);
 template <class T>
+T gaussian_square_u(T x, T sigma);
+template <class T>
 T gaussian_square_sq(T x, T sigma);
 template <class T>
 T box_square(T x, T sigma);
+template <class T>
+T box_square_u(T x, T sigma);
 template <class T>
 T box_square_sq(T x, T sigma);
 template <class T>
 T tent_square(T x, T sigma);
 template <class T>
+T tent_square_u(T x, T sigma);
+template <class T>
 T tent_square_sq(T x, T sigma);
 template <class T>
 T gaussian_floor(T x, T sigma);
 template <class T>
+T gaussian_floor_sq(T x, T sigma);
+template <class T>
 T box_floor(T x, T sigma);
+template <class T>
+T box_floor_sq(T x, T sigma);
 template <class T>
 T tent_floor(T x, T sigma);
 template <class T>
+T tent_floor_sq(T x, T sigma);
+template <class T>
 T gaussian_ceil(T x, T sigma);
+template <class T>
+T gaussian_ceil_sq(T x, T sigma);
 template <class T>
 T box_ceil(T x, T sigma);
 template <class T>
+T box_ceil_sq(T x, T sigma);
+template <class T>
 T tent_ceil(T x, T sigma);
+template <class T>
+T tent_ceil_sq(T x, T sigma);
 template <class T>
 T gaussian_trunc(T x, T sigma);
 template <class T>
@@ -1210,17 +1240,12 @@ T gaussian_abs(T x, T sigma) {
   return detail::gauss_pw(x, sigma, p);
 }
 
-//   ((sigma)^(2) + (x)^(2)) [Phi, phi: standard normal CDF and density]
+//   ((sigma)^(2) + (x)^(2))
 template <class T>
 T gaussian_abs_sq(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  return ((sigma*sigma) + (x*x));
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {((-1/2)*(t)^(2)) on [-inf, 0);
@@ -1237,18 +1262,12 @@ T box_abs(T x, T sigma) {
   return detail::box_pw(x, sigma, p);
 }
 
-//   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {((1/3)*(t)^(3)) on [-inf, 0); ((1/3)*(t)^(3))
-//   on [0, inf)}
+//   ((sigma)^(2) + (x)^(2))
 template <class T>
 T box_abs_sq(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::box_pw(x, sigma, p);
+  return ((sigma*sigma) + (x*x));
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {((-1/6)*(t)^(3)) on [-inf, 0);
@@ -1265,18 +1284,12 @@ T tent_abs(T x, T sigma) {
   return detail::tent_pw(x, sigma, p);
 }
 
-//   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {((1/12)*(t)^(4)) on [-inf, 0);
-//   ((1/12)*(t)^(4)) on [0, inf)}
+//   ((sigma)^(2) + (x)^(2))
 template <class T>
 T tent_abs_sq(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::tent_pw(x, sigma, p);
+  return ((sigma*sigma) + (x*x));
 }
 
 //   (((-2)*Phi((-(sigma)^((-1))*x))) + 1) [Phi, phi: standard normal CDF and density]
@@ -1292,17 +1305,12 @@ T gaussian_sign(T x, T sigma) {
   return detail::gauss_pw(x, sigma, p);
 }
 
-//   1 [Phi, phi: standard normal CDF and density]
+//   1
 template <class T>
 T gaussian_sign_sq(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  return T(1);
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {(-t) on [-inf, 0); t on [0, inf)}
@@ -1318,17 +1326,12 @@ T box_sign(T x, T sigma) {
   return detail::box_pw(x, sigma, p);
 }
 
-//   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {t on [-inf, 0); t on [0, inf)}
+//   1
 template <class T>
 T box_sign_sq(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::box_pw(x, sigma, p);
+  return T(1);
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {((-1/2)*(t)^(2)) on [-inf, 0);
@@ -1345,18 +1348,12 @@ T tent_sign(T x, T sigma) {
   return detail::tent_pw(x, sigma, p);
 }
 
-//   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {((1/2)*(t)^(2)) on [-inf, 0);
-//   ((1/2)*(t)^(2)) on [0, inf)}
+//   1
 template <class T>
 T tent_sign_sq(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::tent_pw(x, sigma, p);
+  return T(1);
 }
 
 //   ((-Phi((-(sigma)^((-1))*x))) + 1) [Phi, phi: standard normal CDF and density]
@@ -1688,6 +1685,33 @@ T gaussian_fract(T x, T sigma) {
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T gaussian_fract_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[1] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  const T s = sigma / period;
+  if (detail::prefer_fourier(s, 1, T(4.0), T(1.0))) {
+    const T xr = x - period * floor(x / period);
+    const int K = 2 + detail::fourier_terms(s, T(4.0), detail::series_tol<T>());  // +2: the k factor of g'
+    T acc = T(0.0);
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
+      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
+      acc += damp * w * ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * cos(th));
+    }
+    return sigma * sigma * acc;
+  }
+  return detail::gauss_periodic_u_image(x, sigma, period, p, T(1.0));
+}
+
 //   (1/3) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
 //   = ((kf)^((-2))*(pi)^((-2))), b_k = (-(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier
 //   form for large sigma/T]; image sum over periods of the Gaussian integral of the pieces
@@ -1735,6 +1759,19 @@ T box_fract(T x, T sigma) {
   return detail::box_periodic(x, sigma, period, p, p1);
 }
 
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T box_fract_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[1] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  return detail::box_periodic_u(x, sigma, period, p);
+}
+
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/3)*(t)^(3)) on [0, 1)}, F_p2 =
 //   {((1/12)*(t)^(4)) on [0, 1)}
@@ -1772,6 +1809,19 @@ T tent_fract(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
+}
+
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T tent_fract_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[1] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  return detail::tent_periodic_u(x, sigma, period, p);
 }
 
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
@@ -1826,6 +1876,35 @@ T gaussian_triangle(T x, T sigma) {
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T gaussian_triangle_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(2);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  const T s = sigma / period;
+  if (detail::prefer_fourier(s, 2, T(4.0), T(1.0))) {
+    const T xr = x - period * floor(x / period);
+    const int K = 2 + detail::fourier_terms(s, T(4.0), detail::series_tol<T>());  // +2: the k factor of g'
+    T acc = T(0.0);
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
+      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
+      acc += damp * w * (-((T(-2))*((-pk) + T(1))*(T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) * sin(th));
+    }
+    return sigma * sigma * acc;
+  }
+  return detail::gauss_periodic_u_image(x, sigma, period, p, T(1.0));
+}
+
 //   (1/3) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
 //   = (4*(kf)^((-2))*(pi)^((-2))*pk), b_k = 0 (pk = (-1)^k), T = 2 [Fourier form for large
 //   sigma/T]; image sum over periods of the Gaussian integral of the pieces {(t)^(2) on [0, 1);
@@ -1878,6 +1957,20 @@ T box_triangle(T x, T sigma) {
   return detail::box_periodic(x, sigma, period, p, p1);
 }
 
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T box_triangle_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(2);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  return detail::box_periodic_u(x, sigma, period, p);
+}
+
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 2, F_p = {((1/3)*(t)^(3)) on [0, 1);
 //   (((-2)*(t)^(2)) + ((1/3)*(t)^(3)) + (-2) + (4*t)) on [1, 2)}, F_p2 = {((1/12)*(t)^(4)) on [0,
@@ -1922,6 +2015,20 @@ T tent_triangle(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
+}
+
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T tent_triangle_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(2);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  return detail::tent_periodic_u(x, sigma, period, p);
 }
 
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
@@ -1980,6 +2087,35 @@ T gaussian_square(T x, T sigma) {
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T gaussian_square_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  const T s = sigma / period;
+  if (detail::prefer_fourier(s, 2, T(4.0), T(1.0))) {
+    const T xr = x - period * floor(x / period);
+    const int K = 2 + detail::fourier_terms(s, T(4.0), detail::series_tol<T>());  // +2: the k factor of g'
+    T acc = T(0.0);
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
+      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
+      acc += damp * w * ((((-pk) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * cos(th));
+    }
+    return sigma * sigma * acc;
+  }
+  return detail::gauss_periodic_u_image(x, sigma, period, p, T(1.0));
+}
+
 //   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
 //   = 0, b_k = (-((-1) + pk)*(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier form for
 //   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {1 on [0,
@@ -2031,6 +2167,20 @@ T box_square(T x, T sigma) {
   return detail::box_periodic(x, sigma, period, p, p1);
 }
 
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T box_square_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  return detail::box_periodic_u(x, sigma, period, p);
+}
+
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on [(1/2),
 //   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
@@ -2075,6 +2225,20 @@ T tent_square(T x, T sigma) {
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
 }
 
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T tent_square_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  return detail::tent_periodic_u(x, sigma, period, p);
+}
+
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
 //   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on
 //   [(1/2), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
@@ -2107,12 +2271,30 @@ T gaussian_floor(T x, T sigma) {
   return x + (T(-1)) * gaussian_fract<T>(x, sigma);
 }
 
+//   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(x) + (-2) * (x fract)~(x) [= x fract~(x) + E[U
+//   fract(x+U)]] [~: the same kernel's smoothed atomic]
+template <class T>
+T gaussian_floor_sq(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + T(1) * gaussian_fract_sq<T>(x, sigma) + (T(-2)) * (x * gaussian_fract<T>(x, sigma) + gaussian_fract_u<T>(x, sigma));
+}
+
 //   x + (-1) * fract~(x) [~: the same kernel's smoothed atomic]
 template <class T>
 T box_floor(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + (T(-1)) * box_fract<T>(x, sigma);
+}
+
+//   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(x) + (-2) * (x fract)~(x) [= x fract~(x) + E[U
+//   fract(x+U)]] [~: the same kernel's smoothed atomic]
+template <class T>
+T box_floor_sq(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + T(1) * box_fract_sq<T>(x, sigma) + (T(-2)) * (x * box_fract<T>(x, sigma) + box_fract_u<T>(x, sigma));
 }
 
 //   x + (-1) * fract~(x) [~: the same kernel's smoothed atomic]
@@ -2123,12 +2305,30 @@ T tent_floor(T x, T sigma) {
   return x + (T(-1)) * tent_fract<T>(x, sigma);
 }
 
+//   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(x) + (-2) * (x fract)~(x) [= x fract~(x) + E[U
+//   fract(x+U)]] [~: the same kernel's smoothed atomic]
+template <class T>
+T tent_floor_sq(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + T(1) * tent_fract_sq<T>(x, sigma) + (T(-2)) * (x * tent_fract<T>(x, sigma) + tent_fract_u<T>(x, sigma));
+}
+
 //   x + 1 * fract~(-x) [~: the same kernel's smoothed atomic]
 template <class T>
 T gaussian_ceil(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + T(1) * gaussian_fract<T>(-x, sigma);
+}
+
+//   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(-x) + 2 * (x fract)~(-x) [= x fract~(-x) - E[U
+//   fract(-x+U)]] [~: the same kernel's smoothed atomic]
+template <class T>
+T gaussian_ceil_sq(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + T(1) * gaussian_fract_sq<T>(-x, sigma) + T(2) * (x * gaussian_fract<T>(-x, sigma) - gaussian_fract_u<T>(-x, sigma));
 }
 
 //   x + 1 * fract~(-x) [~: the same kernel's smoothed atomic]
@@ -2139,12 +2339,30 @@ T box_ceil(T x, T sigma) {
   return x + T(1) * box_fract<T>(-x, sigma);
 }
 
+//   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(-x) + 2 * (x fract)~(-x) [= x fract~(-x) - E[U
+//   fract(-x+U)]] [~: the same kernel's smoothed atomic]
+template <class T>
+T box_ceil_sq(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + T(1) * box_fract_sq<T>(-x, sigma) + T(2) * (x * box_fract<T>(-x, sigma) - box_fract_u<T>(-x, sigma));
+}
+
 //   x + 1 * fract~(-x) [~: the same kernel's smoothed atomic]
 template <class T>
 T tent_ceil(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + T(1) * tent_fract<T>(-x, sigma);
+}
+
+//   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(-x) + 2 * (x fract)~(-x) [= x fract~(-x) - E[U
+//   fract(-x+U)]] [~: the same kernel's smoothed atomic]
+template <class T>
+T tent_ceil_sq(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x)) + T(1) * tent_fract_sq<T>(-x, sigma) + T(2) * (x * tent_fract<T>(-x, sigma) - tent_fract_u<T>(-x, sigma));
 }
 
 //   (1 + x) + (-1) * fract~(x) + (-1) * step~(x) [~: the same kernel's smoothed atomic]
@@ -2206,7 +2424,7 @@ T box_tan_sq(T x, T sigma) {
     const T q = hh * hh;
     return (u_tan*u_tan) + q * ((((T(4)/T(3))*(u_tan*u_tan)) + (T(1)/T(3)) + (u_tan*u_tan*u_tan*u_tan)) + q * ((((T(17)/T(15))*(u_tan*u_tan)) + (T(2)*(u_tan*u_tan*u_tan*u_tan)) + (T(2)/T(15)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(12)/T(5))*(u_tan*u_tan*u_tan*u_tan)) + ((T(248)/T(315))*(u_tan*u_tan)) + ((T(8)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (T(17)/T(315)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(10)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1382)/T(2835))*(u_tan*u_tan)) + ((T(37)/T(9))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(424)/T(189))*(u_tan*u_tan*u_tan*u_tan)) + (T(62)/T(2835)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(43688)/T(155925))*(u_tan*u_tan)) + ((T(4532)/T(945))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(8507)/T(4725))*(u_tan*u_tan*u_tan*u_tan)) + ((T(94)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (T(1382)/T(155925)) + (T(4)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(133)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(14)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1901)/T(405))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1934)/T(1485))*(u_tan*u_tan*u_tan*u_tan)) + ((T(236)/T(27))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(929569)/T(6081075))*(u_tan*u_tan)) + (T(21844)/T(6081075)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))))))));
   }
-  return (((-hh) + (-x) + tan((hh + x))) - ((-x) + hh + tan(((-hh) + x)))) / (T(2.0) * hh);
+  return (T(-1)) + (tan((hh + x)) - tan(((-hh) + x))) / (T(2.0) * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-1/2)*(x)^(2)) + (-log(abs(cos(x))))), hh =
@@ -2226,7 +2444,7 @@ T tent_tan_sq(T x, T sigma) {
     const T q = hh * hh;
     return (u_tan*u_tan) + q * ((((T(1)/T(2))*(u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan)) + (T(1)/T(6))) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(17)/T(45))*(u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan)) + (T(2)/T(45))) + q * ((((T(1)/T(4))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(3)/T(5))*(u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(315))*(u_tan*u_tan)) + (T(17)/T(1260))) + q * ((((T(1)/T(5))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1382)/T(14175))*(u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(37)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(424)/T(945))*(u_tan*u_tan*u_tan*u_tan)) + (T(62)/T(14175))) + q * ((((T(1)/T(6))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(21844)/T(467775))*(u_tan*u_tan)) + ((T(2266)/T(2835))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(47)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(8507)/T(28350))*(u_tan*u_tan*u_tan*u_tan)) + (T(691)/T(467775))) + q * ((((T(1)/T(7))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(19)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1901)/T(2835))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1934)/T(10395))*(u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(236)/T(189))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(929569)/T(42567525))*(u_tan*u_tan)) + (T(21844)/T(42567525)))))))));
   }
-  return ((((T(-1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))) + (-log(abs(cos((hh + x)))))) - T(2.0) * (((T(-1)/T(2))*(x*x)) + (-log(abs(cos(x))))) + (((T(-1)/T(2))*(((-hh) + x)*((-hh) + x))) + (-log(abs(cos(((-hh) + x))))))) / (hh * hh);
+  return (T(-1)) + ((-log(abs(cos((hh + x))))) - T(2.0) * (-log(abs(cos(x)))) + (-log(abs(cos(((-hh) + x)))))) / (hh * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = logcosh(x), hh = sqrt(3) sigma; Taylor series in hh (7 terms)
@@ -2260,7 +2478,7 @@ T box_tanh_sq(T x, T sigma) {
     const T q = hh * hh;
     return (u_tanh*u_tanh) + q * ((((T(-4)/T(3))*(u_tanh*u_tanh)) + (T(1)/T(3)) + (u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-2))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(17)/T(15))*(u_tanh*u_tanh)) + (T(-2)/T(15)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-248)/T(315))*(u_tanh*u_tanh)) + ((T(-8)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(12)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(17)/T(315)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-10)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-424)/T(189))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1382)/T(2835))*(u_tanh*u_tanh)) + ((T(37)/T(9))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(-62)/T(2835)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-4))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-43688)/T(155925))*(u_tanh*u_tanh)) + ((T(-4532)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(8507)/T(4725))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(94)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(1382)/T(155925)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-14)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-1934)/T(1485))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-236)/T(27))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(133)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1901)/T(405))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(929569)/T(6081075))*(u_tanh*u_tanh)) + (T(-21844)/T(6081075)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))))))));
   }
-  return (((-tanh((hh + x))) + hh + x) - ((-hh) + (-tanh(((-hh) + x))) + x)) / (T(2.0) * hh);
+  return T(1) + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / (T(2.0) * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((1/2)*(x)^(2)) + (-logcosh(x))), hh = sqrt(6)
@@ -2278,7 +2496,7 @@ T tent_tanh_sq(T x, T sigma) {
     const T q = hh * hh;
     return (u_tanh*u_tanh) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh)) + ((T(1)/T(2))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(1)/T(6))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(17)/T(45))*(u_tanh*u_tanh)) + (T(-2)/T(45))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-62)/T(315))*(u_tanh*u_tanh)) + ((T(1)/T(4))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(3)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(17)/T(1260))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-424)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1382)/T(14175))*(u_tanh*u_tanh)) + ((T(37)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(-62)/T(14175))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-21844)/T(467775))*(u_tanh*u_tanh)) + ((T(-2266)/T(2835))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(6))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(47)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(8507)/T(28350))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(691)/T(467775))) + q * ((((T(-1934)/T(10395))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-236)/T(189))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(7))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(19)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1901)/T(2835))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(929569)/T(42567525))*(u_tanh*u_tanh)) + (T(-21844)/T(42567525)))))))));
   }
-  return ((((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))) + (-detail::logcosh((hh + x)))) - T(2.0) * (((T(1)/T(2))*(x*x)) + (-detail::logcosh(x))) + (((T(1)/T(2))*(((-hh) + x)*((-hh) + x))) + (-detail::logcosh(((-hh) + x))))) / (hh * hh);
+  return T(1) + ((-detail::logcosh((hh + x))) - T(2.0) * (-detail::logcosh(x)) + (-detail::logcosh(((-hh) + x)))) / (hh * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((-x) + (log(x)*x)), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2296,7 +2514,7 @@ T box_log(T x, T sigma) {
     const T q = hh * hh;
     return u_log + q * (((T(-1)/T(6))*(T(1)/(x*x))) + q * (((T(-1)/T(20))*(T(1)/(x*x*x*x))) + q * (((T(-1)/T(42))*(T(1)/(x*x*x*x*x*x))) + q * (((T(-1)/T(72))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(110))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(156))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return (((-((-hh) + (-x))*log((hh + x))) + (-hh) + (-x)) - ((((-hh) + x)*log(((-hh) + x))) + (-x) + hh)) / (T(2.0) * hh);
+  return (T(-1)) + ((-((-hh) + (-x))*log((hh + x))) - (((-hh) + x)*log(((-hh) + x)))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = (((-2)*log(x)*x) + ((log(x))^(2)*x) + (2*x)), hh =
@@ -2315,7 +2533,7 @@ T box_log_sq(T x, T sigma) {
     const T q = hh * hh;
     return (u_log*u_log) + q * (((T(1)/T(3))*((-u_log) + T(1))*(T(1)/(x*x))) + q * (((T(1)/T(60))*(((T(-6))*u_log) + T(11))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(1260))*(((T(-60))*u_log) + T(137))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(5040))*(((T(-140))*u_log) + T(363))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(138600))*(((T(-2520))*u_log) + T(7129))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(2162160))*(((T(-27720))*u_log) + T(83711))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (T(2)*((-hh) + (-x))*log((hh + x))) + (T(2)*hh) + (T(2)*x)) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((T(-2))*((-hh) + x)*log(((-hh) + x))) + ((T(-2))*hh) + (T(2)*x))) / (T(2.0) * hh);
+  return T(2) + (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (T(2)*((-hh) + (-x))*log((hh + x)))) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((T(-2))*((-hh) + x)*log(((-hh) + x))))) / (T(2.0) * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-3/4)*(x)^(2)) + ((1/2)*(x)^(2)*log(x))), hh =
@@ -2334,7 +2552,7 @@ T tent_log(T x, T sigma) {
     const T q = hh * hh;
     return u_log + q * (((T(-1)/T(12))*(T(1)/(x*x))) + q * (((T(-1)/T(60))*(T(1)/(x*x*x*x))) + q * (((T(-1)/T(168))*(T(1)/(x*x*x*x*x*x))) + q * (((T(-1)/T(360))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(660))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(1092))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return ((((T(-3)/T(4))*(((-hh) + (-x))*((-hh) + (-x)))) + ((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x)))) - T(2.0) * (((T(-3)/T(4))*(x*x)) + ((T(1)/T(2))*(x*x)*log(x))) + (((T(-3)/T(4))*(((-hh) + x)*((-hh) + x))) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))))) / (hh * hh);
+  return (T(-3)/T(2)) + (((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) - T(2.0) * ((T(1)/T(2))*(x*x)*log(x)) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*log(((-hh) + x)))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-3/2)*(x)^(2)*log(x)) +
@@ -2353,7 +2571,7 @@ T tent_log_sq(T x, T sigma) {
     const T q = hh * hh;
     return (u_log*u_log) + q * (((T(1)/T(6))*((-u_log) + T(1))*(T(1)/(x*x))) + q * (((T(1)/T(180))*(((T(-6))*u_log) + T(11))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(5040))*(((T(-60))*u_log) + T(137))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(25200))*(((T(-140))*u_log) + T(363))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(831600))*(((T(-2520))*u_log) + T(7129))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(15135120))*(((T(-27720))*u_log) + T(83711))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return ((((T(-3)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x)))) + ((T(7)/T(4))*(((-hh) + (-x))*((-hh) + (-x))))) - T(2.0) * (((T(-3)/T(2))*(x*x)*log(x)) + ((T(1)/T(2))*(log(x)*log(x))*(x*x)) + ((T(7)/T(4))*(x*x))) + (((T(-3)/T(2))*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))) + ((T(7)/T(4))*(((-hh) + x)*((-hh) + x))))) / (hh * hh);
+  return (T(7)/T(2)) + ((((T(-3)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x))))) - T(2.0) * (((T(-3)/T(2))*(x*x)*log(x)) + ((T(1)/T(2))*(log(x)*log(x))*(x*x))) + (((T(-3)/T(2))*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))))) / (hh * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((2/3)*(x)^((3/2))), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2387,7 +2605,7 @@ T box_sqrt_sq(T x, T sigma) {
     const T q = hh * hh;
     return x + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0)))))));
   }
-  return (((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))) - ((T(1)/T(2))*(((-hh) + x)*((-hh) + x)))) / (T(2.0) * hh);
+  return x;
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = ((4/15)*(x)^((5/2))), hh = min(sqrt(6) sigma, r/2)
@@ -2421,7 +2639,7 @@ T tent_sqrt_sq(T x, T sigma) {
     const T q = hh * hh;
     return x + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0)))))));
   }
-  return (((T(-1)/T(6))*(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x)))) - T(2.0) * ((T(1)/T(6))*(x*x*x)) + ((T(1)/T(6))*(((-hh) + x)*((-hh) + x)*((-hh) + x)))) / (hh * hh);
+  return x;
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = log(abs(x)), hh = min(sqrt(3) sigma, r/2) with r the distance
@@ -2469,7 +2687,7 @@ T tent_inv(T x, T sigma) {
     const T q = hh * hh;
     return (T(1)/(x)) + q * (((T(1)/T(6))*(T(1)/(x*x*x))) + q * (((T(1)/T(15))*(T(1)/(x*x*x*x*x))) + q * (((T(1)/T(28))*(T(1)/(x*x*x*x*x*x*x))) + q * (((T(1)/T(45))*(T(1)/(x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(66))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(91))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
   }
-  return (((-((-hh) + (-x))*log(abs((hh + x)))) + (-hh) + (-x)) - T(2.0) * ((-x) + (log(abs(x))*x)) + ((((-hh) + x)*log(abs(((-hh) + x)))) + (-x) + hh)) / (hh * hh);
+  return ((-((-hh) + (-x))*log(abs((hh + x)))) - T(2.0) * (log(abs(x))*x) + (((-hh) + x)*log(abs(((-hh) + x))))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (-log(abs(x))), hh = min(sqrt(6) sigma, r/2) with
@@ -2924,8 +3142,12 @@ inline float square_sq(float x, float sigma) { return detail::gen::gaussian_squa
 inline double square_sq(double x, double sigma) { return detail::gen::gaussian_square_sq<double>(x, sigma); }
 inline float floor(float x, float sigma) { return detail::gen::gaussian_floor<float>(x, sigma); }
 inline double floor(double x, double sigma) { return detail::gen::gaussian_floor<double>(x, sigma); }
+inline float floor_sq(float x, float sigma) { return detail::gen::gaussian_floor_sq<float>(x, sigma); }
+inline double floor_sq(double x, double sigma) { return detail::gen::gaussian_floor_sq<double>(x, sigma); }
 inline float ceil(float x, float sigma) { return detail::gen::gaussian_ceil<float>(x, sigma); }
 inline double ceil(double x, double sigma) { return detail::gen::gaussian_ceil<double>(x, sigma); }
+inline float ceil_sq(float x, float sigma) { return detail::gen::gaussian_ceil_sq<float>(x, sigma); }
+inline double ceil_sq(double x, double sigma) { return detail::gen::gaussian_ceil_sq<double>(x, sigma); }
 inline float trunc(float x, float sigma) { return detail::gen::gaussian_trunc<float>(x, sigma); }
 inline double trunc(double x, double sigma) { return detail::gen::gaussian_trunc<double>(x, sigma); }
 inline float moment(int n, float x, float sigma) { return detail::gen::gaussian_moment<float>(n, x, sigma); }
@@ -3015,8 +3237,12 @@ inline float square_sq(float x, float sigma) { return detail::gen::box_square_sq
 inline double square_sq(double x, double sigma) { return detail::gen::box_square_sq<double>(x, sigma); }
 inline float floor(float x, float sigma) { return detail::gen::box_floor<float>(x, sigma); }
 inline double floor(double x, double sigma) { return detail::gen::box_floor<double>(x, sigma); }
+inline float floor_sq(float x, float sigma) { return detail::gen::box_floor_sq<float>(x, sigma); }
+inline double floor_sq(double x, double sigma) { return detail::gen::box_floor_sq<double>(x, sigma); }
 inline float ceil(float x, float sigma) { return detail::gen::box_ceil<float>(x, sigma); }
 inline double ceil(double x, double sigma) { return detail::gen::box_ceil<double>(x, sigma); }
+inline float ceil_sq(float x, float sigma) { return detail::gen::box_ceil_sq<float>(x, sigma); }
+inline double ceil_sq(double x, double sigma) { return detail::gen::box_ceil_sq<double>(x, sigma); }
 inline float trunc(float x, float sigma) { return detail::gen::box_trunc<float>(x, sigma); }
 inline double trunc(double x, double sigma) { return detail::gen::box_trunc<double>(x, sigma); }
 inline float tan(float x, float sigma) { return detail::gen::box_tan<float>(x, sigma); }
@@ -3130,8 +3356,12 @@ inline float square_sq(float x, float sigma) { return detail::gen::tent_square_s
 inline double square_sq(double x, double sigma) { return detail::gen::tent_square_sq<double>(x, sigma); }
 inline float floor(float x, float sigma) { return detail::gen::tent_floor<float>(x, sigma); }
 inline double floor(double x, double sigma) { return detail::gen::tent_floor<double>(x, sigma); }
+inline float floor_sq(float x, float sigma) { return detail::gen::tent_floor_sq<float>(x, sigma); }
+inline double floor_sq(double x, double sigma) { return detail::gen::tent_floor_sq<double>(x, sigma); }
 inline float ceil(float x, float sigma) { return detail::gen::tent_ceil<float>(x, sigma); }
 inline double ceil(double x, double sigma) { return detail::gen::tent_ceil<double>(x, sigma); }
+inline float ceil_sq(float x, float sigma) { return detail::gen::tent_ceil_sq<float>(x, sigma); }
+inline double ceil_sq(double x, double sigma) { return detail::gen::tent_ceil_sq<double>(x, sigma); }
 inline float trunc(float x, float sigma) { return detail::gen::tent_trunc<float>(x, sigma); }
 inline double trunc(double x, double sigma) { return detail::gen::tent_trunc<double>(x, sigma); }
 inline float tan_sq(float x, float sigma) { return detail::gen::tent_tan_sq<float>(x, sigma); }

@@ -547,3 +547,283 @@ float bl_tent_periodic(float x, float sigma, float period, int n, BlPiece p[4], 
                2.0 * bl_period_piece_eval(xr, n, P2));
   return num / (w * w);
 }
+
+// ---- first kernel moment of periodic functions ----
+// M = E[U g(x + U)] for a periodic g given by one period of pieces (n <= 4, degree <= 6, absolute
+// coordinate in [0, period)): bl_gauss_periodic_u_image, bl_box_periodic_u, bl_tent_periodic_u. The
+// same regimes and stability arguments as the section of the same name in support.hpp: reduced
+// argument only, mean removed (E[U c] = 0), each piece re-expanded about the kernel centre clamped
+// into it, closed-form sums over full periods for the wide box/tent. sigma == 0 gives 0; sigma < 0,
+// NaN or infinite, x not finite, or a piece of degree 7 give sqrt(-1) (NaN where the GPU has NaNs).
+// The wide box needs h = sqrt(3) sigma beyond float precision (its dM/dh is O(1)): hl =
+// fma(BL_SQRT3, sigma, -h) + BL_SQRT3_LO sigma and an fma reduction of h. A compiler that does not
+// fuse fma only loses that correction (the error becomes eps h, as without it), nothing else.
+// The Gaussian image sum loops over ~2 z sigma/period periods: use it where bl_prefer_fourier is
+// false (llvmpipe stops loops after 65535 iterations).
+
+const float BL_SQRT3_LO = 3.1087248875558696e-8;  // sqrt(3) - float(sqrt(3))
+
+float bl_u_nan(float s) { return sqrt(-1.0 - abs(s)); }
+
+bool bl_u_bad(float x, float sigma) {
+  return !(abs(x) < BL_INF) || !(sigma >= 0.0) || !(sigma < BL_INF);
+}
+
+// int_a^b s^j q(s) ds, 0 <= a <= b, divided differences (see support.hpp).
+float bl_u_piece_moment(float c[8], int deg, int j, float a, float b) {
+  float S = 1.0;
+  float an = 1.0;
+  float sum = 0.0;
+  for (int k = 0; k < 10; ++k) {
+    if (k > deg + j) break;
+    if (k > 0) {
+      an *= a;
+      S = b * S + an;
+    }
+    if (k >= j) sum += c[k - j] * S / float(k + 1);
+  }
+  return (b - a) * sum;
+}
+
+// Pieces minus the period mean (t), their degrees, I[j] = int_0^T s^j (g - gbar); false if a
+// degree exceeds 6.
+bool bl_u_period_data(float period, int n, BlPiece p[4], out BlPiece t[4], out int deg[4],
+                      out float I[3]) {
+  bool ok = true;
+  float I0 = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    t[i] = p[i];
+    deg[i] = 0;
+    if (i >= n) continue;
+    deg[i] = bl_degree(p[i].c);
+    if (deg[i] > 6) ok = false;
+    if (p[i].hi > p[i].lo) I0 += bl_u_piece_moment(p[i].c, deg[i], 0, p[i].lo, p[i].hi);
+  }
+  float gbar = I0 / period;
+  I[0] = 0.0;
+  I[1] = 0.0;
+  I[2] = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    if (i >= n) break;
+    t[i].c[0] -= gbar;
+    if (!(t[i].hi > t[i].lo)) continue;
+    for (int j = 0; j < 3; ++j) I[j] += bl_u_piece_moment(t[i].c, deg[i], j, t[i].lo, t[i].hi);
+  }
+  return ok;
+}
+
+// Coefficients in v of (v + e) q(o + v).
+void bl_u_coefs(float q[8], int deg, float o, float e, out float r[8]) {
+  float g[8];
+  bl_taylor_shift(q, deg, o, g);
+  for (int k = 0; k < 8; ++k) r[k] = 0.0;
+  r[0] = e * g[0];
+  for (int k = 1; k < 8; ++k) {
+    if (k > deg) break;
+    r[k] = g[k - 1] + e * g[k];
+  }
+  r[deg + 1] = g[deg];
+}
+
+// Tent with the centre inside the piece: both halves term by term, odd terms as differences
+// (exactly 0 when the support lies inside the piece), see u_tent_centre in support.hpp.
+float bl_u_tent_centre(float c[8], int deg, float Lr, float Ll, float w) {
+  float lr = Lr / w;
+  float ll = Ll / w;
+  float sum = 0.0;
+  float Lrk = 1.0;
+  float Llk = 1.0;
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
+    float ar = Lrk * lr * (1.0 / float(k + 1) - lr / float(k + 2));
+    float al = Llk * ll * (1.0 / float(k + 1) - ll / float(k + 2));
+    sum += c[k] * (((k & 1) == 1) ? ar - al : ar + al);
+    Lrk *= Lr;
+    Llk *= Ll;
+  }
+  return sum;
+}
+
+// One piece, expanded about the kernel centre clamped into it (kernel 0 Gaussian, 1 box, 2 tent;
+// s = sigma, h or w).
+float bl_u_piece(int kernel, float xq, float s, float dl, float dh, float lo, float hi, float q[8],
+                 int deg) {
+  float o = xq;
+  float e = 0.0;
+  float lo2 = dl;
+  float hi2 = dh;
+  if (!(dl < 0.0)) {
+    o = lo;
+    e = dl;
+    lo2 = 0.0;
+    hi2 = hi - lo;
+  } else if (!(dh > 0.0)) {
+    o = hi;
+    e = dh;
+    lo2 = lo - hi;
+    hi2 = 0.0;
+  }
+  float c[8];
+  bl_u_coefs(q, deg, o, e, c);
+  if (kernel == 2 && dl < 0.0 && dh > 0.0) return bl_u_tent_centre(c, deg + 1, min(dh, s), min(-dl, s), s);
+  if (kernel == 0) return bl_gauss_core(-e, s, dl, dh, lo2, hi2, c);
+  if (kernel == 1) return bl_box_core(-e, s, dl, dh, lo2, hi2, c);
+  return bl_tent_core(-e, s, dl, dh, lo2, hi2, c);
+}
+
+float bl_u_periods(int kernel, float xr, float s, float R, float period, int m0, int m1, int n,
+                   BlPiece t[4], int deg[4]) {
+  float sum = 0.0;
+  for (int m = m0; m <= m1; ++m) {
+    float shift = float(m) * period;
+    for (int i = 0; i < 4; ++i) {
+      if (i >= n) break;
+      if (!(t[i].hi > t[i].lo)) continue;
+      float dl = (t[i].lo + shift) - xr;
+      float dh = (t[i].hi + shift) - xr;
+      if (!(dh > -R) || !(dl < R)) continue;
+      sum += bl_u_piece(kernel, xr - shift, s, dl, dh, t[i].lo, t[i].hi, t[i].c, deg[i]);
+    }
+  }
+  return sum;
+}
+
+// int_0^L c(v) dv, either sign of L.
+float bl_u_integral0(float c[8], int deg, float L) {
+  float r = 0.0;
+  for (int k = 7; k >= 0; --k) {
+    if (k <= deg) r = r * L + c[k] / float(k + 1);
+  }
+  return r * L;
+}
+
+float bl_gauss_periodic_u_image(float x, float sigma, float period, int n, BlPiece p[4],
+                                float fmax) {
+  if (bl_u_bad(x, sigma)) return bl_u_nan(sigma);
+  if (sigma == 0.0) return 0.0;
+  BlPiece t[4];
+  int deg[4];
+  float I[3];
+  if (!bl_u_period_data(period, n, p, t, deg, I)) return bl_u_nan(sigma);
+  float xr = bl_reduce_signed(x, period);
+  float R = bl_image_z(2.0 * fmax * max(sigma, 1.0), BL_SERIES_TOL) * sigma;
+  int m0 = int(floor((xr - R) / period));
+  int m1 = int(floor((xr + R) / period));
+  return bl_u_periods(0, xr, sigma, R, period, m0, m1, n, t, deg);
+}
+
+// y = q period + r for y >= 0, remainder by fma (exact when fused).
+vec2 bl_u_reduce_fma(float y, float period) {
+  float q = floor(y / period);
+  float r = fma(-q, period, y);
+  if (r < 0.0) {
+    r += period;
+    q -= 1.0;
+  }
+  if (r >= period) {
+    r -= period;
+    q += 1.0;
+  }
+  return vec2(r, q);
+}
+
+float bl_box_periodic_u(float x, float sigma, float period, int n, BlPiece p[4]) {
+  if (bl_u_bad(x, sigma)) return bl_u_nan(sigma);
+  if (sigma == 0.0) return 0.0;
+  BlPiece t[4];
+  int deg[4];
+  float I[3];
+  if (!bl_u_period_data(period, n, p, t, deg, I)) return bl_u_nan(sigma);
+  float h = BL_SQRT3 * sigma;
+  if (h <= 2.0 * period) {
+    float xs = bl_reduce_signed(x, period);
+    int m0 = int(floor((xs - h) / period));
+    int m1 = int(floor((xs + h) / period));
+    return bl_u_periods(1, xs, h, h, period, m0, m1, n, t, deg);
+  }
+  float xr = bl_reduce_period(x, period).x;
+  float hl = fma(BL_SQRT3, sigma, -h) + BL_SQRT3_LO * sigma;
+  vec2 rq = bl_u_reduce_fma(h, period);
+  float q2 = rq.y;
+  float r2 = (rq.x + xr) + hl;
+  if (!(r2 < period)) {
+    r2 -= period;
+    q2 += 1.0;
+  } else if (r2 < 0.0) {
+    r2 += period;
+    q2 -= 1.0;
+    if (!(r2 < period)) {
+      r2 = 0.0;
+      q2 += 1.0;
+    }
+  }
+  float q1 = -rq.y;
+  float r1 = (xr - rq.x) - hl;
+  if (r1 < 0.0) {
+    r1 += period;
+    q1 -= 1.0;
+    if (!(r1 < period)) {
+      r1 = 0.0;
+      q1 += 1.0;
+    }
+  } else if (!(r1 < period)) {
+    r1 -= period;
+    q1 += 1.0;
+  }
+  float s = (q2 - q1 - 1.0) * (I[1] - I[0] * (r1 + r2) * 0.5);
+  float s1 = q1 * period;
+  float s2 = q2 * period;
+  for (int i = 0; i < 4; ++i) {
+    if (i >= n) break;
+    if (!(t[i].hi > t[i].lo)) continue;
+    float c[8];
+    if (t[i].lo < r2) {
+      float b = min(t[i].hi, r2);
+      bl_u_coefs(t[i].c, deg[i], t[i].lo, (t[i].lo + s2) - xr, c);
+      s += bl_u_integral0(c, deg[i] + 1, b - t[i].lo);
+    }
+    if (t[i].hi > r1) {
+      float a = max(t[i].lo, r1);
+      bl_u_coefs(t[i].c, deg[i], t[i].hi, (t[i].hi + s1) - xr, c);
+      s -= bl_u_integral0(c, deg[i] + 1, a - t[i].hi);
+    }
+  }
+  return s / (2.0 * h);
+}
+
+float bl_tent_periodic_u(float x, float sigma, float period, int n, BlPiece p[4]) {
+  if (bl_u_bad(x, sigma)) return bl_u_nan(sigma);
+  if (sigma == 0.0) return 0.0;
+  BlPiece t[4];
+  int deg[4];
+  float I[3];
+  if (!bl_u_period_data(period, n, p, t, deg, I)) return bl_u_nan(sigma);
+  float w = BL_SQRT6 * sigma;
+  if (w <= 2.0 * period) {
+    float xs = bl_reduce_signed(x, period);
+    int m0 = int(floor((xs - w) / period));
+    int m1 = int(floor((xs + w) / period));
+    return bl_u_periods(2, xs, w, w, period, m0, m1, n, t, deg);
+  }
+  float xr = bl_reduce_period(x, period).x;
+  vec2 y1 = bl_reduce_period(xr - w, period);
+  vec2 y2 = bl_reduce_period(xr + w, period);
+  int q1 = int(y1.y);
+  int q2 = int(y2.y);
+  float local = bl_u_periods(2, xr, w, w, period, q1, q1, n, t, deg) +
+                bl_u_periods(2, xr, w, w, period, 0, 0, n, t, deg) +
+                bl_u_periods(2, xr, w, w, period, q2, q2, n, t, deg);
+  float nr = y2.y - 1.0;
+  float nl = -y1.y - 1.0;
+  float S1r = nr * (nr + 1.0) * 0.5;
+  float S2r = S1r * (2.0 * nr + 1.0) / 3.0;
+  float S1l = nl * (nl + 1.0) * 0.5;
+  float S2l = S1l * (2.0 * nl + 1.0) / 3.0;
+  float sd = period * S1r - nr * xr;
+  float sd2 = period * period * S2r - 2.0 * period * xr * S1r + nr * xr * xr;
+  float se = period * S1l + nl * xr;
+  float se2 = period * period * S2l + 2.0 * period * xr * S1l + nl * xr * xr;
+  float full = I[1] * (nr * (xr + y2.x) - nl * (xr + y1.x)) +
+               I[0] * ((w * sd - sd2) - (w * se - se2)) + I[2] * (nl - nr);
+  return local + full / (w * w);
+}

@@ -10,7 +10,6 @@ namespace blv {
 
 struct GridPoint {
   double x, sigma;
-  bool near_break;   // x is a break or within 1e-4 of one
 };
 
 // x values: the base grid plus, for each break b (first period), b, b +- 1e-9, b +- 1e-4;
@@ -19,7 +18,6 @@ struct GridPoint {
 std::vector<double> x_grid(const Spec& spec, bool moment);
 const std::vector<double>& sigma_grid();
 std::vector<GridPoint> grid(const Spec& spec, bool moment);
-bool near_a_break(const Spec& spec, double x);
 
 // Human-readable description for the report.
 std::string grid_description();

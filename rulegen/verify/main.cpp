@@ -56,7 +56,9 @@ int main(int argc, char** argv) {
   bool record = false, published = false, verbose = false, no_mp = false;
   std::vector<std::string> only;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  app.add_option("--generated", generated, "generated/ directory (manifest.json lives there)");
+  app.add_option("--generated", generated,
+                 "generated/ directory holding manifest.json (read, and written by --record); the registry itself "
+                 "is compiled in");
   app.add_flag("--record", record, "write each entry's verification record into manifest.json");
   app.add_option("--only", only, "verify only entries whose C++ name or atomic matches (repeatable)");
   app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1u, 256u));

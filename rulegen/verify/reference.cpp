@@ -3,7 +3,6 @@
 
 #include <boost/math/quadrature/tanh_sinh.hpp>
 
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -60,7 +59,8 @@ std::string fmt(const char* f, double a, double b = 0) {
 }  // namespace
 
 struct RefEngine::Impl {
-  const Spec& sp;
+  Spec sp;               // the entry's spec, possibly with an inferred period
+  std::string inferred;  // note when the period was inferred
 
   // Period model: I_m(k) = int_0^T tau^m g(kT + tau) dtau = sum_j p[m][j] k^j on each side of 0.
   struct Side {
@@ -74,7 +74,27 @@ struct RefEngine::Impl {
   bool degree0 = false;    // g periodic
   std::vector<double> fa, fb;  // Fourier coefficients (index n)
 
-  explicit Impl(const Spec& s) : sp(s) {}
+  explicit Impl(const Spec& s) : sp(s) { infer_period(); }
+
+  void infer_period() {
+    if (sp.period > 0 || !sp.breaks.empty() || !sp.singular.empty() || !sp.bounded()) return;
+    std::vector<double> probes;
+    for (int i = 0; i < 20; ++i) probes.push_back(-3.7 + 0.41 * i);                  // near 0
+    for (int i = 0; i < 20; ++i) probes.push_back(-1e6 + 1.0527e5 * i + 0.123 * i);  // far out
+    for (double T : {2 * kPi, kPi, 1.0, 2.0}) {
+      bool ok = true;
+      for (double s : probes) {
+        double a = sp.g(s), b = sp.g(s + T);
+        if (!(std::fabs(a - b) <= 1e-12 * std::fmax(1.0, std::fabs(a)))) { ok = false; break; }
+      }
+      if (ok) {
+        sp.period = T;
+        sp.periodic = true;
+        inferred = "period " + fmt("%.17g", T) + " inferred numerically (the catalog gives none)";
+        return;
+      }
+    }
+  }
 
   QuadSum<double> direct(double x0, double c, const std::vector<double>& fixed,
                          const std::function<double(double)>& w, bool* capped) {
@@ -392,6 +412,8 @@ struct RefEngine::Impl {
 };
 
 RefEngine::RefEngine(const Spec& spec) : impl_(new Impl(spec)) {}
+const Spec& RefEngine::effective_spec() const { return impl_->sp; }
+std::string RefEngine::inferred_period_note() const { return impl_->inferred; }
 RefEngine::~RefEngine() = default;
 Ref RefEngine::at(double x, double sigma) { return impl_->at(x, sigma); }
 

@@ -47,6 +47,11 @@ class RefEngine {
 
   Ref at(double x, double sigma);        // E[g(x + U)], U the spec's kernel at sigma
   std::string period_model_summary();    // empty when no period model was needed
+  // The spec the references use: the entry's, except that a bounded, break-free f that the catalog
+  // gives no period is tested for the periods 2 pi, pi, 1, 2 (g(s + T) = g(s) to 1e-12 at 40 points
+  // from -1e6 to 1e6); one that passes is used (the Fourier reference needs it for large sigma).
+  const Spec& effective_spec() const;
+  std::string inferred_period_note() const;  // empty when the catalog's period was used
 
  private:
   struct Impl;

@@ -1,4 +1,4 @@
-// blverify: 50-digit references (cpp_bin_float_50, Gauss-Kronrod 61, tolerance 1e-40) for the
+// blverify: 50-digit references (cpp_bin_float_50, Gauss-Kronrod 61, tolerance 1e-40, depth 12) for the
 // points double cannot decide, and the entry's own smoothed<cpp_bin_float_50> at those points
 // ("formula error (50 digits)"). All multiprecision code lives in reference_mp.cpp (slow to compile).
 #pragma once

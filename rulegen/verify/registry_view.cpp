@@ -66,8 +66,7 @@ std::vector<EntryView> load_registry(std::string* error) {
       s.range_lo = a->range_lo;
       s.range_hi = a->range_hi;
     }
-    double (*pl)(double) = d.plain;
-    s.plain = [pl](double x) { return pl(x); };
+    if (double (*pl)(double) = d.plain) s.plain = [pl](double x) { return pl(x); };
     out.push_back(std::move(v));
   }
   return out;

@@ -85,6 +85,7 @@ void print_table(std::FILE* out, const std::vector<EntryResult>& results, const 
       if (r.float_skipped) std::fprintf(out, "  float skipped %ld\n", r.float_skipped);
       if (r.domain_checks) std::fprintf(out, "  NaN checks outside the domain: %ld\n", r.domain_checks);
       if (!r.period_model.empty()) std::fprintf(out, "  period model: %s\n", r.period_model.c_str());
+      if (!r.notes.empty()) std::fprintf(out, "  note: %s\n", r.notes.c_str());
       std::fprintf(out, "  50-digit references: %ld (declined %ld); 50-digit formula error %s %s\n", r.mp_points,
                    r.mp_declined, fmt_err(r.formula50).c_str(), fmt_where(r.formula50_at).c_str());
     }
@@ -114,12 +115,13 @@ std::string markdown_report(const std::vector<EntryResult>& results, const Verif
   for (const auto& r : results) {
     auto rs = reasons(r, opt);
     std::map<std::string, long> sk = r.skip_reasons;
-    if (rs.empty() && sk.empty()) continue;
+    if (rs.empty() && sk.empty() && r.notes.empty()) continue;
     if (!any) o << "\n## Details\n";
     any = true;
     o << "\n### `" << r.name << "` (" << status_word(r) << ")\n\n";
     for (const auto& s : rs) o << "- " << s << "\n";
     for (const auto& kv : sk) o << "- skipped " << kv.second << ": " << kv.first << "\n";
+    if (!r.notes.empty()) o << "- note: " << r.notes << "\n";
   }
   return o.str();
 }

@@ -41,6 +41,7 @@ struct EntryResult {
   std::vector<std::string> problems;  // first few invariant violations
   long problem_count = 0;
   std::string period_model;
+  std::string notes;            // e.g. a numerically inferred period
   std::string status;           // "pass" | "fail" | "approximation" (rule without a bound)
   double seconds = 0;
   bool failed() const { return status == "fail"; }
