@@ -484,7 +484,10 @@ int bl_image_periods(float s, float fmax, float tol) {
 bool bl_prefer_fourier(float s, int npieces, float coef_bound, float fmax) {
   int K = bl_fourier_terms(s, coef_bound, BL_SERIES_TOL);
   int P = bl_image_periods(s, fmax, BL_SERIES_TOL);
-  return float(K) < float(P) * float(npieces);
+  // Cost model as in support.hpp: 3 per Fourier term; 4 per image piece, 20 when it is narrower
+  // than 2 sigma (Gauss-Legendre).
+  float per_piece = s * float(npieces) > 0.5 ? 20.0 : 4.0;
+  return 3.0 * float(K) < float(P) * float(npieces) * per_piece;
 }
 
 // Box over a periodic f: direct shifted pieces when 2h <= 4 periods, else Appendix C with the
@@ -838,6 +841,46 @@ float bl_tent_periodic_u(float x, float sigma, float period, int n, BlPiece p[4]
 float bl_nan() { return uintBitsToFloat(0x7fc00000u); }
 float bl_pi() { return 3.14159265358979; }
 float bl_series_reach() { return 0.35; }  // see emit_helpers.hpp
+// Clausen's Cl2 and the dilogarithm on [-1, 0]: see emit_helpers.hpp.
+float bl_clausen2(float t) {
+  const float c[13] = float[13](0.013888888888888888, 6.9444444444444444e-05, 7.873519778281683e-07,
+                              1.1482216343327455e-08, 1.8978869988970999e-10, 3.3873013709535212e-12,
+                              6.3726364431831808e-14, 1.2462059912950672e-15, 2.5105444608999545e-17,
+                              5.1782588060906232e-19, 1.0887357368300849e-20, 2.3257441143020871e-22,
+                              5.0351952131473897e-24);
+  float two_pi = 2.0 * bl_pi();
+  float r = t - two_pi * floor((t + bl_pi()) / two_pi);
+  if (r == 0.0) return 0.0;
+  float r2 = r * r;
+  float p = r * r2;
+  float sum = 0.0;
+  for (int k = 0; k < 13; ++k) {
+    sum += c[k] * p;
+    p *= r2;
+  }
+  return r - r * log(abs(r)) + sum;
+}
+float bl_li2_series(float y) {
+  float sum = 0.0;
+  float p = y;
+  for (int k = 1; k <= 30; ++k) {
+    sum += p / float(k * k);
+    p *= y;
+  }
+  return sum;
+}
+float bl_li2_landen(float z) {  // z in [-1, 0]
+  if (z >= -0.5) return bl_li2_series(z);
+  float l = log(1.0 - z);
+  return -bl_li2_series(z / (z - 1.0)) - l * l / 2.0;
+}
+float bl_li2(float z) {  // z <= 0 (GLSL has no recursion: inversion then Landen)
+  if (z < -1.0) {
+    float l = log(-z);
+    return -bl_pi() * bl_pi() / 6.0 - l * l / 2.0 - bl_li2_landen(1.0 / z);
+  }
+  return bl_li2_landen(z);
+}
 
 // ---- entries ----
 
@@ -2112,6 +2155,7 @@ float bl_tent_trunc(float x, float sigma) {
 
 float bl_box_tan(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x < (0.0)) return -bl_box_tan(-x, sigma);  // odd
   float period = bl_pi();
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
@@ -2126,6 +2170,7 @@ float bl_box_tan(float x, float sigma) {
 
 float bl_box_tan_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x < (0.0)) return bl_box_tan_sq(-x, sigma);  // even
   float period = bl_pi();
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
@@ -2138,8 +2183,24 @@ float bl_box_tan_sq(float x, float sigma) {
   return (-1.0) + (tan((hh + x)) - tan(((-hh) + x))) / ((2.0) * hh);
 }
 
+float bl_tent_tan(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x < (0.0)) return -bl_tent_tan(-x, sigma);  // odd
+  float period = bl_pi();
+  float xr = x - period * floor(x / period);
+  float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
+  float hh = min((sigma*sqrt(6.0)), (0.5) * r);
+  if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
+    float u_tan = tan(x);
+    float q = hh * hh;
+    return u_tan + q * (((-1.0/6.0)*((-(u_tan*u_tan)) + (-1.0))*u_tan) + q * ((((1.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/9.0)*(u_tan*u_tan*u_tan)) + ((2.0/45.0)*u_tan)) + q * ((((1.0/12.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/28.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((11.0/180.0)*(u_tan*u_tan*u_tan)) + ((17.0/1260.0)*u_tan)) + q * ((((1.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((16.0/225.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((62.0/14175.0)*u_tan) + ((88.0/2835.0)*(u_tan*u_tan*u_tan))) + q * ((((1.0/18.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/66.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((289.0/5670.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((641.0/42525.0)*(u_tan*u_tan*u_tan)) + ((691.0/467775.0)*u_tan) + ((7.0/90.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((1.0/21.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/91.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((19.0/2673.0)*(u_tan*u_tan*u_tan)) + ((21844.0/42567525.0)*u_tan) + ((26.0/315.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((467.0/14175.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((478.0/6615.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+  }
+  return (((-1.0/2.0)*bl_clausen2((((-2.0)*hh) + ((-2.0)*x) + bl_pi()))) - (2.0) * ((-1.0/2.0)*bl_clausen2((((-2.0)*x) + bl_pi()))) + ((-1.0/2.0)*bl_clausen2((((-2.0)*x) + (2.0*hh) + bl_pi())))) / (hh * hh);
+}
+
 float bl_tent_tan_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x < (0.0)) return bl_tent_tan_sq(-x, sigma);  // even
   float period = bl_pi();
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
@@ -2154,6 +2215,7 @@ float bl_tent_tan_sq(float x, float sigma) {
 
 float bl_box_tanh(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x < (0.0)) return -bl_box_tanh(-x, sigma);  // odd
   float hh = (sigma*sqrt(3.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (-1.0);
@@ -2167,6 +2229,7 @@ float bl_box_tanh(float x, float sigma) {
 
 float bl_box_tanh_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x < (0.0)) return bl_box_tanh_sq(-x, sigma);  // even
   float hh = (sigma*sqrt(3.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (1.0);
@@ -2178,8 +2241,23 @@ float bl_box_tanh_sq(float x, float sigma) {
   return 1.0 + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / ((2.0) * hh);
 }
 
+float bl_tent_tanh(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x < (0.0)) return -bl_tent_tanh(-x, sigma);  // odd
+  float hh = (sigma*sqrt(6.0));
+  if (x - hh > (20.0)) return (1.0);  // flat to machine precision
+  if (x + hh < (-20.0)) return (-1.0);
+  if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
+    float u_tanh = tanh(x);
+    float q = hh * hh;
+    return u_tanh + q * (((-1.0/6.0)*((-(u_tanh*u_tanh)) + 1.0)*u_tanh) + q * ((((-1.0/9.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((2.0/45.0)*u_tanh)) + q * ((((-1.0/12.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-17.0/1260.0)*u_tanh) + ((1.0/28.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((11.0/180.0)*(u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-88.0/2835.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((16.0/225.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((62.0/14175.0)*u_tanh)) + q * ((((-1.0/18.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-289.0/5670.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-691.0/467775.0)*u_tanh) + ((1.0/66.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((641.0/42525.0)*(u_tanh*u_tanh*u_tanh)) + ((7.0/90.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/21.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-19.0/2673.0)*(u_tanh*u_tanh*u_tanh)) + ((-478.0/6615.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/91.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((21844.0/42567525.0)*u_tanh) + ((26.0/315.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((467.0/14175.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
+  }
+  return 1.0 + (((1.0/2.0)*bl_li2((-exp((((-2.0)*hh) + ((-2.0)*x)))))) - (2.0) * ((1.0/2.0)*bl_li2((-exp(((-2.0)*x))))) + ((1.0/2.0)*bl_li2((-exp((((-2.0)*x) + (2.0*hh))))))) / (hh * hh);
+}
+
 float bl_tent_tanh_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x < (0.0)) return bl_tent_tanh_sq(-x, sigma);  // even
   float hh = (sigma*sqrt(6.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (1.0);

@@ -195,6 +195,11 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   const symbol& x = sym::var_x();
   const GiNaC::ex hh = sym::var_hh();
   std::string out = guard_sigma(s);
+  if (a.parity != 0) {
+    const bool odd = a.parity < 0 && !d.squared;
+    out += "  if (x < " + s.dbl(0) + ") return " + (odd ? "-" : "") + s.fn(impl_name(d)) + "(-x, sigma);  // " +
+           (odd ? "odd" : "even") + "\n";
+  }
   if (a.domain_lo.finite()) out += "  if (x < " + s.ex(a.domain_lo.value) + ") return " + s.nan() + ";  // outside the domain\n";
   if (a.domain_hi.finite()) out += "  if (x > " + s.ex(a.domain_hi.value) + ") return " + s.nan() + ";  // outside the domain\n";
   const std::string width = s.ex(sym::half_width(d.kernel));

@@ -238,7 +238,7 @@ Atomic parse_atomic(const json& j, size_t index) {
       {AtomicClass::Periodic, {"pieces", "period"}},
       {AtomicClass::Combination, {"of"}},
       {AtomicClass::Antiderivative,
-       {"f", "F", "F2", "F_sq", "F2_sq", "period", "singular", "scale", "flat"}}};
+       {"f", "F", "F2", "F_sq", "F2_sq", "period", "singular", "scale", "flat", "parity"}}};
   for (auto& [k, v] : j.items())
     if (!common.count(k) && !allowed.at(a.cls).count(k))
       c.fail(k, std::string("unknown field for class '") + to_string(a.cls) + "'");
@@ -311,6 +311,17 @@ Atomic parse_atomic(const json& j, size_t index) {
         if (!fl.contains("beyond") || !fl.contains("left") || !fl.contains("right"))
           c.fail("flat", "needs beyond, left and right");
         a.flat = Atomic::Flat{fl["beyond"].get<double>(), fl["left"].get<double>(), fl["right"].get<double>()};
+      }
+      if (j.contains("parity")) {
+        const std::string p = j["parity"].is_string() ? j["parity"].get<std::string>() : "";
+        if (p != "odd" && p != "even") c.fail("parity", "must be \"odd\" or \"even\"");
+        a.parity = p == "odd" ? -1 : 1;
+        for (int k = 1; k <= 7; ++k) {  // f(-x) = parity f(x) at sample points, 30 digits
+          const ex at = numeric(k * 3, 10);
+          const ex diff = (a.f.subs(var_x() == -at) - a.parity * a.f.subs(var_x() == at)).evalf();
+          if (!is_a<numeric>(diff) || abs(ex_to<numeric>(diff)) > numeric(1, 1000000000000))
+            c.fail("parity", "f(-x) != " + std::string(a.parity < 0 ? "-" : "") + "f(x) at x = " + std::to_string(k * 0.3));
+        }
       }
       if (a.singular.empty() && !a.scale) c.fail("scale", "an atomic without singularities needs a scale (its Taylor radius)");
       check_antiderivative(c, a, "F", a.F, a.f);

@@ -58,6 +58,7 @@ struct Atomic {
     double beyond = 0, left = 0, right = 0;
   };
   std::optional<Flat> flat;  // f is constant to machine precision for |x| > beyond
+  int parity = 0;            // +1 even, -1 odd, 0 neither (checked); rules evaluate x < 0 by symmetry
   std::string of;            // combination: linear identity in other atomics
   std::string comment;
 };

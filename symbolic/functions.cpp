@@ -1,6 +1,7 @@
 #include "functions.hpp"
 
 #include <cln/float.h>
+#include <cln/real.h>
 
 #include <cmath>
 
@@ -98,8 +99,27 @@ ex exp_sinhc2_evalf(const ex& u, const ex& v) {
   return (exp(u) * pow(sinhc_evalf(v), 2)).evalf();
 }
 
+// Cl2 on (-pi, pi]: t - t log|t| + sum_k |B_2k| t^{2k+1} / (2k (2k+1)!), extended 2 pi-periodically.
+ex clausen2_evalf(const ex& t) {
+  if (!is_a<numeric>(t)) return clausen2(t).hold();
+  const numeric pi = ex_to<numeric>(Pi.evalf());
+  numeric r = ex_to<numeric>(t.evalf());
+  r = r - 2 * pi * numeric(cln::floor1(cln::the<cln::cl_R>(((r + pi) / (2 * pi)).to_cl_N())));
+  if (r.is_zero()) return numeric(0);
+  numeric sum = r - r * log(abs(r)), tk = r;
+  for (int k = 1; k < 400; ++k) {
+    tk = tk * r * r;
+    const numeric term = ex_to<numeric>(ex(abs(bernoulli(numeric(2 * k))) / (2 * k * factorial(2 * k + 1))).evalf()) * tk;
+    sum += term;
+    if (abs(term) < pow(numeric(10), -(Digits + 2))) break;
+  }
+  return sum;
+}
+ex clausen2_deriv(const ex& t, unsigned) { return -log(abs(2 * sin(t / 2))); }
+
 }  // namespace
 
+REGISTER_FUNCTION(clausen2, evalf_func(clausen2_evalf).derivative_func(clausen2_deriv))
 REGISTER_FUNCTION(Phi, evalf_func(Phi_evalf).derivative_func(Phi_deriv))
 REGISTER_FUNCTION(phi, evalf_func(phi_evalf).derivative_func(phi_deriv))
 REGISTER_FUNCTION(sinc, eval_func(sinc_eval).evalf_func(sinc_evalf).derivative_func(sinc_deriv))
@@ -117,6 +137,7 @@ void register_functions() {
   (void)logcosh_SERIAL::serial;
   (void)exp_sinhc_SERIAL::serial;
   (void)exp_sinhc2_SERIAL::serial;
+  (void)clausen2_SERIAL::serial;
 }
 
 }  // namespace bl::sym

@@ -156,9 +156,10 @@ std::string pr(const ex& e, Lang lang) {
     auto it = builtin.find(name);
     if (it != builtin.end()) return call(it->second, args);
     static const char* helpers[] = {"Phi", "phi", "sinc", "sinhc", "logcosh", "exp_sinhc",
-                                    "exp_sinhc2"};
+                                    "exp_sinhc2", "clausen2"};
     for (const char* h : helpers)
       if (name == h) return call(helper(h, lang), args);
+    if (name == "Li2") return call(helper("li2", lang), args);
     throw std::runtime_error("printer: no runtime equivalent for function " + name);
   }
   std::ostringstream s;

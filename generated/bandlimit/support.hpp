@@ -679,9 +679,13 @@ inline int image_periods(T s, T fmax, T tol) {
 // series_tol<T>().
 template <class T>
 inline bool prefer_fourier(T s, int npieces, T coef_bound, T fmax) {
+  // Cost model (measured with bench_table): a Fourier term is an exp, a cos and a sin (~3 units);
+  // an image piece is an erfc and an exp (~4) when wider than 2 sigma, else a 20-point
+  // Gauss-Legendre rule (~20 exps).
   const int K = fourier_terms(s, coef_bound, series_tol<T>());
   const int P = image_periods(s, fmax, series_tol<T>());
-  return double(K) < double(P) * double(npieces);
+  const double per_piece = double(s) * double(npieces) > 0.5 ? 20.0 : 4.0;
+  return 3.0 * double(K) < double(P) * double(npieces) * per_piece;
 }
 
 // Box over a periodic f. (a) Support 2h <= 4 periods: integrate the pieces of the (at most 6)

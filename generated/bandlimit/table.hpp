@@ -363,11 +363,15 @@ T box_tan(T x, T sigma);
 template <class T>
 T box_tan_sq(T x, T sigma);
 template <class T>
+T tent_tan(T x, T sigma);
+template <class T>
 T tent_tan_sq(T x, T sigma);
 template <class T>
 T box_tanh(T x, T sigma);
 template <class T>
 T box_tanh_sq(T x, T sigma);
+template <class T>
+T tent_tanh(T x, T sigma);
 template <class T>
 T tent_tanh_sq(T x, T sigma);
 template <class T>
@@ -2396,6 +2400,7 @@ template <class T>
 T box_tan(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x < T(0.0)) return -box_tan<T>(-x, sigma);  // odd
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
@@ -2415,6 +2420,7 @@ template <class T>
 T box_tan_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x < T(0.0)) return box_tan_sq<T>(-x, sigma);  // even
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
@@ -2427,6 +2433,27 @@ T box_tan_sq(T x, T sigma) {
   return (T(-1)) + (tan((hh + x)) - tan(((-hh) + x))) / (T(2.0) * hh);
 }
 
+//   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-1/2)*clausen2((((-2)*x) + pi))) + (log(2)*x)),
+//   hh = min(sqrt(6) sigma, r/2) with r the distance to the nearest singularity (compact kernel);
+//   Taylor series in hh (7 terms) where the difference cancels (hh <= scale/20 in double, 0.35
+//   scale in float)
+template <class T>
+T tent_tan(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x < T(0.0)) return -tent_tan<T>(-x, sigma);  // odd
+  const T period = detail::pi<T>();
+  const T xr = x - period * floor(x / period);
+  const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
+  const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
+  if (hh <= detail::series_reach<T>() * detail::min2(r, ((T(1)/T(2))*detail::pi<T>()))) {
+    const T u_tan = tan(x);
+    const T q = hh * hh;
+    return u_tan + q * (((T(-1)/T(6))*((-(u_tan*u_tan)) + (T(-1)))*u_tan) + q * ((((T(1)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(9))*(u_tan*u_tan*u_tan)) + ((T(2)/T(45))*u_tan)) + q * ((((T(1)/T(12))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(28))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(11)/T(180))*(u_tan*u_tan*u_tan)) + ((T(17)/T(1260))*u_tan)) + q * ((((T(1)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(16)/T(225))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(14175))*u_tan) + ((T(88)/T(2835))*(u_tan*u_tan*u_tan))) + q * ((((T(1)/T(18))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(66))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(289)/T(5670))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(641)/T(42525))*(u_tan*u_tan*u_tan)) + ((T(691)/T(467775))*u_tan) + ((T(7)/T(90))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((T(1)/T(21))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(91))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(19)/T(2673))*(u_tan*u_tan*u_tan)) + ((T(21844)/T(42567525))*u_tan) + ((T(26)/T(315))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(467)/T(14175))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(478)/T(6615))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+  }
+  return (((T(-1)/T(2))*detail::clausen2((((T(-2))*hh) + ((T(-2))*x) + detail::pi<T>()))) - T(2.0) * ((T(-1)/T(2))*detail::clausen2((((T(-2))*x) + detail::pi<T>()))) + ((T(-1)/T(2))*detail::clausen2((((T(-2))*x) + (T(2)*hh) + detail::pi<T>())))) / (hh * hh);
+}
+
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-1/2)*(x)^(2)) + (-log(abs(cos(x))))), hh =
 //   min(sqrt(6) sigma, r/2) with r the distance to the nearest singularity (compact kernel);
 //   Taylor series in hh (7 terms) where the difference cancels (hh <= scale/20 in double, 0.35
@@ -2435,6 +2462,7 @@ template <class T>
 T tent_tan_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x < T(0.0)) return tent_tan_sq<T>(-x, sigma);  // even
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
@@ -2453,6 +2481,7 @@ template <class T>
 T box_tanh(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x < T(0.0)) return -box_tanh<T>(-x, sigma);  // odd
   const T hh = (sigma*sqrt(T(3)));
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(-1.0);
@@ -2470,6 +2499,7 @@ template <class T>
 T box_tanh_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x < T(0.0)) return box_tanh_sq<T>(-x, sigma);  // even
   const T hh = (sigma*sqrt(T(3)));
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(1.0);
@@ -2481,6 +2511,25 @@ T box_tanh_sq(T x, T sigma) {
   return T(1) + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / (T(2.0) * hh);
 }
 
+//   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((1/2)*(x)^(2)) + ((1/2)*li2((-exp(((-2)*x))))) +
+//   ((1/24)*(pi)^(2)) + (-log(2)*x)), hh = sqrt(6) sigma; Taylor series in hh (7 terms) where the
+//   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
+template <class T>
+T tent_tanh(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x < T(0.0)) return -tent_tanh<T>(-x, sigma);  // odd
+  const T hh = (sigma*sqrt(T(6)));
+  if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
+  if (x + hh < T(-20.0)) return T(-1.0);
+  if (hh <= detail::series_reach<T>() * ((T(1)/T(2))*detail::pi<T>())) {
+    const T u_tanh = tanh(x);
+    const T q = hh * hh;
+    return u_tanh + q * (((T(-1)/T(6))*((-(u_tanh*u_tanh)) + T(1))*u_tanh) + q * ((((T(-1)/T(9))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(2)/T(45))*u_tanh)) + q * ((((T(-1)/T(12))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-17)/T(1260))*u_tanh) + ((T(1)/T(28))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(11)/T(180))*(u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-88)/T(2835))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(16)/T(225))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(62)/T(14175))*u_tanh)) + q * ((((T(-1)/T(18))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-289)/T(5670))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-691)/T(467775))*u_tanh) + ((T(1)/T(66))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(641)/T(42525))*(u_tanh*u_tanh*u_tanh)) + ((T(7)/T(90))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(21))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-19)/T(2673))*(u_tanh*u_tanh*u_tanh)) + ((T(-478)/T(6615))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(91))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(21844)/T(42567525))*u_tanh) + ((T(26)/T(315))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(467)/T(14175))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
+  }
+  return T(1) + (((T(1)/T(2))*detail::li2((-exp((((T(-2))*hh) + ((T(-2))*x)))))) - T(2.0) * ((T(1)/T(2))*detail::li2((-exp(((T(-2))*x))))) + ((T(1)/T(2))*detail::li2((-exp((((T(-2))*x) + (T(2)*hh))))))) / (hh * hh);
+}
+
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((1/2)*(x)^(2)) + (-logcosh(x))), hh = sqrt(6)
 //   sigma; Taylor series in hh (7 terms) where the difference cancels (hh <= scale/20 in double,
 //   0.35 scale in float)
@@ -2488,6 +2537,7 @@ template <class T>
 T tent_tanh_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x < T(0.0)) return tent_tanh_sq<T>(-x, sigma);  // even
   const T hh = (sigma*sqrt(T(6)));
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(1.0);
@@ -3364,8 +3414,12 @@ inline float ceil_sq(float x, float sigma) { return detail::gen::tent_ceil_sq<fl
 inline double ceil_sq(double x, double sigma) { return detail::gen::tent_ceil_sq<double>(x, sigma); }
 inline float trunc(float x, float sigma) { return detail::gen::tent_trunc<float>(x, sigma); }
 inline double trunc(double x, double sigma) { return detail::gen::tent_trunc<double>(x, sigma); }
+inline float tan(float x, float sigma) { return detail::gen::tent_tan<float>(x, sigma); }
+inline double tan(double x, double sigma) { return detail::gen::tent_tan<double>(x, sigma); }
 inline float tan_sq(float x, float sigma) { return detail::gen::tent_tan_sq<float>(x, sigma); }
 inline double tan_sq(double x, double sigma) { return detail::gen::tent_tan_sq<double>(x, sigma); }
+inline float tanh(float x, float sigma) { return detail::gen::tent_tanh<float>(x, sigma); }
+inline double tanh(double x, double sigma) { return detail::gen::tent_tanh<double>(x, sigma); }
 inline float tanh_sq(float x, float sigma) { return detail::gen::tent_tanh_sq<float>(x, sigma); }
 inline double tanh_sq(double x, double sigma) { return detail::gen::tent_tanh_sq<double>(x, sigma); }
 inline float log(float x, float sigma) { return detail::gen::tent_log<float>(x, sigma); }

@@ -478,7 +478,10 @@ int bl_image_periods(float s, float fmax, float tol) {
 bool bl_prefer_fourier(float s, int npieces, float coef_bound, float fmax) {
   int K = bl_fourier_terms(s, coef_bound, BL_SERIES_TOL);
   int P = bl_image_periods(s, fmax, BL_SERIES_TOL);
-  return float(K) < float(P) * float(npieces);
+  // Cost model as in support.hpp: 3 per Fourier term; 4 per image piece, 20 when it is narrower
+  // than 2 sigma (Gauss-Legendre).
+  float per_piece = s * float(npieces) > 0.5 ? 20.0 : 4.0;
+  return 3.0 * float(K) < float(P) * float(npieces) * per_piece;
 }
 
 // Box over a periodic f: direct shifted pieces when 2h <= 4 periods, else Appendix C with the

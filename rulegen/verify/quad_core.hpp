@@ -64,6 +64,25 @@ inline double count_breaks(const Spec& sp, double lo, double hi) {
   return n;
 }
 
+// Extra split points in t where s = x0 + c t is 0, +-1, +-2, +-4, ..., +-2^60: catalog functions
+// have their features near the origin (tanh's step, smoothstep's kinks when the catalog does not
+// list them), and splitting geometrically resolves them at every scale of the kernel.
+template <class Real>
+std::vector<Real> feature_points(const Real& x0, const Real& c, const Real& tlo, const Real& thi) {
+  std::vector<Real> out;
+  auto add = [&](const Real& s) {
+    Real t = (s - x0) / c;
+    if (t > tlo && t < thi) out.push_back(t);
+  };
+  add(Real(0));
+  Real p = 1;
+  for (int k = 0; k <= 60; ++k, p *= 2) {
+    add(p);
+    add(-p);
+  }
+  return out;
+}
+
 // Split [fixed.front(), fixed.back()] (sorted t points; inner ones are kernel kinks or window
 // splits) at every break of sp strictly inside. Returns false (and no pieces) when more than
 // `cap` pieces would be needed.
@@ -76,6 +95,7 @@ bool make_pieces(const Spec& sp, const Real& x0, const Real& c, const std::vecto
   std::vector<Pt> pts;
   for (const Real& t : fixed) pts.push_back({t, false, Real(0)});
   const Real tlo = fixed.front(), thi = fixed.back();
+  for (const Real& t : feature_points(x0, c, tlo, thi)) pts.push_back({t, false, Real(0)});
   double a = static_cast<double>(Real(x0 + c * tlo)), b = static_cast<double>(Real(x0 + c * thi));
   if (a > b) std::swap(a, b);
   double pad = 1e-9 * std::fmax(std::fabs(a), std::fabs(b)) + 1e-300;

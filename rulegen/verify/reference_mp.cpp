@@ -107,6 +107,7 @@ MpResult mp_check(int index, const Spec& sp, double xd, double sigmad) {
   struct Budget {};
   auto g = [&e, power, &evals](const mp& s) -> mp {
     if (++evals > 400000) throw Budget{};
+    if (power == 0) return mp(1);
     mp f = e.plain(s), v = f;
     for (int i = 1; i < power; ++i) v *= f;
     return v;

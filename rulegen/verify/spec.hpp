@@ -54,6 +54,7 @@ struct Spec {
   bool bounded() const { return std::isfinite(range_lo) && std::isfinite(range_hi); }
   bool in_domain(double x) const { return x > domain_lo && x < domain_hi; }
   double g(double s) const {
+    if (power == 0) return 1;  // moment of order 0: E[(x+U)^0] = 1
     double f = plain(s), r = f;
     for (int i = 1; i < power; ++i) r *= f;
     return r;
