@@ -1219,11 +1219,13 @@ TEST(SupportSeries, PreferFourierFollowsTheCostModel) {
       const bool pf = bd::prefer_fourier(s, np, 1.0, 1.0);
       const int K = bd::fourier_terms(s, 1.0, bd::series_tol<double>());
       const int P = bd::image_periods(s, 1.0, bd::series_tol<double>());
-      EXPECT_EQ(pf, K < P * np) << s << " " << np;
+      // 3 units per Fourier term; 4 per image piece, 20 when the piece is narrower than 2 sigma.
+      const double per_piece = s * np > 0.5 ? 20.0 : 4.0;
+      EXPECT_EQ(pf, 3.0 * K < P * np * per_piece) << s << " " << np;
       const bool pff = bd::prefer_fourier(float(s), np, 1.0f, 1.0f);
       const int Kf = bd::fourier_terms(float(s), 1.0f, bd::series_tol<float>());
       const int Pf = bd::image_periods(float(s), 1.0f, bd::series_tol<float>());
-      EXPECT_EQ(pff, Kf < Pf * np) << s << " " << np;
+      EXPECT_EQ(pff, 3.0 * Kf < Pf * np * per_piece) << s << " " << np;
 #ifdef BL_HAVE_GLSL_AS_CPP
       EXPECT_EQ(glsl::prefer_fourier(float(s), np, 1.0f, 1.0f), pff) << s << " " << np;
 #endif
