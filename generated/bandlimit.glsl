@@ -2153,6 +2153,13 @@ float bl_tent_trunc(float x, float sigma) {
   return (1.0 + x) + (-1.0) * bl_tent_fract(x, sigma) + (-1.0) * bl_tent_step(x, sigma);
 }
 
+float bl_box_tan_series(float x, float hh) {
+  if (hh == (0.0)) return tan(x);  // no smoothing: f(x)
+  float u_tan = tan(x);
+  float q = hh * hh;
+  return u_tan + q * (((-1.0/3.0)*((-(u_tan*u_tan)) + (-1.0))*u_tan) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan)) + ((1.0/5.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/15.0)*u_tan)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/7.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((11.0/45.0)*(u_tan*u_tan*u_tan)) + ((17.0/315.0)*u_tan)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/9.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((16.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((62.0/2835.0)*u_tan) + ((88.0/567.0)*(u_tan*u_tan*u_tan))) + q * ((((1.0/11.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1282.0/14175.0)*(u_tan*u_tan*u_tan)) + ((1382.0/155925.0)*u_tan) + ((289.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((7.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((1.0/13.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((133.0/2673.0)*(u_tan*u_tan*u_tan)) + ((21844.0/6081075.0)*u_tan) + ((26.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((467.0/2025.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((478.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+}
+
 float bl_box_tan(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (x < (0.0)) return -bl_box_tan(-x, sigma);  // odd
@@ -2161,11 +2168,16 @@ float bl_box_tan(float x, float sigma) {
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
-    float u_tan = tan(x);
-    float q = hh * hh;
-    return u_tan + q * (((-1.0/3.0)*((-(u_tan*u_tan)) + (-1.0))*u_tan) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan)) + ((1.0/5.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/15.0)*u_tan)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/7.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((11.0/45.0)*(u_tan*u_tan*u_tan)) + ((17.0/315.0)*u_tan)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/9.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((16.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((62.0/2835.0)*u_tan) + ((88.0/567.0)*(u_tan*u_tan*u_tan))) + q * ((((1.0/11.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1282.0/14175.0)*(u_tan*u_tan*u_tan)) + ((1382.0/155925.0)*u_tan) + ((289.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((7.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((1.0/13.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((133.0/2673.0)*(u_tan*u_tan*u_tan)) + ((21844.0/6081075.0)*u_tan) + ((26.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((467.0/2025.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((478.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+    return bl_box_tan_series(x, hh);
   }
   return ((-log(abs(cos((hh + x))))) - (-log(abs(cos(((-hh) + x)))))) / ((2.0) * hh);
+}
+
+float bl_box_tan_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (tan(x)*tan(x));  // no smoothing: f(x)
+  float u_tan = tan(x);
+  float q = hh * hh;
+  return (u_tan*u_tan) + q * ((((4.0/3.0)*(u_tan*u_tan)) + (1.0/3.0) + (u_tan*u_tan*u_tan*u_tan)) + q * ((((17.0/15.0)*(u_tan*u_tan)) + (2.0*(u_tan*u_tan*u_tan*u_tan)) + (2.0/15.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((12.0/5.0)*(u_tan*u_tan*u_tan*u_tan)) + ((248.0/315.0)*(u_tan*u_tan)) + ((8.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (17.0/315.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((10.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1382.0/2835.0)*(u_tan*u_tan)) + ((37.0/9.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((424.0/189.0)*(u_tan*u_tan*u_tan*u_tan)) + (62.0/2835.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((43688.0/155925.0)*(u_tan*u_tan)) + ((4532.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((8507.0/4725.0)*(u_tan*u_tan*u_tan*u_tan)) + ((94.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (1382.0/155925.0) + (4.0*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((133.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((14.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1901.0/405.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1934.0/1485.0)*(u_tan*u_tan*u_tan*u_tan)) + ((236.0/27.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((929569.0/6081075.0)*(u_tan*u_tan)) + (21844.0/6081075.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))))))));
 }
 
 float bl_box_tan_sq(float x, float sigma) {
@@ -2176,11 +2188,16 @@ float bl_box_tan_sq(float x, float sigma) {
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
-    float u_tan = tan(x);
-    float q = hh * hh;
-    return (u_tan*u_tan) + q * ((((4.0/3.0)*(u_tan*u_tan)) + (1.0/3.0) + (u_tan*u_tan*u_tan*u_tan)) + q * ((((17.0/15.0)*(u_tan*u_tan)) + (2.0*(u_tan*u_tan*u_tan*u_tan)) + (2.0/15.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((12.0/5.0)*(u_tan*u_tan*u_tan*u_tan)) + ((248.0/315.0)*(u_tan*u_tan)) + ((8.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (17.0/315.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((10.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1382.0/2835.0)*(u_tan*u_tan)) + ((37.0/9.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((424.0/189.0)*(u_tan*u_tan*u_tan*u_tan)) + (62.0/2835.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((43688.0/155925.0)*(u_tan*u_tan)) + ((4532.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((8507.0/4725.0)*(u_tan*u_tan*u_tan*u_tan)) + ((94.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (1382.0/155925.0) + (4.0*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((133.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((14.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1901.0/405.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1934.0/1485.0)*(u_tan*u_tan*u_tan*u_tan)) + ((236.0/27.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((929569.0/6081075.0)*(u_tan*u_tan)) + (21844.0/6081075.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))))))));
+    return bl_box_tan_sq_series(x, hh);
   }
   return (-1.0) + (tan((hh + x)) - tan(((-hh) + x))) / ((2.0) * hh);
+}
+
+float bl_tent_tan_series(float x, float hh) {
+  if (hh == (0.0)) return tan(x);  // no smoothing: f(x)
+  float u_tan = tan(x);
+  float q = hh * hh;
+  return u_tan + q * (((-1.0/6.0)*((-(u_tan*u_tan)) + (-1.0))*u_tan) + q * ((((1.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/9.0)*(u_tan*u_tan*u_tan)) + ((2.0/45.0)*u_tan)) + q * ((((1.0/12.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/28.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((11.0/180.0)*(u_tan*u_tan*u_tan)) + ((17.0/1260.0)*u_tan)) + q * ((((1.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((16.0/225.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((62.0/14175.0)*u_tan) + ((88.0/2835.0)*(u_tan*u_tan*u_tan))) + q * ((((1.0/18.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/66.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((289.0/5670.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((641.0/42525.0)*(u_tan*u_tan*u_tan)) + ((691.0/467775.0)*u_tan) + ((7.0/90.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((1.0/21.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/91.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((19.0/2673.0)*(u_tan*u_tan*u_tan)) + ((21844.0/42567525.0)*u_tan) + ((26.0/315.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((467.0/14175.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((478.0/6615.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
 }
 
 float bl_tent_tan(float x, float sigma) {
@@ -2191,11 +2208,16 @@ float bl_tent_tan(float x, float sigma) {
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
-    float u_tan = tan(x);
-    float q = hh * hh;
-    return u_tan + q * (((-1.0/6.0)*((-(u_tan*u_tan)) + (-1.0))*u_tan) + q * ((((1.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/9.0)*(u_tan*u_tan*u_tan)) + ((2.0/45.0)*u_tan)) + q * ((((1.0/12.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/28.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((11.0/180.0)*(u_tan*u_tan*u_tan)) + ((17.0/1260.0)*u_tan)) + q * ((((1.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((16.0/225.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((62.0/14175.0)*u_tan) + ((88.0/2835.0)*(u_tan*u_tan*u_tan))) + q * ((((1.0/18.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/66.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((289.0/5670.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((641.0/42525.0)*(u_tan*u_tan*u_tan)) + ((691.0/467775.0)*u_tan) + ((7.0/90.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((1.0/21.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/91.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((19.0/2673.0)*(u_tan*u_tan*u_tan)) + ((21844.0/42567525.0)*u_tan) + ((26.0/315.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((467.0/14175.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((478.0/6615.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+    return bl_tent_tan_series(x, hh);
   }
   return (((-1.0/2.0)*bl_clausen2((((-2.0)*hh) + ((-2.0)*x) + bl_pi()))) - (2.0) * ((-1.0/2.0)*bl_clausen2((((-2.0)*x) + bl_pi()))) + ((-1.0/2.0)*bl_clausen2((((-2.0)*x) + (2.0*hh) + bl_pi())))) / (hh * hh);
+}
+
+float bl_tent_tan_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (tan(x)*tan(x));  // no smoothing: f(x)
+  float u_tan = tan(x);
+  float q = hh * hh;
+  return (u_tan*u_tan) + q * ((((1.0/2.0)*(u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan)) + (1.0/6.0)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((17.0/45.0)*(u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan)) + (2.0/45.0)) + q * ((((1.0/4.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((3.0/5.0)*(u_tan*u_tan*u_tan*u_tan)) + ((62.0/315.0)*(u_tan*u_tan)) + (17.0/1260.0)) + q * ((((1.0/5.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1382.0/14175.0)*(u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((37.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((424.0/945.0)*(u_tan*u_tan*u_tan*u_tan)) + (62.0/14175.0)) + q * ((((1.0/6.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((21844.0/467775.0)*(u_tan*u_tan)) + ((2266.0/2835.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((47.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((8507.0/28350.0)*(u_tan*u_tan*u_tan*u_tan)) + (691.0/467775.0)) + q * ((((1.0/7.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((19.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1901.0/2835.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1934.0/10395.0)*(u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((236.0/189.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((929569.0/42567525.0)*(u_tan*u_tan)) + (21844.0/42567525.0))))))));
 }
 
 float bl_tent_tan_sq(float x, float sigma) {
@@ -2206,11 +2228,16 @@ float bl_tent_tan_sq(float x, float sigma) {
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
-    float u_tan = tan(x);
-    float q = hh * hh;
-    return (u_tan*u_tan) + q * ((((1.0/2.0)*(u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan)) + (1.0/6.0)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((17.0/45.0)*(u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan)) + (2.0/45.0)) + q * ((((1.0/4.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((3.0/5.0)*(u_tan*u_tan*u_tan*u_tan)) + ((62.0/315.0)*(u_tan*u_tan)) + (17.0/1260.0)) + q * ((((1.0/5.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1382.0/14175.0)*(u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((37.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((424.0/945.0)*(u_tan*u_tan*u_tan*u_tan)) + (62.0/14175.0)) + q * ((((1.0/6.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((21844.0/467775.0)*(u_tan*u_tan)) + ((2266.0/2835.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((47.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((8507.0/28350.0)*(u_tan*u_tan*u_tan*u_tan)) + (691.0/467775.0)) + q * ((((1.0/7.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((19.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1901.0/2835.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1934.0/10395.0)*(u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((236.0/189.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((929569.0/42567525.0)*(u_tan*u_tan)) + (21844.0/42567525.0))))))));
+    return bl_tent_tan_sq_series(x, hh);
   }
   return (-1.0) + ((-log(abs(cos((hh + x))))) - (2.0) * (-log(abs(cos(x)))) + (-log(abs(cos(((-hh) + x)))))) / (hh * hh);
+}
+
+float bl_box_tanh_series(float x, float hh) {
+  if (hh == (0.0)) return tanh(x);  // no smoothing: f(x)
+  float u_tanh = tanh(x);
+  float q = hh * hh;
+  return u_tanh + q * (((-1.0/3.0)*((-(u_tanh*u_tanh)) + 1.0)*u_tanh) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((2.0/15.0)*u_tanh)) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-17.0/315.0)*u_tanh) + ((1.0/7.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((11.0/45.0)*(u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-88.0/567.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/9.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((16.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((62.0/2835.0)*u_tanh)) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-1382.0/155925.0)*u_tanh) + ((-289.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/11.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1282.0/14175.0)*(u_tanh*u_tanh*u_tanh)) + ((7.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-133.0/2673.0)*(u_tanh*u_tanh*u_tanh)) + ((-478.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/13.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((21844.0/6081075.0)*u_tanh) + ((26.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((467.0/2025.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
 }
 
 float bl_box_tanh(float x, float sigma) {
@@ -2220,11 +2247,16 @@ float bl_box_tanh(float x, float sigma) {
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (-1.0);
   if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
-    float u_tanh = tanh(x);
-    float q = hh * hh;
-    return u_tanh + q * (((-1.0/3.0)*((-(u_tanh*u_tanh)) + 1.0)*u_tanh) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((2.0/15.0)*u_tanh)) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-17.0/315.0)*u_tanh) + ((1.0/7.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((11.0/45.0)*(u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-88.0/567.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/9.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((16.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((62.0/2835.0)*u_tanh)) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-1382.0/155925.0)*u_tanh) + ((-289.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/11.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1282.0/14175.0)*(u_tanh*u_tanh*u_tanh)) + ((7.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-133.0/2673.0)*(u_tanh*u_tanh*u_tanh)) + ((-478.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/13.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((21844.0/6081075.0)*u_tanh) + ((26.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((467.0/2025.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
+    return bl_box_tanh_series(x, hh);
   }
   return (bl_logcosh((hh + x)) - bl_logcosh(((-hh) + x))) / ((2.0) * hh);
+}
+
+float bl_box_tanh_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (tanh(x)*tanh(x));  // no smoothing: f(x)
+  float u_tanh = tanh(x);
+  float q = hh * hh;
+  return (u_tanh*u_tanh) + q * ((((-4.0/3.0)*(u_tanh*u_tanh)) + (1.0/3.0) + (u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-2.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((17.0/15.0)*(u_tanh*u_tanh)) + (-2.0/15.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-248.0/315.0)*(u_tanh*u_tanh)) + ((-8.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((12.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (17.0/315.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-10.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-424.0/189.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1382.0/2835.0)*(u_tanh*u_tanh)) + ((37.0/9.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (-62.0/2835.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-4.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-43688.0/155925.0)*(u_tanh*u_tanh)) + ((-4532.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((8507.0/4725.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((94.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (1382.0/155925.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-14.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-1934.0/1485.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((-236.0/27.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((133.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1901.0/405.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((929569.0/6081075.0)*(u_tanh*u_tanh)) + (-21844.0/6081075.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))))))));
 }
 
 float bl_box_tanh_sq(float x, float sigma) {
@@ -2234,11 +2266,16 @@ float bl_box_tanh_sq(float x, float sigma) {
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (1.0);
   if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
-    float u_tanh = tanh(x);
-    float q = hh * hh;
-    return (u_tanh*u_tanh) + q * ((((-4.0/3.0)*(u_tanh*u_tanh)) + (1.0/3.0) + (u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-2.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((17.0/15.0)*(u_tanh*u_tanh)) + (-2.0/15.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-248.0/315.0)*(u_tanh*u_tanh)) + ((-8.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((12.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (17.0/315.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-10.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-424.0/189.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1382.0/2835.0)*(u_tanh*u_tanh)) + ((37.0/9.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (-62.0/2835.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-4.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-43688.0/155925.0)*(u_tanh*u_tanh)) + ((-4532.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((8507.0/4725.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((94.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (1382.0/155925.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-14.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-1934.0/1485.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((-236.0/27.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((133.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1901.0/405.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((929569.0/6081075.0)*(u_tanh*u_tanh)) + (-21844.0/6081075.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))))))));
+    return bl_box_tanh_sq_series(x, hh);
   }
   return 1.0 + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / ((2.0) * hh);
+}
+
+float bl_tent_tanh_series(float x, float hh) {
+  if (hh == (0.0)) return tanh(x);  // no smoothing: f(x)
+  float u_tanh = tanh(x);
+  float q = hh * hh;
+  return u_tanh + q * (((-1.0/6.0)*((-(u_tanh*u_tanh)) + 1.0)*u_tanh) + q * ((((-1.0/9.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((2.0/45.0)*u_tanh)) + q * ((((-1.0/12.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-17.0/1260.0)*u_tanh) + ((1.0/28.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((11.0/180.0)*(u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-88.0/2835.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((16.0/225.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((62.0/14175.0)*u_tanh)) + q * ((((-1.0/18.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-289.0/5670.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-691.0/467775.0)*u_tanh) + ((1.0/66.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((641.0/42525.0)*(u_tanh*u_tanh*u_tanh)) + ((7.0/90.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/21.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-19.0/2673.0)*(u_tanh*u_tanh*u_tanh)) + ((-478.0/6615.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/91.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((21844.0/42567525.0)*u_tanh) + ((26.0/315.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((467.0/14175.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
 }
 
 float bl_tent_tanh(float x, float sigma) {
@@ -2248,11 +2285,16 @@ float bl_tent_tanh(float x, float sigma) {
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (-1.0);
   if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
-    float u_tanh = tanh(x);
-    float q = hh * hh;
-    return u_tanh + q * (((-1.0/6.0)*((-(u_tanh*u_tanh)) + 1.0)*u_tanh) + q * ((((-1.0/9.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((2.0/45.0)*u_tanh)) + q * ((((-1.0/12.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-17.0/1260.0)*u_tanh) + ((1.0/28.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((11.0/180.0)*(u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-88.0/2835.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((16.0/225.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((62.0/14175.0)*u_tanh)) + q * ((((-1.0/18.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-289.0/5670.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-691.0/467775.0)*u_tanh) + ((1.0/66.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((641.0/42525.0)*(u_tanh*u_tanh*u_tanh)) + ((7.0/90.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/21.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-19.0/2673.0)*(u_tanh*u_tanh*u_tanh)) + ((-478.0/6615.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/91.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((21844.0/42567525.0)*u_tanh) + ((26.0/315.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((467.0/14175.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
+    return bl_tent_tanh_series(x, hh);
   }
   return 1.0 + (((1.0/2.0)*bl_li2((-exp((((-2.0)*hh) + ((-2.0)*x)))))) - (2.0) * ((1.0/2.0)*bl_li2((-exp(((-2.0)*x))))) + ((1.0/2.0)*bl_li2((-exp((((-2.0)*x) + (2.0*hh))))))) / (hh * hh);
+}
+
+float bl_tent_tanh_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (tanh(x)*tanh(x));  // no smoothing: f(x)
+  float u_tanh = tanh(x);
+  float q = hh * hh;
+  return (u_tanh*u_tanh) + q * ((((-2.0/3.0)*(u_tanh*u_tanh)) + ((1.0/2.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (1.0/6.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((17.0/45.0)*(u_tanh*u_tanh)) + (-2.0/45.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-62.0/315.0)*(u_tanh*u_tanh)) + ((1.0/4.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((3.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (17.0/1260.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-424.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1382.0/14175.0)*(u_tanh*u_tanh)) + ((37.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (-62.0/14175.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-21844.0/467775.0)*(u_tanh*u_tanh)) + ((-2266.0/2835.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/6.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((47.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((8507.0/28350.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (691.0/467775.0)) + q * ((((-1934.0/10395.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-236.0/189.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/7.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((19.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1901.0/2835.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((929569.0/42567525.0)*(u_tanh*u_tanh)) + (-21844.0/42567525.0))))))));
 }
 
 float bl_tent_tanh_sq(float x, float sigma) {
@@ -2262,11 +2304,16 @@ float bl_tent_tanh_sq(float x, float sigma) {
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (1.0);
   if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
-    float u_tanh = tanh(x);
-    float q = hh * hh;
-    return (u_tanh*u_tanh) + q * ((((-2.0/3.0)*(u_tanh*u_tanh)) + ((1.0/2.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (1.0/6.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((17.0/45.0)*(u_tanh*u_tanh)) + (-2.0/45.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-62.0/315.0)*(u_tanh*u_tanh)) + ((1.0/4.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((3.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (17.0/1260.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-424.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1382.0/14175.0)*(u_tanh*u_tanh)) + ((37.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (-62.0/14175.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-21844.0/467775.0)*(u_tanh*u_tanh)) + ((-2266.0/2835.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/6.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((47.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((8507.0/28350.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (691.0/467775.0)) + q * ((((-1934.0/10395.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-236.0/189.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/7.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((19.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1901.0/2835.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((929569.0/42567525.0)*(u_tanh*u_tanh)) + (-21844.0/42567525.0))))))));
+    return bl_tent_tanh_sq_series(x, hh);
   }
   return 1.0 + ((-bl_logcosh((hh + x))) - (2.0) * (-bl_logcosh(x)) + (-bl_logcosh(((-hh) + x)))) / (hh * hh);
+}
+
+float bl_box_log_series(float x, float hh) {
+  if (hh == (0.0)) return log(x);  // no smoothing: f(x)
+  float u_log = log(x);
+  float q = hh * hh;
+  return u_log + q * (((-1.0/6.0)*(1.0/(x*x))) + q * (((-1.0/20.0)*(1.0/(x*x*x*x))) + q * (((-1.0/42.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/72.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/110.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/156.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 float bl_box_log(float x, float sigma) {
@@ -2275,11 +2322,16 @@ float bl_box_log(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float u_log = log(x);
-    float q = hh * hh;
-    return u_log + q * (((-1.0/6.0)*(1.0/(x*x))) + q * (((-1.0/20.0)*(1.0/(x*x*x*x))) + q * (((-1.0/42.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/72.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/110.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/156.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return bl_box_log_series(x, hh);
   }
   return (-1.0) + ((-((-hh) + (-x))*log((hh + x))) - (((-hh) + x)*log(((-hh) + x)))) / ((2.0) * hh);
+}
+
+float bl_box_log_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (log(x)*log(x));  // no smoothing: f(x)
+  float u_log = log(x);
+  float q = hh * hh;
+  return (u_log*u_log) + q * (((-1.0/3.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/60.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/1260.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/5040.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/138600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/2162160.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 float bl_box_log_sq(float x, float sigma) {
@@ -2288,11 +2340,16 @@ float bl_box_log_sq(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float u_log = log(x);
-    float q = hh * hh;
-    return (u_log*u_log) + q * (((-1.0/3.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/60.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/1260.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/5040.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/138600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/2162160.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return bl_box_log_sq_series(x, hh);
   }
   return 2.0 + (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (2.0*((-hh) + (-x))*log((hh + x)))) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((-2.0)*((-hh) + x)*log(((-hh) + x))))) / ((2.0) * hh);
+}
+
+float bl_tent_log_series(float x, float hh) {
+  if (hh == (0.0)) return log(x);  // no smoothing: f(x)
+  float u_log = log(x);
+  float q = hh * hh;
+  return u_log + q * (((-1.0/12.0)*(1.0/(x*x))) + q * (((-1.0/60.0)*(1.0/(x*x*x*x))) + q * (((-1.0/168.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/360.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/660.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/1092.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 float bl_tent_log(float x, float sigma) {
@@ -2301,11 +2358,16 @@ float bl_tent_log(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float u_log = log(x);
-    float q = hh * hh;
-    return u_log + q * (((-1.0/12.0)*(1.0/(x*x))) + q * (((-1.0/60.0)*(1.0/(x*x*x*x))) + q * (((-1.0/168.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/360.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/660.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/1092.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return bl_tent_log_series(x, hh);
   }
   return (-3.0/2.0) + (((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) - (2.0) * ((1.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x)))) / (hh * hh);
+}
+
+float bl_tent_log_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (log(x)*log(x));  // no smoothing: f(x)
+  float u_log = log(x);
+  float q = hh * hh;
+  return (u_log*u_log) + q * (((-1.0/6.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/180.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/5040.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/25200.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/831600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/15135120.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 float bl_tent_log_sq(float x, float sigma) {
@@ -2314,11 +2376,15 @@ float bl_tent_log_sq(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float u_log = log(x);
-    float q = hh * hh;
-    return (u_log*u_log) + q * (((-1.0/6.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/180.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/5040.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/25200.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/831600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/15135120.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return bl_tent_log_sq_series(x, hh);
   }
   return (7.0/2.0) + ((((-3.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x))))) - (2.0) * (((-3.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(log(x)*log(x))*(x*x))) + (((-3.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))))) / (hh * hh);
+}
+
+float bl_box_sqrt_series(float x, float hh) {
+  if (hh == (0.0)) return sqrt(x);  // no smoothing: f(x)
+  float q = hh * hh;
+  return sqrt(x) + q * (((-1.0/24.0)*((1.0/(x*x))*sqrt(x))) + q * (((-1.0/128.0)*((1.0/(x*x*x*x))*sqrt(x))) + q * (((-3.0/1024.0)*((1.0/(x*x*x*x*x*x))*sqrt(x))) + q * (((-143.0/98304.0)*((1.0/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-221.0/262144.0)*((1.0/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-2261.0/4194304.0)*((1.0/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
 }
 
 float bl_box_sqrt(float x, float sigma) {
@@ -2327,10 +2393,15 @@ float bl_box_sqrt(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return sqrt(x) + q * (((-1.0/24.0)*((1.0/(x*x))*sqrt(x))) + q * (((-1.0/128.0)*((1.0/(x*x*x*x))*sqrt(x))) + q * (((-3.0/1024.0)*((1.0/(x*x*x*x*x*x))*sqrt(x))) + q * (((-143.0/98304.0)*((1.0/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-221.0/262144.0)*((1.0/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-2261.0/4194304.0)*((1.0/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+    return bl_box_sqrt_series(x, hh);
   }
   return (((2.0/3.0)*(((hh + x))*sqrt((hh + x)))) - ((2.0/3.0)*((((-hh) + x))*sqrt(((-hh) + x))))) / ((2.0) * hh);
+}
+
+float bl_box_sqrt_sq_series(float x, float hh) {
+  if (hh == (0.0)) return x;  // no smoothing: f(x)
+  float q = hh * hh;
+  return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
 }
 
 float bl_box_sqrt_sq(float x, float sigma) {
@@ -2339,10 +2410,15 @@ float bl_box_sqrt_sq(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
+    return bl_box_sqrt_sq_series(x, hh);
   }
   return x;
+}
+
+float bl_tent_sqrt_series(float x, float hh) {
+  if (hh == (0.0)) return sqrt(x);  // no smoothing: f(x)
+  float q = hh * hh;
+  return sqrt(x) + q * (((-1.0/48.0)*((1.0/(x*x))*sqrt(x))) + q * (((-1.0/384.0)*((1.0/(x*x*x*x))*sqrt(x))) + q * (((-3.0/4096.0)*((1.0/(x*x*x*x*x*x))*sqrt(x))) + q * (((-143.0/491520.0)*((1.0/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-221.0/1572864.0)*((1.0/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-323.0/4194304.0)*((1.0/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
 }
 
 float bl_tent_sqrt(float x, float sigma) {
@@ -2351,10 +2427,15 @@ float bl_tent_sqrt(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return sqrt(x) + q * (((-1.0/48.0)*((1.0/(x*x))*sqrt(x))) + q * (((-1.0/384.0)*((1.0/(x*x*x*x))*sqrt(x))) + q * (((-3.0/4096.0)*((1.0/(x*x*x*x*x*x))*sqrt(x))) + q * (((-143.0/491520.0)*((1.0/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-221.0/1572864.0)*((1.0/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-323.0/4194304.0)*((1.0/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+    return bl_tent_sqrt_series(x, hh);
   }
   return (((4.0/15.0)*(((hh + x)*(hh + x))*sqrt((hh + x)))) - (2.0) * ((4.0/15.0)*((x*x)*sqrt(x))) + ((4.0/15.0)*((((-hh) + x)*((-hh) + x))*sqrt(((-hh) + x))))) / (hh * hh);
+}
+
+float bl_tent_sqrt_sq_series(float x, float hh) {
+  if (hh == (0.0)) return x;  // no smoothing: f(x)
+  float q = hh * hh;
+  return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
 }
 
 float bl_tent_sqrt_sq(float x, float sigma) {
@@ -2363,10 +2444,15 @@ float bl_tent_sqrt_sq(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
+    return bl_tent_sqrt_sq_series(x, hh);
   }
   return x;
+}
+
+float bl_box_inv_series(float x, float hh) {
+  if (hh == (0.0)) return (1.0/(x));  // no smoothing: f(x)
+  float q = hh * hh;
+  return (1.0/(x)) + q * (((1.0/3.0)*(1.0/(x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/9.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/11.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/13.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 float bl_box_inv(float x, float sigma) {
@@ -2374,10 +2460,15 @@ float bl_box_inv(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return (1.0/(x)) + q * (((1.0/3.0)*(1.0/(x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/9.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/11.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/13.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return bl_box_inv_series(x, hh);
   }
   return (log(abs((hh + x))) - log(abs(((-hh) + x)))) / ((2.0) * hh);
+}
+
+float bl_box_inv_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
+  float q = hh * hh;
+  return (1.0/(x*x)) + q * ((1.0/(x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
 }
 
 float bl_box_inv_sq(float x, float sigma) {
@@ -2385,10 +2476,15 @@ float bl_box_inv_sq(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return (1.0/(x*x)) + q * ((1.0/(x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+    return bl_box_inv_sq_series(x, hh);
   }
   return (((1.0/(((-hh) + (-x))))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
+}
+
+float bl_tent_inv_series(float x, float hh) {
+  if (hh == (0.0)) return (1.0/(x));  // no smoothing: f(x)
+  float q = hh * hh;
+  return (1.0/(x)) + q * (((1.0/6.0)*(1.0/(x*x*x))) + q * (((1.0/15.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/28.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/45.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/66.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/91.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 float bl_tent_inv(float x, float sigma) {
@@ -2396,10 +2492,15 @@ float bl_tent_inv(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return (1.0/(x)) + q * (((1.0/6.0)*(1.0/(x*x*x))) + q * (((1.0/15.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/28.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/45.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/66.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/91.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return bl_tent_inv_series(x, hh);
   }
   return ((-((-hh) + (-x))*log(abs((hh + x)))) - (2.0) * (log(abs(x))*x) + (((-hh) + x)*log(abs(((-hh) + x))))) / (hh * hh);
+}
+
+float bl_tent_inv_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
+  float q = hh * hh;
+  return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x*x*x))) + q * (((1.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/4.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/6.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 float bl_tent_inv_sq(float x, float sigma) {
@@ -2407,10 +2508,15 @@ float bl_tent_inv_sq(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x*x*x))) + q * (((1.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/4.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/6.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return bl_tent_inv_sq_series(x, hh);
   }
   return ((-log(abs((hh + x)))) - (2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
+}
+
+float bl_box_inv2_series(float x, float hh) {
+  if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
+  float q = hh * hh;
+  return (1.0/(x*x)) + q * ((1.0/(x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
 }
 
 float bl_box_inv2(float x, float sigma) {
@@ -2418,10 +2524,15 @@ float bl_box_inv2(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return (1.0/(x*x)) + q * ((1.0/(x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+    return bl_box_inv2_series(x, hh);
   }
   return (((1.0/(((-hh) + (-x))))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
+}
+
+float bl_box_inv2_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (1.0/(x*x*x*x));  // no smoothing: f(x)
+  float q = hh * hh;
+  return (1.0/(x*x*x*x)) + q * (((10.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * ((7.0*(1.0/(x*x*x*x*x*x*x*x))) + q * ((12.0*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((55.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((26.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((35.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 float bl_box_inv2_sq(float x, float sigma) {
@@ -2429,10 +2540,15 @@ float bl_box_inv2_sq(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return (1.0/(x*x*x*x)) + q * (((10.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * ((7.0*(1.0/(x*x*x*x*x*x*x*x))) + q * ((12.0*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((55.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((26.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((35.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return bl_box_inv2_sq_series(x, hh);
   }
   return (((1.0/3.0)*(1.0/(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x))))) - ((-1.0/3.0)*(1.0/(((-hh) + x)*((-hh) + x)*((-hh) + x))))) / ((2.0) * hh);
+}
+
+float bl_tent_inv2_series(float x, float hh) {
+  if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
+  float q = hh * hh;
+  return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x*x*x))) + q * (((1.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/4.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/6.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 float bl_tent_inv2(float x, float sigma) {
@@ -2440,10 +2556,15 @@ float bl_tent_inv2(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x*x*x))) + q * (((1.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/4.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/6.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return bl_tent_inv2_series(x, hh);
   }
   return ((-log(abs((hh + x)))) - (2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
+}
+
+float bl_tent_inv2_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (1.0/(x*x*x*x));  // no smoothing: f(x)
+  float q = hh * hh;
+  return (1.0/(x*x*x*x)) + q * (((5.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((7.0/3.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * ((3.0*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((11.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((13.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((5.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 float bl_tent_inv2_sq(float x, float sigma) {
@@ -2451,8 +2572,7 @@ float bl_tent_inv2_sq(float x, float sigma) {
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * r) {
-    float q = hh * hh;
-    return (1.0/(x*x*x*x)) + q * (((5.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((7.0/3.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * ((3.0*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((11.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((13.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((5.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    return bl_tent_inv2_sq_series(x, hh);
   }
   return (((1.0/6.0)*(1.0/(((-hh) + (-x))*((-hh) + (-x))))) - (2.0) * ((1.0/6.0)*(1.0/(x*x))) + ((1.0/6.0)*(1.0/(((-hh) + x)*((-hh) + x))))) / (hh * hh);
 }

@@ -235,17 +235,14 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   std::string rho;
   if (has_r) rho = "r";
   if (a.scale) rho = rho.empty() ? s.ex(*a.scale) : s.min(rho, s.ex(*a.scale));
-  // Taylor series where the difference quotient would cancel (reach: emit_helpers.hpp).
-  std::map<std::string, std::pair<GiNaC::symbol, GiNaC::ex>> calls;
-  std::vector<GiNaC::ex> terms;
-  for (const auto& t : d.series) terms.push_back(cse_calls(t, calls));
+  // Taylor series where the difference quotient would cancel (reach: emit_helpers.hpp), in its own
+  // function (series_body): C++ evaluates it in a wider type for float, because the coefficients
+  // f^(2j)(x) overflow float near a singularity (log: 11!/x^12 at x = 1e-3).
   out += "  if (hh <= " + s.helper(s.cpp() ? "series_reach<T>" : "series_reach") + "() * " + rho + ") {\n";
-  for (auto& [name, sc] : calls) out += "  " + s.decl(sc.first.get_name(), s.ex(sc.second));
-  out += "  " + s.decl("q", "hh * hh");
-  std::string horner = s.ex(terms.back());
-  for (int j = static_cast<int>(terms.size()) - 2; j >= 0; --j)
-    horner = s.ex(terms[j]) + " + q * (" + horner + ")";
-  out += "    return " + horner + ";\n  }\n";
+  if (s.cpp())
+    out += "    using W = detail::wide_t<T>;\n    return T(" + impl_name(d) + "_series<W>(W(x), W(hh)));\n  }\n";
+  else
+    out += "    return " + s.fn(impl_name(d) + "_series") + "(x, hh);\n  }\n";
   // The polynomial part P of F has an exact difference quotient (expanded symbolically, nothing
   // cancels at run time); only the rest R is differenced numerically.
   GiNaC::ex P = 0, R = 0;
@@ -307,6 +304,20 @@ std::string body_first_moment(const Derived& d, const Syntax& s) {
 }
 
 }  // namespace
+
+std::string series_body(const Derived& d, Lang lang) {
+  const Syntax s{lang};
+  std::map<std::string, std::pair<GiNaC::symbol, GiNaC::ex>> calls;
+  std::vector<GiNaC::ex> terms;
+  for (const auto& t : d.series) terms.push_back(cse_calls(t, calls));
+  std::string out = s.cpp() ? "  BL_MATH_USING\n" : "";
+  out += "  if (hh == " + s.dbl(0) + ") return " + s.ex(d.f_here) + ";  // no smoothing: f(x)\n";
+  for (auto& [name, sc] : calls) out += s.decl(sc.first.get_name(), s.ex(sc.second));
+  out += s.decl("q", "hh * hh");
+  std::string horner = s.ex(terms.back());
+  for (int j = static_cast<int>(terms.size()) - 2; j >= 0; --j) horner = s.ex(terms[j]) + " + q * (" + horner + ")";
+  return out + "  return " + horner + ";\n";
+}
 
 std::string body_u(const Derived& d, Lang lang) {
   const Syntax s{lang};

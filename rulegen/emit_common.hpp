@@ -21,6 +21,9 @@ std::string plain_impl_name(const std::string& atomic);
 std::string body(const Derived& d, Lang lang);
 // Body of E[U g(x+U)] for a periodic entry (not squared): impl_name(d) + "_u".
 std::string body_u(const Derived& d, Lang lang);
+// Antiderivative entries: the Taylor series in the half-width hh, impl_name(d) + "_series"(x, hh).
+std::string series_body(const Derived& d, Lang lang);
+inline bool has_series(const Derived& d) { return d.body == sym::Body::Antiderivative; }
 // True for the entries that get such a first-moment companion.
 inline bool has_first_moment(const Derived& d) { return d.body == sym::Body::PeriodicTable && !d.squared; }
 // Body of the plain (unsmoothed) function f(x).

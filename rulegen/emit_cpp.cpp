@@ -68,6 +68,7 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
     }
     t << "template <class T>\nT " << impl_name(d) << "(T x, T sigma);\n";
     if (has_first_moment(d)) t << "template <class T>\nT " << impl_name(d) << "_u(T x, T sigma);\n";
+    if (has_series(d)) t << "template <class T>\nT " << impl_name(d) << "_series(T x, T hh);\n";
   }
   t << "\n";
   for (const auto& a : cat.atomics)
@@ -88,6 +89,9 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
         t << "    default:\n      return detail::nan<T>();  // order outside 0..16\n  }\n}\n\n";
       continue;
     }
+    if (has_series(d))
+      t << "// Taylor series of the entry below in its half-width hh.\ntemplate <class T>\nT " << impl_name(d)
+        << "_series(T x, T hh) {\n" << series_body(d, Lang::Cpp) << "}\n\n";
     t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
       << body(d, Lang::Cpp) << "}\n\n";
     if (has_first_moment(d))

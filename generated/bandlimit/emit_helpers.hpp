@@ -23,6 +23,19 @@
 namespace bl {
 namespace detail {
 
+// The type a float computation borrows where float's exponent range is too small (Taylor
+// coefficients near singularities); other types use themselves.
+template <class T>
+struct wide {
+  using type = T;
+};
+template <>
+struct wide<float> {
+  using type = double;
+};
+template <class T>
+using wide_t = typename wide<T>::type;
+
 template <class T>
 T nan() {
   return T(std::numeric_limits<double>::quiet_NaN());

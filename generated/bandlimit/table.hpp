@@ -361,51 +361,99 @@ T tent_trunc(T x, T sigma);
 template <class T>
 T box_tan(T x, T sigma);
 template <class T>
+T box_tan_series(T x, T hh);
+template <class T>
 T box_tan_sq(T x, T sigma);
+template <class T>
+T box_tan_sq_series(T x, T hh);
 template <class T>
 T tent_tan(T x, T sigma);
 template <class T>
+T tent_tan_series(T x, T hh);
+template <class T>
 T tent_tan_sq(T x, T sigma);
+template <class T>
+T tent_tan_sq_series(T x, T hh);
 template <class T>
 T box_tanh(T x, T sigma);
 template <class T>
+T box_tanh_series(T x, T hh);
+template <class T>
 T box_tanh_sq(T x, T sigma);
+template <class T>
+T box_tanh_sq_series(T x, T hh);
 template <class T>
 T tent_tanh(T x, T sigma);
 template <class T>
+T tent_tanh_series(T x, T hh);
+template <class T>
 T tent_tanh_sq(T x, T sigma);
+template <class T>
+T tent_tanh_sq_series(T x, T hh);
 template <class T>
 T box_log(T x, T sigma);
 template <class T>
+T box_log_series(T x, T hh);
+template <class T>
 T box_log_sq(T x, T sigma);
+template <class T>
+T box_log_sq_series(T x, T hh);
 template <class T>
 T tent_log(T x, T sigma);
 template <class T>
+T tent_log_series(T x, T hh);
+template <class T>
 T tent_log_sq(T x, T sigma);
+template <class T>
+T tent_log_sq_series(T x, T hh);
 template <class T>
 T box_sqrt(T x, T sigma);
 template <class T>
+T box_sqrt_series(T x, T hh);
+template <class T>
 T box_sqrt_sq(T x, T sigma);
+template <class T>
+T box_sqrt_sq_series(T x, T hh);
 template <class T>
 T tent_sqrt(T x, T sigma);
 template <class T>
+T tent_sqrt_series(T x, T hh);
+template <class T>
 T tent_sqrt_sq(T x, T sigma);
+template <class T>
+T tent_sqrt_sq_series(T x, T hh);
 template <class T>
 T box_inv(T x, T sigma);
 template <class T>
+T box_inv_series(T x, T hh);
+template <class T>
 T box_inv_sq(T x, T sigma);
+template <class T>
+T box_inv_sq_series(T x, T hh);
 template <class T>
 T tent_inv(T x, T sigma);
 template <class T>
+T tent_inv_series(T x, T hh);
+template <class T>
 T tent_inv_sq(T x, T sigma);
+template <class T>
+T tent_inv_sq_series(T x, T hh);
 template <class T>
 T box_inv2(T x, T sigma);
 template <class T>
+T box_inv2_series(T x, T hh);
+template <class T>
 T box_inv2_sq(T x, T sigma);
+template <class T>
+T box_inv2_sq_series(T x, T hh);
 template <class T>
 T tent_inv2(T x, T sigma);
 template <class T>
+T tent_inv2_series(T x, T hh);
+template <class T>
 T tent_inv2_sq(T x, T sigma);
+template <class T>
+T tent_inv2_sq_series(T x, T hh);
 template <class T>
 T gaussian_moment(int n, T x, T sigma);
 template <class T>
@@ -2393,6 +2441,16 @@ T tent_trunc(T x, T sigma) {
   return (T(1) + x) + (T(-1)) * tent_fract<T>(x, sigma) + (T(-1)) * tent_step<T>(x, sigma);
 }
 
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_tan_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return tan(x);  // no smoothing: f(x)
+  const T u_tan = tan(x);
+  const T q = hh * hh;
+  return u_tan + q * (((T(-1)/T(3))*((-(u_tan*u_tan)) + (T(-1)))*u_tan) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan)) + ((T(1)/T(5))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(15))*u_tan)) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(7))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(11)/T(45))*(u_tan*u_tan*u_tan)) + ((T(17)/T(315))*u_tan)) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(9))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(16)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(2835))*u_tan) + ((T(88)/T(567))*(u_tan*u_tan*u_tan))) + q * ((((T(1)/T(11))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1282)/T(14175))*(u_tan*u_tan*u_tan)) + ((T(1382)/T(155925))*u_tan) + ((T(289)/T(945))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(7)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((T(1)/T(13))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(133)/T(2673))*(u_tan*u_tan*u_tan)) + ((T(21844)/T(6081075))*u_tan) + ((T(26)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(467)/T(2025))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(478)/T(945))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+}
+
 //   (F(x+hh) - F(x-hh))/(2 hh), F = (-log(abs(cos(x)))), hh = min(sqrt(3) sigma, r/2) with r the
 //   distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms) where the
 //   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
@@ -2406,11 +2464,20 @@ T box_tan(T x, T sigma) {
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * detail::min2(r, ((T(1)/T(2))*detail::pi<T>()))) {
-    const T u_tan = tan(x);
-    const T q = hh * hh;
-    return u_tan + q * (((T(-1)/T(3))*((-(u_tan*u_tan)) + (T(-1)))*u_tan) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan)) + ((T(1)/T(5))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(15))*u_tan)) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(7))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(11)/T(45))*(u_tan*u_tan*u_tan)) + ((T(17)/T(315))*u_tan)) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(9))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(16)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(2835))*u_tan) + ((T(88)/T(567))*(u_tan*u_tan*u_tan))) + q * ((((T(1)/T(11))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1282)/T(14175))*(u_tan*u_tan*u_tan)) + ((T(1382)/T(155925))*u_tan) + ((T(289)/T(945))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(7)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((T(1)/T(13))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(133)/T(2673))*(u_tan*u_tan*u_tan)) + ((T(21844)/T(6081075))*u_tan) + ((T(26)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(467)/T(2025))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(478)/T(945))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+    using W = detail::wide_t<T>;
+    return T(box_tan_series<W>(W(x), W(hh)));
   }
   return ((-log(abs(cos((hh + x))))) - (-log(abs(cos(((-hh) + x)))))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_tan_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (tan(x)*tan(x));  // no smoothing: f(x)
+  const T u_tan = tan(x);
+  const T q = hh * hh;
+  return (u_tan*u_tan) + q * ((((T(4)/T(3))*(u_tan*u_tan)) + (T(1)/T(3)) + (u_tan*u_tan*u_tan*u_tan)) + q * ((((T(17)/T(15))*(u_tan*u_tan)) + (T(2)*(u_tan*u_tan*u_tan*u_tan)) + (T(2)/T(15)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(12)/T(5))*(u_tan*u_tan*u_tan*u_tan)) + ((T(248)/T(315))*(u_tan*u_tan)) + ((T(8)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (T(17)/T(315)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(10)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1382)/T(2835))*(u_tan*u_tan)) + ((T(37)/T(9))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(424)/T(189))*(u_tan*u_tan*u_tan*u_tan)) + (T(62)/T(2835)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(43688)/T(155925))*(u_tan*u_tan)) + ((T(4532)/T(945))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(8507)/T(4725))*(u_tan*u_tan*u_tan*u_tan)) + ((T(94)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (T(1382)/T(155925)) + (T(4)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(133)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(14)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1901)/T(405))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1934)/T(1485))*(u_tan*u_tan*u_tan*u_tan)) + ((T(236)/T(27))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(929569)/T(6081075))*(u_tan*u_tan)) + (T(21844)/T(6081075)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((-x) + tan(x)), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2426,11 +2493,20 @@ T box_tan_sq(T x, T sigma) {
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * detail::min2(r, ((T(1)/T(2))*detail::pi<T>()))) {
-    const T u_tan = tan(x);
-    const T q = hh * hh;
-    return (u_tan*u_tan) + q * ((((T(4)/T(3))*(u_tan*u_tan)) + (T(1)/T(3)) + (u_tan*u_tan*u_tan*u_tan)) + q * ((((T(17)/T(15))*(u_tan*u_tan)) + (T(2)*(u_tan*u_tan*u_tan*u_tan)) + (T(2)/T(15)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(12)/T(5))*(u_tan*u_tan*u_tan*u_tan)) + ((T(248)/T(315))*(u_tan*u_tan)) + ((T(8)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (T(17)/T(315)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(10)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1382)/T(2835))*(u_tan*u_tan)) + ((T(37)/T(9))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(424)/T(189))*(u_tan*u_tan*u_tan*u_tan)) + (T(62)/T(2835)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(43688)/T(155925))*(u_tan*u_tan)) + ((T(4532)/T(945))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(8507)/T(4725))*(u_tan*u_tan*u_tan*u_tan)) + ((T(94)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (T(1382)/T(155925)) + (T(4)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(133)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(14)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1901)/T(405))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1934)/T(1485))*(u_tan*u_tan*u_tan*u_tan)) + ((T(236)/T(27))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(929569)/T(6081075))*(u_tan*u_tan)) + (T(21844)/T(6081075)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))))))));
+    using W = detail::wide_t<T>;
+    return T(box_tan_sq_series<W>(W(x), W(hh)));
   }
   return (T(-1)) + (tan((hh + x)) - tan(((-hh) + x))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_tan_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return tan(x);  // no smoothing: f(x)
+  const T u_tan = tan(x);
+  const T q = hh * hh;
+  return u_tan + q * (((T(-1)/T(6))*((-(u_tan*u_tan)) + (T(-1)))*u_tan) + q * ((((T(1)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(9))*(u_tan*u_tan*u_tan)) + ((T(2)/T(45))*u_tan)) + q * ((((T(1)/T(12))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(28))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(11)/T(180))*(u_tan*u_tan*u_tan)) + ((T(17)/T(1260))*u_tan)) + q * ((((T(1)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(16)/T(225))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(14175))*u_tan) + ((T(88)/T(2835))*(u_tan*u_tan*u_tan))) + q * ((((T(1)/T(18))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(66))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(289)/T(5670))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(641)/T(42525))*(u_tan*u_tan*u_tan)) + ((T(691)/T(467775))*u_tan) + ((T(7)/T(90))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((T(1)/T(21))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(91))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(19)/T(2673))*(u_tan*u_tan*u_tan)) + ((T(21844)/T(42567525))*u_tan) + ((T(26)/T(315))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(467)/T(14175))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(478)/T(6615))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-1/2)*clausen2((((-2)*x) + pi))) + (log(2)*x)),
@@ -2447,11 +2523,20 @@ T tent_tan(T x, T sigma) {
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * detail::min2(r, ((T(1)/T(2))*detail::pi<T>()))) {
-    const T u_tan = tan(x);
-    const T q = hh * hh;
-    return u_tan + q * (((T(-1)/T(6))*((-(u_tan*u_tan)) + (T(-1)))*u_tan) + q * ((((T(1)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(9))*(u_tan*u_tan*u_tan)) + ((T(2)/T(45))*u_tan)) + q * ((((T(1)/T(12))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(28))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(11)/T(180))*(u_tan*u_tan*u_tan)) + ((T(17)/T(1260))*u_tan)) + q * ((((T(1)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(16)/T(225))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(14175))*u_tan) + ((T(88)/T(2835))*(u_tan*u_tan*u_tan))) + q * ((((T(1)/T(18))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(66))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(289)/T(5670))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(641)/T(42525))*(u_tan*u_tan*u_tan)) + ((T(691)/T(467775))*u_tan) + ((T(7)/T(90))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((T(1)/T(21))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(91))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(19)/T(2673))*(u_tan*u_tan*u_tan)) + ((T(21844)/T(42567525))*u_tan) + ((T(26)/T(315))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(467)/T(14175))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(478)/T(6615))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_tan_series<W>(W(x), W(hh)));
   }
   return (((T(-1)/T(2))*detail::clausen2((((T(-2))*hh) + ((T(-2))*x) + detail::pi<T>()))) - T(2.0) * ((T(-1)/T(2))*detail::clausen2((((T(-2))*x) + detail::pi<T>()))) + ((T(-1)/T(2))*detail::clausen2((((T(-2))*x) + (T(2)*hh) + detail::pi<T>())))) / (hh * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_tan_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (tan(x)*tan(x));  // no smoothing: f(x)
+  const T u_tan = tan(x);
+  const T q = hh * hh;
+  return (u_tan*u_tan) + q * ((((T(1)/T(2))*(u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan)) + (T(1)/T(6))) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(17)/T(45))*(u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan)) + (T(2)/T(45))) + q * ((((T(1)/T(4))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(3)/T(5))*(u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(315))*(u_tan*u_tan)) + (T(17)/T(1260))) + q * ((((T(1)/T(5))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1382)/T(14175))*(u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(37)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(424)/T(945))*(u_tan*u_tan*u_tan*u_tan)) + (T(62)/T(14175))) + q * ((((T(1)/T(6))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(21844)/T(467775))*(u_tan*u_tan)) + ((T(2266)/T(2835))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(47)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(8507)/T(28350))*(u_tan*u_tan*u_tan*u_tan)) + (T(691)/T(467775))) + q * ((((T(1)/T(7))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(19)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1901)/T(2835))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1934)/T(10395))*(u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(236)/T(189))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(929569)/T(42567525))*(u_tan*u_tan)) + (T(21844)/T(42567525)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-1/2)*(x)^(2)) + (-log(abs(cos(x))))), hh =
@@ -2468,11 +2553,20 @@ T tent_tan_sq(T x, T sigma) {
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * detail::min2(r, ((T(1)/T(2))*detail::pi<T>()))) {
-    const T u_tan = tan(x);
-    const T q = hh * hh;
-    return (u_tan*u_tan) + q * ((((T(1)/T(2))*(u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan)) + (T(1)/T(6))) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(17)/T(45))*(u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan)) + (T(2)/T(45))) + q * ((((T(1)/T(4))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(3)/T(5))*(u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(315))*(u_tan*u_tan)) + (T(17)/T(1260))) + q * ((((T(1)/T(5))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1382)/T(14175))*(u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(37)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(424)/T(945))*(u_tan*u_tan*u_tan*u_tan)) + (T(62)/T(14175))) + q * ((((T(1)/T(6))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(21844)/T(467775))*(u_tan*u_tan)) + ((T(2266)/T(2835))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(47)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(8507)/T(28350))*(u_tan*u_tan*u_tan*u_tan)) + (T(691)/T(467775))) + q * ((((T(1)/T(7))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(19)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1901)/T(2835))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1934)/T(10395))*(u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(236)/T(189))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(929569)/T(42567525))*(u_tan*u_tan)) + (T(21844)/T(42567525)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_tan_sq_series<W>(W(x), W(hh)));
   }
   return (T(-1)) + ((-log(abs(cos((hh + x))))) - T(2.0) * (-log(abs(cos(x)))) + (-log(abs(cos(((-hh) + x)))))) / (hh * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_tanh_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return tanh(x);  // no smoothing: f(x)
+  const T u_tanh = tanh(x);
+  const T q = hh * hh;
+  return u_tanh + q * (((T(-1)/T(3))*((-(u_tanh*u_tanh)) + T(1))*u_tanh) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(2)/T(15))*u_tanh)) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-17)/T(315))*u_tanh) + ((T(1)/T(7))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(11)/T(45))*(u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-88)/T(567))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(9))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(16)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(62)/T(2835))*u_tanh)) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-1382)/T(155925))*u_tanh) + ((T(-289)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(11))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1282)/T(14175))*(u_tanh*u_tanh*u_tanh)) + ((T(7)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-133)/T(2673))*(u_tanh*u_tanh*u_tanh)) + ((T(-478)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(13))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(21844)/T(6081075))*u_tanh) + ((T(26)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(467)/T(2025))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = logcosh(x), hh = sqrt(3) sigma; Taylor series in hh (7 terms)
@@ -2486,11 +2580,20 @@ T box_tanh(T x, T sigma) {
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(-1.0);
   if (hh <= detail::series_reach<T>() * ((T(1)/T(2))*detail::pi<T>())) {
-    const T u_tanh = tanh(x);
-    const T q = hh * hh;
-    return u_tanh + q * (((T(-1)/T(3))*((-(u_tanh*u_tanh)) + T(1))*u_tanh) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(2)/T(15))*u_tanh)) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-17)/T(315))*u_tanh) + ((T(1)/T(7))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(11)/T(45))*(u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-88)/T(567))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(9))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(16)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(62)/T(2835))*u_tanh)) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-1382)/T(155925))*u_tanh) + ((T(-289)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(11))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1282)/T(14175))*(u_tanh*u_tanh*u_tanh)) + ((T(7)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-133)/T(2673))*(u_tanh*u_tanh*u_tanh)) + ((T(-478)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(13))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(21844)/T(6081075))*u_tanh) + ((T(26)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(467)/T(2025))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
+    using W = detail::wide_t<T>;
+    return T(box_tanh_series<W>(W(x), W(hh)));
   }
   return (detail::logcosh((hh + x)) - detail::logcosh(((-hh) + x))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_tanh_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (tanh(x)*tanh(x));  // no smoothing: f(x)
+  const T u_tanh = tanh(x);
+  const T q = hh * hh;
+  return (u_tanh*u_tanh) + q * ((((T(-4)/T(3))*(u_tanh*u_tanh)) + (T(1)/T(3)) + (u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-2))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(17)/T(15))*(u_tanh*u_tanh)) + (T(-2)/T(15)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-248)/T(315))*(u_tanh*u_tanh)) + ((T(-8)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(12)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(17)/T(315)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-10)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-424)/T(189))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1382)/T(2835))*(u_tanh*u_tanh)) + ((T(37)/T(9))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(-62)/T(2835)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-4))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-43688)/T(155925))*(u_tanh*u_tanh)) + ((T(-4532)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(8507)/T(4725))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(94)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(1382)/T(155925)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-14)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-1934)/T(1485))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-236)/T(27))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(133)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1901)/T(405))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(929569)/T(6081075))*(u_tanh*u_tanh)) + (T(-21844)/T(6081075)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((-tanh(x)) + x), hh = sqrt(3) sigma; Taylor series in hh (7
@@ -2504,11 +2607,20 @@ T box_tanh_sq(T x, T sigma) {
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(1.0);
   if (hh <= detail::series_reach<T>() * ((T(1)/T(2))*detail::pi<T>())) {
-    const T u_tanh = tanh(x);
-    const T q = hh * hh;
-    return (u_tanh*u_tanh) + q * ((((T(-4)/T(3))*(u_tanh*u_tanh)) + (T(1)/T(3)) + (u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-2))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(17)/T(15))*(u_tanh*u_tanh)) + (T(-2)/T(15)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-248)/T(315))*(u_tanh*u_tanh)) + ((T(-8)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(12)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(17)/T(315)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-10)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-424)/T(189))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1382)/T(2835))*(u_tanh*u_tanh)) + ((T(37)/T(9))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(-62)/T(2835)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-4))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-43688)/T(155925))*(u_tanh*u_tanh)) + ((T(-4532)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(8507)/T(4725))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(94)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(1382)/T(155925)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-14)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-1934)/T(1485))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-236)/T(27))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(133)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1901)/T(405))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(929569)/T(6081075))*(u_tanh*u_tanh)) + (T(-21844)/T(6081075)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))))))));
+    using W = detail::wide_t<T>;
+    return T(box_tanh_sq_series<W>(W(x), W(hh)));
   }
   return T(1) + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_tanh_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return tanh(x);  // no smoothing: f(x)
+  const T u_tanh = tanh(x);
+  const T q = hh * hh;
+  return u_tanh + q * (((T(-1)/T(6))*((-(u_tanh*u_tanh)) + T(1))*u_tanh) + q * ((((T(-1)/T(9))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(2)/T(45))*u_tanh)) + q * ((((T(-1)/T(12))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-17)/T(1260))*u_tanh) + ((T(1)/T(28))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(11)/T(180))*(u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-88)/T(2835))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(16)/T(225))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(62)/T(14175))*u_tanh)) + q * ((((T(-1)/T(18))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-289)/T(5670))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-691)/T(467775))*u_tanh) + ((T(1)/T(66))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(641)/T(42525))*(u_tanh*u_tanh*u_tanh)) + ((T(7)/T(90))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(21))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-19)/T(2673))*(u_tanh*u_tanh*u_tanh)) + ((T(-478)/T(6615))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(91))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(21844)/T(42567525))*u_tanh) + ((T(26)/T(315))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(467)/T(14175))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((1/2)*(x)^(2)) + ((1/2)*li2((-exp(((-2)*x))))) +
@@ -2523,11 +2635,20 @@ T tent_tanh(T x, T sigma) {
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(-1.0);
   if (hh <= detail::series_reach<T>() * ((T(1)/T(2))*detail::pi<T>())) {
-    const T u_tanh = tanh(x);
-    const T q = hh * hh;
-    return u_tanh + q * (((T(-1)/T(6))*((-(u_tanh*u_tanh)) + T(1))*u_tanh) + q * ((((T(-1)/T(9))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(2)/T(45))*u_tanh)) + q * ((((T(-1)/T(12))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-17)/T(1260))*u_tanh) + ((T(1)/T(28))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(11)/T(180))*(u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-88)/T(2835))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(16)/T(225))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(62)/T(14175))*u_tanh)) + q * ((((T(-1)/T(18))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-289)/T(5670))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-691)/T(467775))*u_tanh) + ((T(1)/T(66))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(641)/T(42525))*(u_tanh*u_tanh*u_tanh)) + ((T(7)/T(90))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(21))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-19)/T(2673))*(u_tanh*u_tanh*u_tanh)) + ((T(-478)/T(6615))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(91))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(21844)/T(42567525))*u_tanh) + ((T(26)/T(315))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(467)/T(14175))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_tanh_series<W>(W(x), W(hh)));
   }
   return T(1) + (((T(1)/T(2))*detail::li2((-exp((((T(-2))*hh) + ((T(-2))*x)))))) - T(2.0) * ((T(1)/T(2))*detail::li2((-exp(((T(-2))*x))))) + ((T(1)/T(2))*detail::li2((-exp((((T(-2))*x) + (T(2)*hh))))))) / (hh * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_tanh_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (tanh(x)*tanh(x));  // no smoothing: f(x)
+  const T u_tanh = tanh(x);
+  const T q = hh * hh;
+  return (u_tanh*u_tanh) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh)) + ((T(1)/T(2))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(1)/T(6))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(17)/T(45))*(u_tanh*u_tanh)) + (T(-2)/T(45))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-62)/T(315))*(u_tanh*u_tanh)) + ((T(1)/T(4))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(3)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(17)/T(1260))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-424)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1382)/T(14175))*(u_tanh*u_tanh)) + ((T(37)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(-62)/T(14175))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-21844)/T(467775))*(u_tanh*u_tanh)) + ((T(-2266)/T(2835))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(6))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(47)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(8507)/T(28350))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(691)/T(467775))) + q * ((((T(-1934)/T(10395))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-236)/T(189))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(7))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(19)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1901)/T(2835))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(929569)/T(42567525))*(u_tanh*u_tanh)) + (T(-21844)/T(42567525)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((1/2)*(x)^(2)) + (-logcosh(x))), hh = sqrt(6)
@@ -2542,11 +2663,20 @@ T tent_tanh_sq(T x, T sigma) {
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(1.0);
   if (hh <= detail::series_reach<T>() * ((T(1)/T(2))*detail::pi<T>())) {
-    const T u_tanh = tanh(x);
-    const T q = hh * hh;
-    return (u_tanh*u_tanh) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh)) + ((T(1)/T(2))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(1)/T(6))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(17)/T(45))*(u_tanh*u_tanh)) + (T(-2)/T(45))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-62)/T(315))*(u_tanh*u_tanh)) + ((T(1)/T(4))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(3)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(17)/T(1260))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-424)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1382)/T(14175))*(u_tanh*u_tanh)) + ((T(37)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(-62)/T(14175))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-21844)/T(467775))*(u_tanh*u_tanh)) + ((T(-2266)/T(2835))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(6))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(47)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(8507)/T(28350))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(691)/T(467775))) + q * ((((T(-1934)/T(10395))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-236)/T(189))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(7))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(19)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1901)/T(2835))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(929569)/T(42567525))*(u_tanh*u_tanh)) + (T(-21844)/T(42567525)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_tanh_sq_series<W>(W(x), W(hh)));
   }
   return T(1) + ((-detail::logcosh((hh + x))) - T(2.0) * (-detail::logcosh(x)) + (-detail::logcosh(((-hh) + x)))) / (hh * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_log_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return log(x);  // no smoothing: f(x)
+  const T u_log = log(x);
+  const T q = hh * hh;
+  return u_log + q * (((T(-1)/T(6))*(T(1)/(x*x))) + q * (((T(-1)/T(20))*(T(1)/(x*x*x*x))) + q * (((T(-1)/T(42))*(T(1)/(x*x*x*x*x*x))) + q * (((T(-1)/T(72))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(110))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(156))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((-x) + (log(x)*x)), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2560,11 +2690,20 @@ T box_log(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T u_log = log(x);
-    const T q = hh * hh;
-    return u_log + q * (((T(-1)/T(6))*(T(1)/(x*x))) + q * (((T(-1)/T(20))*(T(1)/(x*x*x*x))) + q * (((T(-1)/T(42))*(T(1)/(x*x*x*x*x*x))) + q * (((T(-1)/T(72))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(110))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(156))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    using W = detail::wide_t<T>;
+    return T(box_log_series<W>(W(x), W(hh)));
   }
   return (T(-1)) + ((-((-hh) + (-x))*log((hh + x))) - (((-hh) + x)*log(((-hh) + x)))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_log_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (log(x)*log(x));  // no smoothing: f(x)
+  const T u_log = log(x);
+  const T q = hh * hh;
+  return (u_log*u_log) + q * (((T(1)/T(3))*((-u_log) + T(1))*(T(1)/(x*x))) + q * (((T(1)/T(60))*(((T(-6))*u_log) + T(11))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(1260))*(((T(-60))*u_log) + T(137))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(5040))*(((T(-140))*u_log) + T(363))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(138600))*(((T(-2520))*u_log) + T(7129))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(2162160))*(((T(-27720))*u_log) + T(83711))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = (((-2)*log(x)*x) + ((log(x))^(2)*x) + (2*x)), hh =
@@ -2579,11 +2718,20 @@ T box_log_sq(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T u_log = log(x);
-    const T q = hh * hh;
-    return (u_log*u_log) + q * (((T(1)/T(3))*((-u_log) + T(1))*(T(1)/(x*x))) + q * (((T(1)/T(60))*(((T(-6))*u_log) + T(11))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(1260))*(((T(-60))*u_log) + T(137))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(5040))*(((T(-140))*u_log) + T(363))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(138600))*(((T(-2520))*u_log) + T(7129))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(2162160))*(((T(-27720))*u_log) + T(83711))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    using W = detail::wide_t<T>;
+    return T(box_log_sq_series<W>(W(x), W(hh)));
   }
   return T(2) + (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (T(2)*((-hh) + (-x))*log((hh + x)))) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((T(-2))*((-hh) + x)*log(((-hh) + x))))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_log_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return log(x);  // no smoothing: f(x)
+  const T u_log = log(x);
+  const T q = hh * hh;
+  return u_log + q * (((T(-1)/T(12))*(T(1)/(x*x))) + q * (((T(-1)/T(60))*(T(1)/(x*x*x*x))) + q * (((T(-1)/T(168))*(T(1)/(x*x*x*x*x*x))) + q * (((T(-1)/T(360))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(660))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(1092))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-3/4)*(x)^(2)) + ((1/2)*(x)^(2)*log(x))), hh =
@@ -2598,11 +2746,20 @@ T tent_log(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T u_log = log(x);
-    const T q = hh * hh;
-    return u_log + q * (((T(-1)/T(12))*(T(1)/(x*x))) + q * (((T(-1)/T(60))*(T(1)/(x*x*x*x))) + q * (((T(-1)/T(168))*(T(1)/(x*x*x*x*x*x))) + q * (((T(-1)/T(360))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(660))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(1092))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_log_series<W>(W(x), W(hh)));
   }
   return (T(-3)/T(2)) + (((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) - T(2.0) * ((T(1)/T(2))*(x*x)*log(x)) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*log(((-hh) + x)))) / (hh * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_log_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (log(x)*log(x));  // no smoothing: f(x)
+  const T u_log = log(x);
+  const T q = hh * hh;
+  return (u_log*u_log) + q * (((T(1)/T(6))*((-u_log) + T(1))*(T(1)/(x*x))) + q * (((T(1)/T(180))*(((T(-6))*u_log) + T(11))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(5040))*(((T(-60))*u_log) + T(137))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(25200))*(((T(-140))*u_log) + T(363))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(831600))*(((T(-2520))*u_log) + T(7129))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(15135120))*(((T(-27720))*u_log) + T(83711))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-3/2)*(x)^(2)*log(x)) +
@@ -2617,11 +2774,19 @@ T tent_log_sq(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T u_log = log(x);
-    const T q = hh * hh;
-    return (u_log*u_log) + q * (((T(1)/T(6))*((-u_log) + T(1))*(T(1)/(x*x))) + q * (((T(1)/T(180))*(((T(-6))*u_log) + T(11))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(5040))*(((T(-60))*u_log) + T(137))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(25200))*(((T(-140))*u_log) + T(363))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(831600))*(((T(-2520))*u_log) + T(7129))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(15135120))*(((T(-27720))*u_log) + T(83711))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_log_sq_series<W>(W(x), W(hh)));
   }
   return (T(7)/T(2)) + ((((T(-3)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x))))) - T(2.0) * (((T(-3)/T(2))*(x*x)*log(x)) + ((T(1)/T(2))*(log(x)*log(x))*(x*x))) + (((T(-3)/T(2))*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))))) / (hh * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_sqrt_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return sqrt(x);  // no smoothing: f(x)
+  const T q = hh * hh;
+  return sqrt(x) + q * (((T(-1)/T(24))*((T(1)/(x*x))*sqrt(x))) + q * (((T(-1)/T(128))*((T(1)/(x*x*x*x))*sqrt(x))) + q * (((T(-3)/T(1024))*((T(1)/(x*x*x*x*x*x))*sqrt(x))) + q * (((T(-143)/T(98304))*((T(1)/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-221)/T(262144))*((T(1)/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-2261)/T(4194304))*((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((2/3)*(x)^((3/2))), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2635,10 +2800,19 @@ T box_sqrt(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return sqrt(x) + q * (((T(-1)/T(24))*((T(1)/(x*x))*sqrt(x))) + q * (((T(-1)/T(128))*((T(1)/(x*x*x*x))*sqrt(x))) + q * (((T(-3)/T(1024))*((T(1)/(x*x*x*x*x*x))*sqrt(x))) + q * (((T(-143)/T(98304))*((T(1)/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-221)/T(262144))*((T(1)/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-2261)/T(4194304))*((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+    using W = detail::wide_t<T>;
+    return T(box_sqrt_series<W>(W(x), W(hh)));
   }
   return (((T(2)/T(3))*(((hh + x))*sqrt((hh + x)))) - ((T(2)/T(3))*((((-hh) + x))*sqrt(((-hh) + x))))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_sqrt_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return x;  // no smoothing: f(x)
+  const T q = hh * hh;
+  return x + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0)))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((1/2)*(x)^(2)), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2652,10 +2826,19 @@ T box_sqrt_sq(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return x + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0)))))));
+    using W = detail::wide_t<T>;
+    return T(box_sqrt_sq_series<W>(W(x), W(hh)));
   }
   return x;
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_sqrt_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return sqrt(x);  // no smoothing: f(x)
+  const T q = hh * hh;
+  return sqrt(x) + q * (((T(-1)/T(48))*((T(1)/(x*x))*sqrt(x))) + q * (((T(-1)/T(384))*((T(1)/(x*x*x*x))*sqrt(x))) + q * (((T(-3)/T(4096))*((T(1)/(x*x*x*x*x*x))*sqrt(x))) + q * (((T(-143)/T(491520))*((T(1)/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-221)/T(1572864))*((T(1)/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-323)/T(4194304))*((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = ((4/15)*(x)^((5/2))), hh = min(sqrt(6) sigma, r/2)
@@ -2669,10 +2852,19 @@ T tent_sqrt(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return sqrt(x) + q * (((T(-1)/T(48))*((T(1)/(x*x))*sqrt(x))) + q * (((T(-1)/T(384))*((T(1)/(x*x*x*x))*sqrt(x))) + q * (((T(-3)/T(4096))*((T(1)/(x*x*x*x*x*x))*sqrt(x))) + q * (((T(-143)/T(491520))*((T(1)/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-221)/T(1572864))*((T(1)/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-323)/T(4194304))*((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_sqrt_series<W>(W(x), W(hh)));
   }
   return (((T(4)/T(15))*(((hh + x)*(hh + x))*sqrt((hh + x)))) - T(2.0) * ((T(4)/T(15))*((x*x)*sqrt(x))) + ((T(4)/T(15))*((((-hh) + x)*((-hh) + x))*sqrt(((-hh) + x))))) / (hh * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_sqrt_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return x;  // no smoothing: f(x)
+  const T q = hh * hh;
+  return x + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0)))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = ((1/6)*(x)^(3)), hh = min(sqrt(6) sigma, r/2) with
@@ -2686,10 +2878,19 @@ T tent_sqrt_sq(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return x + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0)))))));
+    using W = detail::wide_t<T>;
+    return T(tent_sqrt_sq_series<W>(W(x), W(hh)));
   }
   return x;
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_inv_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (T(1)/(x));  // no smoothing: f(x)
+  const T q = hh * hh;
+  return (T(1)/(x)) + q * (((T(1)/T(3))*(T(1)/(x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x))) + q * (((T(1)/T(9))*(T(1)/(x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(11))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(13))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = log(abs(x)), hh = min(sqrt(3) sigma, r/2) with r the distance
@@ -2702,10 +2903,19 @@ T box_inv(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return (T(1)/(x)) + q * (((T(1)/T(3))*(T(1)/(x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x))) + q * (((T(1)/T(9))*(T(1)/(x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(11))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(13))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    using W = detail::wide_t<T>;
+    return T(box_inv_series<W>(W(x), W(hh)));
   }
   return (log(abs((hh + x))) - log(abs(((-hh) + x)))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_inv_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
+  const T q = hh * hh;
+  return (T(1)/(x*x)) + q * ((T(1)/(x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = (-(x)^((-1))), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2718,10 +2928,19 @@ T box_inv_sq(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return (T(1)/(x*x)) + q * ((T(1)/(x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+    using W = detail::wide_t<T>;
+    return T(box_inv_sq_series<W>(W(x), W(hh)));
   }
   return (((T(1)/(((-hh) + (-x))))) - (-(T(1)/(((-hh) + x))))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_inv_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (T(1)/(x));  // no smoothing: f(x)
+  const T q = hh * hh;
+  return (T(1)/(x)) + q * (((T(1)/T(6))*(T(1)/(x*x*x))) + q * (((T(1)/T(15))*(T(1)/(x*x*x*x*x))) + q * (((T(1)/T(28))*(T(1)/(x*x*x*x*x*x*x))) + q * (((T(1)/T(45))*(T(1)/(x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(66))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(91))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = ((-x) + (log(abs(x))*x)), hh = min(sqrt(6) sigma,
@@ -2734,10 +2953,19 @@ T tent_inv(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return (T(1)/(x)) + q * (((T(1)/T(6))*(T(1)/(x*x*x))) + q * (((T(1)/T(15))*(T(1)/(x*x*x*x*x))) + q * (((T(1)/T(28))*(T(1)/(x*x*x*x*x*x*x))) + q * (((T(1)/T(45))*(T(1)/(x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(66))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(91))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_inv_series<W>(W(x), W(hh)));
   }
   return ((-((-hh) + (-x))*log(abs((hh + x)))) - T(2.0) * (log(abs(x))*x) + (((-hh) + x)*log(abs(((-hh) + x))))) / (hh * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_inv_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
+  const T q = hh * hh;
+  return (T(1)/(x*x)) + q * (((T(1)/T(2))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(4))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(6))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (-log(abs(x))), hh = min(sqrt(6) sigma, r/2) with
@@ -2750,10 +2978,19 @@ T tent_inv_sq(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return (T(1)/(x*x)) + q * (((T(1)/T(2))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(4))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(6))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_inv_sq_series<W>(W(x), W(hh)));
   }
   return ((-log(abs((hh + x)))) - T(2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_inv2_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
+  const T q = hh * hh;
+  return (T(1)/(x*x)) + q * ((T(1)/(x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = (-(x)^((-1))), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2766,10 +3003,19 @@ T box_inv2(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return (T(1)/(x*x)) + q * ((T(1)/(x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+    using W = detail::wide_t<T>;
+    return T(box_inv2_series<W>(W(x), W(hh)));
   }
   return (((T(1)/(((-hh) + (-x))))) - (-(T(1)/(((-hh) + x))))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_inv2_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (T(1)/(x*x*x*x));  // no smoothing: f(x)
+  const T q = hh * hh;
+  return (T(1)/(x*x*x*x)) + q * (((T(10)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * ((T(7)*(T(1)/(x*x*x*x*x*x*x*x))) + q * ((T(12)*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(55)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(26)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(35)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((-1/3)*(x)^((-3))), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2782,10 +3028,19 @@ T box_inv2_sq(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return (T(1)/(x*x*x*x)) + q * (((T(10)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * ((T(7)*(T(1)/(x*x*x*x*x*x*x*x))) + q * ((T(12)*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(55)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(26)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(35)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    using W = detail::wide_t<T>;
+    return T(box_inv2_sq_series<W>(W(x), W(hh)));
   }
   return (((T(1)/T(3))*(T(1)/(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x))))) - ((T(-1)/T(3))*(T(1)/(((-hh) + x)*((-hh) + x)*((-hh) + x))))) / (T(2.0) * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_inv2_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
+  const T q = hh * hh;
+  return (T(1)/(x*x)) + q * (((T(1)/T(2))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(4))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(6))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (-log(abs(x))), hh = min(sqrt(6) sigma, r/2) with
@@ -2798,10 +3053,19 @@ T tent_inv2(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return (T(1)/(x*x)) + q * (((T(1)/T(2))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(4))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(6))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_inv2_series<W>(W(x), W(hh)));
   }
   return ((-log(abs((hh + x)))) - T(2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_inv2_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (T(1)/(x*x*x*x));  // no smoothing: f(x)
+  const T q = hh * hh;
+  return (T(1)/(x*x*x*x)) + q * (((T(5)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(7)/T(3))*(T(1)/(x*x*x*x*x*x*x*x))) + q * ((T(3)*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(11)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(13)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(5)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = ((1/6)*(x)^((-2))), hh = min(sqrt(6) sigma, r/2)
@@ -2814,8 +3078,8 @@ T tent_inv2_sq(T x, T sigma) {
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
-    const T q = hh * hh;
-    return (T(1)/(x*x*x*x)) + q * (((T(5)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(7)/T(3))*(T(1)/(x*x*x*x*x*x*x*x))) + q * ((T(3)*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(11)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(13)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(5)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+    using W = detail::wide_t<T>;
+    return T(tent_inv2_sq_series<W>(W(x), W(hh)));
   }
   return (((T(1)/T(6))*(T(1)/(((-hh) + (-x))*((-hh) + (-x))))) - T(2.0) * ((T(1)/T(6))*(T(1)/(x*x))) + ((T(1)/T(6))*(T(1)/(((-hh) + x)*((-hh) + x))))) / (hh * hh);
 }

@@ -37,12 +37,13 @@ double quad(const std::function<double(double)>& f, double a, double b, double* 
 }
 
 // Adaptive Gauss-Kronrod 31 (the cross-check for wide pieces). Its criterion is relative to the
-// running estimate, so a constant of the integrand's size is added (and its integral subtracted):
-// else an integral that is zero up to rounding recurses to full depth.
+// running estimate, so twice the integrand's size is added (and its integral subtracted): else an
+// integral that is zero up to rounding recurses to full depth.
 double gk_double(const std::function<double(double)>& f, double a, double b, double* err, double* l1) {
   try {
     double c = 1e-300;
     for (double u : {-0.9, -0.5, -0.1, 0.0, 0.1, 0.5, 0.9}) c = std::fmax(c, std::fabs(f(a + (b - a) * (u + 1) / 2)));
+    c *= 2;  // f + c stays away from 0 even where f is negative
     double r = boost::math::quadrature::gauss_kronrod<double, 31>::integrate([&](double t) { return f(t) + c; }, a, b,
                                                                              15, 1e-13, err, l1);
     return r - c * (b - a);

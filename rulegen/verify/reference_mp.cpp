@@ -31,7 +31,7 @@ constexpr double kWindowWide = 40;  // unbounded integrands, as in double
 // Adaptive Gauss-Kronrod 61, tolerance 1e-40, depth 12 (shared/TOOLCHAIN.md). Boost's criterion is
 // relative to the running estimate, so an integral that is zero up to rounding (trunc(x) = 0 near
 // x = 0.25 comes out as 1e-52 noise) would recurse to full depth: a constant C of the integrand's
-// size is added (and its integral subtracted), which turns the criterion into 1e-40 * C.
+// size is added twice (and its integral subtracted), which turns the criterion into ~1e-40 * C.
 mp gk(const std::function<mp(mp)>& f, const mp& a, const mp& b, mp* err, mp* l1) {
   try {
     mp c = mp(1e-10);
@@ -39,6 +39,7 @@ mp gk(const std::function<mp(mp)>& f, const mp& a, const mp& b, mp* err, mp* l1)
       mp v = abs(f(a + (b - a) * (u + 1) / 2));
       if (v > c) c = v;
     }
+    c *= 2;  // f + c stays away from 0 even where f is negative
     mp r = GK::integrate([&](const mp& t) { return f(t) + c; }, a, b, 12, mp(1e-40), err, l1);
     return r - c * (b - a);
   } catch (const std::exception&) {
