@@ -195,6 +195,12 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   const symbol& x = sym::var_x();
   const GiNaC::ex hh = sym::var_hh();
   std::string out = guard_sigma(s);
+  if (s.cpp() && !a.singular.empty())
+    // Next to a singularity the distance r (and x +- hh) needs more digits than a float has: a float
+    // input 4e-8 from pi/2 is 0 from the float pi/2. Float entries of compact rules run in double
+    // (GLSL stays in float: see docs/derivations.md).
+    out += "  if constexpr (sizeof(T) < sizeof(double)) return T(" + impl_name(d) +
+           "<double>(double(x), double(sigma)));\n";
   if (a.parity != 0) {
     const bool odd = a.parity < 0 && !d.squared;
     out += "  if (x < " + s.dbl(0) + ") return " + (odd ? "-" : "") + s.fn(impl_name(d)) + "(-x, sigma);  // " +

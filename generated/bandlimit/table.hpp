@@ -2458,6 +2458,7 @@ template <class T>
 T box_tan(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_tan<double>(double(x), double(sigma)));
   if (x < T(0.0)) return -box_tan<T>(-x, sigma);  // odd
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
@@ -2487,6 +2488,7 @@ template <class T>
 T box_tan_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_tan_sq<double>(double(x), double(sigma)));
   if (x < T(0.0)) return box_tan_sq<T>(-x, sigma);  // even
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
@@ -2517,6 +2519,7 @@ template <class T>
 T tent_tan(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_tan<double>(double(x), double(sigma)));
   if (x < T(0.0)) return -tent_tan<T>(-x, sigma);  // odd
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
@@ -2547,6 +2550,7 @@ template <class T>
 T tent_tan_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_tan_sq<double>(double(x), double(sigma)));
   if (x < T(0.0)) return tent_tan_sq<T>(-x, sigma);  // even
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
@@ -2686,6 +2690,7 @@ template <class T>
 T box_log(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_log<double>(double(x), double(sigma)));
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -2714,6 +2719,7 @@ template <class T>
 T box_log_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_log_sq<double>(double(x), double(sigma)));
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -2742,6 +2748,7 @@ template <class T>
 T tent_log(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_log<double>(double(x), double(sigma)));
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -2770,6 +2777,7 @@ template <class T>
 T tent_log_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_log_sq<double>(double(x), double(sigma)));
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -2796,6 +2804,7 @@ template <class T>
 T box_sqrt(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_sqrt<double>(double(x), double(sigma)));
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -2822,6 +2831,7 @@ template <class T>
 T box_sqrt_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_sqrt_sq<double>(double(x), double(sigma)));
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -2848,6 +2858,7 @@ template <class T>
 T tent_sqrt(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_sqrt<double>(double(x), double(sigma)));
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -2874,6 +2885,7 @@ template <class T>
 T tent_sqrt_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_sqrt_sq<double>(double(x), double(sigma)));
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -2900,6 +2912,7 @@ template <class T>
 T box_inv(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_inv<double>(double(x), double(sigma)));
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -2925,6 +2938,7 @@ template <class T>
 T box_inv_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_inv_sq<double>(double(x), double(sigma)));
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -2950,6 +2964,7 @@ template <class T>
 T tent_inv(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv<double>(double(x), double(sigma)));
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -2975,6 +2990,7 @@ template <class T>
 T tent_inv_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv_sq<double>(double(x), double(sigma)));
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -3000,6 +3016,7 @@ template <class T>
 T box_inv2(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_inv2<double>(double(x), double(sigma)));
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -3025,6 +3042,7 @@ template <class T>
 T box_inv2_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_inv2_sq<double>(double(x), double(sigma)));
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -3050,6 +3068,7 @@ template <class T>
 T tent_inv2(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv2<double>(double(x), double(sigma)));
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -3075,6 +3094,7 @@ template <class T>
 T tent_inv2_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv2_sq<double>(double(x), double(sigma)));
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {

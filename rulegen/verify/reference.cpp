@@ -118,18 +118,25 @@ struct RefEngine::Impl {
   }
 
   // Direct quadrature over t in [fixed.front(), fixed.back()], split at every break and feature
-  // point; pieces wider than 2 units of s are cut into up to 64 parts. Pieces still wider than that
-  // are integrated again by adaptive Gauss-Kronrod: tanh_sinh returns an unresolved oscillation
-  // with a tiny error estimate (sin over 2400 periods: 3e-7 off, estimate 1e-15), so a
-  // disagreement marks the result unresolved (*capped stays false, the sum is made non-finite).
+  // point; pieces wider than 2 units of s are cut into up to 64 parts. A piece whose parts are still
+  // wider than that is integrated again, whole, by adaptive Gauss-Kronrod: tanh_sinh returns an
+  // unresolved oscillation with a tiny error estimate (sin over 2400 periods: 3e-7 off, estimate
+  // 1e-15), so a disagreement marks the result unresolved (the sum is made non-finite).
   QuadSum<double> direct(double x0, double c, const std::vector<double>& fixed,
                          const std::function<double(double)>& w, bool* capped) {
-    std::vector<Piece<double>> pieces, fine, wide;
+    std::vector<Piece<double>> pieces;
     *capped = !make_pieces<double>(sp, x0, c, fixed, kPieceCap, &pieces);
     if (*capped) return {};
+    auto g = [this](double s) { return sp.g(s); };
+    auto ts = [](const std::function<double(double)>& f, double a, double b, double* e, double* l) {
+      return quad(f, a, b, e, l);
+    };
+    QuadSum<double> sum;
+    std::vector<std::pair<Piece<double>, QuadSum<double>>> wide;
     for (const Piece<double>& p : pieces) {
       const double width = std::fabs(c) * (p.t1 - p.t0);
       const int n = width > 2 ? static_cast<int>(std::min(64.0, std::ceil(width / 2))) : 1;
+      std::vector<Piece<double>> fine;
       for (int i = 0; i < n; ++i) {
         Piece<double> q = p;
         q.t0 = i == 0 ? p.t0 : p.t0 + (p.t1 - p.t0) * i / n;
@@ -137,24 +144,20 @@ struct RefEngine::Impl {
         q.lo_brk = i == 0 && p.lo_brk;
         q.hi_brk = i == n - 1 && p.hi_brk;
         fine.push_back(q);
-        if (width / n > 2) wide.push_back(q);
       }
+      QuadSum<double> part = integrate_pieces<double>(fine, x0, c, g, w, ts);
+      sum.value += part.value;
+      sum.err += part.err;
+      sum.l1 += part.l1;
+      sum.pieces += part.pieces;
+      sum.finite = sum.finite && part.finite;
+      if (width / n > 2) wide.emplace_back(p, part);
     }
-    if (fine.size() > kPieceCap) {
-      *capped = true;
-      return {};
-    }
-    auto g = [this](double s) { return sp.g(s); };
-    auto ts = [](const std::function<double(double)>& f, double a, double b, double* e, double* l) {
-      return quad(f, a, b, e, l);
-    };
-    QuadSum<double> sum = integrate_pieces<double>(fine, x0, c, g, w, ts);
-    for (const Piece<double>& p : wide) {
+    for (const auto& [p, part] : wide) {
       if (!sum.finite) break;
-      QuadSum<double> a = integrate_pieces<double>({p}, x0, c, g, w, ts);
       QuadSum<double> b = integrate_pieces<double>({p}, x0, c, g, w, gk_double);
       // What matters is the error relative to the whole integral's size.
-      if (!(std::fabs(a.value - b.value) <= 1e-11 * a.l1 + 1e-13 * sum.l1)) sum.finite = false;
+      if (!(std::fabs(part.value - b.value) <= 1e-11 * part.l1 + 1e-13 * sum.l1)) sum.finite = false;
     }
     return sum;
   }

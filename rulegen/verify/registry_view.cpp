@@ -51,7 +51,7 @@ std::vector<EntryView> load_registry(std::string* error) {
     s.name = v.cpp;
     v.kernel_known = parse_kernel(v.kernel, &s.kernel);
     v.exact_rule = v.rule == "convolution" || v.rule == "moment";
-    s.power = v.rule == "moment" ? (v.order > 0 ? v.order : 1) : (v.squared ? 2 : 1);
+    s.power = v.rule == "moment" ? v.order : (v.squared ? 2 : 1);  // moment 0: g = 1
     s.compact = v.compact;
     s.lambda = v.lambda;
     if (a) {
