@@ -881,6 +881,8 @@ float bl_li2(float z) {  // z <= 0 (GLSL has no recursion: inversion then Landen
   }
   return bl_li2_landen(z);
 }
+float bl_prod0(float a, float b) { return a == 0.0 ? 0.0 : a * b; }
+float bl_sgn(float x) { return sign(x); }
 
 // ---- entries ----
 
@@ -976,62 +978,62 @@ float bl_tent_exp_sq(float x, float sigma) {
 
 float bl_gaussian_sinh(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((-1.0/2.0)*exp((((1.0/2.0)*(sigma*sigma)) + (-x)))) + ((1.0/2.0)*exp((((1.0/2.0)*(sigma*sigma)) + x))));
+  return bl_prod0(sinh(x), exp(((1.0/2.0)*(sigma*sigma))));
 }
 
 float bl_gaussian_sinh_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/4.0)*exp((((-2.0)*x) + (2.0*(sigma*sigma))))) + ((1.0/4.0)*exp(((2.0*(sigma*sigma)) + (2.0*x)))) + (-1.0/2.0));
+  return (((1.0/2.0)*cosh((2.0*x))*exp((2.0*(sigma*sigma)))) + (-1.0/2.0));
 }
 
 float bl_box_sinh(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((-1.0/2.0)*bl_exp_sinhc((-x), (sigma*sqrt(3.0)))) + ((1.0/2.0)*bl_exp_sinhc(x, (sigma*sqrt(3.0)))));
+  return bl_prod0(sinh(x), bl_sinhc((sigma*sqrt(3.0))));
 }
 
 float bl_box_sinh_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/4.0)*bl_exp_sinhc(((-2.0)*x), (2.0*sigma*sqrt(3.0)))) + ((1.0/4.0)*bl_exp_sinhc((2.0*x), (2.0*sigma*sqrt(3.0)))) + (-1.0/2.0));
+  return (((1.0/2.0)*bl_sinhc((2.0*sigma*sqrt(3.0)))*cosh((2.0*x))) + (-1.0/2.0));
 }
 
 float bl_tent_sinh(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((-1.0/2.0)*bl_exp_sinhc2((-x), ((1.0/2.0)*sigma*sqrt(6.0)))) + ((1.0/2.0)*bl_exp_sinhc2(x, ((1.0/2.0)*sigma*sqrt(6.0)))));
+  return bl_prod0(sinh(x), (bl_sinhc(((1.0/2.0)*sigma*sqrt(6.0)))*bl_sinhc(((1.0/2.0)*sigma*sqrt(6.0)))));
 }
 
 float bl_tent_sinh_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/4.0)*bl_exp_sinhc2(((-2.0)*x), (sigma*sqrt(6.0)))) + ((1.0/4.0)*bl_exp_sinhc2((2.0*x), (sigma*sqrt(6.0)))) + (-1.0/2.0));
+  return (((1.0/2.0)*(bl_sinhc((sigma*sqrt(6.0)))*bl_sinhc((sigma*sqrt(6.0))))*cosh((2.0*x))) + (-1.0/2.0));
 }
 
 float bl_gaussian_cosh(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/2.0)*exp((((1.0/2.0)*(sigma*sigma)) + (-x)))) + ((1.0/2.0)*exp((((1.0/2.0)*(sigma*sigma)) + x))));
+  return (cosh(x)*exp(((1.0/2.0)*(sigma*sigma))));
 }
 
 float bl_gaussian_cosh_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/4.0)*exp((((-2.0)*x) + (2.0*(sigma*sigma))))) + ((1.0/4.0)*exp(((2.0*(sigma*sigma)) + (2.0*x)))) + (1.0/2.0));
+  return (((1.0/2.0)*cosh((2.0*x))*exp((2.0*(sigma*sigma)))) + (1.0/2.0));
 }
 
 float bl_box_cosh(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/2.0)*bl_exp_sinhc((-x), (sigma*sqrt(3.0)))) + ((1.0/2.0)*bl_exp_sinhc(x, (sigma*sqrt(3.0)))));
+  return (bl_sinhc((sigma*sqrt(3.0)))*cosh(x));
 }
 
 float bl_box_cosh_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/4.0)*bl_exp_sinhc(((-2.0)*x), (2.0*sigma*sqrt(3.0)))) + ((1.0/4.0)*bl_exp_sinhc((2.0*x), (2.0*sigma*sqrt(3.0)))) + (1.0/2.0));
+  return (((1.0/2.0)*bl_sinhc((2.0*sigma*sqrt(3.0)))*cosh((2.0*x))) + (1.0/2.0));
 }
 
 float bl_tent_cosh(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/2.0)*bl_exp_sinhc2((-x), ((1.0/2.0)*sigma*sqrt(6.0)))) + ((1.0/2.0)*bl_exp_sinhc2(x, ((1.0/2.0)*sigma*sqrt(6.0)))));
+  return ((bl_sinhc(((1.0/2.0)*sigma*sqrt(6.0)))*bl_sinhc(((1.0/2.0)*sigma*sqrt(6.0))))*cosh(x));
 }
 
 float bl_tent_cosh_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/4.0)*bl_exp_sinhc2(((-2.0)*x), (sigma*sqrt(6.0)))) + ((1.0/4.0)*bl_exp_sinhc2((2.0*x), (sigma*sqrt(6.0)))) + (1.0/2.0));
+  return (((1.0/2.0)*(bl_sinhc((sigma*sqrt(6.0)))*bl_sinhc((sigma*sqrt(6.0))))*cosh((2.0*x))) + (1.0/2.0));
 }
 
 float bl_gaussian_pow2(float x, float sigma) {
@@ -1066,6 +1068,7 @@ float bl_tent_pow2_sq(float x, float sigma) {
 
 float bl_gaussian_pow3(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x == (0.0)) return (0.0);  // odd in x
   return ((3.0*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -1076,6 +1079,7 @@ float bl_gaussian_pow3_sq(float x, float sigma) {
 
 float bl_box_pow3(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x == (0.0)) return (0.0);  // odd in x
   return ((3.0*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -1086,6 +1090,7 @@ float bl_box_pow3_sq(float x, float sigma) {
 
 float bl_tent_pow3(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x == (0.0)) return (0.0);  // odd in x
   return ((3.0*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -1126,6 +1131,7 @@ float bl_tent_pow4_sq(float x, float sigma) {
 
 float bl_gaussian_pow5(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x == (0.0)) return (0.0);  // odd in x
   return ((10.0*(sigma*sigma)*(x*x*x)) + (15.0*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -1136,6 +1142,7 @@ float bl_gaussian_pow5_sq(float x, float sigma) {
 
 float bl_box_pow5(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x == (0.0)) return (0.0);  // odd in x
   return ((10.0*(sigma*sigma)*(x*x*x)) + (9.0*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -1146,6 +1153,7 @@ float bl_box_pow5_sq(float x, float sigma) {
 
 float bl_tent_pow5(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x == (0.0)) return (0.0);  // odd in x
   return ((10.0*(sigma*sigma)*(x*x*x)) + (12.0*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -1186,6 +1194,7 @@ float bl_tent_pow6_sq(float x, float sigma) {
 
 float bl_gaussian_pow7(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x == (0.0)) return (0.0);  // odd in x
   return ((105.0*(sigma*sigma*sigma*sigma)*(x*x*x)) + (105.0*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (21.0*(sigma*sigma)*(x*x*x*x*x)) + (x*x*x*x*x*x*x));
 }
 
@@ -1196,6 +1205,7 @@ float bl_gaussian_pow7_sq(float x, float sigma) {
 
 float bl_box_pow7(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x == (0.0)) return (0.0);  // odd in x
   return ((21.0*(sigma*sigma)*(x*x*x*x*x)) + (27.0*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (63.0*(sigma*sigma*sigma*sigma)*(x*x*x)) + (x*x*x*x*x*x*x));
 }
 
@@ -1206,6 +1216,7 @@ float bl_box_pow7_sq(float x, float sigma) {
 
 float bl_tent_pow7(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (x == (0.0)) return (0.0);  // odd in x
   return ((21.0*(sigma*sigma)*(x*x*x*x*x)) + (54.0*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (84.0*(sigma*sigma*sigma*sigma)*(x*x*x)) + (x*x*x*x*x*x*x));
 }
 
@@ -2160,6 +2171,10 @@ float bl_box_tan_series(float x, float hh) {
   return u_tan + q * (((-1.0/3.0)*((-(u_tan*u_tan)) + (-1.0))*u_tan) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan)) + ((1.0/5.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/15.0)*u_tan)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/7.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((11.0/45.0)*(u_tan*u_tan*u_tan)) + ((17.0/315.0)*u_tan)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/9.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((16.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((62.0/2835.0)*u_tan) + ((88.0/567.0)*(u_tan*u_tan*u_tan))) + q * ((((1.0/11.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1282.0/14175.0)*(u_tan*u_tan*u_tan)) + ((1382.0/155925.0)*u_tan) + ((289.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((7.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((1.0/13.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((133.0/2673.0)*(u_tan*u_tan*u_tan)) + ((21844.0/6081075.0)*u_tan) + ((26.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((467.0/2025.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((478.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
 }
 
+float bl_box_tan_diff(float x, float hh) {
+  return ((-log(abs(cos((hh + x))))) - (-log(abs(cos(((-hh) + x)))))) / ((2.0) * hh);
+}
+
 float bl_box_tan(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (x < (0.0)) return -bl_box_tan(-x, sigma);  // odd
@@ -2170,7 +2185,7 @@ float bl_box_tan(float x, float sigma) {
   if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
     return bl_box_tan_series(x, hh);
   }
-  return ((-log(abs(cos((hh + x))))) - (-log(abs(cos(((-hh) + x)))))) / ((2.0) * hh);
+  return bl_box_tan_diff(x, hh);
 }
 
 float bl_box_tan_sq_series(float x, float hh) {
@@ -2178,6 +2193,10 @@ float bl_box_tan_sq_series(float x, float hh) {
   float u_tan = tan(x);
   float q = hh * hh;
   return (u_tan*u_tan) + q * ((((4.0/3.0)*(u_tan*u_tan)) + (1.0/3.0) + (u_tan*u_tan*u_tan*u_tan)) + q * ((((17.0/15.0)*(u_tan*u_tan)) + (2.0*(u_tan*u_tan*u_tan*u_tan)) + (2.0/15.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((12.0/5.0)*(u_tan*u_tan*u_tan*u_tan)) + ((248.0/315.0)*(u_tan*u_tan)) + ((8.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (17.0/315.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((10.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1382.0/2835.0)*(u_tan*u_tan)) + ((37.0/9.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((424.0/189.0)*(u_tan*u_tan*u_tan*u_tan)) + (62.0/2835.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((43688.0/155925.0)*(u_tan*u_tan)) + ((4532.0/945.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((8507.0/4725.0)*(u_tan*u_tan*u_tan*u_tan)) + ((94.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (1382.0/155925.0) + (4.0*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((133.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((14.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1901.0/405.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1934.0/1485.0)*(u_tan*u_tan*u_tan*u_tan)) + ((236.0/27.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((929569.0/6081075.0)*(u_tan*u_tan)) + (21844.0/6081075.0) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))))))));
+}
+
+float bl_box_tan_sq_diff(float x, float hh) {
+  return (-1.0) + (tan((hh + x)) - tan(((-hh) + x))) / ((2.0) * hh);
 }
 
 float bl_box_tan_sq(float x, float sigma) {
@@ -2190,7 +2209,7 @@ float bl_box_tan_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
     return bl_box_tan_sq_series(x, hh);
   }
-  return (-1.0) + (tan((hh + x)) - tan(((-hh) + x))) / ((2.0) * hh);
+  return bl_box_tan_sq_diff(x, hh);
 }
 
 float bl_tent_tan_series(float x, float hh) {
@@ -2198,6 +2217,10 @@ float bl_tent_tan_series(float x, float hh) {
   float u_tan = tan(x);
   float q = hh * hh;
   return u_tan + q * (((-1.0/6.0)*((-(u_tan*u_tan)) + (-1.0))*u_tan) + q * ((((1.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/9.0)*(u_tan*u_tan*u_tan)) + ((2.0/45.0)*u_tan)) + q * ((((1.0/12.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/28.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((11.0/180.0)*(u_tan*u_tan*u_tan)) + ((17.0/1260.0)*u_tan)) + q * ((((1.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((16.0/225.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((62.0/14175.0)*u_tan) + ((88.0/2835.0)*(u_tan*u_tan*u_tan))) + q * ((((1.0/18.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/66.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((289.0/5670.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((641.0/42525.0)*(u_tan*u_tan*u_tan)) + ((691.0/467775.0)*u_tan) + ((7.0/90.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((1.0/21.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1.0/91.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((19.0/2673.0)*(u_tan*u_tan*u_tan)) + ((21844.0/42567525.0)*u_tan) + ((26.0/315.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((467.0/14175.0)*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((478.0/6615.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+}
+
+float bl_tent_tan_diff(float x, float hh) {
+  return (((-1.0/2.0)*bl_clausen2((((-2.0)*hh) + ((-2.0)*x) + bl_pi()))) - (2.0) * ((-1.0/2.0)*bl_clausen2((((-2.0)*x) + bl_pi()))) + ((-1.0/2.0)*bl_clausen2((((-2.0)*x) + (2.0*hh) + bl_pi())))) / (hh * hh);
 }
 
 float bl_tent_tan(float x, float sigma) {
@@ -2210,7 +2233,7 @@ float bl_tent_tan(float x, float sigma) {
   if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
     return bl_tent_tan_series(x, hh);
   }
-  return (((-1.0/2.0)*bl_clausen2((((-2.0)*hh) + ((-2.0)*x) + bl_pi()))) - (2.0) * ((-1.0/2.0)*bl_clausen2((((-2.0)*x) + bl_pi()))) + ((-1.0/2.0)*bl_clausen2((((-2.0)*x) + (2.0*hh) + bl_pi())))) / (hh * hh);
+  return bl_tent_tan_diff(x, hh);
 }
 
 float bl_tent_tan_sq_series(float x, float hh) {
@@ -2218,6 +2241,10 @@ float bl_tent_tan_sq_series(float x, float hh) {
   float u_tan = tan(x);
   float q = hh * hh;
   return (u_tan*u_tan) + q * ((((1.0/2.0)*(u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan)) + (1.0/6.0)) + q * ((((1.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((17.0/45.0)*(u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan)) + (2.0/45.0)) + q * ((((1.0/4.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((3.0/5.0)*(u_tan*u_tan*u_tan*u_tan)) + ((62.0/315.0)*(u_tan*u_tan)) + (17.0/1260.0)) + q * ((((1.0/5.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1382.0/14175.0)*(u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((37.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((424.0/945.0)*(u_tan*u_tan*u_tan*u_tan)) + (62.0/14175.0)) + q * ((((1.0/6.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((21844.0/467775.0)*(u_tan*u_tan)) + ((2266.0/2835.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((47.0/45.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((8507.0/28350.0)*(u_tan*u_tan*u_tan*u_tan)) + (691.0/467775.0)) + q * ((((1.0/7.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((19.0/15.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1901.0/2835.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((1934.0/10395.0)*(u_tan*u_tan*u_tan*u_tan)) + ((2.0/3.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((236.0/189.0)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((929569.0/42567525.0)*(u_tan*u_tan)) + (21844.0/42567525.0))))))));
+}
+
+float bl_tent_tan_sq_diff(float x, float hh) {
+  return (-1.0) + ((-log(abs(cos((hh + x))))) - (2.0) * (-log(abs(cos(x)))) + (-log(abs(cos(((-hh) + x)))))) / (hh * hh);
 }
 
 float bl_tent_tan_sq(float x, float sigma) {
@@ -2230,7 +2257,7 @@ float bl_tent_tan_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
     return bl_tent_tan_sq_series(x, hh);
   }
-  return (-1.0) + ((-log(abs(cos((hh + x))))) - (2.0) * (-log(abs(cos(x)))) + (-log(abs(cos(((-hh) + x)))))) / (hh * hh);
+  return bl_tent_tan_sq_diff(x, hh);
 }
 
 float bl_box_tanh_series(float x, float hh) {
@@ -2238,6 +2265,10 @@ float bl_box_tanh_series(float x, float hh) {
   float u_tanh = tanh(x);
   float q = hh * hh;
   return u_tanh + q * (((-1.0/3.0)*((-(u_tanh*u_tanh)) + 1.0)*u_tanh) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((2.0/15.0)*u_tanh)) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-17.0/315.0)*u_tanh) + ((1.0/7.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((11.0/45.0)*(u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-88.0/567.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/9.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((16.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((62.0/2835.0)*u_tanh)) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-1382.0/155925.0)*u_tanh) + ((-289.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/11.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1282.0/14175.0)*(u_tanh*u_tanh*u_tanh)) + ((7.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-133.0/2673.0)*(u_tanh*u_tanh*u_tanh)) + ((-478.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/13.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((21844.0/6081075.0)*u_tanh) + ((26.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((467.0/2025.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
+}
+
+float bl_box_tanh_diff(float x, float hh) {
+  return (bl_logcosh((hh + x)) - bl_logcosh(((-hh) + x))) / ((2.0) * hh);
 }
 
 float bl_box_tanh(float x, float sigma) {
@@ -2249,7 +2280,7 @@ float bl_box_tanh(float x, float sigma) {
   if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
     return bl_box_tanh_series(x, hh);
   }
-  return (bl_logcosh((hh + x)) - bl_logcosh(((-hh) + x))) / ((2.0) * hh);
+  return bl_box_tanh_diff(x, hh);
 }
 
 float bl_box_tanh_sq_series(float x, float hh) {
@@ -2257,6 +2288,10 @@ float bl_box_tanh_sq_series(float x, float hh) {
   float u_tanh = tanh(x);
   float q = hh * hh;
   return (u_tanh*u_tanh) + q * ((((-4.0/3.0)*(u_tanh*u_tanh)) + (1.0/3.0) + (u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-2.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((17.0/15.0)*(u_tanh*u_tanh)) + (-2.0/15.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-248.0/315.0)*(u_tanh*u_tanh)) + ((-8.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((12.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (17.0/315.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-10.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-424.0/189.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1382.0/2835.0)*(u_tanh*u_tanh)) + ((37.0/9.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (-62.0/2835.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-4.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-43688.0/155925.0)*(u_tanh*u_tanh)) + ((-4532.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((8507.0/4725.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((94.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (1382.0/155925.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((-14.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-1934.0/1485.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((-236.0/27.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((133.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1901.0/405.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((929569.0/6081075.0)*(u_tanh*u_tanh)) + (-21844.0/6081075.0) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))))))));
+}
+
+float bl_box_tanh_sq_diff(float x, float hh) {
+  return 1.0 + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / ((2.0) * hh);
 }
 
 float bl_box_tanh_sq(float x, float sigma) {
@@ -2268,7 +2303,7 @@ float bl_box_tanh_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
     return bl_box_tanh_sq_series(x, hh);
   }
-  return 1.0 + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / ((2.0) * hh);
+  return bl_box_tanh_sq_diff(x, hh);
 }
 
 float bl_tent_tanh_series(float x, float hh) {
@@ -2276,6 +2311,10 @@ float bl_tent_tanh_series(float x, float hh) {
   float u_tanh = tanh(x);
   float q = hh * hh;
   return u_tanh + q * (((-1.0/6.0)*((-(u_tanh*u_tanh)) + 1.0)*u_tanh) + q * ((((-1.0/9.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((2.0/45.0)*u_tanh)) + q * ((((-1.0/12.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-17.0/1260.0)*u_tanh) + ((1.0/28.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((11.0/180.0)*(u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-88.0/2835.0)*(u_tanh*u_tanh*u_tanh)) + ((1.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((16.0/225.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((62.0/14175.0)*u_tanh)) + q * ((((-1.0/18.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-289.0/5670.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-691.0/467775.0)*u_tanh) + ((1.0/66.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((641.0/42525.0)*(u_tanh*u_tanh*u_tanh)) + ((7.0/90.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((-1.0/21.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-19.0/2673.0)*(u_tanh*u_tanh*u_tanh)) + ((-478.0/6615.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/91.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((21844.0/42567525.0)*u_tanh) + ((26.0/315.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((467.0/14175.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
+}
+
+float bl_tent_tanh_diff(float x, float hh) {
+  return ((((-1.0/2.0)*((-hh) + (-x))*abs((hh + x))) + ((1.0/2.0)*bl_li2((-exp(((-2.0)*abs((hh + x))))))*bl_sgn((hh + x))) + ((1.0/24.0)*(bl_pi()*bl_pi())*bl_sgn((hh + x)))) - (2.0) * (((1.0/2.0)*abs(x)*x) + ((1.0/2.0)*bl_li2((-exp(((-2.0)*abs(x)))))*bl_sgn(x)) + ((1.0/24.0)*(bl_pi()*bl_pi())*bl_sgn(x))) + (((1.0/2.0)*((-hh) + x)*abs(((-hh) + x))) + ((1.0/2.0)*bl_li2((-exp(((-2.0)*abs(((-hh) + x))))))*bl_sgn(((-hh) + x))) + ((1.0/24.0)*(bl_pi()*bl_pi())*bl_sgn(((-hh) + x))))) / (hh * hh);
 }
 
 float bl_tent_tanh(float x, float sigma) {
@@ -2287,7 +2326,7 @@ float bl_tent_tanh(float x, float sigma) {
   if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
     return bl_tent_tanh_series(x, hh);
   }
-  return 1.0 + (((1.0/2.0)*bl_li2((-exp((((-2.0)*hh) + ((-2.0)*x)))))) - (2.0) * ((1.0/2.0)*bl_li2((-exp(((-2.0)*x))))) + ((1.0/2.0)*bl_li2((-exp((((-2.0)*x) + (2.0*hh))))))) / (hh * hh);
+  return bl_tent_tanh_diff(x, hh);
 }
 
 float bl_tent_tanh_sq_series(float x, float hh) {
@@ -2295,6 +2334,10 @@ float bl_tent_tanh_sq_series(float x, float hh) {
   float u_tanh = tanh(x);
   float q = hh * hh;
   return (u_tanh*u_tanh) + q * ((((-2.0/3.0)*(u_tanh*u_tanh)) + ((1.0/2.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (1.0/6.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((17.0/45.0)*(u_tanh*u_tanh)) + (-2.0/45.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-62.0/315.0)*(u_tanh*u_tanh)) + ((1.0/4.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((3.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (17.0/1260.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-424.0/945.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/5.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1382.0/14175.0)*(u_tanh*u_tanh)) + ((37.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (-62.0/14175.0)) + q * ((((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-21844.0/467775.0)*(u_tanh*u_tanh)) + ((-2266.0/2835.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/6.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((47.0/45.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((8507.0/28350.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + (691.0/467775.0)) + q * ((((-1934.0/10395.0)*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((-2.0/3.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((-236.0/189.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1.0/7.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((19.0/15.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((1901.0/2835.0)*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((929569.0/42567525.0)*(u_tanh*u_tanh)) + (-21844.0/42567525.0))))))));
+}
+
+float bl_tent_tanh_sq_diff(float x, float hh) {
+  return 1.0 + ((-bl_logcosh((hh + x))) - (2.0) * (-bl_logcosh(x)) + (-bl_logcosh(((-hh) + x)))) / (hh * hh);
 }
 
 float bl_tent_tanh_sq(float x, float sigma) {
@@ -2306,7 +2349,7 @@ float bl_tent_tanh_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
     return bl_tent_tanh_sq_series(x, hh);
   }
-  return 1.0 + ((-bl_logcosh((hh + x))) - (2.0) * (-bl_logcosh(x)) + (-bl_logcosh(((-hh) + x)))) / (hh * hh);
+  return bl_tent_tanh_sq_diff(x, hh);
 }
 
 float bl_box_log_series(float x, float hh) {
@@ -2314,6 +2357,10 @@ float bl_box_log_series(float x, float hh) {
   float u_log = log(x);
   float q = hh * hh;
   return u_log + q * (((-1.0/6.0)*(1.0/(x*x))) + q * (((-1.0/20.0)*(1.0/(x*x*x*x))) + q * (((-1.0/42.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/72.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/110.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/156.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+float bl_box_log_diff(float x, float hh) {
+  return (-1.0) + ((-((-hh) + (-x))*log((hh + x))) - (((-hh) + x)*log(((-hh) + x)))) / ((2.0) * hh);
 }
 
 float bl_box_log(float x, float sigma) {
@@ -2324,7 +2371,7 @@ float bl_box_log(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_box_log_series(x, hh);
   }
-  return (-1.0) + ((-((-hh) + (-x))*log((hh + x))) - (((-hh) + x)*log(((-hh) + x)))) / ((2.0) * hh);
+  return bl_box_log_diff(x, hh);
 }
 
 float bl_box_log_sq_series(float x, float hh) {
@@ -2332,6 +2379,10 @@ float bl_box_log_sq_series(float x, float hh) {
   float u_log = log(x);
   float q = hh * hh;
   return (u_log*u_log) + q * (((-1.0/3.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/60.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/1260.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/5040.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/138600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/2162160.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+float bl_box_log_sq_diff(float x, float hh) {
+  return 2.0 + (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (2.0*((-hh) + (-x))*log((hh + x)))) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((-2.0)*((-hh) + x)*log(((-hh) + x))))) / ((2.0) * hh);
 }
 
 float bl_box_log_sq(float x, float sigma) {
@@ -2342,7 +2393,7 @@ float bl_box_log_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_box_log_sq_series(x, hh);
   }
-  return 2.0 + (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (2.0*((-hh) + (-x))*log((hh + x)))) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((-2.0)*((-hh) + x)*log(((-hh) + x))))) / ((2.0) * hh);
+  return bl_box_log_sq_diff(x, hh);
 }
 
 float bl_tent_log_series(float x, float hh) {
@@ -2350,6 +2401,10 @@ float bl_tent_log_series(float x, float hh) {
   float u_log = log(x);
   float q = hh * hh;
   return u_log + q * (((-1.0/12.0)*(1.0/(x*x))) + q * (((-1.0/60.0)*(1.0/(x*x*x*x))) + q * (((-1.0/168.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/360.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/660.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/1092.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+float bl_tent_log_diff(float x, float hh) {
+  return (-3.0/2.0) + (((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) - (2.0) * ((1.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x)))) / (hh * hh);
 }
 
 float bl_tent_log(float x, float sigma) {
@@ -2360,7 +2415,7 @@ float bl_tent_log(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_tent_log_series(x, hh);
   }
-  return (-3.0/2.0) + (((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) - (2.0) * ((1.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x)))) / (hh * hh);
+  return bl_tent_log_diff(x, hh);
 }
 
 float bl_tent_log_sq_series(float x, float hh) {
@@ -2368,6 +2423,10 @@ float bl_tent_log_sq_series(float x, float hh) {
   float u_log = log(x);
   float q = hh * hh;
   return (u_log*u_log) + q * (((-1.0/6.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/180.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/5040.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/25200.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/831600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/15135120.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+float bl_tent_log_sq_diff(float x, float hh) {
+  return (7.0/2.0) + ((((-3.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x))))) - (2.0) * (((-3.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(log(x)*log(x))*(x*x))) + (((-3.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))))) / (hh * hh);
 }
 
 float bl_tent_log_sq(float x, float sigma) {
@@ -2378,13 +2437,17 @@ float bl_tent_log_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_tent_log_sq_series(x, hh);
   }
-  return (7.0/2.0) + ((((-3.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x))))) - (2.0) * (((-3.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(log(x)*log(x))*(x*x))) + (((-3.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))))) / (hh * hh);
+  return bl_tent_log_sq_diff(x, hh);
 }
 
 float bl_box_sqrt_series(float x, float hh) {
   if (hh == (0.0)) return sqrt(x);  // no smoothing: f(x)
   float q = hh * hh;
   return sqrt(x) + q * (((-1.0/24.0)*((1.0/(x*x))*sqrt(x))) + q * (((-1.0/128.0)*((1.0/(x*x*x*x))*sqrt(x))) + q * (((-3.0/1024.0)*((1.0/(x*x*x*x*x*x))*sqrt(x))) + q * (((-143.0/98304.0)*((1.0/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-221.0/262144.0)*((1.0/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-2261.0/4194304.0)*((1.0/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+}
+
+float bl_box_sqrt_diff(float x, float hh) {
+  return (((2.0/3.0)*(((hh + x))*sqrt((hh + x)))) - ((2.0/3.0)*((((-hh) + x))*sqrt(((-hh) + x))))) / ((2.0) * hh);
 }
 
 float bl_box_sqrt(float x, float sigma) {
@@ -2395,13 +2458,17 @@ float bl_box_sqrt(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_box_sqrt_series(x, hh);
   }
-  return (((2.0/3.0)*(((hh + x))*sqrt((hh + x)))) - ((2.0/3.0)*((((-hh) + x))*sqrt(((-hh) + x))))) / ((2.0) * hh);
+  return bl_box_sqrt_diff(x, hh);
 }
 
 float bl_box_sqrt_sq_series(float x, float hh) {
   if (hh == (0.0)) return x;  // no smoothing: f(x)
   float q = hh * hh;
   return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
+}
+
+float bl_box_sqrt_sq_diff(float x, float hh) {
+  return x;
 }
 
 float bl_box_sqrt_sq(float x, float sigma) {
@@ -2412,13 +2479,17 @@ float bl_box_sqrt_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_box_sqrt_sq_series(x, hh);
   }
-  return x;
+  return bl_box_sqrt_sq_diff(x, hh);
 }
 
 float bl_tent_sqrt_series(float x, float hh) {
   if (hh == (0.0)) return sqrt(x);  // no smoothing: f(x)
   float q = hh * hh;
   return sqrt(x) + q * (((-1.0/48.0)*((1.0/(x*x))*sqrt(x))) + q * (((-1.0/384.0)*((1.0/(x*x*x*x))*sqrt(x))) + q * (((-3.0/4096.0)*((1.0/(x*x*x*x*x*x))*sqrt(x))) + q * (((-143.0/491520.0)*((1.0/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-221.0/1572864.0)*((1.0/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-323.0/4194304.0)*((1.0/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+}
+
+float bl_tent_sqrt_diff(float x, float hh) {
+  return (((4.0/15.0)*(((hh + x)*(hh + x))*sqrt((hh + x)))) - (2.0) * ((4.0/15.0)*((x*x)*sqrt(x))) + ((4.0/15.0)*((((-hh) + x)*((-hh) + x))*sqrt(((-hh) + x))))) / (hh * hh);
 }
 
 float bl_tent_sqrt(float x, float sigma) {
@@ -2429,13 +2500,17 @@ float bl_tent_sqrt(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_tent_sqrt_series(x, hh);
   }
-  return (((4.0/15.0)*(((hh + x)*(hh + x))*sqrt((hh + x)))) - (2.0) * ((4.0/15.0)*((x*x)*sqrt(x))) + ((4.0/15.0)*((((-hh) + x)*((-hh) + x))*sqrt(((-hh) + x))))) / (hh * hh);
+  return bl_tent_sqrt_diff(x, hh);
 }
 
 float bl_tent_sqrt_sq_series(float x, float hh) {
   if (hh == (0.0)) return x;  // no smoothing: f(x)
   float q = hh * hh;
   return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
+}
+
+float bl_tent_sqrt_sq_diff(float x, float hh) {
+  return x;
 }
 
 float bl_tent_sqrt_sq(float x, float sigma) {
@@ -2446,13 +2521,17 @@ float bl_tent_sqrt_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_tent_sqrt_sq_series(x, hh);
   }
-  return x;
+  return bl_tent_sqrt_sq_diff(x, hh);
 }
 
 float bl_box_inv_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x));  // no smoothing: f(x)
   float q = hh * hh;
   return (1.0/(x)) + q * (((1.0/3.0)*(1.0/(x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/9.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/11.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/13.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+float bl_box_inv_diff(float x, float hh) {
+  return (log(abs((hh + x))) - log(abs(((-hh) + x)))) / ((2.0) * hh);
 }
 
 float bl_box_inv(float x, float sigma) {
@@ -2462,13 +2541,17 @@ float bl_box_inv(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_box_inv_series(x, hh);
   }
-  return (log(abs((hh + x))) - log(abs(((-hh) + x)))) / ((2.0) * hh);
+  return bl_box_inv_diff(x, hh);
 }
 
 float bl_box_inv_sq_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
   float q = hh * hh;
   return (1.0/(x*x)) + q * ((1.0/(x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+}
+
+float bl_box_inv_sq_diff(float x, float hh) {
+  return (((1.0/(((-hh) + (-x))))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
 }
 
 float bl_box_inv_sq(float x, float sigma) {
@@ -2478,13 +2561,17 @@ float bl_box_inv_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_box_inv_sq_series(x, hh);
   }
-  return (((1.0/(((-hh) + (-x))))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
+  return bl_box_inv_sq_diff(x, hh);
 }
 
 float bl_tent_inv_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x));  // no smoothing: f(x)
   float q = hh * hh;
   return (1.0/(x)) + q * (((1.0/6.0)*(1.0/(x*x*x))) + q * (((1.0/15.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/28.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/45.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/66.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/91.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+float bl_tent_inv_diff(float x, float hh) {
+  return ((-((-hh) + (-x))*log(abs((hh + x)))) - (2.0) * (log(abs(x))*x) + (((-hh) + x)*log(abs(((-hh) + x))))) / (hh * hh);
 }
 
 float bl_tent_inv(float x, float sigma) {
@@ -2494,13 +2581,17 @@ float bl_tent_inv(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_tent_inv_series(x, hh);
   }
-  return ((-((-hh) + (-x))*log(abs((hh + x)))) - (2.0) * (log(abs(x))*x) + (((-hh) + x)*log(abs(((-hh) + x))))) / (hh * hh);
+  return bl_tent_inv_diff(x, hh);
 }
 
 float bl_tent_inv_sq_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
   float q = hh * hh;
   return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x*x*x))) + q * (((1.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/4.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/6.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+float bl_tent_inv_sq_diff(float x, float hh) {
+  return ((-log(abs((hh + x)))) - (2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
 }
 
 float bl_tent_inv_sq(float x, float sigma) {
@@ -2510,13 +2601,17 @@ float bl_tent_inv_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_tent_inv_sq_series(x, hh);
   }
-  return ((-log(abs((hh + x)))) - (2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
+  return bl_tent_inv_sq_diff(x, hh);
 }
 
 float bl_box_inv2_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
   float q = hh * hh;
   return (1.0/(x*x)) + q * ((1.0/(x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+}
+
+float bl_box_inv2_diff(float x, float hh) {
+  return (((1.0/(((-hh) + (-x))))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
 }
 
 float bl_box_inv2(float x, float sigma) {
@@ -2526,13 +2621,17 @@ float bl_box_inv2(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_box_inv2_series(x, hh);
   }
-  return (((1.0/(((-hh) + (-x))))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
+  return bl_box_inv2_diff(x, hh);
 }
 
 float bl_box_inv2_sq_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x*x*x));  // no smoothing: f(x)
   float q = hh * hh;
   return (1.0/(x*x*x*x)) + q * (((10.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * ((7.0*(1.0/(x*x*x*x*x*x*x*x))) + q * ((12.0*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((55.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((26.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((35.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+float bl_box_inv2_sq_diff(float x, float hh) {
+  return (((1.0/3.0)*(1.0/(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x))))) - ((-1.0/3.0)*(1.0/(((-hh) + x)*((-hh) + x)*((-hh) + x))))) / ((2.0) * hh);
 }
 
 float bl_box_inv2_sq(float x, float sigma) {
@@ -2542,13 +2641,17 @@ float bl_box_inv2_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_box_inv2_sq_series(x, hh);
   }
-  return (((1.0/3.0)*(1.0/(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x))))) - ((-1.0/3.0)*(1.0/(((-hh) + x)*((-hh) + x)*((-hh) + x))))) / ((2.0) * hh);
+  return bl_box_inv2_sq_diff(x, hh);
 }
 
 float bl_tent_inv2_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
   float q = hh * hh;
   return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x*x*x))) + q * (((1.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/4.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/6.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+float bl_tent_inv2_diff(float x, float hh) {
+  return ((-log(abs((hh + x)))) - (2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
 }
 
 float bl_tent_inv2(float x, float sigma) {
@@ -2558,13 +2661,17 @@ float bl_tent_inv2(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_tent_inv2_series(x, hh);
   }
-  return ((-log(abs((hh + x)))) - (2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
+  return bl_tent_inv2_diff(x, hh);
 }
 
 float bl_tent_inv2_sq_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x*x*x));  // no smoothing: f(x)
   float q = hh * hh;
   return (1.0/(x*x*x*x)) + q * (((5.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((7.0/3.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * ((3.0*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((11.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((13.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((5.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+float bl_tent_inv2_sq_diff(float x, float hh) {
+  return (((1.0/6.0)*(1.0/(((-hh) + (-x))*((-hh) + (-x))))) - (2.0) * ((1.0/6.0)*(1.0/(x*x))) + ((1.0/6.0)*(1.0/(((-hh) + x)*((-hh) + x))))) / (hh * hh);
 }
 
 float bl_tent_inv2_sq(float x, float sigma) {
@@ -2574,7 +2681,7 @@ float bl_tent_inv2_sq(float x, float sigma) {
   if (hh <= bl_series_reach() * r) {
     return bl_tent_inv2_sq_series(x, hh);
   }
-  return (((1.0/6.0)*(1.0/(((-hh) + (-x))*((-hh) + (-x))))) - (2.0) * ((1.0/6.0)*(1.0/(x*x))) + ((1.0/6.0)*(1.0/(((-hh) + x)*((-hh) + x))))) / (hh * hh);
+  return bl_tent_inv2_sq_diff(x, hh);
 }
 
 float bl_gaussian_moment(int n, float x, float sigma) {

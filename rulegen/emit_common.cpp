@@ -99,7 +99,13 @@ std::string guard_sigma(const Syntax& s) {
 }
 
 std::string body_closed(const Derived& d, const Syntax& s) {
-  return guard_sigma(s) + "  return " + s.ex(d.closed) + ";\n";
+  // An odd closed form is exactly 0 at x = 0, also where a power of sigma overflows (float x^9
+  // moments at sigma = 1e6 would give 0 * inf).
+  const GiNaC::ex& x = sym::var_x();
+  const bool odd = (d.closed + d.closed.subs(x == -x)).expand().is_zero() && !d.closed.expand().is_zero();
+  std::string out = guard_sigma(s);
+  if (odd) out += "  if (x == " + s.dbl(0) + ") return " + s.dbl(0) + ";  // odd in x\n";
+  return out + "  return " + s.ex(d.closed) + ";\n";
 }
 
 std::string body_piecewise(const Derived& d, const Syntax& s) {
@@ -228,6 +234,7 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
       }
     }
     out += s.decl("r", r);
+
     out += s.decl("hh", s.min(width, s.dbl(d.lambda) + " * r"));  // compact kernel
   } else {
     out += s.decl("hh", width);
@@ -249,33 +256,14 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
     out += "    using W = detail::wide_t<T>;\n    return T(" + impl_name(d) + "_series<W>(W(x), W(hh)));\n  }\n";
   else
     out += "    return " + s.fn(impl_name(d) + "_series") + "(x, hh);\n  }\n";
-  // The polynomial part P of F has an exact difference quotient (expanded symbolically, nothing
-  // cancels at run time); only the rest R is differenced numerically.
-  GiNaC::ex P = 0, R = 0;
-  const GiNaC::ex Fx = d.F_any.expand();
-  const GiNaC::ex Fterms = is_a<GiNaC::add>(Fx) ? Fx : GiNaC::ex(GiNaC::lst{Fx});
-  for (size_t i = 0; i < Fterms.nops(); ++i) {
-    const GiNaC::ex t = Fterms.op(i);
-    if (t.is_polynomial(x)) P += t;
-    else R += t;
-  }
-  GiNaC::ex dP;
-  if (d.kernel == Kernel::Box)
-    dP = ((P.subs(x == x + hh) - P.subs(x == x - hh)) / (2 * hh)).expand().normal().expand();
-  else
-    dP = ((P.subs(x == x + hh) - 2 * P + P.subs(x == x - hh)) / (hh * hh)).expand().normal().expand();
-  std::string rest;
-  if (!R.is_zero()) {
-    const GiNaC::ex Rp = R.subs(x == x + hh), Rm = R.subs(x == x - hh);
-    if (d.kernel == Kernel::Box)
-      rest = "(" + s.ex(Rp) + " - " + s.ex(Rm) + ") / (" + s.dbl(2) + " * hh)";
-    else
-      rest = "(" + s.ex(Rp) + " - " + s.dbl(2) + " * " + s.ex(R) + " + " + s.ex(Rm) + ") / (hh * hh)";
-  }
-  std::string value = dP.is_zero() ? std::string() : s.ex(dP);
-  if (!rest.empty()) value += (value.empty() ? "" : " + ") + rest;
-  if (value.empty()) value = s.dbl(0);
-  out += "  return " + value + ";\n";
+  // The difference quotient, in its own function (diff_body). Next to a periodic pole its argument
+  // (pi - 2x for tan) loses digits: C++ evaluates it there in long double (11 more bits on x86),
+  // with hh as computed above, so the compact half-width is the same in every precision.
+  if (s.cpp() && a.period && has_r)
+    out += "  if constexpr (sizeof(T) == sizeof(double)) {\n    if (r < T(1e-3)) return T(" + impl_name(d) +
+           "_diff<long double>((long double)x, (long double)hh));\n  }\n";
+  out += "  return " + s.fn(impl_name(d) + "_diff") + "(x, hh);\n";
+
   return out;
 }
 
@@ -310,6 +298,41 @@ std::string body_first_moment(const Derived& d, const Syntax& s) {
 }
 
 }  // namespace
+
+std::string diff_body(const Derived& d, Lang lang) {
+  const Syntax s{lang};
+  const symbol& x = sym::var_x();
+  const GiNaC::ex hh = sym::var_hh();
+  std::string out = s.cpp() ? "  BL_MATH_USING\n" : "";
+  // The polynomial part P of F has an exact difference quotient (expanded symbolically, nothing
+  // cancels at run time); only the rest R is differenced numerically.
+  GiNaC::ex P = 0, R = 0;
+  const GiNaC::ex Fx = d.F_any.expand();
+  const GiNaC::ex Fterms = is_a<GiNaC::add>(Fx) ? Fx : GiNaC::ex(GiNaC::lst{Fx});
+  for (size_t i = 0; i < Fterms.nops(); ++i) {
+    const GiNaC::ex t = Fterms.op(i);
+    if (t.is_polynomial(x)) P += t;
+    else R += t;
+  }
+  GiNaC::ex dP;
+  if (d.kernel == Kernel::Box)
+    dP = ((P.subs(x == x + hh) - P.subs(x == x - hh)) / (2 * hh)).expand().normal().expand();
+  else
+    dP = ((P.subs(x == x + hh) - 2 * P + P.subs(x == x - hh)) / (hh * hh)).expand().normal().expand();
+  std::string rest;
+  if (!R.is_zero()) {
+    const GiNaC::ex Rp = R.subs(x == x + hh), Rm = R.subs(x == x - hh);
+    if (d.kernel == Kernel::Box)
+      rest = "(" + s.ex(Rp) + " - " + s.ex(Rm) + ") / (" + s.dbl(2) + " * hh)";
+    else
+      rest = "(" + s.ex(Rp) + " - " + s.dbl(2) + " * " + s.ex(R) + " + " + s.ex(Rm) + ") / (hh * hh)";
+  }
+  std::string value = dP.is_zero() ? std::string() : s.ex(dP);
+  if (!rest.empty()) value += (value.empty() ? "" : " + ") + rest;
+  if (value.empty()) value = s.dbl(0);
+  out += "  return " + value + ";\n";
+  return out;
+}
 
 std::string series_body(const Derived& d, Lang lang) {
   const Syntax s{lang};

@@ -23,6 +23,8 @@ std::string body(const Derived& d, Lang lang);
 std::string body_u(const Derived& d, Lang lang);
 // Antiderivative entries: the Taylor series in the half-width hh, impl_name(d) + "_series"(x, hh).
 std::string series_body(const Derived& d, Lang lang);
+// Antiderivative entries: the difference quotient of F (F2) at half-width hh, impl_name(d) + "_diff".
+std::string diff_body(const Derived& d, Lang lang);
 inline bool has_series(const Derived& d) { return d.body == sym::Body::Antiderivative; }
 // True for the entries that get such a first-moment companion.
 inline bool has_first_moment(const Derived& d) { return d.body == sym::Body::PeriodicTable && !d.squared; }

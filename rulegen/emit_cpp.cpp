@@ -69,6 +69,7 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
     t << "template <class T>\nT " << impl_name(d) << "(T x, T sigma);\n";
     if (has_first_moment(d)) t << "template <class T>\nT " << impl_name(d) << "_u(T x, T sigma);\n";
     if (has_series(d)) t << "template <class T>\nT " << impl_name(d) << "_series(T x, T hh);\n";
+    if (has_series(d)) t << "template <class T>\nT " << impl_name(d) << "_diff(T x, T hh);\n";
   }
   t << "\n";
   for (const auto& a : cat.atomics)
@@ -81,7 +82,11 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
       if (impl_name(d) != current_moment) {
         current_moment = impl_name(d);
         t << "template <class T>\nT " << current_moment << "(int n, T x, T sigma) {\n  BL_MATH_USING\n"
-          << "  if (!(sigma >= T(0))) return detail::nan<T>();\n  switch (n) {\n";
+          << "  if (!(sigma >= T(0))) return detail::nan<T>();\n"
+          << "  // sigma^n overflows float long before the moment does (x = 1e-9, sigma = 1e4, n = 11).\n"
+          << "  if constexpr (sizeof(T) < sizeof(double)) return T(" << current_moment
+          << "<double>(n, double(x), double(sigma)));\n"
+          << "  if (n % 2 == 1 && x == T(0)) return T(0);  // odd moments vanish at 0 exactly\n  switch (n) {\n";
       }
       t << "    case " << d.order << ":\n" << comment_block(d.formula, "      ") << "      return "
         << sym::print(d.closed, Lang::Cpp) << ";\n";
@@ -91,7 +96,9 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
     }
     if (has_series(d))
       t << "// Taylor series of the entry below in its half-width hh.\ntemplate <class T>\nT " << impl_name(d)
-        << "_series(T x, T hh) {\n" << series_body(d, Lang::Cpp) << "}\n\n";
+        << "_series(T x, T hh) {\n" << series_body(d, Lang::Cpp) << "}\n\n"
+        << "// Difference quotient of the entry below at half-width hh.\ntemplate <class T>\nT " << impl_name(d)
+        << "_diff(T x, T hh) {\n" << diff_body(d, Lang::Cpp) << "}\n\n";
     t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
       << body(d, Lang::Cpp) << "}\n\n";
     if (has_first_moment(d))

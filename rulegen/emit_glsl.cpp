@@ -32,7 +32,8 @@ void emit_glsl(const sym::Catalog& cat, const std::vector<Derived>& ds, const st
       continue;
     }
     if (has_series(d))
-      g << "float " << d.glsl_name() << "_series(float x, float hh) {\n" << series_body(d, Lang::Glsl) << "}\n\n";
+      g << "float " << d.glsl_name() << "_series(float x, float hh) {\n" << series_body(d, Lang::Glsl) << "}\n\n"
+        << "float " << d.glsl_name() << "_diff(float x, float hh) {\n" << diff_body(d, Lang::Glsl) << "}\n\n";
     g << "float " << d.glsl_name() << "(float x, float sigma) {\n" << body(d, Lang::Glsl) << "}\n\n";
     if (has_first_moment(d))
       g << "float " << d.glsl_name() << "_u(float x, float sigma) {\n" << body_u(d, Lang::Glsl) << "}\n\n";

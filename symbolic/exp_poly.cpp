@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "catalog.hpp"
+#include "functions.hpp"
 
 namespace bl::sym {
 using namespace GiNaC;
@@ -135,6 +136,16 @@ ex ExpPoly::convolve(Kernel kern) const {
     }
     if (k.a.is_real()) {
       if (!c.is_real()) imag_check += abs(c);
+      // e^{ax} and e^{-ax} together become cosh/sinh (sinh(x) near 0 would cancel otherwise).
+      auto partner = terms_.find({0, -k.a});
+      if (partner != terms_.end()) {
+        if (k.a < 0) continue;  // handled with its positive partner
+        const numeric cp = c.real(), cm = partner->second.real();
+        const ex m = kernel_mgf(kern, k.a);
+        if (!(cp + cm).is_zero()) real_part_sum += (cp + cm) * cosh(k.a * x) * m;
+        if (!(cp - cm).is_zero()) real_part_sum += (cp - cm) * prod0(sinh(k.a * x), m);
+        continue;
+      }
       real_part_sum += c.real() * exp_times_mgf(kern, k.a, x);
     } else if (k.a.real().is_zero()) {
       // c e^{i w x} -> Re: cr cos(w x) - ci sin(w x); with w < 0 the sine flips sign.

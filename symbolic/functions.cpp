@@ -117,8 +117,19 @@ ex clausen2_evalf(const ex& t) {
 }
 ex clausen2_deriv(const ex& t, unsigned) { return -log(abs(2 * sin(t / 2))); }
 
+ex prod0_evalf(const ex& a, const ex& b) { return (a.evalf() * b.evalf()).evalf(); }
+ex prod0_deriv(const ex& a, const ex& b, unsigned i) { return i == 0 ? b : a; }
+ex sgn_evalf(const ex& x) {
+  if (!is_a<numeric>(x)) return sgn(x).hold();
+  const numeric v = ex_to<numeric>(x);
+  return v.is_zero() ? 0 : (v.is_positive() ? 1 : -1);
+}
+ex sgn_deriv(const ex&, unsigned) { return 0; }
+
 }  // namespace
 
+REGISTER_FUNCTION(prod0, evalf_func(prod0_evalf).derivative_func(prod0_deriv))
+REGISTER_FUNCTION(sgn, evalf_func(sgn_evalf).derivative_func(sgn_deriv))
 REGISTER_FUNCTION(clausen2, evalf_func(clausen2_evalf).derivative_func(clausen2_deriv))
 REGISTER_FUNCTION(Phi, evalf_func(Phi_evalf).derivative_func(Phi_deriv))
 REGISTER_FUNCTION(phi, evalf_func(phi_evalf).derivative_func(phi_deriv))
@@ -138,6 +149,8 @@ void register_functions() {
   (void)exp_sinhc_SERIAL::serial;
   (void)exp_sinhc2_SERIAL::serial;
   (void)clausen2_SERIAL::serial;
+  (void)prod0_SERIAL::serial;
+  (void)sgn_SERIAL::serial;
 }
 
 }  // namespace bl::sym

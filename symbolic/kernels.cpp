@@ -64,6 +64,17 @@ ex exp_times_mgf(Kernel k, const numeric& a, const ex& x) {
   return 0;
 }
 
+ex kernel_mgf(Kernel k, const numeric& a) {
+  const ex sig = var_sigma();
+  const numeric aa = abs(a);
+  switch (k) {
+    case Kernel::Gaussian: return exp(pow(aa * sig, 2) / 2);
+    case Kernel::Box: return sinhc(aa * half_width(k));
+    case Kernel::Tent: return pow(sinhc(aa * half_width(k) / 2), 2);
+  }
+  return 0;
+}
+
 ex characteristic(Kernel k, const numeric& omega) {
   const ex sig = var_sigma();
   switch (k) {

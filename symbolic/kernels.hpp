@@ -22,6 +22,9 @@ GiNaC::ex raw_moment(Kernel k, int n);
 // E[e^{aU}] for real a != 0 multiplied by e^{a x}, in overflow-safe runtime form.
 GiNaC::ex exp_times_mgf(Kernel k, const GiNaC::numeric& a, const GiNaC::ex& x);
 
+// M(a) = E[e^{aU}] for real a (even in a).
+GiNaC::ex kernel_mgf(Kernel k, const GiNaC::numeric& a);
+
 // E[cos(omega U)] (the characteristic function; kernels are symmetric, so E[sin(omega U)] = 0).
 GiNaC::ex characteristic(Kernel k, const GiNaC::numeric& omega);
 

@@ -156,7 +156,7 @@ std::string pr(const ex& e, Lang lang) {
     auto it = builtin.find(name);
     if (it != builtin.end()) return call(it->second, args);
     static const char* helpers[] = {"Phi", "phi", "sinc", "sinhc", "logcosh", "exp_sinhc",
-                                    "exp_sinhc2", "clausen2"};
+                                    "exp_sinhc2", "clausen2", "prod0", "sgn"};
     for (const char* h : helpers)
       if (name == h) return call(helper(h, lang), args);
     if (name == "Li2") return call(helper("li2", lang), args);

@@ -109,6 +109,16 @@ T li2(T z) {
   return -li2_series(z / (z - T(1))) - l * l / T(2);
 }
 
+// a * b with 0 * anything = 0: sinh(0) times a kernel factor that overflowed.
+template <class T>
+T prod0(T a, T b) {
+  return a == T(0) ? T(0) : a * b;
+}
+template <class T>
+T sgn(T x) {
+  return x > T(0) ? T(1) : (x < T(0) ? T(-1) : T(0));
+}
+
 template <class T>
 T min2(T a, T b) {
   return b < a ? b : a;

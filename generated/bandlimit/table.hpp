@@ -363,97 +363,145 @@ T box_tan(T x, T sigma);
 template <class T>
 T box_tan_series(T x, T hh);
 template <class T>
+T box_tan_diff(T x, T hh);
+template <class T>
 T box_tan_sq(T x, T sigma);
 template <class T>
 T box_tan_sq_series(T x, T hh);
+template <class T>
+T box_tan_sq_diff(T x, T hh);
 template <class T>
 T tent_tan(T x, T sigma);
 template <class T>
 T tent_tan_series(T x, T hh);
 template <class T>
+T tent_tan_diff(T x, T hh);
+template <class T>
 T tent_tan_sq(T x, T sigma);
 template <class T>
 T tent_tan_sq_series(T x, T hh);
+template <class T>
+T tent_tan_sq_diff(T x, T hh);
 template <class T>
 T box_tanh(T x, T sigma);
 template <class T>
 T box_tanh_series(T x, T hh);
 template <class T>
+T box_tanh_diff(T x, T hh);
+template <class T>
 T box_tanh_sq(T x, T sigma);
 template <class T>
 T box_tanh_sq_series(T x, T hh);
+template <class T>
+T box_tanh_sq_diff(T x, T hh);
 template <class T>
 T tent_tanh(T x, T sigma);
 template <class T>
 T tent_tanh_series(T x, T hh);
 template <class T>
+T tent_tanh_diff(T x, T hh);
+template <class T>
 T tent_tanh_sq(T x, T sigma);
 template <class T>
 T tent_tanh_sq_series(T x, T hh);
+template <class T>
+T tent_tanh_sq_diff(T x, T hh);
 template <class T>
 T box_log(T x, T sigma);
 template <class T>
 T box_log_series(T x, T hh);
 template <class T>
+T box_log_diff(T x, T hh);
+template <class T>
 T box_log_sq(T x, T sigma);
 template <class T>
 T box_log_sq_series(T x, T hh);
+template <class T>
+T box_log_sq_diff(T x, T hh);
 template <class T>
 T tent_log(T x, T sigma);
 template <class T>
 T tent_log_series(T x, T hh);
 template <class T>
+T tent_log_diff(T x, T hh);
+template <class T>
 T tent_log_sq(T x, T sigma);
 template <class T>
 T tent_log_sq_series(T x, T hh);
+template <class T>
+T tent_log_sq_diff(T x, T hh);
 template <class T>
 T box_sqrt(T x, T sigma);
 template <class T>
 T box_sqrt_series(T x, T hh);
 template <class T>
+T box_sqrt_diff(T x, T hh);
+template <class T>
 T box_sqrt_sq(T x, T sigma);
 template <class T>
 T box_sqrt_sq_series(T x, T hh);
+template <class T>
+T box_sqrt_sq_diff(T x, T hh);
 template <class T>
 T tent_sqrt(T x, T sigma);
 template <class T>
 T tent_sqrt_series(T x, T hh);
 template <class T>
+T tent_sqrt_diff(T x, T hh);
+template <class T>
 T tent_sqrt_sq(T x, T sigma);
 template <class T>
 T tent_sqrt_sq_series(T x, T hh);
+template <class T>
+T tent_sqrt_sq_diff(T x, T hh);
 template <class T>
 T box_inv(T x, T sigma);
 template <class T>
 T box_inv_series(T x, T hh);
 template <class T>
+T box_inv_diff(T x, T hh);
+template <class T>
 T box_inv_sq(T x, T sigma);
 template <class T>
 T box_inv_sq_series(T x, T hh);
+template <class T>
+T box_inv_sq_diff(T x, T hh);
 template <class T>
 T tent_inv(T x, T sigma);
 template <class T>
 T tent_inv_series(T x, T hh);
 template <class T>
+T tent_inv_diff(T x, T hh);
+template <class T>
 T tent_inv_sq(T x, T sigma);
 template <class T>
 T tent_inv_sq_series(T x, T hh);
+template <class T>
+T tent_inv_sq_diff(T x, T hh);
 template <class T>
 T box_inv2(T x, T sigma);
 template <class T>
 T box_inv2_series(T x, T hh);
 template <class T>
+T box_inv2_diff(T x, T hh);
+template <class T>
 T box_inv2_sq(T x, T sigma);
 template <class T>
 T box_inv2_sq_series(T x, T hh);
+template <class T>
+T box_inv2_sq_diff(T x, T hh);
 template <class T>
 T tent_inv2(T x, T sigma);
 template <class T>
 T tent_inv2_series(T x, T hh);
 template <class T>
+T tent_inv2_diff(T x, T hh);
+template <class T>
 T tent_inv2_sq(T x, T sigma);
 template <class T>
 T tent_inv2_sq_series(T x, T hh);
+template <class T>
+T tent_inv2_sq_diff(T x, T hh);
 template <class T>
 T gaussian_moment(int n, T x, T sigma);
 template <class T>
@@ -812,106 +860,100 @@ T tent_exp_sq(T x, T sigma) {
   return detail::exp_sinhc2((T(2)*x), (sigma*sqrt(T(6))));
 }
 
-//   (((-1/2)*exp((((1/2)*(sigma)^(2)) + (-x)))) + ((1/2)*exp((((1/2)*(sigma)^(2)) + x))))
+//   prod0(sinh(x), exp(((1/2)*(sigma)^(2))))
 template <class T>
 T gaussian_sinh(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(-1)/T(2))*exp((((T(1)/T(2))*(sigma*sigma)) + (-x)))) + ((T(1)/T(2))*exp((((T(1)/T(2))*(sigma*sigma)) + x))));
+  return detail::prod0(sinh(x), exp(((T(1)/T(2))*(sigma*sigma))));
 }
 
-//   (((1/4)*exp((((-2)*x) + (2*(sigma)^(2))))) + ((1/4)*exp(((2*(sigma)^(2)) + (2*x)))) + (-1/2))
+//   (((1/2)*cosh((2*x))*exp((2*(sigma)^(2)))) + (-1/2))
 template <class T>
 T gaussian_sinh_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(4))*exp((((T(-2))*x) + (T(2)*(sigma*sigma))))) + ((T(1)/T(4))*exp(((T(2)*(sigma*sigma)) + (T(2)*x)))) + (T(-1)/T(2)));
+  return (((T(1)/T(2))*cosh((T(2)*x))*exp((T(2)*(sigma*sigma)))) + (T(-1)/T(2)));
 }
 
-//   (((-1/2)*exp_sinhc((-x), ((3)^((1/2))*sigma))) + ((1/2)*exp_sinhc(x, ((3)^((1/2))*sigma))))
+//   prod0(sinh(x), sinhc(((3)^((1/2))*sigma)))
 template <class T>
 T box_sinh(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(-1)/T(2))*detail::exp_sinhc((-x), (sigma*sqrt(T(3))))) + ((T(1)/T(2))*detail::exp_sinhc(x, (sigma*sqrt(T(3))))));
+  return detail::prod0(sinh(x), detail::sinhc((sigma*sqrt(T(3)))));
 }
 
-//   (((1/4)*exp_sinhc(((-2)*x), (2*(3)^((1/2))*sigma))) + ((1/4)*exp_sinhc((2*x),
-//   (2*(3)^((1/2))*sigma))) + (-1/2))
+//   (((1/2)*cosh((2*x))*sinhc((2*(3)^((1/2))*sigma))) + (-1/2))
 template <class T>
 T box_sinh_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(4))*detail::exp_sinhc(((T(-2))*x), (T(2)*sigma*sqrt(T(3))))) + ((T(1)/T(4))*detail::exp_sinhc((T(2)*x), (T(2)*sigma*sqrt(T(3))))) + (T(-1)/T(2)));
+  return (((T(1)/T(2))*cosh((T(2)*x))*detail::sinhc((T(2)*sigma*sqrt(T(3))))) + (T(-1)/T(2)));
 }
 
-//   (((-1/2)*exp_sinhc2((-x), ((1/2)*(6)^((1/2))*sigma))) + ((1/2)*exp_sinhc2(x,
-//   ((1/2)*(6)^((1/2))*sigma))))
+//   prod0(sinh(x), (sinhc(((1/2)*(6)^((1/2))*sigma)))^(2))
 template <class T>
 T tent_sinh(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(-1)/T(2))*detail::exp_sinhc2((-x), ((T(1)/T(2))*sigma*sqrt(T(6))))) + ((T(1)/T(2))*detail::exp_sinhc2(x, ((T(1)/T(2))*sigma*sqrt(T(6))))));
+  return detail::prod0(sinh(x), (detail::sinhc(((T(1)/T(2))*sigma*sqrt(T(6))))*detail::sinhc(((T(1)/T(2))*sigma*sqrt(T(6))))));
 }
 
-//   (((1/4)*exp_sinhc2(((-2)*x), ((6)^((1/2))*sigma))) + ((1/4)*exp_sinhc2((2*x),
-//   ((6)^((1/2))*sigma))) + (-1/2))
+//   (((1/2)*(sinhc(((6)^((1/2))*sigma)))^(2)*cosh((2*x))) + (-1/2))
 template <class T>
 T tent_sinh_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(4))*detail::exp_sinhc2(((T(-2))*x), (sigma*sqrt(T(6))))) + ((T(1)/T(4))*detail::exp_sinhc2((T(2)*x), (sigma*sqrt(T(6))))) + (T(-1)/T(2)));
+  return (((T(1)/T(2))*(detail::sinhc((sigma*sqrt(T(6))))*detail::sinhc((sigma*sqrt(T(6)))))*cosh((T(2)*x))) + (T(-1)/T(2)));
 }
 
-//   (((1/2)*exp((((1/2)*(sigma)^(2)) + (-x)))) + ((1/2)*exp((((1/2)*(sigma)^(2)) + x))))
+//   (cosh(x)*exp(((1/2)*(sigma)^(2))))
 template <class T>
 T gaussian_cosh(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(2))*exp((((T(1)/T(2))*(sigma*sigma)) + (-x)))) + ((T(1)/T(2))*exp((((T(1)/T(2))*(sigma*sigma)) + x))));
+  return (cosh(x)*exp(((T(1)/T(2))*(sigma*sigma))));
 }
 
-//   (((1/4)*exp((((-2)*x) + (2*(sigma)^(2))))) + ((1/4)*exp(((2*(sigma)^(2)) + (2*x)))) + (1/2))
+//   (((1/2)*cosh((2*x))*exp((2*(sigma)^(2)))) + (1/2))
 template <class T>
 T gaussian_cosh_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(4))*exp((((T(-2))*x) + (T(2)*(sigma*sigma))))) + ((T(1)/T(4))*exp(((T(2)*(sigma*sigma)) + (T(2)*x)))) + (T(1)/T(2)));
+  return (((T(1)/T(2))*cosh((T(2)*x))*exp((T(2)*(sigma*sigma)))) + (T(1)/T(2)));
 }
 
-//   (((1/2)*exp_sinhc((-x), ((3)^((1/2))*sigma))) + ((1/2)*exp_sinhc(x, ((3)^((1/2))*sigma))))
+//   (cosh(x)*sinhc(((3)^((1/2))*sigma)))
 template <class T>
 T box_cosh(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(2))*detail::exp_sinhc((-x), (sigma*sqrt(T(3))))) + ((T(1)/T(2))*detail::exp_sinhc(x, (sigma*sqrt(T(3))))));
+  return (cosh(x)*detail::sinhc((sigma*sqrt(T(3)))));
 }
 
-//   (((1/4)*exp_sinhc(((-2)*x), (2*(3)^((1/2))*sigma))) + ((1/4)*exp_sinhc((2*x),
-//   (2*(3)^((1/2))*sigma))) + (1/2))
+//   (((1/2)*cosh((2*x))*sinhc((2*(3)^((1/2))*sigma))) + (1/2))
 template <class T>
 T box_cosh_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(4))*detail::exp_sinhc(((T(-2))*x), (T(2)*sigma*sqrt(T(3))))) + ((T(1)/T(4))*detail::exp_sinhc((T(2)*x), (T(2)*sigma*sqrt(T(3))))) + (T(1)/T(2)));
+  return (((T(1)/T(2))*cosh((T(2)*x))*detail::sinhc((T(2)*sigma*sqrt(T(3))))) + (T(1)/T(2)));
 }
 
-//   (((1/2)*exp_sinhc2((-x), ((1/2)*(6)^((1/2))*sigma))) + ((1/2)*exp_sinhc2(x,
-//   ((1/2)*(6)^((1/2))*sigma))))
+//   ((sinhc(((1/2)*(6)^((1/2))*sigma)))^(2)*cosh(x))
 template <class T>
 T tent_cosh(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(2))*detail::exp_sinhc2((-x), ((T(1)/T(2))*sigma*sqrt(T(6))))) + ((T(1)/T(2))*detail::exp_sinhc2(x, ((T(1)/T(2))*sigma*sqrt(T(6))))));
+  return ((detail::sinhc(((T(1)/T(2))*sigma*sqrt(T(6))))*detail::sinhc(((T(1)/T(2))*sigma*sqrt(T(6)))))*cosh(x));
 }
 
-//   (((1/4)*exp_sinhc2(((-2)*x), ((6)^((1/2))*sigma))) + ((1/4)*exp_sinhc2((2*x),
-//   ((6)^((1/2))*sigma))) + (1/2))
+//   (((1/2)*(sinhc(((6)^((1/2))*sigma)))^(2)*cosh((2*x))) + (1/2))
 template <class T>
 T tent_cosh_sq(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(4))*detail::exp_sinhc2(((T(-2))*x), (sigma*sqrt(T(6))))) + ((T(1)/T(4))*detail::exp_sinhc2((T(2)*x), (sigma*sqrt(T(6))))) + (T(1)/T(2)));
+  return (((T(1)/T(2))*(detail::sinhc((sigma*sqrt(T(6))))*detail::sinhc((sigma*sqrt(T(6)))))*cosh((T(2)*x))) + (T(1)/T(2)));
 }
 
 //   ((sigma)^(2) + (x)^(2))
@@ -967,6 +1009,7 @@ template <class T>
 T gaussian_pow3(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x == T(0.0)) return T(0.0);  // odd in x
   return ((T(3)*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -983,6 +1026,7 @@ template <class T>
 T box_pow3(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x == T(0.0)) return T(0.0);  // odd in x
   return ((T(3)*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -999,6 +1043,7 @@ template <class T>
 T tent_pow3(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x == T(0.0)) return T(0.0);  // odd in x
   return ((T(3)*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -1066,6 +1111,7 @@ template <class T>
 T gaussian_pow5(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x == T(0.0)) return T(0.0);  // odd in x
   return ((T(10)*(sigma*sigma)*(x*x*x)) + (T(15)*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -1083,6 +1129,7 @@ template <class T>
 T box_pow5(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x == T(0.0)) return T(0.0);  // odd in x
   return ((T(10)*(sigma*sigma)*(x*x*x)) + (T(9)*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -1100,6 +1147,7 @@ template <class T>
 T tent_pow5(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x == T(0.0)) return T(0.0);  // odd in x
   return ((T(10)*(sigma*sigma)*(x*x*x)) + (T(12)*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -1171,6 +1219,7 @@ template <class T>
 T gaussian_pow7(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x == T(0.0)) return T(0.0);  // odd in x
   return ((T(105)*(sigma*sigma*sigma*sigma)*(x*x*x)) + (T(105)*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (T(21)*(sigma*sigma)*(x*x*x*x*x)) + (x*x*x*x*x*x*x));
 }
 
@@ -1189,6 +1238,7 @@ template <class T>
 T box_pow7(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x == T(0.0)) return T(0.0);  // odd in x
   return ((T(21)*(sigma*sigma)*(x*x*x*x*x)) + (T(27)*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (T(63)*(sigma*sigma*sigma*sigma)*(x*x*x)) + (x*x*x*x*x*x*x));
 }
 
@@ -1207,6 +1257,7 @@ template <class T>
 T tent_pow7(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (x == T(0.0)) return T(0.0);  // odd in x
   return ((T(21)*(sigma*sigma)*(x*x*x*x*x)) + (T(54)*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (T(84)*(sigma*sigma*sigma*sigma)*(x*x*x)) + (x*x*x*x*x*x*x));
 }
 
@@ -2451,6 +2502,13 @@ T box_tan_series(T x, T hh) {
   return u_tan + q * (((T(-1)/T(3))*((-(u_tan*u_tan)) + (T(-1)))*u_tan) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan)) + ((T(1)/T(5))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(15))*u_tan)) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(7))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(11)/T(45))*(u_tan*u_tan*u_tan)) + ((T(17)/T(315))*u_tan)) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(9))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(16)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(2835))*u_tan) + ((T(88)/T(567))*(u_tan*u_tan*u_tan))) + q * ((((T(1)/T(11))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1282)/T(14175))*(u_tan*u_tan*u_tan)) + ((T(1382)/T(155925))*u_tan) + ((T(289)/T(945))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(7)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((T(1)/T(13))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(133)/T(2673))*(u_tan*u_tan*u_tan)) + ((T(21844)/T(6081075))*u_tan) + ((T(26)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(467)/T(2025))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(478)/T(945))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
 }
 
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_tan_diff(T x, T hh) {
+  BL_MATH_USING
+  return ((-log(abs(cos((hh + x))))) - (-log(abs(cos(((-hh) + x)))))) / (T(2.0) * hh);
+}
+
 //   (F(x+hh) - F(x-hh))/(2 hh), F = (-log(abs(cos(x)))), hh = min(sqrt(3) sigma, r/2) with r the
 //   distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms) where the
 //   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
@@ -2468,7 +2526,10 @@ T box_tan(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_tan_series<W>(W(x), W(hh)));
   }
-  return ((-log(abs(cos((hh + x))))) - (-log(abs(cos(((-hh) + x)))))) / (T(2.0) * hh);
+  if constexpr (sizeof(T) == sizeof(double)) {
+    if (r < T(1e-3)) return T(box_tan_diff<long double>((long double)x, (long double)hh));
+  }
+  return box_tan_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2479,6 +2540,13 @@ T box_tan_sq_series(T x, T hh) {
   const T u_tan = tan(x);
   const T q = hh * hh;
   return (u_tan*u_tan) + q * ((((T(4)/T(3))*(u_tan*u_tan)) + (T(1)/T(3)) + (u_tan*u_tan*u_tan*u_tan)) + q * ((((T(17)/T(15))*(u_tan*u_tan)) + (T(2)*(u_tan*u_tan*u_tan*u_tan)) + (T(2)/T(15)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(12)/T(5))*(u_tan*u_tan*u_tan*u_tan)) + ((T(248)/T(315))*(u_tan*u_tan)) + ((T(8)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (T(17)/T(315)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(10)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1382)/T(2835))*(u_tan*u_tan)) + ((T(37)/T(9))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(424)/T(189))*(u_tan*u_tan*u_tan*u_tan)) + (T(62)/T(2835)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(43688)/T(155925))*(u_tan*u_tan)) + ((T(4532)/T(945))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(8507)/T(4725))*(u_tan*u_tan*u_tan*u_tan)) + ((T(94)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (T(1382)/T(155925)) + (T(4)*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + q * ((((T(133)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(14)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1901)/T(405))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1934)/T(1485))*(u_tan*u_tan*u_tan*u_tan)) + ((T(236)/T(27))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(929569)/T(6081075))*(u_tan*u_tan)) + (T(21844)/T(6081075)) + (u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_tan_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return (T(-1)) + (tan((hh + x)) - tan(((-hh) + x))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((-x) + tan(x)), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2498,7 +2566,10 @@ T box_tan_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_tan_sq_series<W>(W(x), W(hh)));
   }
-  return (T(-1)) + (tan((hh + x)) - tan(((-hh) + x))) / (T(2.0) * hh);
+  if constexpr (sizeof(T) == sizeof(double)) {
+    if (r < T(1e-3)) return T(box_tan_sq_diff<long double>((long double)x, (long double)hh));
+  }
+  return box_tan_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2509,6 +2580,13 @@ T tent_tan_series(T x, T hh) {
   const T u_tan = tan(x);
   const T q = hh * hh;
   return u_tan + q * (((T(-1)/T(6))*((-(u_tan*u_tan)) + (T(-1)))*u_tan) + q * ((((T(1)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(9))*(u_tan*u_tan*u_tan)) + ((T(2)/T(45))*u_tan)) + q * ((((T(1)/T(12))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(28))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(11)/T(180))*(u_tan*u_tan*u_tan)) + ((T(17)/T(1260))*u_tan)) + q * ((((T(1)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(16)/T(225))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(14175))*u_tan) + ((T(88)/T(2835))*(u_tan*u_tan*u_tan))) + q * ((((T(1)/T(18))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(66))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(289)/T(5670))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(641)/T(42525))*(u_tan*u_tan*u_tan)) + ((T(691)/T(467775))*u_tan) + ((T(7)/T(90))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan))) + q * ((((T(1)/T(21))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1)/T(91))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(19)/T(2673))*(u_tan*u_tan*u_tan)) + ((T(21844)/T(42567525))*u_tan) + ((T(26)/T(315))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(467)/T(14175))*(u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(478)/T(6615))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_tan_diff(T x, T hh) {
+  BL_MATH_USING
+  return (((T(-1)/T(2))*detail::clausen2((((T(-2))*hh) + ((T(-2))*x) + detail::pi<T>()))) - T(2.0) * ((T(-1)/T(2))*detail::clausen2((((T(-2))*x) + detail::pi<T>()))) + ((T(-1)/T(2))*detail::clausen2((((T(-2))*x) + (T(2)*hh) + detail::pi<T>())))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-1/2)*clausen2((((-2)*x) + pi))) + (log(2)*x)),
@@ -2529,7 +2607,10 @@ T tent_tan(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_tan_series<W>(W(x), W(hh)));
   }
-  return (((T(-1)/T(2))*detail::clausen2((((T(-2))*hh) + ((T(-2))*x) + detail::pi<T>()))) - T(2.0) * ((T(-1)/T(2))*detail::clausen2((((T(-2))*x) + detail::pi<T>()))) + ((T(-1)/T(2))*detail::clausen2((((T(-2))*x) + (T(2)*hh) + detail::pi<T>())))) / (hh * hh);
+  if constexpr (sizeof(T) == sizeof(double)) {
+    if (r < T(1e-3)) return T(tent_tan_diff<long double>((long double)x, (long double)hh));
+  }
+  return tent_tan_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2540,6 +2621,13 @@ T tent_tan_sq_series(T x, T hh) {
   const T u_tan = tan(x);
   const T q = hh * hh;
   return (u_tan*u_tan) + q * ((((T(1)/T(2))*(u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan)) + (T(1)/T(6))) + q * ((((T(1)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(17)/T(45))*(u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan)) + (T(2)/T(45))) + q * ((((T(1)/T(4))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(3)/T(5))*(u_tan*u_tan*u_tan*u_tan)) + ((T(62)/T(315))*(u_tan*u_tan)) + (T(17)/T(1260))) + q * ((((T(1)/T(5))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1382)/T(14175))*(u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(37)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(424)/T(945))*(u_tan*u_tan*u_tan*u_tan)) + (T(62)/T(14175))) + q * ((((T(1)/T(6))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(21844)/T(467775))*(u_tan*u_tan)) + ((T(2266)/T(2835))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(47)/T(45))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(8507)/T(28350))*(u_tan*u_tan*u_tan*u_tan)) + (T(691)/T(467775))) + q * ((((T(1)/T(7))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(19)/T(15))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1901)/T(2835))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(1934)/T(10395))*(u_tan*u_tan*u_tan*u_tan)) + ((T(2)/T(3))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(236)/T(189))*(u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan*u_tan)) + ((T(929569)/T(42567525))*(u_tan*u_tan)) + (T(21844)/T(42567525)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_tan_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return (T(-1)) + ((-log(abs(cos((hh + x))))) - T(2.0) * (-log(abs(cos(x)))) + (-log(abs(cos(((-hh) + x)))))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-1/2)*(x)^(2)) + (-log(abs(cos(x))))), hh =
@@ -2560,7 +2648,10 @@ T tent_tan_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_tan_sq_series<W>(W(x), W(hh)));
   }
-  return (T(-1)) + ((-log(abs(cos((hh + x))))) - T(2.0) * (-log(abs(cos(x)))) + (-log(abs(cos(((-hh) + x)))))) / (hh * hh);
+  if constexpr (sizeof(T) == sizeof(double)) {
+    if (r < T(1e-3)) return T(tent_tan_sq_diff<long double>((long double)x, (long double)hh));
+  }
+  return tent_tan_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2571,6 +2662,13 @@ T box_tanh_series(T x, T hh) {
   const T u_tanh = tanh(x);
   const T q = hh * hh;
   return u_tanh + q * (((T(-1)/T(3))*((-(u_tanh*u_tanh)) + T(1))*u_tanh) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(2)/T(15))*u_tanh)) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-17)/T(315))*u_tanh) + ((T(1)/T(7))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(11)/T(45))*(u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-88)/T(567))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(9))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(16)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(62)/T(2835))*u_tanh)) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-1382)/T(155925))*u_tanh) + ((T(-289)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(11))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1282)/T(14175))*(u_tanh*u_tanh*u_tanh)) + ((T(7)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-133)/T(2673))*(u_tanh*u_tanh*u_tanh)) + ((T(-478)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(13))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(21844)/T(6081075))*u_tanh) + ((T(26)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(467)/T(2025))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_tanh_diff(T x, T hh) {
+  BL_MATH_USING
+  return (detail::logcosh((hh + x)) - detail::logcosh(((-hh) + x))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = logcosh(x), hh = sqrt(3) sigma; Taylor series in hh (7 terms)
@@ -2587,7 +2685,7 @@ T box_tanh(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_tanh_series<W>(W(x), W(hh)));
   }
-  return (detail::logcosh((hh + x)) - detail::logcosh(((-hh) + x))) / (T(2.0) * hh);
+  return box_tanh_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2598,6 +2696,13 @@ T box_tanh_sq_series(T x, T hh) {
   const T u_tanh = tanh(x);
   const T q = hh * hh;
   return (u_tanh*u_tanh) + q * ((((T(-4)/T(3))*(u_tanh*u_tanh)) + (T(1)/T(3)) + (u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-2))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(17)/T(15))*(u_tanh*u_tanh)) + (T(-2)/T(15)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-248)/T(315))*(u_tanh*u_tanh)) + ((T(-8)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(12)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(17)/T(315)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-10)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-424)/T(189))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1382)/T(2835))*(u_tanh*u_tanh)) + ((T(37)/T(9))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(-62)/T(2835)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-4))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-43688)/T(155925))*(u_tanh*u_tanh)) + ((T(-4532)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(8507)/T(4725))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(94)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(1382)/T(155925)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + q * ((((T(-14)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-1934)/T(1485))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-236)/T(27))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(133)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1901)/T(405))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(929569)/T(6081075))*(u_tanh*u_tanh)) + (T(-21844)/T(6081075)) + (u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_tanh_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return T(1) + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((-tanh(x)) + x), hh = sqrt(3) sigma; Taylor series in hh (7
@@ -2614,7 +2719,7 @@ T box_tanh_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_tanh_sq_series<W>(W(x), W(hh)));
   }
-  return T(1) + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / (T(2.0) * hh);
+  return box_tanh_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2627,9 +2732,16 @@ T tent_tanh_series(T x, T hh) {
   return u_tanh + q * (((T(-1)/T(6))*((-(u_tanh*u_tanh)) + T(1))*u_tanh) + q * ((((T(-1)/T(9))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(2)/T(45))*u_tanh)) + q * ((((T(-1)/T(12))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-17)/T(1260))*u_tanh) + ((T(1)/T(28))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(11)/T(180))*(u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-88)/T(2835))*(u_tanh*u_tanh*u_tanh)) + ((T(1)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(16)/T(225))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(62)/T(14175))*u_tanh)) + q * ((((T(-1)/T(18))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-289)/T(5670))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-691)/T(467775))*u_tanh) + ((T(1)/T(66))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(641)/T(42525))*(u_tanh*u_tanh*u_tanh)) + ((T(7)/T(90))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh))) + q * ((((T(-1)/T(21))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-19)/T(2673))*(u_tanh*u_tanh*u_tanh)) + ((T(-478)/T(6615))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(91))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(21844)/T(42567525))*u_tanh) + ((T(26)/T(315))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(467)/T(14175))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)))))))));
 }
 
-//   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((1/2)*(x)^(2)) + ((1/2)*li2((-exp(((-2)*x))))) +
-//   ((1/24)*(pi)^(2)) + (-log(2)*x)), hh = sqrt(6) sigma; Taylor series in hh (7 terms) where the
-//   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_tanh_diff(T x, T hh) {
+  BL_MATH_USING
+  return ((((T(-1)/T(2))*((-hh) + (-x))*abs((hh + x))) + ((T(1)/T(2))*detail::li2((-exp(((T(-2))*abs((hh + x))))))*detail::sgn((hh + x))) + ((T(1)/T(24))*(detail::pi<T>()*detail::pi<T>())*detail::sgn((hh + x)))) - T(2.0) * (((T(1)/T(2))*abs(x)*x) + ((T(1)/T(2))*detail::li2((-exp(((T(-2))*abs(x)))))*detail::sgn(x)) + ((T(1)/T(24))*(detail::pi<T>()*detail::pi<T>())*detail::sgn(x))) + (((T(1)/T(2))*((-hh) + x)*abs(((-hh) + x))) + ((T(1)/T(2))*detail::li2((-exp(((T(-2))*abs(((-hh) + x))))))*detail::sgn(((-hh) + x))) + ((T(1)/T(24))*(detail::pi<T>()*detail::pi<T>())*detail::sgn(((-hh) + x))))) / (hh * hh);
+}
+
+//   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-1/24)*(((-12)*li2((-exp(((-2)*abs(x)))))) +
+//   (-(pi)^(2)))*sgn(x)) + ((1/2)*abs(x)*x) + (-log(2)*x)), hh = sqrt(6) sigma; Taylor series in
+//   hh (7 terms) where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
 T tent_tanh(T x, T sigma) {
   BL_MATH_USING
@@ -2642,7 +2754,7 @@ T tent_tanh(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_tanh_series<W>(W(x), W(hh)));
   }
-  return T(1) + (((T(1)/T(2))*detail::li2((-exp((((T(-2))*hh) + ((T(-2))*x)))))) - T(2.0) * ((T(1)/T(2))*detail::li2((-exp(((T(-2))*x))))) + ((T(1)/T(2))*detail::li2((-exp((((T(-2))*x) + (T(2)*hh))))))) / (hh * hh);
+  return tent_tanh_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2653,6 +2765,13 @@ T tent_tanh_sq_series(T x, T hh) {
   const T u_tanh = tanh(x);
   const T q = hh * hh;
   return (u_tanh*u_tanh) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh)) + ((T(1)/T(2))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(1)/T(6))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(17)/T(45))*(u_tanh*u_tanh)) + (T(-2)/T(45))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-62)/T(315))*(u_tanh*u_tanh)) + ((T(1)/T(4))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(3)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(17)/T(1260))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-424)/T(945))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(5))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1382)/T(14175))*(u_tanh*u_tanh)) + ((T(37)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + (T(-62)/T(14175))) + q * ((((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-21844)/T(467775))*(u_tanh*u_tanh)) + ((T(-2266)/T(2835))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(6))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(47)/T(45))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(8507)/T(28350))*(u_tanh*u_tanh*u_tanh*u_tanh)) + (T(691)/T(467775))) + q * ((((T(-1934)/T(10395))*(u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-2)/T(3))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(-236)/T(189))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1)/T(7))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(19)/T(15))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(1901)/T(2835))*(u_tanh*u_tanh*u_tanh*u_tanh*u_tanh*u_tanh)) + ((T(929569)/T(42567525))*(u_tanh*u_tanh)) + (T(-21844)/T(42567525)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_tanh_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return T(1) + ((-detail::logcosh((hh + x))) - T(2.0) * (-detail::logcosh(x)) + (-detail::logcosh(((-hh) + x)))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((1/2)*(x)^(2)) + (-logcosh(x))), hh = sqrt(6)
@@ -2670,7 +2789,7 @@ T tent_tanh_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_tanh_sq_series<W>(W(x), W(hh)));
   }
-  return T(1) + ((-detail::logcosh((hh + x))) - T(2.0) * (-detail::logcosh(x)) + (-detail::logcosh(((-hh) + x)))) / (hh * hh);
+  return tent_tanh_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2681,6 +2800,13 @@ T box_log_series(T x, T hh) {
   const T u_log = log(x);
   const T q = hh * hh;
   return u_log + q * (((T(-1)/T(6))*(T(1)/(x*x))) + q * (((T(-1)/T(20))*(T(1)/(x*x*x*x))) + q * (((T(-1)/T(42))*(T(1)/(x*x*x*x*x*x))) + q * (((T(-1)/T(72))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(110))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(156))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_log_diff(T x, T hh) {
+  BL_MATH_USING
+  return (T(-1)) + ((-((-hh) + (-x))*log((hh + x))) - (((-hh) + x)*log(((-hh) + x)))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((-x) + (log(x)*x)), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2698,7 +2824,7 @@ T box_log(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_log_series<W>(W(x), W(hh)));
   }
-  return (T(-1)) + ((-((-hh) + (-x))*log((hh + x))) - (((-hh) + x)*log(((-hh) + x)))) / (T(2.0) * hh);
+  return box_log_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2709,6 +2835,13 @@ T box_log_sq_series(T x, T hh) {
   const T u_log = log(x);
   const T q = hh * hh;
   return (u_log*u_log) + q * (((T(1)/T(3))*((-u_log) + T(1))*(T(1)/(x*x))) + q * (((T(1)/T(60))*(((T(-6))*u_log) + T(11))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(1260))*(((T(-60))*u_log) + T(137))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(5040))*(((T(-140))*u_log) + T(363))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(138600))*(((T(-2520))*u_log) + T(7129))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(2162160))*(((T(-27720))*u_log) + T(83711))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_log_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return T(2) + (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (T(2)*((-hh) + (-x))*log((hh + x)))) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((T(-2))*((-hh) + x)*log(((-hh) + x))))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = (((-2)*log(x)*x) + ((log(x))^(2)*x) + (2*x)), hh =
@@ -2727,7 +2860,7 @@ T box_log_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_log_sq_series<W>(W(x), W(hh)));
   }
-  return T(2) + (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (T(2)*((-hh) + (-x))*log((hh + x)))) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((T(-2))*((-hh) + x)*log(((-hh) + x))))) / (T(2.0) * hh);
+  return box_log_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2738,6 +2871,13 @@ T tent_log_series(T x, T hh) {
   const T u_log = log(x);
   const T q = hh * hh;
   return u_log + q * (((T(-1)/T(12))*(T(1)/(x*x))) + q * (((T(-1)/T(60))*(T(1)/(x*x*x*x))) + q * (((T(-1)/T(168))*(T(1)/(x*x*x*x*x*x))) + q * (((T(-1)/T(360))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(660))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(1092))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_log_diff(T x, T hh) {
+  BL_MATH_USING
+  return (T(-3)/T(2)) + (((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) - T(2.0) * ((T(1)/T(2))*(x*x)*log(x)) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*log(((-hh) + x)))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-3/4)*(x)^(2)) + ((1/2)*(x)^(2)*log(x))), hh =
@@ -2756,7 +2896,7 @@ T tent_log(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_log_series<W>(W(x), W(hh)));
   }
-  return (T(-3)/T(2)) + (((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) - T(2.0) * ((T(1)/T(2))*(x*x)*log(x)) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*log(((-hh) + x)))) / (hh * hh);
+  return tent_log_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2767,6 +2907,13 @@ T tent_log_sq_series(T x, T hh) {
   const T u_log = log(x);
   const T q = hh * hh;
   return (u_log*u_log) + q * (((T(1)/T(6))*((-u_log) + T(1))*(T(1)/(x*x))) + q * (((T(1)/T(180))*(((T(-6))*u_log) + T(11))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(5040))*(((T(-60))*u_log) + T(137))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(25200))*(((T(-140))*u_log) + T(363))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(831600))*(((T(-2520))*u_log) + T(7129))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(15135120))*(((T(-27720))*u_log) + T(83711))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_log_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return (T(7)/T(2)) + ((((T(-3)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x))))) - T(2.0) * (((T(-3)/T(2))*(x*x)*log(x)) + ((T(1)/T(2))*(log(x)*log(x))*(x*x))) + (((T(-3)/T(2))*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-3/2)*(x)^(2)*log(x)) +
@@ -2785,7 +2932,7 @@ T tent_log_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_log_sq_series<W>(W(x), W(hh)));
   }
-  return (T(7)/T(2)) + ((((T(-3)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x))))) - T(2.0) * (((T(-3)/T(2))*(x*x)*log(x)) + ((T(1)/T(2))*(log(x)*log(x))*(x*x))) + (((T(-3)/T(2))*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))))) / (hh * hh);
+  return tent_log_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2795,6 +2942,13 @@ T box_sqrt_series(T x, T hh) {
   if (hh == T(0.0)) return sqrt(x);  // no smoothing: f(x)
   const T q = hh * hh;
   return sqrt(x) + q * (((T(-1)/T(24))*((T(1)/(x*x))*sqrt(x))) + q * (((T(-1)/T(128))*((T(1)/(x*x*x*x))*sqrt(x))) + q * (((T(-3)/T(1024))*((T(1)/(x*x*x*x*x*x))*sqrt(x))) + q * (((T(-143)/T(98304))*((T(1)/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-221)/T(262144))*((T(1)/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-2261)/T(4194304))*((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_sqrt_diff(T x, T hh) {
+  BL_MATH_USING
+  return (((T(2)/T(3))*(((hh + x))*sqrt((hh + x)))) - ((T(2)/T(3))*((((-hh) + x))*sqrt(((-hh) + x))))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((2/3)*(x)^((3/2))), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2812,7 +2966,7 @@ T box_sqrt(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_sqrt_series<W>(W(x), W(hh)));
   }
-  return (((T(2)/T(3))*(((hh + x))*sqrt((hh + x)))) - ((T(2)/T(3))*((((-hh) + x))*sqrt(((-hh) + x))))) / (T(2.0) * hh);
+  return box_sqrt_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2822,6 +2976,13 @@ T box_sqrt_sq_series(T x, T hh) {
   if (hh == T(0.0)) return x;  // no smoothing: f(x)
   const T q = hh * hh;
   return x + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0)))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_sqrt_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return x;
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((1/2)*(x)^(2)), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2839,7 +3000,7 @@ T box_sqrt_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_sqrt_sq_series<W>(W(x), W(hh)));
   }
-  return x;
+  return box_sqrt_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2849,6 +3010,13 @@ T tent_sqrt_series(T x, T hh) {
   if (hh == T(0.0)) return sqrt(x);  // no smoothing: f(x)
   const T q = hh * hh;
   return sqrt(x) + q * (((T(-1)/T(48))*((T(1)/(x*x))*sqrt(x))) + q * (((T(-1)/T(384))*((T(1)/(x*x*x*x))*sqrt(x))) + q * (((T(-3)/T(4096))*((T(1)/(x*x*x*x*x*x))*sqrt(x))) + q * (((T(-143)/T(491520))*((T(1)/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-221)/T(1572864))*((T(1)/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-323)/T(4194304))*((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_sqrt_diff(T x, T hh) {
+  BL_MATH_USING
+  return (((T(4)/T(15))*(((hh + x)*(hh + x))*sqrt((hh + x)))) - T(2.0) * ((T(4)/T(15))*((x*x)*sqrt(x))) + ((T(4)/T(15))*((((-hh) + x)*((-hh) + x))*sqrt(((-hh) + x))))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = ((4/15)*(x)^((5/2))), hh = min(sqrt(6) sigma, r/2)
@@ -2866,7 +3034,7 @@ T tent_sqrt(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_sqrt_series<W>(W(x), W(hh)));
   }
-  return (((T(4)/T(15))*(((hh + x)*(hh + x))*sqrt((hh + x)))) - T(2.0) * ((T(4)/T(15))*((x*x)*sqrt(x))) + ((T(4)/T(15))*((((-hh) + x)*((-hh) + x))*sqrt(((-hh) + x))))) / (hh * hh);
+  return tent_sqrt_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2876,6 +3044,13 @@ T tent_sqrt_sq_series(T x, T hh) {
   if (hh == T(0.0)) return x;  // no smoothing: f(x)
   const T q = hh * hh;
   return x + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0)))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_sqrt_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return x;
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = ((1/6)*(x)^(3)), hh = min(sqrt(6) sigma, r/2) with
@@ -2893,7 +3068,7 @@ T tent_sqrt_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_sqrt_sq_series<W>(W(x), W(hh)));
   }
-  return x;
+  return tent_sqrt_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2903,6 +3078,13 @@ T box_inv_series(T x, T hh) {
   if (hh == T(0.0)) return (T(1)/(x));  // no smoothing: f(x)
   const T q = hh * hh;
   return (T(1)/(x)) + q * (((T(1)/T(3))*(T(1)/(x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x))) + q * (((T(1)/T(9))*(T(1)/(x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(11))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(13))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_inv_diff(T x, T hh) {
+  BL_MATH_USING
+  return (log(abs((hh + x))) - log(abs(((-hh) + x)))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = log(abs(x)), hh = min(sqrt(3) sigma, r/2) with r the distance
@@ -2919,7 +3101,7 @@ T box_inv(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_inv_series<W>(W(x), W(hh)));
   }
-  return (log(abs((hh + x))) - log(abs(((-hh) + x)))) / (T(2.0) * hh);
+  return box_inv_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2929,6 +3111,13 @@ T box_inv_sq_series(T x, T hh) {
   if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
   const T q = hh * hh;
   return (T(1)/(x*x)) + q * ((T(1)/(x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_inv_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return (((T(1)/(((-hh) + (-x))))) - (-(T(1)/(((-hh) + x))))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = (-(x)^((-1))), hh = min(sqrt(3) sigma, r/2) with r the
@@ -2945,7 +3134,7 @@ T box_inv_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_inv_sq_series<W>(W(x), W(hh)));
   }
-  return (((T(1)/(((-hh) + (-x))))) - (-(T(1)/(((-hh) + x))))) / (T(2.0) * hh);
+  return box_inv_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2955,6 +3144,13 @@ T tent_inv_series(T x, T hh) {
   if (hh == T(0.0)) return (T(1)/(x));  // no smoothing: f(x)
   const T q = hh * hh;
   return (T(1)/(x)) + q * (((T(1)/T(6))*(T(1)/(x*x*x))) + q * (((T(1)/T(15))*(T(1)/(x*x*x*x*x))) + q * (((T(1)/T(28))*(T(1)/(x*x*x*x*x*x*x))) + q * (((T(1)/T(45))*(T(1)/(x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(66))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(91))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_inv_diff(T x, T hh) {
+  BL_MATH_USING
+  return ((-((-hh) + (-x))*log(abs((hh + x)))) - T(2.0) * (log(abs(x))*x) + (((-hh) + x)*log(abs(((-hh) + x))))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = ((-x) + (log(abs(x))*x)), hh = min(sqrt(6) sigma,
@@ -2971,7 +3167,7 @@ T tent_inv(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_inv_series<W>(W(x), W(hh)));
   }
-  return ((-((-hh) + (-x))*log(abs((hh + x)))) - T(2.0) * (log(abs(x))*x) + (((-hh) + x)*log(abs(((-hh) + x))))) / (hh * hh);
+  return tent_inv_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2981,6 +3177,13 @@ T tent_inv_sq_series(T x, T hh) {
   if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
   const T q = hh * hh;
   return (T(1)/(x*x)) + q * (((T(1)/T(2))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(4))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(6))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_inv_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return ((-log(abs((hh + x)))) - T(2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (-log(abs(x))), hh = min(sqrt(6) sigma, r/2) with
@@ -2997,7 +3200,7 @@ T tent_inv_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_inv_sq_series<W>(W(x), W(hh)));
   }
-  return ((-log(abs((hh + x)))) - T(2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
+  return tent_inv_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3007,6 +3210,13 @@ T box_inv2_series(T x, T hh) {
   if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
   const T q = hh * hh;
   return (T(1)/(x*x)) + q * ((T(1)/(x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_inv2_diff(T x, T hh) {
+  BL_MATH_USING
+  return (((T(1)/(((-hh) + (-x))))) - (-(T(1)/(((-hh) + x))))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = (-(x)^((-1))), hh = min(sqrt(3) sigma, r/2) with r the
@@ -3023,7 +3233,7 @@ T box_inv2(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_inv2_series<W>(W(x), W(hh)));
   }
-  return (((T(1)/(((-hh) + (-x))))) - (-(T(1)/(((-hh) + x))))) / (T(2.0) * hh);
+  return box_inv2_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3033,6 +3243,13 @@ T box_inv2_sq_series(T x, T hh) {
   if (hh == T(0.0)) return (T(1)/(x*x*x*x));  // no smoothing: f(x)
   const T q = hh * hh;
   return (T(1)/(x*x*x*x)) + q * (((T(10)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * ((T(7)*(T(1)/(x*x*x*x*x*x*x*x))) + q * ((T(12)*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(55)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(26)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(35)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_inv2_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return (((T(1)/T(3))*(T(1)/(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x))))) - ((T(-1)/T(3))*(T(1)/(((-hh) + x)*((-hh) + x)*((-hh) + x))))) / (T(2.0) * hh);
 }
 
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((-1/3)*(x)^((-3))), hh = min(sqrt(3) sigma, r/2) with r the
@@ -3049,7 +3266,7 @@ T box_inv2_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_inv2_sq_series<W>(W(x), W(hh)));
   }
-  return (((T(1)/T(3))*(T(1)/(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x))))) - ((T(-1)/T(3))*(T(1)/(((-hh) + x)*((-hh) + x)*((-hh) + x))))) / (T(2.0) * hh);
+  return box_inv2_sq_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3059,6 +3276,13 @@ T tent_inv2_series(T x, T hh) {
   if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
   const T q = hh * hh;
   return (T(1)/(x*x)) + q * (((T(1)/T(2))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(4))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(6))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_inv2_diff(T x, T hh) {
+  BL_MATH_USING
+  return ((-log(abs((hh + x)))) - T(2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (-log(abs(x))), hh = min(sqrt(6) sigma, r/2) with
@@ -3075,7 +3299,7 @@ T tent_inv2(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_inv2_series<W>(W(x), W(hh)));
   }
-  return ((-log(abs((hh + x)))) - T(2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
+  return tent_inv2_diff<T>(x, hh);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3085,6 +3309,13 @@ T tent_inv2_sq_series(T x, T hh) {
   if (hh == T(0.0)) return (T(1)/(x*x*x*x));  // no smoothing: f(x)
   const T q = hh * hh;
   return (T(1)/(x*x*x*x)) + q * (((T(5)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(7)/T(3))*(T(1)/(x*x*x*x*x*x*x*x))) + q * ((T(3)*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(11)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(13)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(5)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_inv2_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return (((T(1)/T(6))*(T(1)/(((-hh) + (-x))*((-hh) + (-x))))) - T(2.0) * ((T(1)/T(6))*(T(1)/(x*x))) + ((T(1)/T(6))*(T(1)/(((-hh) + x)*((-hh) + x))))) / (hh * hh);
 }
 
 //   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = ((1/6)*(x)^((-2))), hh = min(sqrt(6) sigma, r/2)
@@ -3101,13 +3332,16 @@ T tent_inv2_sq(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_inv2_sq_series<W>(W(x), W(hh)));
   }
-  return (((T(1)/T(6))*(T(1)/(((-hh) + (-x))*((-hh) + (-x))))) - T(2.0) * ((T(1)/T(6))*(T(1)/(x*x))) + ((T(1)/T(6))*(T(1)/(((-hh) + x)*((-hh) + x))))) / (hh * hh);
+  return tent_inv2_sq_diff<T>(x, hh);
 }
 
 template <class T>
 T gaussian_moment(int n, T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0))) return detail::nan<T>();
+  // sigma^n overflows float long before the moment does (x = 1e-9, sigma = 1e4, n = 11).
+  if constexpr (sizeof(T) < sizeof(double)) return T(gaussian_moment<double>(n, double(x), double(sigma)));
+  if (n % 2 == 1 && x == T(0)) return T(0);  // odd moments vanish at 0 exactly
   switch (n) {
     case 0:
       //   1
@@ -3183,6 +3417,9 @@ template <class T>
 T box_moment(int n, T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0))) return detail::nan<T>();
+  // sigma^n overflows float long before the moment does (x = 1e-9, sigma = 1e4, n = 11).
+  if constexpr (sizeof(T) < sizeof(double)) return T(box_moment<double>(n, double(x), double(sigma)));
+  if (n % 2 == 1 && x == T(0)) return T(0);  // odd moments vanish at 0 exactly
   switch (n) {
     case 0:
       //   1
@@ -3257,6 +3494,9 @@ template <class T>
 T tent_moment(int n, T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0))) return detail::nan<T>();
+  // sigma^n overflows float long before the moment does (x = 1e-9, sigma = 1e4, n = 11).
+  if constexpr (sizeof(T) < sizeof(double)) return T(tent_moment<double>(n, double(x), double(sigma)));
+  if (n % 2 == 1 && x == T(0)) return T(0);  // odd moments vanish at 0 exactly
   switch (n) {
     case 0:
       //   1

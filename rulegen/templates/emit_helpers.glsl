@@ -42,3 +42,5 @@ float bl_li2(float z) {  // z <= 0 (GLSL has no recursion: inversion then Landen
   }
   return bl_li2_landen(z);
 }
+float bl_prod0(float a, float b) { return a == 0.0 ? 0.0 : a * b; }
+float bl_sgn(float x) { return sign(x); }

@@ -184,7 +184,9 @@ MpResult mp_check(int index, const Spec& sp, double xd, double sigmad) {
       r.why = "integrand not finite";
       return false;
     }
-    if (!(q.err <= mp(1e-20) * (abs(q.value) > 1 ? mp(abs(q.value)) : mp(1)))) {
+    // Enough for judging double (1e-9) by a wide margin; the 50-digit formula error it yields
+    // is then limited to this level (odd moments with sigma >> |x| cancel 25 digits).
+    if (!(q.err <= mp(1e-15) * (abs(q.value) > 1 ? mp(abs(q.value)) : mp(1)))) {
       r.why = "50-digit quadrature did not converge";
       return false;
     }
@@ -207,8 +209,12 @@ MpResult mp_check(int index, const Spec& sp, double xd, double sigmad) {
   }
   using boost::math::isfinite;
   if (!isfinite(ref)) { r.why = "reference not finite"; return r; }
-  r.ok = true;
   r.ref = static_cast<double>(ref);
+  if (!std::isfinite(r.ref)) {
+    r.why = "reference overflows double";
+    return r;
+  }
+  r.ok = true;
   mp v = e.smoothed(x, sigma);
   r.formula_finite = isfinite(v);
   if (r.formula_finite) {

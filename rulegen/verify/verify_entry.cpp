@@ -168,8 +168,9 @@ EntryResult verify_entry(const EntryView& e, const VerifyOptions& opt) {
     const bool selected = sel.count({x, s}) > 0;
     const bool undec = undecided(r, opt.bound_double);
     // 50 digits help with precision, not with resolution: when double quadrature did not even
-    // converge to 1e-6 (an oscillation it cannot resolve), Gauss-Kronrod would grind to its depth.
-    const bool converged = r.err <= 1e-6 * std::fmax(1.0, std::fabs(r.value));
+    // converge to 1e-8 of its own scale (an oscillation it cannot resolve), Gauss-Kronrod would
+    // grind to its depth.
+    const bool converged = r.err <= 1e-8 * std::fmax(r.l1, std::fmax(1.0, std::fabs(r.value)));  // vs its own scale
     bool have_mp = false;
     if (opt.use_mp && (selected || undec) && converged) {
       if (res.mp_points >= opt.mp_cap) {
@@ -232,7 +233,7 @@ EntryResult verify_entry(const EntryView& e, const VerifyOptions& opt) {
       rf = rr.value;
       if (undecided(rr, opt.bound_float)) {
         MpResult m;
-        const bool conv = rr.err <= 1e-6 * std::fmax(1.0, std::fabs(rr.value));
+        const bool conv = rr.err <= 1e-8 * std::fmax(rr.l1, std::fmax(1.0, std::fabs(rr.value)));
         if (opt.use_mp && conv && res.mp_points < opt.mp_cap) m = mp_check(e.index, sp, xf, sf);
         if (!m.ok) {
           ++res.float_skipped;
