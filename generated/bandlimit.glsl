@@ -481,13 +481,15 @@ int bl_image_periods(float s, float fmax, float tol) {
   return int(v);
 }
 
-bool bl_prefer_fourier(float s, int npieces, float coef_bound, float fmax) {
+// K Fourier terms when the Fourier series is cheaper than the image sum, else -1 (support.hpp).
+int bl_fourier_terms_if_preferred(float s, int npieces, float coef_bound, float fmax) {
   int K = bl_fourier_terms(s, coef_bound, BL_SERIES_TOL);
   int P = bl_image_periods(s, fmax, BL_SERIES_TOL);
-  // Cost model as in support.hpp: 3 per Fourier term; 4 per image piece, 20 when it is narrower
-  // than 2 sigma (Gauss-Legendre).
   float per_piece = s * float(npieces) > 0.5 ? 20.0 : 4.0;
-  return 3.0 * float(K) < float(P) * float(npieces) * per_piece;
+  return 3.0 * float(K) < float(P) * float(npieces) * per_piece ? K : -1;
+}
+bool bl_prefer_fourier(float s, int npieces, float coef_bound, float fmax) {
+  return bl_fourier_terms_if_preferred(s, npieces, coef_bound, fmax) >= 0;
 }
 
 // Box over a periodic f: direct shifted pieces when 2h <= 4 periods, else Appendix C with the
@@ -1559,13 +1561,14 @@ float bl_gaussian_fract(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   float s = sigma / period;
-  if (bl_prefer_fourier(s, 1, (4.0), (1.0))) {
+  int K = bl_fourier_terms_if_preferred(s, 1, (4.0), (1.0));
+  if (K >= 0) {
     float xr = x - period * floor(x / period);
-    int K = bl_fourier_terms(s, (4.0), BL_SERIES_TOL);
     float acc = (1.0/2.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
-      float th = (2.0) * bl_pi() * kf * xr / period;
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
       float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
       acc += damp * ((-(1.0/(bl_pi()))*(1.0/(kf))) * sin(th));
     }
@@ -1584,11 +1587,11 @@ float bl_gaussian_fract_u(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   float s = sigma / period;
-  if (bl_prefer_fourier(s, 1, (4.0), (1.0))) {
+  int K = bl_fourier_terms_if_preferred(s, 1, (4.0), (1.0));
+  if (K >= 0) {
     float xr = x - period * floor(x / period);
-    int K = 2 + bl_fourier_terms(s, (4.0), BL_SERIES_TOL);  // +2: the k factor of g'
     float acc = (0.0);
-    for (int k = 1; k <= K; ++k) {
+    for (int k = 1; k <= K + 2; ++k) {
       float kf = float(k);
       float w = (2.0) * bl_pi() * kf / period;
       float th = w * xr;
@@ -1610,13 +1613,14 @@ float bl_gaussian_fract_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   float s = sigma / period;
-  if (bl_prefer_fourier(s, 1, (4.0), (1.0))) {
+  int K = bl_fourier_terms_if_preferred(s, 1, (4.0), (1.0));
+  if (K >= 0) {
     float xr = x - period * floor(x / period);
-    int K = bl_fourier_terms(s, (4.0), BL_SERIES_TOL);
     float acc = (1.0/3.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
-      float th = (2.0) * bl_pi() * kf * xr / period;
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
       float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
       acc += damp * (((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * cos(th) + (-(1.0/(bl_pi()))*(1.0/(kf))) * sin(th));
     }
@@ -1737,14 +1741,15 @@ float bl_gaussian_triangle(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
-  if (bl_prefer_fourier(s, 2, (4.0), (1.0))) {
+  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
+  if (K >= 0) {
     float xr = x - period * floor(x / period);
-    int K = bl_fourier_terms(s, (4.0), BL_SERIES_TOL);
     float acc = (1.0/2.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      float th = (2.0) * bl_pi() * kf * xr / period;
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
       float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
       acc += damp * ((2.0*((-1.0) + pk)*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * cos(th));
     }
@@ -1763,11 +1768,11 @@ float bl_gaussian_triangle_u(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   float s = sigma / period;
-  if (bl_prefer_fourier(s, 2, (4.0), (1.0))) {
+  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
+  if (K >= 0) {
     float xr = x - period * floor(x / period);
-    int K = 2 + bl_fourier_terms(s, (4.0), BL_SERIES_TOL);  // +2: the k factor of g'
     float acc = (0.0);
-    for (int k = 1; k <= K; ++k) {
+    for (int k = 1; k <= K + 2; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
       float w = (2.0) * bl_pi() * kf / period;
@@ -1790,14 +1795,15 @@ float bl_gaussian_triangle_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
-  if (bl_prefer_fourier(s, 2, (4.0), (1.0))) {
+  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
+  if (K >= 0) {
     float xr = x - period * floor(x / period);
-    int K = bl_fourier_terms(s, (4.0), BL_SERIES_TOL);
     float acc = (1.0/3.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      float th = (2.0) * bl_pi() * kf * xr / period;
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
       float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
       acc += damp * ((4.0*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))*pk) * cos(th));
     }
@@ -1918,14 +1924,15 @@ float bl_gaussian_square(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
-  if (bl_prefer_fourier(s, 2, (4.0), (1.0))) {
+  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
+  if (K >= 0) {
     float xr = x - period * floor(x / period);
-    int K = bl_fourier_terms(s, (4.0), BL_SERIES_TOL);
     float acc = (1.0/2.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      float th = (2.0) * bl_pi() * kf * xr / period;
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
       float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
       acc += damp * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * sin(th));
     }
@@ -1944,11 +1951,11 @@ float bl_gaussian_square_u(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   float s = sigma / period;
-  if (bl_prefer_fourier(s, 2, (4.0), (1.0))) {
+  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
+  if (K >= 0) {
     float xr = x - period * floor(x / period);
-    int K = 2 + bl_fourier_terms(s, (4.0), BL_SERIES_TOL);  // +2: the k factor of g'
     float acc = (0.0);
-    for (int k = 1; k <= K; ++k) {
+    for (int k = 1; k <= K + 2; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
       float w = (2.0) * bl_pi() * kf / period;
@@ -1971,14 +1978,15 @@ float bl_gaussian_square_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
-  if (bl_prefer_fourier(s, 2, (4.0), (1.0))) {
+  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
+  if (K >= 0) {
     float xr = x - period * floor(x / period);
-    int K = bl_fourier_terms(s, (4.0), BL_SERIES_TOL);
     float acc = (1.0/2.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      float th = (2.0) * bl_pi() * kf * xr / period;
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
       float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
       acc += damp * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * sin(th));
     }

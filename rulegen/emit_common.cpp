@@ -116,6 +116,29 @@ std::string body_piecewise(const Derived& d, const Syntax& s) {
          "(x, sigma, " + P + ");\n";
 }
 
+// The Fourier branch of a Gaussian periodic entry: "if the Fourier series is the cheaper of the
+// dual series, sum it". Per term k the loop defines kf, pk = (-1)^k (when the coefficients use it),
+// w = 2 pi k / T, th = w x_r and damp = exp(-2 pi^2 k^2 s^2); `term` is added to acc (initially
+// acc0) and `result` returned. extra: terms beyond the tolerance count (for k-weighted series).
+std::string fourier_branch(const Derived& d, const Syntax& s, int extra, const std::string& acc0,
+                           const std::string& term, const std::string& result) {
+  std::string out = s.decl("s", "sigma / period");
+  out += std::string("  ") + (s.cpp() ? "const " : "") + "int K = " + s.helper("fourier_terms_if_preferred") +
+         "(s, " + std::to_string(d.pieces.size()) + ", " + s.dbl(d.coef_bound) + ", " + s.dbl(d.fmax) + ");\n";
+  out += "  if (K >= 0) {\n";
+  out += "  " + s.decl("xr", "x - period * floor(x / period)");
+  out += "    " + s.T() + " acc = " + acc0 + ";\n";
+  out += "    for (int k = 1; k <= K" + (extra ? " + " + std::to_string(extra) : std::string()) + "; ++k) {\n";
+  out += "    " + s.decl("kf", s.cpp() ? "T(k)" : "float(k)");
+  if (d.ak.has(sym::var_pk()) || d.bk.has(sym::var_pk()))
+    out += "    " + s.decl("pk", std::string("(k % 2 == 1) ? ") + s.dbl(-1) + " : " + s.dbl(1));
+  out += "    " + s.decl("w", s.dbl(2) + " * " + s.pi() + " * kf / period");
+  out += "    " + s.decl("th", "w * xr");
+  out += "    " + s.decl("damp", "exp(" + s.dbl(-2) + " * " + s.pi() + " * " + s.pi() + " * kf * kf * s * s)");
+  out += "      acc += " + term + ";\n    }\n    return " + result + ";\n  }\n";
+  return out;
+}
+
 std::string body_periodic(const Derived& d, const Syntax& s) {
   const size_t n = d.pieces.size();
   std::string out = piece_table(s, "p", d.pieces);
@@ -132,29 +155,12 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
     return out + "  return " + s.helper("tent_periodic") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
            ", p1, p2);\n";
   // Gaussian: the dual series, whichever needs fewer terms for the tolerance.
-  const std::string T = s.T();
-  const std::string cb = s.dbl(d.coef_bound), fm = s.dbl(d.fmax);
-  out += s.decl("s", "sigma / period");
-  out += "  if (" + s.helper("prefer_fourier") + "(s, " + std::to_string(n) + ", " + cb + ", " + fm + ")) {\n";
-  out += "  " + s.decl("xr", "x - period * floor(x / period)");
-  out += std::string("    ") + (s.cpp() ? "const " : "") + "int K = " + s.helper("fourier_terms") + "(s, " + cb + ", " +
-         (s.cpp() ? "detail::series_tol<T>()" : "BL_SERIES_TOL") + ");\n";
-  out += "    " + T + " acc = " + s.ex(d.a0) + ";\n";
-  out += "    for (int k = 1; k <= K; ++k) {\n";
-  out += "    " + s.decl("kf", s.cpp() ? "T(k)" : "float(k)");
-  const bool uses_pk = d.ak.has(sym::var_pk()) || d.bk.has(sym::var_pk());
-  if (uses_pk) out += "    " + s.decl("pk", std::string("(k % 2 == 1) ? ") + s.dbl(-1) + " : " + s.dbl(1));
-  out += "    " + s.decl("th", s.dbl(2) + " * " + s.pi() + " * kf * xr / period");
-  out += "    " + s.decl("damp", "exp(" + s.dbl(-2) + " * " + s.pi() + " * " + s.pi() + " * kf * kf * s * s)");
   std::string terms;
   if (!d.ak.is_zero()) terms = s.ex(d.ak) + " * cos(th)";
   if (!d.bk.is_zero()) terms += (terms.empty() ? "" : " + ") + s.ex(d.bk) + " * sin(th)";
-  if (terms.empty()) terms = s.dbl(0);
-  out += "      acc += damp * (" + terms + ");\n";
-  out += "    }\n    return acc;\n  }\n";
-  out += "  return " + s.helper("gauss_periodic_image") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
-         ", " + fm + ");\n";
-  return out;
+  out += fourier_branch(d, s, 0, s.ex(d.a0), "damp * (" + (terms.empty() ? s.dbl(0) : terms) + ")", "acc");
+  return out + "  return " + s.helper("gauss_periodic_image") + "(x, sigma, period, " +
+         pieces_arg(s, "p", d.pieces.size()) + ", " + s.dbl(d.fmax) + ");\n";
 }
 
 std::string body_combination(const Derived& d, const Syntax& s) {
@@ -275,25 +281,13 @@ std::string body_first_moment(const Derived& d, const Syntax& s) {
   out += "  if (sigma == " + s.dbl(0) + ") return " + s.dbl(0) + ";\n";
   if (d.kernel == Kernel::Box) return out + "  return " + s.helper("box_periodic_u") + "(x, sigma, period, " + pieces_arg(s, "p", n) + ");\n";
   if (d.kernel == Kernel::Tent) return out + "  return " + s.helper("tent_periodic_u") + "(x, sigma, period, " + pieces_arg(s, "p", n) + ");\n";
-  const std::string cb = s.dbl(d.coef_bound), fm = s.dbl(d.fmax);
-  out += s.decl("s", "sigma / period");
-  out += "  if (" + s.helper("prefer_fourier") + "(s, " + std::to_string(n) + ", " + cb + ", " + fm + ")) {\n";
-  out += "  " + s.decl("xr", "x - period * floor(x / period)");
-  out += std::string("    ") + (s.cpp() ? "const " : "") + "int K = 2 + " + s.helper("fourier_terms") + "(s, " + cb + ", " +
-         (s.cpp() ? "detail::series_tol<T>()" : "BL_SERIES_TOL") + ");  // +2: the k factor of g'\n";
-  out += "    " + s.T() + " acc = " + s.dbl(0) + ";\n";
-  out += "    for (int k = 1; k <= K; ++k) {\n";
-  out += "    " + s.decl("kf", s.cpp() ? "T(k)" : "float(k)");
-  const bool uses_pk = d.ak.has(sym::var_pk()) || d.bk.has(sym::var_pk());
-  if (uses_pk) out += "    " + s.decl("pk", std::string("(k % 2 == 1) ? ") + s.dbl(-1) + " : " + s.dbl(1));
-  out += "    " + s.decl("w", s.dbl(2) + " * " + s.pi() + " * kf / period");
-  out += "    " + s.decl("th", "w * xr");
-  out += "    " + s.decl("damp", "exp(" + s.dbl(-2) + " * " + s.pi() + " * " + s.pi() + " * kf * kf * s * s)");
+  // Stein: sigma^2 E[g'(x+U)], g' from the termwise-differentiated series; +2 terms for its k factor.
   std::string terms;
   if (!d.bk.is_zero()) terms = s.ex(d.bk) + " * cos(th)";
   if (!d.ak.is_zero()) terms += (terms.empty() ? "-" : " - ") + s.ex(d.ak) + " * sin(th)";
-  if (terms.empty()) terms = s.dbl(0);
-  out += "      acc += damp * w * (" + terms + ");\n    }\n    return sigma * sigma * acc;\n  }\n";
+  out += fourier_branch(d, s, 2, s.dbl(0), "damp * w * (" + (terms.empty() ? s.dbl(0) : terms) + ")",
+                        "sigma * sigma * acc");
+  const std::string fm = s.dbl(d.fmax);
   return out + "  return " + s.helper("gauss_periodic_u_image") + "(x, sigma, period, " + pieces_arg(s, "p", n) + ", " + fm + ");\n";
 }
 
@@ -374,24 +368,12 @@ std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lan
     case sym::AtomicClass::Antiderivative:
       return pre + "  return " + s.ex(a.f) + ";\n";
     case sym::AtomicClass::Piecewise: {
-      std::vector<PolyPiece> ps;
-      for (const auto& p : a.pieces) {
-        PolyPiece q{p.lo, p.hi, {}};
-        const GiNaC::ex f = p.f.expand();
-        for (int k = 0; k <= f.degree(sym::var_x()); ++k) q.c.push_back(ex_to<numeric>(f.coeff(sym::var_x(), k)));
-        ps.push_back(q);
-      }
+      const std::vector<PolyPiece> ps = sym::polynomial_pieces(a, false);
       return pre + piece_table(s, "p", ps) + "  return " + s.helper("pw_eval") + "(x, " +
              pieces_arg(s, "p", ps.size()) + ");\n";
     }
     case sym::AtomicClass::Periodic: {
-      std::vector<PolyPiece> ps;
-      for (const auto& p : a.pieces) {
-        PolyPiece q{p.lo, p.hi, {}};
-        const GiNaC::ex f = p.f.expand();
-        for (int k = 0; k <= f.degree(sym::var_x()); ++k) q.c.push_back(ex_to<numeric>(f.coeff(sym::var_x(), k)));
-        ps.push_back(q);
-      }
+      const std::vector<PolyPiece> ps = sym::polynomial_pieces(a, false);
       return pre + piece_table(s, "p", ps) + "  return " + s.helper("periodic_eval") + "(x, " +
              s.ex(*a.period) + ", " + pieces_arg(s, "p", ps.size()) + ");\n";
     }

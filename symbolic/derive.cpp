@@ -74,11 +74,29 @@ std::vector<numeric> integrate(const std::vector<numeric>& q, const ex& anchor, 
   return g;
 }
 
+}  // namespace
+
 std::vector<PolyPiece> polynomial_pieces(const Atomic& a, bool squared) {
   std::vector<PolyPiece> out;
   for (const Piece& p : a.pieces) {
     const ex f = squared ? pow(p.f, 2).expand() : p.f;
     out.push_back({p.lo, p.hi, coefficients(f)});
+  }
+  return out;
+}
+
+namespace {
+
+// Continuous antiderivative of whole-line pieces, 0 at the first finite break (Heckbert's
+// repeated integration).
+std::vector<PolyPiece> integrate_pieces(const std::vector<PolyPiece>& ps) {
+  std::vector<PolyPiece> out;
+  ex value = 0;
+  for (const PolyPiece& p : ps) {
+    const ex anchor = p.lo.finite() ? p.lo.value : p.hi.value;
+    const ex start = p.lo.finite() ? value : ex(0);
+    out.push_back({p.lo, p.hi, integrate(p.c, anchor, start)});
+    if (p.hi.finite()) value = from_coefficients(out.back().c, p.hi.value).expand();
   }
   return out;
 }
@@ -155,24 +173,8 @@ void derive_piecewise(const Atomic& a, Kernel k, bool sq, Derived& d) {
                 "  [Phi, phi: standard normal CDF and density]";
     return;
   }
-  // Box/tent by repeated integration of the pieces (Heckbert): F continuous, F(0) = 0.
-  std::vector<PolyPiece> F, F2;
-  ex value = 0;
-  for (size_t i = 0; i < d.pieces.size(); ++i) {
-    const PolyPiece& p = d.pieces[i];
-    const ex anchor = p.lo.finite() ? p.lo.value : p.hi.value;
-    const ex start = p.lo.finite() ? value : ex(0);
-    F.push_back({p.lo, p.hi, integrate(p.c, anchor, start)});
-    if (p.hi.finite()) value = from_coefficients(F.back().c, p.hi.value).expand();
-  }
-  value = 0;
-  for (size_t i = 0; i < F.size(); ++i) {
-    const PolyPiece& p = F[i];
-    const ex anchor = p.lo.finite() ? p.lo.value : p.hi.value;
-    const ex start = p.lo.finite() ? value : ex(0);
-    F2.push_back({p.lo, p.hi, integrate(p.c, anchor, start)});
-    if (p.hi.finite()) value = from_coefficients(F2.back().c, p.hi.value).expand();
-  }
+  // Box/tent by repeated integration of the pieces (Heckbert).
+  const std::vector<PolyPiece> F = integrate_pieces(d.pieces), F2 = integrate_pieces(F);
   if (k == Kernel::Box)
     d.formula = "(F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = " + pieces_text(F, "t");
   else

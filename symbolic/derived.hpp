@@ -79,6 +79,9 @@ const GiNaC::symbol& var_k();   // Fourier index
 const GiNaC::symbol& var_pk();  // (-1)^k
 const GiNaC::symbol& var_hh();  // the (possibly compacted) half-width in antiderivative rules
 
+// The pieces of a piecewise or periodic atomic (of f^2 when squared) with exact coefficients.
+std::vector<PolyPiece> polynomial_pieces(const Atomic& a, bool squared);
+
 // Derives every entry of the catalog, plus raw moments n <= max_moment. Throws CatalogError
 // (naming entry and field) when an entry's definition is outside what its class can derive.
 std::vector<Derived> derive_all(const Catalog& cat, int max_moment = 16,

@@ -674,18 +674,22 @@ inline int image_periods(T s, T fmax, T tol) {
   return static_cast<int>(v);
 }
 
-// Cost model: one Fourier term ~ one sin + one cos, one image piece ~ one erfc + one exp (the
-// narrow-piece quadrature is costlier, which only widens the margin where Fourier wins). Both at
-// series_tol<T>().
+// The number of Fourier terms K when the Fourier series is the cheaper of the two dual series,
+// else -1 (callers then use the image sum); one evaluation of fourier_terms serves both the choice
+// and the loop. Cost model (measured with bench_table): a Fourier term is an exp, a cos and a sin
+// (~3 units); an image piece is an erfc and an exp (~4) when wider than 2 sigma, else a 20-point
+// Gauss-Legendre rule (~20 exps).
 template <class T>
-inline bool prefer_fourier(T s, int npieces, T coef_bound, T fmax) {
-  // Cost model (measured with bench_table): a Fourier term is an exp, a cos and a sin (~3 units);
-  // an image piece is an erfc and an exp (~4) when wider than 2 sigma, else a 20-point
-  // Gauss-Legendre rule (~20 exps).
+inline int fourier_terms_if_preferred(T s, int npieces, T coef_bound, T fmax) {
   const int K = fourier_terms(s, coef_bound, series_tol<T>());
   const int P = image_periods(s, fmax, series_tol<T>());
   const double per_piece = double(s) * double(npieces) > 0.5 ? 20.0 : 4.0;
-  return 3.0 * double(K) < double(P) * double(npieces) * per_piece;
+  return 3.0 * double(K) < double(P) * double(npieces) * per_piece ? K : -1;
+}
+
+template <class T>
+inline bool prefer_fourier(T s, int npieces, T coef_bound, T fmax) {
+  return fourier_terms_if_preferred(s, npieces, coef_bound, fmax) >= 0;
 }
 
 // Box over a periodic f. (a) Support 2h <= 4 periods: integrate the pieces of the (at most 6)

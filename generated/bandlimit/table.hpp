@@ -1773,13 +1773,14 @@ T gaussian_fract(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  if (detail::prefer_fourier(s, 1, T(4.0), T(1.0))) {
+  const int K = detail::fourier_terms_if_preferred(s, 1, T(4.0), T(1.0));
+  if (K >= 0) {
     const T xr = x - period * floor(x / period);
-    const int K = detail::fourier_terms(s, T(4.0), detail::series_tol<T>());
     T acc = (T(1)/T(2));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
-      const T th = T(2.0) * detail::pi<T>() * kf * xr / period;
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
       const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
       acc += damp * ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sin(th));
     }
@@ -1799,11 +1800,11 @@ T gaussian_fract_u(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   const T s = sigma / period;
-  if (detail::prefer_fourier(s, 1, T(4.0), T(1.0))) {
+  const int K = detail::fourier_terms_if_preferred(s, 1, T(4.0), T(1.0));
+  if (K >= 0) {
     const T xr = x - period * floor(x / period);
-    const int K = 2 + detail::fourier_terms(s, T(4.0), detail::series_tol<T>());  // +2: the k factor of g'
     T acc = T(0.0);
-    for (int k = 1; k <= K; ++k) {
+    for (int k = 1; k <= K + 2; ++k) {
       const T kf = T(k);
       const T w = T(2.0) * detail::pi<T>() * kf / period;
       const T th = w * xr;
@@ -1829,13 +1830,14 @@ T gaussian_fract_sq(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  if (detail::prefer_fourier(s, 1, T(4.0), T(1.0))) {
+  const int K = detail::fourier_terms_if_preferred(s, 1, T(4.0), T(1.0));
+  if (K >= 0) {
     const T xr = x - period * floor(x / period);
-    const int K = detail::fourier_terms(s, T(4.0), detail::series_tol<T>());
     T acc = (T(1)/T(3));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
-      const T th = T(2.0) * detail::pi<T>() * kf * xr / period;
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
       const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
       acc += damp * (((T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) * cos(th) + (-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sin(th));
     }
@@ -1963,14 +1965,15 @@ T gaussian_triangle(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  if (detail::prefer_fourier(s, 2, T(4.0), T(1.0))) {
+  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
+  if (K >= 0) {
     const T xr = x - period * floor(x / period);
-    const int K = detail::fourier_terms(s, T(4.0), detail::series_tol<T>());
     T acc = (T(1)/T(2));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
-      const T th = T(2.0) * detail::pi<T>() * kf * xr / period;
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
       const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
       acc += damp * (((T(-2))*((-pk) + T(1))*(T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) * cos(th));
     }
@@ -1991,11 +1994,11 @@ T gaussian_triangle_u(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   const T s = sigma / period;
-  if (detail::prefer_fourier(s, 2, T(4.0), T(1.0))) {
+  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
+  if (K >= 0) {
     const T xr = x - period * floor(x / period);
-    const int K = 2 + detail::fourier_terms(s, T(4.0), detail::series_tol<T>());  // +2: the k factor of g'
     T acc = T(0.0);
-    for (int k = 1; k <= K; ++k) {
+    for (int k = 1; k <= K + 2; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
       const T w = T(2.0) * detail::pi<T>() * kf / period;
@@ -2023,14 +2026,15 @@ T gaussian_triangle_sq(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  if (detail::prefer_fourier(s, 2, T(4.0), T(1.0))) {
+  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
+  if (K >= 0) {
     const T xr = x - period * floor(x / period);
-    const int K = detail::fourier_terms(s, T(4.0), detail::series_tol<T>());
     T acc = (T(1)/T(3));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
-      const T th = T(2.0) * detail::pi<T>() * kf * xr / period;
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
       const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
       acc += damp * ((T(4)*(T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))*pk) * cos(th));
     }
@@ -2174,14 +2178,15 @@ T gaussian_square(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  if (detail::prefer_fourier(s, 2, T(4.0), T(1.0))) {
+  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
+  if (K >= 0) {
     const T xr = x - period * floor(x / period);
-    const int K = detail::fourier_terms(s, T(4.0), detail::series_tol<T>());
     T acc = (T(1)/T(2));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
-      const T th = T(2.0) * detail::pi<T>() * kf * xr / period;
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
       const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
       acc += damp * ((((-pk) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sin(th));
     }
@@ -2202,11 +2207,11 @@ T gaussian_square_u(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   const T s = sigma / period;
-  if (detail::prefer_fourier(s, 2, T(4.0), T(1.0))) {
+  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
+  if (K >= 0) {
     const T xr = x - period * floor(x / period);
-    const int K = 2 + detail::fourier_terms(s, T(4.0), detail::series_tol<T>());  // +2: the k factor of g'
     T acc = T(0.0);
-    for (int k = 1; k <= K; ++k) {
+    for (int k = 1; k <= K + 2; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
       const T w = T(2.0) * detail::pi<T>() * kf / period;
@@ -2234,14 +2239,15 @@ T gaussian_square_sq(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  if (detail::prefer_fourier(s, 2, T(4.0), T(1.0))) {
+  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
+  if (K >= 0) {
     const T xr = x - period * floor(x / period);
-    const int K = detail::fourier_terms(s, T(4.0), detail::series_tol<T>());
     T acc = (T(1)/T(2));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
-      const T th = T(2.0) * detail::pi<T>() * kf * xr / period;
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
       const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
       acc += damp * ((((-pk) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sin(th));
     }

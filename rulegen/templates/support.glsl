@@ -475,13 +475,15 @@ int bl_image_periods(float s, float fmax, float tol) {
   return int(v);
 }
 
-bool bl_prefer_fourier(float s, int npieces, float coef_bound, float fmax) {
+// K Fourier terms when the Fourier series is cheaper than the image sum, else -1 (support.hpp).
+int bl_fourier_terms_if_preferred(float s, int npieces, float coef_bound, float fmax) {
   int K = bl_fourier_terms(s, coef_bound, BL_SERIES_TOL);
   int P = bl_image_periods(s, fmax, BL_SERIES_TOL);
-  // Cost model as in support.hpp: 3 per Fourier term; 4 per image piece, 20 when it is narrower
-  // than 2 sigma (Gauss-Legendre).
   float per_piece = s * float(npieces) > 0.5 ? 20.0 : 4.0;
-  return 3.0 * float(K) < float(P) * float(npieces) * per_piece;
+  return 3.0 * float(K) < float(P) * float(npieces) * per_piece ? K : -1;
+}
+bool bl_prefer_fourier(float s, int npieces, float coef_bound, float fmax) {
+  return bl_fourier_terms_if_preferred(s, npieces, coef_bound, fmax) >= 0;
 }
 
 // Box over a periodic f: direct shifted pieces when 2h <= 4 periods, else Appendix C with the
