@@ -21,6 +21,15 @@
   using std::tanh;
 
 namespace bl {
+
+// Output of a rule that yields a distribution rather than one smoothed value (Rules 1-3, mode fit,
+// bivariate operators): mean and variance of Y. Inputs of those rules are (mean, standard deviation).
+template <class T>
+struct stat {
+  T mean;
+  T var;
+};
+
 namespace detail {
 
 // The type a float computation borrows where float's exponent range is too small (Taylor

@@ -4,6 +4,8 @@
 // multiprecision (everything emitted is written with unqualified math calls and `using std::`).
 #pragma once
 
+#include "emit_helpers.hpp"  // bl::stat
+
 namespace bl {
 namespace registry {
 
@@ -35,6 +37,29 @@ struct Entry {
   const char* glsl;       // GLSL name
   T (*smoothed)(T x, T sigma);
   T (*plain)(T x);        // f itself (not squared): the integrand is plain or plain^2
+};
+
+// A univariate rule beyond plain convolution (issue 3: "rule1", "rule2", "rule3", "bimodal", ...):
+// maps the input's (mean, standard deviation) to the output's stat (mean, variance).
+template <class T>
+struct RuleEntry {
+  const AtomicInfo* atomic;
+  const char* rule;       // "rule1" | "rule2" | "rule3" | "bimodal" | ...
+  const char* kernel;     // "gaussian" | "box" | "tent"
+  const char* method;     // how it is computed, e.g. "closed form", "newton(6)"
+  const char* cpp;        // qualified C++ name, callable as cpp(mu, sigma) -> bl::stat<T>
+  const char* glsl;       // GLSL name, vec2 (mean, var) glsl(float mu, float sigma)
+  stat<T> (*fn)(T mu, T sigma);
+};
+
+// A bivariate Gaussian operator ("add", "sub", "mul", "div", "min", "max", "less", ...): inputs
+// A, B jointly normal with means ma, mb, standard deviations sa, sb and correlation rho.
+template <class T>
+struct BinaryEntry {
+  const char* op;
+  const char* cpp;        // callable as cpp(ma, sa, mb, sb, rho) -> bl::stat<T>
+  const char* glsl;       // vec2 glsl(float ma, float sa, float mb, float sb, float rho)
+  stat<T> (*fn)(T ma, T sa, T mb, T sb, T rho);
 };
 
 }  // namespace registry
