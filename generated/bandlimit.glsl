@@ -886,6 +886,164 @@ float bl_li2(float z) {  // z <= 0 (GLSL has no recursion: inversion then Landen
 float bl_prod0(float a, float b) { return a == 0.0 ? 0.0 : a * b; }
 float bl_sgn(float x) { return sign(x); }
 
+// ---- plain functions (the catalog's definitions) ----
+
+float bl_plain_sin(float x) {
+  return sin(x);
+}
+
+float bl_plain_cos(float x) {
+  return cos(x);
+}
+
+float bl_plain_exp(float x) {
+  return exp(x);
+}
+
+float bl_plain_sinh(float x) {
+  return sinh(x);
+}
+
+float bl_plain_cosh(float x) {
+  return cosh(x);
+}
+
+float bl_plain_pow2(float x) {
+  return (x*x);
+}
+
+float bl_plain_pow3(float x) {
+  return (x*x*x);
+}
+
+float bl_plain_pow4(float x) {
+  return (x*x*x*x);
+}
+
+float bl_plain_pow5(float x) {
+  return (x*x*x*x*x);
+}
+
+float bl_plain_pow6(float x) {
+  return (x*x*x*x*x*x);
+}
+
+float bl_plain_pow7(float x) {
+  return (x*x*x*x*x*x*x);
+}
+
+float bl_plain_pow8(float x) {
+  return (x*x*x*x*x*x*x*x);
+}
+
+float bl_plain_abs(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_pw_eval(x, 2, p);
+}
+
+float bl_plain_sign(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_pw_eval(x, 2, p);
+}
+
+float bl_plain_step(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_pw_eval(x, 2, p);
+}
+
+float bl_plain_saturate(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_pw_eval(x, 3, p);
+}
+
+float bl_plain_smoothstep(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_pw_eval(x, 3, p);
+}
+
+float bl_plain_fract(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 1.0, 1, p);
+}
+
+float bl_plain_triangle(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 2.0, 2, p);
+}
+
+float bl_plain_square(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 1.0, 2, p);
+}
+
+float bl_plain_floor(float x) {
+  return x + (-1.0) * bl_plain_fract(x);
+}
+
+float bl_plain_ceil(float x) {
+  return x + 1.0 * bl_plain_fract(-x);
+}
+
+float bl_plain_trunc(float x) {
+  return (1.0 + x) + (-1.0) * bl_plain_fract(x) + (-1.0) * bl_plain_step(x);
+}
+
+float bl_plain_tan(float x) {
+  return tan(x);
+}
+
+float bl_plain_tanh(float x) {
+  return tanh(x);
+}
+
+float bl_plain_log(float x) {
+  return log(x);
+}
+
+float bl_plain_sqrt(float x) {
+  return sqrt(x);
+}
+
+float bl_plain_inv(float x) {
+  return (1.0/(x));
+}
+
+float bl_plain_inv2(float x) {
+  return (1.0/(x*x));
+}
+
 // ---- entries ----
 
 float bl_gaussian_sin(float x, float sigma) {
