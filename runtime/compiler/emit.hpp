@@ -1,0 +1,28 @@
+// Back ends: print a lowered Program as a self-contained C++ function or GLSL function.
+#pragma once
+
+#include <string>
+
+#include "compiler/lir.hpp"
+
+namespace bl::compiler {
+
+// C++: a header defining
+//   inline void <name>(const float* bl_m, const float* bl_s, const float* bl_gx, const float* bl_gy,
+//                      float* bl_out)
+// in namespace bl_shaders (bl_m/bl_s: per-input mean and sd; bl_gx/bl_gy: per-input screen
+// gradient, unused unless the program needs gradients; bl_out: the outputs). It includes only the
+// generated headers whose functions it calls. `comment` goes in the banner.
+std::string emit_cpp(const Program& p, const std::string& name, const std::string& comment = "");
+
+// GLSL: the generated library functions the program calls (and what they call, nothing else),
+// then
+//   void <name>(in float bl_m[NI], in float bl_s[NI], in float bl_gx[NI], in float bl_gy[NI],
+//               out float bl_out[NO])
+// No #version line: the includer supplies it (valid as 450 and 320 es).
+std::string emit_glsl(const Program& p, const std::string& name, const std::string& comment = "");
+
+std::string float_literal_cpp(float v);
+std::string float_literal_glsl(float v);
+
+}  // namespace bl::compiler

@@ -1,0 +1,132 @@
+#include "compiler/functions.hpp"
+
+#include <bandlimit/registry.hpp>
+#include <map>
+#include <stdexcept>
+
+namespace bl::compiler {
+
+namespace {
+
+std::string glsl_of_cpp(const std::string& cpp) {
+  // bl::plain::sin -> bl_plain_sin (the generated GLSL's naming of the same function).
+  std::string g;
+  for (std::size_t i = 0; i < cpp.size(); ++i) {
+    if (cpp.compare(i, 2, "::") == 0) {
+      g += '_';
+      ++i;
+    } else {
+      g += cpp[i];
+    }
+  }
+  return g;
+}
+
+std::vector<Function> build() {
+  std::vector<Function> out;
+  std::map<std::string, int> seen;
+  auto add = [&](Function f) {
+    if (seen.count(f.cpp)) return;
+    seen[f.cpp] = static_cast<int>(out.size());
+    out.push_back(std::move(f));
+  };
+  int n = 0;
+  const auto* e = bl::registry::entries<float>(&n);
+  for (int i = 0; i < n; ++i) {
+    if (std::string(e[i].rule) != "convolution") continue;
+    Function plain;
+    plain.cpp = plain_name(e[i].atomic->name);
+    plain.glsl = glsl_of_cpp(plain.cpp);
+    plain.arity = 1;
+    plain.f1 = e[i].plain;
+    add(plain);
+    Function f;
+    f.cpp = e[i].cpp;
+    f.glsl = e[i].glsl;
+    f.arity = 2;
+    f.f2 = e[i].smoothed;
+    add(f);
+  }
+#if __has_include(<bandlimit/rules_bivariate.hpp>)
+  {
+    const auto* b = bl::registry::binary_entries<float>(&n);
+    for (int i = 0; i < n; ++i) {
+      Function f;
+      f.cpp = b[i].cpp;
+      f.glsl = b[i].glsl;
+      f.arity = 5;
+      f.stat = true;
+      f.s5 = b[i].fn;
+      add(f);
+    }
+    const auto* r = bl::registry::rule2_entries<float>(&n);
+    for (int i = 0; i < n; ++i) {
+      Function f;
+      f.cpp = r[i].cpp;
+      f.glsl = r[i].glsl;
+      f.arity = 2;
+      f.stat = true;
+      f.s2 = r[i].fn;
+      add(f);
+    }
+    Function sel;
+    sel.cpp = "bl::bivariate::select";
+    sel.glsl = "bl_bivariate_select";
+    sel.arity = 6;
+    sel.stat = true;
+    sel.s6 = [](float mc, float sc, float ma, float sa, float mb, float sb) {
+      return bl::bivariate::select(mc, sc, ma, sa, mb, sb);
+    };
+    add(sel);
+    Function mod;
+    mod.cpp = "bl::bivariate::mod";
+    mod.glsl = "bl_bivariate_mod";
+    mod.arity = 3;
+    mod.stat = true;
+    mod.s3 = [](float ma, float sa, float c) { return bl::bivariate::mod(ma, sa, c); };
+    add(mod);
+  }
+#endif
+#if __has_include(<bandlimit/rules_clamped.hpp>)
+  {
+    const auto* r = bl::registry::clamped_rule_entries<float>(&n);
+    for (int i = 0; i < n; ++i) {
+      Function f;
+      f.cpp = r[i].cpp;
+      f.glsl = r[i].glsl;
+      f.arity = 2;
+      f.stat = true;
+      f.s2 = r[i].fn;
+      add(f);
+    }
+  }
+#endif
+  return out;
+}
+
+}  // namespace
+
+const std::vector<Function>& functions() {
+  static const std::vector<Function> table = build();
+  return table;
+}
+
+int find_function(const std::string& cpp_name) {
+  static const std::map<std::string, int> index = [] {
+    std::map<std::string, int> m;
+    for (std::size_t i = 0; i < functions().size(); ++i) m[functions()[i].cpp] = static_cast<int>(i);
+    return m;
+  }();
+  auto it = index.find(cpp_name);
+  return it == index.end() ? -1 : it->second;
+}
+
+std::string plain_name(const std::string& atomic) {
+  return "bl::plain::" + atomic;
+}
+
+std::string kernel_name(const std::string& kernel, const std::string& atomic, bool squared) {
+  return "bl::" + kernel + "::" + atomic + (squared ? "_sq" : "");
+}
+
+}  // namespace bl::compiler

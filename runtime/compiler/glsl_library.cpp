@@ -1,0 +1,142 @@
+#include "compiler/glsl_library.hpp"
+
+#include <cctype>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace bl::compiler {
+
+extern const char* const kEmbeddedGlsl[];  // embed_glsl.cmake: chunks, null-terminated
+
+const std::string& glsl_library() {
+  static const std::string text = [] {
+    std::string s;
+    for (int i = 0; kEmbeddedGlsl[i]; ++i) s += kEmbeddedGlsl[i];
+    return s;
+  }();
+  return text;
+}
+
+namespace {
+
+struct Item {
+  std::string name;
+  std::string text;
+  std::set<std::string> idents;
+};
+
+bool ident_start(char c) {
+  return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
+}
+bool ident_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+
+// Splits the library into top-level definitions (comments dropped).
+std::vector<Item> split(const std::string& src) {
+  std::string code;  // the source without comments
+  for (std::size_t i = 0; i < src.size();) {
+    if (src.compare(i, 2, "//") == 0) {
+      while (i < src.size() && src[i] != '\n') ++i;
+    } else if (src.compare(i, 2, "/*") == 0) {
+      const auto e = src.find("*/", i + 2);
+      i = e == std::string::npos ? src.size() : e + 2;
+    } else {
+      code += src[i++];
+    }
+  }
+  std::vector<Item> items;
+  std::string cur;
+  int depth = 0;
+  auto finish = [&] {
+    Item it;
+    it.text = cur;
+    cur.clear();
+    std::vector<std::string> words;
+    std::size_t paren = std::string::npos;
+    for (std::size_t i = 0; i < it.text.size();) {
+      if (ident_start(it.text[i])) {
+        std::size_t j = i;
+        while (j < it.text.size() && ident_char(it.text[j])) ++j;
+        const std::string w = it.text.substr(i, j - i);
+        it.idents.insert(w);
+        words.push_back(w);
+        i = j;
+      } else {
+        if (paren == std::string::npos && (it.text[i] == '(' || it.text[i] == '=' || it.text[i] == '[' ||
+                                           it.text[i] == '{' || it.text[i] == ';'))
+          paren = words.size();
+        ++i;
+      }
+    }
+    if (words.empty()) return;
+    // struct S {...};  |  type name(...) {...}  |  const type NAME = ...;
+    it.name = words[0] == "struct" && words.size() > 1
+                  ? words[1]
+                  : words[paren == std::string::npos ? words.size() - 1 : paren - 1];
+    it.idents.erase(it.name);
+    items.push_back(std::move(it));
+  };
+  for (std::size_t i = 0; i < code.size(); ++i) {
+    const char c = code[i];
+    if (depth == 0 && cur.find_first_not_of(" \t\r\n") == std::string::npos && c == '#') {
+      // Preprocessor line: its own item, always kept (there are none today).
+      const auto e = code.find('\n', i);
+      cur = code.substr(i, e - i);
+      Item it;
+      it.name = "#";
+      it.text = cur + "\n";
+      items.push_back(it);
+      cur.clear();
+      i = e == std::string::npos ? code.size() : e;
+      continue;
+    }
+    cur += c;
+    if (c == '{' || c == '(') ++depth;
+    if (c == '}' || c == ')') --depth;
+    if (depth == 0 && c == ';') {
+      cur += '\n';
+      finish();
+    } else if (depth == 0 && c == '}') {
+      std::size_t j = i + 1;
+      while (j < code.size() && std::isspace(static_cast<unsigned char>(code[j]))) ++j;
+      if (j >= code.size() || code[j] != ';') {
+        cur += '\n';
+        finish();
+      }
+    }
+  }
+  return items;
+}
+
+}  // namespace
+
+std::string glsl_library_slice(const std::vector<std::string>& roots) {
+  static const std::vector<Item> items = split(glsl_library());
+  std::map<std::string, std::vector<int>> by_name;
+  for (std::size_t i = 0; i < items.size(); ++i) by_name[items[i].name].push_back(static_cast<int>(i));
+  std::set<int> keep;
+  std::vector<std::string> todo;
+  for (const auto& r : roots) {
+    if (!by_name.count(r)) throw std::invalid_argument("GLSL library has no definition of '" + r + "'");
+    todo.push_back(r);
+  }
+  std::set<std::string> done;
+  while (!todo.empty()) {
+    const std::string n = todo.back();
+    todo.pop_back();
+    if (!done.insert(n).second) continue;
+    for (int i : by_name[n]) {
+      keep.insert(i);
+      for (const auto& id : items[i].idents)
+        if (by_name.count(id) && !done.count(id)) todo.push_back(id);
+    }
+  }
+  std::string out = "// ---- bandlimit library (sliced from generated/bandlimit*.glsl) ----\n";
+  for (std::size_t i = 0; i < items.size(); ++i)
+    if (keep.count(static_cast<int>(i)) || items[i].name == "#") out += items[i].text;
+  return out;
+}
+
+}  // namespace bl::compiler

@@ -1,0 +1,63 @@
+// The lowered program: straight-line scalar code in SSA form. Lowering (lower.hpp) turns the traced
+// DAG plus a rule per node into this; three back ends read it: C++ and GLSL printers and the batch
+// evaluator, so the emitted code and the tuner's evaluator compute the same operations in the same
+// order. Every instruction yields one float, except CallStat, which yields a (mean, var) pair read
+// by Mean/Var.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "compiler/functions.hpp"
+
+namespace bl::compiler {
+
+enum class LOp {
+  Const,    // k
+  InMean,   // input slot a: per-pixel mean
+  InSd,     // input slot a: per-pixel standard deviation
+  InGradX,  // input slot a: d mean / d screen x
+  InGradY,  // input slot a: d mean / d screen y
+  Add,
+  Sub,
+  Mul,
+  Div,
+  Neg,
+  Min,
+  Max,
+  Less,      // a < b ? 1 : 0
+  Sqrt,      // sqrt(a)
+  NonNeg,    // a > 0 ? a : 0 (variance from E[f^2] - E[f]^2 can round below 0)
+  Call,      // fn(args...) -> float
+  CallStat,  // fn(args...) -> (mean, var)
+  Mean,      // .mean of CallStat a
+  Var,       // .var of CallStat a
+};
+
+struct Inst {
+  LOp op = LOp::Const;
+  int arg[6] = {-1, -1, -1, -1, -1, -1};
+  int fn = -1;  // index into functions() for Call/CallStat
+  float k = 0;  // Const value
+  bool operator==(const Inst& o) const;
+};
+
+int lop_arity(const Inst& in);  // number of used args
+
+struct Program {
+  std::vector<Inst> insts;
+  std::vector<int> outputs;  // instruction per output
+  std::vector<std::string> output_names;
+  int input_count = 0;  // slots of the InMean/InSd/InGrad arrays
+  std::vector<std::string> input_names;
+  std::vector<std::string> notes;  // rule substitutions made while lowering (for reports)
+
+  bool uses_gradients() const;
+  std::vector<int> used_functions() const;  // sorted indices into functions()
+};
+
+// Common subexpression elimination and dead-code elimination (only what outputs need survives,
+// so variances no later rule consumes are never computed).
+Program optimize(const Program& p);
+
+}  // namespace bl::compiler

@@ -1,0 +1,466 @@
+#include "compiler/lower.hpp"
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "ir/atomics.hpp"
+
+namespace bl::compiler {
+namespace {
+
+using ir::Op;
+using rules::Kind;
+using rules::Rho;
+using rules::Rule;
+
+// A lowered node: instruction ids of its mean and variance (-1: exactly zero, e.g. a constant).
+struct Val {
+  int mean = -1;
+  int var = -1;
+  int sd = -1;           // cached sqrt(var), or the input's sd
+  int gx = -1, gy = -1;  // gradient of the mean w.r.t. screen x, y (computed on demand)
+};
+
+class Lowering {
+ public:
+  Lowering(const ir::Graph& g, const Schedule& s) : g_(g), s_(s), vals_(g.size()) {}
+
+  Program run() {
+    p_.input_count = static_cast<int>(g_.inputs().size());
+    for (const auto& in : g_.inputs()) p_.input_names.push_back(in.name);
+    for (int i = 0; i < g_.size(); ++i) vals_[i] = node(i);
+    for (std::size_t k = 0; k < g_.outputs().size(); ++k) {
+      p_.outputs.push_back(vals_[g_.outputs()[k]].mean);
+      p_.output_names.push_back(g_.output_names()[k]);
+    }
+    for (const auto& n : notes_) p_.notes.push_back(n);
+    return optimize(p_);
+  }
+
+ private:
+  // ---- instruction builders ----
+  int emit(Inst in) {
+    p_.insts.push_back(in);
+    return static_cast<int>(p_.insts.size()) - 1;
+  }
+  int k(float v) {
+    Inst in;
+    in.op = LOp::Const;
+    in.k = v;
+    return emit(in);
+  }
+  int op(LOp o, int a, int b = -1) {
+    Inst in;
+    in.op = o;
+    in.arg[0] = a;
+    in.arg[1] = b;
+    return emit(in);
+  }
+  int add(int a, int b) { return op(LOp::Add, a, b); }
+  int sub(int a, int b) { return op(LOp::Sub, a, b); }
+  int mul(int a, int b) { return op(LOp::Mul, a, b); }
+  int div(int a, int b) { return op(LOp::Div, a, b); }
+  int sq(int a) { return mul(a, a); }
+  bool has(const std::string& fn) const { return find_function(fn) >= 0; }
+  int call(const std::string& fn, std::initializer_list<int> args, bool stat = false) {
+    const int f = find_function(fn);
+    if (f < 0) throw std::logic_error("compiler: the generated table has no function " + fn);
+    if (functions()[f].stat != stat || functions()[f].arity != static_cast<int>(args.size()))
+      throw std::logic_error("compiler: " + fn + " has another signature than lowering expects");
+    Inst in;
+    in.op = stat ? LOp::CallStat : LOp::Call;
+    in.fn = f;
+    int j = 0;
+    for (int a : args) in.arg[j++] = a;
+    return emit(in);
+  }
+  Val from_stat(int st) { return Val{op(LOp::Mean, st), op(LOp::Var, st)}; }
+  void note(const std::string& s) { notes_.insert(s); }
+
+  int sd(Val& v) {
+    if (v.var < 0) return k(0);
+    if (v.sd < 0) v.sd = op(LOp::Sqrt, v.var);
+    return v.sd;
+  }
+  int scaled_sd(Val& v, const Rule& r) {
+    const int s = sd(v);
+    return r.sigma_scale == 1 ? s : mul(s, k(static_cast<float>(r.sigma_scale)));
+  }
+
+  // ---- nodes ----
+  Val node(int i) {
+    const ir::Node& n = g_.node(i);
+    const Rule& r = s_.at(i);
+    switch (n.op) {
+      case Op::Const:
+        return Val{k(static_cast<float>(n.value)), -1};
+      case Op::Input: {
+        const int slot = static_cast<int>(n.value);
+        Inst in;
+        in.op = LOp::InMean;
+        in.arg[0] = slot;
+        Val v;
+        v.mean = emit(in);
+        if (g_.inputs()[slot].varying && r.kind != Kind::None) {
+          in.op = LOp::InSd;
+          v.sd = emit(in);
+          v.var = sq(v.sd);
+        }
+        return v;
+      }
+      default:
+        break;
+    }
+    std::vector<Val*> args;
+    for (int a : {n.a, n.b, n.c})
+      if (a >= 0) args.push_back(&vals_[a]);
+    bool random = false;
+    for (Val* a : args) random = random || a->var >= 0;
+    if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
+    if (r.kind == Kind::MonteCarlo) return monte_carlo(i, n, r, args);
+    if (n.op == Op::Call) return call_node(n, r, *args[0]);
+    if (n.op == Op::Neg) return Val{op(LOp::Neg, args[0]->mean), args[0]->var, args[0]->sd};
+    if (r.kind == Kind::Dorn) return dorn(n, r, args);
+    if (r.kind != Kind::Gaussian)
+      note(std::string(rules::kind_name(r.kind)) + " on " + ir::op_name(n.op) + " -> gaussian (rho 0)");
+    return gaussian(i, n, r, args);
+  }
+
+  // The operation on plain values (also the Monte Carlo integrand).
+  int plain(const ir::Node& n, const std::vector<int>& x) {
+    switch (n.op) {
+      case Op::Add:
+        return add(x[0], x[1]);
+      case Op::Sub:
+        return sub(x[0], x[1]);
+      case Op::Mul:
+        return mul(x[0], x[1]);
+      case Op::Div:
+        return div(x[0], x[1]);
+      case Op::Neg:
+        return op(LOp::Neg, x[0]);
+      case Op::Min:
+        return op(LOp::Min, x[0], x[1]);
+      case Op::Max:
+        return op(LOp::Max, x[0], x[1]);
+      case Op::Less:
+        return op(LOp::Less, x[0], x[1]);
+      case Op::Select:
+        return add(mul(x[0], x[1]), mul(sub(k(1), x[0]), x[2]));
+      case Op::Mod: {
+        const int c = k(static_cast<float>(n.value));
+        return sub(x[0], mul(c, call(plain_name("floor"), {div(x[0], c)})));
+      }
+      case Op::Call:
+        return call(plain_name(ir::atomic_name(n.atomic)), {x[0]});
+      default:
+        throw std::logic_error("compiler: plain() of a leaf");
+    }
+  }
+  int plain(const ir::Node& n, const std::vector<Val*>& args) {
+    std::vector<int> x;
+    for (Val* a : args) x.push_back(a->mean);
+    return plain(n, x);
+  }
+
+  Val monte_carlo(int i, const ir::Node& n, const Rule& r, const std::vector<Val*>& args) {
+    const int dims = static_cast<int>(args.size());
+    const std::vector<float> z = mc_normals(i, r.samples, dims);
+    std::vector<int> s(dims);
+    for (int d = 0; d < dims; ++d) s[d] = args[d]->var >= 0 ? scaled_sd(*args[d], r) : -1;
+    int sum = -1, sumsq = -1;
+    for (int j = 0; j < r.samples; ++j) {
+      std::vector<int> x(dims);
+      for (int d = 0; d < dims; ++d)
+        x[d] = s[d] < 0 ? args[d]->mean : add(args[d]->mean, mul(s[d], k(z[j * dims + d])));
+      const int y = plain(n, x);
+      sum = sum < 0 ? y : add(sum, y);
+      sumsq = sumsq < 0 ? sq(y) : add(sumsq, sq(y));
+    }
+    const int inv_n = k(1.0f / static_cast<float>(r.samples));
+    Val v;
+    v.mean = mul(sum, inv_n);
+    v.var = op(LOp::NonNeg, sub(mul(sumsq, inv_n), sq(v.mean)));
+    return v;
+  }
+
+  // Kernel entry f (or f^2) by name, with the fallback chain for atomics a kernel cannot smooth.
+  std::string kernel_for(const std::string& want, const std::string& f) {
+    for (const std::string& kern : {want, std::string("gaussian"), std::string("tent"), std::string("box")})
+      if (has(kernel_name(kern, f, false))) {
+        if (kern != want) note(want + " " + f + " -> " + kern + " (no " + want + " closed form)");
+        return kern;
+      }
+    throw std::logic_error("compiler: no kernel smooths " + f);
+  }
+
+  Val convolve(const std::string& kern, const std::string& f, int m, int s, int var_in) {
+    Val v;
+    v.mean = call(kernel_name(kern, f, false), {m, s});
+    if (has(kernel_name(kern, f, true))) {
+      v.var = op(LOp::NonNeg, sub(call(kernel_name(kern, f, true), {m, s}), sq(v.mean)));
+    } else {
+      note(kern + " " + f + "_sq is not in the table: the input variance passes through");
+      v.var = var_in;
+    }
+    return v;
+  }
+
+  Val call_node(const ir::Node& n, const Rule& r, Val& x) {
+    const std::string f = ir::atomic_name(n.atomic);
+    const int s = scaled_sd(x, r);
+    switch (r.kind) {
+      case Kind::Dorn: {
+        // Dorn: Gaussian mean, and the output sd is the input's (the "sample spacing" heuristic).
+        const std::string kern = kernel_for("gaussian", f);
+        return Val{call(kernel_name(kern, f, false), {x.mean, s}), x.var, x.sd};
+      }
+      case Kind::Gaussian:
+        return convolve(kernel_for("gaussian", f), f, x.mean, s, x.var);
+      case Kind::Box:
+        return convolve(kernel_for("box", f), f, x.mean, s, x.var);
+      case Kind::Tent:
+        return convolve(kernel_for("tent", f), f, x.mean, s, x.var);
+      case Kind::Rule1:
+      case Kind::Rule2:
+      case Kind::Rule3: {
+        const std::string name = r.kind == Kind::Rule1   ? "bl::rule1::" + r.kernel + "::" + f
+                                 : r.kind == Kind::Rule2 ? "bl::rule2::" + f
+                                                         : "bl::rule3::" + f;
+        if (has(name)) return from_stat(call(name, {x.mean, s}, true));
+        note(to_string(r) + " " + f + " -> gaussian (no such rule in the table)");
+        return convolve(kernel_for("gaussian", f), f, x.mean, s, x.var);
+      }
+      default:
+        throw std::logic_error("compiler: call_node with rule " + to_string(r));
+    }
+  }
+
+  // Dorn et al. 2015 with Yang & Barnes' improvement (4.3): sd adds over +/-, scales by a constant
+  // factor, multiplies/divides otherwise, and averages over other operators.
+  Val dorn(const ir::Node& n, const Rule& r, const std::vector<Val*>& a) {
+    auto s = [&](int j) { return sd(*a[j]); };
+    const bool ca = a[0]->var<0, cb = a.size()> 1 && a[1]->var < 0;
+    Val v;
+    switch (n.op) {
+      case Op::Add:
+      case Op::Sub:
+        v.mean = plain(n, a);
+        if (ca || cb) return Val{v.mean, ca ? a[1]->var : a[0]->var, ca ? a[1]->sd : a[0]->sd};
+        v.sd = add(s(0), s(1));
+        v.var = sq(v.sd);
+        return v;
+      case Op::Mul:
+        v.mean = plain(n, a);
+        v.var = ca   ? mul(sq(a[0]->mean), a[1]->var)
+                : cb ? mul(sq(a[1]->mean), a[0]->var)
+                     : mul(a[0]->var, a[1]->var);
+        return v;
+      case Op::Div:
+        v.mean = plain(n, a);
+        v.var = cb ? div(a[0]->var, sq(a[1]->mean)) : div(a[0]->var, op(LOp::Max, a[1]->var, k(1e-30f)));
+        return v;
+      case Op::Mod: {
+        const float c = static_cast<float>(n.value);
+        v.mean = mul(k(c), call(kernel_name("gaussian", "fract", false),
+                                {div(a[0]->mean, k(c)), mul(scaled_sd(*a[0], r), k(1.0f / std::fabs(c)))}));
+        v.var = a[0]->var;
+        return v;
+      }
+      default:
+        break;
+    }
+    // min, max, select, less: average of the inputs' sds.
+    int sum = -1, count = 0;
+    for (Val* x : a)
+      if (x->var >= 0) {
+        sum = sum < 0 ? sd(*x) : add(sum, sd(*x));
+        ++count;
+      }
+    const int avg = count == 1 ? sum : mul(sum, k(1.0f / static_cast<float>(count)));
+    v.sd = avg;
+    v.var = sq(avg);
+    if (n.op == Op::Less) {
+      const int sc = r.sigma_scale == 1 ? avg : mul(avg, k(static_cast<float>(r.sigma_scale)));
+      v.mean = call(kernel_name("gaussian", "step", false), {sub(a[1]->mean, a[0]->mean), sc});
+    } else {
+      v.mean = plain(n, a);
+    }
+    return v;
+  }
+
+  int rho(int i, const ir::Node& n, const Rule& r) {
+    if (r.kind != Kind::Gaussian || r.rho == Rho::Zero) return k(0);
+    if (r.rho == Rho::Constant) return k(static_cast<float>(r.rho_value));
+    Val& a = grad(n.a);
+    Val& b = grad(n.b);
+    (void)i;
+    const int dot = add(mul(a.gx, b.gx), mul(a.gy, b.gy));
+    const int na = add(sq(a.gx), sq(a.gy)), nb = add(sq(b.gx), sq(b.gy));
+    // Zero gradients (a constant-in-screen input) give rho 0 rather than 0/0.
+    const int den = op(LOp::Sqrt, op(LOp::Max, mul(na, nb), k(1e-30f)));
+    return op(LOp::Min, op(LOp::Max, div(dot, den), k(-1)), k(1));
+  }
+
+  Val gaussian(int i, const ir::Node& n, const Rule& r, const std::vector<Val*>& a) {
+    Val v;
+    const bool ca = a[0]->var<0, cb = a.size()> 1 && a[1]->var < 0;
+    switch (n.op) {
+      case Op::Add:
+      case Op::Sub: {
+        v.mean = plain(n, a);
+        if (ca || cb) return Val{v.mean, ca ? a[1]->var : a[0]->var, ca ? a[1]->sd : a[0]->sd};
+        int cov = mul(mul(k(2), rho(i, n, r)), mul(sd(*a[0]), sd(*a[1])));
+        if (n.op == Op::Sub) cov = op(LOp::Neg, cov);
+        v.var = op(LOp::NonNeg, add(add(a[0]->var, a[1]->var), cov));
+        return v;
+      }
+      case Op::Mul:
+        if (ca || cb) {  // product with a non-random factor: exact
+          v.mean = plain(n, a);
+          v.var = ca ? mul(sq(a[0]->mean), a[1]->var) : mul(sq(a[1]->mean), a[0]->var);
+          return v;
+        }
+        break;
+      case Op::Div:
+        if (cb) {
+          v.mean = plain(n, a);
+          v.var = div(a[0]->var, sq(a[1]->mean));
+          return v;
+        }
+        break;
+      case Op::Select:
+        return from_stat(call("bl::bivariate::select",
+                              {a[0]->mean, sd(*a[0]), a[1]->mean, sd(*a[1]), a[2]->mean, sd(*a[2])}, true));
+      case Op::Mod:
+        return from_stat(call("bl::bivariate::mod",
+                              {a[0]->mean, scaled_sd(*a[0], r), k(static_cast<float>(n.value))}, true));
+      default:
+        break;
+    }
+    const std::string name = std::string("bl::bivariate::") + ir::op_name(n.op);
+    return from_stat(call(name, {a[0]->mean, sd(*a[0]), a[1]->mean, sd(*a[1]), rho(i, n, r)}, true));
+  }
+
+  // Screen-space gradient of node i's mean (forward mode through the plain derivatives at the
+  // means: the affine assumption of Yang & Barnes, Appendix B).
+  Val& grad(int i) {
+    Val& v = vals_[i];
+    if (v.gx >= 0) return v;
+    const ir::Node& n = g_.node(i);
+    auto set = [&](int gx, int gy) {
+      v.gx = gx;
+      v.gy = gy;
+    };
+    auto G = [&](int j) -> Val& { return grad(j); };
+    switch (n.op) {
+      case Op::Const:
+        set(k(0), k(0));
+        break;
+      case Op::Input: {
+        const int slot = static_cast<int>(n.value);
+        if (!g_.inputs()[slot].varying) {
+          set(k(0), k(0));
+          break;
+        }
+        Inst in;
+        in.arg[0] = slot;
+        in.op = LOp::InGradX;
+        const int gx = emit(in);
+        in.op = LOp::InGradY;
+        set(gx, emit(in));
+        break;
+      }
+      case Op::Add:
+        set(add(G(n.a).gx, G(n.b).gx), add(G(n.a).gy, G(n.b).gy));
+        break;
+      case Op::Sub:
+        set(sub(G(n.a).gx, G(n.b).gx), sub(G(n.a).gy, G(n.b).gy));
+        break;
+      case Op::Neg:
+        set(op(LOp::Neg, G(n.a).gx), op(LOp::Neg, G(n.a).gy));
+        break;
+      case Op::Mod:
+        set(G(n.a).gx, G(n.a).gy);
+        break;
+      case Op::Less:
+        set(k(0), k(0));
+        break;
+      case Op::Mul: {
+        const int ma = vals_[n.a].mean, mb = vals_[n.b].mean;
+        set(add(mul(ma, G(n.b).gx), mul(mb, G(n.a).gx)), add(mul(ma, G(n.b).gy), mul(mb, G(n.a).gy)));
+        break;
+      }
+      case Op::Div: {
+        const int ma = vals_[n.a].mean, mb = vals_[n.b].mean, d = sq(mb);
+        set(div(sub(mul(G(n.a).gx, mb), mul(ma, G(n.b).gx)), d),
+            div(sub(mul(G(n.a).gy, mb), mul(ma, G(n.b).gy)), d));
+        break;
+      }
+      case Op::Min:
+      case Op::Max: {
+        const int ma = vals_[n.a].mean, mb = vals_[n.b].mean;
+        const int pick_a = n.op == Op::Min ? op(LOp::Less, ma, mb) : op(LOp::Less, mb, ma);
+        const int pick_b = sub(k(1), pick_a);
+        set(add(mul(pick_a, G(n.a).gx), mul(pick_b, G(n.b).gx)),
+            add(mul(pick_a, G(n.a).gy), mul(pick_b, G(n.b).gy)));
+        break;
+      }
+      case Op::Select: {
+        const int mc = vals_[n.a].mean, d = sub(vals_[n.b].mean, vals_[n.c].mean), nc = sub(k(1), mc);
+        set(add(mul(G(n.a).gx, d), add(mul(mc, G(n.b).gx), mul(nc, G(n.c).gx))),
+            add(mul(G(n.a).gy, d), add(mul(mc, G(n.b).gy), mul(nc, G(n.c).gy))));
+        break;
+      }
+      case Op::Call: {
+        const std::string d1 = "bl::deriv::" + std::string(ir::atomic_name(n.atomic)) + "_d1";
+        const int fp = call(d1, {vals_[n.a].mean});
+        set(mul(fp, G(n.a).gx), mul(fp, G(n.a).gy));
+        break;
+      }
+    }
+    return vals_[i];
+  }
+
+  const ir::Graph& g_;
+  const Schedule& s_;
+  std::vector<Val> vals_;
+  Program p_;
+  std::set<std::string> notes_;
+};
+
+}  // namespace
+
+Program lower(const ir::Graph& g, const Schedule& schedule) {
+  if (static_cast<int>(schedule.size()) != g.size())
+    throw std::invalid_argument("compiler: schedule has " + std::to_string(schedule.size()) +
+                                " rules for a graph of " + std::to_string(g.size()) + " nodes");
+  for (const auto& n : g.nodes())
+    if (n.op == ir::Op::Const && !std::isfinite(n.value))
+      throw std::invalid_argument("compiler: the shader has a non-finite constant");
+  return Lowering(g, schedule).run();
+}
+
+Schedule uniform_schedule(const ir::Graph& g, const rules::Rule& r) {
+  return Schedule(g.size(), r);
+}
+
+std::vector<float> mc_normals(int node, int n, int dims) {
+  // Seeded per node so that a node's samples do not depend on the rest of the shader.
+  std::mt19937_64 rng(0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(node) * 0x100000001B3ull);
+  std::normal_distribution<double> normal;
+  std::vector<float> z(static_cast<std::size_t>(n) * dims);
+  for (int j = 0; j + 1 < n; j += 2)
+    for (int d = 0; d < dims; ++d) {
+      const float v = static_cast<float>(normal(rng));
+      z[j * dims + d] = v;
+      z[(j + 1) * dims + d] = -v;
+    }
+  return z;
+}
+
+}  // namespace bl::compiler

@@ -1,0 +1,14 @@
+// The atomic functions the runtime knows: the generated registry's catalog, in its order.
+#pragma once
+
+#include <string>
+
+namespace bl::ir {
+
+int atomic_index(const std::string& name);  // -1 when unknown
+const char* atomic_name(int index);
+int atomic_count();
+double plain_atomic(int index, double x);  // f(x) itself (the catalog definition, generated)
+float plain_atomic(int index, float x);
+
+}  // namespace bl::ir
