@@ -6,7 +6,8 @@ pkgs=(g++ cmake make pkg-config
   libopenimageio-dev openimageio-tools glslang-tools
   libegl-dev libgles-dev libgl1-mesa-dri libosmesa6-dev
   libgtest-dev libbenchmark-dev libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev
-  libnlopt-cxx-dev gnuplot-nox python3)
+  libnlopt-cxx-dev gnuplot-nox python3
+  fonts-dejavu-core)  # labels in runtime/image reports (OpenImageIO render_text)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
