@@ -1,0 +1,106 @@
+#include "render/glsl_frame.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+#include "camera/camera.hpp"
+#include "compiler/emit.hpp"
+#include "render/frame.hpp"
+
+namespace bl::render {
+
+std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program& p, const std::string& version) {
+  std::ostringstream os;
+  os << "#version " << version << "\n";
+  if (version.find("es") != std::string::npos) os << "precision highp float;\nprecision highp int;\n";
+  os << compiler::emit_glsl(p, "bl_shade", "scene " + s.name) << "\n";
+  // The camera of runtime/camera/plane_hit.cpp, per fragment (gl_FragCoord: y down, see egl_runner).
+  os << R"(uniform vec3 bl_cam_pos;
+uniform vec3 bl_cam_right;
+uniform vec3 bl_cam_up;
+uniform vec3 bl_cam_forward;
+uniform float bl_focal;
+uniform vec2 bl_size;
+uniform float bl_uv_scale;
+uniform float bl_pixel_sigma;
+uniform int bl_marginal;
+uniform vec3 bl_light;
+uniform float bl_time;
+uniform vec3 bl_background;
+out vec4 bl_color;
+
+vec3 bl_plane_differential(float t, vec3 d, vec3 dd) { return t * (dd - d * (dd.z / d.z)); }
+
+void main() {
+  vec2 p = gl_FragCoord.xy;
+  vec3 d = bl_focal * bl_cam_forward + (p.x - 0.5 * bl_size.x) * bl_cam_right - (p.y - 0.5 * bl_size.y) * bl_cam_up;
+  if (!(d.z < 0.0)) { bl_color = vec4(bl_background, 1.0); return; }
+  float t = -bl_cam_pos.z / d.z;
+  vec3 hit = bl_cam_pos + t * d;
+  vec3 dpx = bl_plane_differential(t, d, bl_cam_right);
+  vec3 dpy = bl_plane_differential(t, d, -bl_cam_up);
+  float k = bl_uv_scale;
+  vec2 du = k * vec2(dpx.x, dpy.x);
+  vec2 dv = k * vec2(dpx.y, dpy.y);
+  float su = bl_marginal != 0 ? bl_pixel_sigma * length(du) : bl_pixel_sigma * (abs(du.x) + abs(du.y));
+  float sv = bl_marginal != 0 ? bl_pixel_sigma * length(dv) : bl_pixel_sigma * (abs(dv.x) + abs(dv.y));
+  vec3 view = -d / length(d);
+)";
+  const int n = std::max(1, p.input_count);
+  os << "  float m[" << n << "]; float s[" << n << "]; float gx[" << n << "]; float gy[" << n << "];\n";
+  if (p.input_count == 0) os << "  m[0] = 0.0; s[0] = 0.0; gx[0] = 0.0; gy[0] = 0.0;\n";
+  for (int i = 0; i < p.input_count; ++i) {
+    const std::string& name = p.input_names[i];
+    std::string mean = "0.0", sd = "0.0", gxs = "0.0", gys = "0.0";
+    if (name == "u") mean = "k * hit.x", sd = "su", gxs = "du.x", gys = "du.y";
+    else if (name == "v") mean = "k * hit.y", sd = "sv", gxs = "dv.x", gys = "dv.y";
+    else if (name == "view_x") mean = "view.x";
+    else if (name == "view_y") mean = "view.y";
+    else if (name == "view_z") mean = "view.z";
+    else if (name == "time") mean = "bl_time";
+    else if (name == "light_x") mean = "bl_light.x";
+    else if (name == "light_y") mean = "bl_light.y";
+    else if (name == "light_z") mean = "bl_light.z";
+    else throw std::invalid_argument("glsl frame: the program reads an unknown input '" + name + "'");
+    os << "  m[" << i << "] = " << mean << "; s[" << i << "] = " << sd << "; gx[" << i << "] = " << gxs << "; gy[" << i
+       << "] = " << gys << ";\n";
+  }
+  os << "  float o[" << p.outputs.size() << "];\n  bl_shade(m, s, gx, gy, o);\n"
+     << "  bl_color = vec4(o[0], o[1], o[2], 1.0);\n}\n";
+  return os.str();
+}
+
+std::vector<gl::Uniform> glsl_frame_uniforms(const scene::Scene& s, const Frame& f) {
+  const camera::Camera cam = make_camera(s, f.view);
+  const camera::Basis b = camera::basis(cam);
+  auto v3 = [](const camera::Vec3d& v) {
+    return gl::Vec3{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+  };
+  auto a3 = [](const std::array<double, 3>& v) {
+    return gl::Vec3{static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+  };
+  return {{"bl_cam_pos", v3(cam.position)},
+          {"bl_cam_right", v3(b.right)},
+          {"bl_cam_up", v3(b.up)},
+          {"bl_cam_forward", v3(b.forward)},
+          {"bl_focal", static_cast<float>(camera::focal_px(cam))},
+          {"bl_size", gl::Vec2{static_cast<float>(s.width), static_cast<float>(s.height)}},
+          {"bl_uv_scale", static_cast<float>(s.uv_scale)},
+          {"bl_pixel_sigma", static_cast<float>(s.sigma_px)},
+          {"bl_marginal", s.footprint_bound == scene::FootprintBound::Marginal ? 1 : 0},
+          {"bl_light", a3(s.light_dir)},
+          {"bl_time", static_cast<float>(f.time)},
+          {"bl_background", a3(s.background)}};
+}
+
+Image render_glsl(gl::Context& ctx, const scene::Scene& s, const Frame& f, const compiler::Program& program) {
+  gl::Program prog = ctx.compile(glsl_fragment_source(s, program));
+  // The driver drops uniforms a scene does not read (no lighting: bl_light): ignore those, the
+  // names themselves are fixed above.
+  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);
+  const auto rgba = ctx.render(prog, s.width, s.height, glsl_frame_uniforms(s, f));
+  ctx.set_unknown_uniform(gl::UnknownUniform::kThrow);
+  return image_from_rgba(rgba, s.width, s.height);
+}
+
+}  // namespace bl::render

@@ -1,0 +1,171 @@
+#include "render/render.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <stdexcept>
+
+#include "camera/plane_batch.hpp"
+#include "compiler/evaluator.hpp"
+#include "image/image_io.hpp"
+#include "render/frame.hpp"
+#include "render/parallel.hpp"
+
+namespace bl::render {
+
+namespace {
+
+std::uint64_t mix64(std::uint64_t x) {  // splitmix64 finalizer: decorrelates seeds
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+void set_pixel(Image& img, int x, int y, const double* rgb) {
+  for (int c = 0; c < 3; ++c) img.at(x, y, c) = static_cast<float>(rgb[c]);
+}
+
+}  // namespace
+
+double uniform_input(const scene::Scene& s, const Frame& f, const std::string& name) {
+  if (name == "time") return f.time;
+  if (name == "light_x") return s.light_dir[0];
+  if (name == "light_y") return s.light_dir[1];
+  if (name == "light_z") return s.light_dir[2];
+  throw std::invalid_argument("renderer: the program reads an unknown input '" + name + "'");
+}
+
+std::vector<Frame> frames(const scene::Scene& s) {
+  std::vector<Frame> out;
+  for (int v = 0; v < static_cast<int>(s.views.size()); ++v)
+    for (double t : s.animated() ? s.times : std::vector<double>{s.times.front()}) out.push_back({v, t});
+  return out;
+}
+
+Image render_native(const scene::Scene& s, const Frame& f, int samples, std::uint64_t seed,
+                    const std::string& progress_label) {
+  const camera::Camera cam = make_camera(s, f.view);
+  const camera::Basis basis = camera::basis(cam);
+  const camera::FootprintOptions opt = footprint_options(s);
+  const shaders::ShaderDef& shader = shaders::find_shader(s.shader);
+  const shaders::Effects fx = s.effects();
+  Image img(s.width, s.height);
+  std::uint64_t frame_key = mix64(seed ^ mix64(static_cast<std::uint64_t>(f.view)) ^
+                                  mix64(static_cast<std::uint64_t>(std::llround(f.time * 1e6))));
+  parallel_rows(
+      s.height,
+      [&](int y) {
+        for (int x = 0; x < s.width; ++x) {
+          double acc[3] = {0, 0, 0};
+          const int n = samples > 0 ? samples : 1;
+          std::mt19937_64 rng(mix64(frame_key ^ (static_cast<std::uint64_t>(y) * s.width + x)));
+          std::normal_distribution<double> normal(0.0, s.sigma_px);
+          for (int k = 0; k < n; ++k) {
+            double px = x + 0.5, py = y + 0.5;
+            if (samples > 0) {
+              px += normal(rng);
+              py += normal(rng);
+            }
+            const camera::PlaneSample p = camera::trace_pixel(cam, basis, opt, px, py);
+            if (!p.hit) {
+              for (int c = 0; c < 3; ++c) acc[c] += s.background[c];
+              continue;
+            }
+            const auto rgb = shaders::shade(shader, fx, native_inputs(s, p, f.time));
+            acc[0] += rgb.x;
+            acc[1] += rgb.y;
+            acc[2] += rgb.z;
+          }
+          for (double& a : acc) a /= n;
+          set_pixel(img, x, y, acc);
+        }
+      },
+      progress_label);
+  return img;
+}
+
+Image render_smoothed(const scene::Scene& s, const Frame& f, const compiler::Program& program) {
+  if (program.outputs.size() != 3)
+    throw std::invalid_argument("render_smoothed: the program has " + std::to_string(program.outputs.size()) +
+                                " outputs, a colour needs 3");
+  const camera::Camera cam = make_camera(s, f.view);
+  const camera::FootprintOptions opt = footprint_options(s);
+  Image img(s.width, s.height);
+  // Blocks of rows: one evaluator (its registers) and one camera batch per block.
+  const int rows_per_task = 8, tasks = (s.height + rows_per_task - 1) / rows_per_task;
+  parallel_rows(tasks, [&](int task) {
+    const int y0 = task * rows_per_task, rows = std::min(rows_per_task, s.height - y0);
+    camera::PlaneBatch b;
+    camera::trace_plane(cam, opt, b, camera::PixelRect{0, y0, s.width, rows});
+    const int n = s.width * rows;
+    std::vector<float> zeros(n, 0.0f);
+    std::vector<std::vector<float>> constants;
+    constants.reserve(program.input_names.size());
+    compiler::Batch batch;
+    batch.count = n;
+    for (const std::string& name : program.input_names) {
+      const float* mean = nullptr;
+      const float *sd = zeros.data(), *gx = zeros.data(), *gy = zeros.data();
+      if (name == "u") {
+        mean = b.u.data(), sd = b.sigma_u.data(), gx = b.du_dx.data(), gy = b.du_dy.data();
+      } else if (name == "v") {
+        mean = b.v.data(), sd = b.sigma_v.data(), gx = b.dv_dx.data(), gy = b.dv_dy.data();
+      } else if (name == "view_x") {
+        mean = b.view_x.data();
+      } else if (name == "view_y") {
+        mean = b.view_y.data();
+      } else if (name == "view_z") {
+        mean = b.view_z.data();
+      } else {
+        constants.emplace_back(n, static_cast<float>(uniform_input(s, f, name)));
+        mean = constants.back().data();
+      }
+      batch.mean.push_back(mean);
+      batch.sd.push_back(sd);
+      batch.grad_x.push_back(gx);
+      batch.grad_y.push_back(gy);
+    }
+    std::vector<std::vector<float>> out(3, std::vector<float>(n));
+    compiler::Evaluator ev(program);
+    ev.run(batch, {out[0].data(), out[1].data(), out[2].data()});
+    for (int i = 0; i < n; ++i) {
+      double rgb[3] = {out[0][i], out[1][i], out[2][i]};
+      if (!b.hit[i]) rgb[0] = s.background[0], rgb[1] = s.background[1], rgb[2] = s.background[2];
+      set_pixel(img, i % s.width, y0 + i / s.width, rgb);
+    }
+  });
+  return img;
+}
+
+std::string truth_cache_path(const scene::Scene& s, const Frame& f, const std::string& cache_dir) {
+  const std::uint64_t shader_hash = shaders::trace(shaders::find_shader(s.shader), s.effects()).hash();
+  char name[160];
+  std::snprintf(name, sizeof name, "truth_%016llx_%016llx_v%d_t%.6f.exr",
+                static_cast<unsigned long long>(s.hash()), static_cast<unsigned long long>(shader_hash), f.view,
+                f.time);
+  return (std::filesystem::path(cache_dir) / name).string();
+}
+
+Image render_truth(const scene::Scene& s, const Frame& f, const std::string& cache_dir) {
+  std::string path;
+  if (!cache_dir.empty()) {
+    path = truth_cache_path(s, f, cache_dir);
+    if (std::filesystem::exists(path)) {
+      Image img = read_image(path);
+      if (img.width == s.width && img.height == s.height) return img;
+    }
+  }
+  // A seed distinct from MSAA renders' default so truth and MSAA noise are independent.
+  Image img = render_native(s, f, s.truth_samples, 0xC0FFEEull,
+                            "ground truth " + s.name + " view " + std::to_string(f.view));
+  if (!path.empty()) {
+    std::filesystem::create_directories(cache_dir);
+    write_exr(path, img);
+  }
+  return img;
+}
+
+}  // namespace bl::render

@@ -1,0 +1,54 @@
+// A scene file (JSON) names what is rendered and measured: shader, geometry, camera views,
+// animation times, parallax, lighting, image size, footprint and ground-truth sampling. Only what it
+// names is compiled: no parallax -> no parallax nodes; one time -> static (time folds away).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "shaders/shader.hpp"
+
+namespace bl::scene {
+
+enum class FootprintBound { Dorn, Marginal };  // Dorn et al. 3.2 axis-aligned, or the exact marginal
+
+struct View {
+  double yaw = 0, pitch = -30, roll = 0;  // degrees
+};
+
+struct Scene {
+  std::string name;
+  std::string shader;
+  // geometry: the infinite plane z = 0, surface coordinates (u, v) = (x, y) * uv_scale
+  double uv_scale = 1;
+  // camera
+  std::array<double, 3> camera_position{0, 0, 2};
+  double fov_deg = 60;
+  std::vector<View> views{View{}};
+  std::vector<double> times{0};
+  shaders::Parallax parallax = shaders::Parallax::None;
+  shaders::Lighting lighting = shaders::Lighting::None;
+  std::array<double, 3> light_dir{0.4, 0.3, 0.87};  // towards the light, normalized on load
+  int width = 256, height = 256;
+  double sigma_px = 0.5;        // footprint sd in pixels (the kernel the smoothing targets)
+  FootprintBound footprint_bound = FootprintBound::Dorn;
+  int truth_samples = 1024;     // ground truth: Gaussian-jittered samples per pixel
+  std::array<double, 3> background{0, 0, 0};
+
+  bool animated() const { return times.size() > 1; }
+  shaders::Effects effects() const;
+  std::string canonical_json() const;  // every field, fixed order (hashing, reports)
+  std::uint64_t hash() const;          // of canonical_json()
+};
+
+// Parse a scene; throws std::invalid_argument naming the file (or "<text>"), the field and the
+// problem: unknown shader, unknown field, bad value, wrong type, malformed JSON.
+Scene parse_scene(const std::string& json_text, const std::string& origin = "<text>");
+Scene load_scene(const std::string& path);
+
+// The 21-scene suite: the 7 base shaders x parallax none/bumps/ripples (Yang & Barnes Table 1).
+std::vector<Scene> suite_scenes();
+
+}  // namespace bl::scene
