@@ -1,0 +1,25 @@
+# cmake -P script run by the ctest install_find_package (see CMakeLists.txt next to it).
+foreach(v BUILD_DIR WORK_DIR CONSUMER_DIR)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "install_and_consume.cmake: -D${v}=... missing")
+  endif()
+endforeach()
+if(NOT CONSUMER_BUILD_TYPE)
+  set(CONSUMER_BUILD_TYPE Release)
+endif()
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  message("$ ${ARGN}\n${out}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}")
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE ${WORK_DIR})
+set(prefix ${WORK_DIR}/prefix)
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix} --component generated)
+run(${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${WORK_DIR}/build -DCMAKE_PREFIX_PATH=${prefix}
+    -DCMAKE_BUILD_TYPE=${CONSUMER_BUILD_TYPE})
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
+run(${WORK_DIR}/build/app)
