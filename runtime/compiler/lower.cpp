@@ -217,7 +217,17 @@ class Lowering {
       case Kind::Dorn: {
         // Dorn: Gaussian mean, and the output sd is the input's (the "sample spacing" heuristic).
         const std::string kern = kernel_for("gaussian", f);
-        return Val{call(kernel_name(kern, f, false), {x.mean, s}), x.var, x.sd};
+        const int mean = call(kernel_name(kern, f, false), {x.mean, s});
+        // Our one change to Dorn's heuristic: a value confined to [lo, hi] has sd <= (hi - lo) / 2,
+        // so a bounded atomic (saturate, fract, sin, ...) caps the sd it passes on; without the cap a
+        // huge footprint near the horizon flows through saturate into pow8 and overflows.
+        double lo, hi;
+        ir::atomic_range(n.atomic, &lo, &hi);
+        if (std::isfinite(lo) && std::isfinite(hi)) {
+          const int capped = op(LOp::Min, x.sd >= 0 ? x.sd : sd(x), k(static_cast<float>((hi - lo) / 2)));
+          return Val{mean, sq(capped), capped};
+        }
+        return Val{mean, x.var, x.sd};
       }
       case Kind::Gaussian:
         return convolve(kernel_for("gaussian", f), f, x.mean, s, x.var);

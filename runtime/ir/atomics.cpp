@@ -55,6 +55,12 @@ const char* atomic_name(int index) {
   return bl::registry::kAtomics[index].name;
 }
 
+void atomic_range(int index, double* lo, double* hi) {
+  atomic_name(index);  // range check
+  *lo = bl::registry::kAtomics[index].range_lo;
+  *hi = bl::registry::kAtomics[index].range_hi;
+}
+
 double plain_atomic(int index, double x) {
   return plains<double>().at(index)(x);
 }

@@ -8,6 +8,8 @@ namespace bl::ir {
 int atomic_index(const std::string& name);  // -1 when unknown
 const char* atomic_name(int index);
 int atomic_count();
+// Closed bounds of f's range from the catalog (may be infinite).
+void atomic_range(int index, double* lo, double* hi);
 double plain_atomic(int index, double x);  // f(x) itself (the catalog definition, generated)
 float plain_atomic(int index, float x);
 

@@ -1,0 +1,239 @@
+// The compiler: emitted C++ computes what the evaluator computes; the all-"none" program is the
+// native shader; dead code is gone; single-node rules agree with closed forms from the literature.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "compiler/evaluator.hpp"
+#include "compiler/lower.hpp"
+#include "dsl/math.hpp"
+#include "fixtures.hpp"
+#include "ir/atomics.hpp"
+#include "tests/runtime/fixture_list.hpp"
+
+namespace bl {
+namespace {
+
+// Random pixel inputs for a program: u, v in [-8, 8], footprint sd in [1e-3, 0.4], unit view with
+// z >= 0.3, unit light, time in [0, 3].
+struct Pixels {
+  int n;
+  std::vector<std::vector<float>> mean, sd, gx, gy;
+  Pixels(const compiler::Program& p, int count, unsigned seed) : n(count) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> U(-8, 8), S(1e-3f, 0.4f), G(-0.05f, 0.05f), T(0, 3), D(-1, 1);
+    const int k = p.input_count;
+    mean.assign(k, std::vector<float>(n));
+    sd = gx = gy = mean;
+    for (int i = 0; i < n; ++i) {
+      float vx = D(rng) * 0.7f, vy = D(rng) * 0.7f, vz = std::sqrt(std::max(0.09f, 1 - vx * vx - vy * vy));
+      const float norm = std::sqrt(vx * vx + vy * vy + vz * vz);
+      for (int j = 0; j < k; ++j) {
+        const std::string& name = p.input_names[j];
+        float m = 0, s = 0, a = 0, b = 0;
+        if (name == "u" || name == "v") m = U(rng), s = S(rng), a = G(rng), b = G(rng);
+        else if (name == "time") m = T(rng);
+        else if (name == "view_x") m = vx / norm;
+        else if (name == "view_y") m = vy / norm;
+        else if (name == "view_z") m = vz / norm;
+        else if (name == "light_x") m = 0.4f;
+        else if (name == "light_y") m = 0.3f;
+        else if (name == "light_z") m = 0.866f;
+        mean[j][i] = m, sd[j][i] = s, gx[j][i] = a, gy[j][i] = b;
+      }
+    }
+  }
+  compiler::Batch batch() const {
+    compiler::Batch b;
+    b.count = n;
+    for (std::size_t j = 0; j < mean.size(); ++j) {
+      b.mean.push_back(mean[j].data());
+      b.sd.push_back(sd[j].data());
+      b.grad_x.push_back(gx[j].data());
+      b.grad_y.push_back(gy[j].data());
+    }
+    return b;
+  }
+};
+
+std::vector<std::vector<float>> evaluate(const compiler::Program& p, const Pixels& px) {
+  std::vector<std::vector<float>> out(p.outputs.size(), std::vector<float>(px.n));
+  std::vector<float*> ptr;
+  for (auto& o : out) ptr.push_back(o.data());
+  compiler::Evaluator(p).run(px.batch(), ptr);
+  return out;
+}
+
+TEST(Compiler, EmittedCppMatchesEvaluator) {
+  const auto list = test::fixture_list();
+  ASSERT_EQ(list.size(), std::size(test::kFixtureFns));
+  for (std::size_t f = 0; f < list.size(); ++f) {
+    const compiler::Program p = test::compile_fixture(list[f]);
+    const Pixels px(p, 300, 17 + static_cast<unsigned>(f));
+    const auto ev = evaluate(p, px);
+    std::vector<float> m(p.input_count), s(p.input_count), gx(p.input_count), gy(p.input_count);
+    float out[3];
+    double worst = 0;
+    for (int i = 0; i < px.n; ++i) {
+      for (int j = 0; j < p.input_count; ++j) m[j] = px.mean[j][i], s[j] = px.sd[j][i], gx[j] = px.gx[j][i], gy[j] = px.gy[j][i];
+      test::kFixtureFns[f](m.data(), s.data(), gx.data(), gy.data(), out);
+      for (int c = 0; c < 3; ++c) {
+        if (std::isnan(ev[c][i]) && std::isnan(out[c])) continue;
+        worst = std::max(worst, std::fabs(static_cast<double>(out[c]) - ev[c][i]) / std::max(1.0, std::fabs(ev[c][i])));
+      }
+    }
+    EXPECT_LE(worst, 1e-6) << list[f].label();
+  }
+}
+
+// The all-"none" program is the plain shader: compare with the native float instantiation of the
+// same template (an independent path: no tracing, no lowering).
+TEST(Compiler, NoneScheduleIsTheNativeShader) {
+  for (const auto& def : shaders::suite())
+    for (int p = 0; p < 3; ++p) {
+      shaders::Effects fx;
+      fx.parallax = static_cast<shaders::Parallax>(p);
+      fx.lighting = p ? shaders::Lighting::Phong : shaders::Lighting::None;
+      fx.animated = true;
+      const ir::Graph g = shaders::trace(def, fx);
+      const compiler::Program prog = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("none")));
+      const Pixels px(prog, 400, 5);
+      const auto ev = evaluate(prog, px);
+      int bad = 0;
+      for (int i = 0; i < px.n; ++i) {
+        shaders::Inputs<float> in{0, 0, 0, {0, 0, 1}, {0, 0, 1}};
+        for (int j = 0; j < prog.input_count; ++j) {
+          const std::string& name = prog.input_names[j];
+          const float v = px.mean[j][i];
+          if (name == "u") in.u = v;
+          if (name == "v") in.v = v;
+          if (name == "time") in.time = v;
+          if (name == "view_x") in.view.x = v;
+          if (name == "view_y") in.view.y = v;
+          if (name == "view_z") in.view.z = v;
+          if (name == "light_x") in.light.x = v;
+          if (name == "light_y") in.light.y = v;
+          if (name == "light_z") in.light.z = v;
+        }
+        const auto c = shaders::shade(def, fx, in);
+        const float want[3] = {c.x, c.y, c.z};
+        for (int k = 0; k < 3; ++k)
+          if (!(std::fabs(want[k] - ev[k][i]) <= 1e-4f * std::max(1.0f, std::fabs(want[k])))) ++bad;
+      }
+      // Constants folded in double may round differently from float arithmetic right at a jump:
+      // allow a handful of such samples, not more.
+      EXPECT_LE(bad, 3) << def.name << " parallax " << p;
+    }
+}
+
+ir::Graph one_input(const std::function<dsl::Var(dsl::Var)>& f) {
+  ir::Graph g;
+  dsl::Tracer t(g);
+  const dsl::Var u = dsl::Var::input("u", true);
+  const dsl::Var r = f(u);
+  g.add_output("r", r.id());
+  return g;
+}
+
+float run1(const ir::Graph& g, const std::string& rule, float mu, float sigma) {
+  const compiler::Program p = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule(rule)));
+  float out;
+  const float zero = 0;
+  compiler::Batch b;
+  b.count = 1;
+  b.mean = {&mu};
+  b.sd = {&sigma};
+  b.grad_x = {&zero};
+  b.grad_y = {&zero};
+  compiler::Evaluator(p).run(b, {&out});
+  return out;
+}
+
+TEST(Compiler, SingleNodeRulesAgreeWithClosedForms) {
+  // E[sin(3X)], X ~ N(mu, s^2) = exp(-9 s^2 / 2) sin(3 mu); E[step(X)] = Phi(mu / s).
+  const ir::Graph g_sin = one_input([](dsl::Var u) { return dsl::sin(u * 3.0); });
+  const ir::Graph g_step = one_input([](dsl::Var u) { return dsl::step(u); });
+  for (const char* rule : {"gaussian", "dorn"})
+    for (float mu : {-2.0f, 0.3f, 5.0f})
+      for (float s : {0.01f, 0.2f, 1.0f}) {
+        EXPECT_NEAR(run1(g_sin, rule, mu, s), std::exp(-4.5 * s * s) * std::sin(3.0 * mu), 2e-6) << rule;
+        EXPECT_NEAR(run1(g_step, rule, mu, s), 0.5 * std::erfc(-mu / (s * std::sqrt(2.0))), 2e-6) << rule;
+      }
+  // Box: E[sin(3X)], X ~ U[mu - h, mu + h], h = sqrt(3) s: sin(3 mu) sin(3h) / (3h).
+  for (float s : {0.05f, 0.5f}) {
+    const double h = std::sqrt(3.0) * s;
+    EXPECT_NEAR(run1(g_sin, "box", 0.7f, s), std::sin(2.1) * std::sin(3 * h) / (3 * h), 2e-6);
+  }
+  // Monte Carlo with antithetic samples is exact on a linear node; "none" is the plain value.
+  const ir::Graph g_lin = one_input([](dsl::Var u) { return u * 3.0 + 1.0; });
+  EXPECT_NEAR(run1(g_lin, "mc4", 0.25f, 0.3f), 1.75, 1e-6);
+  EXPECT_NEAR(run1(g_sin, "none", 0.25f, 0.3f), std::sin(0.75), 1e-6);
+}
+
+TEST(Compiler, DeadCodeIsRemoved) {
+  const auto count = [](const compiler::Program& p, compiler::LOp op) {
+    int n = 0;
+    for (const auto& in : p.insts) n += in.op == op;
+    return n;
+  };
+  shaders::Effects fx;
+  const ir::Graph g = shaders::trace(shaders::find_shader("checkerboard"), fx);
+  const auto plain = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("none")));
+  EXPECT_EQ(count(plain, compiler::LOp::InSd), 0);  // nothing smooths: no footprint read
+  EXPECT_EQ(count(plain, compiler::LOp::Sqrt), 0);
+  const auto dorn = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("dorn")));
+  EXPECT_EQ(count(dorn, compiler::LOp::NonNeg), 0);  // Dorn never forms E[f^2] - E[f]^2
+  EXPECT_FALSE(dorn.uses_gradients());
+  // Variance is computed only where a later rule consumes it: smoothing only the last node
+  // (mean output) needs no variance of anything after the inputs.
+  compiler::Schedule sched = compiler::uniform_schedule(g, rules::parse_rule("none"));
+  const auto gauss = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
+  EXPECT_GT(count(gauss, compiler::LOp::NonNeg), 0);
+  for (int i = 0; i < g.size(); ++i)
+    if (g.node(i).op == ir::Op::Call) sched[i] = rules::parse_rule("gaussian");
+  for (int i = 0; i < g.size(); ++i)
+    if (g.node(i).op == ir::Op::Input) sched[i] = rules::parse_rule("gaussian");
+  const auto calls_only = compiler::lower(g, sched);
+  // floor(u), floor(u + 0.5): the inputs' sd is read, but no floor's variance (no consumer).
+  EXPECT_GT(count(calls_only, compiler::LOp::InSd), 0);
+  EXPECT_EQ(count(calls_only, compiler::LOp::NonNeg), 0);
+}
+
+TEST(Compiler, BadScheduleAndNamesAreReported) {
+  const ir::Graph g = one_input([](dsl::Var u) { return dsl::sin(u); });
+  EXPECT_THROW(compiler::lower(g, compiler::Schedule(1)), std::invalid_argument);
+  try {
+    rules::parse_rule("mc7");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("mc7"), std::string::npos);
+  }
+  EXPECT_THROW(rules::parse_rule("gaussian:rho=2"), std::invalid_argument);
+  EXPECT_THROW(rules::parse_rule("rule1:cosine"), std::invalid_argument);
+  ir::Graph h;
+  EXPECT_THROW(h.call("sinc", h.input("u", true)), std::invalid_argument);
+  for (const auto& r : rules::all_rules()) EXPECT_EQ(rules::parse_rule(rules::to_string(r)), r);
+}
+
+TEST(Dsl, AtomicsMatchTheGeneratedCatalog) {
+  // Every catalog atomic is callable from shaders, and nothing else.
+  std::set<std::string> dsl(std::begin(dsl::kDslAtomics), std::end(dsl::kDslAtomics));
+  std::set<std::string> cat;
+  for (int i = 0; i < ir::atomic_count(); ++i) cat.insert(ir::atomic_name(i));
+  EXPECT_EQ(dsl, cat);
+}
+
+TEST(Dsl, TracingSharesAndFolds) {
+  ir::Graph g;
+  dsl::Tracer t(g);
+  const dsl::Var u = dsl::Var::input("u", true);
+  const dsl::Var a = dsl::sin(u * 2.0), b = dsl::sin(u * 2.0);
+  EXPECT_EQ(a.id(), b.id());  // identical subexpressions are one node
+  const dsl::Var c = dsl::Var(2.0) * dsl::Var(3.0) + dsl::sin(dsl::Var(0.0));
+  EXPECT_EQ(g.node(c.id()).op, ir::Op::Const);
+  EXPECT_DOUBLE_EQ(g.node(c.id()).value, 6.0);
+}
+
+}  // namespace
+}  // namespace bl
