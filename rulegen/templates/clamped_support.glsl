@@ -1,0 +1,1 @@
+// Runtime support of the clamped-domain rules (float); needs bandlimit.glsl before it.
