@@ -1,8 +1,8 @@
 // bl::deriv against 4th-order central differences (h = 1e-3, error ~1e-12 f^(5)) of the plain
 // atomics (d1) and of d1 (d2), at points at least 0.05 away from every break and singularity.
-#include <bandlimit/rules_clamped.hpp>
 #include <gtest/gtest.h>
 
+#include <bandlimit/rules_clamped.hpp>
 #include <cmath>
 #include <string>
 
@@ -45,8 +45,10 @@ TEST(Derivatives, MatchFiniteDifferences) {
       if (near_break(a, x)) continue;
       const double got = d[i].fn(x);
       double ref;
-      if (d[i].order == 1) ref = central_diff(p->plain, x);
-      else ref = central_diff(d1->fn, x);
+      if (d[i].order == 1)
+        ref = central_diff(p->plain, x);
+      else
+        ref = central_diff(d1->fn, x);
       EXPECT_NEAR(got, ref, 1e-6 * std::max(1.0, std::abs(ref))) << d[i].cpp << " at " << x;
       ++checked;
     }
@@ -61,7 +63,7 @@ TEST(Derivatives, PublicNamesAndBadInput) {
   EXPECT_DOUBLE_EQ(bl::deriv::fract_d1(-2.5), 1.0);
   EXPECT_DOUBLE_EQ(bl::deriv::abs_d1(-3.0), -1.0);
   EXPECT_DOUBLE_EQ(bl::deriv::inv2_d2(2.0), 6.0 / 16.0);
-  EXPECT_TRUE(std::isnan(bl::deriv::log_d1(-1.0)));   // outside the domain
+  EXPECT_TRUE(std::isnan(bl::deriv::log_d1(-1.0)));  // outside the domain
   EXPECT_TRUE(std::isnan(bl::deriv::sqrt_d2(-1.0f)));
 }
 

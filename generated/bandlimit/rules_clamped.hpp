@@ -608,127 +608,781 @@ T deriv_inv2_d2(T x) {
   return (T(6)*(T(1)/(x*x*x*x)));
 }
 
+// Rule 3: second-order Taylor of sin at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_sin(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_sin<double>(c), deriv_sin_d1<double>(c), deriv_sin_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of cos at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_cos(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_cos<double>(c), deriv_cos_d1<double>(c), deriv_cos_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of exp at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_exp(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_exp<double>(c), deriv_exp_d1<double>(c), deriv_exp_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of sinh at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_sinh(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_sinh<double>(c), deriv_sinh_d1<double>(c), deriv_sinh_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of cosh at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_cosh(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_cosh<double>(c), deriv_cosh_d1<double>(c), deriv_cosh_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of pow2 at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_pow2(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_pow2<double>(c), deriv_pow2_d1<double>(c), deriv_pow2_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of pow3 at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_pow3(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_pow3<double>(c), deriv_pow3_d1<double>(c), deriv_pow3_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of pow4 at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_pow4(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_pow4<double>(c), deriv_pow4_d1<double>(c), deriv_pow4_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of pow5 at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_pow5(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_pow5<double>(c), deriv_pow5_d1<double>(c), deriv_pow5_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of pow6 at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_pow6(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_pow6<double>(c), deriv_pow6_d1<double>(c), deriv_pow6_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of pow7 at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_pow7(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_pow7<double>(c), deriv_pow7_d1<double>(c), deriv_pow7_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of pow8 at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_pow8(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_pow8<double>(c), deriv_pow8_d1<double>(c), deriv_pow8_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of abs at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_abs(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_abs<double>(c), deriv_abs_d1<double>(c), deriv_abs_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of sign at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_sign(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_sign<double>(c), deriv_sign_d1<double>(c), deriv_sign_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of step at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_step(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_step<double>(c), deriv_step_d1<double>(c), deriv_step_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of saturate at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_saturate(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_saturate<double>(c), deriv_saturate_d1<double>(c), deriv_saturate_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of smoothstep at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_smoothstep(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_smoothstep<double>(c), deriv_smoothstep_d1<double>(c), deriv_smoothstep_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of fract at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_fract(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_fract<double>(c), deriv_fract_d1<double>(c), deriv_fract_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of triangle at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_triangle(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_triangle<double>(c), deriv_triangle_d1<double>(c), deriv_triangle_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of square at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_square(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_square<double>(c), deriv_square_d1<double>(c), deriv_square_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of floor at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_floor(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_floor<double>(c), deriv_floor_d1<double>(c), deriv_floor_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of ceil at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_ceil(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_ceil<double>(c), deriv_ceil_d1<double>(c), deriv_ceil_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of trunc at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_trunc(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_trunc<double>(c), deriv_trunc_d1<double>(c), deriv_trunc_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of tan at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_tan(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_tan<double>(c), deriv_tan_d1<double>(c), deriv_tan_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of tanh at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_tanh(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_tanh<double>(c), deriv_tanh_d1<double>(c), deriv_tanh_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of log at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_log(T mu, T sigma) {
+  const double lo = (0.0), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_log<double>(c), deriv_log_d1<double>(c), deriv_log_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of sqrt at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_sqrt(T mu, T sigma) {
+  const double lo = (0.0), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_sqrt<double>(c), deriv_sqrt_d1<double>(c), deriv_sqrt_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of inv at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_inv(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_inv<double>(c), deriv_inv_d1<double>(c), deriv_inv_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 3: second-order Taylor of inv2 at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_inv2(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_inv2<double>(c), deriv_inv2_d1<double>(c), deriv_inv2_d2<double>(c), m);
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 1 (gaussian): X with mean mu and deviation sigma, the kernel renormalized on the domain of log.
+template <class T>
+stat<T> rule1_gaussian_log(T mu, T sigma) {
+  const double lo = (0.0), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || !(double(mu) >= lo && double(mu) <= hi)) return {detail::nan<T>(), detail::nan<T>()};
+  const auto p = rule1::renormalize<double>(rule1::Kernel::gaussian, double(mu), double(sigma) * double(sigma), lo, hi);
+  const stat<double> s = rule1::expect<double>(rule1::Kernel::gaussian, p, lo, hi, [](double u) { return plain_log<double>(u); });
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 1 (box): X with mean mu and deviation sigma, the kernel renormalized on the domain of log.
+template <class T>
+stat<T> rule1_box_log(T mu, T sigma) {
+  const double lo = (0.0), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || !(double(mu) >= lo && double(mu) <= hi)) return {detail::nan<T>(), detail::nan<T>()};
+  const auto p = rule1::renormalize<double>(rule1::Kernel::box, double(mu), double(sigma) * double(sigma), lo, hi);
+  const stat<double> s = rule1::expect<double>(rule1::Kernel::box, p, lo, hi, [](double u) { return plain_log<double>(u); });
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 1 (tent): X with mean mu and deviation sigma, the kernel renormalized on the domain of log.
+template <class T>
+stat<T> rule1_tent_log(T mu, T sigma) {
+  const double lo = (0.0), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || !(double(mu) >= lo && double(mu) <= hi)) return {detail::nan<T>(), detail::nan<T>()};
+  const auto p = rule1::renormalize<double>(rule1::Kernel::tent, double(mu), double(sigma) * double(sigma), lo, hi);
+  const stat<double> s = rule1::expect<double>(rule1::Kernel::tent, p, lo, hi, [](double u) { return plain_log<double>(u); });
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 1 (gaussian): X with mean mu and deviation sigma, the kernel renormalized on the domain of sqrt.
+template <class T>
+stat<T> rule1_gaussian_sqrt(T mu, T sigma) {
+  const double lo = (0.0), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || !(double(mu) >= lo && double(mu) <= hi)) return {detail::nan<T>(), detail::nan<T>()};
+  const auto p = rule1::renormalize<double>(rule1::Kernel::gaussian, double(mu), double(sigma) * double(sigma), lo, hi);
+  const stat<double> s = rule1::expect<double>(rule1::Kernel::gaussian, p, lo, hi, [](double u) { return plain_sqrt<double>(u); });
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 1 (box): X with mean mu and deviation sigma, the kernel renormalized on the domain of sqrt.
+template <class T>
+stat<T> rule1_box_sqrt(T mu, T sigma) {
+  const double lo = (0.0), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || !(double(mu) >= lo && double(mu) <= hi)) return {detail::nan<T>(), detail::nan<T>()};
+  const auto p = rule1::renormalize<double>(rule1::Kernel::box, double(mu), double(sigma) * double(sigma), lo, hi);
+  const stat<double> s = rule1::expect<double>(rule1::Kernel::box, p, lo, hi, [](double u) { return plain_sqrt<double>(u); });
+  return {T(s.mean), T(s.var)};
+}
+
+// Rule 1 (tent): X with mean mu and deviation sigma, the kernel renormalized on the domain of sqrt.
+template <class T>
+stat<T> rule1_tent_sqrt(T mu, T sigma) {
+  const double lo = (0.0), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || !(double(mu) >= lo && double(mu) <= hi)) return {detail::nan<T>(), detail::nan<T>()};
+  const auto p = rule1::renormalize<double>(rule1::Kernel::tent, double(mu), double(sigma) * double(sigma), lo, hi);
+  const stat<double> s = rule1::expect<double>(rule1::Kernel::tent, p, lo, hi, [](double u) { return plain_sqrt<double>(u); });
+  return {T(s.mean), T(s.var)};
+}
+
+// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
+template <class T>
+stat<T> bimodal_sign(T mu, T sigma) {
+  static const double jumps[1] = {(0.0)};
+  return bimodal::truncated_box<T>(mu, sigma, (0.0), jumps, 1, [](T x, T s) { return box_sign<T>(x, s); }, [](T x, T s) { return box_sign_sq<T>(x, s); });
+}
+
+// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
+template <class T>
+stat<T> bimodal_step(T mu, T sigma) {
+  static const double jumps[1] = {(0.0)};
+  return bimodal::truncated_box<T>(mu, sigma, (0.0), jumps, 1, [](T x, T s) { return box_step<T>(x, s); }, [](T x, T s) { return box_step_sq<T>(x, s); });
+}
+
+// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
+template <class T>
+stat<T> bimodal_fract(T mu, T sigma) {
+  static const double jumps[1] = {(0.0)};
+  return bimodal::truncated_box<T>(mu, sigma, (1.0), jumps, 1, [](T x, T s) { return box_fract<T>(x, s); }, [](T x, T s) { return box_fract_sq<T>(x, s); });
+}
+
+// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
+template <class T>
+stat<T> bimodal_square(T mu, T sigma) {
+  static const double jumps[2] = {(0.0), (0.5)};
+  return bimodal::truncated_box<T>(mu, sigma, (1.0), jumps, 2, [](T x, T s) { return box_square<T>(x, s); }, [](T x, T s) { return box_square_sq<T>(x, s); });
+}
+
+// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
+template <class T>
+stat<T> bimodal_floor(T mu, T sigma) {
+  static const double jumps[1] = {0.0};
+  return bimodal::truncated_box<T>(mu, sigma, (1.0), jumps, 1, [](T x, T s) { return box_floor<T>(x, s); }, [](T x, T s) { return box_floor_sq<T>(x, s); });
+}
+
+// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
+template <class T>
+stat<T> bimodal_ceil(T mu, T sigma) {
+  static const double jumps[1] = {0.0};
+  return bimodal::truncated_box<T>(mu, sigma, (1.0), jumps, 1, [](T x, T s) { return box_ceil<T>(x, s); }, [](T x, T s) { return box_ceil_sq<T>(x, s); });
+}
+
+// Compact box half-width near the singularities of tan: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
+template <class T>
+T compact_box_halfwidth_tan(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0))) return detail::nan<T>();
+  T period = detail::pi<T>();
+  T xr = x - period * floor(x / period);
+  return compact::halfwidth(T(1.7320508075688772) * sigma, detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>()))));
+}
+
+// Compact tent half-width near the singularities of tan: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
+template <class T>
+T compact_tent_halfwidth_tan(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0))) return detail::nan<T>();
+  T period = detail::pi<T>();
+  T xr = x - period * floor(x / period);
+  return compact::halfwidth(T(2.4494897427831781) * sigma, detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>()))));
+}
+
+// Compact box half-width near the singularities of log: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
+template <class T>
+T compact_box_halfwidth_log(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0))) return detail::nan<T>();
+  return compact::halfwidth(T(1.7320508075688772) * sigma, abs(x - T(0)));
+}
+
+// Compact tent half-width near the singularities of log: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
+template <class T>
+T compact_tent_halfwidth_log(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0))) return detail::nan<T>();
+  return compact::halfwidth(T(2.4494897427831781) * sigma, abs(x - T(0)));
+}
+
+// Compact box half-width near the singularities of sqrt: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
+template <class T>
+T compact_box_halfwidth_sqrt(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0))) return detail::nan<T>();
+  return compact::halfwidth(T(1.7320508075688772) * sigma, abs(x - T(0)));
+}
+
+// Compact tent half-width near the singularities of sqrt: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
+template <class T>
+T compact_tent_halfwidth_sqrt(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0))) return detail::nan<T>();
+  return compact::halfwidth(T(2.4494897427831781) * sigma, abs(x - T(0)));
+}
+
+// Compact box half-width near the singularities of inv: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
+template <class T>
+T compact_box_halfwidth_inv(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0))) return detail::nan<T>();
+  return compact::halfwidth(T(1.7320508075688772) * sigma, abs(x - T(0)));
+}
+
+// Compact tent half-width near the singularities of inv: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
+template <class T>
+T compact_tent_halfwidth_inv(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0))) return detail::nan<T>();
+  return compact::halfwidth(T(2.4494897427831781) * sigma, abs(x - T(0)));
+}
+
+// Compact box half-width near the singularities of inv2: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
+template <class T>
+T compact_box_halfwidth_inv2(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0))) return detail::nan<T>();
+  return compact::halfwidth(T(1.7320508075688772) * sigma, abs(x - T(0)));
+}
+
+// Compact tent half-width near the singularities of inv2: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
+template <class T>
+T compact_tent_halfwidth_inv2(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0))) return detail::nan<T>();
+  return compact::halfwidth(T(2.4494897427831781) * sigma, abs(x - T(0)));
+}
+
 }  // namespace gen
 }  // namespace detail
 
 namespace deriv {
-inline float sin_d1(float x) { return detail::gen::deriv_sin_d1<float>(x); }
-inline double sin_d1(double x) { return detail::gen::deriv_sin_d1<double>(x); }
-inline float sin_d2(float x) { return detail::gen::deriv_sin_d2<float>(x); }
-inline double sin_d2(double x) { return detail::gen::deriv_sin_d2<double>(x); }
-inline float cos_d1(float x) { return detail::gen::deriv_cos_d1<float>(x); }
-inline double cos_d1(double x) { return detail::gen::deriv_cos_d1<double>(x); }
-inline float cos_d2(float x) { return detail::gen::deriv_cos_d2<float>(x); }
-inline double cos_d2(double x) { return detail::gen::deriv_cos_d2<double>(x); }
-inline float exp_d1(float x) { return detail::gen::deriv_exp_d1<float>(x); }
-inline double exp_d1(double x) { return detail::gen::deriv_exp_d1<double>(x); }
-inline float exp_d2(float x) { return detail::gen::deriv_exp_d2<float>(x); }
-inline double exp_d2(double x) { return detail::gen::deriv_exp_d2<double>(x); }
-inline float sinh_d1(float x) { return detail::gen::deriv_sinh_d1<float>(x); }
-inline double sinh_d1(double x) { return detail::gen::deriv_sinh_d1<double>(x); }
-inline float sinh_d2(float x) { return detail::gen::deriv_sinh_d2<float>(x); }
-inline double sinh_d2(double x) { return detail::gen::deriv_sinh_d2<double>(x); }
-inline float cosh_d1(float x) { return detail::gen::deriv_cosh_d1<float>(x); }
-inline double cosh_d1(double x) { return detail::gen::deriv_cosh_d1<double>(x); }
-inline float cosh_d2(float x) { return detail::gen::deriv_cosh_d2<float>(x); }
-inline double cosh_d2(double x) { return detail::gen::deriv_cosh_d2<double>(x); }
-inline float pow2_d1(float x) { return detail::gen::deriv_pow2_d1<float>(x); }
-inline double pow2_d1(double x) { return detail::gen::deriv_pow2_d1<double>(x); }
-inline float pow2_d2(float x) { return detail::gen::deriv_pow2_d2<float>(x); }
-inline double pow2_d2(double x) { return detail::gen::deriv_pow2_d2<double>(x); }
-inline float pow3_d1(float x) { return detail::gen::deriv_pow3_d1<float>(x); }
-inline double pow3_d1(double x) { return detail::gen::deriv_pow3_d1<double>(x); }
-inline float pow3_d2(float x) { return detail::gen::deriv_pow3_d2<float>(x); }
-inline double pow3_d2(double x) { return detail::gen::deriv_pow3_d2<double>(x); }
-inline float pow4_d1(float x) { return detail::gen::deriv_pow4_d1<float>(x); }
-inline double pow4_d1(double x) { return detail::gen::deriv_pow4_d1<double>(x); }
-inline float pow4_d2(float x) { return detail::gen::deriv_pow4_d2<float>(x); }
-inline double pow4_d2(double x) { return detail::gen::deriv_pow4_d2<double>(x); }
-inline float pow5_d1(float x) { return detail::gen::deriv_pow5_d1<float>(x); }
-inline double pow5_d1(double x) { return detail::gen::deriv_pow5_d1<double>(x); }
-inline float pow5_d2(float x) { return detail::gen::deriv_pow5_d2<float>(x); }
-inline double pow5_d2(double x) { return detail::gen::deriv_pow5_d2<double>(x); }
-inline float pow6_d1(float x) { return detail::gen::deriv_pow6_d1<float>(x); }
-inline double pow6_d1(double x) { return detail::gen::deriv_pow6_d1<double>(x); }
-inline float pow6_d2(float x) { return detail::gen::deriv_pow6_d2<float>(x); }
-inline double pow6_d2(double x) { return detail::gen::deriv_pow6_d2<double>(x); }
-inline float pow7_d1(float x) { return detail::gen::deriv_pow7_d1<float>(x); }
-inline double pow7_d1(double x) { return detail::gen::deriv_pow7_d1<double>(x); }
-inline float pow7_d2(float x) { return detail::gen::deriv_pow7_d2<float>(x); }
-inline double pow7_d2(double x) { return detail::gen::deriv_pow7_d2<double>(x); }
-inline float pow8_d1(float x) { return detail::gen::deriv_pow8_d1<float>(x); }
-inline double pow8_d1(double x) { return detail::gen::deriv_pow8_d1<double>(x); }
-inline float pow8_d2(float x) { return detail::gen::deriv_pow8_d2<float>(x); }
-inline double pow8_d2(double x) { return detail::gen::deriv_pow8_d2<double>(x); }
-inline float abs_d1(float x) { return detail::gen::deriv_abs_d1<float>(x); }
-inline double abs_d1(double x) { return detail::gen::deriv_abs_d1<double>(x); }
-inline float abs_d2(float x) { return detail::gen::deriv_abs_d2<float>(x); }
-inline double abs_d2(double x) { return detail::gen::deriv_abs_d2<double>(x); }
-inline float sign_d1(float x) { return detail::gen::deriv_sign_d1<float>(x); }
-inline double sign_d1(double x) { return detail::gen::deriv_sign_d1<double>(x); }
-inline float sign_d2(float x) { return detail::gen::deriv_sign_d2<float>(x); }
-inline double sign_d2(double x) { return detail::gen::deriv_sign_d2<double>(x); }
-inline float step_d1(float x) { return detail::gen::deriv_step_d1<float>(x); }
-inline double step_d1(double x) { return detail::gen::deriv_step_d1<double>(x); }
-inline float step_d2(float x) { return detail::gen::deriv_step_d2<float>(x); }
-inline double step_d2(double x) { return detail::gen::deriv_step_d2<double>(x); }
-inline float saturate_d1(float x) { return detail::gen::deriv_saturate_d1<float>(x); }
-inline double saturate_d1(double x) { return detail::gen::deriv_saturate_d1<double>(x); }
-inline float saturate_d2(float x) { return detail::gen::deriv_saturate_d2<float>(x); }
-inline double saturate_d2(double x) { return detail::gen::deriv_saturate_d2<double>(x); }
-inline float smoothstep_d1(float x) { return detail::gen::deriv_smoothstep_d1<float>(x); }
-inline double smoothstep_d1(double x) { return detail::gen::deriv_smoothstep_d1<double>(x); }
-inline float smoothstep_d2(float x) { return detail::gen::deriv_smoothstep_d2<float>(x); }
-inline double smoothstep_d2(double x) { return detail::gen::deriv_smoothstep_d2<double>(x); }
-inline float fract_d1(float x) { return detail::gen::deriv_fract_d1<float>(x); }
-inline double fract_d1(double x) { return detail::gen::deriv_fract_d1<double>(x); }
-inline float fract_d2(float x) { return detail::gen::deriv_fract_d2<float>(x); }
-inline double fract_d2(double x) { return detail::gen::deriv_fract_d2<double>(x); }
-inline float triangle_d1(float x) { return detail::gen::deriv_triangle_d1<float>(x); }
-inline double triangle_d1(double x) { return detail::gen::deriv_triangle_d1<double>(x); }
-inline float triangle_d2(float x) { return detail::gen::deriv_triangle_d2<float>(x); }
-inline double triangle_d2(double x) { return detail::gen::deriv_triangle_d2<double>(x); }
-inline float square_d1(float x) { return detail::gen::deriv_square_d1<float>(x); }
-inline double square_d1(double x) { return detail::gen::deriv_square_d1<double>(x); }
-inline float square_d2(float x) { return detail::gen::deriv_square_d2<float>(x); }
-inline double square_d2(double x) { return detail::gen::deriv_square_d2<double>(x); }
-inline float floor_d1(float x) { return detail::gen::deriv_floor_d1<float>(x); }
-inline double floor_d1(double x) { return detail::gen::deriv_floor_d1<double>(x); }
-inline float floor_d2(float x) { return detail::gen::deriv_floor_d2<float>(x); }
-inline double floor_d2(double x) { return detail::gen::deriv_floor_d2<double>(x); }
-inline float ceil_d1(float x) { return detail::gen::deriv_ceil_d1<float>(x); }
-inline double ceil_d1(double x) { return detail::gen::deriv_ceil_d1<double>(x); }
-inline float ceil_d2(float x) { return detail::gen::deriv_ceil_d2<float>(x); }
-inline double ceil_d2(double x) { return detail::gen::deriv_ceil_d2<double>(x); }
-inline float trunc_d1(float x) { return detail::gen::deriv_trunc_d1<float>(x); }
-inline double trunc_d1(double x) { return detail::gen::deriv_trunc_d1<double>(x); }
-inline float trunc_d2(float x) { return detail::gen::deriv_trunc_d2<float>(x); }
-inline double trunc_d2(double x) { return detail::gen::deriv_trunc_d2<double>(x); }
-inline float tan_d1(float x) { return detail::gen::deriv_tan_d1<float>(x); }
-inline double tan_d1(double x) { return detail::gen::deriv_tan_d1<double>(x); }
-inline float tan_d2(float x) { return detail::gen::deriv_tan_d2<float>(x); }
-inline double tan_d2(double x) { return detail::gen::deriv_tan_d2<double>(x); }
-inline float tanh_d1(float x) { return detail::gen::deriv_tanh_d1<float>(x); }
-inline double tanh_d1(double x) { return detail::gen::deriv_tanh_d1<double>(x); }
-inline float tanh_d2(float x) { return detail::gen::deriv_tanh_d2<float>(x); }
-inline double tanh_d2(double x) { return detail::gen::deriv_tanh_d2<double>(x); }
-inline float log_d1(float x) { return detail::gen::deriv_log_d1<float>(x); }
-inline double log_d1(double x) { return detail::gen::deriv_log_d1<double>(x); }
-inline float log_d2(float x) { return detail::gen::deriv_log_d2<float>(x); }
-inline double log_d2(double x) { return detail::gen::deriv_log_d2<double>(x); }
-inline float sqrt_d1(float x) { return detail::gen::deriv_sqrt_d1<float>(x); }
-inline double sqrt_d1(double x) { return detail::gen::deriv_sqrt_d1<double>(x); }
-inline float sqrt_d2(float x) { return detail::gen::deriv_sqrt_d2<float>(x); }
-inline double sqrt_d2(double x) { return detail::gen::deriv_sqrt_d2<double>(x); }
-inline float inv_d1(float x) { return detail::gen::deriv_inv_d1<float>(x); }
-inline double inv_d1(double x) { return detail::gen::deriv_inv_d1<double>(x); }
-inline float inv_d2(float x) { return detail::gen::deriv_inv_d2<float>(x); }
-inline double inv_d2(double x) { return detail::gen::deriv_inv_d2<double>(x); }
-inline float inv2_d1(float x) { return detail::gen::deriv_inv2_d1<float>(x); }
-inline double inv2_d1(double x) { return detail::gen::deriv_inv2_d1<double>(x); }
-inline float inv2_d2(float x) { return detail::gen::deriv_inv2_d2<float>(x); }
-inline double inv2_d2(double x) { return detail::gen::deriv_inv2_d2<double>(x); }
+inline float sin_d1(float x) { return ::bl::detail::gen::deriv_sin_d1<float>(x); }
+inline double sin_d1(double x) { return ::bl::detail::gen::deriv_sin_d1<double>(x); }
+inline float sin_d2(float x) { return ::bl::detail::gen::deriv_sin_d2<float>(x); }
+inline double sin_d2(double x) { return ::bl::detail::gen::deriv_sin_d2<double>(x); }
+inline float cos_d1(float x) { return ::bl::detail::gen::deriv_cos_d1<float>(x); }
+inline double cos_d1(double x) { return ::bl::detail::gen::deriv_cos_d1<double>(x); }
+inline float cos_d2(float x) { return ::bl::detail::gen::deriv_cos_d2<float>(x); }
+inline double cos_d2(double x) { return ::bl::detail::gen::deriv_cos_d2<double>(x); }
+inline float exp_d1(float x) { return ::bl::detail::gen::deriv_exp_d1<float>(x); }
+inline double exp_d1(double x) { return ::bl::detail::gen::deriv_exp_d1<double>(x); }
+inline float exp_d2(float x) { return ::bl::detail::gen::deriv_exp_d2<float>(x); }
+inline double exp_d2(double x) { return ::bl::detail::gen::deriv_exp_d2<double>(x); }
+inline float sinh_d1(float x) { return ::bl::detail::gen::deriv_sinh_d1<float>(x); }
+inline double sinh_d1(double x) { return ::bl::detail::gen::deriv_sinh_d1<double>(x); }
+inline float sinh_d2(float x) { return ::bl::detail::gen::deriv_sinh_d2<float>(x); }
+inline double sinh_d2(double x) { return ::bl::detail::gen::deriv_sinh_d2<double>(x); }
+inline float cosh_d1(float x) { return ::bl::detail::gen::deriv_cosh_d1<float>(x); }
+inline double cosh_d1(double x) { return ::bl::detail::gen::deriv_cosh_d1<double>(x); }
+inline float cosh_d2(float x) { return ::bl::detail::gen::deriv_cosh_d2<float>(x); }
+inline double cosh_d2(double x) { return ::bl::detail::gen::deriv_cosh_d2<double>(x); }
+inline float pow2_d1(float x) { return ::bl::detail::gen::deriv_pow2_d1<float>(x); }
+inline double pow2_d1(double x) { return ::bl::detail::gen::deriv_pow2_d1<double>(x); }
+inline float pow2_d2(float x) { return ::bl::detail::gen::deriv_pow2_d2<float>(x); }
+inline double pow2_d2(double x) { return ::bl::detail::gen::deriv_pow2_d2<double>(x); }
+inline float pow3_d1(float x) { return ::bl::detail::gen::deriv_pow3_d1<float>(x); }
+inline double pow3_d1(double x) { return ::bl::detail::gen::deriv_pow3_d1<double>(x); }
+inline float pow3_d2(float x) { return ::bl::detail::gen::deriv_pow3_d2<float>(x); }
+inline double pow3_d2(double x) { return ::bl::detail::gen::deriv_pow3_d2<double>(x); }
+inline float pow4_d1(float x) { return ::bl::detail::gen::deriv_pow4_d1<float>(x); }
+inline double pow4_d1(double x) { return ::bl::detail::gen::deriv_pow4_d1<double>(x); }
+inline float pow4_d2(float x) { return ::bl::detail::gen::deriv_pow4_d2<float>(x); }
+inline double pow4_d2(double x) { return ::bl::detail::gen::deriv_pow4_d2<double>(x); }
+inline float pow5_d1(float x) { return ::bl::detail::gen::deriv_pow5_d1<float>(x); }
+inline double pow5_d1(double x) { return ::bl::detail::gen::deriv_pow5_d1<double>(x); }
+inline float pow5_d2(float x) { return ::bl::detail::gen::deriv_pow5_d2<float>(x); }
+inline double pow5_d2(double x) { return ::bl::detail::gen::deriv_pow5_d2<double>(x); }
+inline float pow6_d1(float x) { return ::bl::detail::gen::deriv_pow6_d1<float>(x); }
+inline double pow6_d1(double x) { return ::bl::detail::gen::deriv_pow6_d1<double>(x); }
+inline float pow6_d2(float x) { return ::bl::detail::gen::deriv_pow6_d2<float>(x); }
+inline double pow6_d2(double x) { return ::bl::detail::gen::deriv_pow6_d2<double>(x); }
+inline float pow7_d1(float x) { return ::bl::detail::gen::deriv_pow7_d1<float>(x); }
+inline double pow7_d1(double x) { return ::bl::detail::gen::deriv_pow7_d1<double>(x); }
+inline float pow7_d2(float x) { return ::bl::detail::gen::deriv_pow7_d2<float>(x); }
+inline double pow7_d2(double x) { return ::bl::detail::gen::deriv_pow7_d2<double>(x); }
+inline float pow8_d1(float x) { return ::bl::detail::gen::deriv_pow8_d1<float>(x); }
+inline double pow8_d1(double x) { return ::bl::detail::gen::deriv_pow8_d1<double>(x); }
+inline float pow8_d2(float x) { return ::bl::detail::gen::deriv_pow8_d2<float>(x); }
+inline double pow8_d2(double x) { return ::bl::detail::gen::deriv_pow8_d2<double>(x); }
+inline float abs_d1(float x) { return ::bl::detail::gen::deriv_abs_d1<float>(x); }
+inline double abs_d1(double x) { return ::bl::detail::gen::deriv_abs_d1<double>(x); }
+inline float abs_d2(float x) { return ::bl::detail::gen::deriv_abs_d2<float>(x); }
+inline double abs_d2(double x) { return ::bl::detail::gen::deriv_abs_d2<double>(x); }
+inline float sign_d1(float x) { return ::bl::detail::gen::deriv_sign_d1<float>(x); }
+inline double sign_d1(double x) { return ::bl::detail::gen::deriv_sign_d1<double>(x); }
+inline float sign_d2(float x) { return ::bl::detail::gen::deriv_sign_d2<float>(x); }
+inline double sign_d2(double x) { return ::bl::detail::gen::deriv_sign_d2<double>(x); }
+inline float step_d1(float x) { return ::bl::detail::gen::deriv_step_d1<float>(x); }
+inline double step_d1(double x) { return ::bl::detail::gen::deriv_step_d1<double>(x); }
+inline float step_d2(float x) { return ::bl::detail::gen::deriv_step_d2<float>(x); }
+inline double step_d2(double x) { return ::bl::detail::gen::deriv_step_d2<double>(x); }
+inline float saturate_d1(float x) { return ::bl::detail::gen::deriv_saturate_d1<float>(x); }
+inline double saturate_d1(double x) { return ::bl::detail::gen::deriv_saturate_d1<double>(x); }
+inline float saturate_d2(float x) { return ::bl::detail::gen::deriv_saturate_d2<float>(x); }
+inline double saturate_d2(double x) { return ::bl::detail::gen::deriv_saturate_d2<double>(x); }
+inline float smoothstep_d1(float x) { return ::bl::detail::gen::deriv_smoothstep_d1<float>(x); }
+inline double smoothstep_d1(double x) { return ::bl::detail::gen::deriv_smoothstep_d1<double>(x); }
+inline float smoothstep_d2(float x) { return ::bl::detail::gen::deriv_smoothstep_d2<float>(x); }
+inline double smoothstep_d2(double x) { return ::bl::detail::gen::deriv_smoothstep_d2<double>(x); }
+inline float fract_d1(float x) { return ::bl::detail::gen::deriv_fract_d1<float>(x); }
+inline double fract_d1(double x) { return ::bl::detail::gen::deriv_fract_d1<double>(x); }
+inline float fract_d2(float x) { return ::bl::detail::gen::deriv_fract_d2<float>(x); }
+inline double fract_d2(double x) { return ::bl::detail::gen::deriv_fract_d2<double>(x); }
+inline float triangle_d1(float x) { return ::bl::detail::gen::deriv_triangle_d1<float>(x); }
+inline double triangle_d1(double x) { return ::bl::detail::gen::deriv_triangle_d1<double>(x); }
+inline float triangle_d2(float x) { return ::bl::detail::gen::deriv_triangle_d2<float>(x); }
+inline double triangle_d2(double x) { return ::bl::detail::gen::deriv_triangle_d2<double>(x); }
+inline float square_d1(float x) { return ::bl::detail::gen::deriv_square_d1<float>(x); }
+inline double square_d1(double x) { return ::bl::detail::gen::deriv_square_d1<double>(x); }
+inline float square_d2(float x) { return ::bl::detail::gen::deriv_square_d2<float>(x); }
+inline double square_d2(double x) { return ::bl::detail::gen::deriv_square_d2<double>(x); }
+inline float floor_d1(float x) { return ::bl::detail::gen::deriv_floor_d1<float>(x); }
+inline double floor_d1(double x) { return ::bl::detail::gen::deriv_floor_d1<double>(x); }
+inline float floor_d2(float x) { return ::bl::detail::gen::deriv_floor_d2<float>(x); }
+inline double floor_d2(double x) { return ::bl::detail::gen::deriv_floor_d2<double>(x); }
+inline float ceil_d1(float x) { return ::bl::detail::gen::deriv_ceil_d1<float>(x); }
+inline double ceil_d1(double x) { return ::bl::detail::gen::deriv_ceil_d1<double>(x); }
+inline float ceil_d2(float x) { return ::bl::detail::gen::deriv_ceil_d2<float>(x); }
+inline double ceil_d2(double x) { return ::bl::detail::gen::deriv_ceil_d2<double>(x); }
+inline float trunc_d1(float x) { return ::bl::detail::gen::deriv_trunc_d1<float>(x); }
+inline double trunc_d1(double x) { return ::bl::detail::gen::deriv_trunc_d1<double>(x); }
+inline float trunc_d2(float x) { return ::bl::detail::gen::deriv_trunc_d2<float>(x); }
+inline double trunc_d2(double x) { return ::bl::detail::gen::deriv_trunc_d2<double>(x); }
+inline float tan_d1(float x) { return ::bl::detail::gen::deriv_tan_d1<float>(x); }
+inline double tan_d1(double x) { return ::bl::detail::gen::deriv_tan_d1<double>(x); }
+inline float tan_d2(float x) { return ::bl::detail::gen::deriv_tan_d2<float>(x); }
+inline double tan_d2(double x) { return ::bl::detail::gen::deriv_tan_d2<double>(x); }
+inline float tanh_d1(float x) { return ::bl::detail::gen::deriv_tanh_d1<float>(x); }
+inline double tanh_d1(double x) { return ::bl::detail::gen::deriv_tanh_d1<double>(x); }
+inline float tanh_d2(float x) { return ::bl::detail::gen::deriv_tanh_d2<float>(x); }
+inline double tanh_d2(double x) { return ::bl::detail::gen::deriv_tanh_d2<double>(x); }
+inline float log_d1(float x) { return ::bl::detail::gen::deriv_log_d1<float>(x); }
+inline double log_d1(double x) { return ::bl::detail::gen::deriv_log_d1<double>(x); }
+inline float log_d2(float x) { return ::bl::detail::gen::deriv_log_d2<float>(x); }
+inline double log_d2(double x) { return ::bl::detail::gen::deriv_log_d2<double>(x); }
+inline float sqrt_d1(float x) { return ::bl::detail::gen::deriv_sqrt_d1<float>(x); }
+inline double sqrt_d1(double x) { return ::bl::detail::gen::deriv_sqrt_d1<double>(x); }
+inline float sqrt_d2(float x) { return ::bl::detail::gen::deriv_sqrt_d2<float>(x); }
+inline double sqrt_d2(double x) { return ::bl::detail::gen::deriv_sqrt_d2<double>(x); }
+inline float inv_d1(float x) { return ::bl::detail::gen::deriv_inv_d1<float>(x); }
+inline double inv_d1(double x) { return ::bl::detail::gen::deriv_inv_d1<double>(x); }
+inline float inv_d2(float x) { return ::bl::detail::gen::deriv_inv_d2<float>(x); }
+inline double inv_d2(double x) { return ::bl::detail::gen::deriv_inv_d2<double>(x); }
+inline float inv2_d1(float x) { return ::bl::detail::gen::deriv_inv2_d1<float>(x); }
+inline double inv2_d1(double x) { return ::bl::detail::gen::deriv_inv2_d1<double>(x); }
+inline float inv2_d2(float x) { return ::bl::detail::gen::deriv_inv2_d2<float>(x); }
+inline double inv2_d2(double x) { return ::bl::detail::gen::deriv_inv2_d2<double>(x); }
 }  // namespace deriv
+
+namespace rule3 {
+inline stat<float> sin(float mu, float sigma) { return ::bl::detail::gen::rule3_sin<float>(mu, sigma); }
+inline stat<double> sin(double mu, double sigma) { return ::bl::detail::gen::rule3_sin<double>(mu, sigma); }
+inline stat<float> cos(float mu, float sigma) { return ::bl::detail::gen::rule3_cos<float>(mu, sigma); }
+inline stat<double> cos(double mu, double sigma) { return ::bl::detail::gen::rule3_cos<double>(mu, sigma); }
+inline stat<float> exp(float mu, float sigma) { return ::bl::detail::gen::rule3_exp<float>(mu, sigma); }
+inline stat<double> exp(double mu, double sigma) { return ::bl::detail::gen::rule3_exp<double>(mu, sigma); }
+inline stat<float> sinh(float mu, float sigma) { return ::bl::detail::gen::rule3_sinh<float>(mu, sigma); }
+inline stat<double> sinh(double mu, double sigma) { return ::bl::detail::gen::rule3_sinh<double>(mu, sigma); }
+inline stat<float> cosh(float mu, float sigma) { return ::bl::detail::gen::rule3_cosh<float>(mu, sigma); }
+inline stat<double> cosh(double mu, double sigma) { return ::bl::detail::gen::rule3_cosh<double>(mu, sigma); }
+inline stat<float> pow2(float mu, float sigma) { return ::bl::detail::gen::rule3_pow2<float>(mu, sigma); }
+inline stat<double> pow2(double mu, double sigma) { return ::bl::detail::gen::rule3_pow2<double>(mu, sigma); }
+inline stat<float> pow3(float mu, float sigma) { return ::bl::detail::gen::rule3_pow3<float>(mu, sigma); }
+inline stat<double> pow3(double mu, double sigma) { return ::bl::detail::gen::rule3_pow3<double>(mu, sigma); }
+inline stat<float> pow4(float mu, float sigma) { return ::bl::detail::gen::rule3_pow4<float>(mu, sigma); }
+inline stat<double> pow4(double mu, double sigma) { return ::bl::detail::gen::rule3_pow4<double>(mu, sigma); }
+inline stat<float> pow5(float mu, float sigma) { return ::bl::detail::gen::rule3_pow5<float>(mu, sigma); }
+inline stat<double> pow5(double mu, double sigma) { return ::bl::detail::gen::rule3_pow5<double>(mu, sigma); }
+inline stat<float> pow6(float mu, float sigma) { return ::bl::detail::gen::rule3_pow6<float>(mu, sigma); }
+inline stat<double> pow6(double mu, double sigma) { return ::bl::detail::gen::rule3_pow6<double>(mu, sigma); }
+inline stat<float> pow7(float mu, float sigma) { return ::bl::detail::gen::rule3_pow7<float>(mu, sigma); }
+inline stat<double> pow7(double mu, double sigma) { return ::bl::detail::gen::rule3_pow7<double>(mu, sigma); }
+inline stat<float> pow8(float mu, float sigma) { return ::bl::detail::gen::rule3_pow8<float>(mu, sigma); }
+inline stat<double> pow8(double mu, double sigma) { return ::bl::detail::gen::rule3_pow8<double>(mu, sigma); }
+inline stat<float> abs(float mu, float sigma) { return ::bl::detail::gen::rule3_abs<float>(mu, sigma); }
+inline stat<double> abs(double mu, double sigma) { return ::bl::detail::gen::rule3_abs<double>(mu, sigma); }
+inline stat<float> sign(float mu, float sigma) { return ::bl::detail::gen::rule3_sign<float>(mu, sigma); }
+inline stat<double> sign(double mu, double sigma) { return ::bl::detail::gen::rule3_sign<double>(mu, sigma); }
+inline stat<float> step(float mu, float sigma) { return ::bl::detail::gen::rule3_step<float>(mu, sigma); }
+inline stat<double> step(double mu, double sigma) { return ::bl::detail::gen::rule3_step<double>(mu, sigma); }
+inline stat<float> saturate(float mu, float sigma) { return ::bl::detail::gen::rule3_saturate<float>(mu, sigma); }
+inline stat<double> saturate(double mu, double sigma) { return ::bl::detail::gen::rule3_saturate<double>(mu, sigma); }
+inline stat<float> smoothstep(float mu, float sigma) { return ::bl::detail::gen::rule3_smoothstep<float>(mu, sigma); }
+inline stat<double> smoothstep(double mu, double sigma) { return ::bl::detail::gen::rule3_smoothstep<double>(mu, sigma); }
+inline stat<float> fract(float mu, float sigma) { return ::bl::detail::gen::rule3_fract<float>(mu, sigma); }
+inline stat<double> fract(double mu, double sigma) { return ::bl::detail::gen::rule3_fract<double>(mu, sigma); }
+inline stat<float> triangle(float mu, float sigma) { return ::bl::detail::gen::rule3_triangle<float>(mu, sigma); }
+inline stat<double> triangle(double mu, double sigma) { return ::bl::detail::gen::rule3_triangle<double>(mu, sigma); }
+inline stat<float> square(float mu, float sigma) { return ::bl::detail::gen::rule3_square<float>(mu, sigma); }
+inline stat<double> square(double mu, double sigma) { return ::bl::detail::gen::rule3_square<double>(mu, sigma); }
+inline stat<float> floor(float mu, float sigma) { return ::bl::detail::gen::rule3_floor<float>(mu, sigma); }
+inline stat<double> floor(double mu, double sigma) { return ::bl::detail::gen::rule3_floor<double>(mu, sigma); }
+inline stat<float> ceil(float mu, float sigma) { return ::bl::detail::gen::rule3_ceil<float>(mu, sigma); }
+inline stat<double> ceil(double mu, double sigma) { return ::bl::detail::gen::rule3_ceil<double>(mu, sigma); }
+inline stat<float> trunc(float mu, float sigma) { return ::bl::detail::gen::rule3_trunc<float>(mu, sigma); }
+inline stat<double> trunc(double mu, double sigma) { return ::bl::detail::gen::rule3_trunc<double>(mu, sigma); }
+inline stat<float> tan(float mu, float sigma) { return ::bl::detail::gen::rule3_tan<float>(mu, sigma); }
+inline stat<double> tan(double mu, double sigma) { return ::bl::detail::gen::rule3_tan<double>(mu, sigma); }
+inline stat<float> tanh(float mu, float sigma) { return ::bl::detail::gen::rule3_tanh<float>(mu, sigma); }
+inline stat<double> tanh(double mu, double sigma) { return ::bl::detail::gen::rule3_tanh<double>(mu, sigma); }
+inline stat<float> log(float mu, float sigma) { return ::bl::detail::gen::rule3_log<float>(mu, sigma); }
+inline stat<double> log(double mu, double sigma) { return ::bl::detail::gen::rule3_log<double>(mu, sigma); }
+inline stat<float> sqrt(float mu, float sigma) { return ::bl::detail::gen::rule3_sqrt<float>(mu, sigma); }
+inline stat<double> sqrt(double mu, double sigma) { return ::bl::detail::gen::rule3_sqrt<double>(mu, sigma); }
+inline stat<float> inv(float mu, float sigma) { return ::bl::detail::gen::rule3_inv<float>(mu, sigma); }
+inline stat<double> inv(double mu, double sigma) { return ::bl::detail::gen::rule3_inv<double>(mu, sigma); }
+inline stat<float> inv2(float mu, float sigma) { return ::bl::detail::gen::rule3_inv2<float>(mu, sigma); }
+inline stat<double> inv2(double mu, double sigma) { return ::bl::detail::gen::rule3_inv2<double>(mu, sigma); }
+}  // namespace rule3
+
+namespace rule1 {
+namespace gaussian {
+inline stat<float> log(float mu, float sigma) { return ::bl::detail::gen::rule1_gaussian_log<float>(mu, sigma); }
+inline stat<double> log(double mu, double sigma) { return ::bl::detail::gen::rule1_gaussian_log<double>(mu, sigma); }
+inline stat<float> sqrt(float mu, float sigma) { return ::bl::detail::gen::rule1_gaussian_sqrt<float>(mu, sigma); }
+inline stat<double> sqrt(double mu, double sigma) { return ::bl::detail::gen::rule1_gaussian_sqrt<double>(mu, sigma); }
+}  // namespace gaussian
+namespace box {
+inline stat<float> log(float mu, float sigma) { return ::bl::detail::gen::rule1_box_log<float>(mu, sigma); }
+inline stat<double> log(double mu, double sigma) { return ::bl::detail::gen::rule1_box_log<double>(mu, sigma); }
+inline stat<float> sqrt(float mu, float sigma) { return ::bl::detail::gen::rule1_box_sqrt<float>(mu, sigma); }
+inline stat<double> sqrt(double mu, double sigma) { return ::bl::detail::gen::rule1_box_sqrt<double>(mu, sigma); }
+}  // namespace box
+namespace tent {
+inline stat<float> log(float mu, float sigma) { return ::bl::detail::gen::rule1_tent_log<float>(mu, sigma); }
+inline stat<double> log(double mu, double sigma) { return ::bl::detail::gen::rule1_tent_log<double>(mu, sigma); }
+inline stat<float> sqrt(float mu, float sigma) { return ::bl::detail::gen::rule1_tent_sqrt<float>(mu, sigma); }
+inline stat<double> sqrt(double mu, double sigma) { return ::bl::detail::gen::rule1_tent_sqrt<double>(mu, sigma); }
+}  // namespace tent
+}  // namespace rule1
+
+namespace bimodal {
+inline stat<float> sign(float mu, float sigma) { return ::bl::detail::gen::bimodal_sign<float>(mu, sigma); }
+inline stat<double> sign(double mu, double sigma) { return ::bl::detail::gen::bimodal_sign<double>(mu, sigma); }
+inline stat<float> step(float mu, float sigma) { return ::bl::detail::gen::bimodal_step<float>(mu, sigma); }
+inline stat<double> step(double mu, double sigma) { return ::bl::detail::gen::bimodal_step<double>(mu, sigma); }
+inline stat<float> fract(float mu, float sigma) { return ::bl::detail::gen::bimodal_fract<float>(mu, sigma); }
+inline stat<double> fract(double mu, double sigma) { return ::bl::detail::gen::bimodal_fract<double>(mu, sigma); }
+inline stat<float> square(float mu, float sigma) { return ::bl::detail::gen::bimodal_square<float>(mu, sigma); }
+inline stat<double> square(double mu, double sigma) { return ::bl::detail::gen::bimodal_square<double>(mu, sigma); }
+inline stat<float> floor(float mu, float sigma) { return ::bl::detail::gen::bimodal_floor<float>(mu, sigma); }
+inline stat<double> floor(double mu, double sigma) { return ::bl::detail::gen::bimodal_floor<double>(mu, sigma); }
+inline stat<float> ceil(float mu, float sigma) { return ::bl::detail::gen::bimodal_ceil<float>(mu, sigma); }
+inline stat<double> ceil(double mu, double sigma) { return ::bl::detail::gen::bimodal_ceil<double>(mu, sigma); }
+}  // namespace bimodal
+
+namespace compact {
+inline float box_halfwidth_tan(float x, float sigma) { return ::bl::detail::gen::compact_box_halfwidth_tan<float>(x, sigma); }
+inline double box_halfwidth_tan(double x, double sigma) { return ::bl::detail::gen::compact_box_halfwidth_tan<double>(x, sigma); }
+inline float tent_halfwidth_tan(float x, float sigma) { return ::bl::detail::gen::compact_tent_halfwidth_tan<float>(x, sigma); }
+inline double tent_halfwidth_tan(double x, double sigma) { return ::bl::detail::gen::compact_tent_halfwidth_tan<double>(x, sigma); }
+inline float box_halfwidth_log(float x, float sigma) { return ::bl::detail::gen::compact_box_halfwidth_log<float>(x, sigma); }
+inline double box_halfwidth_log(double x, double sigma) { return ::bl::detail::gen::compact_box_halfwidth_log<double>(x, sigma); }
+inline float tent_halfwidth_log(float x, float sigma) { return ::bl::detail::gen::compact_tent_halfwidth_log<float>(x, sigma); }
+inline double tent_halfwidth_log(double x, double sigma) { return ::bl::detail::gen::compact_tent_halfwidth_log<double>(x, sigma); }
+inline float box_halfwidth_sqrt(float x, float sigma) { return ::bl::detail::gen::compact_box_halfwidth_sqrt<float>(x, sigma); }
+inline double box_halfwidth_sqrt(double x, double sigma) { return ::bl::detail::gen::compact_box_halfwidth_sqrt<double>(x, sigma); }
+inline float tent_halfwidth_sqrt(float x, float sigma) { return ::bl::detail::gen::compact_tent_halfwidth_sqrt<float>(x, sigma); }
+inline double tent_halfwidth_sqrt(double x, double sigma) { return ::bl::detail::gen::compact_tent_halfwidth_sqrt<double>(x, sigma); }
+inline float box_halfwidth_inv(float x, float sigma) { return ::bl::detail::gen::compact_box_halfwidth_inv<float>(x, sigma); }
+inline double box_halfwidth_inv(double x, double sigma) { return ::bl::detail::gen::compact_box_halfwidth_inv<double>(x, sigma); }
+inline float tent_halfwidth_inv(float x, float sigma) { return ::bl::detail::gen::compact_tent_halfwidth_inv<float>(x, sigma); }
+inline double tent_halfwidth_inv(double x, double sigma) { return ::bl::detail::gen::compact_tent_halfwidth_inv<double>(x, sigma); }
+inline float box_halfwidth_inv2(float x, float sigma) { return ::bl::detail::gen::compact_box_halfwidth_inv2<float>(x, sigma); }
+inline double box_halfwidth_inv2(double x, double sigma) { return ::bl::detail::gen::compact_box_halfwidth_inv2<double>(x, sigma); }
+inline float tent_halfwidth_inv2(float x, float sigma) { return ::bl::detail::gen::compact_tent_halfwidth_inv2<float>(x, sigma); }
+inline double tent_halfwidth_inv2(double x, double sigma) { return ::bl::detail::gen::compact_tent_halfwidth_inv2<double>(x, sigma); }
+}  // namespace compact
 
 namespace registry {
 
@@ -804,6 +1458,56 @@ const DerivativeEntry<T>* derivative_entries(int* count) {
       {&kAtomics[27], 2, "bl::deriv::inv_d2", "bl_deriv_inv_d2", &detail::gen::deriv_inv_d2<T>},
       {&kAtomics[28], 1, "bl::deriv::inv2_d1", "bl_deriv_inv2_d1", &detail::gen::deriv_inv2_d1<T>},
       {&kAtomics[28], 2, "bl::deriv::inv2_d2", "bl_deriv_inv2_d2", &detail::gen::deriv_inv2_d2<T>},
+  };
+  *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
+  return e;
+}
+
+// Rule 1, Rule 3 and bimodal entries: fn(mu, sigma) -> (mean, var).
+template <class T>
+const RuleEntry<T>* clamped_rule_entries(int* count) {
+  static const RuleEntry<T> e[] = {
+      {&kAtomics[0], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sin", "bl_rule3_sin", &detail::gen::rule3_sin<T>},
+      {&kAtomics[1], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::cos", "bl_rule3_cos", &detail::gen::rule3_cos<T>},
+      {&kAtomics[2], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::exp", "bl_rule3_exp", &detail::gen::rule3_exp<T>},
+      {&kAtomics[3], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sinh", "bl_rule3_sinh", &detail::gen::rule3_sinh<T>},
+      {&kAtomics[4], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::cosh", "bl_rule3_cosh", &detail::gen::rule3_cosh<T>},
+      {&kAtomics[5], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow2", "bl_rule3_pow2", &detail::gen::rule3_pow2<T>},
+      {&kAtomics[6], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow3", "bl_rule3_pow3", &detail::gen::rule3_pow3<T>},
+      {&kAtomics[7], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow4", "bl_rule3_pow4", &detail::gen::rule3_pow4<T>},
+      {&kAtomics[8], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow5", "bl_rule3_pow5", &detail::gen::rule3_pow5<T>},
+      {&kAtomics[9], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow6", "bl_rule3_pow6", &detail::gen::rule3_pow6<T>},
+      {&kAtomics[10], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow7", "bl_rule3_pow7", &detail::gen::rule3_pow7<T>},
+      {&kAtomics[11], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow8", "bl_rule3_pow8", &detail::gen::rule3_pow8<T>},
+      {&kAtomics[12], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::abs", "bl_rule3_abs", &detail::gen::rule3_abs<T>},
+      {&kAtomics[13], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sign", "bl_rule3_sign", &detail::gen::rule3_sign<T>},
+      {&kAtomics[14], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::step", "bl_rule3_step", &detail::gen::rule3_step<T>},
+      {&kAtomics[15], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::saturate", "bl_rule3_saturate", &detail::gen::rule3_saturate<T>},
+      {&kAtomics[16], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::smoothstep", "bl_rule3_smoothstep", &detail::gen::rule3_smoothstep<T>},
+      {&kAtomics[17], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::fract", "bl_rule3_fract", &detail::gen::rule3_fract<T>},
+      {&kAtomics[18], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::triangle", "bl_rule3_triangle", &detail::gen::rule3_triangle<T>},
+      {&kAtomics[19], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::square", "bl_rule3_square", &detail::gen::rule3_square<T>},
+      {&kAtomics[20], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::floor", "bl_rule3_floor", &detail::gen::rule3_floor<T>},
+      {&kAtomics[21], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::ceil", "bl_rule3_ceil", &detail::gen::rule3_ceil<T>},
+      {&kAtomics[22], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::trunc", "bl_rule3_trunc", &detail::gen::rule3_trunc<T>},
+      {&kAtomics[23], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tan", "bl_rule3_tan", &detail::gen::rule3_tan<T>},
+      {&kAtomics[24], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tanh", "bl_rule3_tanh", &detail::gen::rule3_tanh<T>},
+      {&kAtomics[25], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::log", "bl_rule3_log", &detail::gen::rule3_log<T>},
+      {&kAtomics[26], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sqrt", "bl_rule3_sqrt", &detail::gen::rule3_sqrt<T>},
+      {&kAtomics[27], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv", "bl_rule3_inv", &detail::gen::rule3_inv<T>},
+      {&kAtomics[28], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv2", "bl_rule3_inv2", &detail::gen::rule3_inv2<T>},
+      {&kAtomics[25], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::log", "bl_rule1_gaussian_log", &detail::gen::rule1_gaussian_log<T>},
+      {&kAtomics[25], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::log", "bl_rule1_box_log", &detail::gen::rule1_box_log<T>},
+      {&kAtomics[25], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::log", "bl_rule1_tent_log", &detail::gen::rule1_tent_log<T>},
+      {&kAtomics[26], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::sqrt", "bl_rule1_gaussian_sqrt", &detail::gen::rule1_gaussian_sqrt<T>},
+      {&kAtomics[26], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::sqrt", "bl_rule1_box_sqrt", &detail::gen::rule1_box_sqrt<T>},
+      {&kAtomics[26], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::sqrt", "bl_rule1_tent_sqrt", &detail::gen::rule1_tent_sqrt<T>},
+      {&kAtomics[13], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::sign", "bl_bimodal_sign", &detail::gen::bimodal_sign<T>},
+      {&kAtomics[14], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::step", "bl_bimodal_step", &detail::gen::bimodal_step<T>},
+      {&kAtomics[17], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::fract", "bl_bimodal_fract", &detail::gen::bimodal_fract<T>},
+      {&kAtomics[19], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::square", "bl_bimodal_square", &detail::gen::bimodal_square<T>},
+      {&kAtomics[20], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::floor", "bl_bimodal_floor", &detail::gen::bimodal_floor<T>},
+      {&kAtomics[21], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::ceil", "bl_bimodal_ceil", &detail::gen::bimodal_ceil<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;

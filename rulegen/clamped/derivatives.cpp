@@ -8,9 +8,15 @@
 namespace bl::rulegen::clamped {
 using namespace GiNaC;
 
-std::string Derivative::impl() const { return "deriv_" + atomic->name + "_d" + std::to_string(order); }
-std::string Derivative::cpp() const { return "bl::deriv::" + atomic->name + "_d" + std::to_string(order); }
-std::string Derivative::glsl() const { return "bl_deriv_" + atomic->name + "_d" + std::to_string(order); }
+std::string Derivative::impl() const {
+  return "deriv_" + atomic->name + "_d" + std::to_string(order);
+}
+std::string Derivative::cpp() const {
+  return "bl::deriv::" + atomic->name + "_d" + std::to_string(order);
+}
+std::string Derivative::glsl() const {
+  return "bl_deriv_" + atomic->name + "_d" + std::to_string(order);
+}
 
 namespace {
 
@@ -31,8 +37,11 @@ std::string pieces_text(const std::vector<sym::PolyPiece>& ps) {
   for (const auto& p : ps) {
     ex poly = 0;
     for (size_t k = 0; k < p.c.size(); ++k) poly += p.c[k] * pow(x, static_cast<int>(k));
-    auto b = [](const sym::Bound& v) { return v.inf ? std::string(v.inf < 0 ? "-inf" : "inf") : sym::print(v.value, sym::Lang::Text); };
-    s += (s.empty() ? "" : "; ") + sym::print(poly, sym::Lang::Text) + " on [" + b(p.lo) + ", " + b(p.hi) + ")";
+    auto b = [](const sym::Bound& v) {
+      return v.inf ? std::string(v.inf < 0 ? "-inf" : "inf") : sym::print(v.value, sym::Lang::Text);
+    };
+    s += (s.empty() ? "" : "; ") + sym::print(poly, sym::Lang::Text) + " on [" + b(p.lo) + ", " + b(p.hi) +
+         ")";
   }
   return s;
 }
@@ -56,10 +65,12 @@ std::vector<Derivative> derive_derivatives(const sym::Catalog& cat, const std::v
           break;
         case sym::AtomicClass::Piecewise:
         case sym::AtomicClass::Periodic:
-          d.kind = a.cls == sym::AtomicClass::Piecewise ? Derivative::Kind::Pieces : Derivative::Kind::Periodic;
+          d.kind =
+              a.cls == sym::AtomicClass::Piecewise ? Derivative::Kind::Pieces : Derivative::Kind::Periodic;
           d.pieces = diff_pieces(sym::polynomial_pieces(a, false), order);
           if (a.period) d.period = *a.period;
-          d.formula = pieces_text(d.pieces) + (a.period ? " (period " + sym::print(*a.period, sym::Lang::Text) + ")" : "") +
+          d.formula = pieces_text(d.pieces) +
+                      (a.period ? " (period " + sym::print(*a.period, sym::Lang::Text) + ")" : "") +
                       "; right piece at a break, jumps' delta functions dropped";
           break;
         case sym::AtomicClass::Combination: {
@@ -71,7 +82,8 @@ std::vector<Derivative> derive_derivatives(const sym::Catalog& cat, const std::v
           d.closed = c->poly.diff(x, order);
           std::string text = sym::print(d.closed, sym::Lang::Text);
           for (const auto& t : c->terms) {
-            if (t.xpow != 0 || t.squared) throw std::runtime_error("derivatives: unsupported combination term");
+            if (t.xpow != 0 || t.squared)
+              throw std::runtime_error("derivatives: unsupported combination term");
             // d^n/dx^n g(s x) = s^n g^(n)(s x)
             const numeric k = t.coeff * (order == 1 ? numeric(t.arg_sign) : numeric(1));
             d.terms.push_back({k, t.atomic, t.arg_sign});

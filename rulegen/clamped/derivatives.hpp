@@ -21,7 +21,7 @@ struct Derivative {
   const sym::Atomic* atomic = nullptr;
   int order = 1;  // 1 or 2
   enum class Kind { Closed, Pieces, Periodic, Combination } kind{};
-  GiNaC::ex closed;                   // Closed: f^(order)(x); Combination: the polynomial part's
+  GiNaC::ex closed;                    // Closed: f^(order)(x); Combination: the polynomial part's
   std::vector<sym::PolyPiece> pieces;  // Pieces / Periodic (one period)
   GiNaC::ex period;
   std::vector<DerivTerm> terms;  // Combination

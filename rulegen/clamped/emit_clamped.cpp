@@ -31,19 +31,22 @@ std::string piece_table(const std::string& name, const std::vector<sym::PolyPiec
   auto coeffs = [&](const sym::PolyPiece& p) {
     std::string c;
     for (int k = 0; k < 8; ++k)
-      c += (k ? ", " : "") + sym::print(k < static_cast<int>(p.c.size()) ? GiNaC::ex(p.c[k]) : GiNaC::ex(0), lang);
+      c += (k ? ", " : "") +
+           sym::print(k < static_cast<int>(p.c.size()) ? GiNaC::ex(p.c[k]) : GiNaC::ex(0), lang);
     return c;
   };
   std::string out;
   if (lang == Lang::Cpp) {
     out = "  const detail::Piece<T> " + name + "[" + std::to_string(ps.size()) + "] = {\n";
-    for (const auto& p : ps) out += "      {" + bound(p.lo, lang) + ", " + bound(p.hi, lang) + ", {" + coeffs(p) + "}},\n";
+    for (const auto& p : ps)
+      out += "      {" + bound(p.lo, lang) + ", " + bound(p.hi, lang) + ", {" + coeffs(p) + "}},\n";
     return out + "  };\n";
   }
   out = "  BlPiece " + name + "[4] = BlPiece[4](\n";
   for (size_t i = 0; i < 4; ++i) {
     if (i < ps.size())
-      out += "      BlPiece(" + bound(ps[i].lo, lang) + ", " + bound(ps[i].hi, lang) + ", float[8](" + coeffs(ps[i]) + "))";
+      out += "      BlPiece(" + bound(ps[i].lo, lang) + ", " + bound(ps[i].hi, lang) + ", float[8](" +
+             coeffs(ps[i]) + "))";
     else
       out += "      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0))";
     out += i < 3 ? ",\n" : ");\n";
@@ -64,7 +67,8 @@ const char* kBanner =
     "// catalog or the engine and regenerate (CI fails when this file differs from a fresh generation).\n";
 
 bool is_clamped_rule(const std::string& r) {
-  return r == "derivative" || r == "rule1" || r == "rule3" || r == "bimodal" || r == "compact" || r == "truncnorm";
+  return r == "derivative" || r == "rule1" || r == "rule3" || r == "bimodal" || r == "compact" ||
+         r == "truncnorm";
 }
 
 }  // namespace
@@ -73,6 +77,7 @@ void emit_clamped(const sym::Catalog& cat, const std::vector<sym::Derived>& ds, 
   const std::string tdir = BL_TEMPLATES_DIR;
   Output o;
   emit_derivatives(cat, ds, o);
+  emit_rules(cat, ds, o);
 
   std::ostringstream h;
   h << kBanner
@@ -81,12 +86,15 @@ void emit_clamped(const sym::Catalog& cat, const std::vector<sym::Derived>& ds, 
     << "// moments), bl::rule3::<atomic>, bl::rule1::<kernel>::<atomic>, bl::bimodal::<atomic>,\n"
     << "// bl::compact. Rules take the input's (mean, standard deviation) and return bl::stat (mean, var).\n"
     << "// See docs/derivations.md, \"Clamped-domain rules\".\n"
-    << "#pragma once\n\n#include \"clamped_support.hpp\"\n#include \"registry.hpp\"\n#include \"table.hpp\"\n\n"
+    << "#pragma once\n\n#include \"clamped_support.hpp\"\n#include \"registry.hpp\"\n#include "
+       "\"table.hpp\"\n\n"
     << "namespace bl {\nnamespace detail {\nnamespace gen {\n\n"
     << o.impl << "}  // namespace gen\n}  // namespace detail\n\n"
     << o.api << "namespace registry {\n\n"
-    << "// One derivative of one atomic: fn(x) = d^order f / dx^order.\ntemplate <class T>\nstruct DerivativeEntry {\n"
-    << "  const AtomicInfo* atomic;\n  int order;         // 1 or 2\n  const char* cpp;   // qualified C++ name\n"
+    << "// One derivative of one atomic: fn(x) = d^order f / dx^order.\ntemplate <class T>\nstruct "
+       "DerivativeEntry {\n"
+    << "  const AtomicInfo* atomic;\n  int order;         // 1 or 2\n  const char* cpp;   // qualified C++ "
+       "name\n"
     << "  const char* glsl;  // GLSL name, float glsl(float x)\n  T (*fn)(T x);\n};\n\n"
     << o.registry << "}  // namespace registry\n}  // namespace bl\n";
   write_file(out_dir + "/bandlimit/clamped_support.hpp", read_file(tdir + "/clamped_support.hpp"));
@@ -97,7 +105,8 @@ void emit_clamped(const sym::Catalog& cat, const std::vector<sym::Derived>& ds, 
     << "// bandlimit clamped-domain rules for GLSL (float): include after bandlimit.glsl. Rules return\n"
     << "// vec2(mean, var); derivatives bl_deriv_<atomic>_d1/_d2(x). Valid as #version 450 and 320 es.\n\n"
     << "// ---- support (rulegen/templates/clamped_support.glsl) ----\n"
-    << read_file(tdir + "/clamped_support.glsl") << "\n// ---- entries ----\n\n" << o.glsl;
+    << read_file(tdir + "/clamped_support.glsl") << "\n// ---- entries ----\n\n"
+    << o.glsl;
   write_file(out_dir + "/bandlimit_clamped.glsl", g.str());
 
   // Append to the manifest emit_manifest has just written (its own entries first).

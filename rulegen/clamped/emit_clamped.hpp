@@ -4,7 +4,6 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
-
 #include <string>
 #include <vector>
 
@@ -29,6 +28,7 @@ std::string piece_table(const std::string& name, const std::vector<sym::PolyPiec
 int atomic_index(const sym::Catalog& cat, const sym::Atomic* a);
 
 void emit_derivatives(const sym::Catalog& cat, const std::vector<sym::Derived>& ds, Output& out);
+void emit_rules(const sym::Catalog& cat, const std::vector<sym::Derived>& ds, Output& out);
 
 // Writes the files; called by `rulegen emit` after the manifest exists.
 void emit_clamped(const sym::Catalog& cat, const std::vector<sym::Derived>& ds, const std::string& out_dir);

@@ -2,6 +2,7 @@
 target_sources(rulegen PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/derivatives.cpp
   ${CMAKE_CURRENT_LIST_DIR}/emit_derivatives.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/emit_rules.cpp
   ${CMAKE_CURRENT_LIST_DIR}/emit_clamped.cpp)
 target_include_directories(rulegen PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
 find_package(nlohmann_json REQUIRED)
