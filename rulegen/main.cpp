@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "catalog.hpp"
+#include "clamped/emit_clamped.hpp"
 #include "derived.hpp"
 #include "emit_common.hpp"
 
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
       bl::rulegen::emit_cpp(cat, ds, out);
       bl::rulegen::emit_glsl(cat, ds, out);
       bl::rulegen::emit_manifest(cat, ds, nd, out, label);
+      bl::rulegen::clamped::emit_clamped(cat, ds, out);  // appends to the manifest
       emit_s = std::chrono::duration<double>(clock::now() - t3).count();
     }
     if (!quiet)
