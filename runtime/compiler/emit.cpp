@@ -74,8 +74,8 @@ std::string expr(const Program& p, int i, Lang lang) {
 }
 
 std::string header_of(const std::string& cpp_name) {
-  if (cpp_name.rfind("bl::bivariate::", 0) == 0 || cpp_name.rfind("bl::rule2::", 0) == 0)
-    return "bandlimit/rules_bivariate.hpp";
+  if (cpp_name.rfind("bl::bivariate::", 0) == 0) return "bandlimit/rules_bivariate.hpp";
+  if (cpp_name.rfind("bl::rule2::", 0) == 0) return "bandlimit/rules_mode.hpp";
   if (cpp_name.rfind("bl::rule1::", 0) == 0 || cpp_name.rfind("bl::rule3::", 0) == 0 ||
       cpp_name.rfind("bl::deriv::", 0) == 0 || cpp_name.rfind("bl::bimodal::", 0) == 0)
     return "bandlimit/rules_clamped.hpp";

@@ -1,6 +1,15 @@
 #include "compiler/functions.hpp"
 
 #include <bandlimit/registry.hpp>
+#if __has_include(<bandlimit/rules_clamped.hpp>)
+#include <bandlimit/rules_clamped.hpp>
+#endif
+#if __has_include(<bandlimit/rules_bivariate.hpp>)
+#include <bandlimit/rules_bivariate.hpp>
+#endif
+#if __has_include(<bandlimit/rules_mode.hpp>)
+#include <bandlimit/rules_mode.hpp>
+#endif
 #include <map>
 #include <stdexcept>
 
@@ -89,6 +98,15 @@ std::vector<Function> build() {
 #endif
 #if __has_include(<bandlimit/rules_clamped.hpp>)
   {
+    const auto* d = bl::registry::derivative_entries<float>(&n);
+    for (int i = 0; i < n; ++i) {
+      Function f;
+      f.cpp = d[i].cpp;
+      f.glsl = d[i].glsl;
+      f.arity = 1;
+      f.f1 = d[i].fn;
+      add(f);
+    }
     const auto* r = bl::registry::clamped_rule_entries<float>(&n);
     for (int i = 0; i < n; ++i) {
       Function f;
