@@ -1,4 +1,5 @@
-# Writes a C++ file that embeds the generated GLSL library (-DOUT=... -DINPUTS="a.glsl;b.glsl").
+# Writes a C++ file that embeds the generated GLSL library (-DOUT=... -DINPUTS="a.glsl|b.glsl").
+string(REPLACE "|" ";" INPUTS "${INPUTS}")
 set(text "")
 foreach(f ${INPUTS})
   file(READ ${f} content)
