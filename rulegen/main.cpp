@@ -9,6 +9,7 @@
 #include "catalog.hpp"
 #include "derived.hpp"
 #include "emit_common.hpp"
+#include "emit_rules.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"rulegen: derive, and emit the bandlimit smoothing table"};
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
       bl::rulegen::emit_cpp(cat, ds, out);
       bl::rulegen::emit_glsl(cat, ds, out);
       bl::rulegen::emit_manifest(cat, ds, nd, out, label);
+      bl::rulegen::emit_rules(cat, ds, out);  // bivariate rules and Rule 2 (after the manifest)
       emit_s = std::chrono::duration<double>(clock::now() - t3).count();
     }
     if (!quiet)
