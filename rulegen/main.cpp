@@ -10,6 +10,7 @@
 #include "clamped/emit_clamped.hpp"
 #include "derived.hpp"
 #include "emit_common.hpp"
+#include "emit_rules.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"rulegen: derive, and emit the bandlimit smoothing table"};
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
       bl::rulegen::emit_glsl(cat, ds, out);
       bl::rulegen::emit_manifest(cat, ds, nd, out, label);
       bl::rulegen::clamped::emit_clamped(cat, ds, out);  // appends to the manifest
+      bl::rulegen::emit_rules(cat, ds, out);  // bivariate rules and Rule 2 (after the manifest)
       emit_s = std::chrono::duration<double>(clock::now() - t3).count();
     }
     if (!quiet)

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "functions.hpp"
+#include "monotone.hpp"
 
 namespace bl::sym {
 using namespace GiNaC;
@@ -349,6 +350,7 @@ Catalog parse_catalog(const std::string& text, const std::string& origin) {
   std::set<std::string> seen;
   for (size_t i = 0; i < j["atomics"].size(); ++i) {
     Atomic a = parse_atomic(j["atomics"][i], i);
+    check_monotone(a);  // Rule 2 inverts f on these pieces
     if (!seen.insert(a.name).second)
       throw CatalogError("catalog entry '" + a.name + "', field 'name': defined twice");
     cat.atomics.push_back(std::move(a));

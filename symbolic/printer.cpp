@@ -152,7 +152,9 @@ std::string pr(const ex& e, Lang lang) {
     static const std::map<std::string, std::string> builtin = {
         {"sin", "sin"},   {"cos", "cos"},   {"tan", "tan"},   {"exp", "exp"},
         {"log", "log"},   {"sinh", "sinh"}, {"cosh", "cosh"}, {"tanh", "tanh"},
-        {"abs", "abs"},   {"sqrt", "sqrt"}};
+        {"abs", "abs"},   {"sqrt", "sqrt"},
+        {"asin", "asin"}, {"acos", "acos"}, {"atan", "atan"}, {"asinh", "asinh"}, {"acosh", "acosh"},
+        {"atanh", "atanh"}};  // inverses: Rule 2's mode equations in y
     auto it = builtin.find(name);
     if (it != builtin.end()) return call(it->second, args);
     static const char* helpers[] = {"Phi", "phi", "sinc", "sinhc", "logcosh", "exp_sinhc",

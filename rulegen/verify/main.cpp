@@ -21,6 +21,7 @@
 #include "manifest_record.hpp"
 #include "published_tables.hpp"
 #include "reference_mp.hpp"
+#include "rules_check.hpp"
 #include "registry_view.hpp"
 #include "report.hpp"
 #include "verify_entry.hpp"
@@ -66,7 +67,10 @@ int main(int argc, char** argv) {
   app.add_flag("--published", published, "compare the published tables (Dorn 2015, Yang & Barnes 2018)");
   app.add_flag("--verbose", verbose, "details for every entry");
   app.add_flag("--no-mp", no_mp, "no 50-digit references (faster, for development)");
+  bool rules_only = false;
+  app.add_flag("--rules-only", rules_only, "only the checks of the bivariate rules and Rule 2 (rules_check.hpp)");
   CLI11_PARSE(app, argc, argv);
+  if (rules_only) return blv::run_rule_checks(generated + "/manifest.json", record, 0);
 
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
@@ -163,6 +167,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "blverify: recorded %zu entries in %s\n", out.size(), manifest.c_str());
     }
   }
+  if (only.empty() && blv::rules_compiled_in()) rc = blv::run_rule_checks(manifest, record, rc);  // issue 3 rules
   std::fprintf(stderr, "blverify: %zu entries in %.1f s (%u threads)\n", out.size(),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), n);
   return rc;
