@@ -1,15 +1,9 @@
 #include "compiler/functions.hpp"
 
 #include <bandlimit/registry.hpp>
-#if __has_include(<bandlimit/rules_clamped.hpp>)
-#include <bandlimit/rules_clamped.hpp>
-#endif
-#if __has_include(<bandlimit/rules_bivariate.hpp>)
 #include <bandlimit/rules_bivariate.hpp>
-#endif
-#if __has_include(<bandlimit/rules_mode.hpp>)
+#include <bandlimit/rules_clamped.hpp>
 #include <bandlimit/rules_mode.hpp>
-#endif
 #include <map>
 #include <stdexcept>
 
@@ -56,7 +50,6 @@ std::vector<Function> build() {
     f.f2 = e[i].smoothed;
     add(f);
   }
-#if __has_include(<bandlimit/rules_bivariate.hpp>)
   {
     const auto* b = bl::registry::binary_entries<float>(&n);
     for (int i = 0; i < n; ++i) {
@@ -95,8 +88,6 @@ std::vector<Function> build() {
     mod.s3 = [](float ma, float sa, float c) { return bl::bivariate::mod(ma, sa, c); };
     add(mod);
   }
-#endif
-#if __has_include(<bandlimit/rules_clamped.hpp>)
   {
     const auto* d = bl::registry::derivative_entries<float>(&n);
     for (int i = 0; i < n; ++i) {
@@ -118,7 +109,6 @@ std::vector<Function> build() {
       add(f);
     }
   }
-#endif
   return out;
 }
 

@@ -65,6 +65,7 @@ class Lowering {
   int mul(int a, int b) { return op(LOp::Mul, a, b); }
   int div(int a, int b) { return op(LOp::Div, a, b); }
   int sq(int a) { return mul(a, a); }
+  int absolute(int a) { return op(LOp::Max, a, op(LOp::Neg, a)); }
   bool has(const std::string& fn) const { return find_function(fn) >= 0; }
   int call(const std::string& fn, std::initializer_list<int> args, bool stat = false) {
     const int f = find_function(fn);
@@ -264,21 +265,24 @@ class Lowering {
         v.sd = add(s(0), s(1));
         v.var = sq(v.sd);
         return v;
+      // Dorn's heuristics work on sds (not variances): products of variances overflow float for
+      // the footprints near a horizon (sd ~ 1e3 in uv), products of sds do not.
       case Op::Mul:
         v.mean = plain(n, a);
-        v.var = ca   ? mul(sq(a[0]->mean), a[1]->var)
-                : cb ? mul(sq(a[1]->mean), a[0]->var)
-                     : mul(a[0]->var, a[1]->var);
+        v.sd = ca ? mul(absolute(a[0]->mean), s(1)) : cb ? mul(absolute(a[1]->mean), s(0)) : mul(s(0), s(1));
+        v.var = sq(v.sd);
         return v;
       case Op::Div:
         v.mean = plain(n, a);
-        v.var = cb ? div(a[0]->var, sq(a[1]->mean)) : div(a[0]->var, op(LOp::Max, a[1]->var, k(1e-30f)));
+        v.sd = cb ? div(s(0), absolute(a[1]->mean)) : div(s(0), op(LOp::Max, s(1), k(1e-30f)));
+        v.var = sq(v.sd);
         return v;
       case Op::Mod: {
         const float c = static_cast<float>(n.value);
         v.mean = mul(k(c), call(kernel_name("gaussian", "fract", false),
                                 {div(a[0]->mean, k(c)), mul(scaled_sd(*a[0], r), k(1.0f / std::fabs(c)))}));
-        v.var = a[0]->var;
+        v.sd = op(LOp::Min, s(0), k(std::fabs(c) / 2));  // the range cap, as for atomics
+        v.var = sq(v.sd);
         return v;
       }
       default:
@@ -464,12 +468,21 @@ std::vector<float> mc_normals(int node, int n, int dims) {
   std::mt19937_64 rng(0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(node) * 0x100000001B3ull);
   std::normal_distribution<double> normal;
   std::vector<float> z(static_cast<std::size_t>(n) * dims);
+  std::vector<double> raw(z.size());
   for (int j = 0; j + 1 < n; j += 2)
     for (int d = 0; d < dims; ++d) {
-      const float v = static_cast<float>(normal(rng));
-      z[j * dims + d] = v;
-      z[(j + 1) * dims + d] = -v;
+      const double v = normal(rng);
+      raw[j * dims + d] = v;
+      raw[(j + 1) * dims + d] = -v;
     }
+  // Moment matching: scale each dimension to unit mean square, so the samples carry the input's
+  // full variance (8 raw draws can have an RMS of 0.5: the node would smooth with half its sd).
+  for (int d = 0; d < dims; ++d) {
+    double ms = 0;
+    for (int j = 0; j < n; ++j) ms += raw[j * dims + d] * raw[j * dims + d];
+    const double scale = ms > 0 ? 1 / std::sqrt(ms / n) : 0;
+    for (int j = 0; j < n; ++j) z[j * dims + d] = static_cast<float>(raw[j * dims + d] * scale);
+  }
   return z;
 }
 

@@ -23,7 +23,8 @@ Program lower(const ir::Graph& g, const Schedule& schedule);
 Schedule uniform_schedule(const ir::Graph& g, const rules::Rule& r);
 
 // The fixed standard-normal samples node `node` uses for Monte Carlo with n samples and `dims`
-// random inputs: antithetic pairs (z, -z) of a seeded stream, so linear nodes are exact.
+// random inputs: antithetic pairs (z, -z) of a seeded stream, so linear nodes are exact, scaled per
+// dimension to unit mean square (moment matching).
 std::vector<float> mc_normals(int node, int n, int dims);
 
 }  // namespace bl::compiler

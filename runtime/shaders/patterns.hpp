@@ -60,12 +60,17 @@ Vec3<S> bricks(Vec2<S> uv, S) {
   const double mortar = 0.06;
   S y = uv.y * S(2);
   S row = floor(y);
-  S x = uv.x + S(0.5) * mod(row, 2.0);
+  // Every other row shifted by half a brick: square(y / 2) is 1 on even rows. (mod(floor(y), 2)
+  // would feed floor's near-integer output into mod's jump, where float rounding decides the
+  // brick: ill-conditioned under smoothing.)
+  S x = uv.x + S(0.5) * square(y * S(0.5));
   S col = floor(x);
   S fx = fract(x), fy = fract(y);
   // 1 inside a brick, 0 on the mortar lines.
   S brick = step(fx - S(mortar)) * step(S(1 - mortar) - fx) * step(fy - S(mortar)) * step(S(1 - mortar) - fy);
-  S noise = fract(sin(row * S(12.9898) + col * S(78.233)) * S(437.5453));
+  // A smooth hash: the classic fract(sin(.) * 43758) amplifies float rounding (FMA or not) into
+  // different bricks on different GPUs; this varies enough between neighbours without that.
+  S noise = S(0.5) + S(0.5) * sin(row * S(1.7) + col * S(2.9));
   Vec3<S> brick_colour = Vec3<S>{S(0.6), S(0.22), S(0.12)} * (S(0.75) + S(0.35) * noise);
   return mix(splat3(S(0.75)), brick_colour, brick);
 }

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
+#include <set>
 
 #include "compiler/evaluator.hpp"
 #include "compiler/lower.hpp"
@@ -80,7 +82,7 @@ TEST(Compiler, EmittedCppMatchesEvaluator) {
       test::kFixtureFns[f](m.data(), s.data(), gx.data(), gy.data(), out);
       for (int c = 0; c < 3; ++c) {
         if (std::isnan(ev[c][i]) && std::isnan(out[c])) continue;
-        worst = std::max(worst, std::fabs(static_cast<double>(out[c]) - ev[c][i]) / std::max(1.0, std::fabs(ev[c][i])));
+        worst = std::max(worst, std::fabs(static_cast<double>(out[c]) - ev[c][i]) / std::max(1.0, std::fabs(static_cast<double>(ev[c][i]))));
       }
     }
     EXPECT_LE(worst, 1e-6) << list[f].label();
