@@ -186,17 +186,25 @@ vec3 bl_rule1_renormalize(int kernel, float m, float v, float a, float b) {
   return vec3(m + sd * t1 * s * s, sd * s, float(steps));
 }
 
-// Kernel density (unnormalized) at u for the kernel (center p.x, sigma p.y).
-float bl_rule1_density(int kernel, vec3 p, float u) {
+// z_m: the point of [a, b] nearest the kernel centre, in z = (u - center) / sigma.
+float bl_rule1_zm(vec3 p, float a, float b) {
+  float A = bl_is_inf(a) ? -BL_INF : (a - p.x) / p.y, B = bl_is_inf(b) ? BL_INF : (b - p.x) / p.y;
+  return min(max(0.0, A), B);
+}
+
+// Kernel density at u relative to its maximum on [a, b] (no underflow when the centre is far out).
+float bl_rule1_density(int kernel, vec3 p, float zm, float u) {
   float z = (u - p.x) / p.y;
-  if (kernel == 0) return exp(-0.5 * z * z);
+  if (kernel == 0) return exp(-0.5 * (z - zm) * (z + zm));
   if (kernel == 1) return 1.0;
   return max(0.0, 1.0 - abs(z) / BL_SQRT6);
 }
 
-// Support [l, r] of the renormalized kernel and the split point (its centre when inside).
+// Support [l, r] of the renormalized kernel (Gaussian: density above e^-40 of its maximum) and the
+// split point (the centre when inside).
 vec3 bl_rule1_support(int kernel, vec3 p, float a, float b) {
-  float reach = (kernel == 0 ? 9.0 : (kernel == 1 ? BL_SQRT3 : BL_SQRT6)) * p.y;
+  float zm = bl_rule1_zm(p, a, b);
+  float reach = (kernel == 0 ? sqrt(zm * zm + 80.0) : (kernel == 1 ? BL_SQRT3 : BL_SQRT6)) * p.y;
   float l = max(a, p.x - reach), r = min(b, p.x + reach);
   return vec3(l, r, (p.x > l && p.x < r) ? p.x : r);
 }

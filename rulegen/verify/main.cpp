@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "clamped/verify_clamped.hpp"
 #include "manifest_record.hpp"
 #include "published_tables.hpp"
 #include "reference_mp.hpp"
@@ -163,6 +164,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "blverify: recorded %zu entries in %s\n", out.size(), manifest.c_str());
     }
   }
+  if (only.empty()) rc = std::max(rc, blv::clamped::run(manifest, record, stdout));  // rules_clamped.hpp
   std::fprintf(stderr, "blverify: %zu entries in %.1f s (%u threads)\n", out.size(),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), n);
   return rc;
