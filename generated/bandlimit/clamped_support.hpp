@@ -242,14 +242,29 @@ namespace detail {
 using truncnorm::detail::inf;
 using truncnorm::detail::nan;
 
-// The most the variance may be asked to be: a truncated Gaussian on [a, b] with mean m has less
-// variance than the exponential limit (m - a)^2 (one side) and the uniform limit (b - a)^2 / 12.
+// Variance of the density proportional to e^(k t) on [0, 1] whose mean is t (0 < t < 1): the
+// theta_2 -> 0 limit of the truncated Gaussian on a finite interval. k by bisection on the mean
+// 1/(1 - e^-k) - 1/k (series near k = 0), then var = 1/k^2 - 1/(4 sinh(k/2)^2).
+inline double exp_family_var(double t) {
+  auto mean = [](double k) { return std::abs(k) < 1e-3 ? 0.5 + k / 12 : 1 / (-std::expm1(-k)) - 1 / k; };
+  double lo = -1e4, hi = 1e4;
+  for (int i = 0; i < 200 && hi - lo > 1e-12 * (1 + std::abs(lo)); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (mean(mid) < t ? lo : hi) = mid;
+  }
+  const double k = 0.5 * (lo + hi);
+  if (std::abs(k) < 1e-3) return 1.0 / 12 - k * k / 720;
+  const double sh = std::sinh(0.5 * k);
+  return 1 / (k * k) - 1 / (4 * sh * sh);
+}
+
+// The most the variance can be for mean m on [a, b]: at fixed mean a truncated Gaussian has less
+// variance than its theta_2 -> 0 limit, the truncated exponential ((m - a)^2 on a half line).
 inline double max_var(double m, double a, double b) {
-  double v = inf();
-  if (a > -inf()) v = std::min(v, (m - a) * (m - a));
-  if (b < inf()) v = std::min(v, (b - m) * (b - m));
-  if (a > -inf() && b < inf()) v = std::min(v, (b - a) * (b - a) / 12);
-  return v;
+  if (a > -inf() && b < inf()) return (b - a) * (b - a) * exp_family_var((m - a) / (b - a));
+  if (a > -inf()) return (m - a) * (m - a);
+  if (b < inf()) return (b - m) * (b - m);
+  return inf();
 }
 
 inline constexpr int kMaxSteps = 40;
@@ -259,7 +274,8 @@ inline constexpr int kMaxSteps = 40;
 // standardized problem (u = (x - m) / sqrt(v)): the moment map is the gradient of the convex
 // log-partition function and its Jacobian is the covariance of (u, u^2), computed from the
 // truncated moments. Steps leaving theta_2 < 0 are halved. Targets beyond max_var are clamped to
-// 0.98 of it (the paper's "valid range"). Stops when both residuals are below 1e-13.
+// 0.98 of it (the paper's "valid range"). Stops when both residuals are below 1e-13 (or, never
+// seen in the tests, when a step would leave the doubles: the last iterate is returned).
 inline Params<double> gaussian(double m, double v, double a, double b) {
   const double n = nan();
   if (!(v >= 0) || std::isnan(m) || !(a <= b) || !(m >= a && m <= b)) return {n, n, 0};
@@ -294,10 +310,15 @@ inline Params<double> gaussian(double m, double v, double a, double b) {
       eval(t1 + d1, t2 + d2, rn, nullptr);
       if (std::abs(rn[0]) + std::abs(rn[1]) < norm0 || half == 29) break;
     }
+    double r2[2], J2[4];
+    eval(t1 + d1, t2 + d2, r2, J2);
+    if (!(std::isfinite(r2[0]) && std::isfinite(r2[1]) && std::isfinite(J2[0]) && std::isfinite(J2[3]))) break;
     t1 += d1;
     t2 += d2;
     ++steps;
-    eval(t1, t2, r, J);
+    for (int q = 0; q < 4; ++q) J[q] = J2[q];
+    r[0] = r2[0];
+    r[1] = r2[1];
   }
   const double s = std::sqrt(-0.5 / t2), c = t1 * s * s;
   return {m + sd * c, sd * s, steps};

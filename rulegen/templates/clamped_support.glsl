@@ -142,12 +142,25 @@ vec2 bl_rule3_from_derivatives(float f0, float f1, float f2, BlTruncMoments m) {
   return vec2(mean, max(f1 * f1 * m.var + f1 * f2 * m.mu3 + 0.25 * f2 * f2 * (m.mu4 - m.var * m.var), 0.0));
 }
 
+// Variance of the density proportional to e^(k t) on [0, 1] with mean t (see clamped_support.hpp).
+float bl_exp_family_var(float t) {
+  float lo = -1e4, hi = 1e4;
+  for (int i = 0; i < 60; ++i) {
+    float k = 0.5 * (lo + hi);
+    float m = abs(k) < 1e-2 ? 0.5 + k / 12.0 : 1.0 / (1.0 - exp(-k)) - 1.0 / k;
+    if (m < t) lo = k; else hi = k;
+  }
+  float k = 0.5 * (lo + hi);
+  if (abs(k) < 1e-2) return 1.0 / 12.0 - k * k / 720.0;
+  float sh = sinh(0.5 * k);
+  return 1.0 / (k * k) - 1.0 / (4.0 * sh * sh);
+}
+
 float bl_rule1_max_var(float m, float a, float b) {
-  float v = BL_INF;
-  if (!bl_is_inf(a)) v = min(v, (m - a) * (m - a));
-  if (!bl_is_inf(b)) v = min(v, (b - m) * (b - m));
-  if (!bl_is_inf(a) && !bl_is_inf(b)) v = min(v, (b - a) * (b - a) / 12.0);
-  return v;
+  if (!bl_is_inf(a) && !bl_is_inf(b)) return (b - a) * (b - a) * bl_exp_family_var((m - a) / (b - a));
+  if (!bl_is_inf(a)) return (m - a) * (m - a);
+  if (!bl_is_inf(b)) return (b - m) * (b - m);
+  return BL_INF;
 }
 
 // Kernel 0 gaussian (eq. 8, Newton in natural parameters), 1 box, 2 tent: vec3(center, sigma, steps).
@@ -178,6 +191,9 @@ vec3 bl_rule1_renormalize(int kernel, float m, float v, float a, float b) {
       d1 *= 0.5;
       d2 *= 0.5;
     }
+    float s2 = sqrt(-0.5 / (t2 + d2));
+    BlTruncMoments M2 = bl_truncnorm_moments((t1 + d1) * s2 * s2, s2, A, B);
+    if (!(abs(M2.mean) < BL_INF && abs(M2.var) < BL_INF)) break;  // would leave the floats
     t1 += d1;
     t2 += d2;
     steps += 1;
