@@ -147,12 +147,25 @@ vec2 bl_rule3_from_derivatives(float f0, float f1, float f2, BlTruncMoments m) {
   return vec2(mean, max(f1 * f1 * m.var + f1 * f2 * m.mu3 + 0.25 * f2 * f2 * (m.mu4 - m.var * m.var), 0.0));
 }
 
+// Variance of the density proportional to e^(k t) on [0, 1] with mean t (see clamped_support.hpp).
+float bl_exp_family_var(float t) {
+  float lo = -1e4, hi = 1e4;
+  for (int i = 0; i < 60; ++i) {
+    float k = 0.5 * (lo + hi);
+    float m = abs(k) < 1e-2 ? 0.5 + k / 12.0 : 1.0 / (1.0 - exp(-k)) - 1.0 / k;
+    if (m < t) lo = k; else hi = k;
+  }
+  float k = 0.5 * (lo + hi);
+  if (abs(k) < 1e-2) return 1.0 / 12.0 - k * k / 720.0;
+  float sh = sinh(0.5 * k);
+  return 1.0 / (k * k) - 1.0 / (4.0 * sh * sh);
+}
+
 float bl_rule1_max_var(float m, float a, float b) {
-  float v = BL_INF;
-  if (!bl_is_inf(a)) v = min(v, (m - a) * (m - a));
-  if (!bl_is_inf(b)) v = min(v, (b - m) * (b - m));
-  if (!bl_is_inf(a) && !bl_is_inf(b)) v = min(v, (b - a) * (b - a) / 12.0);
-  return v;
+  if (!bl_is_inf(a) && !bl_is_inf(b)) return (b - a) * (b - a) * bl_exp_family_var((m - a) / (b - a));
+  if (!bl_is_inf(a)) return (m - a) * (m - a);
+  if (!bl_is_inf(b)) return (b - m) * (b - m);
+  return BL_INF;
 }
 
 // Kernel 0 gaussian (eq. 8, Newton in natural parameters), 1 box, 2 tent: vec3(center, sigma, steps).
@@ -183,6 +196,9 @@ vec3 bl_rule1_renormalize(int kernel, float m, float v, float a, float b) {
       d1 *= 0.5;
       d2 *= 0.5;
     }
+    float s2 = sqrt(-0.5 / (t2 + d2));
+    BlTruncMoments M2 = bl_truncnorm_moments((t1 + d1) * s2 * s2, s2, A, B);
+    if (!(abs(M2.mean) < BL_INF && abs(M2.var) < BL_INF)) break;  // would leave the floats
     t1 += d1;
     t2 += d2;
     steps += 1;
@@ -191,17 +207,25 @@ vec3 bl_rule1_renormalize(int kernel, float m, float v, float a, float b) {
   return vec3(m + sd * t1 * s * s, sd * s, float(steps));
 }
 
-// Kernel density (unnormalized) at u for the kernel (center p.x, sigma p.y).
-float bl_rule1_density(int kernel, vec3 p, float u) {
+// z_m: the point of [a, b] nearest the kernel centre, in z = (u - center) / sigma.
+float bl_rule1_zm(vec3 p, float a, float b) {
+  float A = bl_is_inf(a) ? -BL_INF : (a - p.x) / p.y, B = bl_is_inf(b) ? BL_INF : (b - p.x) / p.y;
+  return min(max(0.0, A), B);
+}
+
+// Kernel density at u relative to its maximum on [a, b] (no underflow when the centre is far out).
+float bl_rule1_density(int kernel, vec3 p, float zm, float u) {
   float z = (u - p.x) / p.y;
-  if (kernel == 0) return exp(-0.5 * z * z);
+  if (kernel == 0) return exp(-0.5 * (z - zm) * (z + zm));
   if (kernel == 1) return 1.0;
   return max(0.0, 1.0 - abs(z) / BL_SQRT6);
 }
 
-// Support [l, r] of the renormalized kernel and the split point (its centre when inside).
+// Support [l, r] of the renormalized kernel (Gaussian: density above e^-40 of its maximum) and the
+// split point (the centre when inside).
 vec3 bl_rule1_support(int kernel, vec3 p, float a, float b) {
-  float reach = (kernel == 0 ? 9.0 : (kernel == 1 ? BL_SQRT3 : BL_SQRT6)) * p.y;
+  float zm = bl_rule1_zm(p, a, b);
+  float reach = (kernel == 0 ? sqrt(zm * zm + 80.0) : (kernel == 1 ? BL_SQRT3 : BL_SQRT6)) * p.y;
   float l = max(a, p.x - reach), r = min(b, p.x + reach);
   return vec3(l, r, (p.x > l && p.x < r) ? p.x : r);
 }
@@ -904,6 +928,7 @@ vec2 bl_rule1_expect_log(int kernel, vec3 p, float a, float b) {
   if (p.x != p.x || !(p.y >= 0.0)) return vec2(bl_nan());
   if (p.y == 0.0) return vec2(bl_clamped_plain_log(p.x), 0.0);
   vec3 sup = bl_rule1_support(kernel, p, a, b);
+  float zm = bl_rule1_zm(p, a, b);
   if (!(sup.x < sup.y)) return vec2(bl_nan());
   float s0 = 0.0, s1 = 0.0, s2 = 0.0;
   for (int pass = 0; pass < 2; ++pass) {
@@ -914,7 +939,7 @@ vec2 bl_rule1_expect_log(int kernel, vec3 p, float a, float b) {
       for (int k = -26; k <= 26; ++k) {
         vec2 uw = bl_tanh_sinh_node(k, l, r);
         if (uw.y == 0.0) continue;
-        float w = uw.y * bl_rule1_density(kernel, p, uw.x), g = bl_clamped_plain_log(uw.x);
+        float w = uw.y * bl_rule1_density(kernel, p, zm, uw.x), g = bl_clamped_plain_log(uw.x);
         if (pass == 0) {
           s0 += w;
           s1 += w * g;
@@ -952,6 +977,7 @@ vec2 bl_rule1_expect_sqrt(int kernel, vec3 p, float a, float b) {
   if (p.x != p.x || !(p.y >= 0.0)) return vec2(bl_nan());
   if (p.y == 0.0) return vec2(bl_clamped_plain_sqrt(p.x), 0.0);
   vec3 sup = bl_rule1_support(kernel, p, a, b);
+  float zm = bl_rule1_zm(p, a, b);
   if (!(sup.x < sup.y)) return vec2(bl_nan());
   float s0 = 0.0, s1 = 0.0, s2 = 0.0;
   for (int pass = 0; pass < 2; ++pass) {
@@ -962,7 +988,7 @@ vec2 bl_rule1_expect_sqrt(int kernel, vec3 p, float a, float b) {
       for (int k = -26; k <= 26; ++k) {
         vec2 uw = bl_tanh_sinh_node(k, l, r);
         if (uw.y == 0.0) continue;
-        float w = uw.y * bl_rule1_density(kernel, p, uw.x), g = bl_clamped_plain_sqrt(uw.x);
+        float w = uw.y * bl_rule1_density(kernel, p, zm, uw.x), g = bl_clamped_plain_sqrt(uw.x);
         if (pass == 0) {
           s0 += w;
           s1 += w * g;

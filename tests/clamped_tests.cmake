@@ -5,3 +5,9 @@ add_test(NAME clamped_test COMMAND clamped_test)
 add_test(NAME glsl_validate_clamped
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/glsl_validate_clamped.sh ${GLSLANG_VALIDATOR}
           ${PROJECT_SOURCE_DIR}/generated/bandlimit.glsl ${PROJECT_SOURCE_DIR}/generated/bandlimit_clamped.glsl)
+
+# The clamped-domain paper's analytic examples; writes docs/clamped_examples.md.
+add_executable(clamped_paper_test clamped_paper_test.cpp)
+target_link_libraries(clamped_paper_test PRIVATE bandlimit::generated Boost::headers GTest::gtest_main)
+target_compile_definitions(clamped_paper_test PRIVATE BL_DOCS_DIR="${PROJECT_SOURCE_DIR}/docs")
+add_test(NAME clamped_paper_test COMMAND clamped_paper_test)

@@ -5,6 +5,7 @@
 // Everything is computed in double (also for float: the tails need double's exponent range).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -241,14 +242,29 @@ namespace detail {
 using truncnorm::detail::inf;
 using truncnorm::detail::nan;
 
-// The most the variance may be asked to be: a truncated Gaussian on [a, b] with mean m has less
-// variance than the exponential limit (m - a)^2 (one side) and the uniform limit (b - a)^2 / 12.
+// Variance of the density proportional to e^(k t) on [0, 1] whose mean is t (0 < t < 1): the
+// theta_2 -> 0 limit of the truncated Gaussian on a finite interval. k by bisection on the mean
+// 1/(1 - e^-k) - 1/k (series near k = 0), then var = 1/k^2 - 1/(4 sinh(k/2)^2).
+inline double exp_family_var(double t) {
+  auto mean = [](double k) { return std::abs(k) < 1e-3 ? 0.5 + k / 12 : 1 / (-std::expm1(-k)) - 1 / k; };
+  double lo = -1e4, hi = 1e4;
+  for (int i = 0; i < 200 && hi - lo > 1e-12 * (1 + std::abs(lo)); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (mean(mid) < t ? lo : hi) = mid;
+  }
+  const double k = 0.5 * (lo + hi);
+  if (std::abs(k) < 1e-3) return 1.0 / 12 - k * k / 720;
+  const double sh = std::sinh(0.5 * k);
+  return 1 / (k * k) - 1 / (4 * sh * sh);
+}
+
+// The most the variance can be for mean m on [a, b]: at fixed mean a truncated Gaussian has less
+// variance than its theta_2 -> 0 limit, the truncated exponential ((m - a)^2 on a half line).
 inline double max_var(double m, double a, double b) {
-  double v = inf();
-  if (a > -inf()) v = std::min(v, (m - a) * (m - a));
-  if (b < inf()) v = std::min(v, (b - m) * (b - m));
-  if (a > -inf() && b < inf()) v = std::min(v, (b - a) * (b - a) / 12);
-  return v;
+  if (a > -inf() && b < inf()) return (b - a) * (b - a) * exp_family_var((m - a) / (b - a));
+  if (a > -inf()) return (m - a) * (m - a);
+  if (b < inf()) return (b - m) * (b - m);
+  return inf();
 }
 
 inline constexpr int kMaxSteps = 40;
@@ -258,7 +274,8 @@ inline constexpr int kMaxSteps = 40;
 // standardized problem (u = (x - m) / sqrt(v)): the moment map is the gradient of the convex
 // log-partition function and its Jacobian is the covariance of (u, u^2), computed from the
 // truncated moments. Steps leaving theta_2 < 0 are halved. Targets beyond max_var are clamped to
-// 0.98 of it (the paper's "valid range"). Stops when both residuals are below 1e-13.
+// 0.98 of it (the paper's "valid range"). Stops when both residuals are below 1e-13 (or, never
+// seen in the tests, when a step would leave the doubles: the last iterate is returned).
 inline Params<double> gaussian(double m, double v, double a, double b) {
   const double n = nan();
   if (!(v >= 0) || std::isnan(m) || !(a <= b) || !(m >= a && m <= b)) return {n, n, 0};
@@ -293,10 +310,15 @@ inline Params<double> gaussian(double m, double v, double a, double b) {
       eval(t1 + d1, t2 + d2, rn, nullptr);
       if (std::abs(rn[0]) + std::abs(rn[1]) < norm0 || half == 29) break;
     }
+    double r2[2], J2[4];
+    eval(t1 + d1, t2 + d2, r2, J2);
+    if (!(std::isfinite(r2[0]) && std::isfinite(r2[1]) && std::isfinite(J2[0]) && std::isfinite(J2[3]))) break;
     t1 += d1;
     t2 += d2;
     ++steps;
-    eval(t1, t2, r, J);
+    for (int q = 0; q < 4; ++q) J[q] = J2[q];
+    r[0] = r2[0];
+    r[1] = r2[1];
   }
   const double s = std::sqrt(-0.5 / t2), c = t1 * s * s;
   return {m + sd * c, sd * s, steps};
@@ -340,38 +362,52 @@ Params<T> renormalize(Kernel k, T m, T v, T a, T b) {
 }
 
 // Mean and variance of g(X) for X the kernel p restricted to [a, b] and renormalized (eqs. 3-4),
-// by tanh-sinh quadrature split at the kernel's centre (kink of the tent, peak of the Gaussian);
-// the Gaussian is cut at 9 sigma (tail mass < 1e-18). Two passes: the variance is summed about the
+// by tanh-sinh quadrature on pieces (below). Two passes: the variance is summed about the
 // mean, so it does not cancel when it is tiny.
 template <class T, class G>
 stat<T> expect(Kernel k, const Params<T>& p, T a, T b, G&& g) {
   const double c = double(p.center), s = double(p.sigma), n = detail::nan();
   if (std::isnan(c) || !(s >= 0)) return {T(n), T(n)};
   if (s == 0) return {T(g(T(c))), T(0)};
-  const double reach =
-      k == Kernel::gaussian ? 9 * s : (k == Kernel::box ? std::sqrt(3.0) : std::sqrt(6.0)) * s;
-  const double l = std::max(double(a), c - reach), r = std::min(double(b), c + reach);
+  // Support: the kernel's; for the Gaussian, where the density exceeds e^-40 of its maximum on
+  // [a, b] (at z_m, the point of [a, b] nearest the centre in z = (u - c) / s). The density is taken
+  // relative to that maximum, so a centre far outside [a, b] (a clamped renormalization) does not
+  // underflow.
+  const double A = (double(a) - c) / s, B = (double(b) - c) / s;
+  const double zm = std::min(std::max(0.0, A), B);
+  const double reach = k == Kernel::gaussian ? std::sqrt(zm * zm + 80)
+                                             : (k == Kernel::box ? std::sqrt(3.0) : std::sqrt(6.0));
+  const double l = std::max(double(a), c - reach * s), r = std::min(double(b), c + reach * s);
   if (!(l < r)) return {T(n), T(n)};
   auto density = [&](double u) {
     const double z = (u - c) / s;
-    if (k == Kernel::gaussian) return std::exp(-0.5 * z * z);
+    if (k == Kernel::gaussian) return std::exp(-0.5 * (z - zm) * (z + zm));
     if (k == Kernel::box) return 1.0;
     return std::max(0.0, 1 - std::abs(z) / std::sqrt(6.0));
   };
-  double us[106], ws[106], gs[106];
+  double ws[318], gs[318];
   int cnt = 0;
   auto collect = [&](double u, double w) {
-    us[cnt] = u;
     ws[cnt] = w * density(u);
     gs[cnt] = double(g(T(u)));
     ++cnt;
   };
-  if (c > l && c < r) {
-    detail::tanh_sinh(l, c, collect);
-    detail::tanh_sinh(c, r, collect);
-  } else {
-    detail::tanh_sinh(l, r, collect);
-  }
+  // Pieces: split at the centre (kink of the tent) and, for the Gaussian, where the density has
+  // dropped by e^-4 and e^-12 from z_m on either side; on each piece tanh-sinh reaches ~1e-13.
+  double inner[5] = {c, c, c, c, c};
+  if (k == Kernel::gaussian)
+    for (int i = 0; i < 2; ++i) {
+      const double z = std::sqrt(zm * zm + (i == 0 ? 8.0 : 24.0));
+      inner[1 + 2 * i] = c + z * s;
+      inner[2 + 2 * i] = c - z * s;
+    }
+  std::sort(inner, inner + 5);
+  double cuts[7] = {l};
+  int nc = 1;
+  for (double v : inner)
+    if (v > cuts[nc - 1] && v < r) cuts[nc++] = v;
+  cuts[nc++] = r;
+  for (int i = 0; i + 1 < nc; ++i) detail::tanh_sinh(cuts[i], cuts[i + 1], collect);
   double s0 = 0, s1 = 0;
   for (int i = 0; i < cnt; ++i) {
     s0 += ws[i];
@@ -380,7 +416,6 @@ stat<T> expect(Kernel k, const Params<T>& p, T a, T b, G&& g) {
   const double mean = s1 / s0;
   double s2 = 0;
   for (int i = 0; i < cnt; ++i) s2 += ws[i] * (gs[i] - mean) * (gs[i] - mean);
-  (void)us;
   return {T(mean), T(s2 / s0)};
 }
 
@@ -407,7 +442,7 @@ stat<T> truncated_box(T mu, T sigma, double period, const double* jumps, int nju
       const T P = T(period), j = T(jumps[i]);
       const T kh = floor((hi - j) / P), kl = floor((lo - j) / P);
       count += static_cast<int>(kh - kl);
-      at = j + P * kh;
+      if (kh > kl) at = j + P * kh;
     } else if (lo < T(jumps[i]) && T(jumps[i]) <= hi) {
       ++count;
       at = T(jumps[i]);

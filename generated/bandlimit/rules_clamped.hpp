@@ -1020,42 +1020,54 @@ stat<T> rule1_tent_sqrt(T mu, T sigma) {
 template <class T>
 stat<T> bimodal_sign(T mu, T sigma) {
   static const double jumps[1] = {(0.0)};
-  return bimodal::truncated_box<T>(mu, sigma, (0.0), jumps, 1, [](T x, T s) { return box_sign<T>(x, s); }, [](T x, T s) { return box_sign_sq<T>(x, s); });
+  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (0.0), jumps, 1, [](double x, double s) { return box_sign<double>(x, s); }, [](double x, double s) { return box_sign_sq<double>(x, s); });
+  return {T(r.mean), T(r.var)};
 }
 
 // Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
 template <class T>
 stat<T> bimodal_step(T mu, T sigma) {
   static const double jumps[1] = {(0.0)};
-  return bimodal::truncated_box<T>(mu, sigma, (0.0), jumps, 1, [](T x, T s) { return box_step<T>(x, s); }, [](T x, T s) { return box_step_sq<T>(x, s); });
+  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (0.0), jumps, 1, [](double x, double s) { return box_step<double>(x, s); }, [](double x, double s) { return box_step_sq<double>(x, s); });
+  return {T(r.mean), T(r.var)};
 }
 
 // Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
 template <class T>
 stat<T> bimodal_fract(T mu, T sigma) {
   static const double jumps[1] = {(0.0)};
-  return bimodal::truncated_box<T>(mu, sigma, (1.0), jumps, 1, [](T x, T s) { return box_fract<T>(x, s); }, [](T x, T s) { return box_fract_sq<T>(x, s); });
+  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (1.0), jumps, 1, [](double x, double s) { return box_fract<double>(x, s); }, [](double x, double s) { return box_fract_sq<double>(x, s); });
+  return {T(r.mean), T(r.var)};
 }
 
 // Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
 template <class T>
 stat<T> bimodal_square(T mu, T sigma) {
   static const double jumps[2] = {(0.0), (0.5)};
-  return bimodal::truncated_box<T>(mu, sigma, (1.0), jumps, 2, [](T x, T s) { return box_square<T>(x, s); }, [](T x, T s) { return box_square_sq<T>(x, s); });
+  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (1.0), jumps, 2, [](double x, double s) { return box_square<double>(x, s); }, [](double x, double s) { return box_square_sq<double>(x, s); });
+  return {T(r.mean), T(r.var)};
 }
 
 // Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
 template <class T>
 stat<T> bimodal_floor(T mu, T sigma) {
   static const double jumps[1] = {0.0};
-  return bimodal::truncated_box<T>(mu, sigma, (1.0), jumps, 1, [](T x, T s) { return box_floor<T>(x, s); }, [](T x, T s) { return box_floor_sq<T>(x, s); });
+  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (1.0), jumps, 1, [](double x, double s) { return box_floor<double>(x, s); }, [](double x, double s) { return box_floor_sq<double>(x, s); });
+  return {T(r.mean), T(r.var)};
 }
 
 // Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
 template <class T>
 stat<T> bimodal_ceil(T mu, T sigma) {
   static const double jumps[1] = {0.0};
-  return bimodal::truncated_box<T>(mu, sigma, (1.0), jumps, 1, [](T x, T s) { return box_ceil<T>(x, s); }, [](T x, T s) { return box_ceil_sq<T>(x, s); });
+  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (1.0), jumps, 1, [](double x, double s) { return box_ceil<double>(x, s); }, [](double x, double s) { return box_ceil_sq<double>(x, s); });
+  return {T(r.mean), T(r.var)};
 }
 
 // Compact box half-width near the singularities of tan: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).

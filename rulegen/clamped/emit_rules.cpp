@@ -101,14 +101,16 @@ void rule1(Ctx& x, const sym::Atomic& a) {
         "vec2 bl_rule1_expect_" + a.name + "(int kernel, vec3 p, float a, float b) {\n" +
         "  if (p.x != p.x || !(p.y >= 0.0)) return vec2(bl_nan());\n" + "  if (p.y == 0.0) return vec2(" + f +
         "(p.x), 0.0);\n" +
-        "  vec3 sup = bl_rule1_support(kernel, p, a, b);\n  if (!(sup.x < sup.y)) return vec2(bl_nan());\n" +
+        "  vec3 sup = bl_rule1_support(kernel, p, a, b);\n  float zm = bl_rule1_zm(p, a, b);\n  if (!(sup.x "
+        "< sup.y)) return vec2(bl_nan());\n" +
         "  float s0 = 0.0, s1 = 0.0, s2 = 0.0;\n" +
         "  for (int pass = 0; pass < 2; ++pass) {\n    float mean = s1 / max(s0, 1e-38);\n" +
         "    for (int part = 0; part < 2; ++part) {\n" +
         "      float l = part == 0 ? sup.x : sup.z, r = part == 0 ? sup.z : sup.y;\n      if (!(l < r)) "
         "continue;\n" +
         "      for (int k = -26; k <= 26; ++k) {\n        vec2 uw = bl_tanh_sinh_node(k, l, r);\n" +
-        "        if (uw.y == 0.0) continue;\n        float w = uw.y * bl_rule1_density(kernel, p, uw.x), g "
+        "        if (uw.y == 0.0) continue;\n        float w = uw.y * bl_rule1_density(kernel, p, zm, uw.x), "
+        "g "
         "= " +
         f + "(uw.x);\n" +
         "        if (pass == 0) {\n          s0 += w;\n          s1 += w * g;\n        } else {\n" +
@@ -174,9 +176,11 @@ void bimodal(Ctx& x, const sym::Atomic& a, const std::vector<sym::Derived>& ds) 
       "// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).\ntemplate <class "
       "T>\nstat<T> " +
       impl + "(T mu, T sigma) {\n  static const double jumps[" + n + "] = {" + jl + "};\n" +
-      "  return bimodal::truncated_box<T>(mu, sigma, " + lit(period, Lang::Glsl) + ", jumps, " + n +
-      ", [](T x, T s) { return box_" + a.name + "<T>(x, s); }, [](T x, T s) { return box_" + a.name +
-      "_sq<T>(x, s); });\n}\n\n";
+      "  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).\n" +
+      "  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), " +
+      lit(period, Lang::Glsl) + ", jumps, " + n + ", [](double x, double s) { return box_" + a.name +
+      "<double>(x, s); }, [](double x, double s) { return box_" + a.name +
+      "_sq<double>(x, s); });\n  return {T(r.mean), T(r.var)};\n}\n\n";
   // GLSL: the jump list is at most 2 long (square); unrolled.
   std::string g = "vec2 " + glsl +
                   "(float mu, float sigma) {\n  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());\n" +
@@ -261,6 +265,26 @@ void emit_rules(const sym::Catalog& cat, const std::vector<sym::Derived>& ds, Ou
     for (size_t p = b.find("bl_plain_"); p != std::string::npos; p = b.find("bl_plain_", p + 17))
       b.replace(p, 9, "bl_clamped_plain_");
     out.glsl += "float bl_clamped_plain_" + a.name + "(float x) {\n" + b + "}\n\n";
+  }
+  {
+    nlohmann::ordered_json e;
+    e["atomic"] = "";
+    e["kernel"] = "gaussian";
+    e["squared"] = false;
+    e["rule"] = "truncnorm";
+    e["cpp"] = "bl::truncnorm::moments";
+    e["glsl"] = "bl_truncnorm_moments";
+    e["signature"] =
+        "truncnorm::Moments<T> f(T mu, T sigma, T a, T b) / BlTruncMoments f(float mu, float sigma, float a, "
+        "float b)";
+    e["method"] =
+        "closed form in z: Gauss-Legendre where the density drops by < e^4, continued fraction beyond 3 "
+        "sigma, erfc partial moments otherwise";
+    e["formula"] =
+        "mass = P(a <= X <= b), mean and central moments 2-4 of X ~ N(mu, sigma^2) given a <= X <= b; eqs. "
+        "18-20: "
+        "m0 = mass, m1 = mass (mean - mu), m2 = mass (var + (mean - mu)^2) (bl::truncnorm::partial)";
+    out.manifest.push_back(e);
   }
   for (const auto& a : cat.atomics) rule3(x, a);
   for (const auto& a : cat.atomics)

@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "clamped/verify_clamped.hpp"
 #include "manifest_record.hpp"
 #include "published_tables.hpp"
 #include "reference_mp.hpp"
@@ -168,6 +169,7 @@ int main(int argc, char** argv) {
     }
   }
   if (only.empty() && blv::rules_compiled_in()) rc = blv::run_rule_checks(manifest, record, rc);  // issue 3 rules
+  if (only.empty()) rc = std::max(rc, blv::clamped::run(manifest, record, stdout));  // rules_clamped.hpp
   std::fprintf(stderr, "blverify: %zu entries in %.1f s (%u threads)\n", out.size(),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), n);
   return rc;

@@ -102,7 +102,8 @@ bool do_match(const json& doc, const std::vector<EntryView>& entries, std::vecto
   }
   for (std::size_t j = 0; j < arr.size(); ++j) {
     const std::string rule = str_field(arr[j], "rule");
-    if (rule != "convolution" && rule != "moment" && !rule.empty()) continue;  // own checks (rules_check.hpp)
+    // Rule entries have their own checks (rules_check.hpp, verify/clamped).
+    if (rule != "convolution" && rule != "moment" && !rule.empty()) continue;
     if (used[j] == 0) warnings->push_back("manifest entry " + str_field(arr[j], "cpp") + " is not in the compiled registry (rebuild blverify after `rulegen emit`)");
     if (used[j] > 1) warnings->push_back("manifest entry " + str_field(arr[j], "cpp") + " matched by several registry entries");
   }
