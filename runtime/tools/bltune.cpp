@@ -42,8 +42,16 @@ struct Config {
   TuneOptions tune;
   FinalizeOptions fin;
   bool search_only = false;
+  int image = 0, truth_samples = 0;  // overrides (quick runs, tests); 0 keeps the scene's
   int rank = 0, size = 1;
 };
+
+scene::Scene load(const Config& c, const std::string& path) {
+  scene::Scene s = scene::load_scene(path);
+  if (c.image > 0) s.width = s.height = c.image;
+  if (c.truth_samples > 0) s.truth_samples = c.truth_samples;
+  return s;
+}
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
@@ -105,7 +113,7 @@ int run_single(const Config& c, const CostModel& cm) {
   std::vector<SceneResult> results;
   bool complete = true;
   for (const std::string& path : c.scene_paths) {
-    const scene::Scene s = scene::load_scene(path);
+    const scene::Scene s = load(c, path);
     const auto t0 = std::chrono::steady_clock::now();
     SceneTuner t(s, cm, c.tune);
     log_line(s.name, std::to_string(t.graph().size()) + " nodes, " + std::to_string(t.problem().space.size()) +
@@ -152,7 +160,7 @@ std::string broadcast(std::string s, int rank) {
 // rank 0 (the single-process merge), then scenes finalized round-robin and results gathered.
 int run_mpi(const Config& c, const CostModel& cm) {
   std::vector<scene::Scene> scenes;
-  for (const std::string& p : c.scene_paths) scenes.push_back(scene::load_scene(p));
+  for (const std::string& p : c.scene_paths) scenes.push_back(load(c, p));
   const int restarts = c.tune.search.restarts, units = static_cast<int>(scenes.size()) * restarts;
   std::map<int, std::unique_ptr<SceneTuner>> tuners;
   // Rank 0 renders (and caches) the ground truth first so ranks never write the same file.
@@ -180,8 +188,10 @@ int run_mpi(const Config& c, const CostModel& cm) {
   bool complete = true;
   if (c.rank == 0) {
     std::vector<nlohmann::json> unit(units);
-    for (const std::string& s : all)
-      for (auto& [k, v] : nlohmann::json::parse(s).items()) unit[std::stoi(k)] = v;
+    for (const std::string& s : all) {
+      const nlohmann::json from_rank = nlohmann::json::parse(s);  // items() must not outlive it
+      for (const auto& [k, v] : from_rank.items()) unit[std::stoi(k)] = v;
+    }
     for (std::size_t i = 0; i < scenes.size(); ++i) {
       std::vector<std::vector<Point>> fs;
       int evals = 0;
@@ -251,6 +261,8 @@ int main(int argc, char** argv) {
   app.add_option("--pixels", c.tune.sample_pixels, "pixels sampled for the search error (over all frames)");
   app.add_option("--nm-evals", c.tune.nm_evals, "Nelder-Mead evaluations per front point (0: off)");
   app.add_option("--max-points", c.fin.max_points, "front points refined and measured");
+  app.add_option("--image", c.image, "override the scenes' image size (N x N pixels)");
+  app.add_option("--truth-samples", c.truth_samples, "override the scenes' ground-truth samples per pixel");
   app.add_flag("--no-glsl", no_glsl, "do not time the GLSL on the OpenGL driver");
   app.add_flag("--no-rho-estimate", no_rho, "do not estimate constant rhos by sampling (B.1)");
   app.add_flag("--search-only", c.search_only, "write front_search.csv only (no refinement, timing, report)");
