@@ -9,7 +9,6 @@
 //
 // Built twice from this file: bltune, and bltune_mpi (BL_TUNER_MPI) where MPI exists.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -116,8 +115,9 @@ int run_single(const Config& c, const CostModel& cm) {
     const scene::Scene s = load(c, path);
     const auto t0 = std::chrono::steady_clock::now();
     SceneTuner t(s, cm, c.tune);
-    log_line(s.name, std::to_string(t.graph().size()) + " nodes, " + std::to_string(t.problem().space.size()) +
-                         " genes, palette of " + std::to_string(t.problem().palette.rules.size()) + " rules");
+    log_line(s.name, std::to_string(t.graph().size()) + " nodes, " +
+                         std::to_string(t.problem().space.size()) + " genes, palette of " +
+                         std::to_string(t.problem().palette.rules.size()) + " rules");
     const RestartResult r = search(t.problem(), search_options(c, s));
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     log_line(s.name, "search " + std::to_string(secs) + " s, front of " + std::to_string(r.front.size()));
@@ -165,7 +165,8 @@ int run_mpi(const Config& c, const CostModel& cm) {
   std::map<int, std::unique_ptr<SceneTuner>> tuners;
   // Rank 0 renders (and caches) the ground truth first so ranks never write the same file.
   if (c.rank == 0)
-    for (std::size_t i = 0; i < scenes.size(); ++i) tuners[i] = std::make_unique<SceneTuner>(scenes[i], cm, c.tune);
+    for (std::size_t i = 0; i < scenes.size(); ++i)
+      tuners[i] = std::make_unique<SceneTuner>(scenes[i], cm, c.tune);
   MPI_Barrier(MPI_COMM_WORLD);
   auto tuner = [&](int i) -> SceneTuner& {
     if (!tuners[i]) tuners[i] = std::make_unique<SceneTuner>(scenes[i], cm, c.tune);
@@ -178,10 +179,11 @@ int run_mpi(const Config& c, const CostModel& cm) {
     const int i = u / restarts, r = u % restarts;
     const auto t0 = std::chrono::steady_clock::now();
     const RestartResult res = run_restart(tuner(i).problem(), search_options(c, scenes[i]), r, caches[i]);
-    mine[std::to_string(u)] = {{"front", points_to_json(res.front)},
-                               {"evaluations", res.evaluations},
-                               {"complete", res.complete},
-                               {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}};
+    mine[std::to_string(u)] = {
+        {"front", points_to_json(res.front)},
+        {"evaluations", res.evaluations},
+        {"complete", res.complete},
+        {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}};
   }
   std::vector<std::string> all = gather(mine.dump(), c.rank, c.size);
   nlohmann::json fronts = nlohmann::json::object();
@@ -204,7 +206,8 @@ int run_mpi(const Config& c, const CostModel& cm) {
         secs += v.at("seconds").get<double>();
         complete = complete && v.at("complete").get<bool>();
       }
-      fronts[std::to_string(i)] = {{"front", points_to_json(merge_fronts(fs))}, {"evaluations", evals}, {"seconds", secs}};
+      fronts[std::to_string(i)] = {
+          {"front", points_to_json(merge_fronts(fs))}, {"evaluations", evals}, {"seconds", secs}};
     }
     fronts["complete"] = complete;
   }
@@ -214,7 +217,8 @@ int run_mpi(const Config& c, const CostModel& cm) {
   for (int i = c.rank; i < static_cast<int>(scenes.size()); i += c.size) {
     const nlohmann::json& f = fronts.at(std::to_string(i));
     SceneTuner& t = tuner(i);
-    const auto front = points_from_json(f.at("front").get<std::string>(), static_cast<int>(t.problem().palette.rules.size()));
+    const auto front = points_from_json(f.at("front").get<std::string>(),
+                                        static_cast<int>(t.problem().palette.rules.size()));
     const SceneResult r = finish(t, front, f.at("seconds").get<double>(), f.at("evaluations").get<int>(), c,
                                  scene_dir(c, scenes[i]));
     done.push_back({{"index", i}, {"result", result_to_json(r)}});
@@ -223,7 +227,8 @@ int run_mpi(const Config& c, const CostModel& cm) {
   if (c.rank == 0 && scenes.size() > 1 && !c.search_only) {
     std::vector<SceneResult> results(scenes.size());
     for (const std::string& s : all)
-      for (const auto& d : nlohmann::json::parse(s)) results[d.at("index").get<int>()] = result_from_json(d.at("result"));
+      for (const auto& d : nlohmann::json::parse(s))
+        results[d.at("index").get<int>()] = result_from_json(d.at("result"));
     write_suite_summary(results, c.out);
   }
   return 0;
@@ -248,9 +253,11 @@ int main(int argc, char** argv) {
   app.add_option("--only", only, "with --suite: only scenes whose file name contains this");
   app.add_option("--out", c.out, "output directory (per scene: report.md, front.csv, pareto.png, images)");
   app.add_option("--cache", c.tune.cache_dir, "ground-truth cache directory (EXR)");
-  app.add_option("--cost-model", c.cost_model, "cost model JSON (calibrated and saved when this machine lacks one)");
+  app.add_option("--cost-model", c.cost_model,
+                 "cost model JSON (calibrated and saved when this machine lacks one)");
   app.add_flag("--calibrate", calibrate_only, "recalibrate the cost model, print the table, and exit");
-  app.add_option("--rules", rules_csv, "comma-separated rule palette (default: every rule + gaussian:rho=const)");
+  app.add_option("--rules", rules_csv,
+                 "comma-separated rule palette (default: every rule + gaussian:rho=const)");
   app.add_option("--seed", so.seed, "random seed");
   app.add_option("--population", so.population, "population size");
   app.add_option("--generations", so.generations, "bred generations");
@@ -278,7 +285,8 @@ int main(int argc, char** argv) {
   try {
     if (calibrate_only) {
       if (c.rank == 0) {
-        const CostModel m = calibrate({}, [](const std::string& n, double ns) { std::printf("%-44s %9.2f ns/px\n", n.c_str(), ns); });
+        const CostModel m = calibrate(
+            {}, [](const std::string& n, double ns) { std::printf("%-44s %9.2f ns/px\n", n.c_str(), ns); });
         save_cost_model(c.cost_model, m);
         std::printf("saved %s (machine '%s')\n", c.cost_model.c_str(), m.machine.c_str());
       }

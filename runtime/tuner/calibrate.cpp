@@ -76,9 +76,12 @@ std::vector<int> args_for(int arity, bool spread_is_var) {
   const int spread0 = spread_is_var ? 5 : 1;
   std::vector<int> a;
   for (int j = 0; j < arity; ++j) {
-    if (j == arity - 1 && arity % 2 == 1 && arity > 1) a.push_back(4);
-    else if (j % 2 == 0) a.push_back(j % 4 == 0 ? 0 : 2);
-    else a.push_back(j % 4 == 1 ? spread0 : 3);
+    if (j == arity - 1 && arity % 2 == 1 && arity > 1)
+      a.push_back(4);
+    else if (j % 2 == 0)
+      a.push_back(j % 4 == 0 ? 0 : 2);
+    else
+      a.push_back(j % 4 == 1 ? spread0 : 3);
   }
   return a;
 }
@@ -133,7 +136,9 @@ CostModel calibrate(const CalibrationOptions& opt,
   int first_stat = -1;
   for (std::size_t f = 0; f < fns.size() && first_stat < 0; ++f)
     if (fns[f].stat) first_stat = static_cast<int>(f);
-  auto wanted = [&](const std::string& name) { return opt.only.empty() || name.find(opt.only) != std::string::npos; };
+  auto wanted = [&](const std::string& name) {
+    return opt.only.empty() || name.find(opt.only) != std::string::npos;
+  };
   for (int o = 0; o <= static_cast<int>(LOp::Var); ++o) {
     const LOp op = static_cast<LOp>(o);
     if (op == LOp::Call || op == LOp::CallStat || !wanted(lop_name(op))) continue;
@@ -141,13 +146,23 @@ CostModel calibrate(const CalibrationOptions& opt,
     inst.op = op;
     int prefix = -1;
     switch (op) {
-      case LOp::Const: inst.k = 0.5f; break;
-      case LOp::InMean: case LOp::InSd: case LOp::InGradX: case LOp::InGradY: inst.arg[0] = 0; break;
-      case LOp::Mean: case LOp::Var:
+      case LOp::Const:
+        inst.k = 0.5f;
+        break;
+      case LOp::InMean:
+      case LOp::InSd:
+      case LOp::InGradX:
+      case LOp::InGradY:
+        inst.arg[0] = 0;
+        break;
+      case LOp::Mean:
+      case LOp::Var:
         if (first_stat < 0) continue;  // no stat function in the table: never emitted either
         prefix = first_stat;
         break;
-      default: inst.arg[0] = 0, inst.arg[1] = 2; break;
+      default:
+        inst.arg[0] = 0, inst.arg[1] = 2;
+        break;
     }
     const double ns = time_inst(base, inst, prefix, in, opt);
     m.op_ns[lop_name(op)] = ns;
@@ -174,13 +189,15 @@ CostModel load_or_calibrate(const std::string& path, bool verbose) {
   try {
     CostModel m = load_cost_model(path, machine);
     if (m.covers_all()) return m;
-    if (verbose) std::fprintf(stderr, "cost model %s lacks:%s; recalibrating\n", path.c_str(), m.missing().c_str());
+    if (verbose)
+      std::fprintf(stderr, "cost model %s lacks:%s; recalibrating\n", path.c_str(), m.missing().c_str());
   } catch (const std::runtime_error& e) {
     if (verbose) std::fprintf(stderr, "%s; calibrating\n", e.what());
   }
-  CostModel m = calibrate({}, verbose ? [](const std::string& n, double ns) {
-    std::fprintf(stderr, "  %-40s %8.2f ns\n", n.c_str(), ns);
-  } : std::function<void(const std::string&, double)>{});
+  CostModel m =
+      calibrate({}, verbose ? [](const std::string& n,
+                                 double ns) { std::fprintf(stderr, "  %-40s %8.2f ns\n", n.c_str(), ns); }
+                            : std::function<void(const std::string&, double)>{});
   save_cost_model(path, m);
   return m;
 }

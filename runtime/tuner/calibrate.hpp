@@ -10,11 +10,11 @@
 namespace bl::tuner {
 
 struct CalibrationOptions {
-  int pixels = 4096;       // batch size per timing (16 evaluator blocks)
-  int copies = 16;         // instructions under test per program (the rest is amortized overhead)
-  double min_ms = 4;       // each timing repeats the batch until it took at least this long
-  int trials = 3;          // the minimum over trials is kept (least disturbed by other load)
-  std::string only;        // when non-empty: calibrate only entries whose name contains this
+  int pixels = 4096;  // batch size per timing (16 evaluator blocks)
+  int copies = 16;    // instructions under test per program (the rest is amortized overhead)
+  double min_ms = 4;  // each timing repeats the batch until it took at least this long
+  int trials = 3;     // the minimum over trials is kept (least disturbed by other load)
+  std::string only;   // when non-empty: calibrate only entries whose name contains this
 };
 
 // Measures a fresh model for this machine (cpu_model()). `progress` (optional) gets each name.

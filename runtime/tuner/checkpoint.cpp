@@ -15,19 +15,25 @@ using nlohmann::json;
 namespace {
 
 // JSON has no infinity: infeasible objectives are written as null.
-json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-double num(const json& j) { return j.is_null() ? std::numeric_limits<double>::infinity() : j.get<double>(); }
+json num(double v) {
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}
+double num(const json& j) {
+  return j.is_null() ? std::numeric_limits<double>::infinity() : j.get<double>();
+}
 
 json points_json(const std::vector<Point>& pts) {
   json a = json::array();
-  for (const Point& p : pts) a.push_back({{"genome", genome_key(p.genome)}, {"time", num(p.obj.time)}, {"error", num(p.obj.error)}});
+  for (const Point& p : pts)
+    a.push_back({{"genome", genome_key(p.genome)}, {"time", num(p.obj.time)}, {"error", num(p.obj.error)}});
   return a;
 }
 
 std::vector<Point> points_of(const json& a, int palette_size) {
   std::vector<Point> out;
-  for (const json& p : a) out.push_back({genome_from_key(p.at("genome").get<std::string>(), palette_size),
-                                         {num(p.at("time")), num(p.at("error"))}});
+  for (const json& p : a)
+    out.push_back({genome_from_key(p.at("genome").get<std::string>(), palette_size),
+                   {num(p.at("time")), num(p.at("error"))}});
   return out;
 }
 
@@ -41,9 +47,9 @@ void save_checkpoint(const std::string& path, const Checkpoint& c, const Palette
     pop.push_back({{"genome", genome_key(c.population[i])},
                    {"time", num(c.objectives[i].time)},
                    {"error", num(c.objectives[i].error)}});
-  const json j = {{"problem", c.problem_key}, {"options", c.options_key}, {"seed", c.seed},
-                  {"restart", c.restart},     {"generation", c.generation}, {"complete", c.complete},
-                  {"palette", pal.names},     {"rng", rng.str()},           {"population", pop},
+  const json j = {{"problem", c.problem_key},     {"options", c.options_key},   {"seed", c.seed},
+                  {"restart", c.restart},         {"generation", c.generation}, {"complete", c.complete},
+                  {"palette", pal.names},         {"rng", rng.str()},           {"population", pop},
                   {"front", points_json(c.front)}};
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
@@ -81,11 +87,14 @@ bool load_checkpoint(const std::string& path, const Checkpoint& expect, const Pa
     *out = std::move(c);
     return true;
   } catch (const std::exception& e) {
-    throw std::runtime_error("checkpoint " + path + " is corrupt: " + e.what() + " (delete it to start over)");
+    throw std::runtime_error("checkpoint " + path + " is corrupt: " + e.what() +
+                             " (delete it to start over)");
   }
 }
 
-std::string points_to_json(const std::vector<Point>& pts) { return points_json(pts).dump(); }
+std::string points_to_json(const std::vector<Point>& pts) {
+  return points_json(pts).dump();
+}
 
 std::vector<Point> points_from_json(const std::string& text, int palette_size) {
   return points_of(json::parse(text), palette_size);

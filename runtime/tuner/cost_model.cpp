@@ -14,25 +14,44 @@ using compiler::LOp;
 
 const char* lop_name(LOp op) {
   switch (op) {
-    case LOp::Const: return "const";
-    case LOp::InMean: return "in_mean";
-    case LOp::InSd: return "in_sd";
-    case LOp::InGradX: return "in_grad_x";
-    case LOp::InGradY: return "in_grad_y";
-    case LOp::Add: return "add";
-    case LOp::Sub: return "sub";
-    case LOp::Mul: return "mul";
-    case LOp::Div: return "div";
-    case LOp::Neg: return "neg";
-    case LOp::Min: return "min";
-    case LOp::Max: return "max";
-    case LOp::Less: return "less";
-    case LOp::Sqrt: return "sqrt";
-    case LOp::NonNeg: return "nonneg";
-    case LOp::Call: return "call";
-    case LOp::CallStat: return "call_stat";
-    case LOp::Mean: return "mean";
-    case LOp::Var: return "var";
+    case LOp::Const:
+      return "const";
+    case LOp::InMean:
+      return "in_mean";
+    case LOp::InSd:
+      return "in_sd";
+    case LOp::InGradX:
+      return "in_grad_x";
+    case LOp::InGradY:
+      return "in_grad_y";
+    case LOp::Add:
+      return "add";
+    case LOp::Sub:
+      return "sub";
+    case LOp::Mul:
+      return "mul";
+    case LOp::Div:
+      return "div";
+    case LOp::Neg:
+      return "neg";
+    case LOp::Min:
+      return "min";
+    case LOp::Max:
+      return "max";
+    case LOp::Less:
+      return "less";
+    case LOp::Sqrt:
+      return "sqrt";
+    case LOp::NonNeg:
+      return "nonneg";
+    case LOp::Call:
+      return "call";
+    case LOp::CallStat:
+      return "call_stat";
+    case LOp::Mean:
+      return "mean";
+    case LOp::Var:
+      return "var";
   }
   return "?";
 }
@@ -63,14 +82,17 @@ std::string CostModel::missing() const {
   std::string out;
   for (int o = 0; o <= static_cast<int>(LOp::Var); ++o) {
     const LOp op = static_cast<LOp>(o);
-    if (op != LOp::Call && op != LOp::CallStat && !op_ns.count(lop_name(op))) out += std::string(" ") + lop_name(op);
+    if (op != LOp::Call && op != LOp::CallStat && !op_ns.count(lop_name(op)))
+      out += std::string(" ") + lop_name(op);
   }
   for (const compiler::Function& f : compiler::functions())
     if (!fn_ns.count(f.cpp)) out += " " + f.cpp;
   return out;
 }
 
-bool CostModel::covers_all() const { return missing().empty(); }
+bool CostModel::covers_all() const {
+  return missing().empty();
+}
 
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");

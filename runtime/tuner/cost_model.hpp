@@ -13,9 +13,9 @@
 namespace bl::tuner {
 
 struct CostModel {
-  std::string machine;                    // CPU model string the numbers were measured on
-  std::map<std::string, double> op_ns;    // LOp name -> ns per pixel
-  std::map<std::string, double> fn_ns;    // Function::cpp -> ns per pixel (the call's instruction)
+  std::string machine;                  // CPU model string the numbers were measured on
+  std::map<std::string, double> op_ns;  // LOp name -> ns per pixel
+  std::map<std::string, double> fn_ns;  // Function::cpp -> ns per pixel (the call's instruction)
 
   // ns per pixel of p. Throws std::out_of_range naming an op or function the model lacks.
   double cost(const compiler::Program& p) const;

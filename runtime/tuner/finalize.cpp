@@ -25,14 +25,16 @@ double best_ms(int runs, F&& f) {
   for (int r = 0; r < runs; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
     f();
-    best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    best = std::min(best,
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
   return best;
 }
 
 std::string schedule_text(const SceneTuner& t, const compiler::Schedule& s) {
   std::string out;
-  for (int n : t.problem().space.genes) out += (out.empty() ? "" : " ") + std::to_string(n) + ":" + rules::to_string(s[n]);
+  for (int n : t.problem().space.genes)
+    out += (out.empty() ? "" : " ") + std::to_string(n) + ":" + rules::to_string(s[n]);
   return out;
 }
 
@@ -58,7 +60,9 @@ struct Timer {
 void measure(const SceneTuner& t, const compiler::Program& p, Timer& gl, Measured* m) {
   const scene::Scene& s = t.scene();
   const render::Frame f = render::frames(s).front();
-  m->eval_ms = best_ms(3, [&] { render::render_smoothed(s, f, p); });
+  // Best of 5 after a warm-up: the minimum is the least disturbed by other load on the machine.
+  render::render_smoothed(s, f, p);
+  m->eval_ms = best_ms(5, [&] { render::render_smoothed(s, f, p); });
   if (gl.ctx) {
     try {
       const gl::Program prog = gl.ctx->compile(render::glsl_fragment_source(s, p));
@@ -73,7 +77,9 @@ void measure(const SceneTuner& t, const compiler::Program& p, Timer& gl, Measure
 
 std::string rule_family(const rules::Rule& r) {
   if (r.kind == rules::Kind::Gaussian)
-    return r.rho == rules::Rho::Zero ? "gaussian(rho=0)" : r.rho == rules::Rho::Gradient ? "gaussian(rho=grad)" : "gaussian(rho=const)";
+    return r.rho == rules::Rho::Zero       ? "gaussian(rho=0)"
+           : r.rho == rules::Rho::Gradient ? "gaussian(rho=grad)"
+                                           : "gaussian(rho=const)";
   return rules::kind_name(r.kind);
 }
 
@@ -142,8 +148,8 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   auto uniform = [&](const std::string& label, const std::string& rule) {
     const auto p = t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule(rule)));
     if (!p) {
-      std::fprintf(stderr, "finalize: %s: baseline %s is infeasible with this generated table\n", s.name.c_str(),
-                   rule.c_str());
+      std::fprintf(stderr, "finalize: %s: baseline %s is infeasible with this generated table\n",
+                   s.name.c_str(), rule.c_str());
       return;
     }
     Measured m;
@@ -206,9 +212,10 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
       const Image img = render::render_smoothed(s, frames.front(), *t.lower(front_schedules[i]));
       char a[96], b[96];
       std::snprintf(a, sizeof a, "%s %.4f", m.label.c_str(), m.error);
-      std::snprintf(b, sizeof b, "%s %.4f", res.baselines[1 + best].label.c_str(), res.baselines[1 + best].error);
-      write_side_by_side(opt.out_dir + "/" + m.label + "_vs_truth_msaa.png", {truth.front(), img, msaa_frame0[best]},
-                         {"ground truth", a, b});
+      std::snprintf(b, sizeof b, "%s %.4f", res.baselines[1 + best].label.c_str(),
+                    res.baselines[1 + best].error);
+      write_side_by_side(opt.out_dir + "/" + m.label + "_vs_truth_msaa.png",
+                         {truth.front(), img, msaa_frame0[best]}, {"ground truth", a, b});
     }
   }
   res.finalize_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

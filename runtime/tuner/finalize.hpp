@@ -13,15 +13,15 @@ namespace bl::tuner {
 
 struct Measured {
   std::string label;
-  std::string schedule;      // per node rule texts joined by spaces ("" for MSAA)
-  int msaa = 0;              // MSAA sample count (baselines), 0 otherwise
-  double model_ns = 0;       // cost model, ns per pixel
-  double search_error = 0;   // on the pixel sample (front points; NaN for baselines)
-  double error = 0;          // RMS display, every pixel of every frame
+  std::string schedule;     // per node rule texts joined by spaces ("" for MSAA)
+  int msaa = 0;             // MSAA sample count (baselines), 0 otherwise
+  double model_ns = 0;      // cost model, ns per pixel
+  double search_error = 0;  // on the pixel sample (front points; NaN for baselines)
+  double error = 0;         // RMS display, every pixel of every frame
   double psnr = 0;
-  double eval_ms = 0;        // evaluator (render_smoothed) ms per frame, frame 0
-  double glsl_ms = -1;       // GLSL ms per frame on the GL driver; -1 when not measured
-  bool refined = false;      // Nelder-Mead improved it
+  double eval_ms = 0;                 // evaluator (render_smoothed) ms per frame, frame 0
+  double glsl_ms = -1;                // GLSL ms per frame on the GL driver; -1 when not measured
+  bool refined = false;               // Nelder-Mead improved it
   std::map<std::string, double> mix;  // share of genes per rule family
 };
 
@@ -36,9 +36,9 @@ struct SceneResult {
 };
 
 struct FinalizeOptions {
-  bool glsl = true;        // time the GLSL when a driver exists
-  int max_points = 12;     // at most this many front points are refined and measured (spread by error)
-  std::string out_dir;     // images go here when non-empty
+  bool glsl = true;     // time the GLSL when a driver exists
+  int max_points = 12;  // at most this many front points are refined and measured (spread by error)
+  std::string out_dir;  // images go here when non-empty
 };
 
 SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const FinalizeOptions& opt);

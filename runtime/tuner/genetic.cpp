@@ -22,9 +22,13 @@ std::uint64_t mix64(std::uint64_t x) {  // splitmix64: independent streams per r
   return x ^ (x >> 31);
 }
 
-double uniform01(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+double uniform01(Rng& rng) {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
 
-int uniform_int(Rng& rng, int n) { return static_cast<int>(rng() % static_cast<std::uint64_t>(n)); }
+int uniform_int(Rng& rng, int n) {
+  return static_cast<int>(rng() % static_cast<std::uint64_t>(n));
+}
 
 // Evaluates every genome not in the cache, on `threads` threads, in a fixed order of work items.
 std::vector<Objectives> evaluate_all(const Problem& prob, const std::vector<Genome>& pop, int threads,
@@ -126,9 +130,9 @@ std::vector<Genome> breed(const Problem& prob, const SearchOptions& opt, const s
 
 std::string options_key(const SearchOptions& o) {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "pop=%d gen=%d restarts=%d elite=%.17g cx=%.17g mut=%.17g init=%.17g tour=%d",
-                o.population, o.generations, o.restarts, o.elite, o.crossover, o.mutation, o.init_crossover,
-                o.tournament);
+  std::snprintf(buf, sizeof buf,
+                "pop=%d gen=%d restarts=%d elite=%.17g cx=%.17g mut=%.17g init=%.17g tour=%d", o.population,
+                o.generations, o.restarts, o.elite, o.crossover, o.mutation, o.init_crossover, o.tournament);
   return buf;
 }
 
@@ -161,7 +165,8 @@ std::vector<double> crowding(const std::vector<Objectives>& pts, const std::vect
       const double range = val(idx.back()) - val(idx.front());
       d[idx.front()] = d[idx.back()] = std::numeric_limits<double>::infinity();
       if (!(range > 0) || !std::isfinite(range)) continue;
-      for (std::size_t k = 1; k + 1 < idx.size(); ++k) d[idx[k]] += (val(idx[k + 1]) - val(idx[k - 1])) / range;
+      for (std::size_t k = 1; k + 1 < idx.size(); ++k)
+        d[idx[k]] += (val(idx[k + 1]) - val(idx[k - 1])) / range;
     }
   }
   return d;
@@ -205,7 +210,8 @@ RestartResult run_restart(const Problem& prob, const SearchOptions& opt, int res
     obj = saved.objectives;
     res.front = saved.front;
     gen = saved.generation;
-    if (opt.log) opt.log("restart " + std::to_string(restart) + ": resuming after generation " + std::to_string(gen));
+    if (opt.log)
+      opt.log("restart " + std::to_string(restart) + ": resuming after generation " + std::to_string(gen));
   } else {
     pop = initial_population(prob, opt, rng);
     obj = evaluate_all(prob, pop, threads, cache, &res.evaluations);

@@ -33,7 +33,7 @@ struct Problem {
 
 struct SearchOptions {
   int population = 40;
-  int generations = 20;       // bred generations after the initial one
+  int generations = 20;  // bred generations after the initial one
   int restarts = 3;
   double elite = 0.25;
   double crossover = 0.4;
@@ -41,7 +41,7 @@ struct SearchOptions {
   double init_crossover = 0.5;
   int tournament = 4;
   std::uint64_t seed = 1;
-  int threads = 0;            // 0: all hardware threads
+  int threads = 0;             // 0: all hardware threads
   std::string checkpoint_dir;  // empty: no checkpoints
   // Stop (as if interrupted) after this many generations were bred in this call; -1: never.
   int stop_after = -1;

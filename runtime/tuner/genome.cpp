@@ -93,7 +93,8 @@ compiler::Schedule to_schedule(const ir::Graph& g, const SearchSpace& space, con
   for (int k = 0; k < space.size(); ++k) {
     if (x[k] >= pal.rules.size())
       throw std::invalid_argument("tuner: gene " + std::to_string(k) + " holds rule index " +
-                                  std::to_string(x[k]) + ", the palette has " + std::to_string(pal.rules.size()));
+                                  std::to_string(x[k]) + ", the palette has " +
+                                  std::to_string(pal.rules.size()));
     Rule r = pal.rules[x[k]];
     if (r.kind == Kind::Gaussian && r.rho == rules::Rho::Constant && pal.names[x[k]] == "gaussian:rho=const")
       r.rho_value = space.rho_constant[space.genes[k]];
@@ -138,8 +139,10 @@ std::string genome_key(const Genome& x) {
   std::string s;
   s.reserve(x.size() * 2);
   for (std::uint8_t v : x) {
-    if (v < 62) s += digits[v];
-    else s += '~', s += std::to_string(v), s += '.';
+    if (v < 62)
+      s += digits[v];
+    else
+      s += '~', s += std::to_string(v), s += '.';
   }
   return s;
 }
@@ -149,9 +152,12 @@ Genome genome_from_key(const std::string& key, int palette_size) {
   for (std::size_t i = 0; i < key.size(); ++i) {
     const char c = key[i];
     int v = -1;
-    if (c >= '0' && c <= '9') v = c - '0';
-    else if (c >= 'a' && c <= 'z') v = 10 + c - 'a';
-    else if (c >= 'A' && c <= 'Z') v = 36 + c - 'A';
+    if (c >= '0' && c <= '9')
+      v = c - '0';
+    else if (c >= 'a' && c <= 'z')
+      v = 10 + c - 'a';
+    else if (c >= 'A' && c <= 'Z')
+      v = 36 + c - 'A';
     else if (c == '~') {
       const auto dot = key.find('.', i);
       if (dot == std::string::npos) break;

@@ -24,7 +24,7 @@ using Rng = std::mt19937_64;
 // estimated by sampling (rho_estimate.hpp); it is filled in per node when a schedule is built.
 struct Palette {
   std::vector<rules::Rule> rules;
-  std::vector<std::string> names;         // as given (reports, checkpoints)
+  std::vector<std::string> names;          // as given (reports, checkpoints)
   std::vector<std::vector<int>> families;  // indices into rules
 
   // Throws std::invalid_argument naming a bad rule text, a duplicate, or an empty list.
@@ -34,16 +34,17 @@ struct Palette {
 };
 
 struct SearchSpace {
-  std::vector<int> genes;                  // graph node per gene, depth-first order
-  std::vector<std::vector<int>> subtree;   // per gene: gene positions of its subtree (incl. itself)
-  std::vector<double> rho_constant;        // per graph node: estimated rho for rho=const (0 if none)
+  std::vector<int> genes;                 // graph node per gene, depth-first order
+  std::vector<std::vector<int>> subtree;  // per gene: gene positions of its subtree (incl. itself)
+  std::vector<double> rho_constant;       // per graph node: estimated rho for rho=const (0 if none)
 
   static SearchSpace build(const ir::Graph& g);
   int size() const { return static_cast<int>(genes.size()); }
 };
 
 // The schedule of a genome: palette rules on the genes, "none" elsewhere (constants).
-compiler::Schedule to_schedule(const ir::Graph& g, const SearchSpace& space, const Palette& pal, const Genome& x);
+compiler::Schedule to_schedule(const ir::Graph& g, const SearchSpace& space, const Palette& pal,
+                               const Genome& x);
 
 Genome uniform_genome(const SearchSpace& space, int rule);
 

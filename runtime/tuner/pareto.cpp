@@ -15,8 +15,10 @@ std::vector<int> pareto_ranks(const std::vector<Objectives>& pts) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       if (i == j) continue;
-      if (dominates(pts[i], pts[j])) dominates_list[i].push_back(j);
-      else if (dominates(pts[j], pts[i])) ++dominated_by[i];
+      if (dominates(pts[i], pts[j]))
+        dominates_list[i].push_back(j);
+      else if (dominates(pts[j], pts[i]))
+        ++dominated_by[i];
     }
   std::vector<int> current;
   for (int i = 0; i < n; ++i)

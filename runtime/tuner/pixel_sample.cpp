@@ -19,7 +19,8 @@ PixelSample::PixelSample(const scene::Scene& s, const std::string& cache_dir, in
   const std::vector<render::Frame> fr = render::frames(s);
   const int all = s.width * s.height;
   const int per_frame =
-      pixels <= 0 ? all : std::min(all, (pixels + static_cast<int>(fr.size()) - 1) / static_cast<int>(fr.size()));
+      pixels <= 0 ? all
+                  : std::min(all, (pixels + static_cast<int>(fr.size()) - 1) / static_cast<int>(fr.size()));
   std::mt19937_64 rng(seed);
   for (const render::Frame& f : fr) {
     const Image truth = render::render_truth(s, f, cache_dir);
@@ -44,7 +45,8 @@ PixelSample::PixelSample(const scene::Scene& s, const std::string& cache_dir, in
         continue;
       }
       ++d.n;
-      d.u.push_back(b.u[i]), d.v.push_back(b.v[i]), d.su.push_back(b.sigma_u[i]), d.sv.push_back(b.sigma_v[i]);
+      d.u.push_back(b.u[i]), d.v.push_back(b.v[i]), d.su.push_back(b.sigma_u[i]),
+          d.sv.push_back(b.sigma_v[i]);
       d.dudx.push_back(b.du_dx[i]), d.dudy.push_back(b.du_dy[i]), d.dvdx.push_back(b.dv_dx[i]);
       d.dvdy.push_back(b.dv_dy[i]), d.vx.push_back(b.view_x[i]), d.vy.push_back(b.view_y[i]);
       d.vz.push_back(b.view_z[i]);

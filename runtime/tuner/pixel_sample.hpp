@@ -28,10 +28,10 @@ class PixelSample {
  private:
   struct FrameData {
     double time = 0;
-    int n = 0;                                 // sampled pixels hit by the camera
+    int n = 0;  // sampled pixels hit by the camera
     std::vector<float> u, v, su, sv, dudx, dudy, dvdx, dvdy, vx, vy, vz;
-    std::vector<float> truth;                  // display space, 3 per hit pixel
-    double miss_sq = 0;                        // squared error summed over missed sampled pixels
+    std::vector<float> truth;  // display space, 3 per hit pixel
+    double miss_sq = 0;        // squared error summed over missed sampled pixels
   };
   scene::Scene scene_;
   std::vector<FrameData> frames_;

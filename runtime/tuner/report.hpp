@@ -13,7 +13,7 @@ namespace bl::tuner {
 struct Speedup {
   int msaa = 0;
   double msaa_error = 0;
-  int front_index = -1;       // fastest front point with error <= MSAA's; -1 when none reaches it
+  int front_index = -1;            // fastest front point with error <= MSAA's; -1 when none reaches it
   double model = 0, measured = 0;  // MSAA time / front point time (cost model, evaluator)
 };
 

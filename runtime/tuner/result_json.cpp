@@ -10,13 +10,24 @@ using nlohmann::json;
 
 namespace {
 
-json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }  // NaN/inf -> null
-double num(const json& j) { return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>(); }
+json num(double v) {
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}  // NaN/inf -> null
+double num(const json& j) {
+  return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>();
+}
 
 json to(const Measured& m) {
-  return {{"label", m.label}, {"schedule", m.schedule}, {"msaa", m.msaa},     {"model_ns", num(m.model_ns)},
-          {"search_error", num(m.search_error)},          {"error", num(m.error)}, {"psnr", num(m.psnr)},
-          {"eval_ms", num(m.eval_ms)},                    {"glsl_ms", num(m.glsl_ms)}, {"refined", m.refined},
+  return {{"label", m.label},
+          {"schedule", m.schedule},
+          {"msaa", m.msaa},
+          {"model_ns", num(m.model_ns)},
+          {"search_error", num(m.search_error)},
+          {"error", num(m.error)},
+          {"psnr", num(m.psnr)},
+          {"eval_ms", num(m.eval_ms)},
+          {"glsl_ms", num(m.glsl_ms)},
+          {"refined", m.refined},
           {"mix", m.mix}};
 }
 
@@ -42,11 +53,17 @@ std::string result_to_json(const SceneResult& r) {
   json f = json::array(), b = json::array();
   for (const Measured& m : r.front) f.push_back(to(m));
   for (const Measured& m : r.baselines) b.push_back(to(m));
-  return json{{"scene", r.scene},         {"nodes", r.nodes},
-              {"genes", r.genes},         {"pixels", r.pixels},
-              {"frames", r.frames},       {"search_seconds", r.search_seconds},
-              {"finalize_seconds", r.finalize_seconds}, {"evaluations", r.evaluations},
-              {"gl_renderer", r.gl_renderer}, {"front", f}, {"baselines", b}}
+  return json{{"scene", r.scene},
+              {"nodes", r.nodes},
+              {"genes", r.genes},
+              {"pixels", r.pixels},
+              {"frames", r.frames},
+              {"search_seconds", r.search_seconds},
+              {"finalize_seconds", r.finalize_seconds},
+              {"evaluations", r.evaluations},
+              {"gl_renderer", r.gl_renderer},
+              {"front", f},
+              {"baselines", b}}
       .dump(1);
 }
 

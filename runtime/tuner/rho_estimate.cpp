@@ -19,19 +19,45 @@ std::vector<double> eval_graph(const ir::Graph& g, const std::vector<double>& in
     const ir::Node& n = g.node(i);
     const double a = n.a >= 0 ? v[n.a] : 0, b = n.b >= 0 ? v[n.b] : 0, c = n.c >= 0 ? v[n.c] : 0;
     switch (n.op) {
-      case Op::Const: v[i] = n.value; break;
-      case Op::Input: v[i] = inputs.at(static_cast<int>(n.value)); break;
-      case Op::Add: v[i] = a + b; break;
-      case Op::Sub: v[i] = a - b; break;
-      case Op::Mul: v[i] = a * b; break;
-      case Op::Div: v[i] = a / b; break;
-      case Op::Neg: v[i] = -a; break;
-      case Op::Min: v[i] = std::min(a, b); break;
-      case Op::Max: v[i] = std::max(a, b); break;
-      case Op::Less: v[i] = a < b ? 1 : 0; break;
-      case Op::Select: v[i] = a * b + (1 - a) * c; break;
-      case Op::Mod: v[i] = a - n.value * std::floor(a / n.value); break;
-      case Op::Call: v[i] = ir::plain_atomic(n.atomic, a); break;
+      case Op::Const:
+        v[i] = n.value;
+        break;
+      case Op::Input:
+        v[i] = inputs.at(static_cast<int>(n.value));
+        break;
+      case Op::Add:
+        v[i] = a + b;
+        break;
+      case Op::Sub:
+        v[i] = a - b;
+        break;
+      case Op::Mul:
+        v[i] = a * b;
+        break;
+      case Op::Div:
+        v[i] = a / b;
+        break;
+      case Op::Neg:
+        v[i] = -a;
+        break;
+      case Op::Min:
+        v[i] = std::min(a, b);
+        break;
+      case Op::Max:
+        v[i] = std::max(a, b);
+        break;
+      case Op::Less:
+        v[i] = a < b ? 1 : 0;
+        break;
+      case Op::Select:
+        v[i] = a * b + (1 - a) * c;
+        break;
+      case Op::Mod:
+        v[i] = a - n.value * std::floor(a / n.value);
+        break;
+      case Op::Call:
+        v[i] = ir::plain_atomic(n.atomic, a);
+        break;
     }
   }
   return v;
@@ -59,12 +85,18 @@ std::vector<double> estimate_rho(const ir::Graph& g, const scene::Scene& s, int 
       std::vector<double> in(g.inputs().size());
       for (std::size_t slot = 0; slot < in.size(); ++slot) {
         const std::string& name = g.inputs()[slot].name;
-        if (name == "u") in[slot] = b.u[i] + b.sigma_u[i] * z1;
-        else if (name == "v") in[slot] = b.v[i] + b.sigma_v[i] * (r * z1 + std::sqrt(std::max(0.0, 1 - r * r)) * z2);
-        else if (name == "view_x") in[slot] = b.view_x[i];
-        else if (name == "view_y") in[slot] = b.view_y[i];
-        else if (name == "view_z") in[slot] = b.view_z[i];
-        else in[slot] = render::uniform_input(s, f, name);
+        if (name == "u")
+          in[slot] = b.u[i] + b.sigma_u[i] * z1;
+        else if (name == "v")
+          in[slot] = b.v[i] + b.sigma_v[i] * (r * z1 + std::sqrt(std::max(0.0, 1 - r * r)) * z2);
+        else if (name == "view_x")
+          in[slot] = b.view_x[i];
+        else if (name == "view_y")
+          in[slot] = b.view_y[i];
+        else if (name == "view_z")
+          in[slot] = b.view_z[i];
+        else
+          in[slot] = render::uniform_input(s, f, name);
       }
       vals.push_back(eval_graph(g, in));
     }

@@ -18,12 +18,12 @@ namespace bl::tuner {
 struct TuneOptions {
   SearchOptions search;
   std::vector<std::string> rules = Palette::default_names();
-  int sample_pixels = 2000;       // search error: this many pixels over all frames
+  int sample_pixels = 2000;  // search error: this many pixels over all frames
   std::uint64_t sample_seed = 7;
   std::string cache_dir = "build/truth_cache";
-  bool estimate_rho = true;       // Appendix B.1 constants for "gaussian:rho=const"
-  int nm_evals = 60;              // Nelder-Mead evaluations per front point (0: no refinement)
-  int nm_groups = 12;             // at most this many sd factors (adjacent smoothed nodes share one)
+  bool estimate_rho = true;  // Appendix B.1 constants for "gaussian:rho=const"
+  int nm_evals = 60;         // Nelder-Mead evaluations per front point (0: no refinement)
+  int nm_groups = 12;        // at most this many sd factors (adjacent smoothed nodes share one)
 };
 
 class SceneTuner {

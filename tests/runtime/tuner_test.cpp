@@ -63,7 +63,8 @@ TuneOptions tiny_options(const std::string& cache) {
 bool same_front(const std::vector<Point>& a, const std::vector<Point>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i)
-    if (a[i].genome != b[i].genome || a[i].obj.time != b[i].obj.time || a[i].obj.error != b[i].obj.error) return false;
+    if (a[i].genome != b[i].genome || a[i].obj.time != b[i].obj.time || a[i].obj.error != b[i].obj.error)
+      return false;
   return true;
 }
 
@@ -135,8 +136,11 @@ TEST(Genome, CrossoverAndMutationKeepSchedulesValidAndAdjacent) {
     const bool contiguous = changed.back() - changed.front() + 1 == static_cast<int>(changed.size());
     bool is_subtree = false;
     for (const auto& sub : space.subtree) is_subtree = is_subtree || sub == changed;
-    if (contiguous && (changed.size() == 1 || changed.size() == 2 || changed.size() == 4)) run_lengths.insert(changed.size());
-    else ASSERT_TRUE(is_subtree) << "mutation changed " << changed.size() << " genes, neither adjacent nor a subtree";
+    if (contiguous && (changed.size() == 1 || changed.size() == 2 || changed.size() == 4))
+      run_lengths.insert(changed.size());
+    else
+      ASSERT_TRUE(is_subtree) << "mutation changed " << changed.size()
+                              << " genes, neither adjacent nor a subtree";
     if (is_subtree && changed.size() > 4) ++subtrees;
     // Any assignment lowers (rules that do not apply are substituted, or need a missing function).
     const compiler::Schedule sch = to_schedule(g, space, pal, m);
