@@ -76,7 +76,7 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
   const std::string csv = std::filesystem::absolute(dir + "/front.csv").string();
   const std::string png = std::filesystem::absolute(dir + "/pareto.png").string();
   std::ostringstream g;
-  g << "set terminal pngcairo size 1400,560 font 'Sans,10'\nset output '" << png << "'\n"
+  g << "set terminal pngcairo size 1400,560 font 'Sans,10' noenhanced\nset output '" << png << "'\n"
     << "set datafile separator ','\nset logscale xy\nset grid\nset key outside right top\n"
     << "set ylabel 'RMS error (display space)'\nf = '" << csv << "'\n"
     << "front(c) = strcol(1) eq 'front' ? column(c) : NaN\n"
