@@ -7,6 +7,7 @@ pkgs=(g++ cmake make pkg-config
   libegl-dev libgles-dev libgl1-mesa-dri libosmesa6-dev
   libgtest-dev libbenchmark-dev libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev
   libnlopt-cxx-dev gnuplot-nox python3
+  libopenmpi-dev openmpi-bin  # optional MPI tuner driver (bltune_mpi)
   fonts-dejavu-core)  # labels in runtime/image reports (OpenImageIO render_text)
 missing=()
 for p in "${pkgs[@]}"; do

@@ -1,0 +1,205 @@
+#include "tuner/calibrate.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <random>
+#include <stdexcept>
+
+#include "compiler/evaluator.hpp"
+#include "compiler/functions.hpp"
+
+namespace bl::tuner {
+
+using compiler::Inst;
+using compiler::LOp;
+using compiler::Program;
+
+namespace {
+
+// Inputs: slot 0 and 1 hold values in [0.05, 3] (positive so log, sqrt and 1/x stay finite) with
+// sds in [0.01, 0.5]; slot 2's mean is a small value in [0, 0.3] (correlations, conditions).
+constexpr int kSlots = 3;
+
+struct Inputs {
+  std::vector<std::vector<float>> mean, sd;
+  compiler::Batch batch;
+};
+
+Inputs make_inputs(int n) {
+  Inputs in;
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<float> x(0.05f, 3.0f), s(0.01f, 0.5f), small(0.0f, 0.3f);
+  in.mean.assign(kSlots, std::vector<float>(n));
+  in.sd.assign(kSlots, std::vector<float>(n));
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < 2; ++k) in.mean[k][i] = x(rng), in.sd[k][i] = s(rng);
+    in.mean[2][i] = small(rng), in.sd[2][i] = s(rng);
+  }
+  in.batch.count = n;
+  for (int k = 0; k < kSlots; ++k) {
+    in.batch.mean.push_back(in.mean[k].data());
+    in.batch.sd.push_back(in.sd[k].data());
+    in.batch.grad_x.push_back(in.sd[k].data());
+    in.batch.grad_y.push_back(in.sd[k].data());
+  }
+  return in;
+}
+
+// Base program: mean/sd of slots 0 and 1, the small value, and the variance sd0^2 (indices 0..5).
+Program base_program() {
+  Program p;
+  p.input_count = kSlots;
+  p.input_names = {"a", "b", "c"};
+  auto input = [&](LOp op, int slot) {
+    Inst in;
+    in.op = op;
+    in.arg[0] = slot;
+    p.insts.push_back(in);
+  };
+  input(LOp::InMean, 0);  // 0
+  input(LOp::InSd, 0);    // 1
+  input(LOp::InMean, 1);  // 2
+  input(LOp::InSd, 1);    // 3
+  input(LOp::InMean, 2);  // 4
+  Inst sq;
+  sq.op = LOp::Mul;
+  sq.arg[0] = 1, sq.arg[1] = 1;
+  p.insts.push_back(sq);  // 5: var
+  p.outputs = {0};
+  p.output_names = {"out"};
+  return p;
+}
+
+// Arguments for an instruction of `arity` operands: (mean, spread) pairs, then a small value.
+std::vector<int> args_for(int arity, bool spread_is_var) {
+  const int spread0 = spread_is_var ? 5 : 1;
+  std::vector<int> a;
+  for (int j = 0; j < arity; ++j) {
+    if (j == arity - 1 && arity % 2 == 1 && arity > 1)
+      a.push_back(4);
+    else if (j % 2 == 0)
+      a.push_back(j % 4 == 0 ? 0 : 2);
+    else
+      a.push_back(j % 4 == 1 ? spread0 : 3);
+  }
+  return a;
+}
+
+double time_program(const Program& p, Inputs& in, const CalibrationOptions& opt) {
+  compiler::Evaluator ev(p);
+  std::vector<float> out(in.batch.count);
+  const std::vector<float*> outs{out.data()};
+  double best = 1e300;
+  for (int t = 0; t < opt.trials; ++t) {
+    int reps = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    double ms = 0;
+    do {
+      ev.run(in.batch, outs);
+      ++reps;
+      ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    } while (ms < opt.min_ms);
+    best = std::min(best, ms * 1e6 / (static_cast<double>(reps) * in.batch.count));  // ns per pixel
+  }
+  return best;
+}
+
+// ns per pixel of one instruction: (program with `copies` of it - program without) / copies.
+double time_inst(Program p, const Inst& inst, int prefix_stat, Inputs& in, const CalibrationOptions& opt) {
+  if (prefix_stat >= 0) {  // Mean/Var read a CallStat: time it in both programs
+    Inst st;
+    st.op = LOp::CallStat;
+    st.fn = prefix_stat;
+    const auto a = args_for(compiler::functions()[prefix_stat].arity, true);
+    for (std::size_t j = 0; j < a.size(); ++j) st.arg[j] = a[j];
+    p.insts.push_back(st);
+  }
+  const double base = time_program(p, in, opt);
+  Inst copy = inst;
+  if (prefix_stat >= 0) copy.arg[0] = static_cast<int>(p.insts.size()) - 1;
+  for (int c = 0; c < opt.copies; ++c) p.insts.push_back(copy);
+  p.outputs = {static_cast<int>(p.insts.size()) - 1};
+  const double with = time_program(p, in, opt);
+  return std::max(0.01, (with - base) / opt.copies);
+}
+
+}  // namespace
+
+CostModel calibrate(const CalibrationOptions& opt,
+                    const std::function<void(const std::string&, double)>& progress) {
+  CostModel m;
+  m.machine = cpu_model();
+  Inputs in = make_inputs(opt.pixels);
+  const Program base = base_program();
+  const auto& fns = compiler::functions();
+  int first_stat = -1;
+  for (std::size_t f = 0; f < fns.size() && first_stat < 0; ++f)
+    if (fns[f].stat) first_stat = static_cast<int>(f);
+  auto wanted = [&](const std::string& name) {
+    return opt.only.empty() || name.find(opt.only) != std::string::npos;
+  };
+  for (int o = 0; o <= static_cast<int>(LOp::Var); ++o) {
+    const LOp op = static_cast<LOp>(o);
+    if (op == LOp::Call || op == LOp::CallStat || !wanted(lop_name(op))) continue;
+    Inst inst;
+    inst.op = op;
+    int prefix = -1;
+    switch (op) {
+      case LOp::Const:
+        inst.k = 0.5f;
+        break;
+      case LOp::InMean:
+      case LOp::InSd:
+      case LOp::InGradX:
+      case LOp::InGradY:
+        inst.arg[0] = 0;
+        break;
+      case LOp::Mean:
+      case LOp::Var:
+        if (first_stat < 0) continue;  // no stat function in the table: never emitted either
+        prefix = first_stat;
+        break;
+      default:
+        inst.arg[0] = 0, inst.arg[1] = 2;
+        break;
+    }
+    const double ns = time_inst(base, inst, prefix, in, opt);
+    m.op_ns[lop_name(op)] = ns;
+    if (progress) progress(lop_name(op), ns);
+  }
+  if (first_stat < 0) m.op_ns["mean"] = m.op_ns["var"] = m.op_ns["const"];  // unused but complete
+  for (std::size_t f = 0; f < fns.size(); ++f) {
+    if (!wanted(fns[f].cpp)) continue;
+    Inst inst;
+    inst.op = fns[f].stat ? LOp::CallStat : LOp::Call;
+    inst.fn = static_cast<int>(f);
+    // Stat rules take (mean, variance) pairs; kernel functions take (x, sd).
+    const auto a = args_for(fns[f].arity, fns[f].stat);
+    for (std::size_t j = 0; j < a.size(); ++j) inst.arg[j] = a[j];
+    const double ns = time_inst(base, inst, -1, in, opt);
+    m.fn_ns[fns[f].cpp] = ns;
+    if (progress) progress(fns[f].cpp, ns);
+  }
+  return m;
+}
+
+CostModel load_or_calibrate(const std::string& path, bool verbose) {
+  const std::string machine = cpu_model();
+  try {
+    CostModel m = load_cost_model(path, machine);
+    if (m.covers_all()) return m;
+    if (verbose)
+      std::fprintf(stderr, "cost model %s lacks:%s; recalibrating\n", path.c_str(), m.missing().c_str());
+  } catch (const std::runtime_error& e) {
+    if (verbose) std::fprintf(stderr, "%s; calibrating\n", e.what());
+  }
+  CostModel m =
+      calibrate({}, verbose ? [](const std::string& n,
+                                 double ns) { std::fprintf(stderr, "  %-40s %8.2f ns\n", n.c_str(), ns); }
+                            : std::function<void(const std::string&, double)>{});
+  save_cost_model(path, m);
+  return m;
+}
+
+}  // namespace bl::tuner

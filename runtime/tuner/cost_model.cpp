@@ -1,0 +1,149 @@
+#include "tuner/cost_model.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "compiler/functions.hpp"
+
+namespace bl::tuner {
+
+using compiler::LOp;
+
+const char* lop_name(LOp op) {
+  switch (op) {
+    case LOp::Const:
+      return "const";
+    case LOp::InMean:
+      return "in_mean";
+    case LOp::InSd:
+      return "in_sd";
+    case LOp::InGradX:
+      return "in_grad_x";
+    case LOp::InGradY:
+      return "in_grad_y";
+    case LOp::Add:
+      return "add";
+    case LOp::Sub:
+      return "sub";
+    case LOp::Mul:
+      return "mul";
+    case LOp::Div:
+      return "div";
+    case LOp::Neg:
+      return "neg";
+    case LOp::Min:
+      return "min";
+    case LOp::Max:
+      return "max";
+    case LOp::Less:
+      return "less";
+    case LOp::Sqrt:
+      return "sqrt";
+    case LOp::NonNeg:
+      return "nonneg";
+    case LOp::Call:
+      return "call";
+    case LOp::CallStat:
+      return "call_stat";
+    case LOp::Mean:
+      return "mean";
+    case LOp::Var:
+      return "var";
+  }
+  return "?";
+}
+
+double CostModel::cost(const compiler::Program& p) const {
+  const auto& fns = compiler::functions();
+  double ns = 0;
+  for (const compiler::Inst& in : p.insts) {
+    if (in.op == LOp::Call || in.op == LOp::CallStat) {
+      const std::string& name = fns.at(in.fn).cpp;
+      const auto it = fn_ns.find(name);
+      if (it == fn_ns.end())
+        throw std::out_of_range("cost model (" + machine + ") has no entry for function " + name +
+                                ": recalibrate (bltune --calibrate)");
+      ns += it->second;
+    } else {
+      const auto it = op_ns.find(lop_name(in.op));
+      if (it == op_ns.end())
+        throw std::out_of_range(std::string("cost model (") + machine + ") has no entry for op " +
+                                lop_name(in.op) + ": recalibrate (bltune --calibrate)");
+      ns += it->second;
+    }
+  }
+  return ns;
+}
+
+std::string CostModel::missing() const {
+  std::string out;
+  for (int o = 0; o <= static_cast<int>(LOp::Var); ++o) {
+    const LOp op = static_cast<LOp>(o);
+    if (op != LOp::Call && op != LOp::CallStat && !op_ns.count(lop_name(op)))
+      out += std::string(" ") + lop_name(op);
+  }
+  for (const compiler::Function& f : compiler::functions())
+    if (!fn_ns.count(f.cpp)) out += " " + f.cpp;
+  return out;
+}
+
+bool CostModel::covers_all() const {
+  return missing().empty();
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) {
+        std::string m = line.substr(colon + 1);
+        m.erase(0, m.find_first_not_of(" \t"));
+        return m;
+      }
+    }
+  }
+  return "unknown-cpu";
+}
+
+CostModel load_cost_model(const std::string& path, const std::string& machine) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cost model: cannot read " + path);
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cost model: " + path + " is not valid JSON: " + e.what());
+  }
+  if (!j.contains("machines") || !j["machines"].contains(machine))
+    throw std::runtime_error("cost model: " + path + " has no calibration for machine '" + machine + "'");
+  const nlohmann::json& m = j["machines"][machine];
+  CostModel cm;
+  cm.machine = machine;
+  cm.op_ns = m.at("ops").get<std::map<std::string, double>>();
+  cm.fn_ns = m.at("functions").get<std::map<std::string, double>>();
+  return cm;
+}
+
+void save_cost_model(const std::string& path, const CostModel& m) {
+  nlohmann::json j = nlohmann::json::object();
+  if (std::ifstream in(path); in) {
+    try {
+      in >> j;
+    } catch (const std::exception&) {
+      j = nlohmann::json::object();  // a corrupt file is replaced, not merged
+    }
+  }
+  j["machines"][m.machine] = {{"ops", m.op_ns}, {"functions", m.fn_ns}};
+  const std::filesystem::path p(path);
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  const std::string tmp = path + ".tmp";
+  std::ofstream(tmp) << j.dump(1) << "\n";
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace bl::tuner

@@ -1,0 +1,225 @@
+#include "tuner/finalize.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+
+#include "compiler/lower.hpp"
+#include "gl/egl_runner.hpp"
+#include "image/image_io.hpp"
+#include "image/metrics.hpp"
+#include "image/report.hpp"
+#include "render/glsl_frame.hpp"
+#include "render/render.hpp"
+
+namespace bl::tuner {
+
+namespace {
+
+template <class F>
+double best_ms(int runs, F&& f) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    best = std::min(best,
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return best;
+}
+
+std::string schedule_text(const SceneTuner& t, const compiler::Schedule& s) {
+  std::string out;
+  for (int n : t.problem().space.genes)
+    out += (out.empty() ? "" : " ") + std::to_string(n) + ":" + rules::to_string(s[n]);
+  return out;
+}
+
+// Indices of at most k front points spread evenly over the front (both ends kept).
+std::vector<int> spread(int n, int k) {
+  std::vector<int> idx;
+  if (n <= k) {
+    for (int i = 0; i < n; ++i) idx.push_back(i);
+    return idx;
+  }
+  for (int j = 0; j < k; ++j) {
+    const int i = static_cast<int>(std::lround(static_cast<double>(j) * (n - 1) / (k - 1)));
+    if (idx.empty() || idx.back() != i) idx.push_back(i);
+  }
+  return idx;
+}
+
+struct Timer {
+  std::unique_ptr<gl::Context> ctx;
+  std::string renderer;
+};
+
+void measure(const SceneTuner& t, const compiler::Program& p, Timer& gl, Measured* m) {
+  const scene::Scene& s = t.scene();
+  const render::Frame f = render::frames(s).front();
+  // Best of 5 after a warm-up: the minimum is the least disturbed by other load on the machine.
+  render::render_smoothed(s, f, p);
+  m->eval_ms = best_ms(5, [&] { render::render_smoothed(s, f, p); });
+  if (gl.ctx) {
+    try {
+      const gl::Program prog = gl.ctx->compile(render::glsl_fragment_source(s, p));
+      m->glsl_ms = gl.ctx->time_ms(prog, s.width, s.height, render::glsl_frame_uniforms(s, f), 5);
+    } catch (const gl::Error& e) {
+      std::fprintf(stderr, "finalize: GLSL timing of %s failed: %s\n", m->label.c_str(), e.what());
+    }
+  }
+}
+
+}  // namespace
+
+std::string rule_family(const rules::Rule& r) {
+  if (r.kind == rules::Kind::Gaussian)
+    return r.rho == rules::Rho::Zero       ? "gaussian(rho=0)"
+           : r.rho == rules::Rho::Gradient ? "gaussian(rho=grad)"
+                                           : "gaussian(rho=const)";
+  return rules::kind_name(r.kind);
+}
+
+std::map<std::string, double> rule_mix(const SceneTuner& t, const compiler::Schedule& s) {
+  std::map<std::string, double> mix;
+  const auto& genes = t.problem().space.genes;
+  for (int n : genes) mix[rule_family(s[n])] += 1.0 / genes.size();
+  return mix;
+}
+
+SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const FinalizeOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const scene::Scene& s = t.scene();
+  const std::string& cache = t.options().cache_dir;
+  const std::vector<render::Frame> frames = render::frames(s);
+  SceneResult res;
+  res.scene = s.name;
+  res.nodes = t.graph().size();
+  res.genes = t.problem().space.size();
+  res.pixels = s.width * s.height;
+  res.frames = static_cast<int>(frames.size());
+  Timer gl;
+  if (opt.glsl && gl::Context::availability().ok) {
+    gl.ctx = std::make_unique<gl::Context>();
+    gl.ctx->set_unknown_uniform(gl::UnknownUniform::kIgnore);
+    res.gl_renderer = gl.ctx->renderer();
+  }
+  auto set_error = [](Measured& m, double e) {
+    m.error = e;
+    m.psnr = -20 * std::log10(std::max(e, 1e-12));
+  };
+  // Front points: refine sd factors, then measure on full images.
+  std::vector<Measured> pts;
+  std::vector<compiler::Schedule> schedules;
+  for (int i : spread(static_cast<int>(front.size()), opt.max_points)) {
+    Measured m;
+    const compiler::Schedule sch = t.schedule(front[i].genome);
+    Objectives o;
+    compiler::Schedule refined = t.refine_sigma(sch, &o);
+    m.refined = !(refined == sch);
+    const auto p = t.lower(refined);
+    if (!p) continue;
+    m.schedule = schedule_text(t, refined);
+    m.model_ns = o.time;
+    m.search_error = o.error;
+    set_error(m, t.full_error(*p));
+    m.mix = rule_mix(t, refined);
+    pts.push_back(m);
+    schedules.push_back(std::move(refined));
+  }
+  // Refinement changes errors (and, through the scale constants, times a little): keep the front.
+  std::vector<Objectives> obj;
+  for (const Measured& m : pts) obj.push_back({m.model_ns, m.error});
+  std::vector<compiler::Schedule> front_schedules;
+  for (int i : pareto_front(obj)) {
+    res.front.push_back(pts[i]);
+    front_schedules.push_back(schedules[i]);
+  }
+  for (std::size_t i = 0; i < res.front.size(); ++i) {
+    char label[32];
+    std::snprintf(label, sizeof label, "front%02zu", i);
+    res.front[i].label = label;
+    measure(t, *t.lower(front_schedules[i]), gl, &res.front[i]);
+  }
+  // Baselines: the plain program, MSAA as n plain evaluations per pixel, all-Dorn, all-Gaussian.
+  auto uniform = [&](const std::string& label, const std::string& rule) {
+    const auto p = t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule(rule)));
+    if (!p) {
+      std::fprintf(stderr, "finalize: %s: baseline %s is infeasible with this generated table\n",
+                   s.name.c_str(), rule.c_str());
+      return;
+    }
+    Measured m;
+    m.label = label;
+    m.schedule = "all " + rule;
+    m.model_ns = t.cost_model().cost(*p);
+    m.search_error = std::numeric_limits<double>::quiet_NaN();
+    set_error(m, t.full_error(*p));
+    m.mix[rule_family(rules::parse_rule(rule))] = 1;
+    measure(t, *p, gl, &m);
+    res.baselines.push_back(m);
+  };
+  uniform("plain", "none");
+  const Measured plain = res.baselines.front();
+  std::vector<Image> truth, msaa_frame0;
+  for (const render::Frame& f : frames) truth.push_back(render::render_truth(s, f, cache));
+  for (int n : {2, 4, 8, 16, 32}) {
+    Measured m;
+    m.label = "msaa" + std::to_string(n);
+    m.schedule = "plain x " + std::to_string(n) + " jittered samples";
+    m.msaa = n;
+    m.model_ns = n * plain.model_ns;
+    m.search_error = std::numeric_limits<double>::quiet_NaN();
+    double sq = 0;
+    for (std::size_t fi = 0; fi < frames.size(); ++fi) {
+      const Image img = render::render_native(s, frames[fi], n);
+      const double e = rms_display(img, truth[fi]);
+      sq += e * e;
+      if (fi == 0) msaa_frame0.push_back(img);
+    }
+    set_error(m, std::sqrt(sq / frames.size()));
+    m.eval_ms = n * plain.eval_ms;
+    m.glsl_ms = plain.glsl_ms >= 0 ? n * plain.glsl_ms : -1;
+    m.mix["none"] = 1;
+    res.baselines.push_back(m);
+  }
+  uniform("dorn", "dorn");
+  uniform("gaussian", "gaussian");
+  // Images of frame 0: truth | variant | MSAA of the nearest model time, for the fastest and the most
+  // accurate front points and the fastest one at MSAA-16's error or better.
+  if (!opt.out_dir.empty() && !res.front.empty()) {
+    const Measured* m16 = nullptr;
+    for (const Measured& b : res.baselines)
+      if (b.msaa == 16) m16 = &b;
+    std::vector<std::size_t> chosen{0, res.front.size() - 1};
+    for (std::size_t i = 0; i < res.front.size(); ++i)
+      if (m16 && res.front[i].error <= m16->error) {
+        chosen.push_back(i);
+        break;
+      }
+    std::sort(chosen.begin(), chosen.end());
+    chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+    for (std::size_t i : chosen) {
+      const Measured& m = res.front[i];
+      std::size_t best = 0;
+      for (std::size_t k = 1; k < msaa_frame0.size(); ++k)
+        if (std::fabs(std::log(res.baselines[1 + k].model_ns / m.model_ns)) <
+            std::fabs(std::log(res.baselines[1 + best].model_ns / m.model_ns)))
+          best = k;
+      const Image img = render::render_smoothed(s, frames.front(), *t.lower(front_schedules[i]));
+      char a[96], b[96];
+      std::snprintf(a, sizeof a, "%s %.4f", m.label.c_str(), m.error);
+      std::snprintf(b, sizeof b, "%s %.4f", res.baselines[1 + best].label.c_str(),
+                    res.baselines[1 + best].error);
+      write_side_by_side(opt.out_dir + "/" + m.label + "_vs_truth_msaa.png",
+                         {truth.front(), img, msaa_frame0[best]}, {"ground truth", a, b});
+    }
+  }
+  res.finalize_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace bl::tuner

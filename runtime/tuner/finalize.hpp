@@ -1,0 +1,49 @@
+// After the search: Nelder-Mead on the front points, errors on full images, timings of the emitted
+// code (evaluator ms per frame; GLSL on the headless OpenGL driver when one exists), the baselines
+// (plain, MSAA 2..32, all-Dorn, all-adaptive-Gaussian) and images of chosen variants.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tuner/scene_tuner.hpp"
+
+namespace bl::tuner {
+
+struct Measured {
+  std::string label;
+  std::string schedule;     // per node rule texts joined by spaces ("" for MSAA)
+  int msaa = 0;             // MSAA sample count (baselines), 0 otherwise
+  double model_ns = 0;      // cost model, ns per pixel
+  double search_error = 0;  // on the pixel sample (front points; NaN for baselines)
+  double error = 0;         // RMS display, every pixel of every frame
+  double psnr = 0;
+  double eval_ms = 0;                 // evaluator (render_smoothed) ms per frame, frame 0
+  double glsl_ms = -1;                // GLSL ms per frame on the GL driver; -1 when not measured
+  bool refined = false;               // Nelder-Mead improved it
+  std::map<std::string, double> mix;  // share of genes per rule family
+};
+
+struct SceneResult {
+  std::string scene;
+  int nodes = 0, genes = 0, pixels = 0, frames = 0;
+  double search_seconds = 0, finalize_seconds = 0;
+  int evaluations = 0;
+  std::vector<Measured> front;      // sorted by model time
+  std::vector<Measured> baselines;  // plain, msaa2..32, dorn, gaussian
+  std::string gl_renderer;          // "" when GLSL was not timed
+};
+
+struct FinalizeOptions {
+  bool glsl = true;     // time the GLSL when a driver exists
+  int max_points = 12;  // at most this many front points are refined and measured (spread by error)
+  std::string out_dir;  // images go here when non-empty
+};
+
+SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const FinalizeOptions& opt);
+
+std::map<std::string, double> rule_mix(const SceneTuner& t, const compiler::Schedule& s);
+std::string rule_family(const rules::Rule& r);  // "none", "gaussian(rho=0)", "mc", "rule1", ...
+
+}  // namespace bl::tuner

@@ -1,0 +1,111 @@
+#include "tuner/pixel_sample.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <stdexcept>
+
+#include "camera/plane_batch.hpp"
+#include "compiler/evaluator.hpp"
+#include "image/display.hpp"
+#include "render/frame.hpp"
+#include "render/render.hpp"
+
+namespace bl::tuner {
+
+PixelSample::PixelSample(const scene::Scene& s, const std::string& cache_dir, int pixels, std::uint64_t seed)
+    : scene_(s) {
+  const std::vector<render::Frame> fr = render::frames(s);
+  const int all = s.width * s.height;
+  const int per_frame =
+      pixels <= 0 ? all
+                  : std::min(all, (pixels + static_cast<int>(fr.size()) - 1) / static_cast<int>(fr.size()));
+  std::mt19937_64 rng(seed);
+  for (const render::Frame& f : fr) {
+    const Image truth = render::render_truth(s, f, cache_dir);
+    camera::PlaneBatch b;
+    camera::trace_plane(render::make_camera(s, f.view), render::footprint_options(s), b);
+    // A partial Fisher-Yates shuffle: the first per_frame entries are the sample (sorted for locality).
+    std::vector<int> idx(all);
+    std::iota(idx.begin(), idx.end(), 0);
+    for (int i = 0; i < per_frame && per_frame < all; ++i)
+      std::swap(idx[i], idx[i + static_cast<int>(rng() % static_cast<std::uint64_t>(all - i))]);
+    idx.resize(per_frame);
+    std::sort(idx.begin(), idx.end());
+    FrameData d;
+    d.time = f.time;
+    for (int i : idx) {
+      const int x = i % s.width, y = i / s.width;
+      if (!b.hit[i]) {
+        for (int c = 0; c < 3; ++c) {
+          const double e = to_display(static_cast<float>(s.background[c])) - to_display(truth.at(x, y, c));
+          d.miss_sq += e * e;
+        }
+        continue;
+      }
+      ++d.n;
+      d.u.push_back(b.u[i]), d.v.push_back(b.v[i]), d.su.push_back(b.sigma_u[i]),
+          d.sv.push_back(b.sigma_v[i]);
+      d.dudx.push_back(b.du_dx[i]), d.dudy.push_back(b.du_dy[i]), d.dvdx.push_back(b.dv_dx[i]);
+      d.dvdy.push_back(b.dv_dy[i]), d.vx.push_back(b.view_x[i]), d.vy.push_back(b.view_y[i]);
+      d.vz.push_back(b.view_z[i]);
+      for (int c = 0; c < 3; ++c) d.truth.push_back(to_display(truth.at(x, y, c)));
+    }
+    total_ += per_frame;
+    frames_.push_back(std::move(d));
+  }
+}
+
+double PixelSample::error(const compiler::Program& p) const {
+  if (p.outputs.size() != 3)
+    throw std::invalid_argument("PixelSample: the program has " + std::to_string(p.outputs.size()) +
+                                " outputs, a colour needs 3");
+  compiler::Evaluator ev(p);
+  double sum = 0;
+  for (std::size_t fi = 0; fi < frames_.size(); ++fi) {
+    const FrameData& d = frames_[fi];
+    sum += d.miss_sq;
+    if (d.n == 0) continue;
+    std::vector<float> zeros(d.n, 0.0f);
+    std::vector<std::vector<float>> constants;
+    constants.reserve(p.input_names.size());
+    compiler::Batch batch;
+    batch.count = d.n;
+    for (const std::string& name : p.input_names) {  // the mapping of render::render_smoothed
+      const float* mean = nullptr;
+      const float *sd = zeros.data(), *gx = zeros.data(), *gy = zeros.data();
+      if (name == "u") {
+        mean = d.u.data(), sd = d.su.data(), gx = d.dudx.data(), gy = d.dudy.data();
+      } else if (name == "v") {
+        mean = d.v.data(), sd = d.sv.data(), gx = d.dvdx.data(), gy = d.dvdy.data();
+      } else if (name == "view_x") {
+        mean = d.vx.data();
+      } else if (name == "view_y") {
+        mean = d.vy.data();
+      } else if (name == "view_z") {
+        mean = d.vz.data();
+      } else {
+        render::Frame f;
+        f.time = d.time;
+        constants.emplace_back(d.n, static_cast<float>(render::uniform_input(scene_, f, name)));
+        mean = constants.back().data();
+      }
+      batch.mean.push_back(mean);
+      batch.sd.push_back(sd);
+      batch.grad_x.push_back(gx);
+      batch.grad_y.push_back(gy);
+    }
+    std::vector<std::vector<float>> out(3, std::vector<float>(d.n));
+    ev.run(batch, {out[0].data(), out[1].data(), out[2].data()});
+    for (int i = 0; i < d.n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        if (!std::isfinite(out[c][i])) return std::numeric_limits<double>::infinity();
+        const double e = to_display(out[c][i]) - d.truth[3 * i + c];
+        sum += e * e;
+      }
+  }
+  return total_ > 0 ? std::sqrt(sum / (3.0 * total_)) : 0.0;
+}
+
+}  // namespace bl::tuner

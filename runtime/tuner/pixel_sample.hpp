@@ -1,0 +1,41 @@
+// The search's error measure: RMS in display space against the cached ground truth over every frame
+// of a scene, on a fixed random subsample of pixels (evaluating only those pixels), or on all
+// pixels. The per-pixel program inputs are the camera footprint's, mapped by input name exactly as
+// render::render_smoothed maps them (a test checks that the all-pixel error equals rms_display of
+// render_smoothed).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "compiler/lir.hpp"
+#include "scene/scene.hpp"
+
+namespace bl::tuner {
+
+class PixelSample {
+ public:
+  // `pixels` in total over all frames (split evenly), <= 0 or more than the image: every pixel.
+  // Ground truth comes from render_truth with `cache_dir` (rendered and cached when missing).
+  PixelSample(const scene::Scene& s, const std::string& cache_dir, int pixels, std::uint64_t seed);
+
+  // RMS (display space) of p over the sampled pixels of all frames; thread-safe. Non-finite
+  // outputs give +infinity.
+  double error(const compiler::Program& p) const;
+  int count() const { return total_; }
+
+ private:
+  struct FrameData {
+    double time = 0;
+    int n = 0;  // sampled pixels hit by the camera
+    std::vector<float> u, v, su, sv, dudx, dudy, dvdx, dvdy, vx, vy, vz;
+    std::vector<float> truth;  // display space, 3 per hit pixel
+    double miss_sq = 0;        // squared error summed over missed sampled pixels
+  };
+  scene::Scene scene_;
+  std::vector<FrameData> frames_;
+  int total_ = 0;  // sampled pixels over all frames (hit or not)
+};
+
+}  // namespace bl::tuner

@@ -1,0 +1,29 @@
+// Tuning reports: per scene a CSV and a Markdown table of the front and the baselines, a gnuplot
+// Pareto plot (model time and measured evaluator time against error), speed-ups against MSAA at
+// equal error; for a suite, a summary table over scenes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tuner/finalize.hpp"
+
+namespace bl::tuner {
+
+struct Speedup {
+  int msaa = 0;
+  double msaa_error = 0;
+  int front_index = -1;            // fastest front point with error <= MSAA's; -1 when none reaches it
+  double model = 0, measured = 0;  // MSAA time / front point time (cost model, evaluator)
+};
+
+std::vector<Speedup> speedups(const SceneResult& r);
+
+// Writes dir/front.csv, dir/report.md and dir/pareto.png (the plot is skipped, with a line in the
+// Markdown, when gnuplot is missing).
+void write_scene_report(const SceneResult& r, const std::string& dir);
+
+// Writes dir/summary.md and dir/summary.csv over the scenes.
+void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& dir);
+
+}  // namespace bl::tuner

@@ -1,0 +1,87 @@
+#include "tuner/result_json.hpp"
+
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+namespace bl::tuner {
+
+using nlohmann::json;
+
+namespace {
+
+json num(double v) {
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}  // NaN/inf -> null
+double num(const json& j) {
+  return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>();
+}
+
+json to(const Measured& m) {
+  return {{"label", m.label},
+          {"schedule", m.schedule},
+          {"msaa", m.msaa},
+          {"model_ns", num(m.model_ns)},
+          {"search_error", num(m.search_error)},
+          {"error", num(m.error)},
+          {"psnr", num(m.psnr)},
+          {"eval_ms", num(m.eval_ms)},
+          {"glsl_ms", num(m.glsl_ms)},
+          {"refined", m.refined},
+          {"mix", m.mix}};
+}
+
+Measured from(const json& j) {
+  Measured m;
+  m.label = j.at("label");
+  m.schedule = j.at("schedule");
+  m.msaa = j.at("msaa");
+  m.model_ns = num(j.at("model_ns"));
+  m.search_error = num(j.at("search_error"));
+  m.error = num(j.at("error"));
+  m.psnr = num(j.at("psnr"));
+  m.eval_ms = num(j.at("eval_ms"));
+  m.glsl_ms = num(j.at("glsl_ms"));
+  m.refined = j.at("refined");
+  m.mix = j.at("mix").get<std::map<std::string, double>>();
+  return m;
+}
+
+}  // namespace
+
+std::string result_to_json(const SceneResult& r) {
+  json f = json::array(), b = json::array();
+  for (const Measured& m : r.front) f.push_back(to(m));
+  for (const Measured& m : r.baselines) b.push_back(to(m));
+  return json{{"scene", r.scene},
+              {"nodes", r.nodes},
+              {"genes", r.genes},
+              {"pixels", r.pixels},
+              {"frames", r.frames},
+              {"search_seconds", r.search_seconds},
+              {"finalize_seconds", r.finalize_seconds},
+              {"evaluations", r.evaluations},
+              {"gl_renderer", r.gl_renderer},
+              {"front", f},
+              {"baselines", b}}
+      .dump(1);
+}
+
+SceneResult result_from_json(const std::string& text) {
+  const json j = json::parse(text);
+  SceneResult r;
+  r.scene = j.at("scene");
+  r.nodes = j.at("nodes");
+  r.genes = j.at("genes");
+  r.pixels = j.at("pixels");
+  r.frames = j.at("frames");
+  r.search_seconds = j.at("search_seconds");
+  r.finalize_seconds = j.at("finalize_seconds");
+  r.evaluations = j.at("evaluations");
+  r.gl_renderer = j.at("gl_renderer");
+  for (const json& m : j.at("front")) r.front.push_back(from(m));
+  for (const json& m : j.at("baselines")) r.baselines.push_back(from(m));
+  return r;
+}
+
+}  // namespace bl::tuner

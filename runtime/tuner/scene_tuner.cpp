@@ -1,0 +1,122 @@
+#include "tuner/scene_tuner.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlopt.hpp>
+#include <stdexcept>
+
+#include "compiler/lower.hpp"
+#include "tuner/rho_estimate.hpp"
+
+namespace bl::tuner {
+
+namespace {
+
+std::string model_digest(const CostModel& cm) {  // recalibration invalidates checkpoints
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&](const std::string& s, double v) {
+    for (char c : s) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+    h = (h ^ static_cast<std::uint64_t>(std::llround(v * 1e6))) * 1099511628211ull;
+  };
+  for (const auto& [k, v] : cm.op_ns) mix(k, v);
+  for (const auto& [k, v] : cm.fn_ns) mix(k, v);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+}  // namespace
+
+SceneTuner::SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOptions& opt)
+    : scene_(s), graph_(shaders::trace(shaders::find_shader(s.shader), s.effects())), cm_(cm), opt_(opt) {
+  sample_ = std::make_unique<PixelSample>(s, opt.cache_dir, opt.sample_pixels, opt.sample_seed);
+  problem_.graph = &graph_;
+  problem_.space = SearchSpace::build(graph_);
+  problem_.palette = Palette::parse(opt.rules);
+  if (opt.estimate_rho) problem_.space.rho_constant = estimate_rho(graph_, s);
+  problem_.evaluate = [this](const compiler::Schedule& sch) { return evaluate(sch); };
+  char key[512];
+  std::snprintf(key, sizeof key, "scene=%016llx graph=%016llx model=%s/%s sample=%d/%llu rho=%d",
+                static_cast<unsigned long long>(s.hash()), static_cast<unsigned long long>(graph_.hash()),
+                cm.machine.c_str(), model_digest(cm).c_str(), opt.sample_pixels,
+                static_cast<unsigned long long>(opt.sample_seed), opt.estimate_rho ? 1 : 0);
+  problem_.key = key;
+}
+
+std::unique_ptr<compiler::Program> SceneTuner::lower(const compiler::Schedule& s) const {
+  try {
+    return std::make_unique<compiler::Program>(compiler::lower(graph_, s));
+  } catch (const std::logic_error& e) {
+    if (std::string(e.what()).find("has no function") != std::string::npos) return nullptr;
+    throw;
+  }
+}
+
+Objectives SceneTuner::evaluate(const compiler::Schedule& s) const {
+  const auto p = lower(s);
+  if (!p) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  return {cm_.cost(*p), sample_->error(*p)};
+}
+
+double SceneTuner::full_error(const compiler::Program& p) const {
+  // Built on first use: the search itself never needs all pixels.
+  std::call_once(full_once_, [&] { full_ = std::make_unique<PixelSample>(scene_, opt_.cache_dir, 0, 0); });
+  return full_->error(p);
+}
+
+compiler::Schedule SceneTuner::schedule(const Genome& x) const {
+  return to_schedule(graph_, problem_.space, problem_.palette, x);
+}
+
+compiler::Schedule SceneTuner::refine_sigma(const compiler::Schedule& s, Objectives* obj) const {
+  *obj = evaluate(s);
+  std::vector<int> nodes;  // smoothed computation nodes, depth-first
+  for (int n : problem_.space.genes) {
+    const ir::Op op = graph_.node(n).op;
+    if (s[n].kind != rules::Kind::None && op != ir::Op::Input && op != ir::Op::Const) nodes.push_back(n);
+  }
+  if (opt_.nm_evals <= 0 || nodes.empty() || !std::isfinite(obj->error)) return s;
+  const int groups = std::min(opt_.nm_groups, static_cast<int>(nodes.size()));
+  auto apply = [&](const std::vector<double>& x) {
+    compiler::Schedule t = s;
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      const int g = static_cast<int>(k * groups / nodes.size());
+      // Rounded to 3 decimals so the schedule's text form reproduces it exactly.
+      t[nodes[k]].sigma_scale = s[nodes[k]].sigma_scale * std::round(std::exp2(x[g]) * 1000) / 1000;
+    }
+    return t;
+  };
+  struct Ctx {
+    const SceneTuner* self;
+    decltype(apply)* with_scales;
+  } ctx{this, &apply};
+  nlopt::opt nm(nlopt::LN_NELDERMEAD, groups);
+  nm.set_lower_bounds(std::vector<double>(groups, -2.0));
+  nm.set_upper_bounds(std::vector<double>(groups, 2.0));
+  nm.set_initial_step(std::vector<double>(groups, 0.5));
+  nm.set_maxeval(opt_.nm_evals);
+  nm.set_min_objective(
+      [](const std::vector<double>& x, std::vector<double>&, void* data) {
+        const auto* c = static_cast<Ctx*>(data);
+        const double e = c->self->evaluate((*c->with_scales)(x)).error;
+        return std::isfinite(e) ? e : 1e9;
+      },
+      &ctx);
+  std::vector<double> x(groups, 0.0);
+  double best = 0;
+  try {
+    nm.optimize(x, best);
+  } catch (const nlopt::roundoff_limited&) {
+    // The best point so far is in x: still usable.
+  }
+  const compiler::Schedule t = apply(x);
+  const Objectives o = evaluate(t);
+  if (o.error < obj->error) {
+    *obj = o;
+    return t;
+  }
+  return s;
+}
+
+}  // namespace bl::tuner

@@ -1,0 +1,62 @@
+// One scene as a tuning problem: the traced graph, the search space and palette, the cost model and
+// the pixel sample; evaluation of schedules (search error on the sample, final error on full images)
+// and the Nelder-Mead refinement of sd scale factors (Yang & Barnes 4.7).
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "scene/scene.hpp"
+#include "tuner/cost_model.hpp"
+#include "tuner/genetic.hpp"
+#include "tuner/pixel_sample.hpp"
+
+namespace bl::tuner {
+
+struct TuneOptions {
+  SearchOptions search;
+  std::vector<std::string> rules = Palette::default_names();
+  int sample_pixels = 2000;  // search error: this many pixels over all frames
+  std::uint64_t sample_seed = 7;
+  std::string cache_dir = "build/truth_cache";
+  bool estimate_rho = true;  // Appendix B.1 constants for "gaussian:rho=const"
+  int nm_evals = 60;         // Nelder-Mead evaluations per front point (0: no refinement)
+  int nm_groups = 12;        // at most this many sd factors (adjacent smoothed nodes share one)
+};
+
+class SceneTuner {
+ public:
+  SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOptions& opt);
+
+  const scene::Scene& scene() const { return scene_; }
+  const ir::Graph& graph() const { return graph_; }
+  const Problem& problem() const { return problem_; }
+  const CostModel& cost_model() const { return cm_; }
+  const TuneOptions& options() const { return opt_; }
+
+  // Lowered program, or nullptr when lowering needs a function the generated table lacks (a rule
+  // not available yet for some node: "infeasible"). Other lowering errors propagate.
+  std::unique_ptr<compiler::Program> lower(const compiler::Schedule& s) const;
+  Objectives evaluate(const compiler::Schedule& s) const;  // sample error; infinities if infeasible
+  double full_error(const compiler::Program& p) const;     // RMS over every pixel of every frame
+  compiler::Schedule schedule(const Genome& x) const;
+
+  // Nelder-Mead (NLopt LN_NELDERMEAD) over log2 sd factors of the smoothed nodes, grouped into at
+  // most nm_groups runs of adjacent genes, bounded to [1/4, 4] and nm_evals evaluations. Returns the
+  // better of the refined and the given schedule (by sample error) and its objectives.
+  compiler::Schedule refine_sigma(const compiler::Schedule& s, Objectives* obj) const;
+
+ private:
+  scene::Scene scene_;
+  ir::Graph graph_;
+  CostModel cm_;
+  TuneOptions opt_;
+  std::unique_ptr<PixelSample> sample_;
+  mutable std::once_flag full_once_;
+  mutable std::unique_ptr<PixelSample> full_;
+  Problem problem_;
+};
+
+}  // namespace bl::tuner

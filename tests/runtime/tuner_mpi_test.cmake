@@ -1,0 +1,40 @@
+# The MPI driver gets the same search fronts as the single-process bltune on a tiny configuration.
+# -DBLTUNE= -DBLTUNE_MPI= -DMPIEXEC= -DSUITE= -DWORK=
+file(REMOVE_RECURSE ${WORK})
+set(args --suite ${SUITE} --only circles_none --image 20 --truth-samples 16 --rules none,dorn,mc2,mc4,box
+         --population 8 --generations 2 --restarts 3 --pixels 200 --search-only --cache ${WORK}/cache
+         --cost-model ${WORK}/cost_model.json)
+execute_process(COMMAND ${BLTUNE} ${args} --out ${WORK}/single RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                ERROR_VARIABLE out)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "bltune failed (${rc}):\n${out}")
+endif()
+# mpirun refuses to run as root unless told: add the flag only when this test runs as root.
+execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE)
+set(root_flag "")
+if(uid STREQUAL "0")
+  set(root_flag --allow-run-as-root)
+endif()
+execute_process(COMMAND ${MPIEXEC} -np 2 --oversubscribe ${root_flag} ${BLTUNE_MPI} ${args} --out ${WORK}/mpi
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "mpirun bltune_mpi failed (${rc}):\n${out}")
+endif()
+foreach(scene circles_none color_circles_none)
+  set(a ${WORK}/single/${scene}/front_search.csv)
+  set(b ${WORK}/mpi/${scene}/front_search.csv)
+  if(NOT EXISTS ${a} OR NOT EXISTS ${b})
+    message(FATAL_ERROR "missing ${a} or ${b}")
+  endif()
+  file(READ ${a} ta)
+  file(READ ${b} tb)
+  if(NOT ta STREQUAL tb)
+    message(FATAL_ERROR "${scene}: MPI front differs from the single-process front\n--- single\n${ta}--- mpi\n${tb}")
+  endif()
+  string(REGEX MATCHALL "\n" lines "${ta}")
+  list(LENGTH lines n)
+  if(n LESS 3)
+    message(FATAL_ERROR "${scene}: front of fewer than 2 points:\n${ta}")
+  endif()
+endforeach()
+message(STATUS "MPI and single-process fronts agree")

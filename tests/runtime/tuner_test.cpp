@@ -1,0 +1,254 @@
+// bl_tuner: Pareto ranking, genome operators, cost model, determinism, resumption, error measure.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+
+#include "compiler/lower.hpp"
+#include "image/metrics.hpp"
+#include "render/render.hpp"
+#include "shaders/shader.hpp"
+#include "tuner/calibrate.hpp"
+#include "tuner/checkpoint.hpp"
+#include "tuner/genetic.hpp"
+#include "tuner/pareto.hpp"
+#include "tuner/pixel_sample.hpp"
+#include "tuner/scene_tuner.hpp"
+
+using namespace bl;
+using namespace bl::tuner;
+
+namespace {
+
+std::string temp_dir(const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() / ("bl_tuner_test_" + name);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+// A tiny version of a suite scene: 24x24 pixels, 2 views, 16 truth samples.
+scene::Scene tiny_scene() {
+  scene::Scene s = scene::load_scene(BL_SOURCE_DIR "/scenes/suite/checkerboard_none.json");
+  s.width = s.height = 24;
+  s.truth_samples = 16;
+  return s;
+}
+
+// A cheap calibration (its numbers are noisy but complete).
+const CostModel& quick_model() {
+  static const CostModel m = [] {
+    CalibrationOptions o;
+    o.pixels = 512;
+    o.copies = 4;
+    o.min_ms = 0.05;
+    o.trials = 1;
+    return calibrate(o);
+  }();
+  return m;
+}
+
+TuneOptions tiny_options(const std::string& cache) {
+  TuneOptions o;
+  o.rules = {"none", "dorn", "mc2", "mc4", "box", "gaussian:rho=const"};
+  o.sample_pixels = 300;
+  o.cache_dir = cache;
+  o.search.population = 10;
+  o.search.generations = 3;
+  o.search.restarts = 2;
+  o.search.seed = 42;
+  return o;
+}
+
+bool same_front(const std::vector<Point>& a, const std::vector<Point>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].genome != b[i].genome || a[i].obj.time != b[i].obj.time || a[i].obj.error != b[i].obj.error)
+      return false;
+  return true;
+}
+
+}  // namespace
+
+TEST(Pareto, RanksHandMadePoints) {
+  // Front 0: (1,5) (2,3) (4,1); front 1: (3,4) (5,2); front 2: (6,6). (2,3) duplicated: both rank 0.
+  const std::vector<Objectives> p{{1, 5}, {3, 4}, {2, 3}, {6, 6}, {4, 1}, {5, 2}, {2, 3}};
+  EXPECT_EQ(pareto_ranks(p), (std::vector<int>{0, 1, 0, 2, 0, 1, 0}));
+  EXPECT_EQ(pareto_front(p), (std::vector<int>{0, 2, 4}));
+  EXPECT_TRUE(dominates({1, 1}, {1, 2}));
+  EXPECT_FALSE(dominates({1, 1}, {1, 1}));
+  EXPECT_FALSE(dominates({1, 3}, {2, 2}));
+}
+
+TEST(Pareto, CrowdingKeepsEndsInfinite) {
+  const std::vector<Objectives> p{{1, 5}, {2, 3}, {4, 1}, {3, 2.5}};
+  const auto c = crowding(p, pareto_ranks(p));
+  EXPECT_TRUE(std::isinf(c[0]));
+  EXPECT_TRUE(std::isinf(c[2]));
+  EXPECT_GT(c[1], 0);
+  EXPECT_FALSE(std::isinf(c[3]));
+}
+
+TEST(Genome, PaletteRejectsBadText) {
+  try {
+    Palette::parse({"none", "gaussain"});
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("gaussain"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(Palette::parse({"none", "none"}), std::invalid_argument);
+  const Palette p = Palette::parse(Palette::default_names());
+  EXPECT_EQ(p.families.size(), 9u);  // none dorn gaussian mc box tent rule1 rule2 rule3
+}
+
+TEST(Genome, CrossoverAndMutationKeepSchedulesValidAndAdjacent) {
+  const scene::Scene s = tiny_scene();
+  const ir::Graph g = shaders::trace(shaders::find_shader("bricks"), s.effects());
+  const SearchSpace space = SearchSpace::build(g);
+  const Palette pal = Palette::parse(Palette::default_names());
+  ASSERT_GT(space.size(), 20);
+  // Genes are the depth-first order without constants.
+  std::vector<int> dfs;
+  for (int n : g.depth_first_order())
+    if (g.node(n).op != ir::Op::Const) dfs.push_back(n);
+  EXPECT_EQ(space.genes, dfs);
+  Rng rng(3);
+  const Genome zero = uniform_genome(space, 0), one = uniform_genome(space, 1);
+  std::set<int> run_lengths;
+  int subtrees = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Genome c = crossover(zero, one, rng);
+    ASSERT_EQ(c.size(), zero.size());
+    // Exactly one contiguous run taken from the other parent.
+    int first = -1, last = -1;
+    for (int k = 0; k < space.size(); ++k)
+      if (c[k] == 1) last = k, first = first < 0 ? k : first;
+    ASSERT_GE(first, 0);
+    for (int k = first; k <= last; ++k) ASSERT_EQ(c[k], 1) << "crossover range not contiguous";
+
+    const Genome m = mutate(zero, space, pal, rng);
+    std::vector<int> changed;
+    for (int k = 0; k < space.size(); ++k) {
+      ASSERT_LT(m[k], pal.rules.size());
+      if (m[k] != zero[k]) changed.push_back(k);
+    }
+    if (changed.empty()) continue;  // the new rule was rule 0 itself
+    const bool contiguous = changed.back() - changed.front() + 1 == static_cast<int>(changed.size());
+    bool is_subtree = false;
+    for (const auto& sub : space.subtree) is_subtree = is_subtree || sub == changed;
+    if (contiguous && (changed.size() == 1 || changed.size() == 2 || changed.size() == 4))
+      run_lengths.insert(changed.size());
+    else
+      ASSERT_TRUE(is_subtree) << "mutation changed " << changed.size()
+                              << " genes, neither adjacent nor a subtree";
+    if (is_subtree && changed.size() > 4) ++subtrees;
+    // Any assignment lowers (rules that do not apply are substituted, or need a missing function).
+    const compiler::Schedule sch = to_schedule(g, space, pal, m);
+    ASSERT_EQ(static_cast<int>(sch.size()), g.size());
+  }
+  EXPECT_EQ(run_lengths, (std::set<int>{1, 2, 4}));
+  EXPECT_GT(subtrees, 0);
+}
+
+TEST(Genome, KeyRoundTrips) {
+  const Genome x{0, 5, 61, 62, 200, 16};
+  EXPECT_EQ(genome_from_key(genome_key(x), 250), x);
+  EXPECT_THROW(genome_from_key(genome_key(x), 17), std::invalid_argument);
+}
+
+TEST(CostModel, OrdersAllMc32AboveAllNoneAndRoundTrips) {
+  const CostModel& m = quick_model();
+  EXPECT_TRUE(m.covers_all()) << m.missing();
+  const ir::Graph g = shaders::trace(shaders::find_shader("bricks"), tiny_scene().effects());
+  const double none = m.cost(compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("none"))));
+  const double mc32 = m.cost(compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("mc32"))));
+  const double mc2 = m.cost(compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("mc2"))));
+  EXPECT_GT(mc32, 4 * none);
+  EXPECT_GT(mc32, mc2);
+  const std::string path = temp_dir("cost") + "/cost.json";
+  save_cost_model(path, m);
+  const CostModel back = load_cost_model(path, m.machine);
+  EXPECT_EQ(back.op_ns, m.op_ns);
+  EXPECT_EQ(back.fn_ns, m.fn_ns);
+  EXPECT_THROW(load_cost_model(path, "another machine"), std::runtime_error);
+  CostModel partial = m;
+  partial.fn_ns.erase(partial.fn_ns.begin());
+  EXPECT_FALSE(partial.covers_all());
+}
+
+TEST(PixelSample, AllPixelsEqualRmsOfRenderSmoothed) {
+  const std::string cache = temp_dir("cache_ps");
+  const scene::Scene s = tiny_scene();
+  const ir::Graph g = shaders::trace(shaders::find_shader(s.shader), s.effects());
+  const compiler::Program p = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("dorn")));
+  const PixelSample all(s, cache, 0, 1);
+  double sq = 0;
+  const auto fr = render::frames(s);
+  for (const auto& f : fr) {
+    const double e = rms_display(render::render_smoothed(s, f, p), render::render_truth(s, f, cache));
+    sq += e * e;
+  }
+  EXPECT_NEAR(all.error(p), std::sqrt(sq / fr.size()), 1e-6);
+  const PixelSample some(s, cache, 200, 1);
+  EXPECT_EQ(some.count(), 200);
+  EXPECT_NEAR(some.error(p), all.error(p), 0.5 * all.error(p));
+}
+
+TEST(Search, DeterministicAcrossRunsAndThreadCounts) {
+  const std::string cache = temp_dir("cache_det");
+  TuneOptions o = tiny_options(cache);
+  SceneTuner t(tiny_scene(), quick_model(), o);
+  SearchOptions a = o.search, b = o.search;
+  a.threads = 1;
+  b.threads = 3;
+  const RestartResult ra = search(t.problem(), a), rb = search(t.problem(), b), ra2 = search(t.problem(), a);
+  ASSERT_TRUE(ra.complete);
+  ASSERT_GE(ra.front.size(), 2u);
+  EXPECT_TRUE(same_front(ra.front, rb.front));
+  EXPECT_TRUE(same_front(ra.front, ra2.front));
+  // The front is really non-dominated and sorted by time.
+  for (std::size_t i = 1; i < ra.front.size(); ++i) {
+    EXPECT_LT(ra.front[i - 1].obj.time, ra.front[i].obj.time);
+    EXPECT_GT(ra.front[i - 1].obj.error, ra.front[i].obj.error);
+  }
+  // Objectives of a front point are those of its schedule.
+  const Objectives again = t.evaluate(t.schedule(ra.front.back().genome));
+  EXPECT_EQ(again.time, ra.front.back().obj.time);
+  EXPECT_EQ(again.error, ra.front.back().obj.error);
+}
+
+TEST(Search, ResumeFromCheckpointReproducesTheFront) {
+  const std::string cache = temp_dir("cache_resume"), ck = temp_dir("ckpt");
+  TuneOptions o = tiny_options(cache);
+  SceneTuner t(tiny_scene(), quick_model(), o);
+  const RestartResult straight = search(t.problem(), o.search);
+  SearchOptions interrupted = o.search;
+  interrupted.checkpoint_dir = ck;
+  interrupted.stop_after = 1;  // restart 0 stops after its first bred generation
+  const RestartResult part = search(t.problem(), interrupted);
+  EXPECT_FALSE(part.complete);
+  ASSERT_TRUE(std::filesystem::exists(ck + "/restart_0.json"));
+  interrupted.stop_after = 2;  // restart 0 finishes (3 generations), restart 1 stops again
+  EXPECT_FALSE(search(t.problem(), interrupted).complete);
+  interrupted.stop_after = -1;
+  const RestartResult resumed = search(t.problem(), interrupted);
+  EXPECT_TRUE(resumed.complete);
+  EXPECT_TRUE(same_front(straight.front, resumed.front));
+  // A checkpoint of another seed is ignored, not resumed.
+  Checkpoint expect, got;
+  expect.problem_key = t.problem().key;
+  expect.seed = 7;
+  EXPECT_FALSE(load_checkpoint(ck + "/restart_0.json", expect, t.problem().palette, &got));
+}
+
+TEST(SceneTuner, NelderMeadDoesNotIncreaseError) {
+  const std::string cache = temp_dir("cache_nm");
+  TuneOptions o = tiny_options(cache);
+  o.nm_evals = 15;
+  SceneTuner t(tiny_scene(), quick_model(), o);
+  const compiler::Schedule s = compiler::uniform_schedule(t.graph(), rules::parse_rule("dorn"));
+  const Objectives before = t.evaluate(s);
+  Objectives after;
+  t.refine_sigma(s, &after);
+  EXPECT_LE(after.error, before.error);
+}
