@@ -14,3 +14,6 @@ echo "[main] building the rest (verifier, tests, benchmarks)"
 cmake --build build -j "$(nproc)"
 echo "[main] verifying every emitted formula against quadrature"
 ./build/bin/blverify --generated generated --record "$@"
+echo "[main] rendering a demo scene: plain, MSAA 4/16, adaptive Gaussian, ground truth (build/demo)"
+./build/bin/blrender scenes/suite/checkerboard_bumps.json --rules gaussian --msaa 4 16 --glsl \
+  --out build/demo --cache build/truth_cache
