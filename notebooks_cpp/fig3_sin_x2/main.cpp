@@ -161,12 +161,12 @@ int main(int argc, char** argv) {
      << "). The adaptive Gaussian propagates sd(x^2) = sqrt(4 x^2 s^2 + 2 s^4) "
         "and keeps the damping right (max error "
      << nb::sci(curves[1].max_err) << ").\n"
-     << "- Monte Carlo uses 8 fixed antithetic normals per node (seeded by the node index), so it is "
-        "deterministic, but 8 draws are a poor Gaussian: the RMS of the normals of `pow2` and `sin` is "
+     << "- Monte Carlo uses 8 fixed antithetic normals per node (seeded by the node index, scaled to unit "
+        "mean square: the RMS of the normals of `pow2` and `sin` is "
      << mc_rms.front() << " and " << mc_rms.back()
-     << " (1 in expectation), so both nodes smooth with a fraction of their sd and the curve stays close to "
-        "the unsmoothed one (max error "
-     << nb::sci(curves[2].max_err) << ").\n"
+     << "), so it is deterministic; 8 points per node still alias where sin(x^2) oscillates faster than "
+        "they resolve (max error "
+     << nb::sci(curves[2].max_err) << ", " << nb::sci(curves[2].max_inner) << " for |x| <= 2).\n"
      << "- The box kernel damps sin by sinc(sqrt(3) sd), which decays slowly and changes sign where the "
         "Gaussian's exp(-sd^2/2) is already small: right for small |x|, wrong phase at large |x| (max error "
      << nb::sci(curves[3].max_err) << ").\n\n";
