@@ -5,12 +5,29 @@
 
 namespace bl::camera {
 
+namespace {
+// Every float field, for loops that treat them alike.
+constexpr std::vector<float> PlaneBatch::*kFloatFields[] = {
+    &PlaneBatch::u,      &PlaneBatch::v,      &PlaneBatch::sigma_u, &PlaneBatch::sigma_v, &PlaneBatch::rho,
+    &PlaneBatch::du_dx,  &PlaneBatch::du_dy,  &PlaneBatch::dv_dx,   &PlaneBatch::dv_dy,   &PlaneBatch::view_x,
+    &PlaneBatch::view_y, &PlaneBatch::view_z, &PlaneBatch::distance};
+}  // namespace
+
 void PlaneBatch::resize(std::size_t n) {
   hit.assign(n, 0);
-  for (auto* field : {&u, &v, &sigma_u, &sigma_v, &rho, &du_dx, &du_dy, &dv_dx, &dv_dy, &view_x, &view_y,
-                      &view_z, &distance}) {
-    field->assign(n, 0.0f);
+  for (auto field : kFloatFields) (this->*field).assign(n, 0.0f);
+}
+
+PlaneBatch PlaneBatch::gather(const std::vector<int>& indices) const {
+  PlaneBatch out;
+  out.rect = rect;
+  out.hit.reserve(indices.size());
+  for (int i : indices) out.hit.push_back(hit.at(i));
+  for (auto field : kFloatFields) {
+    (out.*field).reserve(indices.size());
+    for (int i : indices) (out.*field).push_back((this->*field).at(i));
   }
+  return out;
 }
 
 void trace_plane(const Camera& cam, const FootprintOptions& opt, PlaneBatch& out, PixelRect rect,

@@ -26,6 +26,8 @@ struct PlaneBatch {
 
   std::size_t size() const { return hit.size(); }
   void resize(std::size_t n);
+  // The entries at `indices` (in that order), e.g. a pixel sample; `rect` is kept as is.
+  PlaneBatch gather(const std::vector<int>& indices) const;
 };
 
 // Fills `out` (reusing its storage) for every pixel of `rect`. `offsets`, when given, holds 2 floats

@@ -38,6 +38,40 @@ double uniform_input(const scene::Scene& s, const Frame& f, const std::string& n
   throw std::invalid_argument("renderer: the program reads an unknown input '" + name + "'");
 }
 
+compiler::Batch bind_inputs(const compiler::Program& p, const camera::PlaneBatch& b, const scene::Scene& s,
+                            const Frame& f, InputStorage& storage) {
+  const int n = static_cast<int>(b.size());
+  storage.zeros.assign(n, 0.0f);
+  storage.constants.clear();
+  storage.constants.reserve(p.input_names.size());  // pointers into it stay valid
+  const float* zero = storage.zeros.data();
+  compiler::Batch batch;
+  batch.count = n;
+  for (const std::string& name : p.input_names) {
+    const float* mean = nullptr;
+    const float *sd = zero, *gx = zero, *gy = zero;
+    if (name == "u") {
+      mean = b.u.data(), sd = b.sigma_u.data(), gx = b.du_dx.data(), gy = b.du_dy.data();
+    } else if (name == "v") {
+      mean = b.v.data(), sd = b.sigma_v.data(), gx = b.dv_dx.data(), gy = b.dv_dy.data();
+    } else if (name == "view_x") {
+      mean = b.view_x.data();
+    } else if (name == "view_y") {
+      mean = b.view_y.data();
+    } else if (name == "view_z") {
+      mean = b.view_z.data();
+    } else {
+      storage.constants.emplace_back(n, static_cast<float>(uniform_input(s, f, name)));
+      mean = storage.constants.back().data();
+    }
+    batch.mean.push_back(mean);
+    batch.sd.push_back(sd);
+    batch.grad_x.push_back(gx);
+    batch.grad_y.push_back(gy);
+  }
+  return batch;
+}
+
 std::vector<Frame> frames(const scene::Scene& s) {
   std::vector<Frame> out;
   for (int v = 0; v < static_cast<int>(s.views.size()); ++v)
@@ -101,33 +135,8 @@ Image render_smoothed(const scene::Scene& s, const Frame& f, const compiler::Pro
     camera::PlaneBatch b;
     camera::trace_plane(cam, opt, b, camera::PixelRect{0, y0, s.width, rows});
     const int n = s.width * rows;
-    std::vector<float> zeros(n, 0.0f);
-    std::vector<std::vector<float>> constants;
-    constants.reserve(program.input_names.size());
-    compiler::Batch batch;
-    batch.count = n;
-    for (const std::string& name : program.input_names) {
-      const float* mean = nullptr;
-      const float *sd = zeros.data(), *gx = zeros.data(), *gy = zeros.data();
-      if (name == "u") {
-        mean = b.u.data(), sd = b.sigma_u.data(), gx = b.du_dx.data(), gy = b.du_dy.data();
-      } else if (name == "v") {
-        mean = b.v.data(), sd = b.sigma_v.data(), gx = b.dv_dx.data(), gy = b.dv_dy.data();
-      } else if (name == "view_x") {
-        mean = b.view_x.data();
-      } else if (name == "view_y") {
-        mean = b.view_y.data();
-      } else if (name == "view_z") {
-        mean = b.view_z.data();
-      } else {
-        constants.emplace_back(n, static_cast<float>(uniform_input(s, f, name)));
-        mean = constants.back().data();
-      }
-      batch.mean.push_back(mean);
-      batch.sd.push_back(sd);
-      batch.grad_x.push_back(gx);
-      batch.grad_y.push_back(gy);
-    }
+    InputStorage storage;
+    const compiler::Batch batch = bind_inputs(program, b, s, f, storage);
     std::vector<std::vector<float>> out(3, std::vector<float>(n));
     compiler::Evaluator ev(program);
     ev.run(batch, {out[0].data(), out[1].data(), out[2].data()});
@@ -144,8 +153,8 @@ std::string truth_cache_path(const scene::Scene& s, const Frame& f, const std::s
   const std::uint64_t shader_hash = shaders::trace(shaders::find_shader(s.shader), s.effects()).hash();
   char name[160];
   std::snprintf(name, sizeof name, "truth_%016llx_%016llx_v%d_t%.6f.exr",
-                static_cast<unsigned long long>(s.hash()), static_cast<unsigned long long>(shader_hash), f.view,
-                f.time);
+                static_cast<unsigned long long>(s.hash()), static_cast<unsigned long long>(shader_hash),
+                f.view, f.time);
   return (std::filesystem::path(cache_dir) / name).string();
 }
 

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <string>
 
+#include "camera/plane_batch.hpp"
+#include "compiler/evaluator.hpp"
 #include "compiler/lir.hpp"
 #include "image/image.hpp"
 #include "scene/scene.hpp"
@@ -37,6 +39,19 @@ std::string truth_cache_path(const scene::Scene& s, const Frame& f, const std::s
 
 // Value of a per-frame uniform input (time, light_x/y/z); throws naming an unknown input.
 double uniform_input(const scene::Scene& s, const Frame& f, const std::string& name);
+
+// Storage bind_inputs points into for inputs the plane batch does not hold (zero sds and
+// gradients, per-frame uniforms); it must outlive the Batch.
+struct InputStorage {
+  std::vector<float> zeros;
+  std::vector<std::vector<float>> constants;
+};
+
+// The program's inputs for every pixel of `b`, matched by name: u and v (mean, footprint sd, screen
+// gradient), view_x/y/z (mean), time and light_* (the frame's uniforms). Throws naming an unknown
+// input. The one mapping the renderer and the tuner's pixel sample share.
+compiler::Batch bind_inputs(const compiler::Program& p, const camera::PlaneBatch& b, const scene::Scene& s,
+                            const Frame& f, InputStorage& storage);
 
 // All frames of a scene: every view, and every time (one when static).
 std::vector<Frame> frames(const scene::Scene& s);

@@ -35,6 +35,7 @@ PixelSample::PixelSample(const scene::Scene& s, const std::string& cache_dir, in
     std::sort(idx.begin(), idx.end());
     FrameData d;
     d.time = f.time;
+    std::vector<int> hit;
     for (int i : idx) {
       const int x = i % s.width, y = i / s.width;
       if (!b.hit[i]) {
@@ -44,14 +45,11 @@ PixelSample::PixelSample(const scene::Scene& s, const std::string& cache_dir, in
         }
         continue;
       }
-      ++d.n;
-      d.u.push_back(b.u[i]), d.v.push_back(b.v[i]), d.su.push_back(b.sigma_u[i]),
-          d.sv.push_back(b.sigma_v[i]);
-      d.dudx.push_back(b.du_dx[i]), d.dudy.push_back(b.du_dy[i]), d.dvdx.push_back(b.dv_dx[i]);
-      d.dvdy.push_back(b.dv_dy[i]), d.vx.push_back(b.view_x[i]), d.vy.push_back(b.view_y[i]);
-      d.vz.push_back(b.view_z[i]);
+      hit.push_back(i);
       for (int c = 0; c < 3; ++c) d.truth.push_back(to_display(truth.at(x, y, c)));
     }
+    d.n = static_cast<int>(hit.size());
+    d.hits = b.gather(hit);
     total_ += per_frame;
     frames_.push_back(std::move(d));
   }
@@ -67,35 +65,10 @@ double PixelSample::error(const compiler::Program& p) const {
     const FrameData& d = frames_[fi];
     sum += d.miss_sq;
     if (d.n == 0) continue;
-    std::vector<float> zeros(d.n, 0.0f);
-    std::vector<std::vector<float>> constants;
-    constants.reserve(p.input_names.size());
-    compiler::Batch batch;
-    batch.count = d.n;
-    for (const std::string& name : p.input_names) {  // the mapping of render::render_smoothed
-      const float* mean = nullptr;
-      const float *sd = zeros.data(), *gx = zeros.data(), *gy = zeros.data();
-      if (name == "u") {
-        mean = d.u.data(), sd = d.su.data(), gx = d.dudx.data(), gy = d.dudy.data();
-      } else if (name == "v") {
-        mean = d.v.data(), sd = d.sv.data(), gx = d.dvdx.data(), gy = d.dvdy.data();
-      } else if (name == "view_x") {
-        mean = d.vx.data();
-      } else if (name == "view_y") {
-        mean = d.vy.data();
-      } else if (name == "view_z") {
-        mean = d.vz.data();
-      } else {
-        render::Frame f;
-        f.time = d.time;
-        constants.emplace_back(d.n, static_cast<float>(render::uniform_input(scene_, f, name)));
-        mean = constants.back().data();
-      }
-      batch.mean.push_back(mean);
-      batch.sd.push_back(sd);
-      batch.grad_x.push_back(gx);
-      batch.grad_y.push_back(gy);
-    }
+    render::Frame f;
+    f.time = d.time;
+    render::InputStorage storage;
+    const compiler::Batch batch = render::bind_inputs(p, d.hits, scene_, f, storage);
     std::vector<std::vector<float>> out(3, std::vector<float>(d.n));
     ev.run(batch, {out[0].data(), out[1].data(), out[2].data()});
     for (int i = 0; i < d.n; ++i)

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "camera/plane_batch.hpp"
 #include "compiler/lir.hpp"
 #include "scene/scene.hpp"
 
@@ -28,8 +29,8 @@ class PixelSample {
  private:
   struct FrameData {
     double time = 0;
-    int n = 0;  // sampled pixels hit by the camera
-    std::vector<float> u, v, su, sv, dudx, dudy, dvdx, dvdy, vx, vy, vz;
+    int n = 0;                 // sampled pixels hit by the camera
+    camera::PlaneBatch hits;   // those pixels' traces, in sample order
     std::vector<float> truth;  // display space, 3 per hit pixel
     double miss_sq = 0;        // squared error summed over missed sampled pixels
   };
