@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "ir/atomics.hpp"
+#include "ir/hash.hpp"
 
 namespace bl::ir {
 
@@ -223,11 +224,7 @@ std::vector<int> Graph::depth_first_order() const {
 }
 
 std::uint64_t Graph::hash() const {
-  // FNV-1a over a canonical text form: independent of pointer values and of the platform's std::hash.
-  const std::string s = to_string();
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char ch : s) h = (h ^ ch) * 1099511628211ull;
-  return h;
+  return fnv1a(to_string());
 }
 
 std::string Graph::to_string() const {

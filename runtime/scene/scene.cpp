@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ir/hash.hpp"
+
 namespace bl::scene {
 
 using json = nlohmann::json;
@@ -14,7 +16,8 @@ using json = nlohmann::json;
 namespace {
 
 [[noreturn]] void fail(const std::string& origin, const std::string& field, const std::string& why) {
-  throw std::invalid_argument("scene " + origin + (field.empty() ? "" : ", field '" + field + "'") + ": " + why);
+  throw std::invalid_argument("scene " + origin + (field.empty() ? "" : ", field '" + field + "'") + ": " +
+                              why);
 }
 
 void only_fields(const json& j, const std::string& origin, const std::string& where,
@@ -24,7 +27,8 @@ void only_fields(const json& j, const std::string& origin, const std::string& wh
     if (!allowed.count(it.key())) {
       std::string list;
       for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      fail(origin, where.empty() ? it.key() : where + "." + it.key(), "unknown field (allowed: " + list + ")");
+      fail(origin, where.empty() ? it.key() : where + "." + it.key(),
+           "unknown field (allowed: " + list + ")");
     }
 }
 
@@ -53,9 +57,12 @@ std::string str(const json& j, const std::string& origin, const std::string& fie
 
 const char* parallax_name(shaders::Parallax p) {
   switch (p) {
-    case shaders::Parallax::None: return "none";
-    case shaders::Parallax::Bumps: return "bumps";
-    case shaders::Parallax::Ripples: return "ripples";
+    case shaders::Parallax::None:
+      return "none";
+    case shaders::Parallax::Bumps:
+      return "bumps";
+    case shaders::Parallax::Ripples:
+      return "ripples";
   }
   return "?";
 }
@@ -103,13 +110,15 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
     const json& c = j["camera"];
     only_fields(c, origin, "camera", {"position", "fov_deg", "views"});
     if (c.contains("position")) s.camera_position = vec3(c["position"], origin, "camera.position");
-    if (s.camera_position[2] <= 0) fail(origin, "camera.position", "the camera must be above the plane (z > 0)");
+    if (s.camera_position[2] <= 0)
+      fail(origin, "camera.position", "the camera must be above the plane (z > 0)");
     if (c.contains("fov_deg")) {
       s.fov_deg = number(c["fov_deg"], origin, "camera.fov_deg");
       if (!(s.fov_deg > 1 && s.fov_deg < 170)) fail(origin, "camera.fov_deg", "must lie in (1, 170)");
     }
     if (c.contains("views")) {
-      if (!c["views"].is_array() || c["views"].empty()) fail(origin, "camera.views", "must be a non-empty array");
+      if (!c["views"].is_array() || c["views"].empty())
+        fail(origin, "camera.views", "must be a non-empty array");
       s.views.clear();
       for (std::size_t i = 0; i < c["views"].size(); ++i) {
         const std::string f = "camera.views[" + std::to_string(i) + "]";
@@ -119,28 +128,37 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
         if (v.contains("yaw")) view.yaw = number(v["yaw"], origin, f + ".yaw");
         if (v.contains("pitch")) view.pitch = number(v["pitch"], origin, f + ".pitch");
         if (v.contains("roll")) view.roll = number(v["roll"], origin, f + ".roll");
-        if (!(view.pitch < 0 && view.pitch >= -90)) fail(origin, f + ".pitch", "must lie in [-90, 0) (looking down)");
+        if (!(view.pitch < 0 && view.pitch >= -90))
+          fail(origin, f + ".pitch", "must lie in [-90, 0) (looking down)");
         s.views.push_back(view);
       }
     }
   }
   if (j.contains("times")) {
-    if (!j["times"].is_array() || j["times"].empty()) fail(origin, "times", "must be a non-empty array of numbers");
+    if (!j["times"].is_array() || j["times"].empty())
+      fail(origin, "times", "must be a non-empty array of numbers");
     s.times.clear();
     for (const auto& t : j["times"]) s.times.push_back(number(t, origin, "times"));
   }
   if (j.contains("parallax")) {
     const std::string p = str(j["parallax"], origin, "parallax");
-    if (p == "none") s.parallax = shaders::Parallax::None;
-    else if (p == "bumps") s.parallax = shaders::Parallax::Bumps;
-    else if (p == "ripples") s.parallax = shaders::Parallax::Ripples;
-    else fail(origin, "parallax", "unknown value '" + p + "' (known: none, bumps, ripples)");
+    if (p == "none")
+      s.parallax = shaders::Parallax::None;
+    else if (p == "bumps")
+      s.parallax = shaders::Parallax::Bumps;
+    else if (p == "ripples")
+      s.parallax = shaders::Parallax::Ripples;
+    else
+      fail(origin, "parallax", "unknown value '" + p + "' (known: none, bumps, ripples)");
   }
   if (j.contains("lighting")) {
     const std::string l = str(j["lighting"], origin, "lighting");
-    if (l == "none") s.lighting = shaders::Lighting::None;
-    else if (l == "phong") s.lighting = shaders::Lighting::Phong;
-    else fail(origin, "lighting", "unknown value '" + l + "' (known: none, phong)");
+    if (l == "none")
+      s.lighting = shaders::Lighting::None;
+    else if (l == "phong")
+      s.lighting = shaders::Lighting::Phong;
+    else
+      fail(origin, "lighting", "unknown value '" + l + "' (known: none, phong)");
   }
   if (j.contains("light")) s.light_dir = vec3(j["light"], origin, "light");
   const double ln = std::sqrt(s.light_dir[0] * s.light_dir[0] + s.light_dir[1] * s.light_dir[1] +
@@ -149,16 +167,21 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
   for (double& x : s.light_dir) x /= ln;
   if (j.contains("image")) {
     only_fields(j["image"], origin, "image", {"width", "height"});
-    if (j["image"].contains("width")) s.width = positive_int(j["image"]["width"], origin, "image.width", 16384);
-    if (j["image"].contains("height")) s.height = positive_int(j["image"]["height"], origin, "image.height", 16384);
+    if (j["image"].contains("width"))
+      s.width = positive_int(j["image"]["width"], origin, "image.width", 16384);
+    if (j["image"].contains("height"))
+      s.height = positive_int(j["image"]["height"], origin, "image.height", 16384);
   }
   if (j.contains("footprint")) {
     only_fields(j["footprint"], origin, "footprint", {"sigma_px", "bound"});
     if (j["footprint"].contains("bound")) {
       const std::string b = str(j["footprint"]["bound"], origin, "footprint.bound");
-      if (b == "dorn") s.footprint_bound = FootprintBound::Dorn;
-      else if (b == "marginal") s.footprint_bound = FootprintBound::Marginal;
-      else fail(origin, "footprint.bound", "unknown value '" + b + "' (known: dorn, marginal)");
+      if (b == "dorn")
+        s.footprint_bound = FootprintBound::Dorn;
+      else if (b == "marginal")
+        s.footprint_bound = FootprintBound::Marginal;
+      else
+        fail(origin, "footprint.bound", "unknown value '" + b + "' (known: dorn, marginal)");
     }
     if (j["footprint"].contains("sigma_px")) {
       s.sigma_px = number(j["footprint"]["sigma_px"], origin, "footprint.sigma_px");
@@ -195,17 +218,15 @@ std::string Scene::canonical_json() const {
   j["lighting"] = lighting == shaders::Lighting::Phong ? "phong" : "none";
   j["light"] = light_dir;
   j["image"] = {{"width", width}, {"height", height}};
-  j["footprint"] = {{"sigma_px", sigma_px}, {"bound", footprint_bound == FootprintBound::Dorn ? "dorn" : "marginal"}};
+  j["footprint"] = {{"sigma_px", sigma_px},
+                    {"bound", footprint_bound == FootprintBound::Dorn ? "dorn" : "marginal"}};
   j["ground_truth"] = {{"samples", truth_samples}};
   j["background"] = background;
   return j.dump();
 }
 
 std::uint64_t Scene::hash() const {
-  const std::string s = canonical_json();
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char ch : s) h = (h ^ ch) * 1099511628211ull;
-  return h;
+  return ir::fnv1a(canonical_json());
 }
 
 std::vector<Scene> suite_scenes() {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "compiler/lower.hpp"
+#include "ir/hash.hpp"
 #include "tuner/rho_estimate.hpp"
 
 namespace bl::tuner {
@@ -14,10 +15,10 @@ namespace bl::tuner {
 namespace {
 
 std::string model_digest(const CostModel& cm) {  // recalibration invalidates checkpoints
-  std::uint64_t h = 1469598103934665603ull;
+  std::uint64_t h = ir::kFnvOffset;
   auto mix = [&](const std::string& s, double v) {
-    for (char c : s) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
-    h = (h ^ static_cast<std::uint64_t>(std::llround(v * 1e6))) * 1099511628211ull;
+    h = ir::fnv1a(s, h);
+    h = (h ^ static_cast<std::uint64_t>(std::llround(v * 1e6))) * ir::kFnvPrime;
   };
   for (const auto& [k, v] : cm.op_ns) mix(k, v);
   for (const auto& [k, v] : cm.fn_ns) mix(k, v);
