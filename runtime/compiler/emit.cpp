@@ -62,6 +62,18 @@ std::string expr(const Program& p, int i, Lang lang) {
       return a(0) + (cpp ? ".mean" : ".x");
     case LOp::Var:
       return a(0) + (cpp ? ".var" : ".y");
+    // C++: bl_tex[slot] is a bl::texture::Texture*. GLSL: two samplers per slot (mean, squares).
+    case LOp::TexPlain:
+      return cpp ? "bl::texture::sample_plain(*bl_tex[" + std::to_string(in.tex) + "], " + a(0) + ", " +
+                       a(1) + ", " + std::to_string(in.channel) + ")"
+                 : "bl_tex_plain(bl_tex" + std::to_string(in.tex) + "_mean, " + a(0) + ", " + a(1) + ", " +
+                       std::to_string(in.channel) + ")";
+    case LOp::TexStat:
+      return cpp ? "bl::texture::sample_stat(*bl_tex[" + std::to_string(in.tex) + "], " + a(0) + ", " + a(1) +
+                       ", " + a(2) + ", " + a(3) + ", " + std::to_string(in.channel) + ")"
+                 : "bl_tex_stat(bl_tex" + std::to_string(in.tex) + "_mean, bl_tex" + std::to_string(in.tex) +
+                       "_sq, " + a(0) + ", " + a(1) + ", " + a(2) + ", " + a(3) + ", " +
+                       std::to_string(in.channel) + ")";
     case LOp::Call:
     case LOp::CallStat: {
       const Function& f = functions()[in.fn];
@@ -88,6 +100,10 @@ std::string banner(const Program& p, const std::string& comment) {
   if (!comment.empty()) os << "// " << comment << "\n";
   os << "// Inputs (bl_m mean, bl_s sd, bl_gx/bl_gy screen gradient):";
   for (int i = 0; i < p.input_count; ++i) os << " " << i << "=" << p.input_names[i];
+  if (p.uses_textures()) {
+    os << "\n// Textures (bl_tex slot; GLSL samplers bl_tex<slot>_mean, bl_tex<slot>_sq):";
+    for (std::size_t i = 0; i < p.texture_names.size(); ++i) os << " " << i << "=" << p.texture_names[i];
+  }
   os << "\n// Outputs (bl_out):";
   for (std::size_t i = 0; i < p.output_names.size(); ++i) os << " " << i << "=" << p.output_names[i];
   os << "\n";
@@ -110,12 +126,14 @@ std::string emit_cpp(const Program& p, const std::string& name, const std::strin
   std::set<std::string> headers{"bandlimit/table.hpp"};
   for (int f : p.used_functions()) headers.insert(header_of(functions()[f].cpp));
   for (const auto& h : headers) os << "#include <" << h << ">\n";
+  if (p.uses_textures()) os << "#include <texture/sample.hpp>\n";
   os << "\nnamespace bl_shaders {\n\n"
      << "inline void " << name
-     << "(const float* bl_m, const float* bl_s, const float* bl_gx, const float* bl_gy, float* bl_out) {\n"
+     << "(const float* bl_m, const float* bl_s, const float* bl_gx, const float* bl_gy, float* bl_out"
+     << (p.uses_textures() ? ", const bl::texture::Texture* const* bl_tex" : "") << ") {\n"
      << "  (void)bl_m;\n  (void)bl_s;\n  (void)bl_gx;\n  (void)bl_gy;\n";
   for (std::size_t i = 0; i < p.insts.size(); ++i) {
-    const char* type = p.insts[i].op == LOp::CallStat ? "const bl::stat<float>" : "const float";
+    const char* type = p.pair_valued(static_cast<int>(i)) ? "const bl::stat<float>" : "const float";
     os << "  " << type << " t" << i << " = " << expr(p, static_cast<int>(i), Lang::Cpp) << ";\n";
   }
   for (std::size_t o = 0; o < p.outputs.size(); ++o)
@@ -130,11 +148,12 @@ std::string emit_glsl(const Program& p, const std::string& name, const std::stri
   std::vector<std::string> roots;
   for (int f : p.used_functions()) roots.push_back(functions()[f].glsl);
   os << glsl_library_slice(roots) << "\n";
+  if (p.uses_textures()) os << glsl_texture_library(p.texture_names.size()) << "\n";
   const int ni = std::max(1, p.input_count), no = static_cast<int>(p.outputs.size());
   os << "void " << name << "(in float bl_m[" << ni << "], in float bl_s[" << ni << "], in float bl_gx[" << ni
      << "], in float bl_gy[" << ni << "], out float bl_out[" << no << "]) {\n";
   for (std::size_t i = 0; i < p.insts.size(); ++i) {
-    const char* type = p.insts[i].op == LOp::CallStat ? "vec2" : "float";
+    const char* type = p.pair_valued(static_cast<int>(i)) ? "vec2" : "float";
     os << "  " << type << " t" << i << " = " << expr(p, static_cast<int>(i), Lang::Glsl) << ";\n";
   }
   for (std::size_t o = 0; o < p.outputs.size(); ++o)

@@ -4,13 +4,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "texture/sample.hpp"
+
 namespace bl::compiler {
 
 Evaluator::Evaluator(const Program& p) : p_(p), base_(p.insts.size()) {
   int total = 0;
   for (std::size_t i = 0; i < p.insts.size(); ++i) {
     base_[i] = total;
-    total += p.insts[i].op == LOp::CallStat ? 2 * kBlock : kBlock;
+    total += p.pair_valued(static_cast<int>(i)) ? 2 * kBlock : kBlock;
   }
   reg_.assign(static_cast<std::size_t>(total), 0.0f);
 }
@@ -24,6 +26,12 @@ void Evaluator::run(const Batch& in, const std::vector<float*>& out) {
                                 std::to_string(p_.outputs.size()) + " outputs");
   if (p_.uses_gradients() && (in.grad_x.size() != in.mean.size() || in.grad_y.size() != in.mean.size()))
     throw std::invalid_argument("Evaluator: the program uses gradients but the batch has none");
+  if (in.textures.size() != p_.texture_names.size())
+    throw std::invalid_argument("Evaluator: batch binds " + std::to_string(in.textures.size()) +
+                                " textures, the program reads " + std::to_string(p_.texture_names.size()));
+  for (std::size_t t = 0; t < in.textures.size(); ++t)
+    if (!in.textures[t])
+      throw std::invalid_argument("Evaluator: texture '" + p_.texture_names[t] + "' is not bound");
   const auto& fns = functions();
   for (int start = 0; start < in.count; start += kBlock) {
     const int m = std::min(kBlock, in.count - start);
@@ -94,6 +102,23 @@ void Evaluator::run(const Batch& in, const std::vector<float*>& out) {
           } else {
             const float *a = A(0), *b = A(1);
             for (int t = 0; t < m; ++t) r[t] = f.f2(a[t], b[t]);
+          }
+          break;
+        }
+        case LOp::TexPlain: {
+          const texture::Texture& tx = *in.textures[I.tex];
+          const float *u = A(0), *v = A(1);
+          for (int t = 0; t < m; ++t) r[t] = texture::sample_plain(tx, u[t], v[t], I.channel);
+          break;
+        }
+        case LOp::TexStat: {
+          const texture::Texture& tx = *in.textures[I.tex];
+          const float *u = A(0), *v = A(1), *su = A(2), *sv = A(3);
+          float* var = r + kBlock;
+          for (int t = 0; t < m; ++t) {
+            const bl::stat<float> s = texture::sample_stat(tx, u[t], v[t], su[t], sv[t], I.channel);
+            r[t] = s.mean;
+            var[t] = s.var;
           }
           break;
         }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "compiler/lir.hpp"
+#include "texture/texture.hpp"
 
 namespace bl::compiler {
 
@@ -13,6 +14,7 @@ namespace bl::compiler {
 struct Batch {
   int count = 0;
   std::vector<const float*> mean, sd, grad_x, grad_y;  // size Program::input_count each
+  std::vector<const texture::Texture*> textures;       // per Program::texture_names slot
 };
 
 class Evaluator {

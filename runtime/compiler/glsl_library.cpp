@@ -139,4 +139,23 @@ std::string glsl_library_slice(const std::vector<std::string>& roots) {
   return out;
 }
 
+std::string glsl_texture_library(std::size_t slots) {
+  std::string s;
+  for (std::size_t k = 0; k < slots; ++k)
+    s += "uniform sampler2D bl_tex" + std::to_string(k) + "_mean;\nuniform sampler2D bl_tex" +
+         std::to_string(k) + "_sq;\n";
+  s += R"(float bl_tex_plain(sampler2D m, float u, float v, int c) {
+  return textureLod(m, vec2(u, v), 0.0)[c];
+}
+vec2 bl_tex_stat(sampler2D m, sampler2D q, float u, float v, float su, float sv, int c) {
+  vec2 size = vec2(textureSize(m, 0));
+  float lod = log2(max(max(su * size.x, sv * size.y) * 3.46410162, 1e-30));
+  float mean = textureLod(m, vec2(u, v), lod)[c];
+  float var = textureLod(q, vec2(u, v), lod)[c] - mean * mean;
+  return vec2(mean, var > 0.0 ? var : 0.0);
+}
+)";
+  return s;
+}
+
 }  // namespace bl::compiler

@@ -14,4 +14,9 @@ const std::string& glsl_library();  // the whole library text, in include order
 // Throws std::invalid_argument naming a root the library does not define.
 std::string glsl_library_slice(const std::vector<std::string>& roots);
 
+// The texture lookups of a program reading `slots` textures: per slot the uniforms bl_tex<k>_mean
+// and bl_tex<k>_sq (mipmapped, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT, levels uploaded from
+// bl::texture::Pyramid), and bl_tex_plain / bl_tex_stat, the twins of texture/sample.hpp.
+std::string glsl_texture_library(std::size_t slots);
+
 }  // namespace bl::compiler

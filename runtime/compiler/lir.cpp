@@ -10,7 +10,8 @@
 namespace bl::compiler {
 
 bool Inst::operator==(const Inst& o) const {
-  return op == o.op && fn == o.fn && std::memcmp(&k, &o.k, sizeof k) == 0 &&
+  return op == o.op && fn == o.fn && tex == o.tex && channel == o.channel &&
+         std::memcmp(&k, &o.k, sizeof k) == 0 &&
          std::equal(std::begin(arg), std::end(arg), std::begin(o.arg));
 }
 
@@ -31,6 +32,8 @@ int lop_arity(const Inst& in) {
     case LOp::Call:
     case LOp::CallStat:
       return functions()[in.fn].arity;
+    case LOp::TexStat:
+      return 4;
     default:
       return 2;
   }
@@ -132,7 +135,7 @@ Program optimize(const Program& p) {
   const int n = static_cast<int>(p.insts.size());
   std::vector<int> rename(n);
   std::vector<Inst> unique;
-  std::map<std::tuple<int, int, std::uint32_t, int, int, int, int, int, int>, int> seen;
+  std::map<std::tuple<int, int, int, int, std::uint32_t, int, int, int, int, int, int>, int> seen;
   for (int i = 0; i < n; ++i) {
     Inst in = p.insts[i];
     for (int j = 0; j < lop_arity(in); ++j) in.arg[j] = rename[in.arg[j]];
@@ -143,8 +146,8 @@ Program optimize(const Program& p) {
     }
     std::uint32_t kbits;
     std::memcpy(&kbits, &in.k, sizeof kbits);
-    const auto key = std::make_tuple(static_cast<int>(in.op), in.fn, kbits, in.arg[0], in.arg[1], in.arg[2],
-                                     in.arg[3], in.arg[4], in.arg[5]);
+    const auto key = std::make_tuple(static_cast<int>(in.op), in.fn, in.tex, in.channel, kbits, in.arg[0],
+                                     in.arg[1], in.arg[2], in.arg[3], in.arg[4], in.arg[5]);
     auto it = seen.find(key);
     if (it != seen.end()) {
       rename[i] = it->second;
@@ -162,6 +165,7 @@ Program optimize(const Program& p) {
   Program out;
   out.input_count = p.input_count;
   out.input_names = p.input_names;
+  out.texture_names = p.texture_names;
   out.output_names = p.output_names;
   out.notes = p.notes;
   std::vector<int> pos(unique.size(), -1);

@@ -30,15 +30,19 @@ enum class LOp {
   NonNeg,    // a > 0 ? a : 0 (variance from E[f^2] - E[f]^2 can round below 0)
   Call,      // fn(args...) -> float
   CallStat,  // fn(args...) -> (mean, var)
-  Mean,      // .mean of CallStat a
-  Var,       // .var of CallStat a
+  Mean,      // .mean of CallStat / TexStat a
+  Var,       // .var of CallStat / TexStat a
+  TexPlain,  // channel `channel` of texture slot `tex` at (a, b), level 0 bilinear -> float
+  TexStat,   // the same over a footprint of sds (c, d): (mean, var) from the two pyramids
 };
 
 struct Inst {
   LOp op = LOp::Const;
   int arg[6] = {-1, -1, -1, -1, -1, -1};
-  int fn = -1;  // index into functions() for Call/CallStat
-  float k = 0;  // Const value
+  int fn = -1;      // index into functions() for Call/CallStat
+  float k = 0;      // Const value
+  int tex = -1;     // TexPlain/TexStat: texture slot (Program::texture_names)
+  int channel = 0;  // TexPlain/TexStat: channel
   bool operator==(const Inst& o) const;
 };
 
@@ -50,9 +54,12 @@ struct Program {
   std::vector<std::string> output_names;
   int input_count = 0;  // slots of the InMean/InSd/InGrad arrays
   std::vector<std::string> input_names;
-  std::vector<std::string> notes;  // rule substitutions made while lowering (for reports)
+  std::vector<std::string> texture_names;  // texture slots, in slot order
+  std::vector<std::string> notes;          // rule substitutions made while lowering (for reports)
 
   bool uses_gradients() const;
+  bool uses_textures() const { return !texture_names.empty(); }
+  bool pair_valued(int i) const { return insts[i].op == LOp::CallStat || insts[i].op == LOp::TexStat; }
   std::vector<int> used_functions() const;  // sorted indices into functions()
 };
 

@@ -32,6 +32,7 @@ class Lowering {
   Program run() {
     p_.input_count = static_cast<int>(g_.inputs().size());
     for (const auto& in : g_.inputs()) p_.input_names.push_back(in.name);
+    p_.texture_names = g_.textures();
     for (int i = 0; i < g_.size(); ++i) vals_[i] = node(i);
     for (std::size_t k = 0; k < g_.outputs().size(); ++k) {
       p_.outputs.push_back(vals_[g_.outputs()[k]].mean);
@@ -124,6 +125,7 @@ class Lowering {
     if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
     if (r.kind == Kind::MonteCarlo) return monte_carlo(i, n, r, args);
     if (n.op == Op::Call) return call_node(n, r, *args[0]);
+    if (n.op == Op::Texture) return texture_node(n, r, *args[0], *args[1]);
     if (n.op == Op::Neg) return Val{op(LOp::Neg, args[0]->mean), args[0]->var, args[0]->sd};
     if (r.kind == Kind::Dorn) return dorn(n, r, args);
     if (r.kind != Kind::Gaussian)
@@ -158,6 +160,15 @@ class Lowering {
       }
       case Op::Call:
         return call(plain_name(ir::atomic_name(n.atomic)), {x[0]});
+      case Op::Texture: {
+        Inst in;
+        in.op = LOp::TexPlain;
+        in.tex = static_cast<int>(n.value);
+        in.channel = n.atomic;
+        in.arg[0] = x[0];
+        in.arg[1] = x[1];
+        return emit(in);
+      }
       default:
         throw std::logic_error("compiler: plain() of a leaf");
     }
@@ -249,6 +260,21 @@ class Lowering {
       default:
         throw std::logic_error("compiler: call_node with rule " + to_string(r));
     }
+  }
+
+  // A texture is a discrete function: every smoothing rule reads the mean and mean-of-squares
+  // pyramids at the footprint's level (clamped-domain paper, eqs. 21-22); Monte Carlo samples the
+  // texture directly (monte_carlo above), none reads level 0.
+  Val texture_node(const ir::Node& n, const Rule& r, Val& u, Val& v) {
+    Inst in;
+    in.op = LOp::TexStat;
+    in.tex = static_cast<int>(n.value);
+    in.channel = n.atomic;
+    in.arg[0] = u.mean;
+    in.arg[1] = v.mean;
+    in.arg[2] = u.var >= 0 ? scaled_sd(u, r) : k(0);
+    in.arg[3] = v.var >= 0 ? scaled_sd(v, r) : k(0);
+    return from_stat(emit(in));
   }
 
   // Dorn et al. 2015 with Yang & Barnes' improvement (4.3): sd adds over +/-, scales by a constant
@@ -402,6 +428,11 @@ class Lowering {
         set(G(n.a).gx, G(n.a).gy);
         break;
       case Op::Less:
+        set(k(0), k(0));
+        break;
+      // Texels are treated as uncorrelated with the shader's other values (no derivative of a
+      // discrete function): a rho=grad product with a texture value gets rho 0.
+      case Op::Texture:
         set(k(0), k(0));
         break;
       case Op::Mul: {

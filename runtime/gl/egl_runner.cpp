@@ -3,6 +3,7 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -71,8 +72,8 @@ GLuint compile_stage(GLenum stage, const std::string& source) {
 
 // The GLSL type a Uniform alternative must meet.
 GLenum expected_type(const UniformValue& v) {
-  static constexpr GLenum kTypes[] = {GL_FLOAT,      GL_INT,        GL_FLOAT_VEC2,
-                                      GL_FLOAT_VEC3, GL_FLOAT_VEC4, GL_FLOAT_MAT3};
+  static constexpr GLenum kTypes[] = {GL_FLOAT,      GL_INT,        GL_FLOAT_VEC2, GL_FLOAT_VEC3,
+                                      GL_FLOAT_VEC4, GL_FLOAT_MAT3, GL_SAMPLER_2D};
   return kTypes[v.index()];
 }
 
@@ -274,6 +275,7 @@ void Context::draw(const Program& program, int width, int height, const std::vec
   impl_->ensure_target(width, height);
   const GLuint id = program.id_;
   const auto& table = impl_->uniforms.at(id);
+  GLuint unit = 0;  // samplers take texture units in the order given
   for (const Uniform& u : uniforms) {
     auto it = table.find(u.name);
     if (it == table.end()) {
@@ -301,6 +303,10 @@ void Context::draw(const Program& program, int width, int height, const std::vec
           if constexpr (std::is_same_v<T, Vec4>) glProgramUniform4fv(id, a.location, 1, v.data());
           if constexpr (std::is_same_v<T, Mat3>) {
             glProgramUniformMatrix3fv(id, a.location, 1, GL_FALSE, v.m.data());
+          }
+          if constexpr (std::is_same_v<T, Sampler>) {
+            glBindTextureUnit(unit, v.texture);
+            glProgramUniform1i(id, a.location, static_cast<GLint>(unit++));
           }
         },
         u.value);
@@ -331,6 +337,42 @@ std::vector<float> Context::render(const std::string& fragment_source, int width
                                    const std::vector<Uniform>& uniforms) {
   const Program program = compile(fragment_source);
   return render(program, width, height, uniforms);
+}
+
+unsigned Context::upload(const TextureLevels& t) {
+  detail::make_current(impl_->egl);
+  if (t.channels < 1 || t.channels > 4 || t.width < 1 || t.height < 1)
+    throw Error("GL: texture of " + std::to_string(t.width) + "x" + std::to_string(t.height) + "x" +
+                std::to_string(t.channels) + " (channels must be 1..4)");
+  const int count = static_cast<int>(t.levels.size());
+  GLuint tex = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+  glTextureStorage2D(tex, count, GL_RGBA32F, t.width, t.height);
+  for (int k = 0; k < count; ++k) {
+    const int w = std::max(1, t.width >> k), h = std::max(1, t.height >> k);
+    if (t.levels[k].size() != static_cast<std::size_t>(w) * h * t.channels) {
+      glDeleteTextures(1, &tex);
+      throw Error("GL: texture level " + std::to_string(k) + " has " + std::to_string(t.levels[k].size()) +
+                  " floats, expected " + std::to_string(w * h * t.channels));
+    }
+    std::vector<float> rgba(static_cast<std::size_t>(w) * h * 4, 0.0f);  // padded to RGBA
+    for (std::size_t i = 0; i < static_cast<std::size_t>(w) * h; ++i)
+      for (int c = 0; c < t.channels; ++c) rgba[i * 4 + c] = t.levels[k][i * t.channels + c];
+    glTextureSubImage2D(tex, k, 0, 0, w, h, GL_RGBA, GL_FLOAT, rgba.data());
+  }
+  glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glTextureParameteri(tex, GL_TEXTURE_MAX_LEVEL, count - 1);
+  check_gl("uploading a texture");
+  return tex;
+}
+
+void Context::release(unsigned texture) {
+  detail::make_current(impl_->egl);
+  const GLuint tex = texture;
+  glDeleteTextures(1, &tex);
 }
 
 double Context::time_ms(const Program& program, int width, int height, const std::vector<Uniform>& uniforms,

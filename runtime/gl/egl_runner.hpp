@@ -32,7 +32,18 @@ using Vec4 = std::array<float, 4>;
 struct Mat3 {
   std::array<float, 9> m;
 };
-using UniformValue = std::variant<float, int, Vec2, Vec3, Vec4, Mat3>;
+// A sampler2D uniform: a texture made by Context::upload (bound to a texture unit at draw time).
+struct Sampler {
+  unsigned texture = 0;
+};
+using UniformValue = std::variant<float, int, Vec2, Vec3, Vec4, Mat3, Sampler>;
+
+// A mipmapped float texture: level k is max(1, width >> k) x max(1, height >> k) texels of
+// `channels` (1..4) floats, row 0 first (texture coordinate t = 0). Every level down to 1x1.
+struct TextureLevels {
+  int width = 0, height = 0, channels = 0;
+  std::vector<std::vector<float>> levels;
+};
 
 struct Uniform {
   std::string name;
@@ -111,6 +122,12 @@ class Context {
                  int repeats = 20);
 
   void set_unknown_uniform(UnknownUniform policy) { unknown_uniform_ = policy; }
+
+  // An RGBA32F texture with exactly the given levels (no glGenerateMipmap, so the GPU filters the
+  // same pyramid the CPU does), GL_LINEAR_MIPMAP_LINEAR / GL_LINEAR, GL_REPEAT. Freed by release()
+  // or with the context. Throws Error on a malformed level list.
+  unsigned upload(const TextureLevels& t);
+  void release(unsigned texture);
 
  private:
   struct Impl;

@@ -39,6 +39,8 @@ const char* op_name(Op op) {
       return "mod";
     case Op::Call:
       return "call";
+    case Op::Texture:
+      return "texture";
   }
   return "?";
 }
@@ -133,7 +135,12 @@ int Graph::add(Node n) {
   }
   if (n.op == Op::Call && (n.atomic < 0 || n.atomic >= atomic_count()))
     throw std::invalid_argument("ir::Graph: call of unknown atomic index " + std::to_string(n.atomic));
-  if (n.op != Op::Call) n.atomic = -1;
+  if (n.op == Op::Texture &&
+      (n.atomic < 0 || n.atomic > 3 || n.value < 0 || n.value >= static_cast<double>(textures_.size())))
+    throw std::invalid_argument("ir::Graph: texture lookup of channel " + std::to_string(n.atomic) +
+                                " of slot " + std::to_string(n.value) +
+                                " (slots: " + std::to_string(textures_.size()) + ", channels 0..3)");
+  if (n.op != Op::Call && n.op != Op::Texture) n.atomic = -1;
   if (n.op == Op::Mod && !(std::isfinite(n.value) && n.value != 0))
     throw std::invalid_argument("ir::Graph: mod needs a finite nonzero constant modulus, got " +
                                 std::to_string(n.value));
@@ -183,6 +190,25 @@ int Graph::call(const std::string& atomic, int a) {
   n.op = Op::Call;
   n.atomic = idx;
   n.a = a;
+  return add(n);
+}
+
+int Graph::texture_slot(const std::string& name) {
+  if (name.empty()) throw std::invalid_argument("ir::Graph: a texture slot needs a name");
+  int slot = 0;
+  while (slot < static_cast<int>(textures_.size()) && textures_[slot] != name) ++slot;
+  if (slot == static_cast<int>(textures_.size())) textures_.push_back(name);
+  return slot;
+}
+
+int Graph::texture(const std::string& name, int channel, int u, int v) {
+  const int slot = texture_slot(name);
+  Node n;
+  n.op = Op::Texture;
+  n.atomic = channel;
+  n.value = slot;
+  n.a = u;
+  n.b = v;
   return add(n);
 }
 
@@ -238,6 +264,7 @@ std::string Graph::to_string() const {
       os << " " << inputs_[static_cast<int>(n.value)].name
          << (inputs_[static_cast<int>(n.value)].varying ? " varying" : " uniform");
     if (n.op == Op::Call) os << " " << atomic_name(n.atomic);
+    if (n.op == Op::Texture) os << " " << textures_[static_cast<int>(n.value)] << "." << n.atomic;
     const int args[3] = {n.a, n.b, n.c};
     for (int k = 0; k < op_arity(n.op); ++k) os << " %" << args[k];
     if (n.op == Op::Mod) os << " " << n.value;

@@ -11,19 +11,20 @@
 namespace bl::ir {
 
 enum class Op : std::uint8_t {
-  Const,   // value
-  Input,   // value = input slot; a per-pixel random variable (mean, sd) or a uniform (sd 0)
-  Add,     // a + b
-  Sub,     // a - b
-  Mul,     // a * b
-  Div,     // a / b
-  Neg,     // -a
-  Min,     // min(a, b)
-  Max,     // max(a, b)
-  Less,    // 1 if a < b else 0 (= step(b - a))
-  Select,  // c * a + (1 - c) * b, c a 0/1 condition
-  Mod,     // a - value * floor(a / value), value a nonzero constant
-  Call,    // atomic(a), atomic an index into bl::registry::kAtomics
+  Const,    // value
+  Input,    // value = input slot; a per-pixel random variable (mean, sd) or a uniform (sd 0)
+  Add,      // a + b
+  Sub,      // a - b
+  Mul,      // a * b
+  Div,      // a / b
+  Neg,      // -a
+  Min,      // min(a, b)
+  Max,      // max(a, b)
+  Less,     // 1 if a < b else 0 (= step(b - a))
+  Select,   // c * a + (1 - c) * b, c a 0/1 condition
+  Mod,      // a - value * floor(a / value), value a nonzero constant
+  Call,     // atomic(a), atomic an index into bl::registry::kAtomics
+  Texture,  // channel `atomic` of texture slot `value` at coordinates (a, b), wrapped (GL_REPEAT)
 };
 
 const char* op_name(Op op);
@@ -31,9 +32,9 @@ int op_arity(Op op);  // number of node arguments (Const/Input 0, Call/Neg/Mod 1
 
 struct Node {
   Op op = Op::Const;
-  int atomic = -1;  // Call: index into bl::registry::kAtomics
+  int atomic = -1;  // Call: index into bl::registry::kAtomics; Texture: the channel
   int a = -1, b = -1, c = -1;
-  double value = 0;  // Const: the constant; Input: the slot; Mod: the modulus
+  double value = 0;  // Const: the constant; Input: the slot; Mod: the modulus; Texture: the slot
   bool operator==(const Node& o) const;
 };
 
@@ -50,6 +51,10 @@ class Graph {
   int constant(double v);
   int input(const std::string& name, bool varying);  // one node per name
   int call(const std::string& atomic, int a);        // throws naming an unknown atomic
+  // Channel `channel` of the texture bound to slot `name` (one slot per name, in order of first
+  // use) at coordinates (u, v).
+  int texture(const std::string& name, int channel, int u, int v);
+  int texture_slot(const std::string& name);  // the slot of `name`, declared now if new
 
   void add_output(const std::string& name, int node);
 
@@ -57,6 +62,7 @@ class Graph {
   const Node& node(int i) const { return nodes_.at(i); }
   int size() const { return static_cast<int>(nodes_.size()); }
   const std::vector<InputDecl>& inputs() const { return inputs_; }
+  const std::vector<std::string>& textures() const { return textures_; }  // slot names
   const std::vector<int>& outputs() const { return outputs_; }
   const std::vector<std::string>& output_names() const { return output_names_; }
 
@@ -76,6 +82,7 @@ class Graph {
   std::vector<Node> nodes_;
   std::unordered_map<Node, int, NodeHash> index_;
   std::vector<InputDecl> inputs_;
+  std::vector<std::string> textures_;
   std::vector<int> outputs_;
   std::vector<std::string> output_names_;
 };

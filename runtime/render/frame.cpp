@@ -24,7 +24,7 @@ camera::FootprintOptions footprint_options(const scene::Scene& s) {
   o.texture_scale = s.uv_scale;
   o.pixel_sigma = s.sigma_px;
   o.bound = s.footprint_bound == scene::FootprintBound::Marginal ? camera::FootprintBound::kGaussianMarginal
-                                                                  : camera::FootprintBound::kDornAxisAligned;
+                                                                 : camera::FootprintBound::kDornAxisAligned;
   return o;
 }
 
@@ -36,6 +36,7 @@ shaders::Inputs<float> native_inputs(const scene::Scene& s, const camera::PlaneS
   in.view = {static_cast<float>(p.view_x), static_cast<float>(p.view_y), static_cast<float>(p.view_z)};
   in.light = {static_cast<float>(s.light_dir[0]), static_cast<float>(s.light_dir[1]),
               static_cast<float>(s.light_dir[2])};
+  in.textures = &s.textures;
   return in;
 }
 

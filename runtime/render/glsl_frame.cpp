@@ -9,7 +9,8 @@
 
 namespace bl::render {
 
-std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program& p, const std::string& version) {
+std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program& p,
+                                 const std::string& version) {
   std::ostringstream os;
   os << "#version " << version << "\n";
   if (version.find("es") != std::string::npos) os << "precision highp float;\nprecision highp int;\n";
@@ -52,18 +53,28 @@ void main() {
   for (int i = 0; i < p.input_count; ++i) {
     const std::string& name = p.input_names[i];
     std::string mean = "0.0", sd = "0.0", gxs = "0.0", gys = "0.0";
-    if (name == "u") mean = "k * hit.x", sd = "su", gxs = "du.x", gys = "du.y";
-    else if (name == "v") mean = "k * hit.y", sd = "sv", gxs = "dv.x", gys = "dv.y";
-    else if (name == "view_x") mean = "view.x";
-    else if (name == "view_y") mean = "view.y";
-    else if (name == "view_z") mean = "view.z";
-    else if (name == "time") mean = "bl_time";
-    else if (name == "light_x") mean = "bl_light.x";
-    else if (name == "light_y") mean = "bl_light.y";
-    else if (name == "light_z") mean = "bl_light.z";
-    else throw std::invalid_argument("glsl frame: the program reads an unknown input '" + name + "'");
-    os << "  m[" << i << "] = " << mean << "; s[" << i << "] = " << sd << "; gx[" << i << "] = " << gxs << "; gy[" << i
-       << "] = " << gys << ";\n";
+    if (name == "u")
+      mean = "k * hit.x", sd = "su", gxs = "du.x", gys = "du.y";
+    else if (name == "v")
+      mean = "k * hit.y", sd = "sv", gxs = "dv.x", gys = "dv.y";
+    else if (name == "view_x")
+      mean = "view.x";
+    else if (name == "view_y")
+      mean = "view.y";
+    else if (name == "view_z")
+      mean = "view.z";
+    else if (name == "time")
+      mean = "bl_time";
+    else if (name == "light_x")
+      mean = "bl_light.x";
+    else if (name == "light_y")
+      mean = "bl_light.y";
+    else if (name == "light_z")
+      mean = "bl_light.z";
+    else
+      throw std::invalid_argument("glsl frame: the program reads an unknown input '" + name + "'");
+    os << "  m[" << i << "] = " << mean << "; s[" << i << "] = " << sd << "; gx[" << i << "] = " << gxs
+       << "; gy[" << i << "] = " << gys << ";\n";
   }
   os << "  float o[" << p.outputs.size() << "];\n  bl_shade(m, s, gx, gy, o);\n"
      << "  bl_color = vec4(o[0], o[1], o[2], 1.0);\n}\n";
@@ -93,12 +104,47 @@ std::vector<gl::Uniform> glsl_frame_uniforms(const scene::Scene& s, const Frame&
           {"bl_background", a3(s.background)}};
 }
 
+namespace {
+
+gl::TextureLevels levels_of(const texture::Pyramid& p) {
+  gl::TextureLevels t;
+  t.width = p.width();
+  t.height = p.height();
+  t.channels = p.channels();
+  for (int k = 0; k < p.levels(); ++k) t.levels.push_back(p.level(k).texels);
+  return t;
+}
+
+}  // namespace
+
+GlTextures::GlTextures(gl::Context& ctx, const scene::Scene& s, const compiler::Program& program)
+    : ctx_(ctx) {
+  const auto bound = s.texture_slots(program.texture_names);
+  for (std::size_t k = 0; k < bound.size(); ++k) {
+    const std::string name = "bl_tex" + std::to_string(k);
+    ids_.push_back(ctx.upload(levels_of(bound[k]->mean)));
+    uniforms_.push_back({name + "_mean", gl::Sampler{ids_.back()}});
+    ids_.push_back(ctx.upload(levels_of(bound[k]->squares)));
+    uniforms_.push_back({name + "_sq", gl::Sampler{ids_.back()}});
+  }
+}
+
+GlTextures::~GlTextures() {
+  for (unsigned id : ids_) ctx_.release(id);
+}
+
+std::vector<gl::Uniform> with_textures(std::vector<gl::Uniform> frame, const GlTextures& t) {
+  frame.insert(frame.end(), t.uniforms().begin(), t.uniforms().end());
+  return frame;
+}
+
 Image render_glsl(gl::Context& ctx, const scene::Scene& s, const Frame& f, const compiler::Program& program) {
   gl::Program prog = ctx.compile(glsl_fragment_source(s, program));
+  const GlTextures textures(ctx, s, program);
   // The driver drops uniforms a scene does not read (no lighting: bl_light): ignore those, the
   // names themselves are fixed above.
   ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);
-  const auto rgba = ctx.render(prog, s.width, s.height, glsl_frame_uniforms(s, f));
+  const auto rgba = ctx.render(prog, s.width, s.height, with_textures(glsl_frame_uniforms(s, f), textures));
   ctx.set_unknown_uniform(gl::UnknownUniform::kThrow);
   return image_from_rgba(rgba, s.width, s.height);
 }

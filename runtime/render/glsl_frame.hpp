@@ -18,6 +18,25 @@ std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program&
 // Uniform values for frame f.
 std::vector<gl::Uniform> glsl_frame_uniforms(const scene::Scene& s, const Frame& f);
 
+// The scene's textures a program reads, uploaded (mean and mean-of-squares pyramids, every level),
+// with the sampler uniforms bl_tex<slot>_mean / bl_tex<slot>_sq; released when destroyed.
+class GlTextures {
+ public:
+  GlTextures(gl::Context& ctx, const scene::Scene& s, const compiler::Program& program);
+  ~GlTextures();
+  GlTextures(const GlTextures&) = delete;
+  GlTextures& operator=(const GlTextures&) = delete;
+  const std::vector<gl::Uniform>& uniforms() const { return uniforms_; }
+
+ private:
+  gl::Context& ctx_;
+  std::vector<unsigned> ids_;
+  std::vector<gl::Uniform> uniforms_;
+};
+
+// Frame uniforms followed by the texture samplers.
+std::vector<gl::Uniform> with_textures(std::vector<gl::Uniform> frame, const GlTextures& t);
+
 Image render_glsl(gl::Context& ctx, const scene::Scene& s, const Frame& f, const compiler::Program& program);
 
 }  // namespace bl::render

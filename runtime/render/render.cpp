@@ -69,6 +69,7 @@ compiler::Batch bind_inputs(const compiler::Program& p, const camera::PlaneBatch
     batch.grad_x.push_back(gx);
     batch.grad_y.push_back(gy);
   }
+  batch.textures = s.texture_slots(p.texture_names);
   return batch;
 }
 

@@ -1,6 +1,8 @@
 #include "scene/scene.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -67,7 +69,52 @@ const char* parallax_name(shaders::Parallax p) {
   return "?";
 }
 
+// "textures": {"<slot>": "<file>"}: every slot the shader declares, no other.
+void load_textures(Scene& s, const json& j, const std::string& origin) {
+  const shaders::ShaderDef& def = shaders::find_shader(s.shader);
+  std::string slots;
+  for (const auto& t : def.textures) slots += (slots.empty() ? "" : ", ") + t.name;
+  json bound = j.contains("textures") ? j["textures"] : json::object();
+  if (!bound.is_object()) fail(origin, "textures", "must be an object {\"slot\": \"file\"}");
+  for (auto it = bound.begin(); it != bound.end(); ++it) {
+    bool known = false;
+    for (const auto& t : def.textures) known = known || t.name == it.key();
+    if (!known)
+      fail(origin, "textures." + it.key(),
+           "shader '" + s.shader + "' has no such texture slot (slots: " + (slots.empty() ? "none" : slots) +
+               ")");
+  }
+  const std::filesystem::path base =
+      origin == "<text>" ? std::filesystem::path() : std::filesystem::path(origin).parent_path();
+  for (const auto& t : def.textures) {
+    if (!bound.contains(t.name))
+      fail(origin, "textures." + t.name,
+           "shader '" + s.shader + "' reads this texture slot; bind a file to it");
+    const std::string rel = str(bound[t.name], origin, "textures." + t.name);
+    const std::string file = (base / rel).lexically_normal().string();
+    try {
+      s.textures.push_back(std::make_shared<const texture::Texture>(
+          texture::load_texture(t.name, file, t.channels, t.encoding)));
+    } catch (const texture::TextureError& e) {
+      fail(origin, "textures." + t.name, e.what());
+    }
+    s.texture_files.push_back({t.name, file});
+  }
+}
+
 }  // namespace
+
+std::vector<const texture::Texture*> Scene::texture_slots(const std::vector<std::string>& names) const {
+  std::vector<const texture::Texture*> out;
+  for (const auto& n : names) {
+    const texture::Texture* found = nullptr;
+    for (const auto& t : textures)
+      if (t->name == n) found = t.get();
+    if (!found) throw std::invalid_argument("scene " + name + ": no texture bound to slot '" + n + "'");
+    out.push_back(found);
+  }
+  return out;
+}
 
 shaders::Effects Scene::effects() const {
   shaders::Effects fx;
@@ -86,7 +133,7 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
   }
   only_fields(j, origin, "",
               {"name", "shader", "geometry", "camera", "times", "parallax", "lighting", "light", "image",
-               "footprint", "ground_truth", "background"});
+               "footprint", "ground_truth", "background", "textures"});
   Scene s;
   if (!j.contains("shader")) fail(origin, "shader", "is required");
   s.shader = str(j["shader"], origin, "shader");
@@ -194,6 +241,7 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
       s.truth_samples = positive_int(j["ground_truth"]["samples"], origin, "ground_truth.samples", 1 << 20);
   }
   if (j.contains("background")) s.background = vec3(j["background"], origin, "background");
+  load_textures(s, j, origin);
   return s;
 }
 
@@ -222,6 +270,17 @@ std::string Scene::canonical_json() const {
                     {"bound", footprint_bound == FootprintBound::Dorn ? "dorn" : "marginal"}};
   j["ground_truth"] = {{"samples", truth_samples}};
   j["background"] = background;
+  if (!textures.empty()) {
+    json t = json::object();
+    for (std::size_t i = 0; i < textures.size(); ++i) {
+      char hex[17];
+      std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(textures[i]->content_hash));
+      // The file's name and content, not its path: the hash must not depend on the working directory.
+      t[texture_files[i].slot] = {{"file", std::filesystem::path(texture_files[i].file).filename().string()},
+                                  {"content", hex}};
+    }
+    j["textures"] = t;
+  }
   return j.dump();
 }
 

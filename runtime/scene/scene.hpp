@@ -18,6 +18,11 @@ struct View {
   double yaw = 0, pitch = -30, roll = 0;  // degrees
 };
 
+struct TextureFile {
+  std::string slot;  // the shader's slot name
+  std::string file;  // resolved against the scene file's folder
+};
+
 struct Scene {
   std::string name;
   std::string shader;
@@ -32,19 +37,27 @@ struct Scene {
   shaders::Lighting lighting = shaders::Lighting::None;
   std::array<double, 3> light_dir{0.4, 0.3, 0.87};  // towards the light, normalized on load
   int width = 256, height = 256;
-  double sigma_px = 0.5;        // footprint sd in pixels (the kernel the smoothing targets)
+  double sigma_px = 0.5;  // footprint sd in pixels (the kernel the smoothing targets)
   FootprintBound footprint_bound = FootprintBound::Dorn;
-  int truth_samples = 1024;     // ground truth: Gaussian-jittered samples per pixel
+  int truth_samples = 1024;  // ground truth: Gaussian-jittered samples per pixel
   std::array<double, 3> background{0, 0, 0};
+  std::vector<TextureFile> texture_files;  // one per slot of the shader, in its slot order
+  texture::Bindings textures;              // loaded with the scene, same order
 
   bool animated() const { return times.size() > 1; }
   shaders::Effects effects() const;
   std::string canonical_json() const;  // every field, fixed order (hashing, reports)
-  std::uint64_t hash() const;          // of canonical_json()
+  std::uint64_t hash() const;          // of canonical_json() (texture contents included)
+  // The loaded textures for the given slot names (a program's texture_names); throws naming a slot
+  // the scene does not bind.
+  std::vector<const texture::Texture*> texture_slots(const std::vector<std::string>& names) const;
 };
 
 // Parse a scene; throws std::invalid_argument naming the file (or "<text>"), the field and the
-// problem: unknown shader, unknown field, bad value, wrong type, malformed JSON.
+// problem: unknown shader, unknown field, bad value, wrong type, malformed JSON, a texture slot the
+// shader lacks or needs, and a texture file that is missing, unreadable or has the wrong channel
+// count (the message names the file). Texture paths are relative to the scene file's folder
+// (to the working directory for "<text>").
 Scene parse_scene(const std::string& json_text, const std::string& origin = "<text>");
 Scene load_scene(const std::string& path);
 

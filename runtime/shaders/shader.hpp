@@ -10,6 +10,7 @@
 
 #include "dsl/vec.hpp"
 #include "ir/graph.hpp"
+#include "texture/texture.hpp"
 
 namespace bl::shaders {
 
@@ -27,13 +28,22 @@ struct Effects {
 
 // Inputs. u, v: surface coordinates, random (mean and footprint sd per pixel). view: unit vector
 // from the surface point towards the eye in the tangent frame (z = surface normal); per pixel but not
-// smoothed. light: unit direction towards the light (uniform). time: seconds (uniform).
+// smoothed. light: unit direction towards the light (uniform). time: seconds (uniform). textures:
+// the scene's loaded textures, read natively by texture lookups (a traced lookup records a node).
 template <class S>
 struct Inputs {
   S u, v;
   S time;
   Vec3<S> view;
   Vec3<S> light;
+  const texture::Bindings* textures = nullptr;
+};
+
+// A texture a shader reads: the slot name scene files bind a file to, and how many channels.
+struct TextureSlot {
+  std::string name;
+  int channels = 3;
+  texture::Encoding encoding = texture::Encoding::Srgb;
 };
 
 // Input slots of a traced shader (names as in the compiled program).
@@ -43,7 +53,8 @@ inline const char* const kInputNames[] = {"u",      "v",       "time",    "view_
 struct ShaderDef {
   std::string name;
   std::string description;
-  bool uses_time = false;  // animation has an effect only for these
+  bool uses_time = false;             // animation has an effect only for these
+  std::vector<TextureSlot> textures;  // empty for procedural shaders
   std::function<Vec3<float>(const Inputs<float>&, const Effects&)> native;
   std::function<Vec3<dsl::Var>(const Inputs<dsl::Var>&, const Effects&)> traced;
 };

@@ -2,6 +2,7 @@
 
 #include "shaders/effects.hpp"
 #include "shaders/patterns.hpp"
+#include "shaders/textured.hpp"
 
 namespace bl::shaders {
 namespace {
@@ -14,7 +15,7 @@ Vec3<S> run(Pattern pattern, const Inputs<S>& in, const Effects& fx) {
 
 #define BL_SHADER(NAME, USES_TIME, DESC)                                                            \
   ShaderDef {                                                                                       \
-#NAME, DESC, USES_TIME,                                                                           \
+#NAME, DESC, USES_TIME, {},                                                                       \
         [](const Inputs<float>& in, const Effects& fx) {                                              \
           return run<float>([](Vec2<float> uv, float t) { return patterns::NAME<float>(uv, t); }, in, fx); \
         },                                                                                            \
@@ -39,6 +40,13 @@ const std::vector<ShaderDef>& suite() {
       BL_SHADER(step_edge, false, "Black and white half-planes (Dorn et al. 'step')"),
       BL_SHADER(ridges, false, "fract(u) ramps (Dorn et al. 'ridges')"),
       BL_SHADER(pulse, false, "Black and white stripes (Dorn et al. 'pulse')"),
+      ShaderDef{
+          "textured_tiles",
+          "Colour texture (mean/variance pyramids) under procedural grout lines",
+          false,
+          {TextureSlot{"albedo", 3, texture::Encoding::Srgb}},
+          [](const Inputs<float>& in, const Effects& fx) { return textured_tiles<float>(in, fx); },
+          [](const Inputs<dsl::Var>& in, const Effects& fx) { return textured_tiles<dsl::Var>(in, fx); }},
   };
   return s;
 }
@@ -60,6 +68,7 @@ ir::Graph trace(const ShaderDef& s, const Effects& fx) {
   dsl::Tracer tracer(g);
   using dsl::Var;
   const bool view = fx.parallax != Parallax::None || fx.lighting != Lighting::None;
+  for (const auto& t : s.textures) g.texture_slot(t.name);  // slots in the ShaderDef's order
   Inputs<Var> in{Var::input("u", true),
                  Var::input("v", true),
                  Var(0.0),

@@ -32,11 +32,6 @@ Level halve(const Level& a) {
   return b;
 }
 
-int wrap(int i, int n) {
-  const int m = i % n;
-  return m < 0 ? m + n : m;
-}
-
 }  // namespace
 
 Pyramid::Pyramid(Level base) {
@@ -48,36 +43,6 @@ Pyramid::Pyramid(Level base) {
     throw std::invalid_argument("texture pyramid: texel count does not match the size");
   levels_.push_back(std::move(base));
   while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(halve(levels_.back()));
-}
-
-float Pyramid::bilinear(int k, float u, float v, int c) const {
-  const Level& L = levels_[k];
-  // GL: texel space coordinate minus half a texel, weights from its fractional part.
-  // The coordinate is reduced to [0, 1) first so a large |u| cannot overflow the texel index.
-  const float s = (u - std::floor(u)) * float(L.width) - 0.5f,
-              t = (v - std::floor(v)) * float(L.height) - 0.5f;
-  const float fs = std::floor(s), ft = std::floor(t);
-  const float a = s - fs, b = t - ft;
-  const int x0 = wrap(int(fs), L.width), y0 = wrap(int(ft), L.height);
-  const int x1 = wrap(x0 + 1, L.width), y1 = wrap(y0 + 1, L.height);
-  const float top = L.at(x0, y0, c) + a * (L.at(x1, y0, c) - L.at(x0, y0, c));
-  const float bottom = L.at(x0, y1, c) + a * (L.at(x1, y1, c) - L.at(x0, y1, c));
-  return top + b * (bottom - top);
-}
-
-float Pyramid::trilinear(float u, float v, float lod, int c) const {
-  const float top = float(levels() - 1);
-  if (!(lod > 0.0f)) return bilinear(0, u, v, c);  // also NaN: the finest level
-  if (lod >= top) return bilinear(levels() - 1, u, v, c);
-  const int k = int(lod);
-  const float f = lod - float(k);
-  const float a = bilinear(k, u, v, c);
-  return a + f * (bilinear(k + 1, u, v, c) - a);
-}
-
-float footprint_lod(float su, float sv, int width, int height) {
-  const float s = std::max(su * float(width), sv * float(height));
-  return std::log2(std::max(s * 3.46410162f, 1e-30f));
 }
 
 }  // namespace bl::texture

@@ -8,6 +8,8 @@
 // level covers exactly 4^k texels of level 0.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -35,17 +37,46 @@ class Pyramid {
 
   // Bilinear at level k, texture coordinates (u, v) wrapped (GL_REPEAT): texel centres at
   // (i + 0.5) / width.
-  float bilinear(int k, float u, float v, int c) const;
-  // Trilinear: lod clamped to [0, levels - 1], linear between floor(lod) and the next level.
-  float trilinear(float u, float v, float lod, int c) const;
+  // (Inline: emitted C++ shaders sample through this header alone.)
+  float bilinear(int k, float u, float v, int c) const {
+    const Level& L = levels_[k];
+    // Reduced to [0, 1) first so a large |u| cannot overflow the texel index; then GL's rule: texel
+    // space minus half a texel, weights from the fractional part.
+    const float s = (u - std::floor(u)) * float(L.width) - 0.5f;
+    const float t = (v - std::floor(v)) * float(L.height) - 0.5f;
+    const float fs = std::floor(s), ft = std::floor(t);
+    const float a = s - fs, b = t - ft;
+    const int x0 = wrap(int(fs), L.width), y0 = wrap(int(ft), L.height);
+    const int x1 = wrap(x0 + 1, L.width), y1 = wrap(y0 + 1, L.height);
+    const float top = L.at(x0, y0, c) + a * (L.at(x1, y0, c) - L.at(x0, y0, c));
+    const float bottom = L.at(x0, y1, c) + a * (L.at(x1, y1, c) - L.at(x0, y1, c));
+    return top + b * (bottom - top);
+  }
+  // Trilinear: lod clamped to [0, levels - 1] (NaN: 0), linear between floor(lod) and the next level.
+  float trilinear(float u, float v, float lod, int c) const {
+    const float top = float(levels() - 1);
+    if (!(lod > 0.0f)) return bilinear(0, u, v, c);
+    if (lod >= top) return bilinear(levels() - 1, u, v, c);
+    const int k = int(lod);
+    const float f = lod - float(k);
+    const float a = bilinear(k, u, v, c);
+    return a + f * (bilinear(k + 1, u, v, c) - a);
+  }
 
  private:
+  static int wrap(int i, int n) {
+    const int m = i % n;
+    return m < 0 ? m + n : m;
+  }
   std::vector<Level> levels_;
 };
 
 // The level whose box texel matches a Gaussian footprint of standard deviation (su, sv) in
 // texture coordinates: a box of width w texels has sd w / sqrt(12), so lod = log2(sqrt(12) s) with s
 // the larger sd in level-0 texels. Below one texel the lod is negative and trilinear clamps it to 0.
-float footprint_lod(float su, float sv, int width, int height);
+inline float footprint_lod(float su, float sv, int width, int height) {
+  const float s = std::max(su * float(width), sv * float(height));
+  return std::log2(std::max(s * 3.46410162f, 1e-30f));
+}
 
 }  // namespace bl::texture

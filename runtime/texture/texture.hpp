@@ -4,6 +4,7 @@
 // downstream consume like any other random value.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 #include "compiler/evaluator.hpp"
@@ -26,6 +27,21 @@ struct Inputs {
   compiler::Batch batch;
 };
 
+// Texture lookups are timed on a 512x512 RGB texture (a typical size; the cost is dominated by
+// the four or eight texel reads, not the size, as long as it exceeds the cache).
+const texture::Texture& calibration_texture() {
+  static const texture::Texture t = [] {
+    texture::Level L;
+    L.width = L.height = 512;
+    L.channels = 3;
+    L.texels.resize(std::size_t(512) * 512 * 3);
+    for (std::size_t i = 0; i < L.texels.size(); ++i)
+      L.texels[i] = static_cast<float>((i * 2654435761u) % 1000) / 1000;
+    return texture::make_texture("calibration", "<calibration>", std::move(L));
+  }();
+  return t;
+}
+
 Inputs make_inputs(int n) {
   Inputs in;
   std::mt19937_64 rng(12345);
@@ -37,6 +53,7 @@ Inputs make_inputs(int n) {
     in.mean[2][i] = small(rng), in.sd[2][i] = s(rng);
   }
   in.batch.count = n;
+  in.batch.textures = {&calibration_texture()};
   for (int k = 0; k < kSlots; ++k) {
     in.batch.mean.push_back(in.mean[k].data());
     in.batch.sd.push_back(in.sd[k].data());
@@ -51,6 +68,7 @@ Program base_program() {
   Program p;
   p.input_count = kSlots;
   p.input_names = {"a", "b", "c"};
+  p.texture_names = {"calibration"};
   auto input = [&](LOp op, int slot) {
     Inst in;
     in.op = op;
@@ -139,7 +157,7 @@ CostModel calibrate(const CalibrationOptions& opt,
   auto wanted = [&](const std::string& name) {
     return opt.only.empty() || name.find(opt.only) != std::string::npos;
   };
-  for (int o = 0; o <= static_cast<int>(LOp::Var); ++o) {
+  for (int o = 0; o <= static_cast<int>(LOp::TexStat); ++o) {
     const LOp op = static_cast<LOp>(o);
     if (op == LOp::Call || op == LOp::CallStat || !wanted(lop_name(op))) continue;
     Inst inst;
@@ -159,6 +177,12 @@ CostModel calibrate(const CalibrationOptions& opt,
       case LOp::Var:
         if (first_stat < 0) continue;  // no stat function in the table: never emitted either
         prefix = first_stat;
+        break;
+      case LOp::TexPlain:
+        inst.tex = 0, inst.arg[0] = 0, inst.arg[1] = 2;
+        break;
+      case LOp::TexStat:
+        inst.tex = 0, inst.arg[0] = 0, inst.arg[1] = 2, inst.arg[2] = 1, inst.arg[3] = 3;
         break;
       default:
         inst.arg[0] = 0, inst.arg[1] = 2;
@@ -189,8 +213,24 @@ CostModel load_or_calibrate(const std::string& path, bool verbose) {
   try {
     CostModel m = load_cost_model(path, machine);
     if (m.covers_all()) return m;
+    // Only what is missing (a new op or table function) is timed and merged: the entries already
+    // measured keep their values, so fronts computed before stay comparable.
+    const std::string missing = m.missing();
     if (verbose)
-      std::fprintf(stderr, "cost model %s lacks:%s; recalibrating\n", path.c_str(), m.missing().c_str());
+      std::fprintf(stderr, "cost model %s lacks:%s; timing those\n", path.c_str(), missing.c_str());
+    std::istringstream names(missing);
+    std::string name;
+    while (names >> name) {
+      CalibrationOptions opt;
+      opt.only = name;
+      const CostModel part = calibrate(opt);
+      if (part.op_ns.count(name)) m.op_ns[name] = part.op_ns.at(name);
+      if (part.fn_ns.count(name)) m.fn_ns[name] = part.fn_ns.at(name);
+    }
+    if (m.covers_all()) {
+      save_cost_model(path, m);
+      return m;
+    }
   } catch (const std::runtime_error& e) {
     if (verbose) std::fprintf(stderr, "%s; calibrating\n", e.what());
   }

@@ -52,6 +52,10 @@ const char* lop_name(LOp op) {
       return "mean";
     case LOp::Var:
       return "var";
+    case LOp::TexPlain:
+      return "tex_plain";
+    case LOp::TexStat:
+      return "tex_stat";
   }
   return "?";
 }
@@ -80,7 +84,7 @@ double CostModel::cost(const compiler::Program& p) const {
 
 std::string CostModel::missing() const {
   std::string out;
-  for (int o = 0; o <= static_cast<int>(LOp::Var); ++o) {
+  for (int o = 0; o <= static_cast<int>(LOp::TexStat); ++o) {
     const LOp op = static_cast<LOp>(o);
     if (op != LOp::Call && op != LOp::CallStat && !op_ns.count(lop_name(op)))
       out += std::string(" ") + lop_name(op);

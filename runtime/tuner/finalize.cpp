@@ -66,7 +66,9 @@ void measure(const SceneTuner& t, const compiler::Program& p, Timer& gl, Measure
   if (gl.ctx) {
     try {
       const gl::Program prog = gl.ctx->compile(render::glsl_fragment_source(s, p));
-      m->glsl_ms = gl.ctx->time_ms(prog, s.width, s.height, render::glsl_frame_uniforms(s, f), 5);
+      const render::GlTextures textures(*gl.ctx, s, p);
+      m->glsl_ms = gl.ctx->time_ms(prog, s.width, s.height,
+                                   render::with_textures(render::glsl_frame_uniforms(s, f), textures), 5);
     } catch (const gl::Error& e) {
       std::fprintf(stderr, "finalize: GLSL timing of %s failed: %s\n", m->label.c_str(), e.what());
     }

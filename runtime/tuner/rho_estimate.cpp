@@ -13,7 +13,8 @@ namespace bl::tuner {
 
 using ir::Op;
 
-std::vector<double> eval_graph(const ir::Graph& g, const std::vector<double>& inputs) {
+std::vector<double> eval_graph(const ir::Graph& g, const std::vector<double>& inputs,
+                               const std::vector<const texture::Texture*>* textures) {
   std::vector<double> v(g.size());
   for (int i = 0; i < g.size(); ++i) {
     const ir::Node& n = g.node(i);
@@ -57,6 +58,12 @@ std::vector<double> eval_graph(const ir::Graph& g, const std::vector<double>& in
         break;
       case Op::Call:
         v[i] = ir::plain_atomic(n.atomic, a);
+        break;
+      case Op::Texture:
+        if (!textures || static_cast<std::size_t>(n.value) >= textures->size() || !(*textures)[int(n.value)])
+          throw std::invalid_argument("eval_graph: texture '" + g.textures().at(int(n.value)) +
+                                      "' is not bound");
+        v[i] = (*textures)[int(n.value)]->plain(static_cast<float>(a), static_cast<float>(b), n.atomic);
         break;
     }
   }
@@ -102,7 +109,7 @@ std::vector<double> estimate_rho(const ir::Graph& g, const scene::Scene& s, int 
     }
     for (int node = 0; node < g.size(); ++node) {
       const ir::Node& n = g.node(node);
-      if (ir::op_arity(n.op) != 2 || n.op == Op::Mod) continue;
+      if (ir::op_arity(n.op) != 2 || n.op == Op::Mod || n.op == Op::Texture) continue;
       double ma = 0, mb = 0;
       for (const auto& v : vals) ma += v[n.a], mb += v[n.b];
       ma /= samples, mb /= samples;

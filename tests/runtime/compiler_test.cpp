@@ -34,14 +34,22 @@ struct Pixels {
       for (int j = 0; j < k; ++j) {
         const std::string& name = p.input_names[j];
         float m = 0, s = 0, a = 0, b = 0;
-        if (name == "u" || name == "v") m = U(rng), s = S(rng), a = G(rng), b = G(rng);
-        else if (name == "time") m = T(rng);
-        else if (name == "view_x") m = vx / norm;
-        else if (name == "view_y") m = vy / norm;
-        else if (name == "view_z") m = vz / norm;
-        else if (name == "light_x") m = 0.4f;
-        else if (name == "light_y") m = 0.3f;
-        else if (name == "light_z") m = 0.866f;
+        if (name == "u" || name == "v")
+          m = U(rng), s = S(rng), a = G(rng), b = G(rng);
+        else if (name == "time")
+          m = T(rng);
+        else if (name == "view_x")
+          m = vx / norm;
+        else if (name == "view_y")
+          m = vy / norm;
+        else if (name == "view_z")
+          m = vz / norm;
+        else if (name == "light_x")
+          m = 0.4f;
+        else if (name == "light_y")
+          m = 0.3f;
+        else if (name == "light_z")
+          m = 0.866f;
         mean[j][i] = m, sd[j][i] = s, gx[j][i] = a, gy[j][i] = b;
       }
     }
@@ -59,11 +67,30 @@ struct Pixels {
   }
 };
 
-std::vector<std::vector<float>> evaluate(const compiler::Program& p, const Pixels& px) {
+std::vector<std::vector<float>> evaluate(const compiler::Program& p, const Pixels& px,
+                                         const texture::Bindings& textures = {}) {
   std::vector<std::vector<float>> out(p.outputs.size(), std::vector<float>(px.n));
   std::vector<float*> ptr;
   for (auto& o : out) ptr.push_back(o.data());
-  compiler::Evaluator(p).run(px.batch(), ptr);
+  compiler::Batch b = px.batch();
+  for (const auto& t : textures) b.textures.push_back(t.get());
+  compiler::Evaluator(p).run(b, ptr);
+  return out;
+}
+
+// A small irregular texture per slot a shader declares (its values only need to differ texel to
+// texel: the native shader and the evaluator must read the same ones).
+texture::Bindings synthetic_textures(const shaders::ShaderDef& def) {
+  texture::Bindings out;
+  for (const auto& slot : def.textures) {
+    texture::Level L;
+    L.width = L.height = 16;
+    L.channels = slot.channels;
+    for (int i = 0; i < 16 * 16 * slot.channels; ++i)
+      L.texels.push_back(static_cast<float>((i * 37) % 23) / 22.0f);
+    out.push_back(
+        std::make_shared<const texture::Texture>(texture::make_texture(slot.name, "<synthetic>", L)));
+  }
   return out;
 }
 
@@ -78,11 +105,13 @@ TEST(Compiler, EmittedCppMatchesEvaluator) {
     float out[3];
     double worst = 0;
     for (int i = 0; i < px.n; ++i) {
-      for (int j = 0; j < p.input_count; ++j) m[j] = px.mean[j][i], s[j] = px.sd[j][i], gx[j] = px.gx[j][i], gy[j] = px.gy[j][i];
+      for (int j = 0; j < p.input_count; ++j)
+        m[j] = px.mean[j][i], s[j] = px.sd[j][i], gx[j] = px.gx[j][i], gy[j] = px.gy[j][i];
       test::kFixtureFns[f](m.data(), s.data(), gx.data(), gy.data(), out);
       for (int c = 0; c < 3; ++c) {
         if (std::isnan(ev[c][i]) && std::isnan(out[c])) continue;
-        worst = std::max(worst, std::fabs(static_cast<double>(out[c]) - ev[c][i]) / std::max(1.0, std::fabs(static_cast<double>(ev[c][i]))));
+        worst = std::max(worst, std::fabs(static_cast<double>(out[c]) - ev[c][i]) /
+                                    std::max(1.0, std::fabs(static_cast<double>(ev[c][i]))));
       }
     }
     EXPECT_LE(worst, 1e-6) << list[f].label();
@@ -99,12 +128,15 @@ TEST(Compiler, NoneScheduleIsTheNativeShader) {
       fx.lighting = p ? shaders::Lighting::Phong : shaders::Lighting::None;
       fx.animated = true;
       const ir::Graph g = shaders::trace(def, fx);
-      const compiler::Program prog = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("none")));
+      const compiler::Program prog =
+          compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("none")));
       const Pixels px(prog, 400, 5);
-      const auto ev = evaluate(prog, px);
+      const texture::Bindings textures = synthetic_textures(def);
+      const auto ev = evaluate(prog, px, textures);
       int bad = 0;
       for (int i = 0; i < px.n; ++i) {
         shaders::Inputs<float> in{0, 0, 0, {0, 0, 1}, {0, 0, 1}};
+        in.textures = &textures;
         for (int j = 0; j < prog.input_count; ++j) {
           const std::string& name = prog.input_names[j];
           const float v = px.mean[j][i];
