@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
         << " threads (CPU, double precision). Errors against the truth: RMS and PSNR over display-space RGB, "
            "SSIM on display luma (11x11 Gaussian window, sd 1.5).\n\n"
         << "Multi-lobe (" << s.grid.longitude << "x" << s.grid.latitude << " cells, threshold sigma_theta > "
-        << s.lobe_threshold << " rad) taken at " << fmt("%.1f", 100 * multi_fraction)
+        << s.lobe_threshold << " rad, blended up to twice it) taken at " << fmt("%.1f", 100 * multi_fraction)
         << "% of the pixels.\n\n"
         << "| method | ms/frame | RMS | PSNR (dB) | SSIM |\n|---|---:|---:|---:|---:|\n";
     for (const Row& r : rows)

@@ -21,13 +21,22 @@ std::vector<double> cos_power_coefficients(int s) {
 }
 
 double expected_cos_power(const std::vector<double>& coef, int s, double mu, double sigma) {
-  // Terms k and s - k share j = s - 2k: 2 C(s,k) for k < s/2, C(s, s/2) once for even s.
-  const double v = 0.5 * sigma * sigma;
+  // Terms k and s - k share j = s - 2k: 2 C(s,k) for k < s/2, C(s, s/2) once for even s. Walk j
+  // upward from s mod 2 in steps of 2 with recurrences instead of a cos and an exp per term:
+  //   cos((j+2) mu) = 2 cos(2 mu) cos(j mu) - cos((j-2) mu),
+  //   g_j = exp(-j^2 v): g_{j+2} = g_j r_j, r_j = exp(-(4j + 4) v), r_{j+2} = r_j exp(-8 v)
+  // (upward, so a vanishing g underflows harmlessly to 0).
+  const double v = 0.5 * sigma * sigma, c2 = 2 * std::cos(2 * mu), q = std::exp(-8 * v);
+  int j = s % 2;
+  double c_prev = j == 0 ? std::cos(2 * mu) : std::cos(mu);  // cos((j-2) mu): cos(-2mu) or cos(-mu)
+  double c = j == 0 ? 1.0 : std::cos(mu);
+  double g = j == 0 ? 1.0 : std::exp(-v), r = std::exp(-(4.0 * j + 4) * v);
   double sum = 0;
-  for (int k = 0; k <= s / 2; ++k) {
-    const int j = s - 2 * k;
-    const double w = (j == 0) ? coef[k] : 2 * coef[k];
-    sum += w * std::cos(j * mu) * std::exp(-double(j) * j * v);
+  for (int k = s / 2; k >= 0; --k, j += 2) {
+    sum += (j == 0 ? coef[k] : 2 * coef[k]) * c * g;
+    const double c_next = c2 * c - c_prev;
+    c_prev = c, c = c_next;
+    g *= r, r *= q;
   }
   return sum;
 }

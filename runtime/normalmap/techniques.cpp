@@ -1,5 +1,6 @@
 #include "normalmap/techniques.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "normalmap/lobe.hpp"
@@ -87,20 +88,23 @@ std::array<double, 3> Shader::filtered(Technique t, const Sample& s, bool* multi
       spec = spec_single(nhat, len, h, s.view);
       break;
     case Technique::OursMulti: {
-      const double sigma = angle_stats(dot(nhat, h), len).sigma;
-      if (sigma <= scene_.lobe_threshold) {
-        spec = spec_single(nhat, len, h, s.view);
-        break;
-      }
+      // Single lobe up to the threshold, the cells above twice it, and a linear blend between, so
+      // the switch leaves no edge in the image.
+      const double sigma = angle_stats(dot(nhat, h), len).sigma, thr = scene_.lobe_threshold;
+      const double t = thr > 0 ? std::clamp((sigma - thr) / thr, 0.0, 1.0) : (sigma > 0 ? 1.0 : 0.0);
+      if (t < 1) spec = (1 - t) * spec_single(nhat, len, h, s.view);
+      if (t <= 0) break;
       if (multi) *multi = true;
       const texture::Pyramid& lp = data_.lobes;
+      double cells = 0;
       for (int c = 0; c < data_.grid.cells(); ++c) {
         const double w = lp.trilinear(u, v, lod, 4 * c);
         if (w < 1e-6) continue;
         const V3 Nc{lp.trilinear(u, v, lod, 4 * c + 1) / w, lp.trilinear(u, v, lod, 4 * c + 2) / w,
                     lp.trilinear(u, v, lod, 4 * c + 3) / w};
-        spec += w * spec_single(normalize(Nc), std::fmin(1.0, length(Nc)), h, s.view);
+        cells += w * spec_single(normalize(Nc), std::fmin(1.0, length(Nc)), h, s.view);
       }
+      spec += t * cells;
       break;
     }
     case Technique::Direct:

@@ -4,7 +4,8 @@
 //   lean        LEAN's slope moments at the footprint's level;
 //   ours        eqs. 24-25: one Gaussian lobe over the angle to h, E[spec];
 //   ours_multi  ours with the multi-lobe cells where the single lobe's sigma_theta exceeds the
-//               scene's threshold (each cell: its share times its own lobe's E[spec]).
+//               scene's threshold (each cell: its share times its own lobe's E[spec]), blended
+//               linearly from the single lobe at the threshold to the cells alone at twice it.
 // Filtered techniques read level lod = texture::footprint_lod(sigma_u, sigma_v) of their pyramid
 // (trilinear), and shade the diffuse term with the averaged normal (brdf.hpp).
 #pragma once
