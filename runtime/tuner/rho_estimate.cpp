@@ -77,6 +77,7 @@ std::vector<double> estimate_rho(const ir::Graph& g, const scene::Scene& s, int 
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal;
   const render::Frame f = render::frames(s).front();
+  const std::vector<const texture::Texture*> textures = s.texture_slots(g.textures());
   camera::PlaneBatch b;
   camera::trace_plane(render::make_camera(s, f.view), render::footprint_options(s), b);
   std::vector<int> hit;
@@ -105,7 +106,7 @@ std::vector<double> estimate_rho(const ir::Graph& g, const scene::Scene& s, int 
         else
           in[slot] = render::uniform_input(s, f, name);
       }
-      vals.push_back(eval_graph(g, in));
+      vals.push_back(eval_graph(g, in, &textures));
     }
     for (int node = 0; node < g.size(); ++node) {
       const ir::Node& n = g.node(node);
