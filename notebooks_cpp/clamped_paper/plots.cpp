@@ -41,14 +41,15 @@ std::string curves_script(const std::string& png, const std::string& title,
   }
   const int cols = static_cast<int>(panels.size());
   s += "set terminal pngcairo size " + std::to_string(std::max(900, 520 * cols)) +
-       ",900 font 'sans,10'\nset output '" + png + "'\n";
+       ",1000 font 'sans,10'\nset output '" + png + "'\n";
   s += "set multiplot layout 2," + std::to_string(cols) + " title '" + title + "'\n";
-  s += "set xlabel 'mu_X'\nset key top right font 'sans,8'\n";
+  s += "set xlabel 'mu_X'\n";
   for (const Panel& p : panels) {
     const cp::Example& e = *p.example;
     const std::string d = "$D" + std::to_string(&p - panels.data());
     s += "set title '" + p.tag + " " + e.title + ", sigma_X^2 = " + nb::num(e.sigma * e.sigma) + "'\n";
-    s += "unset logscale y\nset format y '%g'\nset yrange [*:*]\nset ylabel 'smoothed value'\n";
+    s += "unset logscale y\nset format y '%g'\nset yrange [*:*]\nset ylabel 'smoothed value'\n"
+         "set key below font 'sans,8'\n";
     s += "plot " + d + " u 1:2 w l lc rgb '#aaaaaa' t 'f (not smoothed)', " + d +
          " u 1:3 w l lw 3 dt 2 lc rgb '#000000' t 'ground truth (quadrature)'";
     for (std::size_t m = 0; m < e.methods.size(); ++m)
@@ -61,7 +62,8 @@ std::string curves_script(const std::string& png, const std::string& title,
     const std::string d = "$D" + std::to_string(&p - panels.data());
     const std::size_t n = e.methods.size();
     s += "set title '" + p.tag + " |error| against the ground truth'\n";
-    s += "set logscale y\nset format y '10^{%L}'\nset yrange [1e-9:10]\nset ylabel '|error|'\n";
+    s += "set logscale y\nset format y '10^{%L}'\nset yrange [1e-9:10]\nset ylabel '|error|'\n"
+         "set key inside top right font 'sans,8'\n";
     s += "plot ";
     for (std::size_t m = 0; m < n; ++m)
       s += std::string(m ? ", " : "") + d + " u 1:" + std::to_string(4 + n + m) + " w l lw 1.5 lc rgb '" +
@@ -84,7 +86,8 @@ std::string densities_script(const std::string& png, const cp::Figure3& f) {
   }
   std::string s = nb::datablock("D", rows);
   s += "set terminal pngcairo size 900,560 font 'sans,10'\nset output '" + png + "'\n";
-  s += "set title 'Figure 3: density of Y = exp(X), X ~ N(0, 0.5^2)'\nset xlabel 'y'\nset ylabel 'density'\n";
+  s += "set title 'Figure 3: density of Y = exp(X), X from N(0, 0.5^2)'\nset xlabel 'y'\nset ylabel "
+       "'density'\n";
   s += "set key top right\nset xrange [-0.5:4]\n";
   s += "set arrow from " + nb::num(cp::kDensityLo) + ",graph 0 to " + nb::num(cp::kDensityLo) +
        ",graph 1 nohead dt 3 lc rgb '#888888'\n";

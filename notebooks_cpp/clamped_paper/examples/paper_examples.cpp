@@ -89,7 +89,7 @@ std::vector<Example> table1() {
 }
 
 Example figure2() {
-  Example e = exp_of_square(-1, std::sqrt(0.5), "exp(-x*x), sigma_X^2 = 0.5");
+  Example e = exp_of_square(-1, std::sqrt(0.5), "exp(-x*x)");
   e.note = "plotted only in the paper (no MSE printed)";
   return e;
 }
