@@ -149,9 +149,28 @@ std::string glsl_texture_library(std::size_t slots) {
 }
 vec2 bl_tex_stat(sampler2D m, sampler2D q, float u, float v, float su, float sv, int c) {
   vec2 size = vec2(textureSize(m, 0));
-  float lod = log2(max(max(su * size.x, sv * size.y) * 3.46410162, 1e-30));
-  float mean = textureLod(m, vec2(u, v), lod)[c];
-  float var = textureLod(q, vec2(u, v), lod)[c] - mean * mean;
+  float tu = su * size.x, tv = sv * size.y;
+  float s_long = max(tu, tv), s_short = min(tu, tv);
+  float mean = 0.0, sq = 0.0;
+  if (!(s_long > 2.0 * s_short)) {
+    float lod = 0.5 * log2(4.0 * s_long * s_long + 0.666666667);
+    mean = textureLod(m, vec2(u, v), lod)[c];
+    sq = textureLod(q, vec2(u, v), lod)[c];
+  } else {
+    float s_level = max(s_short, s_long / 16.0);
+    float lod = 0.5 * log2(4.0 * s_level * s_level + 0.666666667);
+    float rest = sqrt(s_long * s_long - s_level * s_level);
+    vec2 d = tu > tv ? vec2(rest / size.x, 0.0) : vec2(0.0, rest / size.y);
+    const float node[2] = float[2](0.741960677, 2.33441422);
+    const float weight[2] = float[2](0.454124578, 0.0458758548);
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j) {
+        vec2 p = vec2(u, v) + (j == 0 ? -1.0 : 1.0) * node[k] * d;
+        mean += weight[k] * textureLod(m, p, lod)[c];
+        sq += weight[k] * textureLod(q, p, lod)[c];
+      }
+  }
+  float var = sq - mean * mean;
   return vec2(mean, var > 0.0 ? var : 0.0);
 }
 )";

@@ -47,6 +47,13 @@ const std::vector<ShaderDef>& suite() {
           {TextureSlot{"albedo", 3, texture::Encoding::Srgb}},
           [](const Inputs<float>& in, const Effects& fx) { return textured_tiles<float>(in, fx); },
           [](const Inputs<dsl::Var>& in, const Effects& fx) { return textured_tiles<dsl::Var>(in, fx); }},
+      ShaderDef{
+          "textured_plain",
+          "The colour texture alone (what the pyramids achieve by themselves)",
+          false,
+          {TextureSlot{"albedo", 3, texture::Encoding::Srgb}},
+          [](const Inputs<float>& in, const Effects& fx) { return textured_plain<float>(in, fx); },
+          [](const Inputs<dsl::Var>& in, const Effects& fx) { return textured_plain<dsl::Var>(in, fx); }},
   };
   return s;
 }

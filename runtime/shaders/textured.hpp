@@ -18,4 +18,11 @@ Vec3<S> textured_tiles(const Inputs<S>& in, const Effects& fx) {
   return light(select(grout, splat3(S(0.06)), albedo), s, in, fx);
 }
 
+// The texture alone: what mipmapping by itself achieves (eqs. 21-22 with nothing downstream).
+template <class S>
+Vec3<S> textured_plain(const Inputs<S>& in, const Effects& fx) {
+  const Surface<S> s = surface(in, fx);
+  return light(texture_rgb(in, "albedo", s.uv), s, in, fx);
+}
+
 }  // namespace bl::shaders

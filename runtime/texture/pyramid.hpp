@@ -71,12 +71,19 @@ class Pyramid {
   std::vector<Level> levels_;
 };
 
-// The level whose box texel matches a Gaussian footprint of standard deviation (su, sv) in
-// texture coordinates: a box of width w texels has sd w / sqrt(12), so lod = log2(sqrt(12) s) with s
-// the larger sd in level-0 texels. Below one texel the lod is negative and trilinear clamps it to 0.
+// The level whose filter matches a Gaussian footprint of sd s (in level-0 texels). Reading level L
+// bilinearly filters with a box of 2^L texels (the pyramid) convolved with a tent of half-width 2^L
+// (the interpolation): variance 4^L / 12 + 4^L / 6 = 4^L / 4. The ground truth is the footprint
+// over the bilinearly interpolated level 0, variance s^2 + 1/6. Equal variances:
+// lod = log2(4 s^2 + 2/3) / 2 (negative below about half a texel: trilinear clamps it to 0).
+inline float lod_for_sd(float s) {
+  return 0.5f * std::log2(4.0f * s * s + 0.666666667f);
+}
+
+// The same for footprint sds (su, sv) in texture coordinates, by the larger one in texels.
 inline float footprint_lod(float su, float sv, int width, int height) {
   const float s = std::max(su * float(width), sv * float(height));
-  return std::log2(std::max(s * 3.46410162f, 1e-30f));
+  return lod_for_sd(s);
 }
 
 }  // namespace bl::texture

@@ -81,12 +81,14 @@ TEST(TexturePyramid, SamplingFollowsGlRules) {
 TEST(TexturePyramid, StatIsTheFootprintsMeanAndVariance) {
   const texture::Level base = test_level();
   const texture::Texture t = texture::make_texture("t", "<test>", base);
-  // A footprint whose lod is exactly 2 (sd * sqrt(12) = 4 texels), read at a level-2 texel centre,
-  // covers that texel's 4x4 block of level 0: mean and population variance of those 16 values.
-  const float s = 4.0f / std::sqrt(12.0f) / 16.0f;  // in u units (16 texels per unit)
+  // A footprint whose lod is exactly 2 (4 s^2 + 2/3 = 16 texels^2), read at a level-2 texel
+  // centre, covers that texel's 4x4 block of level 0: mean and population variance of those 16
+  // values. (Isotropic: su = 16 texels/unit x s, sv = 8 texels/unit x the same s in texels.)
+  const float s = std::sqrt((16.0f - 2.0f / 3.0f) / 4.0f);  // in texels
+  EXPECT_NEAR(texture::lod_for_sd(s), 2.0f, 1e-6f);
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 4; ++x) {
-      const auto st = texture::sample_stat(t, (x + 0.5f) / 4, (y + 0.5f) / 2, s, 0.0f, 0);
+      const auto st = texture::sample_stat(t, (x + 0.5f) / 4, (y + 0.5f) / 2, s / 16, s / 8, 0);
       double m = 0, q = 0;
       for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
@@ -101,6 +103,32 @@ TEST(TexturePyramid, StatIsTheFootprintsMeanAndVariance) {
   const auto st = texture::sample_stat(t, 2.5f / 16, 3.5f / 8, 0.0f, 0.0f, 1);
   EXPECT_FLOAT_EQ(st.mean, base.at(2, 3, 1));
   EXPECT_NEAR(st.var, 0.0f, 1e-6);
+}
+
+// The anisotropic probes: along the long axis the lookup averages 4 probes whose spread makes up
+// the variance the level lacks; on a texture that is linear in u (level 0: p = x / 16 per texel)
+// any symmetric probe set returns the centre's value, and the variance grows with the long sd.
+TEST(TexturePyramid, AnisotropicProbesKeepTheMean) {
+  texture::Level L;
+  L.width = 64;
+  L.height = 64;
+  L.channels = 1;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) L.texels.push_back(static_cast<float>(std::min(x, 40)));
+  const texture::Texture t = texture::make_texture("ramp", "<test>", L);
+  // Interior of the ramp, long axis u: symmetric probes on a linear function keep the mean.
+  const float u = 20.5f / 64, v = 0.5f;
+  const auto iso = texture::sample_stat(t, u, v, 0.5f / 64, 0.5f / 64, 0);
+  const auto aniso = texture::sample_stat(t, u, v, 3.0f / 64, 0.5f / 64, 0);
+  EXPECT_NEAR(iso.mean, 20.0f, 1e-3f);
+  EXPECT_NEAR(aniso.mean, 20.0f, 1e-3f);
+  // Variance of a linear ramp under the footprint: slope^2 * (s^2 + 1/6) with s = 3 texels, slope
+  // 1 per texel; the probes are a 4-point rule, so this holds to the rule's accuracy for the quadratic.
+  EXPECT_NEAR(aniso.var, 9.0f + 1.0f / 6.0f, 0.35f);
+  // Long axis v: nothing changes along v, so the variance is the short axis' only.
+  const auto along_v = texture::sample_stat(t, u, v, 0.5f / 64, 3.0f / 64, 0);
+  EXPECT_NEAR(along_v.mean, 20.0f, 1e-3f);
+  EXPECT_LT(along_v.var, 0.5f);
 }
 
 TEST(TexturePyramid, RejectsBadSizes) {
