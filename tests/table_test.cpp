@@ -86,3 +86,26 @@ TEST(Table, BoxFractMatchesDornFract2) {
 }
 
 }  // namespace
+
+// Huge arguments in float (a footprint near the horizon: x ~ 3e7, sigma ~ 1e7 in uv units) once
+// sent the box/tent periodic forms into an endless loop (a float period counter past 2^24 does not
+// advance). Every convolution entry must return, and floor^2 must match the wide-kernel identity
+// E[floor(X)^2] = E[X^2] - E[X] + 1/3 + O(1/x) (fract ~ U[0, 1) independent of X for sigma >> 1).
+TEST(Table, HugeFloatArgumentsReturn) {
+  int n = 0;
+  const auto* e = bl::registry::entries<float>(&n);
+  for (int i = 0; i < n; ++i) {
+    const auto& en = e[i];
+    if (en.rule != std::string("convolution")) continue;
+    for (float x : {3e7f, -3e7f, 1e9f})
+      for (float s : {1e7f, 4e8f}) (void)en.smoothed(x, s);  // must return (a hang fails by timeout)
+  }
+  const double x = 3e7, s = 1e7;
+  const double want = x * x + s * s - x + 1.0 / 3;
+  for (const char* name : {"bl::box::floor_sq", "bl::tent::floor_sq"})
+    for (int i = 0; i < n; ++i)
+      if (e[i].cpp == std::string(name)) {
+        const double got = e[i].smoothed(static_cast<float>(x), static_cast<float>(s));
+        EXPECT_NEAR(got, want, 1e-4 * want) << name;
+      }
+}

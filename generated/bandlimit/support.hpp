@@ -907,7 +907,13 @@ inline T u_piece(int kernel, T xq, T s, T dl, T dh, T lo, T hi, const T* q, int 
 template <class T, int N>
 inline T u_periods(int kernel, T xr, T s, T R, T period, T m0, T m1, const UPeriodData<T, N>& g) {
   T sum = T(0);
-  for (T m = m0; m <= m1; m += T(1)) {
+  // Counted in integers: with a float m beyond 2^24, m += 1 would not move and the loop would never
+  // end (callers pass spans of at most a few periods; anything else is a caller bug).
+  const T span = m1 - m0;
+  if (!(span >= T(0) && span < T(64))) return span < T(0) ? sum : std::numeric_limits<T>::quiet_NaN();
+  const int count = static_cast<int>(span) + 1;
+  for (int k = 0; k < count; ++k) {
+    const T m = m0 + T(k);
     const T shift = m * period;
     for (int i = 0; i < N; ++i) {
       const Piece<T>& P = g.p[i];
