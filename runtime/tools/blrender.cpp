@@ -1,5 +1,5 @@
 // blrender: render a scene plain, with MSAA, smoothed by a compiled rule assignment, and as ground
-// truth; write PNG images, error heatmaps and a report (RMS in display space, PSNR, ms per frame).
+// truth; write PNG images, error heatmaps and a report (RMS in display space, PSNR, SSIM, ms per frame).
 //
 //   blrender scenes/suite/checkerboard_none.json --rules gaussian --msaa 16 --out out/checker
 #include <CLI/CLI.hpp>
@@ -16,6 +16,7 @@
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "image/report.hpp"
+#include "image/ssim.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
 
@@ -55,7 +56,7 @@ int main(int argc, char** argv) {
     std::ofstream report(out_dir + "/report.md");
     report << "# " << s.name << " (" << s.shader << ")\n\nDAG nodes: " << g.size() << ", lowered instructions ("
            << rules_text << "): " << prog.insts.size() << ", image " << s.width << "x" << s.height << "\n\n"
-           << "| frame | method | ms/frame | RMS (display) | PSNR (dB) |\n|---|---|---|---|---|\n";
+           << "| frame | method | ms/frame | RMS (display) | PSNR (dB) | SSIM |\n|---|---|---|---|---|---|\n";
     std::printf("%s: %d nodes, %zu instructions with %s\n", s.name.c_str(), g.size(), prog.insts.size(),
                 rules_text.c_str());
     std::unique_ptr<gl::Context> ctx;
@@ -70,11 +71,13 @@ int main(int argc, char** argv) {
       const Image truth = render::render_truth(s, f, cache_dir);
       write_png(out_dir + "/" + tag + "_truth.png", truth);
       auto row = [&](const std::string& method, const Image& img, double ms) {
-        const double rms = rms_display(img, truth), psnr = psnr_display(img, truth);
+        const double rms = rms_display(img, truth), psnr = psnr_display(img, truth), ssim = ssim_display(img, truth);
         write_png(out_dir + "/" + tag + "_" + method + ".png", img);
         write_error_heatmap(out_dir + "/" + tag + "_" + method + "_error.png", img, truth);
-        report << "| " << tag << " | " << method << " | " << ms << " | " << rms << " | " << psnr << " |\n";
-        std::printf("  %s %-12s %9.2f ms  RMS %.5f  PSNR %.2f dB\n", tag, method.c_str(), ms, rms, psnr);
+        report << "| " << tag << " | " << method << " | " << ms << " | " << rms << " | " << psnr << " | " << ssim
+               << " |\n";
+        std::printf("  %s %-12s %9.2f ms  RMS %.5f  PSNR %.2f dB  SSIM %.4f\n", tag, method.c_str(), ms, rms, psnr,
+                    ssim);
       };
       Image img;
       double ms = time_ms([&] { img = render::render_native(s, f, 0); });
