@@ -559,6 +559,105 @@ float bl_tent_periodic(float x, float sigma, float period, int n, BlPiece p[4], 
   return num / (w * w);
 }
 
+// ---- half-line restrictions of periodic functions ----
+// f_right(x) = E[f(x+U) 1{x+U >= 0}], called by the generated bl_<kernel>_<f>_right only where the
+// kernel straddles 0 (see support.hpp for the derivation and the bounds). Gaussian: the boundary
+// series a0 Phi(z) + rho phi(z) sum_m cs[m] rho^m He_m(z) where its bound
+// 1.65 coef_bound rho^(m+1) sqrt((m+1)!) reaches BL_SERIES_TOL within nc terms, else the image sum
+// over the periods m >= 0. Box/tent: local pieces for a support of up to 4 periods, else the
+// Appendix C integrals of the half line.
+float bl_gauss_periodic_right(float x, float sigma, float period, int n, BlPiece p[4], float fmax,
+                              float coef_bound, float a0, int nc, float cs[40]) {
+  float rho = period / (2.0 * BL_PI * sigma);
+  if (rho < 0.5) {
+    float b = 1.65 * coef_bound;
+    int last = -1;
+    for (int m = 0; m < 40; ++m) {
+      if (m >= nc) break;
+      b *= rho * sqrt(float(m + 1));
+      if (m >= 1 && b <= BL_SERIES_TOL) {
+        last = m;
+        break;
+      }
+    }
+    if (last >= 0) {
+      float z = x / sigma;
+      float Gm1 = 0.0, G = 1.0, acc = 0.0;
+      for (int m = 0; m < 40; ++m) {
+        if (m > last) break;
+        acc += cs[m] * G;
+        float Gn = rho * z * G - float(m) * rho * rho * Gm1;
+        Gm1 = G;
+        G = Gn;
+      }
+      return a0 * bl_Phi(z) + rho * bl_phi(z) * acc;
+    }
+  }
+  float R = bl_image_z(fmax, BL_SERIES_TOL) * sigma;
+  int m0 = max(int(floor((x - R) / period)), 0);
+  int m1 = int(floor((x + R) / period));
+  float s = 0.0;
+  for (int m = m0; m <= m1; ++m) {
+    float shift = float(m) * period;
+    for (int i = 0; i < 4; ++i) {
+      if (i >= n) break;
+      float dl = (p[i].lo + shift) - x;
+      float dh = (p[i].hi + shift) - x;
+      if (!(dh > -R) || !(dl < R)) continue;
+      s += bl_gauss_core(x - shift, sigma, dl, dh, p[i].lo, p[i].hi, p[i].c);
+    }
+  }
+  return s;
+}
+
+float bl_box_periodic_right(float x, float h, float period, int n, BlPiece p[4], BlPiece P1[4]) {
+  if (h <= 2.0 * period) {
+    int m1 = int(floor((x + h) / period));
+    float s = 0.0;
+    for (int m = 0; m <= m1; ++m) {
+      float shift = float(m) * period;
+      for (int i = 0; i < 4; ++i) {
+        if (i >= n) break;
+        float dl = (p[i].lo + shift) - x;
+        float dh = (p[i].hi + shift) - x;
+        if (!(dh > -h) || !(dl < h)) continue;
+        s += bl_box_core(x - shift, h, dl, dh, p[i].lo, p[i].hi, p[i].c);
+      }
+    }
+    return s;
+  }
+  vec2 y = bl_reduce_period(x + h, period);
+  return (y.y * bl_poly(P1[n - 1].c, period) + bl_period_piece_eval(y.x, n, P1)) / (2.0 * h);
+}
+
+float bl_tent_half_F2(float y, float period, int n, BlPiece P2[4], float A, float B) {
+  vec2 r = bl_reduce_period(y, period);
+  return A * (period * r.y * (r.y - 1.0) * 0.5 + r.x * r.y) + B * r.y + bl_period_piece_eval(r.x, n, P2);
+}
+
+float bl_tent_periodic_right(float x, float w, float period, int n, BlPiece p[4], BlPiece P1[4],
+                             BlPiece P2[4]) {
+  if (w <= 2.0 * period) {
+    int m1 = int(floor((x + w) / period));
+    float s = 0.0;
+    for (int m = 0; m <= m1; ++m) {
+      float shift = float(m) * period;
+      for (int i = 0; i < 4; ++i) {
+        if (i >= n) break;
+        float dl = (p[i].lo + shift) - x;
+        float dh = (p[i].hi + shift) - x;
+        if (!(dh > -w) || !(dl < w)) continue;
+        s += bl_tent_core(x - shift, w, dl, dh, p[i].lo, p[i].hi, p[i].c);
+      }
+    }
+    return s;
+  }
+  float A = bl_poly(P1[n - 1].c, period);
+  float B = bl_poly(P2[n - 1].c, period);
+  return (bl_tent_half_F2(x + w, period, n, P2, A, B) -
+          2.0 * bl_tent_half_F2(max(x, 0.0), period, n, P2, A, B)) / (w * w);
+}
+
 // ---- first kernel moment of periodic functions ----
 // M = E[U g(x + U)] for a periodic g given by one period of pieces (n <= 4, degree <= 6, absolute
 // coordinate in [0, period)): bl_gauss_periodic_u_image, bl_box_periodic_u, bl_tent_periodic_u. The
@@ -1761,6 +1860,22 @@ float bl_gaussian_fract_u(float x, float sigma) {
   return bl_gauss_periodic_u_image(x, sigma, period, 1, p, (1.0));
 }
 
+float bl_gaussian_fract_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 1, p);
+  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  if (x - R >= (0.0)) return bl_gaussian_fract(x, sigma);
+  if (x + R < (0.0)) return (0.0);
+  float cs[40] = float[40]((-0.5235987755982989), (0.0), (0.34451418533666467), (0.0), (-0.3238303542701391), (0.0), (0.3196077489710891), (0.0), (-0.3186264692795277), (0.0), (0.3183882179665655), (0.0), (-0.31832938207069017), (0.0), (0.31831475067804366), (0.0), (-0.3183111012659754), (0.0), (0.3183101898393371), (0.0), (-0.31830996208494305), (0.0), (0.31830990515766655), (0.0), (-0.3183098909271029), (0.0), (0.3183098873696013), (0.0), (-0.3183098864802414), (0.0), (0.31830988625790313), (0.0), (-0.31830988620231876), (0.0), (0.3183098861884227), (0.0), (-0.31830988618494865), (0.0), (0.3183098861840802), (0.0));
+  return bl_gauss_periodic_right(x, sigma, period, 1, p, (1.0), (4.0), (1.0/2.0), 40, cs);
+}
+
 float bl_gaussian_fract_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1816,6 +1931,26 @@ float bl_box_fract_u(float x, float sigma) {
   return bl_box_periodic_u(x, sigma, period, 1, p);
 }
 
+float bl_box_fract_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 1, p);
+  float hw = BL_SQRT3 * sigma;
+  if (x - hw >= (0.0)) return bl_box_fract(x, sigma);
+  if (x + hw <= (0.0)) return (0.0);
+  return bl_box_periodic_right(x, hw, period, 1, p, p1);
+}
+
 float bl_box_fract_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1865,6 +2000,31 @@ float bl_tent_fract_u(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   return bl_tent_periodic_u(x, sigma, period, 1, p);
+}
+
+float bl_tent_fract_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p2[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/6.0), 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 1, p);
+  float hw = BL_SQRT6 * sigma;
+  if (x - hw >= (0.0)) return bl_tent_fract(x, sigma);
+  if (x + hw <= (0.0)) return (0.0);
+  return bl_tent_periodic_right(x, hw, period, 1, p, p1, p2);
 }
 
 float bl_tent_fract_sq(float x, float sigma) {
@@ -1943,6 +2103,22 @@ float bl_gaussian_triangle_u(float x, float sigma) {
   return bl_gauss_periodic_u_image(x, sigma, period, 2, p, (1.0));
 }
 
+float bl_gaussian_triangle_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 2.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  if (x - R >= (0.0)) return bl_gaussian_triangle(x, sigma);
+  if (x + R < (0.0)) return (0.0);
+  float cs[40] = float[40]((0.0), (0.4112335167120566), (0.0), (-0.4058712126416768), (0.0), (0.40534762625942894), (0.0), (-0.4052916411736494), (0.0), (0.40528549887499354), (0.0), (-0.40528481937133937), (0.0), (0.40528474398701625), (0.0), (-0.4052847356155683), (0.0), (0.40528473468558984), (0.0), (-0.4052847345822662), (0.0), (0.40528473457078606), (0.0), (-0.40528473456951053), (0.0), (0.4052847345693688), (0.0), (-0.40528473456935304), (0.0), (0.4052847345693513), (0.0), (-0.4052847345693511), (0.0), (0.4052847345693511), (0.0), (-0.4052847345693511), (0.0), (0.4052847345693511), (0.0), (-0.4052847345693511));
+  return bl_gauss_periodic_right(x, sigma, period, 2, p, (1.0), (4.0), (1.0/2.0), 40, cs);
+}
+
 float bl_gaussian_triangle_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1999,6 +2175,26 @@ float bl_box_triangle_u(float x, float sigma) {
   return bl_box_periodic_u(x, sigma, period, 2, p);
 }
 
+float bl_box_triangle_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 2.0, float[8]((-1.0), 2.0, (-1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 2.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float hw = BL_SQRT3 * sigma;
+  if (x - hw >= (0.0)) return bl_box_triangle(x, sigma);
+  if (x + hw <= (0.0)) return (0.0);
+  return bl_box_periodic_right(x, hw, period, 2, p, p1);
+}
+
 float bl_box_triangle_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2048,6 +2244,31 @@ float bl_tent_triangle_u(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   return bl_tent_periodic_u(x, sigma, period, 2, p);
+}
+
+float bl_tent_triangle_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 2.0, float[8]((-1.0), 2.0, (-1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p2[4] = BlPiece[4](
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/6.0), 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 2.0, float[8]((1.0/3.0), (-1.0), 1.0, (-1.0/6.0), 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 2.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float hw = BL_SQRT6 * sigma;
+  if (x - hw >= (0.0)) return bl_tent_triangle(x, sigma);
+  if (x + hw <= (0.0)) return (0.0);
+  return bl_tent_periodic_right(x, hw, period, 2, p, p1, p2);
 }
 
 float bl_tent_triangle_sq(float x, float sigma) {
@@ -2126,6 +2347,22 @@ float bl_gaussian_square_u(float x, float sigma) {
   return bl_gauss_periodic_u_image(x, sigma, period, 2, p, (1.0));
 }
 
+float bl_gaussian_square_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  if (x - R >= (0.0)) return bl_gaussian_square(x, sigma);
+  if (x + R < (0.0)) return (0.0);
+  float cs[40] = float[40]((0.7853981633974483), (0.0), (-0.6459640975062463), (0.0), (0.6375410099693364), (0.0), (-0.6367185624033416), (0.0), (0.6366306212362438), (0.0), (-0.636620972936077), (0.0), (0.6366199055742331), (0.0), (-0.6366197871608151), (0.0), (0.6366197740109756), (0.0), (-0.6366197725501688), (0.0), (0.6366197723878684), (0.0), (-0.6366197723698355), (0.0), (0.6366197723678318), (0.0), (-0.6366197723676091), (0.0), (0.6366197723675845), (0.0), (-0.6366197723675817), (0.0), (0.6366197723675814), (0.0), (-0.6366197723675814), (0.0), (0.6366197723675814), (0.0), (-0.6366197723675814), (0.0));
+  return bl_gauss_periodic_right(x, sigma, period, 2, p, (1.0), (4.0), (1.0/2.0), 40, cs);
+}
+
 float bl_gaussian_square_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2182,6 +2419,26 @@ float bl_box_square_u(float x, float sigma) {
   return bl_box_periodic_u(x, sigma, period, 2, p);
 }
 
+float bl_box_square_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, (1.0/2.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((1.0/2.0), 1.0, float[8]((1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float hw = BL_SQRT3 * sigma;
+  if (x - hw >= (0.0)) return bl_box_square(x, sigma);
+  if (x + hw <= (0.0)) return (0.0);
+  return bl_box_periodic_right(x, hw, period, 2, p, p1);
+}
+
 float bl_box_square_sq(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2231,6 +2488,31 @@ float bl_tent_square_u(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   return bl_tent_periodic_u(x, sigma, period, 2, p);
+}
+
+float bl_tent_square_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, (1.0/2.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((1.0/2.0), 1.0, float[8]((1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p2[4] = BlPiece[4](
+      BlPiece(0.0, (1.0/2.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((1.0/2.0), 1.0, float[8]((-1.0/8.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float hw = BL_SQRT6 * sigma;
+  if (x - hw >= (0.0)) return bl_tent_square(x, sigma);
+  if (x + hw <= (0.0)) return (0.0);
+  return bl_tent_periodic_right(x, hw, period, 2, p, p1, p2);
 }
 
 float bl_tent_square_sq(float x, float sigma) {
@@ -2320,14 +2602,44 @@ float bl_gaussian_trunc(float x, float sigma) {
   return (1.0 + x) + (-1.0) * bl_gaussian_fract(x, sigma) + (-1.0) * bl_gaussian_step(x, sigma);
 }
 
+float bl_gaussian_trunc_sq(float x, float sigma) {
+  BlPiece pt6[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  return ((2.0*x) + (sigma*sigma) + (x*x) + 1.0) + (-2.0) * bl_gaussian_fract(x, sigma) + 1.0 * bl_gaussian_fract_sq(x, sigma) + (-2.0) * (x * bl_gaussian_fract(x, sigma) + bl_gaussian_fract_u(x, sigma)) + 2.0 * (1.0 * bl_gaussian_fract_right(x, sigma)) + (-2.0) * bl_gaussian_step(x, sigma) + 1.0 * bl_gaussian_step_sq(x, sigma) + (-2.0) * bl_gauss_pw(x, sigma, 2, pt6);
+}
+
 float bl_box_trunc(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (1.0 + x) + (-1.0) * bl_box_fract(x, sigma) + (-1.0) * bl_box_step(x, sigma);
 }
 
+float bl_box_trunc_sq(float x, float sigma) {
+  BlPiece pt6[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  return ((2.0*x) + (sigma*sigma) + (x*x) + 1.0) + (-2.0) * bl_box_fract(x, sigma) + 1.0 * bl_box_fract_sq(x, sigma) + (-2.0) * (x * bl_box_fract(x, sigma) + bl_box_fract_u(x, sigma)) + 2.0 * (1.0 * bl_box_fract_right(x, sigma)) + (-2.0) * bl_box_step(x, sigma) + 1.0 * bl_box_step_sq(x, sigma) + (-2.0) * bl_box_pw(x, sigma, 2, pt6);
+}
+
 float bl_tent_trunc(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (1.0 + x) + (-1.0) * bl_tent_fract(x, sigma) + (-1.0) * bl_tent_step(x, sigma);
+}
+
+float bl_tent_trunc_sq(float x, float sigma) {
+  BlPiece pt6[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  return ((2.0*x) + (sigma*sigma) + (x*x) + 1.0) + (-2.0) * bl_tent_fract(x, sigma) + 1.0 * bl_tent_fract_sq(x, sigma) + (-2.0) * (x * bl_tent_fract(x, sigma) + bl_tent_fract_u(x, sigma)) + 2.0 * (1.0 * bl_tent_fract_right(x, sigma)) + (-2.0) * bl_tent_step(x, sigma) + 1.0 * bl_tent_step_sq(x, sigma) + (-2.0) * bl_tent_pw(x, sigma, 2, pt6);
 }
 
 float bl_box_tan_series(float x, float hh) {

@@ -1089,6 +1089,17 @@ vec2 bl_bimodal_ceil(float mu, float sigma) {
   return vec2(m, max(bl_box_ceil_sq(cs.x, cs.y) - m * m, 0.0));
 }
 
+vec2 bl_bimodal_trunc(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  if (sigma == 0.0) return vec2(bl_box_trunc(mu, 0.0), 0.0);
+  float h = BL_SQRT3 * sigma, lo = mu - h, hi = mu + h, at = 0.0;
+  int count = 0;
+  { float kh = floor((hi - 0.0) / (1.0)), kl = floor((lo - 0.0) / (1.0)); count += int(kh - kl); if (kh > kl) at = 0.0 + (1.0) * kh; }
+  vec2 cs = bl_bimodal_cut(mu, sigma, lo, hi, at, count);
+  float m = bl_box_trunc(cs.x, cs.y);
+  return vec2(m, max(bl_box_trunc_sq(cs.x, cs.y) - m * m, 0.0));
+}
+
 float bl_compact_box_halfwidth_tan(float x, float sigma) {
   if (!(sigma >= 0.0)) return bl_nan();
   float period = bl_pi();

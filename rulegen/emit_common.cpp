@@ -164,8 +164,11 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
 }
 
 std::string body_combination(const Derived& d, const Syntax& s) {
-  std::string out = guard_sigma(s) + "  return " + s.ex(d.closed);
-  for (const auto& t : d.terms) {
+  using Kind = sym::CombinationTerm::Kind;
+  std::string tables;
+  std::string out = "  return " + s.ex(d.closed);
+  for (size_t i = 0; i < d.terms.size(); ++i) {
+    const auto& t = d.terms[i];
     Derived other;
     other.atomic_name = t.atomic;
     other.kernel = d.kernel;
@@ -173,7 +176,25 @@ std::string body_combination(const Derived& d, const Syntax& s) {
     const std::string arg = t.arg_sign < 0 ? "-x" : "x";
     const std::string A = s.fn(impl_name(other)) + "(" + arg + ", sigma)";
     out += " + " + s.num(t.coeff) + " * ";
-    if (t.xpow == 1) {
+    if (t.kind == Kind::Pieces) {
+      // x^n A(x)^d with A piecewise: the product's pieces, smoothed like a piecewise atomic.
+      const std::string name = "pt" + std::to_string(i);
+      tables += piece_table(s, name, t.pieces);
+      const std::string call = d.kernel == Kernel::Gaussian ? "gauss_pw"
+                               : d.kernel == Kernel::Box    ? "box_pw"
+                                                            : "tent_pw";
+      out += s.helper(call) + "(x, sigma, " + pieces_arg(s, name, t.pieces.size()) + ")";
+    } else if (t.kind == Kind::HalfLines) {
+      // A(x) B(x), B piecewise constant: A~ and A's half-line companion at the breaks of B.
+      std::string parts;
+      if (!t.full.is_zero()) parts = s.num(t.full) + " * " + A;
+      for (const auto& [rc, b] : t.right) {
+        const std::string shifted = b.is_zero() ? std::string("x") : "x - " + s.ex(b);
+        parts += (parts.empty() ? "" : " + ") + s.num(rc) + " * " + s.fn(impl_name(other) + "_right") + "(" +
+                 shifted + ", sigma)";
+      }
+      out += "(" + (parts.empty() ? s.dbl(0) : parts) + ")";
+    } else if (t.xpow == 1) {
       // E[(x+U) A(x+U)] = x A~(x) + E[U A(x+U)]; for A(-x) the first moment flips sign.
       const std::string Au = s.fn(impl_name(other) + "_u") + "(" + arg + ", sigma)";
       out += "(x * " + A + (t.arg_sign < 0 ? " - " : " + ") + Au + ")";
@@ -181,7 +202,7 @@ std::string body_combination(const Derived& d, const Syntax& s) {
       out += A;
     }
   }
-  return out + ";\n";
+  return tables + guard_sigma(s) + out + ";\n";
 }
 
 // Common subexpressions g(x) of the Taylor coefficients become locals u0, u1, ...
@@ -291,7 +312,56 @@ std::string body_first_moment(const Derived& d, const Syntax& s) {
   return out + "  return " + s.helper("gauss_periodic_u_image") + "(x, sigma, period, " + pieces_arg(s, "p", n) + ", " + fm + ");\n";
 }
 
+// The half-line companion E[f(x+U) 1{x+U >= 0}] of a periodic entry (not squared): 0 where the
+// kernel lies left of 0, the entry itself where it lies right of 0 (Gaussian: beyond the image-sum
+// window, whose neglected mass is below the tolerance), else the runtime's *_periodic_right.
+std::string body_right(const Derived& d, const Syntax& s) {
+  const size_t n = d.pieces.size();
+  std::string out = piece_table(s, "p", d.pieces);
+  if (d.kernel != Kernel::Gaussian) out += piece_table(s, "p1", d.P1);
+  if (d.kernel == Kernel::Tent) out += piece_table(s, "p2", d.P2);
+  out += s.decl("period", s.ex(d.period));
+  out += guard_sigma(s);
+  out += "  if (sigma == " + s.dbl(0) + ") return x < " + s.dbl(0) + " ? " + s.dbl(0) + " : " +
+         s.helper("periodic_eval") + "(x, period, " + pieces_arg(s, "p", n) + ");\n";
+  const std::string whole = s.fn(impl_name(d)) + "(x, sigma)";
+  if (d.kernel == Kernel::Gaussian) {
+    const std::string tol = s.cpp() ? "detail::series_tol<T>()" : "BL_SERIES_TOL";
+    out += s.decl("R", s.helper("image_z") + "(" + s.dbl(d.fmax) + ", " + tol + ") * sigma");
+    out += "  if (x - R >= " + s.dbl(0) + ") return " + whole + ";\n";
+    out += "  if (x + R < " + s.dbl(0) + ") return " + s.dbl(0) + ";\n";
+    // Boundary-series coefficients scaled to O(1): half_series[m] (2 pi / T)^(m+1).
+    std::string cs;
+    const GiNaC::ex scale = 2 * GiNaC::Pi / d.period;
+    for (size_t m = 0; m < d.half_series.size(); ++m) {
+      const double v =
+          GiNaC::ex_to<GiNaC::numeric>((d.half_series[m] * pow(scale, static_cast<int>(m + 1))).evalf())
+              .to_double();
+      cs += (m ? ", " : "") + s.dbl(v);
+    }
+    const std::string nc = std::to_string(d.half_series.size());
+    out += s.cpp() ? "  const T cs[" + nc + "] = {" + cs + "};\n"
+                   : "  float cs[" + nc + "] = float[" + nc + "](" + cs + ");\n";
+    return out + "  return " + s.helper("gauss_periodic_right") + "(x, sigma, period, " +
+           pieces_arg(s, "p", n) + ", " + s.dbl(d.fmax) + ", " + s.dbl(d.coef_bound) + ", " + s.ex(d.a0) +
+           ", " + (s.cpp() ? "cs" : nc + ", cs") + ");\n";
+  }
+  const bool box = d.kernel == Kernel::Box;
+  out += s.decl("hw", (box ? (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3")
+                           : (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")) +
+                          std::string(" * sigma"));
+  out += "  if (x - hw >= " + s.dbl(0) + ") return " + whole + ";\n";
+  out += "  if (x + hw <= " + s.dbl(0) + ") return " + s.dbl(0) + ";\n";
+  return out + "  return " + s.helper(box ? "box_periodic_right" : "tent_periodic_right") +
+         "(x, hw, period, " + pieces_arg(s, "p", n) + ", p1" + (box ? "" : ", p2") + ");\n";
+}
+
 }  // namespace
+
+std::string body_half_line(const Derived& d, Lang lang) {
+  const Syntax s{lang};
+  return (s.cpp() ? "  BL_MATH_USING\n" : "") + body_right(d, s);
+}
 
 std::string diff_body(const Derived& d, Lang lang) {
   const Syntax s{lang};

@@ -28,6 +28,12 @@ std::string diff_body(const Derived& d, Lang lang);
 inline bool has_series(const Derived& d) { return d.body == sym::Body::Antiderivative; }
 // True for the entries that get such a first-moment companion.
 inline bool has_first_moment(const Derived& d) { return d.body == sym::Body::PeriodicTable && !d.squared; }
+// Body of E[f(x+U) 1{x+U >= 0}] for a periodic entry (not squared): impl_name(d) + "_right", used by
+// products of f with a piecewise-constant atomic (trunc^2's fract * step).
+std::string body_half_line(const Derived& d, Lang lang);
+inline bool has_half_line(const Derived& d) {
+  return d.body == sym::Body::PeriodicTable && !d.squared;
+}
 // Body of the plain (unsmoothed) function f(x).
 std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lang lang);
 

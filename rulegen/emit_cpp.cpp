@@ -68,6 +68,7 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
     }
     t << "template <class T>\nT " << impl_name(d) << "(T x, T sigma);\n";
     if (has_first_moment(d)) t << "template <class T>\nT " << impl_name(d) << "_u(T x, T sigma);\n";
+    if (has_half_line(d)) t << "template <class T>\nT " << impl_name(d) << "_right(T x, T sigma);\n";
     if (has_series(d)) t << "template <class T>\nT " << impl_name(d) << "_series(T x, T hh);\n";
     if (has_series(d)) t << "template <class T>\nT " << impl_name(d) << "_diff(T x, T hh);\n";
   }
@@ -104,6 +105,12 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
     if (has_first_moment(d))
       t << "// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.\ntemplate <class T>\nT "
         << impl_name(d) << "_u(T x, T sigma) {\n" << body_u(d, Lang::Cpp) << "}\n\n";
+    if (has_half_line(d))
+      t << "// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant "
+           "atomic\n"
+        << "// such as trunc^2's fract * step.\ntemplate <class T>\nT " << impl_name(d)
+        << "_right(T x, T sigma) {\n"
+        << body_half_line(d, Lang::Cpp) << "}\n\n";
   }
   t << "}  // namespace gen\n}  // namespace detail\n\n";
   // Public float/double overloads.

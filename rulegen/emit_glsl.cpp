@@ -40,6 +40,9 @@ void emit_glsl(const sym::Catalog& cat, const std::vector<Derived>& ds, const st
     g << "float " << d.glsl_name() << "(float x, float sigma) {\n" << body(d, Lang::Glsl) << "}\n\n";
     if (has_first_moment(d))
       g << "float " << d.glsl_name() << "_u(float x, float sigma) {\n" << body_u(d, Lang::Glsl) << "}\n\n";
+    if (has_half_line(d))
+      g << "float " << d.glsl_name() << "_right(float x, float sigma) {\n"
+        << body_half_line(d, Lang::Glsl) << "}\n\n";
   }
   write_file(out_dir + "/bandlimit.glsl", g.str());
 }

@@ -1,12 +1,12 @@
-#include "derived.hpp"
-
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
-#include <algorithm>
 
+#include "derived.hpp"
 #include "exp_poly.hpp"
 #include "functions.hpp"
 #include "printer.hpp"
@@ -189,6 +189,43 @@ ex boundary_phase(const Atomic& a, const ex& t) {
   return ex_to<numeric>(r).is_integer() ? ex(1) : ex(var_pk());
 }
 
+// Continuous antiderivative of one period's pieces, 0 at t = 0.
+std::vector<PolyPiece> integrate_period(const std::vector<PolyPiece>& ps) {
+  std::vector<PolyPiece> out;
+  ex v = 0;
+  for (const PolyPiece& p : ps) {
+    out.push_back({p.lo, p.hi, integrate(p.c, p.lo.value, v)});
+    v = from_coefficients(out.back().c, p.hi.value).expand();
+  }
+  return out;
+}
+
+// The boundary series of the half-line companion f_right(x) = E[f(x+U) 1{x+U >= 0}] (Gaussian):
+// with S_1 = f - a0 and S_{j+1} the periodic, mean-free antiderivative of S_j, repeated
+// integration by parts of int_0^inf S_1(t) phi_sigma(t - x) dt at t = 0 gives
+//   f_right = a0 Phi(z) + sum_{j>=2} (-1)^(j+1) S_j(0) sigma^(1-j) He_{j-2}(z) phi(z),  z = x/sigma
+// (the smoothing paper's repeated integration, Appendix C, on a half line). Returns
+// (-1)^(m+1) S_{m+2}(0), m = 0..kHalfSeriesTerms-1, exactly (rational pieces).
+constexpr int kHalfSeriesTerms = 40;
+std::vector<numeric> half_line_series(const std::vector<PolyPiece>& pieces, const ex& T) {
+  auto mean_of = [&T](const std::vector<PolyPiece>& ps) {
+    const std::vector<PolyPiece> I = integrate_period(ps);
+    return (from_coefficients(I.back().c, I.back().hi.value) / T).expand();
+  };
+  std::vector<PolyPiece> S = pieces;
+  const ex a0 = mean_of(S);
+  for (PolyPiece& p : S) p.c[0] = ex_to<numeric>((p.c[0] - a0).expand());
+  std::vector<numeric> out;
+  for (int j = 2; j < 2 + kHalfSeriesTerms; ++j) {
+    S = integrate_period(S);
+    const ex m = mean_of(S);
+    for (PolyPiece& p : S) p.c[0] = ex_to<numeric>((p.c[0] - m).expand());
+    const numeric sj0 = S.front().c[0];  // the first piece starts at t = 0
+    out.push_back(j % 2 == 1 ? sj0 : -sj0);
+  }
+  return out;
+}
+
 void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
   d.body = Body::PeriodicTable;
   d.period = *a.period;
@@ -208,6 +245,7 @@ void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
   if (!std::isfinite(rmax)) fail(a, "range", "a periodic atomic needs a finite range");
   d.fmax = sq ? rmax * rmax : rmax;
   d.coef_bound = 4 * d.fmax;  // |a_k|, |b_k| <= (2/T) int |f| <= 2 max|f|
+  if (k == Kernel::Gaussian && !sq) d.half_series = half_line_series(d.pieces, T);
   if (k != Kernel::Gaussian) {
     d.formula = std::string(k == Kernel::Box ? "(F(x+h) - F(x-h))/(2h)" : "(F2(x+w) - 2F2(x) + F2(x-w))/w^2") +
                 ", F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) + F_p2(T) q + "
@@ -242,6 +280,54 @@ void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
               "a_k = " + text(d.ak) + ", b_k = " + text(d.bk) + " (pk = (-1)^k), T = " + text(T) +
               " [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of "
               "the pieces " + pieces_text(d.pieces, "t") + " [for small sigma/T]";
+}
+
+// A B with A periodic and B piecewise with constant pieces whose breaks are multiples of A's period:
+// A(t) 1{t in [lo, hi)} = A_right(t - lo) - A_right(t - hi) (A_right = A on t >= 0), A shifted by a
+// multiple of its period being A itself; a piece unbounded on both sides contributes A.
+CombinationTerm half_lines_term(const numeric& c, int xpow,
+                                const std::vector<std::pair<std::string, int>>& used,
+                                std::map<std::string, std::pair<std::string, int>>& calls, const Catalog& cat,
+                                const std::string& no_rule) {
+  const Atomic* A = nullptr;
+  const Atomic* B = nullptr;
+  int degB = 0;
+  for (const auto& [sym, deg] : used) {
+    const Atomic* at = cat.find(calls[sym].first);
+    if (calls[sym].second < 0) throw std::invalid_argument("the term " + no_rule);
+    if (at->cls == AtomicClass::Periodic && deg == 1 && !A)
+      A = at;
+    else if (at->cls == AtomicClass::Piecewise && !B) {
+      B = at;
+      degB = deg;
+    } else
+      throw std::invalid_argument("the term " + no_rule);
+  }
+  if (!A || !B || xpow != 0) throw std::invalid_argument("the term " + no_rule);
+  CombinationTerm term{c, A->name, 1, 0, false};
+  term.kind = CombinationTerm::Kind::HalfLines;
+  term.factor = B->name;
+  std::map<std::string, std::pair<numeric, ex>> right;  // by the break's text (deterministic)
+  for (const Piece& p : B->pieces) {
+    const ex v = pow(p.f, degB).expand();
+    if (!is_a<numeric>(v))
+      throw std::invalid_argument("the term " + no_rule + " (" + B->name + " is not piecewise constant)");
+    const numeric val = ex_to<numeric>(v);
+    if (val.is_zero()) continue;
+    for (const Bound* e : {&p.lo, &p.hi}) {
+      if (!e->finite()) continue;
+      const ex r = (e->value / *A->period).normal();
+      if (!is_a<numeric>(r) || !ex_to<numeric>(r).is_integer())
+        throw std::invalid_argument("the term " + no_rule + " (a break of " + B->name +
+                                    " is not a multiple of the period)");
+      auto& slot = right.emplace(text(e->value), std::make_pair(numeric(0), e->value)).first->second;
+      slot.first += e == &p.lo ? val : -val;
+    }
+    if (!p.lo.finite()) term.full += val;  // (-inf, hi): A - A_right(. - hi)
+  }
+  for (auto& [key, cb] : right)
+    if (!cb.first.is_zero()) term.right.push_back(cb);
+  return term;
 }
 
 void derive_combination(const Atomic& a, Kernel k, bool sq, const Catalog& cat, Derived& d) {
@@ -306,19 +392,41 @@ void derive_combination(const Atomic& a, Kernel k, bool sq, const Catalog& cat, 
     const int xpow = rest.degree(var_x());
     const ex c = (rest / pow(var_x(), xpow)).expand();
     const std::string what = text(t);
-    if (used.size() > 1)
-      throw std::invalid_argument("the product " + what + " of two different atomics has no rule");
+    const std::string supported =
+        " has no rule (supported: A, A^2, x A with A periodic, x^n A^d with A piecewise, A B with A periodic "
+        "and B piecewise constant with breaks at multiples of the period)";
     if (!is_a<numeric>(c) || !rest.is_polynomial(var_x()) || (rest - c * pow(var_x(), xpow)).expand() != 0)
       throw std::invalid_argument("coefficient of " + what + " is not c x^n");
+    if (used.size() > 2) throw std::invalid_argument("the product " + what + supported);
+    if (used.size() == 2) {
+      d.terms.push_back(half_lines_term(ex_to<numeric>(c), xpow, used, calls, cat, what + supported));
+      continue;
+    }
     const auto& [n, deg] = used.front();
     const Atomic* other = cat.find(calls[n].first);
+    if (other->cls == AtomicClass::Piecewise && xpow > 0) {
+      // x^n A(x)^d, A piecewise: again whole-line polynomial pieces.
+      if (calls[n].second < 0) throw std::invalid_argument("the term " + what + supported);
+      CombinationTerm term{ex_to<numeric>(c), calls[n].first, calls[n].second, xpow, false};
+      term.kind = CombinationTerm::Kind::Pieces;
+      for (const Piece& p : other->pieces) {
+        const ex q = (pow(var_x(), xpow) * pow(p.f, deg)).expand();
+        if (q.degree(var_x()) > 7)
+          throw std::invalid_argument("the term " + what + " has degree > 7 on a piece");
+        term.pieces.push_back({p.lo, p.hi, coefficients(q)});
+      }
+      d.terms.push_back(term);
+      continue;
+    }
     if (deg > 2 || (deg == 2 && xpow > 0) || xpow > 1 || (xpow == 1 && other->cls != AtomicClass::Periodic))
-      throw std::invalid_argument("the term " + what + " has no rule (supported: A, x A with A periodic, A^2)");
+      throw std::invalid_argument("the term " + what + supported);
     d.terms.push_back({ex_to<numeric>(c), calls[n].first, calls[n].second, xpow, deg == 2});
+    if (xpow == 1) d.terms.back().kind = CombinationTerm::Kind::FirstMoment;
   }
   // GiNaC's term order depends on the run: sort so the emitted code does not.
   std::sort(d.terms.begin(), d.terms.end(), [](const CombinationTerm& p, const CombinationTerm& q) {
-    return std::make_tuple(p.atomic, p.arg_sign, p.xpow, p.squared) < std::make_tuple(q.atomic, q.arg_sign, q.xpow, q.squared);
+    return std::make_tuple(p.atomic, p.factor, p.arg_sign, p.xpow, p.squared) <
+           std::make_tuple(q.atomic, q.factor, q.arg_sign, q.xpow, q.squared);
   });
   d.poly = poly;
   try {
@@ -330,7 +438,20 @@ void derive_combination(const Atomic& a, Kernel k, bool sq, const Catalog& cat, 
   for (auto& t : d.terms) {
     const std::string arg = t.arg_sign < 0 ? "-x" : "x";
     f += " + " + text(t.coeff) + " * ";
-    if (t.squared)
+    if (t.kind == CombinationTerm::Kind::Pieces) {
+      f += "(" + std::string(t.xpow == 1 ? "x" : "x^" + std::to_string(t.xpow)) + " " + t.atomic +
+           ")~(x) [pieces " + pieces_text(t.pieces, "t");
+      if (k == Kernel::Gaussian) f += " = " + text(gaussian_closed_form(t.pieces).expand());
+      f += "]";
+    } else if (t.kind == CombinationTerm::Kind::HalfLines) {
+      f += "(" + t.atomic + " " + t.factor + ")~(x) [=";
+      std::string parts;
+      if (!t.full.is_zero()) parts += " " + text(t.full) + " * " + t.atomic + "~(x)";
+      for (const auto& [rc, b] : t.right)
+        parts += std::string(parts.empty() ? " " : " + ") + text(rc) + " * " + t.atomic + "_right~(x - " +
+                 text(b) + ")";
+      f += parts + ", " + t.atomic + "_right(x) = " + t.atomic + "(x) 1{x >= 0}]";
+    } else if (t.squared)
       f += "(" + t.atomic + "^2)~(" + arg + ")";
     else if (t.xpow == 1)
       f += "(x " + t.atomic + ")~(" + arg + ") [= x " + t.atomic + "~(" + arg + ")" + (t.arg_sign < 0 ? " - " : " + ") +

@@ -26,13 +26,26 @@ enum class Body {
   Antiderivative   // box/tent from F or F2, Taylor series in the half-width where it cancels
 };
 
-// coeff * x^xpow * atomic(arg_sign x)^(squared ? 2 : 1); xpow = 1 needs a periodic atomic.
+// One smoothed term of a combination. The rules (Kind):
+//  Smoothed:    coeff * atomic(arg_sign x)^(squared ? 2 : 1), the atomic's own entry;
+//  FirstMoment: coeff * x * atomic(arg_sign x), atomic periodic: x A~ + E[U A(x+U)] (xpow = 1);
+//  Pieces:      coeff * x^xpow * atomic(x)^d with a piecewise atomic: again whole-line polynomial
+//               pieces (`pieces`, the product), smoothed like a piecewise atomic;
+//  HalfLines:   coeff * atomic(x) * factor(x), atomic periodic, factor piecewise with constant
+//               pieces whose breaks are multiples of the period: a sum of half-line restrictions,
+//               full * A~(x) + sum_i right[i].first * A_right(x - right[i].second), where
+//               A_right(x) = E[A(x+U) 1{x+U >= 0}] is the periodic entry's half-line companion.
 struct CombinationTerm {
   GiNaC::numeric coeff;
   std::string atomic;
   int arg_sign;  // +1: atomic(x), -1: atomic(-x)
   int xpow = 0;
   bool squared = false;
+  enum class Kind { Smoothed, FirstMoment, Pieces, HalfLines } kind = Kind::Smoothed;
+  std::vector<PolyPiece> pieces;                            // Pieces
+  std::string factor;                                       // HalfLines: the piecewise factor
+  GiNaC::numeric full = 0;                                  // HalfLines
+  std::vector<std::pair<GiNaC::numeric, GiNaC::ex>> right;  // HalfLines: (coefficient, break b)
 };
 
 // An entry the engine cannot derive, and why (reported by rulegen and in the manifest).
@@ -60,6 +73,10 @@ struct Derived {
   double fmax = 0;                        // max |f| (image-sum tolerance)
   double coef_bound = 0;                  // bound on |a_k| + |b_k|
   GiNaC::ex a0, ak, bk;                   // Fourier coefficients in k (and (-1)^k)
+  // Periodic, not squared: the half-line companion's boundary series (Euler-Maclaurin at t = 0),
+  // half_series[m] = (-1)^(m+1) S_{m+2}(0) with S_1 = f - a0 and S_{j+1} the periodic, mean-free
+  // antiderivative of S_j (exact); see docs/derivations.md.
+  std::vector<GiNaC::numeric> half_series;
 
   std::vector<CombinationTerm> terms;  // Combination
   GiNaC::ex poly;                      // Combination: the polynomial part, unsmoothed

@@ -1070,6 +1070,15 @@ stat<T> bimodal_ceil(T mu, T sigma) {
   return {T(r.mean), T(r.var)};
 }
 
+// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
+template <class T>
+stat<T> bimodal_trunc(T mu, T sigma) {
+  static const double jumps[1] = {0.0};
+  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (1.0), jumps, 1, [](double x, double s) { return box_trunc<double>(x, s); }, [](double x, double s) { return box_trunc_sq<double>(x, s); });
+  return {T(r.mean), T(r.var)};
+}
+
 // Compact box half-width near the singularities of tan: min(h, lambda r), lambda = 1/2 (Yang & Barnes 2018, 4.6).
 template <class T>
 T compact_box_halfwidth_tan(T x, T sigma) {
@@ -1371,6 +1380,8 @@ inline stat<float> floor(float mu, float sigma) { return ::bl::detail::gen::bimo
 inline stat<double> floor(double mu, double sigma) { return ::bl::detail::gen::bimodal_floor<double>(mu, sigma); }
 inline stat<float> ceil(float mu, float sigma) { return ::bl::detail::gen::bimodal_ceil<float>(mu, sigma); }
 inline stat<double> ceil(double mu, double sigma) { return ::bl::detail::gen::bimodal_ceil<double>(mu, sigma); }
+inline stat<float> trunc(float mu, float sigma) { return ::bl::detail::gen::bimodal_trunc<float>(mu, sigma); }
+inline stat<double> trunc(double mu, double sigma) { return ::bl::detail::gen::bimodal_trunc<double>(mu, sigma); }
 }  // namespace bimodal
 
 namespace compact {
@@ -1520,6 +1531,7 @@ const RuleEntry<T>* clamped_rule_entries(int* count) {
       {&kAtomics[19], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::square", "bl_bimodal_square", &detail::gen::bimodal_square<T>},
       {&kAtomics[20], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::floor", "bl_bimodal_floor", &detail::gen::bimodal_floor<T>},
       {&kAtomics[21], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::ceil", "bl_bimodal_ceil", &detail::gen::bimodal_ceil<T>},
+      {&kAtomics[22], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::trunc", "bl_bimodal_trunc", &detail::gen::bimodal_trunc<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;

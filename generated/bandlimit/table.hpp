@@ -279,11 +279,15 @@ T gaussian_fract(T x, T sigma);
 template <class T>
 T gaussian_fract_u(T x, T sigma);
 template <class T>
+T gaussian_fract_right(T x, T sigma);
+template <class T>
 T gaussian_fract_sq(T x, T sigma);
 template <class T>
 T box_fract(T x, T sigma);
 template <class T>
 T box_fract_u(T x, T sigma);
+template <class T>
+T box_fract_right(T x, T sigma);
 template <class T>
 T box_fract_sq(T x, T sigma);
 template <class T>
@@ -291,11 +295,15 @@ T tent_fract(T x, T sigma);
 template <class T>
 T tent_fract_u(T x, T sigma);
 template <class T>
+T tent_fract_right(T x, T sigma);
+template <class T>
 T tent_fract_sq(T x, T sigma);
 template <class T>
 T gaussian_triangle(T x, T sigma);
 template <class T>
 T gaussian_triangle_u(T x, T sigma);
+template <class T>
+T gaussian_triangle_right(T x, T sigma);
 template <class T>
 T gaussian_triangle_sq(T x, T sigma);
 template <class T>
@@ -303,11 +311,15 @@ T box_triangle(T x, T sigma);
 template <class T>
 T box_triangle_u(T x, T sigma);
 template <class T>
+T box_triangle_right(T x, T sigma);
+template <class T>
 T box_triangle_sq(T x, T sigma);
 template <class T>
 T tent_triangle(T x, T sigma);
 template <class T>
 T tent_triangle_u(T x, T sigma);
+template <class T>
+T tent_triangle_right(T x, T sigma);
 template <class T>
 T tent_triangle_sq(T x, T sigma);
 template <class T>
@@ -315,17 +327,23 @@ T gaussian_square(T x, T sigma);
 template <class T>
 T gaussian_square_u(T x, T sigma);
 template <class T>
+T gaussian_square_right(T x, T sigma);
+template <class T>
 T gaussian_square_sq(T x, T sigma);
 template <class T>
 T box_square(T x, T sigma);
 template <class T>
 T box_square_u(T x, T sigma);
 template <class T>
+T box_square_right(T x, T sigma);
+template <class T>
 T box_square_sq(T x, T sigma);
 template <class T>
 T tent_square(T x, T sigma);
 template <class T>
 T tent_square_u(T x, T sigma);
+template <class T>
+T tent_square_right(T x, T sigma);
 template <class T>
 T tent_square_sq(T x, T sigma);
 template <class T>
@@ -355,9 +373,15 @@ T tent_ceil_sq(T x, T sigma);
 template <class T>
 T gaussian_trunc(T x, T sigma);
 template <class T>
+T gaussian_trunc_sq(T x, T sigma);
+template <class T>
 T box_trunc(T x, T sigma);
 template <class T>
+T box_trunc_sq(T x, T sigma);
+template <class T>
 T tent_trunc(T x, T sigma);
+template <class T>
+T tent_trunc_sq(T x, T sigma);
 template <class T>
 T box_tan(T x, T sigma);
 template <class T>
@@ -1816,6 +1840,24 @@ T gaussian_fract_u(T x, T sigma) {
   return detail::gauss_periodic_u_image(x, sigma, period, p, T(1.0));
 }
 
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T gaussian_fract_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[1] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  if (x - R >= T(0.0)) return gaussian_fract<T>(x, sigma);
+  if (x + R < T(0.0)) return T(0.0);
+  const T cs[40] = {T(-0.5235987755982989), T(0.0), T(0.34451418533666467), T(0.0), T(-0.3238303542701391), T(0.0), T(0.3196077489710891), T(0.0), T(-0.3186264692795277), T(0.0), T(0.3183882179665655), T(0.0), T(-0.31832938207069017), T(0.0), T(0.31831475067804366), T(0.0), T(-0.3183111012659754), T(0.0), T(0.3183101898393371), T(0.0), T(-0.31830996208494305), T(0.0), T(0.31830990515766655), T(0.0), T(-0.3183098909271029), T(0.0), T(0.3183098873696013), T(0.0), T(-0.3183098864802414), T(0.0), T(0.31830988625790313), T(0.0), T(-0.31830988620231876), T(0.0), T(0.3183098861884227), T(0.0), T(-0.31830988618494865), T(0.0), T(0.3183098861840802), T(0.0)};
+  return detail::gauss_periodic_right(x, sigma, period, p, T(1.0), T(4.0), (T(1)/T(2)), cs);
+}
+
 //   (1/3) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
 //   = ((kf)^((-2))*(pi)^((-2))), b_k = (-(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier
 //   form for large sigma/T]; image sum over periods of the Gaussian integral of the pieces
@@ -1877,6 +1919,26 @@ T box_fract_u(T x, T sigma) {
   return detail::box_periodic_u(x, sigma, period, p);
 }
 
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T box_fract_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[1] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[1] = {
+      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (x - hw >= T(0.0)) return box_fract<T>(x, sigma);
+  if (x + hw <= T(0.0)) return T(0.0);
+  return detail::box_periodic_right(x, hw, period, p, p1);
+}
+
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/3)*(t)^(3)) on [0, 1)}, F_p2 =
 //   {((1/12)*(t)^(4)) on [0, 1)}
@@ -1927,6 +1989,29 @@ T tent_fract_u(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   return detail::tent_periodic_u(x, sigma, period, p);
+}
+
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T tent_fract_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[1] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[1] = {
+      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p2[1] = {
+      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (x - hw >= T(0.0)) return tent_fract<T>(x, sigma);
+  if (x + hw <= T(0.0)) return T(0.0);
+  return detail::tent_periodic_right(x, hw, period, p, p1, p2);
 }
 
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
@@ -2011,6 +2096,25 @@ T gaussian_triangle_u(T x, T sigma) {
   return detail::gauss_periodic_u_image(x, sigma, period, p, T(1.0));
 }
 
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T gaussian_triangle_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(2);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  if (x - R >= T(0.0)) return gaussian_triangle<T>(x, sigma);
+  if (x + R < T(0.0)) return T(0.0);
+  const T cs[40] = {T(0.0), T(0.4112335167120566), T(0.0), T(-0.4058712126416768), T(0.0), T(0.40534762625942894), T(0.0), T(-0.4052916411736494), T(0.0), T(0.40528549887499354), T(0.0), T(-0.40528481937133937), T(0.0), T(0.40528474398701625), T(0.0), T(-0.4052847356155683), T(0.0), T(0.40528473468558984), T(0.0), T(-0.4052847345822662), T(0.0), T(0.40528473457078606), T(0.0), T(-0.40528473456951053), T(0.0), T(0.4052847345693688), T(0.0), T(-0.40528473456935304), T(0.0), T(0.4052847345693513), T(0.0), T(-0.4052847345693511), T(0.0), T(0.4052847345693511), T(0.0), T(-0.4052847345693511), T(0.0), T(0.4052847345693511), T(0.0), T(-0.4052847345693511)};
+  return detail::gauss_periodic_right(x, sigma, period, p, T(1.0), T(4.0), (T(1)/T(2)), cs);
+}
+
 //   (1/3) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
 //   = (4*(kf)^((-2))*(pi)^((-2))*pk), b_k = 0 (pk = (-1)^k), T = 2 [Fourier form for large
 //   sigma/T]; image sum over periods of the Gaussian integral of the pieces {(t)^(2) on [0, 1);
@@ -2078,6 +2182,28 @@ T box_triangle_u(T x, T sigma) {
   return detail::box_periodic_u(x, sigma, period, p);
 }
 
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T box_triangle_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(2);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (x - hw >= T(0.0)) return box_triangle<T>(x, sigma);
+  if (x + hw <= T(0.0)) return T(0.0);
+  return detail::box_periodic_right(x, hw, period, p, p1);
+}
+
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 2, F_p = {((1/3)*(t)^(3)) on [0, 1);
 //   (((-2)*(t)^(2)) + ((1/3)*(t)^(3)) + (-2) + (4*t)) on [1, 2)}, F_p2 = {((1/12)*(t)^(4)) on [0,
@@ -2136,6 +2262,32 @@ T tent_triangle_u(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   return detail::tent_periodic_u(x, sigma, period, p);
+}
+
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T tent_triangle_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p2[2] = {
+      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {(T(1)/T(3)), (T(-1)), T(1), (T(-1)/T(6)), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(2);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (x - hw >= T(0.0)) return tent_triangle<T>(x, sigma);
+  if (x + hw <= T(0.0)) return T(0.0);
+  return detail::tent_periodic_right(x, hw, period, p, p1, p2);
 }
 
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
@@ -2224,6 +2376,25 @@ T gaussian_square_u(T x, T sigma) {
   return detail::gauss_periodic_u_image(x, sigma, period, p, T(1.0));
 }
 
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T gaussian_square_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  if (x - R >= T(0.0)) return gaussian_square<T>(x, sigma);
+  if (x + R < T(0.0)) return T(0.0);
+  const T cs[40] = {T(0.7853981633974483), T(0.0), T(-0.6459640975062463), T(0.0), T(0.6375410099693364), T(0.0), T(-0.6367185624033416), T(0.0), T(0.6366306212362438), T(0.0), T(-0.636620972936077), T(0.0), T(0.6366199055742331), T(0.0), T(-0.6366197871608151), T(0.0), T(0.6366197740109756), T(0.0), T(-0.6366197725501688), T(0.0), T(0.6366197723878684), T(0.0), T(-0.6366197723698355), T(0.0), T(0.6366197723678318), T(0.0), T(-0.6366197723676091), T(0.0), T(0.6366197723675845), T(0.0), T(-0.6366197723675817), T(0.0), T(0.6366197723675814), T(0.0), T(-0.6366197723675814), T(0.0), T(0.6366197723675814), T(0.0), T(-0.6366197723675814), T(0.0)};
+  return detail::gauss_periodic_right(x, sigma, period, p, T(1.0), T(4.0), (T(1)/T(2)), cs);
+}
+
 //   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
 //   = 0, b_k = (-((-1) + pk)*(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier form for
 //   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {1 on [0,
@@ -2290,6 +2461,28 @@ T box_square_u(T x, T sigma) {
   return detail::box_periodic_u(x, sigma, period, p);
 }
 
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T box_square_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (x - hw >= T(0.0)) return box_square<T>(x, sigma);
+  if (x + hw <= T(0.0)) return T(0.0);
+  return detail::box_periodic_right(x, hw, period, p, p1);
+}
+
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on [(1/2),
 //   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
@@ -2346,6 +2539,32 @@ T tent_square_u(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   return detail::tent_periodic_u(x, sigma, period, p);
+}
+
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T tent_square_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p2[2] = {
+      {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(1);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (x - hw >= T(0.0)) return tent_square<T>(x, sigma);
+  if (x + hw <= T(0.0)) return T(0.0);
+  return detail::tent_periodic_right(x, hw, period, p, p1, p2);
 }
 
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
@@ -2482,6 +2701,22 @@ T gaussian_trunc(T x, T sigma) {
   return (T(1) + x) + (T(-1)) * gaussian_fract<T>(x, sigma) + (T(-1)) * gaussian_step<T>(x, sigma);
 }
 
+//   ((2*x) + (sigma)^(2) + (x)^(2) + 1) + (-2) * fract~(x) + 1 * (fract^2)~(x) + (-2) * (x
+//   fract)~(x) [= x fract~(x) + E[U fract(x+U)]] + 2 * (fract step)~(x) [= 1 * fract_right~(x -
+//   0), fract_right(x) = fract(x) 1{x >= 0}] + (-2) * step~(x) + 1 * (step^2)~(x) + (-2) * (x
+//   step)~(x) [pieces {0 on [-inf, 0); t on [0, inf)} = ((-Phi((-(sigma)^((-1))*x))*x) +
+//   (phi((-(sigma)^((-1))*x))*sigma) + x)] [~: the same kernel's smoothed atomic]
+template <class T>
+T gaussian_trunc_sq(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> pt6[2] = {
+      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  return ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + (T(-2)) * gaussian_fract<T>(x, sigma) + T(1) * gaussian_fract_sq<T>(x, sigma) + (T(-2)) * (x * gaussian_fract<T>(x, sigma) + gaussian_fract_u<T>(x, sigma)) + T(2) * (T(1) * gaussian_fract_right<T>(x, sigma)) + (T(-2)) * gaussian_step<T>(x, sigma) + T(1) * gaussian_step_sq<T>(x, sigma) + (T(-2)) * detail::gauss_pw(x, sigma, pt6);
+}
+
 //   (1 + x) + (-1) * fract~(x) + (-1) * step~(x) [~: the same kernel's smoothed atomic]
 template <class T>
 T box_trunc(T x, T sigma) {
@@ -2490,12 +2725,42 @@ T box_trunc(T x, T sigma) {
   return (T(1) + x) + (T(-1)) * box_fract<T>(x, sigma) + (T(-1)) * box_step<T>(x, sigma);
 }
 
+//   ((2*x) + (sigma)^(2) + (x)^(2) + 1) + (-2) * fract~(x) + 1 * (fract^2)~(x) + (-2) * (x
+//   fract)~(x) [= x fract~(x) + E[U fract(x+U)]] + 2 * (fract step)~(x) [= 1 * fract_right~(x -
+//   0), fract_right(x) = fract(x) 1{x >= 0}] + (-2) * step~(x) + 1 * (step^2)~(x) + (-2) * (x
+//   step)~(x) [pieces {0 on [-inf, 0); t on [0, inf)}] [~: the same kernel's smoothed atomic]
+template <class T>
+T box_trunc_sq(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> pt6[2] = {
+      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  return ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + (T(-2)) * box_fract<T>(x, sigma) + T(1) * box_fract_sq<T>(x, sigma) + (T(-2)) * (x * box_fract<T>(x, sigma) + box_fract_u<T>(x, sigma)) + T(2) * (T(1) * box_fract_right<T>(x, sigma)) + (T(-2)) * box_step<T>(x, sigma) + T(1) * box_step_sq<T>(x, sigma) + (T(-2)) * detail::box_pw(x, sigma, pt6);
+}
+
 //   (1 + x) + (-1) * fract~(x) + (-1) * step~(x) [~: the same kernel's smoothed atomic]
 template <class T>
 T tent_trunc(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (T(1) + x) + (T(-1)) * tent_fract<T>(x, sigma) + (T(-1)) * tent_step<T>(x, sigma);
+}
+
+//   ((2*x) + (sigma)^(2) + (x)^(2) + 1) + (-2) * fract~(x) + 1 * (fract^2)~(x) + (-2) * (x
+//   fract)~(x) [= x fract~(x) + E[U fract(x+U)]] + 2 * (fract step)~(x) [= 1 * fract_right~(x -
+//   0), fract_right(x) = fract(x) 1{x >= 0}] + (-2) * step~(x) + 1 * (step^2)~(x) + (-2) * (x
+//   step)~(x) [pieces {0 on [-inf, 0); t on [0, inf)}] [~: the same kernel's smoothed atomic]
+template <class T>
+T tent_trunc_sq(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> pt6[2] = {
+      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  return ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + (T(-2)) * tent_fract<T>(x, sigma) + T(1) * tent_fract_sq<T>(x, sigma) + (T(-2)) * (x * tent_fract<T>(x, sigma) + tent_fract_u<T>(x, sigma)) + T(2) * (T(1) * tent_fract_right<T>(x, sigma)) + (T(-2)) * tent_step<T>(x, sigma) + T(1) * tent_step_sq<T>(x, sigma) + (T(-2)) * detail::tent_pw(x, sigma, pt6);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3730,6 +3995,8 @@ inline float ceil_sq(float x, float sigma) { return detail::gen::gaussian_ceil_s
 inline double ceil_sq(double x, double sigma) { return detail::gen::gaussian_ceil_sq<double>(x, sigma); }
 inline float trunc(float x, float sigma) { return detail::gen::gaussian_trunc<float>(x, sigma); }
 inline double trunc(double x, double sigma) { return detail::gen::gaussian_trunc<double>(x, sigma); }
+inline float trunc_sq(float x, float sigma) { return detail::gen::gaussian_trunc_sq<float>(x, sigma); }
+inline double trunc_sq(double x, double sigma) { return detail::gen::gaussian_trunc_sq<double>(x, sigma); }
 inline float moment(int n, float x, float sigma) { return detail::gen::gaussian_moment<float>(n, x, sigma); }
 inline double moment(int n, double x, double sigma) { return detail::gen::gaussian_moment<double>(n, x, sigma); }
 }  // namespace gaussian
@@ -3825,6 +4092,8 @@ inline float ceil_sq(float x, float sigma) { return detail::gen::box_ceil_sq<flo
 inline double ceil_sq(double x, double sigma) { return detail::gen::box_ceil_sq<double>(x, sigma); }
 inline float trunc(float x, float sigma) { return detail::gen::box_trunc<float>(x, sigma); }
 inline double trunc(double x, double sigma) { return detail::gen::box_trunc<double>(x, sigma); }
+inline float trunc_sq(float x, float sigma) { return detail::gen::box_trunc_sq<float>(x, sigma); }
+inline double trunc_sq(double x, double sigma) { return detail::gen::box_trunc_sq<double>(x, sigma); }
 inline float tan(float x, float sigma) { return detail::gen::box_tan<float>(x, sigma); }
 inline double tan(double x, double sigma) { return detail::gen::box_tan<double>(x, sigma); }
 inline float tan_sq(float x, float sigma) { return detail::gen::box_tan_sq<float>(x, sigma); }
@@ -3944,6 +4213,8 @@ inline float ceil_sq(float x, float sigma) { return detail::gen::tent_ceil_sq<fl
 inline double ceil_sq(double x, double sigma) { return detail::gen::tent_ceil_sq<double>(x, sigma); }
 inline float trunc(float x, float sigma) { return detail::gen::tent_trunc<float>(x, sigma); }
 inline double trunc(double x, double sigma) { return detail::gen::tent_trunc<double>(x, sigma); }
+inline float trunc_sq(float x, float sigma) { return detail::gen::tent_trunc_sq<float>(x, sigma); }
+inline double trunc_sq(double x, double sigma) { return detail::gen::tent_trunc_sq<double>(x, sigma); }
 inline float tan(float x, float sigma) { return detail::gen::tent_tan<float>(x, sigma); }
 inline double tan(double x, double sigma) { return detail::gen::tent_tan<double>(x, sigma); }
 inline float tan_sq(float x, float sigma) { return detail::gen::tent_tan_sq<float>(x, sigma); }

@@ -553,6 +553,105 @@ float bl_tent_periodic(float x, float sigma, float period, int n, BlPiece p[4], 
   return num / (w * w);
 }
 
+// ---- half-line restrictions of periodic functions ----
+// f_right(x) = E[f(x+U) 1{x+U >= 0}], called by the generated bl_<kernel>_<f>_right only where the
+// kernel straddles 0 (see support.hpp for the derivation and the bounds). Gaussian: the boundary
+// series a0 Phi(z) + rho phi(z) sum_m cs[m] rho^m He_m(z) where its bound
+// 1.65 coef_bound rho^(m+1) sqrt((m+1)!) reaches BL_SERIES_TOL within nc terms, else the image sum
+// over the periods m >= 0. Box/tent: local pieces for a support of up to 4 periods, else the
+// Appendix C integrals of the half line.
+float bl_gauss_periodic_right(float x, float sigma, float period, int n, BlPiece p[4], float fmax,
+                              float coef_bound, float a0, int nc, float cs[40]) {
+  float rho = period / (2.0 * BL_PI * sigma);
+  if (rho < 0.5) {
+    float b = 1.65 * coef_bound;
+    int last = -1;
+    for (int m = 0; m < 40; ++m) {
+      if (m >= nc) break;
+      b *= rho * sqrt(float(m + 1));
+      if (m >= 1 && b <= BL_SERIES_TOL) {
+        last = m;
+        break;
+      }
+    }
+    if (last >= 0) {
+      float z = x / sigma;
+      float Gm1 = 0.0, G = 1.0, acc = 0.0;
+      for (int m = 0; m < 40; ++m) {
+        if (m > last) break;
+        acc += cs[m] * G;
+        float Gn = rho * z * G - float(m) * rho * rho * Gm1;
+        Gm1 = G;
+        G = Gn;
+      }
+      return a0 * bl_Phi(z) + rho * bl_phi(z) * acc;
+    }
+  }
+  float R = bl_image_z(fmax, BL_SERIES_TOL) * sigma;
+  int m0 = max(int(floor((x - R) / period)), 0);
+  int m1 = int(floor((x + R) / period));
+  float s = 0.0;
+  for (int m = m0; m <= m1; ++m) {
+    float shift = float(m) * period;
+    for (int i = 0; i < 4; ++i) {
+      if (i >= n) break;
+      float dl = (p[i].lo + shift) - x;
+      float dh = (p[i].hi + shift) - x;
+      if (!(dh > -R) || !(dl < R)) continue;
+      s += bl_gauss_core(x - shift, sigma, dl, dh, p[i].lo, p[i].hi, p[i].c);
+    }
+  }
+  return s;
+}
+
+float bl_box_periodic_right(float x, float h, float period, int n, BlPiece p[4], BlPiece P1[4]) {
+  if (h <= 2.0 * period) {
+    int m1 = int(floor((x + h) / period));
+    float s = 0.0;
+    for (int m = 0; m <= m1; ++m) {
+      float shift = float(m) * period;
+      for (int i = 0; i < 4; ++i) {
+        if (i >= n) break;
+        float dl = (p[i].lo + shift) - x;
+        float dh = (p[i].hi + shift) - x;
+        if (!(dh > -h) || !(dl < h)) continue;
+        s += bl_box_core(x - shift, h, dl, dh, p[i].lo, p[i].hi, p[i].c);
+      }
+    }
+    return s;
+  }
+  vec2 y = bl_reduce_period(x + h, period);
+  return (y.y * bl_poly(P1[n - 1].c, period) + bl_period_piece_eval(y.x, n, P1)) / (2.0 * h);
+}
+
+float bl_tent_half_F2(float y, float period, int n, BlPiece P2[4], float A, float B) {
+  vec2 r = bl_reduce_period(y, period);
+  return A * (period * r.y * (r.y - 1.0) * 0.5 + r.x * r.y) + B * r.y + bl_period_piece_eval(r.x, n, P2);
+}
+
+float bl_tent_periodic_right(float x, float w, float period, int n, BlPiece p[4], BlPiece P1[4],
+                             BlPiece P2[4]) {
+  if (w <= 2.0 * period) {
+    int m1 = int(floor((x + w) / period));
+    float s = 0.0;
+    for (int m = 0; m <= m1; ++m) {
+      float shift = float(m) * period;
+      for (int i = 0; i < 4; ++i) {
+        if (i >= n) break;
+        float dl = (p[i].lo + shift) - x;
+        float dh = (p[i].hi + shift) - x;
+        if (!(dh > -w) || !(dl < w)) continue;
+        s += bl_tent_core(x - shift, w, dl, dh, p[i].lo, p[i].hi, p[i].c);
+      }
+    }
+    return s;
+  }
+  float A = bl_poly(P1[n - 1].c, period);
+  float B = bl_poly(P2[n - 1].c, period);
+  return (bl_tent_half_F2(x + w, period, n, P2, A, B) -
+          2.0 * bl_tent_half_F2(max(x, 0.0), period, n, P2, A, B)) / (w * w);
+}
+
 // ---- first kernel moment of periodic functions ----
 // M = E[U g(x + U)] for a periodic g given by one period of pieces (n <= 4, degree <= 6, absolute
 // coordinate in [0, period)): bl_gauss_periodic_u_image, bl_box_periodic_u, bl_tent_periodic_u. The

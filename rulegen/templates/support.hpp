@@ -766,6 +766,128 @@ inline T tent_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Pie
   return num / (w * w);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Half-line restrictions of periodic functions: f_right(x) = E[f(x+U) 1{x+U >= 0}] for f given by
+// one period of pieces (products f * B with B piecewise constant, such as trunc^2's fract * step,
+// are sums of these at the breaks of B). The generated companion <kernel>_<f>_right returns 0 when
+// the kernel lies left of 0 and the plain periodic entry when it lies right of 0; the routines below
+// are called only when the kernel straddles 0, so |x| is at most a few kernel widths and the
+// absolute coordinate needs no reduction.
+
+// Gaussian. (a) Boundary series (repeated integration by parts at t = 0 with the periodic, mean-free
+// antiderivatives S_j of f - a0; the engine derives S_j(0) exactly):
+//   f_right = a0 Phi(z) + rho phi(z) sum_m cs[m] rho^m He_m(z),  z = x/sigma, rho = T/(2 pi sigma),
+// cs[m] = (-1)^(m+1) S_{m+2}(0) (2 pi/T)^(m+1). Stopping after term m leaves the remainder
+// +-int_0^inf S_{m+2}(t) d^(m+1)/dt^(m+1) phi_sigma(t - x) dt, bounded by
+//   max|S_{m+2}| int |phi_sigma^(m+1)| <= coef_bound zeta(m+1) (T/2pi)^(m+1) sigma^-(m+1) sqrt((m+1)!)
+// (|S_n| from the Fourier coefficients, |c_k| <= coef_bound/2; int |He_n| phi <= sqrt(n!) by
+// Cauchy-Schwarz), i.e. 1.65 coef_bound rho^(m+1) sqrt((m+1)!) for m >= 1. The series is asymptotic
+// (the bound has a minimum over m): it is used when that bound reaches series_tol within the M
+// coefficients (sigma >~ 1.5 T in double, >~ 1.1 T in float). rho^m He_m(z) is formed by the
+// recurrence G_{m+1} = rho z G_m - m rho^2 G_{m-1} (no powers of sigma, no overflow).
+// (b) Otherwise the image sum over the periods m >= 0 within image_z(fmax, tol) sigma of x.
+template <class T, int N, int M>
+inline T gauss_periodic_right(T x, T sigma, T period, const Piece<T> (&p)[N], T fmax, T coef_bound, T a0,
+                              const T (&cs)[M]) {
+  using std::floor;
+  using std::sqrt;
+  const T tol = series_tol<T>();
+  const T rho = period / (T(2) * k_pi<T>() * sigma);
+  if (rho < T(0.5)) {
+    T b = T(1.65) * coef_bound;
+    int last = -1;
+    for (int m = 0; m < M; ++m) {
+      b *= rho * sqrt(T(m + 1));
+      if (m >= 1 && b <= tol) {
+        last = m;
+        break;
+      }
+    }
+    if (last >= 0) {
+      const T z = x / sigma;
+      T Gm1 = T(0), G = T(1), acc = T(0);
+      for (int m = 0; m <= last; ++m) {
+        acc += cs[m] * G;
+        const T Gn = rho * z * G - T(m) * rho * rho * Gm1;
+        Gm1 = G;
+        G = Gn;
+      }
+      return a0 * Phi(z) + rho * phi(z) * acc;
+    }
+  }
+  const T R = image_z(fmax, tol) * sigma;
+  T m0 = floor((x - R) / period);
+  if (m0 < T(0)) m0 = T(0);
+  const T m1 = floor((x + R) / period);
+  T s = T(0);
+  for (T m = m0; m <= m1; m += T(1)) {
+    const T shift = m * period;
+    for (int i = 0; i < N; ++i) {
+      const T dl = (p[i].lo + shift) - x, dh = (p[i].hi + shift) - x;
+      if (!(dh > -R) || !(dl < R)) continue;
+      s += gauss_core(x - shift, sigma, dl, dh, p[i].lo, p[i].hi, p[i].c);
+    }
+  }
+  return s;
+}
+
+// Box, half-width h, -h < x < h: (1/2h) int_0^(x+h) f. h <= 2 periods: the pieces of the periods
+// m >= 0 it meets, directly (box_core; exact for tiny h). Wider: F(y) = q F_p(T) + F_p(r), y = x + h
+// = qT + r, divided by 2h >= y (no cancellation).
+template <class T, int N>
+inline T box_periodic_right(T x, T h, T period, const Piece<T> (&p)[N], const Piece<T> (&P1)[N]) {
+  using std::floor;
+  if (h <= T(2) * period) {
+    const T m1 = floor((x + h) / period);
+    T s = T(0);
+    for (T m = T(0); m <= m1; m += T(1)) {
+      const T shift = m * period;
+      for (int i = 0; i < N; ++i) {
+        const T dl = (p[i].lo + shift) - x, dh = (p[i].hi + shift) - x;
+        if (!(dh > -h) || !(dl < h)) continue;
+        s += box_core(x - shift, h, dl, dh, p[i].lo, p[i].hi, p[i].c);
+      }
+    }
+    return s;
+  }
+  T q;
+  const T r = reduce_period(x + h, period, q);
+  return (q * poly(P1[N - 1].c, period) + periodic_piece_eval(r, P1)) / (T(2) * h);
+}
+
+// Tent, half-width w, -w < x < w: int_0^(x+w) f(t) (w - |t - x|)/w^2 dt. w <= 2 periods: tent_core
+// over the pieces of the periods m >= 0. Wider: the second difference of F2(max(y, 0)),
+// (F2(x + w) - 2 F2(max(x, 0)))/w^2, F2(y) = A (T q(q-1)/2 + r q) + B q + F_p2(r) (Appendix C);
+// for 0 <= x < w the difference is at least half of F2(x + w) (F2 grows like y^2 a0/2), so it
+// cancels by at most a small factor.
+template <class T, int N>
+inline T tent_periodic_right(T x, T w, T period, const Piece<T> (&p)[N], const Piece<T> (&P1)[N],
+                             const Piece<T> (&P2)[N]) {
+  using std::floor;
+  if (w <= T(2) * period) {
+    const T m1 = floor((x + w) / period);
+    T s = T(0);
+    for (T m = T(0); m <= m1; m += T(1)) {
+      const T shift = m * period;
+      for (int i = 0; i < N; ++i) {
+        const T dl = (p[i].lo + shift) - x, dh = (p[i].hi + shift) - x;
+        if (!(dh > -w) || !(dl < w)) continue;
+        s += tent_core(x - shift, w, dl, dh, p[i].lo, p[i].hi, p[i].c);
+      }
+    }
+    return s;
+  }
+  const T A = poly(P1[N - 1].c, period);
+  const T B = poly(P2[N - 1].c, period);
+  auto F2 = [&](T y) {
+    T q;
+    const T r = reduce_period(y, period, q);
+    return A * (period * q * (q - T(1)) * T(0.5) + r * q) + B * q + periodic_piece_eval(r, P2);
+  };
+  const T x0 = x > T(0) ? x : T(0);
+  return (F2(x + w) - T(2) * F2(x0)) / (w * w);
+}
+
 }  // namespace detail
 }  // namespace bl
 

@@ -21,7 +21,8 @@
 //      box / tent:            whole periods summed in closed form (power sums of k) plus the
 //                             partial periods at both ends by quadrature.
 //    f with a different structure on each side of 0 (trunc) gets direct quadrature up to 4000
-//    pieces, else no reference.
+//    pieces; beyond, a piecewise-constant g (trunc^2 = floor(|s|)^2) gets the exact sum of its
+//    jumps times Gaussian tail probabilities (erfc), else no reference.
 #pragma once
 
 #include <memory>
