@@ -2833,8 +2833,8 @@ float bl_tent_tanh_sq(float x, float sigma) {
 float bl_box_log_series(float x, float hh) {
   if (hh == (0.0)) return log(x);  // no smoothing: f(x)
   float u_log = log(x);
-  float q = hh * hh;
-  return u_log + q * (((-1.0/6.0)*(1.0/(x*x))) + q * (((-1.0/20.0)*(1.0/(x*x*x*x))) + q * (((-1.0/42.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/72.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/110.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/156.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  float q = (hh / x) * (hh / x);
+  return u_log + q * ((-1.0/6.0) + q * ((-1.0/20.0) + q * ((-1.0/42.0) + q * ((-1.0/72.0) + q * ((-1.0/110.0) + q * ((-1.0/156.0)))))));
 }
 
 float bl_box_log_diff(float x, float hh) {
@@ -2846,7 +2846,7 @@ float bl_box_log(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_box_log_series(x, hh);
   }
   return bl_box_log_diff(x, hh);
@@ -2855,8 +2855,8 @@ float bl_box_log(float x, float sigma) {
 float bl_box_log_sq_series(float x, float hh) {
   if (hh == (0.0)) return (log(x)*log(x));  // no smoothing: f(x)
   float u_log = log(x);
-  float q = hh * hh;
-  return (u_log*u_log) + q * (((-1.0/3.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/60.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/1260.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/5040.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/138600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/2162160.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  float q = (hh / x) * (hh / x);
+  return (u_log*u_log) + q * ((((-1.0/3.0)*u_log) + (1.0/3.0)) + q * ((((-1.0/10.0)*u_log) + (11.0/60.0)) + q * ((((-1.0/21.0)*u_log) + (137.0/1260.0)) + q * ((((-1.0/36.0)*u_log) + (121.0/1680.0)) + q * ((((-1.0/55.0)*u_log) + (7129.0/138600.0)) + q * ((((-1.0/78.0)*u_log) + (83711.0/2162160.0))))))));
 }
 
 float bl_box_log_sq_diff(float x, float hh) {
@@ -2868,7 +2868,7 @@ float bl_box_log_sq(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_box_log_sq_series(x, hh);
   }
   return bl_box_log_sq_diff(x, hh);
@@ -2877,8 +2877,8 @@ float bl_box_log_sq(float x, float sigma) {
 float bl_tent_log_series(float x, float hh) {
   if (hh == (0.0)) return log(x);  // no smoothing: f(x)
   float u_log = log(x);
-  float q = hh * hh;
-  return u_log + q * (((-1.0/12.0)*(1.0/(x*x))) + q * (((-1.0/60.0)*(1.0/(x*x*x*x))) + q * (((-1.0/168.0)*(1.0/(x*x*x*x*x*x))) + q * (((-1.0/360.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((-1.0/660.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((-1.0/1092.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  float q = (hh / x) * (hh / x);
+  return u_log + q * ((-1.0/12.0) + q * ((-1.0/60.0) + q * ((-1.0/168.0) + q * ((-1.0/360.0) + q * ((-1.0/660.0) + q * ((-1.0/1092.0)))))));
 }
 
 float bl_tent_log_diff(float x, float hh) {
@@ -2890,7 +2890,7 @@ float bl_tent_log(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_tent_log_series(x, hh);
   }
   return bl_tent_log_diff(x, hh);
@@ -2899,8 +2899,8 @@ float bl_tent_log(float x, float sigma) {
 float bl_tent_log_sq_series(float x, float hh) {
   if (hh == (0.0)) return (log(x)*log(x));  // no smoothing: f(x)
   float u_log = log(x);
-  float q = hh * hh;
-  return (u_log*u_log) + q * (((-1.0/6.0)*((-1.0) + u_log)*(1.0/(x*x))) + q * (((1.0/180.0)*(((-6.0)*u_log) + 11.0)*(1.0/(x*x*x*x))) + q * (((1.0/5040.0)*(((-60.0)*u_log) + 137.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/25200.0)*(((-140.0)*u_log) + 363.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/831600.0)*(((-2520.0)*u_log) + 7129.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/15135120.0)*(((-27720.0)*u_log) + 83711.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  float q = (hh / x) * (hh / x);
+  return (u_log*u_log) + q * ((((-1.0/6.0)*u_log) + (1.0/6.0)) + q * ((((-1.0/30.0)*u_log) + (11.0/180.0)) + q * ((((-1.0/84.0)*u_log) + (137.0/5040.0)) + q * ((((-1.0/180.0)*u_log) + (121.0/8400.0)) + q * ((((-1.0/330.0)*u_log) + (7129.0/831600.0)) + q * ((((-1.0/546.0)*u_log) + (83711.0/15135120.0))))))));
 }
 
 float bl_tent_log_sq_diff(float x, float hh) {
@@ -2912,7 +2912,7 @@ float bl_tent_log_sq(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_tent_log_sq_series(x, hh);
   }
   return bl_tent_log_sq_diff(x, hh);
@@ -2920,8 +2920,8 @@ float bl_tent_log_sq(float x, float sigma) {
 
 float bl_box_sqrt_series(float x, float hh) {
   if (hh == (0.0)) return sqrt(x);  // no smoothing: f(x)
-  float q = hh * hh;
-  return sqrt(x) + q * (((-1.0/24.0)*((1.0/(x*x))*sqrt(x))) + q * (((-1.0/128.0)*((1.0/(x*x*x*x))*sqrt(x))) + q * (((-3.0/1024.0)*((1.0/(x*x*x*x*x*x))*sqrt(x))) + q * (((-143.0/98304.0)*((1.0/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-221.0/262144.0)*((1.0/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-2261.0/4194304.0)*((1.0/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+  float q = (hh / x) * (hh / x);
+  return sqrt(x) + q * (((-1.0/24.0)*sqrt(x)) + q * (((-1.0/128.0)*sqrt(x)) + q * (((-3.0/1024.0)*sqrt(x)) + q * (((-143.0/98304.0)*sqrt(x)) + q * (((-221.0/262144.0)*sqrt(x)) + q * (((-2261.0/4194304.0)*sqrt(x))))))));
 }
 
 float bl_box_sqrt_diff(float x, float hh) {
@@ -2933,7 +2933,7 @@ float bl_box_sqrt(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_box_sqrt_series(x, hh);
   }
   return bl_box_sqrt_diff(x, hh);
@@ -2941,7 +2941,7 @@ float bl_box_sqrt(float x, float sigma) {
 
 float bl_box_sqrt_sq_series(float x, float hh) {
   if (hh == (0.0)) return x;  // no smoothing: f(x)
-  float q = hh * hh;
+  float q = (hh / x) * (hh / x);
   return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
 }
 
@@ -2954,7 +2954,7 @@ float bl_box_sqrt_sq(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_box_sqrt_sq_series(x, hh);
   }
   return bl_box_sqrt_sq_diff(x, hh);
@@ -2962,8 +2962,8 @@ float bl_box_sqrt_sq(float x, float sigma) {
 
 float bl_tent_sqrt_series(float x, float hh) {
   if (hh == (0.0)) return sqrt(x);  // no smoothing: f(x)
-  float q = hh * hh;
-  return sqrt(x) + q * (((-1.0/48.0)*((1.0/(x*x))*sqrt(x))) + q * (((-1.0/384.0)*((1.0/(x*x*x*x))*sqrt(x))) + q * (((-3.0/4096.0)*((1.0/(x*x*x*x*x*x))*sqrt(x))) + q * (((-143.0/491520.0)*((1.0/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-221.0/1572864.0)*((1.0/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((-323.0/4194304.0)*((1.0/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+  float q = (hh / x) * (hh / x);
+  return sqrt(x) + q * (((-1.0/48.0)*sqrt(x)) + q * (((-1.0/384.0)*sqrt(x)) + q * (((-3.0/4096.0)*sqrt(x)) + q * (((-143.0/491520.0)*sqrt(x)) + q * (((-221.0/1572864.0)*sqrt(x)) + q * (((-323.0/4194304.0)*sqrt(x))))))));
 }
 
 float bl_tent_sqrt_diff(float x, float hh) {
@@ -2975,7 +2975,7 @@ float bl_tent_sqrt(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_tent_sqrt_series(x, hh);
   }
   return bl_tent_sqrt_diff(x, hh);
@@ -2983,7 +2983,7 @@ float bl_tent_sqrt(float x, float sigma) {
 
 float bl_tent_sqrt_sq_series(float x, float hh) {
   if (hh == (0.0)) return x;  // no smoothing: f(x)
-  float q = hh * hh;
+  float q = (hh / x) * (hh / x);
   return x + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0 + q * (0.0))))));
 }
 
@@ -2996,7 +2996,7 @@ float bl_tent_sqrt_sq(float x, float sigma) {
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_tent_sqrt_sq_series(x, hh);
   }
   return bl_tent_sqrt_sq_diff(x, hh);
@@ -3004,8 +3004,8 @@ float bl_tent_sqrt_sq(float x, float sigma) {
 
 float bl_box_inv_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x));  // no smoothing: f(x)
-  float q = hh * hh;
-  return (1.0/(x)) + q * (((1.0/3.0)*(1.0/(x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/9.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/11.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/13.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  float q = (hh / x) * (hh / x);
+  return (1.0/(x)) + q * (((1.0/3.0)*(1.0/(x))) + q * (((1.0/5.0)*(1.0/(x))) + q * (((1.0/7.0)*(1.0/(x))) + q * (((1.0/9.0)*(1.0/(x))) + q * (((1.0/11.0)*(1.0/(x))) + q * (((1.0/13.0)*(1.0/(x)))))))));
 }
 
 float bl_box_inv_diff(float x, float hh) {
@@ -3016,7 +3016,7 @@ float bl_box_inv(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_box_inv_series(x, hh);
   }
   return bl_box_inv_diff(x, hh);
@@ -3024,8 +3024,8 @@ float bl_box_inv(float x, float sigma) {
 
 float bl_box_inv_sq_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
-  float q = hh * hh;
-  return (1.0/(x*x)) + q * ((1.0/(x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+  float q = (hh / x) * (hh / x);
+  return (1.0/(x*x)) + q * ((1.0/(x*x)) + q * ((1.0/(x*x)) + q * ((1.0/(x*x)) + q * ((1.0/(x*x)) + q * ((1.0/(x*x)) + q * ((1.0/(x*x))))))));
 }
 
 float bl_box_inv_sq_diff(float x, float hh) {
@@ -3036,7 +3036,7 @@ float bl_box_inv_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_box_inv_sq_series(x, hh);
   }
   return bl_box_inv_sq_diff(x, hh);
@@ -3044,8 +3044,8 @@ float bl_box_inv_sq(float x, float sigma) {
 
 float bl_tent_inv_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x));  // no smoothing: f(x)
-  float q = hh * hh;
-  return (1.0/(x)) + q * (((1.0/6.0)*(1.0/(x*x*x))) + q * (((1.0/15.0)*(1.0/(x*x*x*x*x))) + q * (((1.0/28.0)*(1.0/(x*x*x*x*x*x*x))) + q * (((1.0/45.0)*(1.0/(x*x*x*x*x*x*x*x*x))) + q * (((1.0/66.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/91.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  float q = (hh / x) * (hh / x);
+  return (1.0/(x)) + q * (((1.0/6.0)*(1.0/(x))) + q * (((1.0/15.0)*(1.0/(x))) + q * (((1.0/28.0)*(1.0/(x))) + q * (((1.0/45.0)*(1.0/(x))) + q * (((1.0/66.0)*(1.0/(x))) + q * (((1.0/91.0)*(1.0/(x)))))))));
 }
 
 float bl_tent_inv_diff(float x, float hh) {
@@ -3056,7 +3056,7 @@ float bl_tent_inv(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_tent_inv_series(x, hh);
   }
   return bl_tent_inv_diff(x, hh);
@@ -3064,8 +3064,8 @@ float bl_tent_inv(float x, float sigma) {
 
 float bl_tent_inv_sq_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
-  float q = hh * hh;
-  return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x*x*x))) + q * (((1.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/4.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/6.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  float q = (hh / x) * (hh / x);
+  return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x))) + q * (((1.0/3.0)*(1.0/(x*x))) + q * (((1.0/4.0)*(1.0/(x*x))) + q * (((1.0/5.0)*(1.0/(x*x))) + q * (((1.0/6.0)*(1.0/(x*x))) + q * (((1.0/7.0)*(1.0/(x*x)))))))));
 }
 
 float bl_tent_inv_sq_diff(float x, float hh) {
@@ -3076,7 +3076,7 @@ float bl_tent_inv_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_tent_inv_sq_series(x, hh);
   }
   return bl_tent_inv_sq_diff(x, hh);
@@ -3084,8 +3084,8 @@ float bl_tent_inv_sq(float x, float sigma) {
 
 float bl_box_inv2_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
-  float q = hh * hh;
-  return (1.0/(x*x)) + q * ((1.0/(x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+  float q = (hh / x) * (hh / x);
+  return (1.0/(x*x)) + q * ((1.0/(x*x)) + q * ((1.0/(x*x)) + q * ((1.0/(x*x)) + q * ((1.0/(x*x)) + q * ((1.0/(x*x)) + q * ((1.0/(x*x))))))));
 }
 
 float bl_box_inv2_diff(float x, float hh) {
@@ -3096,7 +3096,7 @@ float bl_box_inv2(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_box_inv2_series(x, hh);
   }
   return bl_box_inv2_diff(x, hh);
@@ -3104,8 +3104,8 @@ float bl_box_inv2(float x, float sigma) {
 
 float bl_box_inv2_sq_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x*x*x));  // no smoothing: f(x)
-  float q = hh * hh;
-  return (1.0/(x*x*x*x)) + q * (((10.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * ((7.0*(1.0/(x*x*x*x*x*x*x*x))) + q * ((12.0*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((55.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((26.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((35.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  float q = (hh / x) * (hh / x);
+  return (1.0/(x*x*x*x)) + q * (((10.0/3.0)*(1.0/(x*x*x*x))) + q * ((7.0*(1.0/(x*x*x*x))) + q * ((12.0*(1.0/(x*x*x*x))) + q * (((55.0/3.0)*(1.0/(x*x*x*x))) + q * ((26.0*(1.0/(x*x*x*x))) + q * ((35.0*(1.0/(x*x*x*x)))))))));
 }
 
 float bl_box_inv2_sq_diff(float x, float hh) {
@@ -3116,7 +3116,7 @@ float bl_box_inv2_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_box_inv2_sq_series(x, hh);
   }
   return bl_box_inv2_sq_diff(x, hh);
@@ -3124,8 +3124,8 @@ float bl_box_inv2_sq(float x, float sigma) {
 
 float bl_tent_inv2_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x));  // no smoothing: f(x)
-  float q = hh * hh;
-  return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x*x*x))) + q * (((1.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((1.0/4.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * (((1.0/5.0)*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/6.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((1.0/7.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  float q = (hh / x) * (hh / x);
+  return (1.0/(x*x)) + q * (((1.0/2.0)*(1.0/(x*x))) + q * (((1.0/3.0)*(1.0/(x*x))) + q * (((1.0/4.0)*(1.0/(x*x))) + q * (((1.0/5.0)*(1.0/(x*x))) + q * (((1.0/6.0)*(1.0/(x*x))) + q * (((1.0/7.0)*(1.0/(x*x)))))))));
 }
 
 float bl_tent_inv2_diff(float x, float hh) {
@@ -3136,7 +3136,7 @@ float bl_tent_inv2(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_tent_inv2_series(x, hh);
   }
   return bl_tent_inv2_diff(x, hh);
@@ -3144,8 +3144,8 @@ float bl_tent_inv2(float x, float sigma) {
 
 float bl_tent_inv2_sq_series(float x, float hh) {
   if (hh == (0.0)) return (1.0/(x*x*x*x));  // no smoothing: f(x)
-  float q = hh * hh;
-  return (1.0/(x*x*x*x)) + q * (((5.0/3.0)*(1.0/(x*x*x*x*x*x))) + q * (((7.0/3.0)*(1.0/(x*x*x*x*x*x*x*x))) + q * ((3.0*(1.0/(x*x*x*x*x*x*x*x*x*x))) + q * (((11.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((13.0/3.0)*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((5.0*(1.0/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  float q = (hh / x) * (hh / x);
+  return (1.0/(x*x*x*x)) + q * (((5.0/3.0)*(1.0/(x*x*x*x))) + q * (((7.0/3.0)*(1.0/(x*x*x*x))) + q * ((3.0*(1.0/(x*x*x*x))) + q * (((11.0/3.0)*(1.0/(x*x*x*x))) + q * (((13.0/3.0)*(1.0/(x*x*x*x))) + q * ((5.0*(1.0/(x*x*x*x)))))))));
 }
 
 float bl_tent_inv2_sq_diff(float x, float hh) {
@@ -3156,7 +3156,7 @@ float bl_tent_inv2_sq(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
-  if (hh <= bl_series_reach() * r) {
+  if (hh <= bl_series_reach() * r || x < 1e-18) {
     return bl_tent_inv2_sq_series(x, hh);
   }
   return bl_tent_inv2_sq_diff(x, hh);

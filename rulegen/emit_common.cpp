@@ -20,7 +20,9 @@ using sym::PolyPiece;
 std::string impl_name(const Derived& d) {
   return std::string(sym::to_string(d.kernel)) + "_" + d.fn_suffix();
 }
-std::string plain_impl_name(const std::string& atomic) { return "plain_" + atomic; }
+std::string plain_impl_name(const std::string& atomic) {
+  return "plain_" + atomic;
+}
 
 namespace {
 
@@ -81,7 +83,8 @@ std::string piece_table(const Syntax& s, const std::string& name, const std::vec
   out = "  BlPiece " + name + "[4] = BlPiece[4](\n";
   for (size_t i = 0; i < 4; ++i) {
     if (i < ps.size())
-      out += "      BlPiece(" + s.bound(ps[i].lo) + ", " + s.bound(ps[i].hi) + ", float[8](" + coeffs(ps[i]) + "))";
+      out += "      BlPiece(" + s.bound(ps[i].lo) + ", " + s.bound(ps[i].hi) + ", float[8](" + coeffs(ps[i]) +
+             "))";
     else
       out += "      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0))";
     out += i < 3 ? ",\n" : ");\n";
@@ -110,10 +113,11 @@ std::string body_closed(const Derived& d, const Syntax& s) {
 
 std::string body_piecewise(const Derived& d, const Syntax& s) {
   const std::string P = pieces_arg(s, "p", d.pieces.size());
-  std::string call = d.kernel == Kernel::Gaussian ? "gauss_pw" : d.kernel == Kernel::Box ? "box_pw" : "tent_pw";
-  return piece_table(s, "p", d.pieces) + guard_sigma(s) + "  if (sigma == " + s.dbl(0) +
-         ") return " + s.helper("pw_eval") + "(x, " + P + ");\n  return " + s.helper(call) +
-         "(x, sigma, " + P + ");\n";
+  std::string call = d.kernel == Kernel::Gaussian ? "gauss_pw"
+                     : d.kernel == Kernel::Box    ? "box_pw"
+                                                  : "tent_pw";
+  return piece_table(s, "p", d.pieces) + guard_sigma(s) + "  if (sigma == " + s.dbl(0) + ") return " +
+         s.helper("pw_eval") + "(x, " + P + ");\n  return " + s.helper(call) + "(x, sigma, " + P + ");\n";
 }
 
 // The Fourier branch of a Gaussian periodic entry: "if the Fourier series is the cheaper of the
@@ -124,17 +128,20 @@ std::string fourier_branch(const Derived& d, const Syntax& s, int extra, const s
                            const std::string& term, const std::string& result) {
   std::string out = s.decl("s", "sigma / period");
   out += std::string("  ") + (s.cpp() ? "const " : "") + "int K = " + s.helper("fourier_terms_if_preferred") +
-         "(s, " + std::to_string(d.pieces.size()) + ", " + s.dbl(d.coef_bound) + ", " + s.dbl(d.fmax) + ");\n";
+         "(s, " + std::to_string(d.pieces.size()) + ", " + s.dbl(d.coef_bound) + ", " + s.dbl(d.fmax) +
+         ");\n";
   out += "  if (K >= 0) {\n";
   out += "  " + s.decl("xr", "x - period * floor(x / period)");
   out += "    " + s.T() + " acc = " + acc0 + ";\n";
-  out += "    for (int k = 1; k <= K" + (extra ? " + " + std::to_string(extra) : std::string()) + "; ++k) {\n";
+  out +=
+      "    for (int k = 1; k <= K" + (extra ? " + " + std::to_string(extra) : std::string()) + "; ++k) {\n";
   out += "    " + s.decl("kf", s.cpp() ? "T(k)" : "float(k)");
   if (d.ak.has(sym::var_pk()) || d.bk.has(sym::var_pk()))
     out += "    " + s.decl("pk", std::string("(k % 2 == 1) ? ") + s.dbl(-1) + " : " + s.dbl(1));
   out += "    " + s.decl("w", s.dbl(2) + " * " + s.pi() + " * kf / period");
   out += "    " + s.decl("th", "w * xr");
-  out += "    " + s.decl("damp", "exp(" + s.dbl(-2) + " * " + s.pi() + " * " + s.pi() + " * kf * kf * s * s)");
+  out +=
+      "    " + s.decl("damp", "exp(" + s.dbl(-2) + " * " + s.pi() + " * " + s.pi() + " * kf * kf * s * s)");
   out += "      acc += " + term + ";\n    }\n    return " + result + ";\n  }\n";
   return out;
 }
@@ -236,11 +243,13 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
            "<double>(double(x), double(sigma)));\n";
   if (a.parity != 0) {
     const bool odd = a.parity < 0 && !d.squared;
-    out += "  if (x < " + s.dbl(0) + ") return " + (odd ? "-" : "") + s.fn(impl_name(d)) + "(-x, sigma);  // " +
-           (odd ? "odd" : "even") + "\n";
+    out += "  if (x < " + s.dbl(0) + ") return " + (odd ? "-" : "") + s.fn(impl_name(d)) +
+           "(-x, sigma);  // " + (odd ? "odd" : "even") + "\n";
   }
-  if (a.domain_lo.finite()) out += "  if (x < " + s.ex(a.domain_lo.value) + ") return " + s.nan() + ";  // outside the domain\n";
-  if (a.domain_hi.finite()) out += "  if (x > " + s.ex(a.domain_hi.value) + ") return " + s.nan() + ";  // outside the domain\n";
+  if (a.domain_lo.finite())
+    out += "  if (x < " + s.ex(a.domain_lo.value) + ") return " + s.nan() + ";  // outside the domain\n";
+  if (a.domain_hi.finite())
+    out += "  if (x > " + s.ex(a.domain_hi.value) + ") return " + s.nan() + ";  // outside the domain\n";
   const std::string width = s.ex(sym::half_width(d.kernel));
   bool has_r = !a.singular.empty();
   if (has_r) {
@@ -269,7 +278,8 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   if (a.flat) {
     const double l = d.squared ? a.flat->left * a.flat->left : a.flat->left;
     const double rr = d.squared ? a.flat->right * a.flat->right : a.flat->right;
-    out += "  if (x - hh > " + s.dbl(a.flat->beyond) + ") return " + s.dbl(rr) + ";  // flat to machine precision\n";
+    out += "  if (x - hh > " + s.dbl(a.flat->beyond) + ") return " + s.dbl(rr) +
+           ";  // flat to machine precision\n";
     out += "  if (x + hh < " + s.dbl(-a.flat->beyond) + ") return " + s.dbl(l) + ";\n";
   }
   std::string rho;
@@ -278,9 +288,15 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   // Taylor series where the difference quotient would cancel (reach: emit_helpers.hpp), in its own
   // function (series_body): C++ evaluates it in a wider type for float, because the coefficients
   // f^(2j)(x) overflow float near a singularity (log: 11!/x^12 at x = 1e-3).
-  out += "  if (hh <= " + s.helper(s.cpp() ? "series_reach<T>" : "series_reach") + "() * " + rho + ") {\n";
+  // GLSL has no wider type: below x ~ 1e-18 the difference quotient's (x +- hh)^2 and hh^2
+  // underflow float (0/0), so a singularity-at-0 atomic takes the scaled series there too
+  // (hh <= x/2, t^2 <= 1/4: the 7 terms leave < 1e-5 relative, inv2 box ~8e-5).
+  const bool tiny_series = !s.cpp() && !a.period && a.singular.size() == 1 && a.singular[0].is_zero();
+  out += "  if (hh <= " + s.helper(s.cpp() ? "series_reach<T>" : "series_reach") + "() * " + rho +
+         (tiny_series ? " || x < 1e-18" : "") + ") {\n";
   if (s.cpp())
-    out += "    using W = detail::wide_t<T>;\n    return T(" + impl_name(d) + "_series<W>(W(x), W(hh)));\n  }\n";
+    out +=
+        "    using W = detail::wide_t<T>;\n    return T(" + impl_name(d) + "_series<W>(W(x), W(hh)));\n  }\n";
   else
     out += "    return " + s.fn(impl_name(d) + "_series") + "(x, hh);\n  }\n";
   // The difference quotient, in its own function (diff_body). Next to a periodic pole its argument
@@ -300,8 +316,12 @@ std::string body_first_moment(const Derived& d, const Syntax& s) {
   const size_t n = d.pieces.size();
   std::string out = piece_table(s, "p", d.pieces) + s.decl("period", s.ex(d.period)) + guard_sigma(s);
   out += "  if (sigma == " + s.dbl(0) + ") return " + s.dbl(0) + ";\n";
-  if (d.kernel == Kernel::Box) return out + "  return " + s.helper("box_periodic_u") + "(x, sigma, period, " + pieces_arg(s, "p", n) + ");\n";
-  if (d.kernel == Kernel::Tent) return out + "  return " + s.helper("tent_periodic_u") + "(x, sigma, period, " + pieces_arg(s, "p", n) + ");\n";
+  if (d.kernel == Kernel::Box)
+    return out + "  return " + s.helper("box_periodic_u") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
+           ");\n";
+  if (d.kernel == Kernel::Tent)
+    return out + "  return " + s.helper("tent_periodic_u") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
+           ");\n";
   // Stein: sigma^2 E[g'(x+U)], g' from the termwise-differentiated series; +2 terms for its k factor.
   std::string terms;
   if (!d.bk.is_zero()) terms = s.ex(d.bk) + " * cos(th)";
@@ -309,7 +329,8 @@ std::string body_first_moment(const Derived& d, const Syntax& s) {
   out += fourier_branch(d, s, 2, s.dbl(0), "damp * w * (" + (terms.empty() ? s.dbl(0) : terms) + ")",
                         "sigma * sigma * acc");
   const std::string fm = s.dbl(d.fmax);
-  return out + "  return " + s.helper("gauss_periodic_u_image") + "(x, sigma, period, " + pieces_arg(s, "p", n) + ", " + fm + ");\n";
+  return out + "  return " + s.helper("gauss_periodic_u_image") + "(x, sigma, period, " +
+         pieces_arg(s, "p", n) + ", " + fm + ");\n";
 }
 
 // The half-line companion E[f(x+U) 1{x+U >= 0}] of a periodic entry (not squared): 0 where the
@@ -375,8 +396,10 @@ std::string diff_body(const Derived& d, Lang lang) {
   const GiNaC::ex Fterms = is_a<GiNaC::add>(Fx) ? Fx : GiNaC::ex(GiNaC::lst{Fx});
   for (size_t i = 0; i < Fterms.nops(); ++i) {
     const GiNaC::ex t = Fterms.op(i);
-    if (t.is_polynomial(x)) P += t;
-    else R += t;
+    if (t.is_polynomial(x))
+      P += t;
+    else
+      R += t;
   }
   GiNaC::ex dP;
   if (d.kernel == Kernel::Box)
@@ -402,13 +425,26 @@ std::string series_body(const Derived& d, Lang lang) {
   const Syntax s{lang};
   std::map<std::string, std::pair<GiNaC::symbol, GiNaC::ex>> calls;
   std::vector<GiNaC::ex> terms;
-  for (const auto& t : d.series) terms.push_back(cse_calls(t, calls));
+  // A non-periodic atomic whose only singularity is 0 (log, sqrt, inv, inv2; x >= 0 here after the
+  // parity and domain reductions): f^(2j)(x) hh^2j = [f^(2j)(x) x^2j] (hh/x)^2j, and the bracket
+  // simplifies to a bounded expression (c sqrt(x), c, c/x, ...). Evaluating the series in t = hh/x
+  // keeps float in range: the unscaled coefficients overflow float near 0 (1/x^12 at x = 1e-4) and
+  // their products with hh^12 underflow, giving inf * 0 = NaN in GLSL (which has no wider type).
+  const sym::Atomic* a = d.atomic;
+  const bool scaled = a && !a->period && a->singular.size() == 1 && a->singular[0].is_zero();
+  const GiNaC::symbol& x = sym::var_x();
+  for (std::size_t j = 0; j < d.series.size(); ++j) {
+    const GiNaC::ex t =
+        scaled ? (d.series[j] * GiNaC::pow(x, 2 * static_cast<int>(j))).expand() : d.series[j];
+    terms.push_back(cse_calls(t, calls));
+  }
   std::string out = s.cpp() ? "  BL_MATH_USING\n" : "";
   out += "  if (hh == " + s.dbl(0) + ") return " + s.ex(d.f_here) + ";  // no smoothing: f(x)\n";
   for (auto& [name, sc] : calls) out += s.decl(sc.first.get_name(), s.ex(sc.second));
-  out += s.decl("q", "hh * hh");
+  out += s.decl("q", scaled ? "(hh / x) * (hh / x)" : "hh * hh");
   std::string horner = s.ex(terms.back());
-  for (int j = static_cast<int>(terms.size()) - 2; j >= 0; --j) horner = s.ex(terms[j]) + " + q * (" + horner + ")";
+  for (int j = static_cast<int>(terms.size()) - 2; j >= 0; --j)
+    horner = s.ex(terms[j]) + " + q * (" + horner + ")";
   return out + "  return " + horner + ";\n";
 }
 
@@ -421,11 +457,21 @@ std::string body(const Derived& d, Lang lang) {
   const Syntax s{lang};
   std::string b;
   switch (d.body) {
-    case Body::Closed: b = body_closed(d, s); break;
-    case Body::PiecewiseTable: b = body_piecewise(d, s); break;
-    case Body::PeriodicTable: b = body_periodic(d, s); break;
-    case Body::Combination: b = body_combination(d, s); break;
-    case Body::Antiderivative: b = body_antiderivative(d, s); break;
+    case Body::Closed:
+      b = body_closed(d, s);
+      break;
+    case Body::PiecewiseTable:
+      b = body_piecewise(d, s);
+      break;
+    case Body::PeriodicTable:
+      b = body_periodic(d, s);
+      break;
+    case Body::Combination:
+      b = body_combination(d, s);
+      break;
+    case Body::Antiderivative:
+      b = body_antiderivative(d, s);
+      break;
   }
   return (s.cpp() ? "  BL_MATH_USING\n" : "") + b;
 }

@@ -3069,8 +3069,8 @@ T box_log_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return log(x);  // no smoothing: f(x)
   const T u_log = log(x);
-  const T q = hh * hh;
-  return u_log + q * (((T(-1)/T(6))*(T(1)/(x*x))) + q * (((T(-1)/T(20))*(T(1)/(x*x*x*x))) + q * (((T(-1)/T(42))*(T(1)/(x*x*x*x*x*x))) + q * (((T(-1)/T(72))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(110))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(156))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return u_log + q * ((T(-1)/T(6)) + q * ((T(-1)/T(20)) + q * ((T(-1)/T(42)) + q * ((T(-1)/T(72)) + q * ((T(-1)/T(110)) + q * ((T(-1)/T(156))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3104,8 +3104,8 @@ T box_log_sq_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return (log(x)*log(x));  // no smoothing: f(x)
   const T u_log = log(x);
-  const T q = hh * hh;
-  return (u_log*u_log) + q * (((T(1)/T(3))*((-u_log) + T(1))*(T(1)/(x*x))) + q * (((T(1)/T(60))*(((T(-6))*u_log) + T(11))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(1260))*(((T(-60))*u_log) + T(137))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(5040))*(((T(-140))*u_log) + T(363))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(138600))*(((T(-2520))*u_log) + T(7129))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(2162160))*(((T(-27720))*u_log) + T(83711))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return (u_log*u_log) + q * ((((T(-1)/T(3))*u_log) + (T(1)/T(3))) + q * ((((T(-1)/T(10))*u_log) + (T(11)/T(60))) + q * ((((T(-1)/T(21))*u_log) + (T(137)/T(1260))) + q * ((((T(-1)/T(36))*u_log) + (T(121)/T(1680))) + q * ((((T(-1)/T(55))*u_log) + (T(7129)/T(138600))) + q * ((((T(-1)/T(78))*u_log) + (T(83711)/T(2162160)))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3140,8 +3140,8 @@ T tent_log_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return log(x);  // no smoothing: f(x)
   const T u_log = log(x);
-  const T q = hh * hh;
-  return u_log + q * (((T(-1)/T(12))*(T(1)/(x*x))) + q * (((T(-1)/T(60))*(T(1)/(x*x*x*x))) + q * (((T(-1)/T(168))*(T(1)/(x*x*x*x*x*x))) + q * (((T(-1)/T(360))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(660))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(-1)/T(1092))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return u_log + q * ((T(-1)/T(12)) + q * ((T(-1)/T(60)) + q * ((T(-1)/T(168)) + q * ((T(-1)/T(360)) + q * ((T(-1)/T(660)) + q * ((T(-1)/T(1092))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3176,8 +3176,8 @@ T tent_log_sq_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return (log(x)*log(x));  // no smoothing: f(x)
   const T u_log = log(x);
-  const T q = hh * hh;
-  return (u_log*u_log) + q * (((T(1)/T(6))*((-u_log) + T(1))*(T(1)/(x*x))) + q * (((T(1)/T(180))*(((T(-6))*u_log) + T(11))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(5040))*(((T(-60))*u_log) + T(137))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(25200))*(((T(-140))*u_log) + T(363))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(831600))*(((T(-2520))*u_log) + T(7129))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(15135120))*(((T(-27720))*u_log) + T(83711))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return (u_log*u_log) + q * ((((T(-1)/T(6))*u_log) + (T(1)/T(6))) + q * ((((T(-1)/T(30))*u_log) + (T(11)/T(180))) + q * ((((T(-1)/T(84))*u_log) + (T(137)/T(5040))) + q * ((((T(-1)/T(180))*u_log) + (T(121)/T(8400))) + q * ((((T(-1)/T(330))*u_log) + (T(7129)/T(831600))) + q * ((((T(-1)/T(546))*u_log) + (T(83711)/T(15135120)))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3211,8 +3211,8 @@ template <class T>
 T box_sqrt_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return sqrt(x);  // no smoothing: f(x)
-  const T q = hh * hh;
-  return sqrt(x) + q * (((T(-1)/T(24))*((T(1)/(x*x))*sqrt(x))) + q * (((T(-1)/T(128))*((T(1)/(x*x*x*x))*sqrt(x))) + q * (((T(-3)/T(1024))*((T(1)/(x*x*x*x*x*x))*sqrt(x))) + q * (((T(-143)/T(98304))*((T(1)/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-221)/T(262144))*((T(1)/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-2261)/T(4194304))*((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return sqrt(x) + q * (((T(-1)/T(24))*sqrt(x)) + q * (((T(-1)/T(128))*sqrt(x)) + q * (((T(-3)/T(1024))*sqrt(x)) + q * (((T(-143)/T(98304))*sqrt(x)) + q * (((T(-221)/T(262144))*sqrt(x)) + q * (((T(-2261)/T(4194304))*sqrt(x))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3245,7 +3245,7 @@ template <class T>
 T box_sqrt_sq_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return x;  // no smoothing: f(x)
-  const T q = hh * hh;
+  const T q = (hh / x) * (hh / x);
   return x + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0)))))));
 }
 
@@ -3279,8 +3279,8 @@ template <class T>
 T tent_sqrt_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return sqrt(x);  // no smoothing: f(x)
-  const T q = hh * hh;
-  return sqrt(x) + q * (((T(-1)/T(48))*((T(1)/(x*x))*sqrt(x))) + q * (((T(-1)/T(384))*((T(1)/(x*x*x*x))*sqrt(x))) + q * (((T(-3)/T(4096))*((T(1)/(x*x*x*x*x*x))*sqrt(x))) + q * (((T(-143)/T(491520))*((T(1)/(x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-221)/T(1572864))*((T(1)/(x*x*x*x*x*x*x*x*x*x))*sqrt(x))) + q * (((T(-323)/T(4194304))*((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))*sqrt(x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return sqrt(x) + q * (((T(-1)/T(48))*sqrt(x)) + q * (((T(-1)/T(384))*sqrt(x)) + q * (((T(-3)/T(4096))*sqrt(x)) + q * (((T(-143)/T(491520))*sqrt(x)) + q * (((T(-221)/T(1572864))*sqrt(x)) + q * (((T(-323)/T(4194304))*sqrt(x))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3313,7 +3313,7 @@ template <class T>
 T tent_sqrt_sq_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return x;  // no smoothing: f(x)
-  const T q = hh * hh;
+  const T q = (hh / x) * (hh / x);
   return x + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0) + q * (T(0)))))));
 }
 
@@ -3347,8 +3347,8 @@ template <class T>
 T box_inv_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return (T(1)/(x));  // no smoothing: f(x)
-  const T q = hh * hh;
-  return (T(1)/(x)) + q * (((T(1)/T(3))*(T(1)/(x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x))) + q * (((T(1)/T(9))*(T(1)/(x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(11))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(13))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return (T(1)/(x)) + q * (((T(1)/T(3))*(T(1)/(x))) + q * (((T(1)/T(5))*(T(1)/(x))) + q * (((T(1)/T(7))*(T(1)/(x))) + q * (((T(1)/T(9))*(T(1)/(x))) + q * (((T(1)/T(11))*(T(1)/(x))) + q * (((T(1)/T(13))*(T(1)/(x)))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3380,8 +3380,8 @@ template <class T>
 T box_inv_sq_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
-  const T q = hh * hh;
-  return (T(1)/(x*x)) + q * ((T(1)/(x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+  const T q = (hh / x) * (hh / x);
+  return (T(1)/(x*x)) + q * ((T(1)/(x*x)) + q * ((T(1)/(x*x)) + q * ((T(1)/(x*x)) + q * ((T(1)/(x*x)) + q * ((T(1)/(x*x)) + q * ((T(1)/(x*x))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3413,8 +3413,8 @@ template <class T>
 T tent_inv_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return (T(1)/(x));  // no smoothing: f(x)
-  const T q = hh * hh;
-  return (T(1)/(x)) + q * (((T(1)/T(6))*(T(1)/(x*x*x))) + q * (((T(1)/T(15))*(T(1)/(x*x*x*x*x))) + q * (((T(1)/T(28))*(T(1)/(x*x*x*x*x*x*x))) + q * (((T(1)/T(45))*(T(1)/(x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(66))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(91))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return (T(1)/(x)) + q * (((T(1)/T(6))*(T(1)/(x))) + q * (((T(1)/T(15))*(T(1)/(x))) + q * (((T(1)/T(28))*(T(1)/(x))) + q * (((T(1)/T(45))*(T(1)/(x))) + q * (((T(1)/T(66))*(T(1)/(x))) + q * (((T(1)/T(91))*(T(1)/(x)))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3446,8 +3446,8 @@ template <class T>
 T tent_inv_sq_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
-  const T q = hh * hh;
-  return (T(1)/(x*x)) + q * (((T(1)/T(2))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(4))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(6))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return (T(1)/(x*x)) + q * (((T(1)/T(2))*(T(1)/(x*x))) + q * (((T(1)/T(3))*(T(1)/(x*x))) + q * (((T(1)/T(4))*(T(1)/(x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x))) + q * (((T(1)/T(6))*(T(1)/(x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x)))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3479,8 +3479,8 @@ template <class T>
 T box_inv2_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
-  const T q = hh * hh;
-  return (T(1)/(x*x)) + q * ((T(1)/(x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x)) + q * ((T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))))))));
+  const T q = (hh / x) * (hh / x);
+  return (T(1)/(x*x)) + q * ((T(1)/(x*x)) + q * ((T(1)/(x*x)) + q * ((T(1)/(x*x)) + q * ((T(1)/(x*x)) + q * ((T(1)/(x*x)) + q * ((T(1)/(x*x))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3512,8 +3512,8 @@ template <class T>
 T box_inv2_sq_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return (T(1)/(x*x*x*x));  // no smoothing: f(x)
-  const T q = hh * hh;
-  return (T(1)/(x*x*x*x)) + q * (((T(10)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * ((T(7)*(T(1)/(x*x*x*x*x*x*x*x))) + q * ((T(12)*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(55)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(26)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(35)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return (T(1)/(x*x*x*x)) + q * (((T(10)/T(3))*(T(1)/(x*x*x*x))) + q * ((T(7)*(T(1)/(x*x*x*x))) + q * ((T(12)*(T(1)/(x*x*x*x))) + q * (((T(55)/T(3))*(T(1)/(x*x*x*x))) + q * ((T(26)*(T(1)/(x*x*x*x))) + q * ((T(35)*(T(1)/(x*x*x*x)))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3545,8 +3545,8 @@ template <class T>
 T tent_inv2_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return (T(1)/(x*x));  // no smoothing: f(x)
-  const T q = hh * hh;
-  return (T(1)/(x*x)) + q * (((T(1)/T(2))*(T(1)/(x*x*x*x))) + q * (((T(1)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(1)/T(4))*(T(1)/(x*x*x*x*x*x*x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(6))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return (T(1)/(x*x)) + q * (((T(1)/T(2))*(T(1)/(x*x))) + q * (((T(1)/T(3))*(T(1)/(x*x))) + q * (((T(1)/T(4))*(T(1)/(x*x))) + q * (((T(1)/T(5))*(T(1)/(x*x))) + q * (((T(1)/T(6))*(T(1)/(x*x))) + q * (((T(1)/T(7))*(T(1)/(x*x)))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.
@@ -3578,8 +3578,8 @@ template <class T>
 T tent_inv2_sq_series(T x, T hh) {
   BL_MATH_USING
   if (hh == T(0.0)) return (T(1)/(x*x*x*x));  // no smoothing: f(x)
-  const T q = hh * hh;
-  return (T(1)/(x*x*x*x)) + q * (((T(5)/T(3))*(T(1)/(x*x*x*x*x*x))) + q * (((T(7)/T(3))*(T(1)/(x*x*x*x*x*x*x*x))) + q * ((T(3)*(T(1)/(x*x*x*x*x*x*x*x*x*x))) + q * (((T(11)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x))) + q * (((T(13)/T(3))*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x))) + q * ((T(5)*(T(1)/(x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x)))))))));
+  const T q = (hh / x) * (hh / x);
+  return (T(1)/(x*x*x*x)) + q * (((T(5)/T(3))*(T(1)/(x*x*x*x))) + q * (((T(7)/T(3))*(T(1)/(x*x*x*x))) + q * ((T(3)*(T(1)/(x*x*x*x))) + q * (((T(11)/T(3))*(T(1)/(x*x*x*x))) + q * (((T(13)/T(3))*(T(1)/(x*x*x*x))) + q * ((T(5)*(T(1)/(x*x*x*x)))))))));
 }
 
 // Difference quotient of the entry below at half-width hh.

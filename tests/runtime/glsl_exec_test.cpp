@@ -6,6 +6,8 @@
 #include <cmath>
 #include <string>
 
+#include "bandlimit/registry.hpp"
+#include "compiler/glsl_library.hpp"
 #include "compiler/lower.hpp"
 #include "image/display.hpp"
 #include "render/glsl_frame.hpp"
@@ -53,6 +55,47 @@ TEST(GlslExec, MatchesTheCppRenderer) {
       }
     }
   }
+}
+
+}  // namespace
+}  // namespace bl
+
+namespace bl {
+namespace {
+
+// The compact box/tent entries of the singular-at-0 atomics at tiny x (8.8e-21 came out of a
+// saturate/pow chain in checkerboard_bumps): GLSL float used to return NaN there (the difference
+// quotient underflows, and the unscaled Taylor coefficients overflow), where the C++ entries,
+// which run in double, were finite. The GLSL must agree with the C++ double value.
+TEST(GlslExec, CompactEntriesAtTinyArguments) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  int n = 0;
+  const auto* e = bl::registry::entries<double>(&n);
+  int checked = 0;
+  for (int i = 0; i < n; ++i) {
+    const std::string atomic = e[i].atomic->name;
+    if (e[i].rule != std::string("convolution") ||
+        !(e[i].kernel == std::string("box") || e[i].kernel == std::string("tent")))
+      continue;
+    if (atomic != "sqrt" && atomic != "log" && atomic != "inv" && atomic != "inv2") continue;
+    const std::string src = "#version 450\n" + compiler::glsl_library_slice({e[i].glsl}) +
+                            "uniform float x;\nuniform float s;\nout vec4 o;\nvoid main() { o = vec4(" +
+                            e[i].glsl + "(x, s)); }\n";
+    const gl::Program prog = ctx.compile(src);
+    for (float x : {1e-30f, 8.8e-21f, 1e-18f, 3e-10f, 0.2f})
+      for (float s : {1e-12f, 6.6e-12f, 1e-3f}) {
+        const double want = e[i].smoothed(x, s);
+        if (!(std::fabs(want) < 1e37)) continue;  // 1/x^2 at x = 1e-30: not a float, inf is right
+        const float got = ctx.render(prog, 1, 1, {{"x", x}, {"s", s}})[0];
+        // Relative, against the value's own size: these entries grow like 1/x or log x near 0.
+        EXPECT_NEAR(got, want, 1e-4 * std::max(1.0, std::fabs(want)))
+            << e[i].glsl << " x=" << x << " s=" << s;
+        ++checked;
+      }
+  }
+  EXPECT_GT(checked, 100);
 }
 
 }  // namespace
