@@ -1145,94 +1145,214 @@ float bl_plain_inv2(float x) {
 
 // ---- entries ----
 
-float bl_gaussian_sin(float x, float sigma) {
+float bl_gaussian_sin_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (exp(((-1.0/2.0)*(sigma*sigma)))*sin(x));
 }
 
-float bl_gaussian_sin_sq(float x, float sigma) {
+float bl_gaussian_sin(float x, float sigma) {
+  float v = bl_gaussian_sin_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_sin_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((-1.0/2.0)*cos((2.0*x))*exp(((-2.0)*(sigma*sigma)))) + (1.0/2.0));
 }
 
-float bl_box_sin(float x, float sigma) {
+float bl_gaussian_sin_sq(float x, float sigma) {
+  float v = bl_gaussian_sin_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_sin_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (bl_sinc((sigma*sqrt(3.0)))*sin(x));
 }
 
-float bl_box_sin_sq(float x, float sigma) {
+float bl_box_sin(float x, float sigma) {
+  float v = bl_box_sin_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_sin_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((-1.0/2.0)*bl_sinc((2.0*sigma*sqrt(3.0)))*cos((2.0*x))) + (1.0/2.0));
 }
 
-float bl_tent_sin(float x, float sigma) {
+float bl_box_sin_sq(float x, float sigma) {
+  float v = bl_box_sin_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_sin_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((bl_sinc(((1.0/2.0)*sigma*sqrt(6.0)))*bl_sinc(((1.0/2.0)*sigma*sqrt(6.0))))*sin(x));
 }
 
-float bl_tent_sin_sq(float x, float sigma) {
+float bl_tent_sin(float x, float sigma) {
+  float v = bl_tent_sin_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_sin_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((-1.0/2.0)*(bl_sinc((sigma*sqrt(6.0)))*bl_sinc((sigma*sqrt(6.0))))*cos((2.0*x))) + (1.0/2.0));
 }
 
-float bl_gaussian_cos(float x, float sigma) {
+float bl_tent_sin_sq(float x, float sigma) {
+  float v = bl_tent_sin_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_cos_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (cos(x)*exp(((-1.0/2.0)*(sigma*sigma))));
 }
 
-float bl_gaussian_cos_sq(float x, float sigma) {
+float bl_gaussian_cos(float x, float sigma) {
+  float v = bl_gaussian_cos_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_cos_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((1.0/2.0)*cos((2.0*x))*exp(((-2.0)*(sigma*sigma)))) + (1.0/2.0));
 }
 
-float bl_box_cos(float x, float sigma) {
+float bl_gaussian_cos_sq(float x, float sigma) {
+  float v = bl_gaussian_cos_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_cos_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (bl_sinc((sigma*sqrt(3.0)))*cos(x));
 }
 
-float bl_box_cos_sq(float x, float sigma) {
+float bl_box_cos(float x, float sigma) {
+  float v = bl_box_cos_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_cos_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((1.0/2.0)*bl_sinc((2.0*sigma*sqrt(3.0)))*cos((2.0*x))) + (1.0/2.0));
 }
 
-float bl_tent_cos(float x, float sigma) {
+float bl_box_cos_sq(float x, float sigma) {
+  float v = bl_box_cos_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_cos_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((bl_sinc(((1.0/2.0)*sigma*sqrt(6.0)))*bl_sinc(((1.0/2.0)*sigma*sqrt(6.0))))*cos(x));
 }
 
-float bl_tent_cos_sq(float x, float sigma) {
+float bl_tent_cos(float x, float sigma) {
+  float v = bl_tent_cos_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_cos_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((1.0/2.0)*(bl_sinc((sigma*sqrt(6.0)))*bl_sinc((sigma*sqrt(6.0))))*cos((2.0*x))) + (1.0/2.0));
 }
 
-float bl_gaussian_exp(float x, float sigma) {
+float bl_tent_cos_sq(float x, float sigma) {
+  float v = bl_tent_cos_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_exp_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return exp((((1.0/2.0)*(sigma*sigma)) + x));
 }
 
-float bl_gaussian_exp_sq(float x, float sigma) {
+float bl_gaussian_exp(float x, float sigma) {
+  float v = bl_gaussian_exp_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_exp_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return exp(((2.0*(sigma*sigma)) + (2.0*x)));
 }
 
-float bl_box_exp(float x, float sigma) {
+float bl_gaussian_exp_sq(float x, float sigma) {
+  float v = bl_gaussian_exp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_exp_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return bl_exp_sinhc(x, (sigma*sqrt(3.0)));
 }
 
-float bl_box_exp_sq(float x, float sigma) {
+float bl_box_exp(float x, float sigma) {
+  float v = bl_box_exp_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_exp_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return bl_exp_sinhc((2.0*x), (2.0*sigma*sqrt(3.0)));
 }
 
-float bl_tent_exp(float x, float sigma) {
+float bl_box_exp_sq(float x, float sigma) {
+  float v = bl_box_exp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_exp_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return bl_exp_sinhc2(x, ((1.0/2.0)*sigma*sqrt(6.0)));
 }
 
-float bl_tent_exp_sq(float x, float sigma) {
+float bl_tent_exp(float x, float sigma) {
+  float v = bl_tent_exp_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_exp_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return bl_exp_sinhc2((2.0*x), (sigma*sqrt(6.0)));
+}
+
+float bl_tent_exp_sq(float x, float sigma) {
+  float v = bl_tent_exp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_gaussian_sinh(float x, float sigma) {
@@ -1240,9 +1360,15 @@ float bl_gaussian_sinh(float x, float sigma) {
   return bl_prod0(sinh(x), exp(((1.0/2.0)*(sigma*sigma))));
 }
 
-float bl_gaussian_sinh_sq(float x, float sigma) {
+float bl_gaussian_sinh_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((1.0/2.0)*cosh((2.0*x))*exp((2.0*(sigma*sigma)))) + (-1.0/2.0));
+}
+
+float bl_gaussian_sinh_sq(float x, float sigma) {
+  float v = bl_gaussian_sinh_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_sinh(float x, float sigma) {
@@ -1250,9 +1376,15 @@ float bl_box_sinh(float x, float sigma) {
   return bl_prod0(sinh(x), bl_sinhc((sigma*sqrt(3.0))));
 }
 
-float bl_box_sinh_sq(float x, float sigma) {
+float bl_box_sinh_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((1.0/2.0)*bl_sinhc((2.0*sigma*sqrt(3.0)))*cosh((2.0*x))) + (-1.0/2.0));
+}
+
+float bl_box_sinh_sq(float x, float sigma) {
+  float v = bl_box_sinh_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_sinh(float x, float sigma) {
@@ -1260,69 +1392,147 @@ float bl_tent_sinh(float x, float sigma) {
   return bl_prod0(sinh(x), (bl_sinhc(((1.0/2.0)*sigma*sqrt(6.0)))*bl_sinhc(((1.0/2.0)*sigma*sqrt(6.0)))));
 }
 
-float bl_tent_sinh_sq(float x, float sigma) {
+float bl_tent_sinh_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((1.0/2.0)*(bl_sinhc((sigma*sqrt(6.0)))*bl_sinhc((sigma*sqrt(6.0))))*cosh((2.0*x))) + (-1.0/2.0));
 }
 
-float bl_gaussian_cosh(float x, float sigma) {
+float bl_tent_sinh_sq(float x, float sigma) {
+  float v = bl_tent_sinh_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_cosh_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (cosh(x)*exp(((1.0/2.0)*(sigma*sigma))));
 }
 
-float bl_gaussian_cosh_sq(float x, float sigma) {
+float bl_gaussian_cosh(float x, float sigma) {
+  float v = bl_gaussian_cosh_raw(x, sigma);
+  if (v < 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_cosh_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((1.0/2.0)*cosh((2.0*x))*exp((2.0*(sigma*sigma)))) + (1.0/2.0));
 }
 
-float bl_box_cosh(float x, float sigma) {
+float bl_gaussian_cosh_sq(float x, float sigma) {
+  float v = bl_gaussian_cosh_sq_raw(x, sigma);
+  if (v < 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_cosh_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (bl_sinhc((sigma*sqrt(3.0)))*cosh(x));
 }
 
-float bl_box_cosh_sq(float x, float sigma) {
+float bl_box_cosh(float x, float sigma) {
+  float v = bl_box_cosh_raw(x, sigma);
+  if (v < 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_cosh_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((1.0/2.0)*bl_sinhc((2.0*sigma*sqrt(3.0)))*cosh((2.0*x))) + (1.0/2.0));
 }
 
-float bl_tent_cosh(float x, float sigma) {
+float bl_box_cosh_sq(float x, float sigma) {
+  float v = bl_box_cosh_sq_raw(x, sigma);
+  if (v < 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_cosh_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((bl_sinhc(((1.0/2.0)*sigma*sqrt(6.0)))*bl_sinhc(((1.0/2.0)*sigma*sqrt(6.0))))*cosh(x));
 }
 
-float bl_tent_cosh_sq(float x, float sigma) {
+float bl_tent_cosh(float x, float sigma) {
+  float v = bl_tent_cosh_raw(x, sigma);
+  if (v < 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_cosh_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((1.0/2.0)*(bl_sinhc((sigma*sqrt(6.0)))*bl_sinhc((sigma*sqrt(6.0))))*cosh((2.0*x))) + (1.0/2.0));
 }
 
-float bl_gaussian_pow2(float x, float sigma) {
+float bl_tent_cosh_sq(float x, float sigma) {
+  float v = bl_tent_cosh_sq_raw(x, sigma);
+  if (v < 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_pow2_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
 }
 
-float bl_gaussian_pow2_sq(float x, float sigma) {
+float bl_gaussian_pow2(float x, float sigma) {
+  float v = bl_gaussian_pow2_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_pow2_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((3.0*(sigma*sigma*sigma*sigma)) + (6.0*(sigma*sigma)*(x*x)) + (x*x*x*x));
 }
 
-float bl_box_pow2(float x, float sigma) {
+float bl_gaussian_pow2_sq(float x, float sigma) {
+  float v = bl_gaussian_pow2_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_pow2_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
 }
 
-float bl_box_pow2_sq(float x, float sigma) {
+float bl_box_pow2(float x, float sigma) {
+  float v = bl_box_pow2_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_pow2_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((9.0/5.0)*(sigma*sigma*sigma*sigma)) + (6.0*(sigma*sigma)*(x*x)) + (x*x*x*x));
 }
 
-float bl_tent_pow2(float x, float sigma) {
+float bl_box_pow2_sq(float x, float sigma) {
+  float v = bl_box_pow2_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_pow2_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
 }
 
-float bl_tent_pow2_sq(float x, float sigma) {
+float bl_tent_pow2(float x, float sigma) {
+  float v = bl_tent_pow2_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_pow2_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((12.0/5.0)*(sigma*sigma*sigma*sigma)) + (6.0*(sigma*sigma)*(x*x)) + (x*x*x*x));
+}
+
+float bl_tent_pow2_sq(float x, float sigma) {
+  float v = bl_tent_pow2_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_gaussian_pow3(float x, float sigma) {
@@ -1331,9 +1541,15 @@ float bl_gaussian_pow3(float x, float sigma) {
   return ((3.0*(sigma*sigma)*x) + (x*x*x));
 }
 
-float bl_gaussian_pow3_sq(float x, float sigma) {
+float bl_gaussian_pow3_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((15.0*(sigma*sigma)*(x*x*x*x)) + (15.0*(sigma*sigma*sigma*sigma*sigma*sigma)) + (45.0*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
+}
+
+float bl_gaussian_pow3_sq(float x, float sigma) {
+  float v = bl_gaussian_pow3_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_pow3(float x, float sigma) {
@@ -1342,9 +1558,15 @@ float bl_box_pow3(float x, float sigma) {
   return ((3.0*(sigma*sigma)*x) + (x*x*x));
 }
 
-float bl_box_pow3_sq(float x, float sigma) {
+float bl_box_pow3_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((27.0/7.0)*(sigma*sigma*sigma*sigma*sigma*sigma)) + (15.0*(sigma*sigma)*(x*x*x*x)) + (27.0*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
+}
+
+float bl_box_pow3_sq(float x, float sigma) {
+  float v = bl_box_pow3_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_pow3(float x, float sigma) {
@@ -1353,39 +1575,81 @@ float bl_tent_pow3(float x, float sigma) {
   return ((3.0*(sigma*sigma)*x) + (x*x*x));
 }
 
-float bl_tent_pow3_sq(float x, float sigma) {
+float bl_tent_pow3_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((54.0/7.0)*(sigma*sigma*sigma*sigma*sigma*sigma)) + (15.0*(sigma*sigma)*(x*x*x*x)) + (36.0*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
 }
 
-float bl_gaussian_pow4(float x, float sigma) {
+float bl_tent_pow3_sq(float x, float sigma) {
+  float v = bl_tent_pow3_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_pow4_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((3.0*(sigma*sigma*sigma*sigma)) + (6.0*(sigma*sigma)*(x*x)) + (x*x*x*x));
 }
 
-float bl_gaussian_pow4_sq(float x, float sigma) {
+float bl_gaussian_pow4(float x, float sigma) {
+  float v = bl_gaussian_pow4_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_pow4_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((105.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (210.0*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (28.0*(sigma*sigma)*(x*x*x*x*x*x)) + (420.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x*x*x));
 }
 
-float bl_box_pow4(float x, float sigma) {
+float bl_gaussian_pow4_sq(float x, float sigma) {
+  float v = bl_gaussian_pow4_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_pow4_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((9.0/5.0)*(sigma*sigma*sigma*sigma)) + (6.0*(sigma*sigma)*(x*x)) + (x*x*x*x));
 }
 
-float bl_box_pow4_sq(float x, float sigma) {
+float bl_box_pow4(float x, float sigma) {
+  float v = bl_box_pow4_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_pow4_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((108.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (126.0*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (28.0*(sigma*sigma)*(x*x*x*x*x*x)) + (9.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (x*x*x*x*x*x*x*x));
 }
 
-float bl_tent_pow4(float x, float sigma) {
+float bl_box_pow4_sq(float x, float sigma) {
+  float v = bl_box_pow4_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_pow4_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((12.0/5.0)*(sigma*sigma*sigma*sigma)) + (6.0*(sigma*sigma)*(x*x)) + (x*x*x*x));
 }
 
-float bl_tent_pow4_sq(float x, float sigma) {
+float bl_tent_pow4(float x, float sigma) {
+  float v = bl_tent_pow4_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_pow4_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((144.0/5.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (168.0*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (216.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (28.0*(sigma*sigma)*(x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x));
+}
+
+float bl_tent_pow4_sq(float x, float sigma) {
+  float v = bl_tent_pow4_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_gaussian_pow5(float x, float sigma) {
@@ -1394,9 +1658,15 @@ float bl_gaussian_pow5(float x, float sigma) {
   return ((10.0*(sigma*sigma)*(x*x*x)) + (15.0*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
-float bl_gaussian_pow5_sq(float x, float sigma) {
+float bl_gaussian_pow5_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((3150.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (45.0*(sigma*sigma)*(x*x*x*x*x*x*x*x)) + (4725.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (630.0*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (945.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (x*x*x*x*x*x*x*x*x*x));
+}
+
+float bl_gaussian_pow5_sq(float x, float sigma) {
+  float v = bl_gaussian_pow5_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_pow5(float x, float sigma) {
@@ -1405,9 +1675,15 @@ float bl_box_pow5(float x, float sigma) {
   return ((10.0*(sigma*sigma)*(x*x*x)) + (9.0*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
-float bl_box_pow5_sq(float x, float sigma) {
+float bl_box_pow5_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((243.0/11.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (378.0*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (405.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (45.0*(sigma*sigma)*(x*x*x*x*x*x*x*x)) + (810.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x));
+}
+
+float bl_box_pow5_sq(float x, float sigma) {
+  float v = bl_box_pow5_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_pow5(float x, float sigma) {
@@ -1416,39 +1692,81 @@ float bl_tent_pow5(float x, float sigma) {
   return ((10.0*(sigma*sigma)*(x*x*x)) + (12.0*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
-float bl_tent_pow5_sq(float x, float sigma) {
+float bl_tent_pow5_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((1296.0/11.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (1296.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (1620.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (45.0*(sigma*sigma)*(x*x*x*x*x*x*x*x)) + (504.0*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x));
 }
 
-float bl_gaussian_pow6(float x, float sigma) {
+float bl_tent_pow5_sq(float x, float sigma) {
+  float v = bl_tent_pow5_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_pow6_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((15.0*(sigma*sigma)*(x*x*x*x)) + (15.0*(sigma*sigma*sigma*sigma*sigma*sigma)) + (45.0*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
 }
 
-float bl_gaussian_pow6_sq(float x, float sigma) {
+float bl_gaussian_pow6(float x, float sigma) {
+  float v = bl_gaussian_pow6_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_pow6_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((10395.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (13860.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (1485.0*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (51975.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (62370.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (66.0*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
-float bl_box_pow6(float x, float sigma) {
+float bl_gaussian_pow6_sq(float x, float sigma) {
+  float v = bl_gaussian_pow6_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_pow6_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((27.0/7.0)*(sigma*sigma*sigma*sigma*sigma*sigma)) + (15.0*(sigma*sigma)*(x*x*x*x)) + (27.0*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
 }
 
-float bl_box_pow6_sq(float x, float sigma) {
+float bl_box_pow6(float x, float sigma) {
+  float v = bl_box_pow6_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_pow6_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((729.0/13.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (1458.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (3564.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (4455.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (66.0*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (891.0*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
-float bl_tent_pow6(float x, float sigma) {
+float bl_box_pow6_sq(float x, float sigma) {
+  float v = bl_box_pow6_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_pow6_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((54.0/7.0)*(sigma*sigma*sigma*sigma*sigma*sigma)) + (15.0*(sigma*sigma)*(x*x*x*x)) + (36.0*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
 }
 
-float bl_tent_pow6_sq(float x, float sigma) {
+float bl_tent_pow6(float x, float sigma) {
+  float v = bl_tent_pow6_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_pow6_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((46656.0/91.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (1188.0*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (14256.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (66.0*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (7128.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (7776.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x));
+}
+
+float bl_tent_pow6_sq(float x, float sigma) {
+  float v = bl_tent_pow6_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_gaussian_pow7(float x, float sigma) {
@@ -1457,9 +1775,15 @@ float bl_gaussian_pow7(float x, float sigma) {
   return ((105.0*(sigma*sigma*sigma*sigma)*(x*x*x)) + (105.0*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (21.0*(sigma*sigma)*(x*x*x*x*x)) + (x*x*x*x*x*x*x));
 }
 
-float bl_gaussian_pow7_sq(float x, float sigma) {
+float bl_gaussian_pow7_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((135135.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (3003.0*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (315315.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (45045.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (91.0*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (945945.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (945945.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x));
+}
+
+float bl_gaussian_pow7_sq(float x, float sigma) {
+  float v = bl_gaussian_pow7_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_pow7(float x, float sigma) {
@@ -1468,9 +1792,15 @@ float bl_box_pow7(float x, float sigma) {
   return ((21.0*(sigma*sigma)*(x*x*x*x*x)) + (27.0*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (63.0*(sigma*sigma*sigma*sigma)*(x*x*x)) + (x*x*x*x*x*x*x));
 }
 
-float bl_box_pow7_sq(float x, float sigma) {
+float bl_box_pow7_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((729.0/5.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + ((9009.0/5.0)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (11583.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (22113.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (27027.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (5103.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (91.0*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x));
+}
+
+float bl_box_pow7_sq(float x, float sigma) {
+  float v = bl_box_pow7_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_pow7(float x, float sigma) {
@@ -1479,42 +1809,84 @@ float bl_tent_pow7(float x, float sigma) {
   return ((21.0*(sigma*sigma)*(x*x*x*x*x)) + (54.0*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (84.0*(sigma*sigma*sigma*sigma)*(x*x*x)) + (x*x*x*x*x*x*x));
 }
 
-float bl_tent_pow7_sq(float x, float sigma) {
+float bl_tent_pow7_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((11664.0/5.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + ((12012.0/5.0)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + ((432432.0/5.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (117936.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (23166.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (46656.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (91.0*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
-float bl_gaussian_pow8(float x, float sigma) {
+float bl_tent_pow7_sq(float x, float sigma) {
+  float v = bl_tent_pow7_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_pow8_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((105.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (210.0*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (28.0*(sigma*sigma)*(x*x*x*x*x*x)) + (420.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x*x*x));
 }
 
-float bl_gaussian_pow8_sq(float x, float sigma) {
+float bl_gaussian_pow8(float x, float sigma) {
+  float v = bl_gaussian_pow8_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_pow8_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((120.0*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x*x*x)) + (120120.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (1351350.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (16216200.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (18918900.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (2027025.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (5460.0*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (7567560.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
-float bl_box_pow8(float x, float sigma) {
+float bl_gaussian_pow8_sq(float x, float sigma) {
+  float v = bl_gaussian_pow8_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_pow8_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((108.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (126.0*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (28.0*(sigma*sigma)*(x*x*x*x*x*x)) + (9.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (x*x*x*x*x*x*x*x));
 }
 
-float bl_box_pow8_sq(float x, float sigma) {
+float bl_box_pow8(float x, float sigma) {
+  float v = bl_box_pow8_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_pow8_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((6561.0/17.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (102060.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (115830.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (120.0*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x*x*x)) + (17496.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (176904.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (30888.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (3276.0*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
-float bl_tent_pow8(float x, float sigma) {
+float bl_box_pow8_sq(float x, float sigma) {
+  float v = bl_box_pow8_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_pow8_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((144.0/5.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (168.0*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (216.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (28.0*(sigma*sigma)*(x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x));
 }
 
-float bl_tent_pow8_sq(float x, float sigma) {
+float bl_tent_pow8(float x, float sigma) {
+  float v = bl_tent_pow8_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_pow8_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (((186624.0/17.0)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (120.0*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x*x*x)) + (279936.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (370656.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (4368.0*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (61776.0*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (933120.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (943488.0*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
-float bl_gaussian_abs(float x, float sigma) {
+float bl_tent_pow8_sq(float x, float sigma) {
+  float v = bl_tent_pow8_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_abs_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1523,14 +1895,26 @@ float bl_gaussian_abs(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
   return bl_gauss_pw(x, sigma, 2, p);
+}
+
+float bl_gaussian_abs(float x, float sigma) {
+  float v = bl_gaussian_abs_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_abs_sq_raw(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  return ((sigma*sigma) + (x*x));
 }
 
 float bl_gaussian_abs_sq(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return ((sigma*sigma) + (x*x));
+  float v = bl_gaussian_abs_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
-float bl_box_abs(float x, float sigma) {
+float bl_box_abs_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1541,12 +1925,24 @@ float bl_box_abs(float x, float sigma) {
   return bl_box_pw(x, sigma, 2, p);
 }
 
-float bl_box_abs_sq(float x, float sigma) {
+float bl_box_abs(float x, float sigma) {
+  float v = bl_box_abs_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_abs_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
 }
 
-float bl_tent_abs(float x, float sigma) {
+float bl_box_abs_sq(float x, float sigma) {
+  float v = bl_box_abs_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_abs_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1557,12 +1953,24 @@ float bl_tent_abs(float x, float sigma) {
   return bl_tent_pw(x, sigma, 2, p);
 }
 
-float bl_tent_abs_sq(float x, float sigma) {
+float bl_tent_abs(float x, float sigma) {
+  float v = bl_tent_abs_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_abs_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
 }
 
-float bl_gaussian_sign(float x, float sigma) {
+float bl_tent_abs_sq(float x, float sigma) {
+  float v = bl_tent_abs_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_sign_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1573,12 +1981,26 @@ float bl_gaussian_sign(float x, float sigma) {
   return bl_gauss_pw(x, sigma, 2, p);
 }
 
-float bl_gaussian_sign_sq(float x, float sigma) {
+float bl_gaussian_sign(float x, float sigma) {
+  float v = bl_gaussian_sign_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_sign_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return 1.0;
 }
 
-float bl_box_sign(float x, float sigma) {
+float bl_gaussian_sign_sq(float x, float sigma) {
+  float v = bl_gaussian_sign_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_sign_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1589,12 +2011,26 @@ float bl_box_sign(float x, float sigma) {
   return bl_box_pw(x, sigma, 2, p);
 }
 
-float bl_box_sign_sq(float x, float sigma) {
+float bl_box_sign(float x, float sigma) {
+  float v = bl_box_sign_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_sign_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return 1.0;
 }
 
-float bl_tent_sign(float x, float sigma) {
+float bl_box_sign_sq(float x, float sigma) {
+  float v = bl_box_sign_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_sign_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1605,12 +2041,44 @@ float bl_tent_sign(float x, float sigma) {
   return bl_tent_pw(x, sigma, 2, p);
 }
 
-float bl_tent_sign_sq(float x, float sigma) {
+float bl_tent_sign(float x, float sigma) {
+  float v = bl_tent_sign_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_sign_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return 1.0;
 }
 
+float bl_tent_sign_sq(float x, float sigma) {
+  float v = bl_tent_sign_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_step_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
+  return bl_gauss_pw(x, sigma, 2, p);
+}
+
 float bl_gaussian_step(float x, float sigma) {
+  float v = bl_gaussian_step_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_step_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1622,6 +2090,13 @@ float bl_gaussian_step(float x, float sigma) {
 }
 
 float bl_gaussian_step_sq(float x, float sigma) {
+  float v = bl_gaussian_step_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_step_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1629,10 +2104,17 @@ float bl_gaussian_step_sq(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_gauss_pw(x, sigma, 2, p);
+  return bl_box_pw(x, sigma, 2, p);
 }
 
 float bl_box_step(float x, float sigma) {
+  float v = bl_box_step_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_step_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1644,6 +2126,13 @@ float bl_box_step(float x, float sigma) {
 }
 
 float bl_box_step_sq(float x, float sigma) {
+  float v = bl_box_step_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_step_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1651,10 +2140,17 @@ float bl_box_step_sq(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_box_pw(x, sigma, 2, p);
+  return bl_tent_pw(x, sigma, 2, p);
 }
 
 float bl_tent_step(float x, float sigma) {
+  float v = bl_tent_step_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_step_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1666,20 +2162,34 @@ float bl_tent_step(float x, float sigma) {
 }
 
 float bl_tent_step_sq(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_tent_pw(x, sigma, 2, p);
+  float v = bl_tent_step_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
-float bl_gaussian_saturate(float x, float sigma) {
+float bl_gaussian_saturate_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
+  return bl_gauss_pw(x, sigma, 3, p);
+}
+
+float bl_gaussian_saturate(float x, float sigma) {
+  float v = bl_gaussian_saturate_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_saturate_sq_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
@@ -1688,20 +2198,34 @@ float bl_gaussian_saturate(float x, float sigma) {
 }
 
 float bl_gaussian_saturate_sq(float x, float sigma) {
+  float v = bl_gaussian_saturate_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_saturate_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_gauss_pw(x, sigma, 3, p);
+  return bl_box_pw(x, sigma, 3, p);
 }
 
 float bl_box_saturate(float x, float sigma) {
+  float v = bl_box_saturate_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_saturate_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
@@ -1710,17 +2234,13 @@ float bl_box_saturate(float x, float sigma) {
 }
 
 float bl_box_saturate_sq(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_box_pw(x, sigma, 3, p);
+  float v = bl_box_saturate_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
-float bl_tent_saturate(float x, float sigma) {
+float bl_tent_saturate_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1731,7 +2251,14 @@ float bl_tent_saturate(float x, float sigma) {
   return bl_tent_pw(x, sigma, 3, p);
 }
 
-float bl_tent_saturate_sq(float x, float sigma) {
+float bl_tent_saturate(float x, float sigma) {
+  float v = bl_tent_saturate_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_saturate_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1742,10 +2269,35 @@ float bl_tent_saturate_sq(float x, float sigma) {
   return bl_tent_pw(x, sigma, 3, p);
 }
 
-float bl_gaussian_smoothstep(float x, float sigma) {
+float bl_tent_saturate_sq(float x, float sigma) {
+  float v = bl_tent_saturate_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_smoothstep_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
+  return bl_gauss_pw(x, sigma, 3, p);
+}
+
+float bl_gaussian_smoothstep(float x, float sigma) {
+  float v = bl_gaussian_smoothstep_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
       BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
@@ -1754,20 +2306,34 @@ float bl_gaussian_smoothstep(float x, float sigma) {
 }
 
 float bl_gaussian_smoothstep_sq(float x, float sigma) {
+  float v = bl_gaussian_smoothstep_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_smoothstep_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_gauss_pw(x, sigma, 3, p);
+  return bl_box_pw(x, sigma, 3, p);
 }
 
 float bl_box_smoothstep(float x, float sigma) {
+  float v = bl_box_smoothstep_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_smoothstep_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
       BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
@@ -1776,17 +2342,13 @@ float bl_box_smoothstep(float x, float sigma) {
 }
 
 float bl_box_smoothstep_sq(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_box_pw(x, sigma, 3, p);
+  float v = bl_box_smoothstep_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
-float bl_tent_smoothstep(float x, float sigma) {
+float bl_tent_smoothstep_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
@@ -1797,7 +2359,14 @@ float bl_tent_smoothstep(float x, float sigma) {
   return bl_tent_pw(x, sigma, 3, p);
 }
 
-float bl_tent_smoothstep_sq(float x, float sigma) {
+float bl_tent_smoothstep(float x, float sigma) {
+  float v = bl_tent_smoothstep_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_smoothstep_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
@@ -1808,7 +2377,14 @@ float bl_tent_smoothstep_sq(float x, float sigma) {
   return bl_tent_pw(x, sigma, 3, p);
 }
 
-float bl_gaussian_fract(float x, float sigma) {
+float bl_tent_smoothstep_sq(float x, float sigma) {
+  float v = bl_tent_smoothstep_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_fract_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1832,6 +2408,13 @@ float bl_gaussian_fract(float x, float sigma) {
     return acc;
   }
   return bl_gauss_periodic_image(x, sigma, period, 1, p, (1.0));
+}
+
+float bl_gaussian_fract(float x, float sigma) {
+  float v = bl_gaussian_fract_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_gaussian_fract_u(float x, float sigma) {
@@ -1876,7 +2459,7 @@ float bl_gaussian_fract_right(float x, float sigma) {
   return bl_gauss_periodic_right(x, sigma, period, 1, p, (1.0), (4.0), (1.0/2.0), 40, cs);
 }
 
-float bl_gaussian_fract_sq(float x, float sigma) {
+float bl_gaussian_fract_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1902,7 +2485,14 @@ float bl_gaussian_fract_sq(float x, float sigma) {
   return bl_gauss_periodic_image(x, sigma, period, 1, p, (1.0));
 }
 
-float bl_box_fract(float x, float sigma) {
+float bl_gaussian_fract_sq(float x, float sigma) {
+  float v = bl_gaussian_fract_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_fract_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1917,6 +2507,13 @@ float bl_box_fract(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   return bl_box_periodic(x, sigma, period, 1, p, p1);
+}
+
+float bl_box_fract(float x, float sigma) {
+  float v = bl_box_fract_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_box_fract_u(float x, float sigma) {
@@ -1951,7 +2548,7 @@ float bl_box_fract_right(float x, float sigma) {
   return bl_box_periodic_right(x, hw, period, 1, p, p1);
 }
 
-float bl_box_fract_sq(float x, float sigma) {
+float bl_box_fract_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1968,7 +2565,14 @@ float bl_box_fract_sq(float x, float sigma) {
   return bl_box_periodic(x, sigma, period, 1, p, p1);
 }
 
-float bl_tent_fract(float x, float sigma) {
+float bl_box_fract_sq(float x, float sigma) {
+  float v = bl_box_fract_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_fract_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1988,6 +2592,13 @@ float bl_tent_fract(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   return bl_tent_periodic(x, sigma, period, 1, p, p1, p2);
+}
+
+float bl_tent_fract(float x, float sigma) {
+  float v = bl_tent_fract_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_tent_fract_u(float x, float sigma) {
@@ -2027,7 +2638,7 @@ float bl_tent_fract_right(float x, float sigma) {
   return bl_tent_periodic_right(x, hw, period, 1, p, p1, p2);
 }
 
-float bl_tent_fract_sq(float x, float sigma) {
+float bl_tent_fract_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2049,7 +2660,14 @@ float bl_tent_fract_sq(float x, float sigma) {
   return bl_tent_periodic(x, sigma, period, 1, p, p1, p2);
 }
 
-float bl_gaussian_triangle(float x, float sigma) {
+float bl_tent_fract_sq(float x, float sigma) {
+  float v = bl_tent_fract_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_triangle_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2074,6 +2692,13 @@ float bl_gaussian_triangle(float x, float sigma) {
     return acc;
   }
   return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
+}
+
+float bl_gaussian_triangle(float x, float sigma) {
+  float v = bl_gaussian_triangle_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_gaussian_triangle_u(float x, float sigma) {
@@ -2119,7 +2744,7 @@ float bl_gaussian_triangle_right(float x, float sigma) {
   return bl_gauss_periodic_right(x, sigma, period, 2, p, (1.0), (4.0), (1.0/2.0), 40, cs);
 }
 
-float bl_gaussian_triangle_sq(float x, float sigma) {
+float bl_gaussian_triangle_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 2.0, float[8](4.0, (-4.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2146,7 +2771,14 @@ float bl_gaussian_triangle_sq(float x, float sigma) {
   return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
-float bl_box_triangle(float x, float sigma) {
+float bl_gaussian_triangle_sq(float x, float sigma) {
+  float v = bl_gaussian_triangle_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_triangle_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2161,6 +2793,13 @@ float bl_box_triangle(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   return bl_box_periodic(x, sigma, period, 2, p, p1);
+}
+
+float bl_box_triangle(float x, float sigma) {
+  float v = bl_box_triangle_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_box_triangle_u(float x, float sigma) {
@@ -2195,7 +2834,7 @@ float bl_box_triangle_right(float x, float sigma) {
   return bl_box_periodic_right(x, hw, period, 2, p, p1);
 }
 
-float bl_box_triangle_sq(float x, float sigma) {
+float bl_box_triangle_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 2.0, float[8](4.0, (-4.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2212,7 +2851,14 @@ float bl_box_triangle_sq(float x, float sigma) {
   return bl_box_periodic(x, sigma, period, 2, p, p1);
 }
 
-float bl_tent_triangle(float x, float sigma) {
+float bl_box_triangle_sq(float x, float sigma) {
+  float v = bl_box_triangle_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_triangle_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2232,6 +2878,13 @@ float bl_tent_triangle(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+}
+
+float bl_tent_triangle(float x, float sigma) {
+  float v = bl_tent_triangle_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_tent_triangle_u(float x, float sigma) {
@@ -2271,7 +2924,7 @@ float bl_tent_triangle_right(float x, float sigma) {
   return bl_tent_periodic_right(x, hw, period, 2, p, p1, p2);
 }
 
-float bl_tent_triangle_sq(float x, float sigma) {
+float bl_tent_triangle_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 2.0, float[8](4.0, (-4.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2293,7 +2946,14 @@ float bl_tent_triangle_sq(float x, float sigma) {
   return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
 }
 
-float bl_gaussian_square(float x, float sigma) {
+float bl_tent_triangle_sq(float x, float sigma) {
+  float v = bl_tent_triangle_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_square_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2318,6 +2978,13 @@ float bl_gaussian_square(float x, float sigma) {
     return acc;
   }
   return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
+}
+
+float bl_gaussian_square(float x, float sigma) {
+  float v = bl_gaussian_square_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_gaussian_square_u(float x, float sigma) {
@@ -2363,7 +3030,7 @@ float bl_gaussian_square_right(float x, float sigma) {
   return bl_gauss_periodic_right(x, sigma, period, 2, p, (1.0), (4.0), (1.0/2.0), 40, cs);
 }
 
-float bl_gaussian_square_sq(float x, float sigma) {
+float bl_gaussian_square_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2390,7 +3057,14 @@ float bl_gaussian_square_sq(float x, float sigma) {
   return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
-float bl_box_square(float x, float sigma) {
+float bl_gaussian_square_sq(float x, float sigma) {
+  float v = bl_gaussian_square_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_square_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2405,6 +3079,13 @@ float bl_box_square(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   return bl_box_periodic(x, sigma, period, 2, p, p1);
+}
+
+float bl_box_square(float x, float sigma) {
+  float v = bl_box_square_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_box_square_u(float x, float sigma) {
@@ -2439,7 +3120,7 @@ float bl_box_square_right(float x, float sigma) {
   return bl_box_periodic_right(x, hw, period, 2, p, p1);
 }
 
-float bl_box_square_sq(float x, float sigma) {
+float bl_box_square_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2456,7 +3137,14 @@ float bl_box_square_sq(float x, float sigma) {
   return bl_box_periodic(x, sigma, period, 2, p, p1);
 }
 
-float bl_tent_square(float x, float sigma) {
+float bl_box_square_sq(float x, float sigma) {
+  float v = bl_box_square_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_square_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2476,6 +3164,13 @@ float bl_tent_square(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+}
+
+float bl_tent_square(float x, float sigma) {
+  float v = bl_tent_square_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_tent_square_u(float x, float sigma) {
@@ -2515,7 +3210,7 @@ float bl_tent_square_right(float x, float sigma) {
   return bl_tent_periodic_right(x, hw, period, 2, p, p1, p2);
 }
 
-float bl_tent_square_sq(float x, float sigma) {
+float bl_tent_square_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2537,14 +3232,27 @@ float bl_tent_square_sq(float x, float sigma) {
   return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
 }
 
+float bl_tent_square_sq(float x, float sigma) {
+  float v = bl_tent_square_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
 float bl_gaussian_floor(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + (-1.0) * bl_gaussian_fract(x, sigma);
 }
 
-float bl_gaussian_floor_sq(float x, float sigma) {
+float bl_gaussian_floor_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_gaussian_fract_sq(x, sigma) + (-2.0) * (x * bl_gaussian_fract(x, sigma) + bl_gaussian_fract_u(x, sigma));
+}
+
+float bl_gaussian_floor_sq(float x, float sigma) {
+  float v = bl_gaussian_floor_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_floor(float x, float sigma) {
@@ -2552,9 +3260,15 @@ float bl_box_floor(float x, float sigma) {
   return x + (-1.0) * bl_box_fract(x, sigma);
 }
 
-float bl_box_floor_sq(float x, float sigma) {
+float bl_box_floor_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_box_fract_sq(x, sigma) + (-2.0) * (x * bl_box_fract(x, sigma) + bl_box_fract_u(x, sigma));
+}
+
+float bl_box_floor_sq(float x, float sigma) {
+  float v = bl_box_floor_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_floor(float x, float sigma) {
@@ -2562,9 +3276,15 @@ float bl_tent_floor(float x, float sigma) {
   return x + (-1.0) * bl_tent_fract(x, sigma);
 }
 
-float bl_tent_floor_sq(float x, float sigma) {
+float bl_tent_floor_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_tent_fract_sq(x, sigma) + (-2.0) * (x * bl_tent_fract(x, sigma) + bl_tent_fract_u(x, sigma));
+}
+
+float bl_tent_floor_sq(float x, float sigma) {
+  float v = bl_tent_floor_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_gaussian_ceil(float x, float sigma) {
@@ -2572,9 +3292,15 @@ float bl_gaussian_ceil(float x, float sigma) {
   return x + 1.0 * bl_gaussian_fract(-x, sigma);
 }
 
-float bl_gaussian_ceil_sq(float x, float sigma) {
+float bl_gaussian_ceil_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_gaussian_fract_sq(-x, sigma) + 2.0 * (x * bl_gaussian_fract(-x, sigma) - bl_gaussian_fract_u(-x, sigma));
+}
+
+float bl_gaussian_ceil_sq(float x, float sigma) {
+  float v = bl_gaussian_ceil_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_ceil(float x, float sigma) {
@@ -2582,9 +3308,15 @@ float bl_box_ceil(float x, float sigma) {
   return x + 1.0 * bl_box_fract(-x, sigma);
 }
 
-float bl_box_ceil_sq(float x, float sigma) {
+float bl_box_ceil_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_box_fract_sq(-x, sigma) + 2.0 * (x * bl_box_fract(-x, sigma) - bl_box_fract_u(-x, sigma));
+}
+
+float bl_box_ceil_sq(float x, float sigma) {
+  float v = bl_box_ceil_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_ceil(float x, float sigma) {
@@ -2592,9 +3324,15 @@ float bl_tent_ceil(float x, float sigma) {
   return x + 1.0 * bl_tent_fract(-x, sigma);
 }
 
-float bl_tent_ceil_sq(float x, float sigma) {
+float bl_tent_ceil_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_tent_fract_sq(-x, sigma) + 2.0 * (x * bl_tent_fract(-x, sigma) - bl_tent_fract_u(-x, sigma));
+}
+
+float bl_tent_ceil_sq(float x, float sigma) {
+  float v = bl_tent_ceil_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_gaussian_trunc(float x, float sigma) {
@@ -2602,7 +3340,7 @@ float bl_gaussian_trunc(float x, float sigma) {
   return (1.0 + x) + (-1.0) * bl_gaussian_fract(x, sigma) + (-1.0) * bl_gaussian_step(x, sigma);
 }
 
-float bl_gaussian_trunc_sq(float x, float sigma) {
+float bl_gaussian_trunc_sq_raw(float x, float sigma) {
   BlPiece pt6[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2612,12 +3350,18 @@ float bl_gaussian_trunc_sq(float x, float sigma) {
   return ((2.0*x) + (sigma*sigma) + (x*x) + 1.0) + (-2.0) * bl_gaussian_fract(x, sigma) + 1.0 * bl_gaussian_fract_sq(x, sigma) + (-2.0) * (x * bl_gaussian_fract(x, sigma) + bl_gaussian_fract_u(x, sigma)) + 2.0 * (1.0 * bl_gaussian_fract_right(x, sigma)) + (-2.0) * bl_gaussian_step(x, sigma) + 1.0 * bl_gaussian_step_sq(x, sigma) + (-2.0) * bl_gauss_pw(x, sigma, 2, pt6);
 }
 
+float bl_gaussian_trunc_sq(float x, float sigma) {
+  float v = bl_gaussian_trunc_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
 float bl_box_trunc(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (1.0 + x) + (-1.0) * bl_box_fract(x, sigma) + (-1.0) * bl_box_step(x, sigma);
 }
 
-float bl_box_trunc_sq(float x, float sigma) {
+float bl_box_trunc_sq_raw(float x, float sigma) {
   BlPiece pt6[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2627,12 +3371,18 @@ float bl_box_trunc_sq(float x, float sigma) {
   return ((2.0*x) + (sigma*sigma) + (x*x) + 1.0) + (-2.0) * bl_box_fract(x, sigma) + 1.0 * bl_box_fract_sq(x, sigma) + (-2.0) * (x * bl_box_fract(x, sigma) + bl_box_fract_u(x, sigma)) + 2.0 * (1.0 * bl_box_fract_right(x, sigma)) + (-2.0) * bl_box_step(x, sigma) + 1.0 * bl_box_step_sq(x, sigma) + (-2.0) * bl_box_pw(x, sigma, 2, pt6);
 }
 
+float bl_box_trunc_sq(float x, float sigma) {
+  float v = bl_box_trunc_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
 float bl_tent_trunc(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (1.0 + x) + (-1.0) * bl_tent_fract(x, sigma) + (-1.0) * bl_tent_step(x, sigma);
 }
 
-float bl_tent_trunc_sq(float x, float sigma) {
+float bl_tent_trunc_sq_raw(float x, float sigma) {
   BlPiece pt6[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2640,6 +3390,12 @@ float bl_tent_trunc_sq(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((2.0*x) + (sigma*sigma) + (x*x) + 1.0) + (-2.0) * bl_tent_fract(x, sigma) + 1.0 * bl_tent_fract_sq(x, sigma) + (-2.0) * (x * bl_tent_fract(x, sigma) + bl_tent_fract_u(x, sigma)) + 2.0 * (1.0 * bl_tent_fract_right(x, sigma)) + (-2.0) * bl_tent_step(x, sigma) + 1.0 * bl_tent_step_sq(x, sigma) + (-2.0) * bl_tent_pw(x, sigma, 2, pt6);
+}
+
+float bl_tent_trunc_sq(float x, float sigma) {
+  float v = bl_tent_trunc_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_tan_series(float x, float hh) {
@@ -2677,9 +3433,9 @@ float bl_box_tan_sq_diff(float x, float hh) {
   return (-1.0) + (tan((hh + x)) - tan(((-hh) + x))) / ((2.0) * hh);
 }
 
-float bl_box_tan_sq(float x, float sigma) {
+float bl_box_tan_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return bl_box_tan_sq(-x, sigma);  // even
+  if (x < (0.0)) return bl_box_tan_sq_raw(-x, sigma);  // even
   float period = bl_pi();
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
@@ -2688,6 +3444,12 @@ float bl_box_tan_sq(float x, float sigma) {
     return bl_box_tan_sq_series(x, hh);
   }
   return bl_box_tan_sq_diff(x, hh);
+}
+
+float bl_box_tan_sq(float x, float sigma) {
+  float v = bl_box_tan_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_tan_series(float x, float hh) {
@@ -2725,9 +3487,9 @@ float bl_tent_tan_sq_diff(float x, float hh) {
   return (-1.0) + ((-log(abs(cos((hh + x))))) - (2.0) * (-log(abs(cos(x)))) + (-log(abs(cos(((-hh) + x)))))) / (hh * hh);
 }
 
-float bl_tent_tan_sq(float x, float sigma) {
+float bl_tent_tan_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return bl_tent_tan_sq(-x, sigma);  // even
+  if (x < (0.0)) return bl_tent_tan_sq_raw(-x, sigma);  // even
   float period = bl_pi();
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
@@ -2736,6 +3498,12 @@ float bl_tent_tan_sq(float x, float sigma) {
     return bl_tent_tan_sq_series(x, hh);
   }
   return bl_tent_tan_sq_diff(x, hh);
+}
+
+float bl_tent_tan_sq(float x, float sigma) {
+  float v = bl_tent_tan_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_tanh_series(float x, float hh) {
@@ -2749,9 +3517,9 @@ float bl_box_tanh_diff(float x, float hh) {
   return (bl_logcosh((hh + x)) - bl_logcosh(((-hh) + x))) / ((2.0) * hh);
 }
 
-float bl_box_tanh(float x, float sigma) {
+float bl_box_tanh_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return -bl_box_tanh(-x, sigma);  // odd
+  if (x < (0.0)) return -bl_box_tanh_raw(-x, sigma);  // odd
   float hh = (sigma*sqrt(3.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (-1.0);
@@ -2759,6 +3527,13 @@ float bl_box_tanh(float x, float sigma) {
     return bl_box_tanh_series(x, hh);
   }
   return bl_box_tanh_diff(x, hh);
+}
+
+float bl_box_tanh(float x, float sigma) {
+  float v = bl_box_tanh_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_box_tanh_sq_series(float x, float hh) {
@@ -2772,9 +3547,9 @@ float bl_box_tanh_sq_diff(float x, float hh) {
   return 1.0 + ((-tanh((hh + x))) - (-tanh(((-hh) + x)))) / ((2.0) * hh);
 }
 
-float bl_box_tanh_sq(float x, float sigma) {
+float bl_box_tanh_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return bl_box_tanh_sq(-x, sigma);  // even
+  if (x < (0.0)) return bl_box_tanh_sq_raw(-x, sigma);  // even
   float hh = (sigma*sqrt(3.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (1.0);
@@ -2782,6 +3557,13 @@ float bl_box_tanh_sq(float x, float sigma) {
     return bl_box_tanh_sq_series(x, hh);
   }
   return bl_box_tanh_sq_diff(x, hh);
+}
+
+float bl_box_tanh_sq(float x, float sigma) {
+  float v = bl_box_tanh_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_tent_tanh_series(float x, float hh) {
@@ -2795,9 +3577,9 @@ float bl_tent_tanh_diff(float x, float hh) {
   return ((((-1.0/2.0)*((-hh) + (-x))*abs((hh + x))) + ((1.0/2.0)*bl_li2((-exp(((-2.0)*abs((hh + x))))))*bl_sgn((hh + x))) + ((1.0/24.0)*(bl_pi()*bl_pi())*bl_sgn((hh + x)))) - (2.0) * (((1.0/2.0)*abs(x)*x) + ((1.0/2.0)*bl_li2((-exp(((-2.0)*abs(x)))))*bl_sgn(x)) + ((1.0/24.0)*(bl_pi()*bl_pi())*bl_sgn(x))) + (((1.0/2.0)*((-hh) + x)*abs(((-hh) + x))) + ((1.0/2.0)*bl_li2((-exp(((-2.0)*abs(((-hh) + x))))))*bl_sgn(((-hh) + x))) + ((1.0/24.0)*(bl_pi()*bl_pi())*bl_sgn(((-hh) + x))))) / (hh * hh);
 }
 
-float bl_tent_tanh(float x, float sigma) {
+float bl_tent_tanh_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return -bl_tent_tanh(-x, sigma);  // odd
+  if (x < (0.0)) return -bl_tent_tanh_raw(-x, sigma);  // odd
   float hh = (sigma*sqrt(6.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (-1.0);
@@ -2805,6 +3587,13 @@ float bl_tent_tanh(float x, float sigma) {
     return bl_tent_tanh_series(x, hh);
   }
   return bl_tent_tanh_diff(x, hh);
+}
+
+float bl_tent_tanh(float x, float sigma) {
+  float v = bl_tent_tanh_raw(x, sigma);
+  if (v < (-1.0)) return (-1.0);
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_tent_tanh_sq_series(float x, float hh) {
@@ -2818,9 +3607,9 @@ float bl_tent_tanh_sq_diff(float x, float hh) {
   return 1.0 + ((-bl_logcosh((hh + x))) - (2.0) * (-bl_logcosh(x)) + (-bl_logcosh(((-hh) + x)))) / (hh * hh);
 }
 
-float bl_tent_tanh_sq(float x, float sigma) {
+float bl_tent_tanh_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return bl_tent_tanh_sq(-x, sigma);  // even
+  if (x < (0.0)) return bl_tent_tanh_sq_raw(-x, sigma);  // even
   float hh = (sigma*sqrt(6.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (1.0);
@@ -2828,6 +3617,13 @@ float bl_tent_tanh_sq(float x, float sigma) {
     return bl_tent_tanh_sq_series(x, hh);
   }
   return bl_tent_tanh_sq_diff(x, hh);
+}
+
+float bl_tent_tanh_sq(float x, float sigma) {
+  float v = bl_tent_tanh_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
 }
 
 float bl_box_log_series(float x, float hh) {
@@ -2863,7 +3659,7 @@ float bl_box_log_sq_diff(float x, float hh) {
   return 2.0 + (((-((-hh) + (-x))*(log((hh + x))*log((hh + x)))) + (2.0*((-hh) + (-x))*log((hh + x)))) - ((((-hh) + x)*(log(((-hh) + x))*log(((-hh) + x)))) + ((-2.0)*((-hh) + x)*log(((-hh) + x))))) / ((2.0) * hh);
 }
 
-float bl_box_log_sq(float x, float sigma) {
+float bl_box_log_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
@@ -2872,6 +3668,12 @@ float bl_box_log_sq(float x, float sigma) {
     return bl_box_log_sq_series(x, hh);
   }
   return bl_box_log_sq_diff(x, hh);
+}
+
+float bl_box_log_sq(float x, float sigma) {
+  float v = bl_box_log_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_log_series(float x, float hh) {
@@ -2907,7 +3709,7 @@ float bl_tent_log_sq_diff(float x, float hh) {
   return (7.0/2.0) + ((((-3.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*log((hh + x))) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*(log((hh + x))*log((hh + x))))) - (2.0) * (((-3.0/2.0)*(x*x)*log(x)) + ((1.0/2.0)*(log(x)*log(x))*(x*x))) + (((-3.0/2.0)*(((-hh) + x)*((-hh) + x))*log(((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*(log(((-hh) + x))*log(((-hh) + x)))))) / (hh * hh);
 }
 
-float bl_tent_log_sq(float x, float sigma) {
+float bl_tent_log_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
@@ -2916,6 +3718,12 @@ float bl_tent_log_sq(float x, float sigma) {
     return bl_tent_log_sq_series(x, hh);
   }
   return bl_tent_log_sq_diff(x, hh);
+}
+
+float bl_tent_log_sq(float x, float sigma) {
+  float v = bl_tent_log_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_sqrt_series(float x, float hh) {
@@ -2928,7 +3736,7 @@ float bl_box_sqrt_diff(float x, float hh) {
   return (((2.0/3.0)*(((hh + x))*sqrt((hh + x)))) - ((2.0/3.0)*((((-hh) + x))*sqrt(((-hh) + x))))) / ((2.0) * hh);
 }
 
-float bl_box_sqrt(float x, float sigma) {
+float bl_box_sqrt_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
@@ -2937,6 +3745,12 @@ float bl_box_sqrt(float x, float sigma) {
     return bl_box_sqrt_series(x, hh);
   }
   return bl_box_sqrt_diff(x, hh);
+}
+
+float bl_box_sqrt(float x, float sigma) {
+  float v = bl_box_sqrt_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_sqrt_sq_series(float x, float hh) {
@@ -2949,7 +3763,7 @@ float bl_box_sqrt_sq_diff(float x, float hh) {
   return x;
 }
 
-float bl_box_sqrt_sq(float x, float sigma) {
+float bl_box_sqrt_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
@@ -2958,6 +3772,12 @@ float bl_box_sqrt_sq(float x, float sigma) {
     return bl_box_sqrt_sq_series(x, hh);
   }
   return bl_box_sqrt_sq_diff(x, hh);
+}
+
+float bl_box_sqrt_sq(float x, float sigma) {
+  float v = bl_box_sqrt_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_sqrt_series(float x, float hh) {
@@ -2970,7 +3790,7 @@ float bl_tent_sqrt_diff(float x, float hh) {
   return (((4.0/15.0)*(((hh + x)*(hh + x))*sqrt((hh + x)))) - (2.0) * ((4.0/15.0)*((x*x)*sqrt(x))) + ((4.0/15.0)*((((-hh) + x)*((-hh) + x))*sqrt(((-hh) + x))))) / (hh * hh);
 }
 
-float bl_tent_sqrt(float x, float sigma) {
+float bl_tent_sqrt_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
@@ -2979,6 +3799,12 @@ float bl_tent_sqrt(float x, float sigma) {
     return bl_tent_sqrt_series(x, hh);
   }
   return bl_tent_sqrt_diff(x, hh);
+}
+
+float bl_tent_sqrt(float x, float sigma) {
+  float v = bl_tent_sqrt_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_sqrt_sq_series(float x, float hh) {
@@ -2991,7 +3817,7 @@ float bl_tent_sqrt_sq_diff(float x, float hh) {
   return x;
 }
 
-float bl_tent_sqrt_sq(float x, float sigma) {
+float bl_tent_sqrt_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (x < 0.0) return bl_nan();  // outside the domain
   float r = abs(x - 0.0);
@@ -3000,6 +3826,12 @@ float bl_tent_sqrt_sq(float x, float sigma) {
     return bl_tent_sqrt_sq_series(x, hh);
   }
   return bl_tent_sqrt_sq_diff(x, hh);
+}
+
+float bl_tent_sqrt_sq(float x, float sigma) {
+  float v = bl_tent_sqrt_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_inv_series(float x, float hh) {
@@ -3032,7 +3864,7 @@ float bl_box_inv_sq_diff(float x, float hh) {
   return (((1.0/(((-hh) + (-x))))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
 }
 
-float bl_box_inv_sq(float x, float sigma) {
+float bl_box_inv_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
@@ -3040,6 +3872,12 @@ float bl_box_inv_sq(float x, float sigma) {
     return bl_box_inv_sq_series(x, hh);
   }
   return bl_box_inv_sq_diff(x, hh);
+}
+
+float bl_box_inv_sq(float x, float sigma) {
+  float v = bl_box_inv_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_inv_series(float x, float hh) {
@@ -3072,7 +3910,7 @@ float bl_tent_inv_sq_diff(float x, float hh) {
   return ((-log(abs((hh + x)))) - (2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
 }
 
-float bl_tent_inv_sq(float x, float sigma) {
+float bl_tent_inv_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
@@ -3080,6 +3918,12 @@ float bl_tent_inv_sq(float x, float sigma) {
     return bl_tent_inv_sq_series(x, hh);
   }
   return bl_tent_inv_sq_diff(x, hh);
+}
+
+float bl_tent_inv_sq(float x, float sigma) {
+  float v = bl_tent_inv_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_inv2_series(float x, float hh) {
@@ -3092,7 +3936,7 @@ float bl_box_inv2_diff(float x, float hh) {
   return (((1.0/(((-hh) + (-x))))) - (-(1.0/(((-hh) + x))))) / ((2.0) * hh);
 }
 
-float bl_box_inv2(float x, float sigma) {
+float bl_box_inv2_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
@@ -3100,6 +3944,12 @@ float bl_box_inv2(float x, float sigma) {
     return bl_box_inv2_series(x, hh);
   }
   return bl_box_inv2_diff(x, hh);
+}
+
+float bl_box_inv2(float x, float sigma) {
+  float v = bl_box_inv2_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_box_inv2_sq_series(float x, float hh) {
@@ -3112,7 +3962,7 @@ float bl_box_inv2_sq_diff(float x, float hh) {
   return (((1.0/3.0)*(1.0/(((-hh) + (-x))*((-hh) + (-x))*((-hh) + (-x))))) - ((-1.0/3.0)*(1.0/(((-hh) + x)*((-hh) + x)*((-hh) + x))))) / ((2.0) * hh);
 }
 
-float bl_box_inv2_sq(float x, float sigma) {
+float bl_box_inv2_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
@@ -3120,6 +3970,12 @@ float bl_box_inv2_sq(float x, float sigma) {
     return bl_box_inv2_sq_series(x, hh);
   }
   return bl_box_inv2_sq_diff(x, hh);
+}
+
+float bl_box_inv2_sq(float x, float sigma) {
+  float v = bl_box_inv2_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_inv2_series(float x, float hh) {
@@ -3132,7 +3988,7 @@ float bl_tent_inv2_diff(float x, float hh) {
   return ((-log(abs((hh + x)))) - (2.0) * (-log(abs(x))) + (-log(abs(((-hh) + x))))) / (hh * hh);
 }
 
-float bl_tent_inv2(float x, float sigma) {
+float bl_tent_inv2_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
@@ -3140,6 +3996,12 @@ float bl_tent_inv2(float x, float sigma) {
     return bl_tent_inv2_series(x, hh);
   }
   return bl_tent_inv2_diff(x, hh);
+}
+
+float bl_tent_inv2(float x, float sigma) {
+  float v = bl_tent_inv2_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_tent_inv2_sq_series(float x, float hh) {
@@ -3152,7 +4014,7 @@ float bl_tent_inv2_sq_diff(float x, float hh) {
   return (((1.0/6.0)*(1.0/(((-hh) + (-x))*((-hh) + (-x))))) - (2.0) * ((1.0/6.0)*(1.0/(x*x))) + ((1.0/6.0)*(1.0/(((-hh) + x)*((-hh) + x))))) / (hh * hh);
 }
 
-float bl_tent_inv2_sq(float x, float sigma) {
+float bl_tent_inv2_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float r = abs(x - 0.0);
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
@@ -3160,6 +4022,12 @@ float bl_tent_inv2_sq(float x, float sigma) {
     return bl_tent_inv2_sq_series(x, hh);
   }
   return bl_tent_inv2_sq_diff(x, hh);
+}
+
+float bl_tent_inv2_sq(float x, float sigma) {
+  float v = bl_tent_inv2_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
 }
 
 float bl_gaussian_moment(int n, float x, float sigma) {

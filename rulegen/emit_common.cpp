@@ -243,8 +243,12 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
            "<double>(double(x), double(sigma)));\n";
   if (a.parity != 0) {
     const bool odd = a.parity < 0 && !d.squared;
-    out += "  if (x < " + s.dbl(0) + ") return " + (odd ? "-" : "") + s.fn(impl_name(d)) +
-           "(-x, sigma);  // " + (odd ? "odd" : "even") + "\n";
+    // The reflected call goes to the unclamped body when the entry is clamped (range_clamp): in GLSL
+    // the clamped wrapper is defined after it.
+    const std::string self =
+        impl_name(d) + (range_clamp(d, s.cpp() ? Lang::Cpp : Lang::Glsl).empty() ? "" : "_raw");
+    out += "  if (x < " + s.dbl(0) + ") return " + (odd ? "-" : "") + s.fn(self) + "(-x, sigma);  // " +
+           (odd ? "odd" : "even") + "\n";
   }
   if (a.domain_lo.finite())
     out += "  if (x < " + s.ex(a.domain_lo.value) + ") return " + s.nan() + ";  // outside the domain\n";
@@ -451,6 +455,40 @@ std::string series_body(const Derived& d, Lang lang) {
 std::string body_u(const Derived& d, Lang lang) {
   const Syntax s{lang};
   return (s.cpp() ? "  BL_MATH_USING\n" : "") + body_first_moment(d, s);
+}
+
+std::string range_clamp(const Derived& d, Lang lang) {
+  const Syntax s{lang};
+  if (d.rule != "convolution" || !d.atomic) return "";
+  const sym::Atomic& a = *d.atomic;
+  std::optional<GiNaC::ex> lo, hi;
+  if (a.range_lo.finite()) lo = a.range_lo.value;
+  if (a.range_hi.finite()) hi = a.range_hi.value;
+  if (d.squared) {
+    auto num = [](const GiNaC::ex& e) { return GiNaC::ex_to<GiNaC::numeric>(e.evalf()).to_double(); };
+    const bool nonneg = lo && num(*lo) >= 0, nonpos = hi && num(*hi) <= 0;
+    std::optional<GiNaC::ex> l2, h2;
+    if (nonneg) {
+      l2 = GiNaC::pow(*lo, 2);
+      if (hi) h2 = GiNaC::pow(*hi, 2);
+    } else if (nonpos) {
+      l2 = GiNaC::pow(*hi, 2);
+      if (lo) h2 = GiNaC::pow(*lo, 2);
+    } else {
+      l2 = GiNaC::ex(0);
+      if (lo && hi) {
+        const GiNaC::ex l = GiNaC::pow(*lo, 2), h = GiNaC::pow(*hi, 2);
+        h2 = GiNaC::ex_to<GiNaC::numeric>(l.evalf()) > GiNaC::ex_to<GiNaC::numeric>(h.evalf()) ? l : h;
+      }
+    }
+    lo = l2;
+    hi = h2;
+  }
+  if (!lo && !hi) return "";
+  std::string out;
+  if (lo) out += "  if (v < " + s.ex(*lo) + ") return " + s.ex(*lo) + ";\n";
+  if (hi) out += "  if (v > " + s.ex(*hi) + ") return " + s.ex(*hi) + ";\n";
+  return out + "  return v;\n";
 }
 
 std::string body(const Derived& d, Lang lang) {

@@ -19,6 +19,13 @@ std::string plain_impl_name(const std::string& atomic);
 // The statements of the function body, in C++ (template over T, with x and sigma in scope) or
 // GLSL (float).
 std::string body(const Derived& d, Lang lang);
+
+// The statements of an entry's body that clamp its value `v` to the range the true value lies in
+// ([inf f, sup f] for E[f(x+U)], the range of f^2 for E[f^2]), or "" when the atomic's range is
+// unbounded on both sides or the entry is not a convolution. Averages cannot leave that range, but
+// their rounding can (gaussian saturate at z = -14 gave -1.4e-45, and sqrt of it a NaN downstream).
+// NaN passes through.
+std::string range_clamp(const Derived& d, Lang lang);
 // Body of E[U g(x+U)] for a periodic entry (not squared): impl_name(d) + "_u".
 std::string body_u(const Derived& d, Lang lang);
 // Antiderivative entries: the Taylor series in the half-width hh, impl_name(d) + "_series"(x, hh).

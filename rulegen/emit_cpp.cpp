@@ -87,24 +87,40 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
           << "  // sigma^n overflows float long before the moment does (x = 1e-9, sigma = 1e4, n = 11).\n"
           << "  if constexpr (sizeof(T) < sizeof(double)) return T(" << current_moment
           << "<double>(n, double(x), double(sigma)));\n"
-          << "  if (n % 2 == 1 && x == T(0)) return T(0);  // odd moments vanish at 0 exactly\n  switch (n) {\n";
+          << "  if (n % 2 == 1 && x == T(0)) return T(0);  // odd moments vanish at 0 exactly\n  switch (n) "
+             "{\n";
       }
-      t << "    case " << d.order << ":\n" << comment_block(d.formula, "      ") << "      return "
-        << sym::print(d.closed, Lang::Cpp) << ";\n";
+      t << "    case " << d.order << ":\n"
+        << comment_block(d.formula, "      ") << "      return " << sym::print(d.closed, Lang::Cpp) << ";\n";
       if (i + 1 == ds.size() || ds[i + 1].rule != "moment" || impl_name(ds[i + 1]) != current_moment)
         t << "    default:\n      return detail::nan<T>();  // order outside 0..16\n  }\n}\n\n";
       continue;
     }
     if (has_series(d))
       t << "// Taylor series of the entry below in its half-width hh.\ntemplate <class T>\nT " << impl_name(d)
-        << "_series(T x, T hh) {\n" << series_body(d, Lang::Cpp) << "}\n\n"
-        << "// Difference quotient of the entry below at half-width hh.\ntemplate <class T>\nT " << impl_name(d)
-        << "_diff(T x, T hh) {\n" << diff_body(d, Lang::Cpp) << "}\n\n";
-    t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
-      << body(d, Lang::Cpp) << "}\n\n";
+        << "_series(T x, T hh) {\n"
+        << series_body(d, Lang::Cpp) << "}\n\n"
+        << "// Difference quotient of the entry below at half-width hh.\ntemplate <class T>\nT "
+        << impl_name(d) << "_diff(T x, T hh) {\n"
+        << diff_body(d, Lang::Cpp) << "}\n\n";
+    const std::string clamp = range_clamp(d, Lang::Cpp);
+    if (clamp.empty()) {
+      t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
+        << body(d, Lang::Cpp) << "}\n\n";
+    } else {
+      t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d)
+        << "_raw(T x, T sigma) {\n"
+        << body(d, Lang::Cpp) << "}\n\n"
+        << "// The entry above, kept inside the range of the true value (rounding can leave it).\n"
+        << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n  const T v = " << impl_name(d)
+        << "_raw<T>(x, sigma);\n"
+        << clamp << "}\n\n";
+    }
     if (has_first_moment(d))
-      t << "// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.\ntemplate <class T>\nT "
-        << impl_name(d) << "_u(T x, T sigma) {\n" << body_u(d, Lang::Cpp) << "}\n\n";
+      t << "// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.\ntemplate "
+           "<class T>\nT "
+        << impl_name(d) << "_u(T x, T sigma) {\n"
+        << body_u(d, Lang::Cpp) << "}\n\n";
     if (has_half_line(d))
       t << "// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant "
            "atomic\n"
@@ -117,8 +133,8 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
   t << "namespace plain {\n";
   for (const auto& a : cat.atomics)
     for (const char* T : {"float", "double"})
-      t << "inline " << T << " " << a.name << "(" << T << " x) { return detail::gen::" << plain_impl_name(a.name)
-        << "<" << T << ">(x); }\n";
+      t << "inline " << T << " " << a.name << "(" << T
+        << " x) { return detail::gen::" << plain_impl_name(a.name) << "<" << T << ">(x); }\n";
   t << "}  // namespace plain\n\n";
   for (sym::Kernel k : sym::kAllKernels) {
     t << "namespace " << sym::to_string(k) << " {\n";
@@ -127,13 +143,13 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
       if (d.rule == "moment") {
         if (d.order != 0) continue;
         for (const char* T : {"float", "double"})
-          t << "inline " << T << " moment(int n, " << T << " x, " << T << " sigma) { return detail::gen::"
-            << impl_name(d) << "<" << T << ">(n, x, sigma); }\n";
+          t << "inline " << T << " moment(int n, " << T << " x, " << T
+            << " sigma) { return detail::gen::" << impl_name(d) << "<" << T << ">(n, x, sigma); }\n";
         continue;
       }
       for (const char* T : {"float", "double"})
-        t << "inline " << T << " " << d.fn_suffix() << "(" << T << " x, " << T << " sigma) { return detail::gen::"
-          << impl_name(d) << "<" << T << ">(x, sigma); }\n";
+        t << "inline " << T << " " << d.fn_suffix() << "(" << T << " x, " << T
+          << " sigma) { return detail::gen::" << impl_name(d) << "<" << T << ">(x, sigma); }\n";
     }
     t << "}  // namespace " << sym::to_string(k) << "\n\n";
   }
@@ -142,8 +158,10 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
 
   // Registry: every entry with what a verifier or benchmark needs.
   std::ostringstream r;
-  r << kBanner << "#pragma once\n\n#include <limits>\n\n#include \"registry_types.hpp\"\n#include \"table.hpp\"\n\n"
-    << "namespace bl {\nnamespace registry {\n\ninline constexpr double kInf = std::numeric_limits<double>::infinity();\n\n"
+  r << kBanner
+    << "#pragma once\n\n#include <limits>\n\n#include \"registry_types.hpp\"\n#include \"table.hpp\"\n\n"
+    << "namespace bl {\nnamespace registry {\n\ninline constexpr double kInf = "
+       "std::numeric_limits<double>::infinity();\n\n"
     << "inline const AtomicInfo kAtomics[] = {\n";
   for (const auto& a : cat.atomics) r << "    " << atomic_info_initializer(&a) << ",\n";
   r << "    " << atomic_info_initializer(nullptr) << ",  // raw moments E[(x+U)^n]\n};\n\n";
@@ -155,21 +173,22 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
     const bool compact = d.body == Body::Antiderivative && !d.atomic->singular.empty();
     std::string smoothed, plain;
     if (d.rule == "moment") {
-      smoothed = "[](T x, T s) { return detail::gen::" + impl_name(d) + "<T>(" + std::to_string(d.order) + ", x, s); }";
+      smoothed = "[](T x, T s) { return detail::gen::" + impl_name(d) + "<T>(" + std::to_string(d.order) +
+                 ", x, s); }";
       plain = "[](T x) { return x; }";
     } else {
       smoothed = "&detail::gen::" + impl_name(d) + "<T>";
       plain = "&detail::gen::" + plain_impl_name(d.atomic_name) + "<T>";
     }
-    const std::string cpp = d.rule == "moment" ? "bl::" + std::string(sym::to_string(d.kernel)) + "::moment(" +
-                                                     std::to_string(d.order) + ", x, sigma)"
+    const std::string cpp = d.rule == "moment" ? "bl::" + std::string(sym::to_string(d.kernel)) +
+                                                     "::moment(" + std::to_string(d.order) + ", x, sigma)"
                                                : d.cpp_name();
-    const std::string glsl = d.rule == "moment" ? d.glsl_name() + "(" + std::to_string(d.order) + ", x, sigma)"
-                                                : d.glsl_name();
-    r << "      {&kAtomics[" << ai << "], \"" << sym::to_string(d.kernel) << "\", " << (d.squared ? "true" : "false")
-      << ", \"" << d.rule << "\", " << d.order << ", " << (compact ? "true" : "false") << ", "
-      << (compact ? "0.5" : "0.0") << ", \"" << cpp << "\", \"" << glsl << "\", " << smoothed << ", " << plain
-      << "},\n";
+    const std::string glsl =
+        d.rule == "moment" ? d.glsl_name() + "(" + std::to_string(d.order) + ", x, sigma)" : d.glsl_name();
+    r << "      {&kAtomics[" << ai << "], \"" << sym::to_string(d.kernel) << "\", "
+      << (d.squared ? "true" : "false") << ", \"" << d.rule << "\", " << d.order << ", "
+      << (compact ? "true" : "false") << ", " << (compact ? "0.5" : "0.0") << ", \"" << cpp << "\", \""
+      << glsl << "\", " << smoothed << ", " << plain << "},\n";
   }
   r << "  };\n  *count = static_cast<int>(sizeof(e) / sizeof(e[0]));\n  return e;\n}\n\n"
     << "}  // namespace registry\n}  // namespace bl\n";
@@ -199,9 +218,10 @@ std::string atomic_info_initializer(const sym::Atomic* a) {
   for (double v : breaks) b += (b.empty() ? "" : ", ") + dbl(v);
   for (double v : singular) s += (s.empty() ? "" : ", ") + dbl(v);
   std::ostringstream o;
-  o << "{\"" << a->name << "\", \"" << cls << "\", " << dbl(period) << ", " << breaks.size() << ", {" << b << "}, "
-    << singular.size() << ", {" << s << "}, " << dbl(a->domain_lo.to_double()) << ", " << dbl(a->domain_hi.to_double())
-    << ", " << dbl(a->range_lo.to_double()) << ", " << dbl(a->range_hi.to_double()) << "}";
+  o << "{\"" << a->name << "\", \"" << cls << "\", " << dbl(period) << ", " << breaks.size() << ", {" << b
+    << "}, " << singular.size() << ", {" << s << "}, " << dbl(a->domain_lo.to_double()) << ", "
+    << dbl(a->domain_hi.to_double()) << ", " << dbl(a->range_lo.to_double()) << ", "
+    << dbl(a->range_hi.to_double()) << "}";
   return o.str();
 }
 

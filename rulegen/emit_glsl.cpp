@@ -15,10 +15,12 @@ void emit_glsl(const sym::Catalog& cat, const std::vector<Derived>& ds, const st
     << "// Include after your #version line; valid as #version 450 and #version 320 es.\n\n"
     << "// ---- support (rulegen/templates/support.glsl) ----\n"
     << read_file(tdir + "/support.glsl") << "\n"
-    << read_file(tdir + "/emit_helpers.glsl") << "\n// ---- plain functions (the catalog's definitions) ----\n\n";
+    << read_file(tdir + "/emit_helpers.glsl")
+    << "\n// ---- plain functions (the catalog's definitions) ----\n\n";
   // bl_plain_<atomic>(x) = f(x): compiled shaders call these for nodes left unsmoothed.
   for (const auto& a : cat.atomics)
-    g << "float bl_" << plain_impl_name(a.name) << "(float x) {\n" << plain_body(a, ds, Lang::Glsl) << "}\n\n";
+    g << "float bl_" << plain_impl_name(a.name) << "(float x) {\n"
+      << plain_body(a, ds, Lang::Glsl) << "}\n\n";
   g << "// ---- entries ----\n\n";
   std::string current_moment;
   for (size_t i = 0; i < ds.size(); ++i) {
@@ -35,9 +37,20 @@ void emit_glsl(const sym::Catalog& cat, const std::vector<Derived>& ds, const st
       continue;
     }
     if (has_series(d))
-      g << "float " << d.glsl_name() << "_series(float x, float hh) {\n" << series_body(d, Lang::Glsl) << "}\n\n"
-        << "float " << d.glsl_name() << "_diff(float x, float hh) {\n" << diff_body(d, Lang::Glsl) << "}\n\n";
-    g << "float " << d.glsl_name() << "(float x, float sigma) {\n" << body(d, Lang::Glsl) << "}\n\n";
+      g << "float " << d.glsl_name() << "_series(float x, float hh) {\n"
+        << series_body(d, Lang::Glsl) << "}\n\n"
+        << "float " << d.glsl_name() << "_diff(float x, float hh) {\n"
+        << diff_body(d, Lang::Glsl) << "}\n\n";
+    const std::string clamp = range_clamp(d, Lang::Glsl);
+    if (clamp.empty()) {
+      g << "float " << d.glsl_name() << "(float x, float sigma) {\n" << body(d, Lang::Glsl) << "}\n\n";
+    } else {
+      g << "float " << d.glsl_name() << "_raw(float x, float sigma) {\n"
+        << body(d, Lang::Glsl) << "}\n\n"
+        << "float " << d.glsl_name() << "(float x, float sigma) {\n  float v = " << d.glsl_name()
+        << "_raw(x, sigma);\n"
+        << clamp << "}\n\n";
+    }
     if (has_first_moment(d))
       g << "float " << d.glsl_name() << "_u(float x, float sigma) {\n" << body_u(d, Lang::Glsl) << "}\n\n";
     if (has_half_line(d))

@@ -742,146 +742,302 @@ T plain_inv2(T x) {
 
 //   (exp(((-1/2)*(sigma)^(2)))*sin(x))
 template <class T>
-T gaussian_sin(T x, T sigma) {
+T gaussian_sin_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (exp(((T(-1)/T(2))*(sigma*sigma)))*sin(x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_sin(T x, T sigma) {
+  const T v = gaussian_sin_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (((-1/2)*cos((2*x))*exp(((-2)*(sigma)^(2)))) + (1/2))
 template <class T>
-T gaussian_sin_sq(T x, T sigma) {
+T gaussian_sin_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(-1)/T(2))*cos((T(2)*x))*exp(((T(-2))*(sigma*sigma)))) + (T(1)/T(2)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_sin_sq(T x, T sigma) {
+  const T v = gaussian_sin_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (sin(x)*sinc(((3)^((1/2))*sigma)))
 template <class T>
-T box_sin(T x, T sigma) {
+T box_sin_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (detail::sinc((sigma*sqrt(T(3))))*sin(x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_sin(T x, T sigma) {
+  const T v = box_sin_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (((-1/2)*cos((2*x))*sinc((2*(3)^((1/2))*sigma))) + (1/2))
 template <class T>
-T box_sin_sq(T x, T sigma) {
+T box_sin_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(-1)/T(2))*cos((T(2)*x))*detail::sinc((T(2)*sigma*sqrt(T(3))))) + (T(1)/T(2)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_sin_sq(T x, T sigma) {
+  const T v = box_sin_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   ((sinc(((1/2)*(6)^((1/2))*sigma)))^(2)*sin(x))
 template <class T>
-T tent_sin(T x, T sigma) {
+T tent_sin_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((detail::sinc(((T(1)/T(2))*sigma*sqrt(T(6))))*detail::sinc(((T(1)/T(2))*sigma*sqrt(T(6)))))*sin(x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_sin(T x, T sigma) {
+  const T v = tent_sin_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (((-1/2)*(sinc(((6)^((1/2))*sigma)))^(2)*cos((2*x))) + (1/2))
 template <class T>
-T tent_sin_sq(T x, T sigma) {
+T tent_sin_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(-1)/T(2))*(detail::sinc((sigma*sqrt(T(6))))*detail::sinc((sigma*sqrt(T(6)))))*cos((T(2)*x))) + (T(1)/T(2)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_sin_sq(T x, T sigma) {
+  const T v = tent_sin_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (cos(x)*exp(((-1/2)*(sigma)^(2))))
 template <class T>
-T gaussian_cos(T x, T sigma) {
+T gaussian_cos_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (cos(x)*exp(((T(-1)/T(2))*(sigma*sigma))));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_cos(T x, T sigma) {
+  const T v = gaussian_cos_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (((1/2)*cos((2*x))*exp(((-2)*(sigma)^(2)))) + (1/2))
 template <class T>
-T gaussian_cos_sq(T x, T sigma) {
+T gaussian_cos_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(1)/T(2))*cos((T(2)*x))*exp(((T(-2))*(sigma*sigma)))) + (T(1)/T(2)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_cos_sq(T x, T sigma) {
+  const T v = gaussian_cos_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (cos(x)*sinc(((3)^((1/2))*sigma)))
 template <class T>
-T box_cos(T x, T sigma) {
+T box_cos_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (cos(x)*detail::sinc((sigma*sqrt(T(3)))));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_cos(T x, T sigma) {
+  const T v = box_cos_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (((1/2)*cos((2*x))*sinc((2*(3)^((1/2))*sigma))) + (1/2))
 template <class T>
-T box_cos_sq(T x, T sigma) {
+T box_cos_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(1)/T(2))*cos((T(2)*x))*detail::sinc((T(2)*sigma*sqrt(T(3))))) + (T(1)/T(2)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_cos_sq(T x, T sigma) {
+  const T v = box_cos_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   ((sinc(((1/2)*(6)^((1/2))*sigma)))^(2)*cos(x))
 template <class T>
-T tent_cos(T x, T sigma) {
+T tent_cos_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((detail::sinc(((T(1)/T(2))*sigma*sqrt(T(6))))*detail::sinc(((T(1)/T(2))*sigma*sqrt(T(6)))))*cos(x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_cos(T x, T sigma) {
+  const T v = tent_cos_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (((1/2)*(sinc(((6)^((1/2))*sigma)))^(2)*cos((2*x))) + (1/2))
 template <class T>
-T tent_cos_sq(T x, T sigma) {
+T tent_cos_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(1)/T(2))*(detail::sinc((sigma*sqrt(T(6))))*detail::sinc((sigma*sqrt(T(6)))))*cos((T(2)*x))) + (T(1)/T(2)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_cos_sq(T x, T sigma) {
+  const T v = tent_cos_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   exp((((1/2)*(sigma)^(2)) + x))
 template <class T>
-T gaussian_exp(T x, T sigma) {
+T gaussian_exp_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return exp((((T(1)/T(2))*(sigma*sigma)) + x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_exp(T x, T sigma) {
+  const T v = gaussian_exp_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   exp(((2*(sigma)^(2)) + (2*x)))
 template <class T>
-T gaussian_exp_sq(T x, T sigma) {
+T gaussian_exp_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return exp(((T(2)*(sigma*sigma)) + (T(2)*x)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_exp_sq(T x, T sigma) {
+  const T v = gaussian_exp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   exp_sinhc(x, ((3)^((1/2))*sigma))
 template <class T>
-T box_exp(T x, T sigma) {
+T box_exp_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return detail::exp_sinhc(x, (sigma*sqrt(T(3))));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_exp(T x, T sigma) {
+  const T v = box_exp_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   exp_sinhc((2*x), (2*(3)^((1/2))*sigma))
 template <class T>
-T box_exp_sq(T x, T sigma) {
+T box_exp_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return detail::exp_sinhc((T(2)*x), (T(2)*sigma*sqrt(T(3))));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_exp_sq(T x, T sigma) {
+  const T v = box_exp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   exp_sinhc2(x, ((1/2)*(6)^((1/2))*sigma))
 template <class T>
-T tent_exp(T x, T sigma) {
+T tent_exp_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return detail::exp_sinhc2(x, ((T(1)/T(2))*sigma*sqrt(T(6))));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_exp(T x, T sigma) {
+  const T v = tent_exp_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   exp_sinhc2((2*x), ((6)^((1/2))*sigma))
 template <class T>
-T tent_exp_sq(T x, T sigma) {
+T tent_exp_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return detail::exp_sinhc2((T(2)*x), (sigma*sqrt(T(6))));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_exp_sq(T x, T sigma) {
+  const T v = tent_exp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   prod0(sinh(x), exp(((1/2)*(sigma)^(2))))
@@ -894,10 +1050,18 @@ T gaussian_sinh(T x, T sigma) {
 
 //   (((1/2)*cosh((2*x))*exp((2*(sigma)^(2)))) + (-1/2))
 template <class T>
-T gaussian_sinh_sq(T x, T sigma) {
+T gaussian_sinh_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(1)/T(2))*cosh((T(2)*x))*exp((T(2)*(sigma*sigma)))) + (T(-1)/T(2)));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_sinh_sq(T x, T sigma) {
+  const T v = gaussian_sinh_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   prod0(sinh(x), sinhc(((3)^((1/2))*sigma)))
@@ -910,10 +1074,18 @@ T box_sinh(T x, T sigma) {
 
 //   (((1/2)*cosh((2*x))*sinhc((2*(3)^((1/2))*sigma))) + (-1/2))
 template <class T>
-T box_sinh_sq(T x, T sigma) {
+T box_sinh_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(1)/T(2))*cosh((T(2)*x))*detail::sinhc((T(2)*sigma*sqrt(T(3))))) + (T(-1)/T(2)));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_sinh_sq(T x, T sigma) {
+  const T v = box_sinh_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   prod0(sinh(x), (sinhc(((1/2)*(6)^((1/2))*sigma)))^(2))
@@ -926,106 +1098,210 @@ T tent_sinh(T x, T sigma) {
 
 //   (((1/2)*(sinhc(((6)^((1/2))*sigma)))^(2)*cosh((2*x))) + (-1/2))
 template <class T>
-T tent_sinh_sq(T x, T sigma) {
+T tent_sinh_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(1)/T(2))*(detail::sinhc((sigma*sqrt(T(6))))*detail::sinhc((sigma*sqrt(T(6)))))*cosh((T(2)*x))) + (T(-1)/T(2)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_sinh_sq(T x, T sigma) {
+  const T v = tent_sinh_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (cosh(x)*exp(((1/2)*(sigma)^(2))))
 template <class T>
-T gaussian_cosh(T x, T sigma) {
+T gaussian_cosh_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (cosh(x)*exp(((T(1)/T(2))*(sigma*sigma))));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_cosh(T x, T sigma) {
+  const T v = gaussian_cosh_raw<T>(x, sigma);
+  if (v < T(1)) return T(1);
+  return v;
+}
+
 //   (((1/2)*cosh((2*x))*exp((2*(sigma)^(2)))) + (1/2))
 template <class T>
-T gaussian_cosh_sq(T x, T sigma) {
+T gaussian_cosh_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(1)/T(2))*cosh((T(2)*x))*exp((T(2)*(sigma*sigma)))) + (T(1)/T(2)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_cosh_sq(T x, T sigma) {
+  const T v = gaussian_cosh_sq_raw<T>(x, sigma);
+  if (v < T(1)) return T(1);
+  return v;
+}
+
 //   (cosh(x)*sinhc(((3)^((1/2))*sigma)))
 template <class T>
-T box_cosh(T x, T sigma) {
+T box_cosh_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (cosh(x)*detail::sinhc((sigma*sqrt(T(3)))));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_cosh(T x, T sigma) {
+  const T v = box_cosh_raw<T>(x, sigma);
+  if (v < T(1)) return T(1);
+  return v;
+}
+
 //   (((1/2)*cosh((2*x))*sinhc((2*(3)^((1/2))*sigma))) + (1/2))
 template <class T>
-T box_cosh_sq(T x, T sigma) {
+T box_cosh_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(1)/T(2))*cosh((T(2)*x))*detail::sinhc((T(2)*sigma*sqrt(T(3))))) + (T(1)/T(2)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_cosh_sq(T x, T sigma) {
+  const T v = box_cosh_sq_raw<T>(x, sigma);
+  if (v < T(1)) return T(1);
+  return v;
+}
+
 //   ((sinhc(((1/2)*(6)^((1/2))*sigma)))^(2)*cosh(x))
 template <class T>
-T tent_cosh(T x, T sigma) {
+T tent_cosh_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((detail::sinhc(((T(1)/T(2))*sigma*sqrt(T(6))))*detail::sinhc(((T(1)/T(2))*sigma*sqrt(T(6)))))*cosh(x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_cosh(T x, T sigma) {
+  const T v = tent_cosh_raw<T>(x, sigma);
+  if (v < T(1)) return T(1);
+  return v;
+}
+
 //   (((1/2)*(sinhc(((6)^((1/2))*sigma)))^(2)*cosh((2*x))) + (1/2))
 template <class T>
-T tent_cosh_sq(T x, T sigma) {
+T tent_cosh_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(1)/T(2))*(detail::sinhc((sigma*sqrt(T(6))))*detail::sinhc((sigma*sqrt(T(6)))))*cosh((T(2)*x))) + (T(1)/T(2)));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_cosh_sq(T x, T sigma) {
+  const T v = tent_cosh_sq_raw<T>(x, sigma);
+  if (v < T(1)) return T(1);
+  return v;
+}
+
 //   ((sigma)^(2) + (x)^(2))
 template <class T>
-T gaussian_pow2(T x, T sigma) {
+T gaussian_pow2_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow2(T x, T sigma) {
+  const T v = gaussian_pow2_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((3*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
 template <class T>
-T gaussian_pow2_sq(T x, T sigma) {
+T gaussian_pow2_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(3)*(sigma*sigma*sigma*sigma)) + (T(6)*(sigma*sigma)*(x*x)) + (x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow2_sq(T x, T sigma) {
+  const T v = gaussian_pow2_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((sigma)^(2) + (x)^(2))
 template <class T>
-T box_pow2(T x, T sigma) {
+T box_pow2_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow2(T x, T sigma) {
+  const T v = box_pow2_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((9/5)*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
 template <class T>
-T box_pow2_sq(T x, T sigma) {
+T box_pow2_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(9)/T(5))*(sigma*sigma*sigma*sigma)) + (T(6)*(sigma*sigma)*(x*x)) + (x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow2_sq(T x, T sigma) {
+  const T v = box_pow2_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((sigma)^(2) + (x)^(2))
 template <class T>
-T tent_pow2(T x, T sigma) {
+T tent_pow2_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow2(T x, T sigma) {
+  const T v = tent_pow2_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((12/5)*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
 template <class T>
-T tent_pow2_sq(T x, T sigma) {
+T tent_pow2_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(12)/T(5))*(sigma*sigma*sigma*sigma)) + (T(6)*(sigma*sigma)*(x*x)) + (x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow2_sq(T x, T sigma) {
+  const T v = tent_pow2_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((3*(sigma)^(2)*x) + (x)^(3))
@@ -1039,10 +1315,18 @@ T gaussian_pow3(T x, T sigma) {
 
 //   ((15*(sigma)^(2)*(x)^(4)) + (15*(sigma)^(6)) + (45*(sigma)^(4)*(x)^(2)) + (x)^(6))
 template <class T>
-T gaussian_pow3_sq(T x, T sigma) {
+T gaussian_pow3_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(15)*(sigma*sigma)*(x*x*x*x)) + (T(15)*(sigma*sigma*sigma*sigma*sigma*sigma)) + (T(45)*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow3_sq(T x, T sigma) {
+  const T v = gaussian_pow3_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((3*(sigma)^(2)*x) + (x)^(3))
@@ -1056,10 +1340,18 @@ T box_pow3(T x, T sigma) {
 
 //   (((27/7)*(sigma)^(6)) + (15*(sigma)^(2)*(x)^(4)) + (27*(sigma)^(4)*(x)^(2)) + (x)^(6))
 template <class T>
-T box_pow3_sq(T x, T sigma) {
+T box_pow3_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(27)/T(7))*(sigma*sigma*sigma*sigma*sigma*sigma)) + (T(15)*(sigma*sigma)*(x*x*x*x)) + (T(27)*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow3_sq(T x, T sigma) {
+  const T v = box_pow3_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((3*(sigma)^(2)*x) + (x)^(3))
@@ -1073,61 +1365,117 @@ T tent_pow3(T x, T sigma) {
 
 //   (((54/7)*(sigma)^(6)) + (15*(sigma)^(2)*(x)^(4)) + (36*(sigma)^(4)*(x)^(2)) + (x)^(6))
 template <class T>
-T tent_pow3_sq(T x, T sigma) {
+T tent_pow3_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(54)/T(7))*(sigma*sigma*sigma*sigma*sigma*sigma)) + (T(15)*(sigma*sigma)*(x*x*x*x)) + (T(36)*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow3_sq(T x, T sigma) {
+  const T v = tent_pow3_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((3*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
 template <class T>
-T gaussian_pow4(T x, T sigma) {
+T gaussian_pow4_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(3)*(sigma*sigma*sigma*sigma)) + (T(6)*(sigma*sigma)*(x*x)) + (x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow4(T x, T sigma) {
+  const T v = gaussian_pow4_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((105*(sigma)^(8)) + (210*(sigma)^(4)*(x)^(4)) + (28*(sigma)^(2)*(x)^(6)) +
 //   (420*(sigma)^(6)*(x)^(2)) + (x)^(8))
 template <class T>
-T gaussian_pow4_sq(T x, T sigma) {
+T gaussian_pow4_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(105)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(210)*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(28)*(sigma*sigma)*(x*x*x*x*x*x)) + (T(420)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow4_sq(T x, T sigma) {
+  const T v = gaussian_pow4_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((9/5)*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
 template <class T>
-T box_pow4(T x, T sigma) {
+T box_pow4_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(9)/T(5))*(sigma*sigma*sigma*sigma)) + (T(6)*(sigma*sigma)*(x*x)) + (x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow4(T x, T sigma) {
+  const T v = box_pow4_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((108*(sigma)^(6)*(x)^(2)) + (126*(sigma)^(4)*(x)^(4)) + (28*(sigma)^(2)*(x)^(6)) +
 //   (9*(sigma)^(8)) + (x)^(8))
 template <class T>
-T box_pow4_sq(T x, T sigma) {
+T box_pow4_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(108)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(126)*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(28)*(sigma*sigma)*(x*x*x*x*x*x)) + (T(9)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (x*x*x*x*x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow4_sq(T x, T sigma) {
+  const T v = box_pow4_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((12/5)*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
 template <class T>
-T tent_pow4(T x, T sigma) {
+T tent_pow4_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(12)/T(5))*(sigma*sigma*sigma*sigma)) + (T(6)*(sigma*sigma)*(x*x)) + (x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow4(T x, T sigma) {
+  const T v = tent_pow4_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((144/5)*(sigma)^(8)) + (168*(sigma)^(4)*(x)^(4)) + (216*(sigma)^(6)*(x)^(2)) +
 //   (28*(sigma)^(2)*(x)^(6)) + (x)^(8))
 template <class T>
-T tent_pow4_sq(T x, T sigma) {
+T tent_pow4_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(144)/T(5))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(168)*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(216)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(28)*(sigma*sigma)*(x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow4_sq(T x, T sigma) {
+  const T v = tent_pow4_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((10*(sigma)^(2)*(x)^(3)) + (15*(sigma)^(4)*x) + (x)^(5))
@@ -1142,10 +1490,18 @@ T gaussian_pow5(T x, T sigma) {
 //   ((3150*(sigma)^(6)*(x)^(4)) + (45*(sigma)^(2)*(x)^(8)) + (4725*(sigma)^(8)*(x)^(2)) +
 //   (630*(sigma)^(4)*(x)^(6)) + (945*(sigma)^(10)) + (x)^(10))
 template <class T>
-T gaussian_pow5_sq(T x, T sigma) {
+T gaussian_pow5_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(3150)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(45)*(sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(4725)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(630)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (T(945)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (x*x*x*x*x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow5_sq(T x, T sigma) {
+  const T v = gaussian_pow5_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((10*(sigma)^(2)*(x)^(3)) + (9*(sigma)^(4)*x) + (x)^(5))
@@ -1160,10 +1516,18 @@ T box_pow5(T x, T sigma) {
 //   (((243/11)*(sigma)^(10)) + (378*(sigma)^(4)*(x)^(6)) + (405*(sigma)^(8)*(x)^(2)) +
 //   (45*(sigma)^(2)*(x)^(8)) + (810*(sigma)^(6)*(x)^(4)) + (x)^(10))
 template <class T>
-T box_pow5_sq(T x, T sigma) {
+T box_pow5_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(243)/T(11))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(378)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (T(405)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(45)*(sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(810)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow5_sq(T x, T sigma) {
+  const T v = box_pow5_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((10*(sigma)^(2)*(x)^(3)) + (12*(sigma)^(4)*x) + (x)^(5))
@@ -1178,64 +1542,120 @@ T tent_pow5(T x, T sigma) {
 //   (((1296/11)*(sigma)^(10)) + (1296*(sigma)^(8)*(x)^(2)) + (1620*(sigma)^(6)*(x)^(4)) +
 //   (45*(sigma)^(2)*(x)^(8)) + (504*(sigma)^(4)*(x)^(6)) + (x)^(10))
 template <class T>
-T tent_pow5_sq(T x, T sigma) {
+T tent_pow5_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(1296)/T(11))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(1296)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(1620)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(45)*(sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(504)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow5_sq(T x, T sigma) {
+  const T v = tent_pow5_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((15*(sigma)^(2)*(x)^(4)) + (15*(sigma)^(6)) + (45*(sigma)^(4)*(x)^(2)) + (x)^(6))
 template <class T>
-T gaussian_pow6(T x, T sigma) {
+T gaussian_pow6_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(15)*(sigma*sigma)*(x*x*x*x)) + (T(15)*(sigma*sigma*sigma*sigma*sigma*sigma)) + (T(45)*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow6(T x, T sigma) {
+  const T v = gaussian_pow6_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((10395*(sigma)^(12)) + (13860*(sigma)^(6)*(x)^(6)) + (1485*(sigma)^(4)*(x)^(8)) +
 //   (51975*(sigma)^(8)*(x)^(4)) + (62370*(sigma)^(10)*(x)^(2)) + (66*(sigma)^(2)*(x)^(10)) +
 //   (x)^(12))
 template <class T>
-T gaussian_pow6_sq(T x, T sigma) {
+T gaussian_pow6_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(10395)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(13860)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (T(1485)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(51975)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(62370)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(66)*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow6_sq(T x, T sigma) {
+  const T v = gaussian_pow6_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((27/7)*(sigma)^(6)) + (15*(sigma)^(2)*(x)^(4)) + (27*(sigma)^(4)*(x)^(2)) + (x)^(6))
 template <class T>
-T box_pow6(T x, T sigma) {
+T box_pow6_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(27)/T(7))*(sigma*sigma*sigma*sigma*sigma*sigma)) + (T(15)*(sigma*sigma)*(x*x*x*x)) + (T(27)*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow6(T x, T sigma) {
+  const T v = box_pow6_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   (((729/13)*(sigma)^(12)) + (1458*(sigma)^(10)*(x)^(2)) + (3564*(sigma)^(6)*(x)^(6)) +
 //   (4455*(sigma)^(8)*(x)^(4)) + (66*(sigma)^(2)*(x)^(10)) + (891*(sigma)^(4)*(x)^(8)) +
 //   (x)^(12))
 template <class T>
-T box_pow6_sq(T x, T sigma) {
+T box_pow6_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(729)/T(13))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(1458)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(3564)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (T(4455)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(66)*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (T(891)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow6_sq(T x, T sigma) {
+  const T v = box_pow6_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((54/7)*(sigma)^(6)) + (15*(sigma)^(2)*(x)^(4)) + (36*(sigma)^(4)*(x)^(2)) + (x)^(6))
 template <class T>
-T tent_pow6(T x, T sigma) {
+T tent_pow6_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(54)/T(7))*(sigma*sigma*sigma*sigma*sigma*sigma)) + (T(15)*(sigma*sigma)*(x*x*x*x)) + (T(36)*(sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow6(T x, T sigma) {
+  const T v = tent_pow6_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   (((46656/91)*(sigma)^(12)) + (1188*(sigma)^(4)*(x)^(8)) + (14256*(sigma)^(8)*(x)^(4)) +
 //   (66*(sigma)^(2)*(x)^(10)) + (7128*(sigma)^(6)*(x)^(6)) + (7776*(sigma)^(10)*(x)^(2)) +
 //   (x)^(12))
 template <class T>
-T tent_pow6_sq(T x, T sigma) {
+T tent_pow6_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(46656)/T(91))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(1188)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(14256)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(66)*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (T(7128)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (T(7776)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow6_sq(T x, T sigma) {
+  const T v = tent_pow6_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((105*(sigma)^(4)*(x)^(3)) + (105*(sigma)^(6)*x) + (21*(sigma)^(2)*(x)^(5)) + (x)^(7))
@@ -1251,10 +1671,18 @@ T gaussian_pow7(T x, T sigma) {
 //   (45045*(sigma)^(6)*(x)^(8)) + (91*(sigma)^(2)*(x)^(12)) + (945945*(sigma)^(10)*(x)^(4)) +
 //   (945945*(sigma)^(12)*(x)^(2)) + (x)^(14))
 template <class T>
-T gaussian_pow7_sq(T x, T sigma) {
+T gaussian_pow7_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(135135)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(3003)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (T(315315)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (T(45045)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(91)*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (T(945945)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(945945)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow7_sq(T x, T sigma) {
+  const T v = gaussian_pow7_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((21*(sigma)^(2)*(x)^(5)) + (27*(sigma)^(6)*x) + (63*(sigma)^(4)*(x)^(3)) + (x)^(7))
@@ -1270,10 +1698,18 @@ T box_pow7(T x, T sigma) {
 //   (22113*(sigma)^(10)*(x)^(4)) + (27027*(sigma)^(8)*(x)^(6)) + (5103*(sigma)^(12)*(x)^(2)) +
 //   (91*(sigma)^(2)*(x)^(12)) + (x)^(14))
 template <class T>
-T box_pow7_sq(T x, T sigma) {
+T box_pow7_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(729)/T(5))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + ((T(9009)/T(5))*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (T(11583)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(22113)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(27027)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (T(5103)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(91)*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow7_sq(T x, T sigma) {
+  const T v = box_pow7_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((21*(sigma)^(2)*(x)^(5)) + (54*(sigma)^(6)*x) + (84*(sigma)^(4)*(x)^(3)) + (x)^(7))
@@ -1290,73 +1726,129 @@ T tent_pow7(T x, T sigma) {
 //   (23166*(sigma)^(6)*(x)^(8)) + (46656*(sigma)^(12)*(x)^(2)) + (91*(sigma)^(2)*(x)^(12)) +
 //   (x)^(14))
 template <class T>
-T tent_pow7_sq(T x, T sigma) {
+T tent_pow7_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(11664)/T(5))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + ((T(12012)/T(5))*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + ((T(432432)/T(5))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (T(117936)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(23166)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(46656)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(91)*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow7_sq(T x, T sigma) {
+  const T v = tent_pow7_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((105*(sigma)^(8)) + (210*(sigma)^(4)*(x)^(4)) + (28*(sigma)^(2)*(x)^(6)) +
 //   (420*(sigma)^(6)*(x)^(2)) + (x)^(8))
 template <class T>
-T gaussian_pow8(T x, T sigma) {
+T gaussian_pow8_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(105)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(210)*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(28)*(sigma*sigma)*(x*x*x*x*x*x)) + (T(420)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (x*x*x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow8(T x, T sigma) {
+  const T v = gaussian_pow8_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   ((120*(sigma)^(2)*(x)^(14)) + (120120*(sigma)^(6)*(x)^(10)) + (1351350*(sigma)^(8)*(x)^(8)) +
 //   (16216200*(sigma)^(14)*(x)^(2)) + (18918900*(sigma)^(12)*(x)^(4)) + (2027025*(sigma)^(16)) +
 //   (5460*(sigma)^(4)*(x)^(12)) + (7567560*(sigma)^(10)*(x)^(6)) + (x)^(16))
 template <class T>
-T gaussian_pow8_sq(T x, T sigma) {
+T gaussian_pow8_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(120)*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x*x*x)) + (T(120120)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (T(1351350)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(16216200)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(18918900)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(2027025)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(5460)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (T(7567560)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pow8_sq(T x, T sigma) {
+  const T v = gaussian_pow8_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((108*(sigma)^(6)*(x)^(2)) + (126*(sigma)^(4)*(x)^(4)) + (28*(sigma)^(2)*(x)^(6)) +
 //   (9*(sigma)^(8)) + (x)^(8))
 template <class T>
-T box_pow8(T x, T sigma) {
+T box_pow8_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(108)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(126)*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(28)*(sigma*sigma)*(x*x*x*x*x*x)) + (T(9)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (x*x*x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow8(T x, T sigma) {
+  const T v = box_pow8_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   (((6561/17)*(sigma)^(16)) + (102060*(sigma)^(12)*(x)^(4)) + (115830*(sigma)^(8)*(x)^(8)) +
 //   (120*(sigma)^(2)*(x)^(14)) + (17496*(sigma)^(14)*(x)^(2)) + (176904*(sigma)^(10)*(x)^(6)) +
 //   (30888*(sigma)^(6)*(x)^(10)) + (3276*(sigma)^(4)*(x)^(12)) + (x)^(16))
 template <class T>
-T box_pow8_sq(T x, T sigma) {
+T box_pow8_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(6561)/T(17))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(102060)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(115830)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(120)*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x*x*x)) + (T(17496)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(176904)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (T(30888)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (T(3276)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pow8_sq(T x, T sigma) {
+  const T v = box_pow8_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((144/5)*(sigma)^(8)) + (168*(sigma)^(4)*(x)^(4)) + (216*(sigma)^(6)*(x)^(2)) +
 //   (28*(sigma)^(2)*(x)^(6)) + (x)^(8))
 template <class T>
-T tent_pow8(T x, T sigma) {
+T tent_pow8_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(144)/T(5))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(168)*(sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(216)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(28)*(sigma*sigma)*(x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow8(T x, T sigma) {
+  const T v = tent_pow8_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   (((186624/17)*(sigma)^(16)) + (120*(sigma)^(2)*(x)^(14)) + (279936*(sigma)^(14)*(x)^(2)) +
 //   (370656*(sigma)^(8)*(x)^(8)) + (4368*(sigma)^(4)*(x)^(12)) + (61776*(sigma)^(6)*(x)^(10)) +
 //   (933120*(sigma)^(12)*(x)^(4)) + (943488*(sigma)^(10)*(x)^(6)) + (x)^(16))
 template <class T>
-T tent_pow8_sq(T x, T sigma) {
+T tent_pow8_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (((T(186624)/T(17))*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)) + (T(120)*(sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x*x*x)) + (T(279936)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x)) + (T(370656)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x)) + (T(4368)*(sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x*x*x)) + (T(61776)*(sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x*x*x*x*x)) + (T(933120)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x)) + (T(943488)*(sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma*sigma)*(x*x*x*x*x*x)) + (x*x*x*x*x*x*x*x*x*x*x*x*x*x*x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pow8_sq(T x, T sigma) {
+  const T v = tent_pow8_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((-2)*Phi((-(sigma)^((-1))*x))*x) + (2*phi((-(sigma)^((-1))*x))*sigma) + x) [Phi, phi:
 //   standard normal CDF and density]
 template <class T>
-T gaussian_abs(T x, T sigma) {
+T gaussian_abs_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1367,18 +1859,34 @@ T gaussian_abs(T x, T sigma) {
   return detail::gauss_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_abs(T x, T sigma) {
+  const T v = gaussian_abs_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((sigma)^(2) + (x)^(2))
 template <class T>
-T gaussian_abs_sq(T x, T sigma) {
+T gaussian_abs_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_abs_sq(T x, T sigma) {
+  const T v = gaussian_abs_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {((-1/2)*(t)^(2)) on [-inf, 0);
 //   ((1/2)*(t)^(2)) on [0, inf)}
 template <class T>
-T box_abs(T x, T sigma) {
+T box_abs_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1389,18 +1897,34 @@ T box_abs(T x, T sigma) {
   return detail::box_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_abs(T x, T sigma) {
+  const T v = box_abs_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((sigma)^(2) + (x)^(2))
 template <class T>
-T box_abs_sq(T x, T sigma) {
+T box_abs_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_abs_sq(T x, T sigma) {
+  const T v = box_abs_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {((-1/6)*(t)^(3)) on [-inf, 0);
 //   ((1/6)*(t)^(3)) on [0, inf)}
 template <class T>
-T tent_abs(T x, T sigma) {
+T tent_abs_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1411,17 +1935,33 @@ T tent_abs(T x, T sigma) {
   return detail::tent_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_abs(T x, T sigma) {
+  const T v = tent_abs_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   ((sigma)^(2) + (x)^(2))
 template <class T>
-T tent_abs_sq(T x, T sigma) {
+T tent_abs_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_abs_sq(T x, T sigma) {
+  const T v = tent_abs_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((-2)*Phi((-(sigma)^((-1))*x))) + 1) [Phi, phi: standard normal CDF and density]
 template <class T>
-T gaussian_sign(T x, T sigma) {
+T gaussian_sign_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1432,17 +1972,35 @@ T gaussian_sign(T x, T sigma) {
   return detail::gauss_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_sign(T x, T sigma) {
+  const T v = gaussian_sign_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   1
 template <class T>
-T gaussian_sign_sq(T x, T sigma) {
+T gaussian_sign_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return T(1);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_sign_sq(T x, T sigma) {
+  const T v = gaussian_sign_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {(-t) on [-inf, 0); t on [0, inf)}
 template <class T>
-T box_sign(T x, T sigma) {
+T box_sign_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1453,18 +2011,36 @@ T box_sign(T x, T sigma) {
   return detail::box_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_sign(T x, T sigma) {
+  const T v = box_sign_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   1
 template <class T>
-T box_sign_sq(T x, T sigma) {
+T box_sign_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return T(1);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_sign_sq(T x, T sigma) {
+  const T v = box_sign_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {((-1/2)*(t)^(2)) on [-inf, 0);
 //   ((1/2)*(t)^(2)) on [0, inf)}
 template <class T>
-T tent_sign(T x, T sigma) {
+T tent_sign_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1475,30 +2051,57 @@ T tent_sign(T x, T sigma) {
   return detail::tent_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_sign(T x, T sigma) {
+  const T v = tent_sign_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   1
 template <class T>
-T tent_sign_sq(T x, T sigma) {
+T tent_sign_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return T(1);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_sign_sq(T x, T sigma) {
+  const T v = tent_sign_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   ((-Phi((-(sigma)^((-1))*x))) + 1) [Phi, phi: standard normal CDF and density]
+template <class T>
+T gaussian_step_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::pw_eval(x, p);
+  return detail::gauss_pw(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T gaussian_step(T x, T sigma) {
-  BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  const T v = gaussian_step_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 //   ((-Phi((-(sigma)^((-1))*x))) + 1) [Phi, phi: standard normal CDF and density]
 template <class T>
-T gaussian_step_sq(T x, T sigma) {
+T gaussian_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1509,22 +2112,40 @@ T gaussian_step_sq(T x, T sigma) {
   return detail::gauss_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_step_sq(T x, T sigma) {
+  const T v = gaussian_step_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); t on [0, inf)}
+template <class T>
+T box_step_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::pw_eval(x, p);
+  return detail::box_pw(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T box_step(T x, T sigma) {
-  BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::box_pw(x, sigma, p);
+  const T v = box_step_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); t on [0, inf)}
 template <class T>
-T box_step_sq(T x, T sigma) {
+T box_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1535,10 +2156,19 @@ T box_step_sq(T x, T sigma) {
   return detail::box_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_step_sq(T x, T sigma) {
+  const T v = box_step_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0); ((1/2)*(t)^(2))
 //   on [0, inf)}
 template <class T>
-T tent_step(T x, T sigma) {
+T tent_step_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1549,10 +2179,19 @@ T tent_step(T x, T sigma) {
   return detail::tent_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_step(T x, T sigma) {
+  const T v = tent_step_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0); ((1/2)*(t)^(2))
 //   on [0, inf)}
 template <class T>
-T tent_step_sq(T x, T sigma) {
+T tent_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1561,13 +2200,22 @@ T tent_step_sq(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
   return detail::tent_pw(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_step_sq(T x, T sigma) {
+  const T v = tent_step_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 //   ((-Phi((-((-1) + x)*(sigma)^((-1))))) + (-Phi((-(sigma)^((-1))*x))*x) + (-phi((-((-1) +
 //   x)*(sigma)^((-1))))*sigma) + (Phi((-((-1) + x)*(sigma)^((-1))))*x) +
 //   (phi((-(sigma)^((-1))*x))*sigma) + 1) [Phi, phi: standard normal CDF and density]
 template <class T>
-T gaussian_saturate(T x, T sigma) {
+T gaussian_saturate_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1577,6 +2225,15 @@ T gaussian_saturate(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
   return detail::gauss_pw(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_saturate(T x, T sigma) {
+  const T v = gaussian_saturate_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 //   (((sigma)^(2)*Phi((-((-1) + x)*(sigma)^((-1))))) + ((x)^(2)*Phi((-((-1) +
@@ -1585,7 +2242,7 @@ T gaussian_saturate(T x, T sigma) {
 //   x)*(sigma)^((-1))))*sigma) + (-phi((-((-1) + x)*(sigma)^((-1))))*sigma*x) +
 //   (phi((-(sigma)^((-1))*x))*sigma*x) + 1) [Phi, phi: standard normal CDF and density]
 template <class T>
-T gaussian_saturate_sq(T x, T sigma) {
+T gaussian_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1597,10 +2254,19 @@ T gaussian_saturate_sq(T x, T sigma) {
   return detail::gauss_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_saturate_sq(T x, T sigma) {
+  const T v = gaussian_saturate_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); ((1/2)*(t)^(2)) on [0, 1);
 //   ((-1/2) + t) on [1, inf)}
 template <class T>
-T box_saturate(T x, T sigma) {
+T box_saturate_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1610,12 +2276,21 @@ T box_saturate(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
   return detail::box_pw(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_saturate(T x, T sigma) {
+  const T v = box_saturate_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); ((1/3)*(t)^(3)) on [0, 1);
 //   ((-2/3) + t) on [1, inf)}
 template <class T>
-T box_saturate_sq(T x, T sigma) {
+T box_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1627,10 +2302,19 @@ T box_saturate_sq(T x, T sigma) {
   return detail::box_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_saturate_sq(T x, T sigma) {
+  const T v = box_saturate_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0); ((1/6)*(t)^(3))
 //   on [0, 1); (((-1/2)*t) + ((1/2)*(t)^(2)) + (1/6)) on [1, inf)}
 template <class T>
-T tent_saturate(T x, T sigma) {
+T tent_saturate_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1642,10 +2326,19 @@ T tent_saturate(T x, T sigma) {
   return detail::tent_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_saturate(T x, T sigma) {
+  const T v = tent_saturate_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0); ((1/12)*(t)^(4))
 //   on [0, 1); (((-2/3)*t) + ((1/2)*(t)^(2)) + (1/4)) on [1, inf)}
 template <class T>
-T tent_saturate_sq(T x, T sigma) {
+T tent_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1655,6 +2348,15 @@ T tent_saturate_sq(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
   return detail::tent_pw(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_saturate_sq(T x, T sigma) {
+  const T v = tent_saturate_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 //   (((-2)*(x)^(2)*phi((-(sigma)^((-1))*x))*sigma) + ((-2)*(x)^(3)*Phi((-((-1) +
@@ -1668,7 +2370,7 @@ T tent_saturate_sq(T x, T sigma) {
 //   x)*(sigma)^((-1))))) + (6*(sigma)^(2)*Phi((-(sigma)^((-1))*x))*x) + 1) [Phi, phi: standard
 //   normal CDF and density]
 template <class T>
-T gaussian_smoothstep(T x, T sigma) {
+T gaussian_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1678,6 +2380,15 @@ T gaussian_smoothstep(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
   return detail::gauss_pw(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_smoothstep(T x, T sigma) {
+  const T v = gaussian_smoothstep_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 //   (((-108)*(sigma)^(3)*(x)^(2)*phi((-(sigma)^((-1))*x))) +
@@ -1709,7 +2420,7 @@ T gaussian_smoothstep(T x, T sigma) {
 //   (9*(x)^(3)*phi((-(sigma)^((-1))*x))*sigma) + (9*(x)^(4)*Phi((-((-1) + x)*(sigma)^((-1))))) +
 //   1) [Phi, phi: standard normal CDF and density]
 template <class T>
-T gaussian_smoothstep_sq(T x, T sigma) {
+T gaussian_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1721,10 +2432,19 @@ T gaussian_smoothstep_sq(T x, T sigma) {
   return detail::gauss_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_smoothstep_sq(T x, T sigma) {
+  const T v = gaussian_smoothstep_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); (((-1/2)*(t)^(4)) + (t)^(3))
 //   on [0, 1); ((-1/2) + t) on [1, inf)}
 template <class T>
-T box_smoothstep(T x, T sigma) {
+T box_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1736,10 +2456,19 @@ T box_smoothstep(T x, T sigma) {
   return detail::box_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_smoothstep(T x, T sigma) {
+  const T v = box_smoothstep_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); (((-2)*(t)^(6)) +
 //   ((4/7)*(t)^(7)) + ((9/5)*(t)^(5))) on [0, 1); ((-22/35) + t) on [1, inf)}
 template <class T>
-T box_smoothstep_sq(T x, T sigma) {
+T box_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1749,13 +2478,22 @@ T box_smoothstep_sq(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
   return detail::box_pw(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_smoothstep_sq(T x, T sigma) {
+  const T v = box_smoothstep_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0);
 //   (((-1/10)*(t)^(5)) + ((1/4)*(t)^(4))) on [0, 1); (((-1/2)*t) + ((1/2)*(t)^(2)) + (3/20)) on
 //   [1, inf)}
 template <class T>
-T tent_smoothstep(T x, T sigma) {
+T tent_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1767,11 +2505,20 @@ T tent_smoothstep(T x, T sigma) {
   return detail::tent_pw(x, sigma, p);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_smoothstep(T x, T sigma) {
+  const T v = tent_smoothstep_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0); (((-2/7)*(t)^(7))
 //   + ((1/14)*(t)^(8)) + ((3/10)*(t)^(6))) on [0, 1); (((-22/35)*t) + ((1/2)*(t)^(2)) + (3/14))
 //   on [1, inf)}
 template <class T>
-T tent_smoothstep_sq(T x, T sigma) {
+T tent_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1781,6 +2528,15 @@ T tent_smoothstep_sq(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
   return detail::tent_pw(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_smoothstep_sq(T x, T sigma) {
+  const T v = tent_smoothstep_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 //   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
@@ -1788,7 +2544,7 @@ T tent_smoothstep_sq(T x, T sigma) {
 //   image sum over periods of the Gaussian integral of the pieces {t on [0, 1)} [for small
 //   sigma/T]
 template <class T>
-T gaussian_fract(T x, T sigma) {
+T gaussian_fract_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1811,6 +2567,15 @@ T gaussian_fract(T x, T sigma) {
     return acc;
   }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_fract(T x, T sigma) {
+  const T v = gaussian_fract_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -1863,7 +2628,7 @@ T gaussian_fract_right(T x, T sigma) {
 //   form for large sigma/T]; image sum over periods of the Gaussian integral of the pieces
 //   {(t)^(2) on [0, 1)} [for small sigma/T]
 template <class T>
-T gaussian_fract_sq(T x, T sigma) {
+T gaussian_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
@@ -1888,11 +2653,20 @@ T gaussian_fract_sq(T x, T sigma) {
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_fract_sq(T x, T sigma) {
+  const T v = gaussian_fract_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/2)*(t)^(2)) on [0, 1)}, F_p2 =
 //   {((1/6)*(t)^(3)) on [0, 1)}
 template <class T>
-T box_fract(T x, T sigma) {
+T box_fract_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1904,6 +2678,15 @@ T box_fract(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   return detail::box_periodic(x, sigma, period, p, p1);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_fract(T x, T sigma) {
+  const T v = box_fract_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -1943,7 +2726,7 @@ T box_fract_right(T x, T sigma) {
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/3)*(t)^(3)) on [0, 1)}, F_p2 =
 //   {((1/12)*(t)^(4)) on [0, 1)}
 template <class T>
-T box_fract_sq(T x, T sigma) {
+T box_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
@@ -1957,11 +2740,20 @@ T box_fract_sq(T x, T sigma) {
   return detail::box_periodic(x, sigma, period, p, p1);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_fract_sq(T x, T sigma) {
+  const T v = box_fract_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
 //   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/2)*(t)^(2)) on [0,
 //   1)}, F_p2 = {((1/6)*(t)^(3)) on [0, 1)}
 template <class T>
-T tent_fract(T x, T sigma) {
+T tent_fract_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -1976,6 +2768,15 @@ T tent_fract(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_fract(T x, T sigma) {
+  const T v = tent_fract_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -2018,7 +2819,7 @@ T tent_fract_right(T x, T sigma) {
 //   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/3)*(t)^(3)) on [0,
 //   1)}, F_p2 = {((1/12)*(t)^(4)) on [0, 1)}
 template <class T>
-T tent_fract_sq(T x, T sigma) {
+T tent_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
@@ -2035,12 +2836,21 @@ T tent_fract_sq(T x, T sigma) {
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_fract_sq(T x, T sigma) {
+  const T v = tent_fract_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
 //   = (2*((-1) + pk)*(kf)^((-2))*(pi)^((-2))), b_k = 0 (pk = (-1)^k), T = 2 [Fourier form for
 //   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {t on [0, 1);
 //   ((-t) + 2) on [1, 2)} [for small sigma/T]
 template <class T>
-T gaussian_triangle(T x, T sigma) {
+T gaussian_triangle_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2065,6 +2875,15 @@ T gaussian_triangle(T x, T sigma) {
     return acc;
   }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_triangle(T x, T sigma) {
+  const T v = gaussian_triangle_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -2120,7 +2939,7 @@ T gaussian_triangle_right(T x, T sigma) {
 //   sigma/T]; image sum over periods of the Gaussian integral of the pieces {(t)^(2) on [0, 1);
 //   (((-4)*t) + (t)^(2) + 4) on [1, 2)} [for small sigma/T]
 template <class T>
-T gaussian_triangle_sq(T x, T sigma) {
+T gaussian_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
@@ -2147,12 +2966,21 @@ T gaussian_triangle_sq(T x, T sigma) {
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_triangle_sq(T x, T sigma) {
+  const T v = gaussian_triangle_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 2, F_p = {((1/2)*(t)^(2)) on [0, 1);
 //   (((-1/2)*(t)^(2)) + (-1) + (2*t)) on [1, 2)}, F_p2 = {((1/6)*(t)^(3)) on [0, 1);
 //   (((-1/6)*(t)^(3)) + (-t) + (1/3) + (t)^(2)) on [1, 2)}
 template <class T>
-T box_triangle(T x, T sigma) {
+T box_triangle_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2166,6 +2994,15 @@ T box_triangle(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   return detail::box_periodic(x, sigma, period, p, p1);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_triangle(T x, T sigma) {
+  const T v = box_triangle_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -2209,7 +3046,7 @@ T box_triangle_right(T x, T sigma) {
 //   (((-2)*(t)^(2)) + ((1/3)*(t)^(3)) + (-2) + (4*t)) on [1, 2)}, F_p2 = {((1/12)*(t)^(4)) on [0,
 //   1); (((-2)*t) + ((-2/3)*(t)^(3)) + ((1/12)*(t)^(4)) + (2*(t)^(2)) + (2/3)) on [1, 2)}
 template <class T>
-T box_triangle_sq(T x, T sigma) {
+T box_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
@@ -2225,12 +3062,21 @@ T box_triangle_sq(T x, T sigma) {
   return detail::box_periodic(x, sigma, period, p, p1);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_triangle_sq(T x, T sigma) {
+  const T v = box_triangle_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
 //   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 2, F_p = {((1/2)*(t)^(2)) on [0, 1);
 //   (((-1/2)*(t)^(2)) + (-1) + (2*t)) on [1, 2)}, F_p2 = {((1/6)*(t)^(3)) on [0, 1);
 //   (((-1/6)*(t)^(3)) + (-t) + (1/3) + (t)^(2)) on [1, 2)}
 template <class T>
-T tent_triangle(T x, T sigma) {
+T tent_triangle_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2248,6 +3094,15 @@ T tent_triangle(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_triangle(T x, T sigma) {
+  const T v = tent_triangle_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -2295,7 +3150,7 @@ T tent_triangle_right(T x, T sigma) {
 //   (((-2)*(t)^(2)) + ((1/3)*(t)^(3)) + (-2) + (4*t)) on [1, 2)}, F_p2 = {((1/12)*(t)^(4)) on [0,
 //   1); (((-2)*t) + ((-2/3)*(t)^(3)) + ((1/12)*(t)^(4)) + (2*(t)^(2)) + (2/3)) on [1, 2)}
 template <class T>
-T tent_triangle_sq(T x, T sigma) {
+T tent_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
@@ -2315,12 +3170,21 @@ T tent_triangle_sq(T x, T sigma) {
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_triangle_sq(T x, T sigma) {
+  const T v = tent_triangle_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
 //   = 0, b_k = (-((-1) + pk)*(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier form for
 //   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {1 on [0,
 //   (1/2)); 0 on [(1/2), 1)} [for small sigma/T]
 template <class T>
-T gaussian_square(T x, T sigma) {
+T gaussian_square_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2345,6 +3209,15 @@ T gaussian_square(T x, T sigma) {
     return acc;
   }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_square(T x, T sigma) {
+  const T v = gaussian_square_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -2400,7 +3273,7 @@ T gaussian_square_right(T x, T sigma) {
 //   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {1 on [0,
 //   (1/2)); 0 on [(1/2), 1)} [for small sigma/T]
 template <class T>
-T gaussian_square_sq(T x, T sigma) {
+T gaussian_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2427,11 +3300,20 @@ T gaussian_square_sq(T x, T sigma) {
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_square_sq(T x, T sigma) {
+  const T v = gaussian_square_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on [(1/2),
 //   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
 template <class T>
-T box_square(T x, T sigma) {
+T box_square_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2445,6 +3327,15 @@ T box_square(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   return detail::box_periodic(x, sigma, period, p, p1);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_square(T x, T sigma) {
+  const T v = box_square_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -2487,7 +3378,7 @@ T box_square_right(T x, T sigma) {
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on [(1/2),
 //   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
 template <class T>
-T box_square_sq(T x, T sigma) {
+T box_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2503,11 +3394,20 @@ T box_square_sq(T x, T sigma) {
   return detail::box_periodic(x, sigma, period, p, p1);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_square_sq(T x, T sigma) {
+  const T v = box_square_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
 //   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on
 //   [(1/2), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
 template <class T>
-T tent_square(T x, T sigma) {
+T tent_square_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2525,6 +3425,15 @@ T tent_square(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_square(T x, T sigma) {
+  const T v = tent_square_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -2571,7 +3480,7 @@ T tent_square_right(T x, T sigma) {
 //   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on
 //   [(1/2), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
 template <class T>
-T tent_square_sq(T x, T sigma) {
+T tent_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2591,6 +3500,15 @@ T tent_square_sq(T x, T sigma) {
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
 }
 
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_square_sq(T x, T sigma) {
+  const T v = tent_square_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   x + (-1) * fract~(x) [~: the same kernel's smoothed atomic]
 template <class T>
 T gaussian_floor(T x, T sigma) {
@@ -2602,10 +3520,18 @@ T gaussian_floor(T x, T sigma) {
 //   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(x) + (-2) * (x fract)~(x) [= x fract~(x) + E[U
 //   fract(x+U)]] [~: the same kernel's smoothed atomic]
 template <class T>
-T gaussian_floor_sq(T x, T sigma) {
+T gaussian_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * gaussian_fract_sq<T>(x, sigma) + (T(-2)) * (x * gaussian_fract<T>(x, sigma) + gaussian_fract_u<T>(x, sigma));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_floor_sq(T x, T sigma) {
+  const T v = gaussian_floor_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   x + (-1) * fract~(x) [~: the same kernel's smoothed atomic]
@@ -2619,10 +3545,18 @@ T box_floor(T x, T sigma) {
 //   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(x) + (-2) * (x fract)~(x) [= x fract~(x) + E[U
 //   fract(x+U)]] [~: the same kernel's smoothed atomic]
 template <class T>
-T box_floor_sq(T x, T sigma) {
+T box_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * box_fract_sq<T>(x, sigma) + (T(-2)) * (x * box_fract<T>(x, sigma) + box_fract_u<T>(x, sigma));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_floor_sq(T x, T sigma) {
+  const T v = box_floor_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   x + (-1) * fract~(x) [~: the same kernel's smoothed atomic]
@@ -2636,10 +3570,18 @@ T tent_floor(T x, T sigma) {
 //   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(x) + (-2) * (x fract)~(x) [= x fract~(x) + E[U
 //   fract(x+U)]] [~: the same kernel's smoothed atomic]
 template <class T>
-T tent_floor_sq(T x, T sigma) {
+T tent_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * tent_fract_sq<T>(x, sigma) + (T(-2)) * (x * tent_fract<T>(x, sigma) + tent_fract_u<T>(x, sigma));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_floor_sq(T x, T sigma) {
+  const T v = tent_floor_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   x + 1 * fract~(-x) [~: the same kernel's smoothed atomic]
@@ -2653,10 +3595,18 @@ T gaussian_ceil(T x, T sigma) {
 //   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(-x) + 2 * (x fract)~(-x) [= x fract~(-x) - E[U
 //   fract(-x+U)]] [~: the same kernel's smoothed atomic]
 template <class T>
-T gaussian_ceil_sq(T x, T sigma) {
+T gaussian_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * gaussian_fract_sq<T>(-x, sigma) + T(2) * (x * gaussian_fract<T>(-x, sigma) - gaussian_fract_u<T>(-x, sigma));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_ceil_sq(T x, T sigma) {
+  const T v = gaussian_ceil_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   x + 1 * fract~(-x) [~: the same kernel's smoothed atomic]
@@ -2670,10 +3620,18 @@ T box_ceil(T x, T sigma) {
 //   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(-x) + 2 * (x fract)~(-x) [= x fract~(-x) - E[U
 //   fract(-x+U)]] [~: the same kernel's smoothed atomic]
 template <class T>
-T box_ceil_sq(T x, T sigma) {
+T box_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * box_fract_sq<T>(-x, sigma) + T(2) * (x * box_fract<T>(-x, sigma) - box_fract_u<T>(-x, sigma));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_ceil_sq(T x, T sigma) {
+  const T v = box_ceil_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   x + 1 * fract~(-x) [~: the same kernel's smoothed atomic]
@@ -2687,10 +3645,18 @@ T tent_ceil(T x, T sigma) {
 //   ((sigma)^(2) + (x)^(2)) + 1 * (fract^2)~(-x) + 2 * (x fract)~(-x) [= x fract~(-x) - E[U
 //   fract(-x+U)]] [~: the same kernel's smoothed atomic]
 template <class T>
-T tent_ceil_sq(T x, T sigma) {
+T tent_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * tent_fract_sq<T>(-x, sigma) + T(2) * (x * tent_fract<T>(-x, sigma) - tent_fract_u<T>(-x, sigma));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_ceil_sq(T x, T sigma) {
+  const T v = tent_ceil_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   (1 + x) + (-1) * fract~(x) + (-1) * step~(x) [~: the same kernel's smoothed atomic]
@@ -2707,7 +3673,7 @@ T gaussian_trunc(T x, T sigma) {
 //   step)~(x) [pieces {0 on [-inf, 0); t on [0, inf)} = ((-Phi((-(sigma)^((-1))*x))*x) +
 //   (phi((-(sigma)^((-1))*x))*sigma) + x)] [~: the same kernel's smoothed atomic]
 template <class T>
-T gaussian_trunc_sq(T x, T sigma) {
+T gaussian_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2715,6 +3681,14 @@ T gaussian_trunc_sq(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + (T(-2)) * gaussian_fract<T>(x, sigma) + T(1) * gaussian_fract_sq<T>(x, sigma) + (T(-2)) * (x * gaussian_fract<T>(x, sigma) + gaussian_fract_u<T>(x, sigma)) + T(2) * (T(1) * gaussian_fract_right<T>(x, sigma)) + (T(-2)) * gaussian_step<T>(x, sigma) + T(1) * gaussian_step_sq<T>(x, sigma) + (T(-2)) * detail::gauss_pw(x, sigma, pt6);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_trunc_sq(T x, T sigma) {
+  const T v = gaussian_trunc_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   (1 + x) + (-1) * fract~(x) + (-1) * step~(x) [~: the same kernel's smoothed atomic]
@@ -2730,7 +3704,7 @@ T box_trunc(T x, T sigma) {
 //   0), fract_right(x) = fract(x) 1{x >= 0}] + (-2) * step~(x) + 1 * (step^2)~(x) + (-2) * (x
 //   step)~(x) [pieces {0 on [-inf, 0); t on [0, inf)}] [~: the same kernel's smoothed atomic]
 template <class T>
-T box_trunc_sq(T x, T sigma) {
+T box_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2738,6 +3712,14 @@ T box_trunc_sq(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + (T(-2)) * box_fract<T>(x, sigma) + T(1) * box_fract_sq<T>(x, sigma) + (T(-2)) * (x * box_fract<T>(x, sigma) + box_fract_u<T>(x, sigma)) + T(2) * (T(1) * box_fract_right<T>(x, sigma)) + (T(-2)) * box_step<T>(x, sigma) + T(1) * box_step_sq<T>(x, sigma) + (T(-2)) * detail::box_pw(x, sigma, pt6);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_trunc_sq(T x, T sigma) {
+  const T v = box_trunc_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 //   (1 + x) + (-1) * fract~(x) + (-1) * step~(x) [~: the same kernel's smoothed atomic]
@@ -2753,7 +3735,7 @@ T tent_trunc(T x, T sigma) {
 //   0), fract_right(x) = fract(x) 1{x >= 0}] + (-2) * step~(x) + 1 * (step^2)~(x) + (-2) * (x
 //   step)~(x) [pieces {0 on [-inf, 0); t on [0, inf)}] [~: the same kernel's smoothed atomic]
 template <class T>
-T tent_trunc_sq(T x, T sigma) {
+T tent_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2761,6 +3743,14 @@ T tent_trunc_sq(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + (T(-2)) * tent_fract<T>(x, sigma) + T(1) * tent_fract_sq<T>(x, sigma) + (T(-2)) * (x * tent_fract<T>(x, sigma) + tent_fract_u<T>(x, sigma)) + T(2) * (T(1) * tent_fract_right<T>(x, sigma)) + (T(-2)) * tent_step<T>(x, sigma) + T(1) * tent_step_sq<T>(x, sigma) + (T(-2)) * detail::tent_pw(x, sigma, pt6);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_trunc_sq(T x, T sigma) {
+  const T v = tent_trunc_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2824,11 +3814,11 @@ T box_tan_sq_diff(T x, T hh) {
 //   distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms) where the
 //   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T box_tan_sq(T x, T sigma) {
+T box_tan_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(box_tan_sq<double>(double(x), double(sigma)));
-  if (x < T(0.0)) return box_tan_sq<T>(-x, sigma);  // even
+  if (x < T(0.0)) return box_tan_sq_raw<T>(-x, sigma);  // even
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
@@ -2841,6 +3831,14 @@ T box_tan_sq(T x, T sigma) {
     if (r < T(1e-3)) return T(box_tan_sq_diff<long double>((long double)x, (long double)hh));
   }
   return box_tan_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_tan_sq(T x, T sigma) {
+  const T v = box_tan_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2906,11 +3904,11 @@ T tent_tan_sq_diff(T x, T hh) {
 //   Taylor series in hh (7 terms) where the difference cancels (hh <= scale/20 in double, 0.35
 //   scale in float)
 template <class T>
-T tent_tan_sq(T x, T sigma) {
+T tent_tan_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(tent_tan_sq<double>(double(x), double(sigma)));
-  if (x < T(0.0)) return tent_tan_sq<T>(-x, sigma);  // even
+  if (x < T(0.0)) return tent_tan_sq_raw<T>(-x, sigma);  // even
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
@@ -2923,6 +3921,14 @@ T tent_tan_sq(T x, T sigma) {
     if (r < T(1e-3)) return T(tent_tan_sq_diff<long double>((long double)x, (long double)hh));
   }
   return tent_tan_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_tan_sq(T x, T sigma) {
+  const T v = tent_tan_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2945,10 +3951,10 @@ T box_tanh_diff(T x, T hh) {
 //   (F(x+hh) - F(x-hh))/(2 hh), F = logcosh(x), hh = sqrt(3) sigma; Taylor series in hh (7 terms)
 //   where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T box_tanh(T x, T sigma) {
+T box_tanh_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x < T(0.0)) return -box_tanh<T>(-x, sigma);  // odd
+  if (x < T(0.0)) return -box_tanh_raw<T>(-x, sigma);  // odd
   const T hh = (sigma*sqrt(T(3)));
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(-1.0);
@@ -2957,6 +3963,15 @@ T box_tanh(T x, T sigma) {
     return T(box_tanh_series<W>(W(x), W(hh)));
   }
   return box_tanh_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_tanh(T x, T sigma) {
+  const T v = box_tanh_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -2979,10 +3994,10 @@ T box_tanh_sq_diff(T x, T hh) {
 //   (F(x+hh) - F(x-hh))/(2 hh), F = ((-tanh(x)) + x), hh = sqrt(3) sigma; Taylor series in hh (7
 //   terms) where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T box_tanh_sq(T x, T sigma) {
+T box_tanh_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x < T(0.0)) return box_tanh_sq<T>(-x, sigma);  // even
+  if (x < T(0.0)) return box_tanh_sq_raw<T>(-x, sigma);  // even
   const T hh = (sigma*sqrt(T(3)));
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(1.0);
@@ -2991,6 +4006,15 @@ T box_tanh_sq(T x, T sigma) {
     return T(box_tanh_sq_series<W>(W(x), W(hh)));
   }
   return box_tanh_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_tanh_sq(T x, T sigma) {
+  const T v = box_tanh_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3014,10 +4038,10 @@ T tent_tanh_diff(T x, T hh) {
 //   (-(pi)^(2)))*sgn(x)) + ((1/2)*abs(x)*x) + (-log(2)*x)), hh = sqrt(6) sigma; Taylor series in
 //   hh (7 terms) where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T tent_tanh(T x, T sigma) {
+T tent_tanh_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x < T(0.0)) return -tent_tanh<T>(-x, sigma);  // odd
+  if (x < T(0.0)) return -tent_tanh_raw<T>(-x, sigma);  // odd
   const T hh = (sigma*sqrt(T(6)));
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(-1.0);
@@ -3026,6 +4050,15 @@ T tent_tanh(T x, T sigma) {
     return T(tent_tanh_series<W>(W(x), W(hh)));
   }
   return tent_tanh_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_tanh(T x, T sigma) {
+  const T v = tent_tanh_raw<T>(x, sigma);
+  if (v < (T(-1))) return (T(-1));
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3049,10 +4082,10 @@ T tent_tanh_sq_diff(T x, T hh) {
 //   sigma; Taylor series in hh (7 terms) where the difference cancels (hh <= scale/20 in double,
 //   0.35 scale in float)
 template <class T>
-T tent_tanh_sq(T x, T sigma) {
+T tent_tanh_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x < T(0.0)) return tent_tanh_sq<T>(-x, sigma);  // even
+  if (x < T(0.0)) return tent_tanh_sq_raw<T>(-x, sigma);  // even
   const T hh = (sigma*sqrt(T(6)));
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(1.0);
@@ -3061,6 +4094,15 @@ T tent_tanh_sq(T x, T sigma) {
     return T(tent_tanh_sq_series<W>(W(x), W(hh)));
   }
   return tent_tanh_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_tanh_sq(T x, T sigma) {
+  const T v = tent_tanh_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3120,7 +4162,7 @@ T box_log_sq_diff(T x, T hh) {
 //   Taylor series in hh (7 terms) where the difference cancels (hh <= scale/20 in double, 0.35
 //   scale in float)
 template <class T>
-T box_log_sq(T x, T sigma) {
+T box_log_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(box_log_sq<double>(double(x), double(sigma)));
@@ -3132,6 +4174,14 @@ T box_log_sq(T x, T sigma) {
     return T(box_log_sq_series<W>(W(x), W(hh)));
   }
   return box_log_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_log_sq(T x, T sigma) {
+  const T v = box_log_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3192,7 +4242,7 @@ T tent_log_sq_diff(T x, T hh) {
 //   distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms) where the
 //   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T tent_log_sq(T x, T sigma) {
+T tent_log_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(tent_log_sq<double>(double(x), double(sigma)));
@@ -3204,6 +4254,14 @@ T tent_log_sq(T x, T sigma) {
     return T(tent_log_sq_series<W>(W(x), W(hh)));
   }
   return tent_log_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_log_sq(T x, T sigma) {
+  const T v = tent_log_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3226,7 +4284,7 @@ T box_sqrt_diff(T x, T hh) {
 //   distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms) where the
 //   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T box_sqrt(T x, T sigma) {
+T box_sqrt_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(box_sqrt<double>(double(x), double(sigma)));
@@ -3238,6 +4296,14 @@ T box_sqrt(T x, T sigma) {
     return T(box_sqrt_series<W>(W(x), W(hh)));
   }
   return box_sqrt_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_sqrt(T x, T sigma) {
+  const T v = box_sqrt_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3260,7 +4326,7 @@ T box_sqrt_sq_diff(T x, T hh) {
 //   distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms) where the
 //   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T box_sqrt_sq(T x, T sigma) {
+T box_sqrt_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(box_sqrt_sq<double>(double(x), double(sigma)));
@@ -3272,6 +4338,14 @@ T box_sqrt_sq(T x, T sigma) {
     return T(box_sqrt_sq_series<W>(W(x), W(hh)));
   }
   return box_sqrt_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_sqrt_sq(T x, T sigma) {
+  const T v = box_sqrt_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3294,7 +4368,7 @@ T tent_sqrt_diff(T x, T hh) {
 //   with r the distance to the nearest singularity (compact kernel); Taylor series in hh (7
 //   terms) where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T tent_sqrt(T x, T sigma) {
+T tent_sqrt_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(tent_sqrt<double>(double(x), double(sigma)));
@@ -3306,6 +4380,14 @@ T tent_sqrt(T x, T sigma) {
     return T(tent_sqrt_series<W>(W(x), W(hh)));
   }
   return tent_sqrt_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_sqrt(T x, T sigma) {
+  const T v = tent_sqrt_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3328,7 +4410,7 @@ T tent_sqrt_sq_diff(T x, T hh) {
 //   r the distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms)
 //   where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T tent_sqrt_sq(T x, T sigma) {
+T tent_sqrt_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(tent_sqrt_sq<double>(double(x), double(sigma)));
@@ -3340,6 +4422,14 @@ T tent_sqrt_sq(T x, T sigma) {
     return T(tent_sqrt_sq_series<W>(W(x), W(hh)));
   }
   return tent_sqrt_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_sqrt_sq(T x, T sigma) {
+  const T v = tent_sqrt_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3395,7 +4485,7 @@ T box_inv_sq_diff(T x, T hh) {
 //   distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms) where the
 //   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T box_inv_sq(T x, T sigma) {
+T box_inv_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(box_inv_sq<double>(double(x), double(sigma)));
@@ -3406,6 +4496,14 @@ T box_inv_sq(T x, T sigma) {
     return T(box_inv_sq_series<W>(W(x), W(hh)));
   }
   return box_inv_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_inv_sq(T x, T sigma) {
+  const T v = box_inv_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3461,7 +4559,7 @@ T tent_inv_sq_diff(T x, T hh) {
 //   r the distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms)
 //   where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T tent_inv_sq(T x, T sigma) {
+T tent_inv_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv_sq<double>(double(x), double(sigma)));
@@ -3472,6 +4570,14 @@ T tent_inv_sq(T x, T sigma) {
     return T(tent_inv_sq_series<W>(W(x), W(hh)));
   }
   return tent_inv_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_inv_sq(T x, T sigma) {
+  const T v = tent_inv_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3494,7 +4600,7 @@ T box_inv2_diff(T x, T hh) {
 //   distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms) where the
 //   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T box_inv2(T x, T sigma) {
+T box_inv2_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(box_inv2<double>(double(x), double(sigma)));
@@ -3505,6 +4611,14 @@ T box_inv2(T x, T sigma) {
     return T(box_inv2_series<W>(W(x), W(hh)));
   }
   return box_inv2_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_inv2(T x, T sigma) {
+  const T v = box_inv2_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3527,7 +4641,7 @@ T box_inv2_sq_diff(T x, T hh) {
 //   distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms) where the
 //   difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T box_inv2_sq(T x, T sigma) {
+T box_inv2_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(box_inv2_sq<double>(double(x), double(sigma)));
@@ -3538,6 +4652,14 @@ T box_inv2_sq(T x, T sigma) {
     return T(box_inv2_sq_series<W>(W(x), W(hh)));
   }
   return box_inv2_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_inv2_sq(T x, T sigma) {
+  const T v = box_inv2_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3560,7 +4682,7 @@ T tent_inv2_diff(T x, T hh) {
 //   r the distance to the nearest singularity (compact kernel); Taylor series in hh (7 terms)
 //   where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T tent_inv2(T x, T sigma) {
+T tent_inv2_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv2<double>(double(x), double(sigma)));
@@ -3571,6 +4693,14 @@ T tent_inv2(T x, T sigma) {
     return T(tent_inv2_series<W>(W(x), W(hh)));
   }
   return tent_inv2_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_inv2(T x, T sigma) {
+  const T v = tent_inv2_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3593,7 +4723,7 @@ T tent_inv2_sq_diff(T x, T hh) {
 //   with r the distance to the nearest singularity (compact kernel); Taylor series in hh (7
 //   terms) where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
 template <class T>
-T tent_inv2_sq(T x, T sigma) {
+T tent_inv2_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv2_sq<double>(double(x), double(sigma)));
@@ -3604,6 +4734,14 @@ T tent_inv2_sq(T x, T sigma) {
     return T(tent_inv2_sq_series<W>(W(x), W(hh)));
   }
   return tent_inv2_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_inv2_sq(T x, T sigma) {
+  const T v = tent_inv2_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
 }
 
 template <class T>

@@ -1030,11 +1030,12 @@ template <class T, int N>
 inline T u_periods(int kernel, T xr, T s, T R, T period, T m0, T m1, const UPeriodData<T, N>& g) {
   T sum = T(0);
   // Counted in integers: with a float m beyond 2^24, m += 1 would not move and the loop would never
-  // end (callers pass spans of at most a few periods; anything else is a caller bug).
+  // end. Box/tent pass spans of a few periods, the Gaussian image sum ~2 z sigma / period (its
+  // caller switches to the Fourier form long before 1e7).
   const T span = m1 - m0;
-  if (!(span >= T(0) && span < T(64))) return span < T(0) ? sum : std::numeric_limits<T>::quiet_NaN();
-  const int count = static_cast<int>(span) + 1;
-  for (int k = 0; k < count; ++k) {
+  if (!(span >= T(0) && span < T(1e7))) return span < T(0) ? sum : std::numeric_limits<T>::quiet_NaN();
+  const long count = static_cast<long>(span) + 1;
+  for (long k = 0; k < count; ++k) {
     const T m = m0 + T(k);
     const T shift = m * period;
     for (int i = 0; i < N; ++i) {

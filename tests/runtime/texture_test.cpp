@@ -248,3 +248,29 @@ TEST(TextureScene, BadTextureFilesAreNamed) {
 
 }  // namespace
 }  // namespace bl
+
+namespace bl {
+namespace {
+
+// Every pixel of a smoothed textured scene with parallax and lighting is finite (the tuner scores a
+// non-finite pixel as an infinite error).
+TEST(TextureNode, SmoothedBumpsSceneIsFinite) {
+  scene::Scene s = scene::load_scene(BL_SCENES_DIR "/textures/textured_tiles_bumps.json");
+  const ir::Graph g = shaders::trace(shaders::find_shader(s.shader), s.effects());
+  for (const char* rule : {"gaussian", "dorn", "box"}) {
+    const auto prog = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule(rule)));
+    for (const render::Frame& f : render::frames(s)) {
+      const Image img = render::render_smoothed(s, f, prog);
+      int bad = 0, first = -1;
+      for (std::size_t i = 0; i < img.pixels.size(); ++i)
+        if (!std::isfinite(img.pixels[i])) {
+          if (first < 0) first = static_cast<int>(i);
+          ++bad;
+        }
+      EXPECT_EQ(bad, 0) << rule << " view " << f.view << " first value " << first;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bl
