@@ -68,3 +68,16 @@ TEST(Derivatives, PublicNamesAndBadInput) {
 }
 
 }  // namespace
+
+// A renormalized Gaussian narrower than the spacing of doubles at its centre (a point mass at the
+// bound: centre 0.5 on [0, 0.5]) leaves the quadrature no node; expect() used to return 0/0. The
+// exact value is the point mass g(0.5).
+TEST(Rule1, PointMassAtABound) {
+  for (double s : {1e-20, 1e-17, 1e-16, 1e-15, 1e-14}) {
+    const bl::rule1::Params<double> p{0.5, s, 0};
+    const auto r =
+        bl::rule1::expect(bl::rule1::Kernel::gaussian, p, 0.0, 0.5, [](double u) { return std::sqrt(u); });
+    EXPECT_NEAR(r.mean, std::sqrt(0.5), 1e-12) << "sigma " << s;
+    EXPECT_NEAR(r.var, 0.0, 1e-20) << "sigma " << s;
+  }
+}

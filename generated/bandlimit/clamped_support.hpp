@@ -378,7 +378,8 @@ stat<T> expect(Kernel k, const Params<T>& p, T a, T b, G&& g) {
   const double reach = k == Kernel::gaussian ? std::sqrt(zm * zm + 80)
                                              : (k == Kernel::box ? std::sqrt(3.0) : std::sqrt(6.0));
   const double l = std::max(double(a), c - reach * s), r = std::min(double(b), c + reach * s);
-  if (!(l < r)) return {T(n), T(n)};
+  if (!(l <= r)) return {T(n), T(n)};
+  if (l == r) return {T(g(T(l))), T(0)};  // the support rounds to one point: a point mass
   auto density = [&](double u) {
     const double z = (u - c) / s;
     if (k == Kernel::gaussian) return std::exp(-0.5 * (z - zm) * (z + zm));
@@ -413,6 +414,9 @@ stat<T> expect(Kernel k, const Params<T>& p, T a, T b, G&& g) {
     s0 += ws[i];
     s1 += ws[i] * gs[i];
   }
+  // A support narrower than the spacing of doubles near it (a point mass at a bound: centre 0.5 on
+  // [0, 0.5], sigma 1e-16) leaves no node strictly inside: the renormalized kernel is that point.
+  if (!(s0 > 0)) return {T(g(T(0.5 * (l + r)))), T(0)};
   const double mean = s1 / s0;
   double s2 = 0;
   for (int i = 0; i < cnt; ++i) s2 += ws[i] * (gs[i] - mean) * (gs[i] - mean);

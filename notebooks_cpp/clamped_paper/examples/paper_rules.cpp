@@ -34,9 +34,9 @@ Stat rule1(const Fn& g, Stat x, double lo, double hi, int* steps) {
   const auto p = bl::rule1::renormalize(bl::rule1::Kernel::gaussian, x.mean, x.var, lo, hi);
   if (steps) *steps = std::max(*steps, p.steps);
   const Stat r = bl::rule1::expect(bl::rule1::Kernel::gaussian, p, lo, hi, g);
-  // bl::rule1::expect returns NaN when the renormalized Gaussian is narrower than about 1e-13
-  // relative to its centre (a point mass at a finite bound); below 1e-10 the point mass g(centre) is exact to
-  // ~1e-20.
+  // bl::rule1::expect used to return NaN when the renormalized Gaussian was narrower than about
+  // 1e-13 relative to its centre (a point mass at a finite bound); it now returns the point mass
+  // itself, so this guard no longer fires (the count the notebook prints should be 0).
   if (std::isnan(r.mean) && !std::isnan(p.center) && p.sigma <= 1e-10 * (1 + std::abs(p.center))) {
     ++g_point_mass;
     return {g(std::clamp(p.center, lo, hi)), 0};
