@@ -5,6 +5,7 @@
 
 #include "normalmap/lobe.hpp"
 #include "texture/pyramid.hpp"
+#include "texture/sample.hpp"
 
 namespace bl::normalmap {
 
@@ -56,9 +57,11 @@ std::array<double, 3> Shader::filtered(Technique t, const Sample& s, bool* multi
   const Material& m = scene_.material;
   const V3 l = scene_.light.dir, h = normalize(l + s.view);
   const float u = float(s.u), v = float(s.v);
-  const float lod = texture::footprint_lod(float(s.sigma_u), float(s.sigma_v), data_.width(), data_.height());
+  // The footprint's probes (anisotropic footprints: 4 along the long axis, as the colour lookups).
+  const texture::Probes pr =
+      texture::footprint_probes(u, v, float(s.sigma_u), float(s.sigma_v), data_.width(), data_.height());
   const texture::Pyramid& np = data_.normals;
-  const V3 N{np.trilinear(u, v, lod, 0), np.trilinear(u, v, lod, 1), np.trilinear(u, v, lod, 2)};
+  const V3 N{texture::read(np, pr, 0), texture::read(np, pr, 1), texture::read(np, pr, 2)};
   const double len = std::fmin(1.0, length(N));
   const V3 nhat = normalize(N);
   double spec = 0;
@@ -76,7 +79,7 @@ std::array<double, 3> Shader::filtered(Technique t, const Sample& s, bool* multi
     }
     case Technique::Lean: {
       float mom[5];
-      for (int c = 0; c < 5; ++c) mom[c] = data_.lean.trilinear(u, v, lod, c);
+      for (int c = 0; c < 5; ++c) mom[c] = texture::read(data_.lean, pr, c);
       const SlopeStats st = slope_stats(mom);
       if (m.model == Model::BlinnPhong)
         spec = m.ks * lean_blinn_phong(st, h.x, h.y, h.z, m.exponent);
@@ -98,10 +101,10 @@ std::array<double, 3> Shader::filtered(Technique t, const Sample& s, bool* multi
       const texture::Pyramid& lp = data_.lobes;
       double cells = 0;
       for (int c = 0; c < data_.grid.cells(); ++c) {
-        const double w = lp.trilinear(u, v, lod, 4 * c);
+        const double w = texture::read(lp, pr, 4 * c);
         if (w < 1e-6) continue;
-        const V3 Nc{lp.trilinear(u, v, lod, 4 * c + 1) / w, lp.trilinear(u, v, lod, 4 * c + 2) / w,
-                    lp.trilinear(u, v, lod, 4 * c + 3) / w};
+        const V3 Nc{texture::read(lp, pr, 4 * c + 1) / w, texture::read(lp, pr, 4 * c + 2) / w,
+                    texture::read(lp, pr, 4 * c + 3) / w};
         cells += w * spec_single(normalize(Nc), std::fmin(1.0, length(Nc)), h, s.view);
       }
       spec += t * cells;

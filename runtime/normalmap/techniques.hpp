@@ -6,8 +6,9 @@
 //   ours_multi  ours with the multi-lobe cells where the single lobe's sigma_theta exceeds the
 //               scene's threshold (each cell: its share times its own lobe's E[spec]), blended
 //               linearly from the single lobe at the threshold to the cells alone at twice it.
-// Filtered techniques read level lod = texture::footprint_lod(sigma_u, sigma_v) of their pyramid
-// (trilinear), and shade the diffuse term with the averaged normal (brdf.hpp).
+// Filtered techniques read their pyramids at texture::footprint_probes(sigma_u, sigma_v) (one
+// trilinear probe, or 4 along the long axis of an anisotropic footprint), and shade the diffuse term
+// with the averaged normal (brdf.hpp).
 #pragma once
 
 #include <array>

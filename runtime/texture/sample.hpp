@@ -28,29 +28,54 @@ inline float sample_plain(const Texture& t, float u, float v, int c) {
 // approximates with its own probe rule).
 inline constexpr float kMaxAnisotropy = 16.0f;
 
-inline bl::stat<float> sample_stat(const Texture& t, float u, float v, float su, float sv, int c) {
-  const int w = t.mean.width(), h = t.mean.height();
-  const float tu = su * float(w), tv = sv * float(h);  // sds in level-0 texels
+// Where to read a footprint: one probe (near-isotropic) or 4 along the long axis, all at one level.
+// Any pyramid of linear moments (means, mean squares, averaged normals, LEAN moments) is filtered
+// by the weighted sum of its trilinear reads at these probes.
+struct Probes {
+  int count = 1;
+  float lod = 0;
+  float u[4] = {}, v[4] = {}, w[4] = {1, 0, 0, 0};
+};
+
+inline Probes footprint_probes(float u, float v, float su, float sv, int width, int height) {
+  Probes p;
+  const float tu = su * float(width), tv = sv * float(height);  // sds in level-0 texels
   const float s_long = tu > tv ? tu : tv, s_short = tu > tv ? tv : tu;
-  float m = 0, q = 0;
   if (!(s_long > 2.0f * s_short)) {  // near-isotropic (and NaN): one probe at the larger sd
-    const float lod = lod_for_sd(s_long);
-    m = t.mean.trilinear(u, v, lod, c);
-    q = t.squares.trilinear(u, v, lod, c);
-  } else {
-    const float s_level = s_short > s_long / kMaxAnisotropy ? s_short : s_long / kMaxAnisotropy;
-    const float lod = lod_for_sd(s_level);
-    const float rest = std::sqrt(s_long * s_long - s_level * s_level);
-    // Probe offsets in texture coordinates along the long axis.
-    const float du = tu > tv ? rest / float(w) : 0.0f, dv = tu > tv ? 0.0f : rest / float(h);
-    const float node[2] = {0.741960677f, 2.33441422f}, weight[2] = {0.454124578f, 0.0458758548f};
-    for (int k = 0; k < 2; ++k)
-      for (float sign : {-1.0f, 1.0f}) {
-        const float pu = u + sign * node[k] * du, pv = v + sign * node[k] * dv;
-        m += weight[k] * t.mean.trilinear(pu, pv, lod, c);
-        q += weight[k] * t.squares.trilinear(pu, pv, lod, c);
-      }
+    p.lod = lod_for_sd(s_long);
+    p.u[0] = u;
+    p.v[0] = v;
+    return p;
   }
+  const float s_level = s_short > s_long / kMaxAnisotropy ? s_short : s_long / kMaxAnisotropy;
+  p.lod = lod_for_sd(s_level);
+  const float rest = std::sqrt(s_long * s_long - s_level * s_level);
+  // Probe offsets in texture coordinates along the long axis.
+  const float du = tu > tv ? rest / float(width) : 0.0f, dv = tu > tv ? 0.0f : rest / float(height);
+  const float node[2] = {0.741960677f, 2.33441422f}, weight[2] = {0.454124578f, 0.0458758548f};
+  p.count = 4;
+  int n = 0;
+  for (int k = 0; k < 2; ++k)
+    for (float sign : {-1.0f, 1.0f}) {
+      p.u[n] = u + sign * node[k] * du;
+      p.v[n] = v + sign * node[k] * dv;
+      p.w[n] = weight[k];
+      ++n;
+    }
+  return p;
+}
+
+// The footprint-filtered value of channel c of a pyramid of linear moments.
+inline float read(const Pyramid& pyr, const Probes& p, int c) {
+  if (p.count == 1) return pyr.trilinear(p.u[0], p.v[0], p.lod, c);
+  float sum = 0;
+  for (int k = 0; k < p.count; ++k) sum += p.w[k] * pyr.trilinear(p.u[k], p.v[k], p.lod, c);
+  return sum;
+}
+
+inline bl::stat<float> sample_stat(const Texture& t, float u, float v, float su, float sv, int c) {
+  const Probes p = footprint_probes(u, v, su, sv, t.mean.width(), t.mean.height());
+  const float m = read(t.mean, p, c), q = read(t.squares, p, c);
   const float var = q - m * m;
   return {m, var > 0.0f ? var : 0.0f};
 }
