@@ -230,6 +230,12 @@ GiNaC::ex cse_calls(const GiNaC::ex& e, std::map<std::string, std::pair<GiNaC::s
   return e.map(recurse);
 }
 
+// A non-periodic atomic whose only singularity is 0 (log, sqrt, inv, inv2): its compact series is
+// evaluated in t = hh/x (series_body), and GLSL takes that series at tiny x (body_antiderivative).
+bool singular_only_at_zero(const sym::Atomic& a) {
+  return !a.period && a.singular.size() == 1 && a.singular[0].is_zero();
+}
+
 std::string body_antiderivative(const Derived& d, const Syntax& s) {
   const sym::Atomic& a = *d.atomic;
   const symbol& x = sym::var_x();
@@ -295,7 +301,7 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   // GLSL has no wider type: below x ~ 1e-18 the difference quotient's (x +- hh)^2 and hh^2
   // underflow float (0/0), so a singularity-at-0 atomic takes the scaled series there too
   // (hh <= x/2, t^2 <= 1/4: the 7 terms leave < 1e-5 relative, inv2 box ~8e-5).
-  const bool tiny_series = !s.cpp() && !a.period && a.singular.size() == 1 && a.singular[0].is_zero();
+  const bool tiny_series = !s.cpp() && singular_only_at_zero(a);
   out += "  if (hh <= " + s.helper(s.cpp() ? "series_reach<T>" : "series_reach") + "() * " + rho +
          (tiny_series ? " || x < 1e-18" : "") + ") {\n";
   if (s.cpp())
@@ -435,7 +441,7 @@ std::string series_body(const Derived& d, Lang lang) {
   // keeps float in range: the unscaled coefficients overflow float near 0 (1/x^12 at x = 1e-4) and
   // their products with hh^12 underflow, giving inf * 0 = NaN in GLSL (which has no wider type).
   const sym::Atomic* a = d.atomic;
-  const bool scaled = a && !a->period && a->singular.size() == 1 && a->singular[0].is_zero();
+  const bool scaled = a && singular_only_at_zero(*a);
   const GiNaC::symbol& x = sym::var_x();
   for (std::size_t j = 0; j < d.series.size(); ++j) {
     const GiNaC::ex t =

@@ -107,9 +107,7 @@ void load_textures(Scene& s, const json& j, const std::string& origin) {
 std::vector<const texture::Texture*> Scene::texture_slots(const std::vector<std::string>& names) const {
   std::vector<const texture::Texture*> out;
   for (const auto& n : names) {
-    const texture::Texture* found = nullptr;
-    for (const auto& t : textures)
-      if (t->name == n) found = t.get();
+    const texture::Texture* found = texture::find(textures, n);
     if (!found) throw std::invalid_argument("scene " + name + ": no texture bound to slot '" + n + "'");
     out.push_back(found);
   }

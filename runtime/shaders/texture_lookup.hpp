@@ -13,9 +13,7 @@
 namespace bl::shaders {
 
 inline const texture::Texture& bound_texture(const texture::Bindings* textures, const char* slot) {
-  if (textures)
-    for (const auto& t : *textures)
-      if (t && t->name == slot) return *t;
+  if (const texture::Texture* t = textures ? texture::find(*textures, slot) : nullptr) return *t;
   throw std::invalid_argument(std::string("shader reads texture slot '") + slot +
                               "', which the scene does not bind");
 }

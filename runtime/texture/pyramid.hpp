@@ -80,10 +80,4 @@ inline float lod_for_sd(float s) {
   return 0.5f * std::log2(4.0f * s * s + 0.666666667f);
 }
 
-// The same for footprint sds (su, sv) in texture coordinates, by the larger one in texels.
-inline float footprint_lod(float su, float sv, int width, int height) {
-  const float s = std::max(su * float(width), sv * float(height));
-  return lod_for_sd(s);
-}
-
 }  // namespace bl::texture

@@ -13,7 +13,7 @@ namespace bl::texture {
 
 // Level-0 bilinear: what an unsmoothed shader reads.
 inline float sample_plain(const Texture& t, float u, float v, int c) {
-  return t.mean.bilinear(0, u, v, c);
+  return t.plain(u, v, c);
 }
 
 // Mean and variance over a Gaussian footprint with sds (su, sv) in texture coordinates: the mean

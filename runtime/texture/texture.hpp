@@ -47,4 +47,11 @@ Texture load_texture(const std::string& name, const std::string& file, int chann
 // The textures a shader binds, by slot (index = the slot number in the traced graph).
 using Bindings = std::vector<std::shared_ptr<const Texture>>;
 
+// The texture bound to slot `name`, or null: the one lookup by name (native shaders, scenes).
+inline const Texture* find(const Bindings& b, const std::string& name) {
+  for (const auto& t : b)
+    if (t && t->name == name) return t.get();
+  return nullptr;
+}
+
 }  // namespace bl::texture
