@@ -1,13 +1,14 @@
 #include "catalog.hpp"
 
-#include <nlohmann/json.hpp>
-
+#include <cmath>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
 #include <sstream>
 
+#include "catalog_checks.hpp"
 #include "functions.hpp"
 #include "monotone.hpp"
 
@@ -26,11 +27,16 @@ const symbol& var_y() {
 
 const char* to_string(AtomicClass c) {
   switch (c) {
-    case AtomicClass::Entire: return "entire";
-    case AtomicClass::Piecewise: return "piecewise";
-    case AtomicClass::Periodic: return "periodic";
-    case AtomicClass::Combination: return "combination";
-    case AtomicClass::Antiderivative: return "antiderivative";
+    case AtomicClass::Entire:
+      return "entire";
+    case AtomicClass::Piecewise:
+      return "piecewise";
+    case AtomicClass::Periodic:
+      return "periodic";
+    case AtomicClass::Combination:
+      return "combination";
+    case AtomicClass::Antiderivative:
+      return "antiderivative";
   }
   return "?";
 }
@@ -60,10 +66,60 @@ namespace {
 
 struct Ctx {
   std::string entry;
-  [[noreturn]] void fail(const std::string& field, const std::string& msg) const {
-    throw CatalogError("catalog entry '" + entry + "', field '" + field + "': " + msg);
+  mutable std::string field;  // the field being read (names the culprit of an unexpected failure)
+  [[noreturn]] void fail(const std::string& f, const std::string& msg) const {
+    throw CatalogError("catalog entry '" + entry + "', field '" + f + "': " + msg);
   }
 };
+
+// A JSON value's type in words, for messages.
+std::string type_of(const json& v) {
+  if (v.is_null()) return "null";
+  if (v.is_boolean()) return "a boolean";
+  if (v.is_number()) return "a number";
+  if (v.is_string()) return "a string";
+  if (v.is_array()) return "a list";
+  return "an object";
+}
+
+// The value as a real number (after evaluation), or a failure naming the field.
+numeric real_constant(const Ctx& c, const std::string& field, const ex& e, const std::string& text) {
+  ex v;
+  try {
+    v = e.evalf();
+  } catch (const std::exception& err) {
+    c.fail(field, "cannot evaluate " + text + ": " + err.what());
+  }
+  if (!is_a<numeric>(v)) c.fail(field, "not a constant: " + text);
+  const numeric n = ex_to<numeric>(v);
+  if (!n.is_real()) c.fail(field, "not a real number: " + text);
+  if (!std::isfinite(n.to_double())) c.fail(field, "too large for double precision: " + text);
+  return n;
+}
+
+std::string string_field(const Ctx& c, const json& j, const char* field) {
+  const json& v = j.at(field);
+  if (!v.is_string()) c.fail(field, "expected a string, got " + type_of(v) + " " + v.dump());
+  return v.get<std::string>();
+}
+
+// A list value; `what` describes its elements for the message.
+const json& list_field(const Ctx& c, const json& v, const std::string& field, const std::string& what) {
+  if (!v.is_array()) c.fail(field, "expected a list of " + what + ", got " + type_of(v) + " " + v.dump());
+  return v;
+}
+
+// An object value with exactly the keys `keys` (all required).
+void object_with(const Ctx& c, const json& v, const std::string& field, const std::set<std::string>& keys) {
+  std::string names;
+  for (const auto& k : keys) names += (names.empty() ? "" : ", ") + k;
+  if (!v.is_object())
+    c.fail(field, "expected an object with " + names + ", got " + type_of(v) + " " + v.dump());
+  for (const auto& k : keys)
+    if (!v.contains(k)) c.fail(field, "missing '" + k + "' in " + v.dump());
+  for (auto& [k, unused] : v.items())
+    if (!keys.count(k)) c.fail(field, "unknown key '" + k + "' (expected " + names + ")");
+}
 
 ex parse_value(const Ctx& c, const std::string& field, const json& v) {
   try {
@@ -77,7 +133,7 @@ ex parse_value(const Ctx& c, const std::string& field, const json& v) {
   } catch (const std::exception& e) {
     c.fail(field, std::string("cannot parse expression: ") + e.what());
   }
-  c.fail(field, "expected a number or an expression string, got " + v.dump());
+  c.fail(field, "expected a number or an expression string, got " + type_of(v) + " " + v.dump());
 }
 
 Bound parse_bound(const Ctx& c, const std::string& field, const json& v) {
@@ -88,13 +144,13 @@ Bound parse_bound(const Ctx& c, const std::string& field, const json& v) {
     b.inf = -1;
   } else {
     b.value = parse_value(c, field, v);
-    if (!is_a<numeric>(b.value.evalf())) c.fail(field, "bound is not a constant: " + v.dump());
+    real_constant(c, field, b.value, v.dump());
   }
   return b;
 }
 
 std::pair<Bound, Bound> parse_interval(const Ctx& c, const std::string& field, const json& v) {
-  if (!v.is_array() || v.size() != 2) c.fail(field, "expected [lo, hi], got " + v.dump());
+  if (!v.is_array() || v.size() != 2) c.fail(field, "expected [lo, hi], got " + type_of(v) + " " + v.dump());
   auto lo = parse_bound(c, field, v[0]);
   auto hi = parse_bound(c, field, v[1]);
   if (lo.inf == 1 || hi.inf == -1 || (lo.finite() && hi.finite() && !(lo.to_double() < hi.to_double())))
@@ -103,18 +159,25 @@ std::pair<Bound, Bound> parse_interval(const Ctx& c, const std::string& field, c
 }
 
 std::vector<ex> parse_points(const Ctx& c, const std::string& field, const json& v) {
-  if (!v.is_array()) c.fail(field, "expected a list of points, got " + v.dump());
   std::vector<ex> out;
-  for (const auto& p : v) out.push_back(parse_value(c, field, p));
+  for (const auto& p : list_field(c, v, field, "points")) {
+    out.push_back(parse_value(c, field, p));
+    real_constant(c, field, out.back(), p.dump());
+  }
   return out;
 }
 
 ex parse_fn(const Ctx& c, const std::string& field, const json& v) {
-  if (!v.is_string() && !v.is_number_integer()) c.fail(field, "expected an expression in x");
-  return parse_value(c, field, v);
+  if (!v.is_string() && !v.is_number_integer())
+    c.fail(field, "expected an expression in x, got " + type_of(v) + " " + v.dump());
+  const ex e = parse_value(c, field, v);
+  if (e.has(var_y())) c.fail(field, "uses y; an expression in x is expected");
+  return e;
 }
 
-bool same_value(const ex& a, const ex& b) { return (a - b).evalf().is_zero() || (a - b).expand().is_zero(); }
+bool same_value(const ex& a, const ex& b) {
+  return (a - b).evalf().is_zero() || (a - b).expand().is_zero();
+}
 
 // Jumps and kinks of polynomial pieces at their joints (and, for a periodic function, at the
 // joint of one period with the next), compared with what the entry declares.
@@ -152,7 +215,8 @@ void check_breaks(const Ctx& c, const Atomic& a) {
   if (sorted(jumps) != sorted(a.jumps))
     c.fail("jumps", "declares " + show(sorted(a.jumps)) + " but the pieces jump at " + show(sorted(jumps)));
   if (sorted(kinks) != sorted(a.kinks))
-    c.fail("kinks", "declares " + show(sorted(a.kinks)) + " but the pieces have kinks at " + show(sorted(kinks)));
+    c.fail("kinks",
+           "declares " + show(sorted(a.kinks)) + " but the pieces have kinks at " + show(sorted(kinks)));
 }
 
 void check_polynomial_pieces(const Ctx& c, Atomic& a) {
@@ -162,10 +226,19 @@ void check_polynomial_pieces(const Ctx& c, Atomic& a) {
     const ex f = a.pieces[i].f.expand();
     if (!f.is_polynomial(x)) c.fail("pieces", "piece " + std::to_string(i) + " is not a polynomial in x");
     if (f.degree(x) > (a.cls == AtomicClass::Periodic ? 2 : 3))
-      c.fail("pieces", "piece " + std::to_string(i) + " has too high a degree (max 3, periodic 2: its square and, for a period, its second integral must fit the runtime degree-7 pieces)");
+      c.fail("pieces", "piece " + std::to_string(i) +
+                           " has too high a degree (max 3, periodic 2: its square and, for a period, its "
+                           "second integral must fit the runtime degree-7 pieces)");
+    for (int k = 0; k <= f.degree(x); ++k)
+      if (!is_a<numeric>(f.coeff(x, k)) || !ex_to<numeric>(f.coeff(x, k)).is_rational())
+        c.fail("pieces", "piece " + std::to_string(i) + ": the coefficients must be rational numbers");
     a.pieces[i].f = f;
+    if (i > 0 && (!a.pieces[i - 1].hi.finite() || !a.pieces[i].lo.finite()))
+      c.fail("pieces", "piece " + std::to_string(i) +
+                           ": only the first piece may start at -inf and the last end at inf");
     if (i > 0 && !same_value(a.pieces[i - 1].hi.value, a.pieces[i].lo.value))
-      c.fail("pieces", "piece " + std::to_string(i) + " does not start where piece " + std::to_string(i - 1) + " ends");
+      c.fail("pieces",
+             "piece " + std::to_string(i) + " does not start where piece " + std::to_string(i - 1) + " ends");
   }
   if (a.cls == AtomicClass::Piecewise) {
     if (a.pieces.front().lo.inf != -1 || a.pieces.back().hi.inf != 1)
@@ -175,64 +248,35 @@ void check_polynomial_pieces(const Ctx& c, Atomic& a) {
       c.fail("pieces", "the pieces of one period must start at 0");
     if (!a.pieces.back().hi.finite() || !same_value(a.pieces.back().hi.value, *a.period))
       c.fail("period", "the pieces end at " + std::to_string(a.pieces.back().hi.to_double()) +
-                           " but the period is " + std::to_string(ex_to<numeric>(a.period->evalf()).to_double()));
+                           " but the period is " +
+                           std::to_string(ex_to<numeric>(a.period->evalf()).to_double()));
   }
   check_breaks(c, a);
 }
 
-// F' = f, checked at sample points in the domain away from singularities, at 40 digits.
-void check_antiderivative(const Ctx& c, const Atomic& a, const std::string& field, const ex& F, const ex& f) {
-  const symbol& x = var_x();
-  const ex dF = F.diff(x);
-  const double samples[] = {0.3, 0.7, 1.3, 2.9, 5.1, -0.4, -1.1, -2.3};
-  const int saved = Digits;
-  Digits = 40;
-  int used = 0;
-  for (double s : samples) {
-    if (a.domain_lo.finite() && s <= a.domain_lo.to_double()) continue;
-    if (a.domain_hi.finite() && s >= a.domain_hi.to_double()) continue;
-    const ex at = numeric(static_cast<long>(s * 10), 10);
-    const ex lhs = dF.subs(x == at).evalf(), rhs = f.subs(x == at).evalf();
-    if (!is_a<numeric>(lhs) || !is_a<numeric>(rhs)) continue;
-    const numeric dl = ex_to<numeric>(lhs), dr = ex_to<numeric>(rhs);
-    if (!dl.is_real() || !dr.is_real()) continue;
-    ++used;
-    if (abs(dl - dr) > numeric(1, 1000000000) * numeric(1, 1000000000) * (1 + abs(dr))) {
-      Digits = saved;
-      std::ostringstream s;
-      s << "d/dx of the given antiderivative differs from the integrand at x = " << at << ": "
-        << dl.to_double() << " vs " << dr.to_double();
-      c.fail(field, s.str());
-    }
-  }
-  Digits = saved;
-  if (used < 3) c.fail(field, "fewer than 3 sample points to check the antiderivative in the domain");
-}
-
 void require(const Ctx& c, const json& j, const char* field) {
   if (!j.contains(field)) c.fail(field, "missing");
+  c.field = field;
 }
 
-Atomic parse_atomic(const json& j, size_t index) {
-  Ctx c{j.contains("name") && j["name"].is_string() ? j["name"].get<std::string>()
-                                                      : "#" + std::to_string(index)};
-  if (!j.is_object()) c.fail("", "an entry must be a JSON object");
-  require(c, j, "name");
+Atomic parse_atomic_fields(const json& j, const Ctx& c) {
   Atomic a;
   a.name = c.entry;
-  if (!std::regex_match(a.name, std::regex("[a-z][a-z0-9_]*")))
-    c.fail("name", "must match [a-z][a-z0-9_]* (it becomes a C++ and GLSL identifier)");
+  c.field = "class";
   require(c, j, "class");
-  static const std::map<std::string, AtomicClass> classes = {
-      {"entire", AtomicClass::Entire},           {"piecewise", AtomicClass::Piecewise},
-      {"periodic", AtomicClass::Periodic},       {"combination", AtomicClass::Combination},
-      {"antiderivative", AtomicClass::Antiderivative}};
+  static const std::map<std::string, AtomicClass> classes = {{"entire", AtomicClass::Entire},
+                                                             {"piecewise", AtomicClass::Piecewise},
+                                                             {"periodic", AtomicClass::Periodic},
+                                                             {"combination", AtomicClass::Combination},
+                                                             {"antiderivative", AtomicClass::Antiderivative}};
   auto it = classes.find(j["class"].is_string() ? j["class"].get<std::string>() : "");
-  if (it == classes.end()) c.fail("class", "unknown class " + j["class"].dump());
+  if (it == classes.end())
+    c.fail("class", "unknown class " + j["class"].dump() +
+                        " (entire, piecewise, periodic, combination, antiderivative)");
   a.cls = it->second;
 
-  static const std::set<std::string> common = {"name", "class", "domain", "range", "comment",
-                                               "monotone", "jumps", "kinks"};
+  static const std::set<std::string> common = {"name",    "class",    "domain", "range",
+                                               "comment", "monotone", "jumps",  "kinks"};
   static const std::map<AtomicClass, std::set<std::string>> allowed = {
       {AtomicClass::Entire, {"f", "period"}},
       {AtomicClass::Piecewise, {"pieces"}},
@@ -249,29 +293,41 @@ Atomic parse_atomic(const json& j, size_t index) {
   require(c, j, "range");
   {
     const json& r = j["range"];
-    if (!r.is_array() || r.size() != 2) c.fail("range", "expected [lo, hi]");
+    if (!r.is_array() || r.size() != 2)
+      c.fail("range", "expected [lo, hi], got " + type_of(r) + " " + r.dump());
     a.range_lo = parse_bound(c, "range", r[0]);
     a.range_hi = parse_bound(c, "range", r[1]);
+    if (a.range_lo.inf == 1 || a.range_hi.inf == -1 || a.range_lo.to_double() > a.range_hi.to_double())
+      c.fail("range", "lo > hi in " + r.dump());
   }
-  if (j.contains("comment")) a.comment = j["comment"].get<std::string>();
+  if (j.contains("comment")) a.comment = string_field(c, j, "comment");
   if (j.contains("period")) {
+    c.field = "period";
     a.period = parse_value(c, "period", j["period"]);
-    const ex p = a.period->evalf();
-    if (!is_a<numeric>(p) || !(ex_to<numeric>(p) > 0)) c.fail("period", "must be a positive constant");
+    if (!(real_constant(c, "period", *a.period, j["period"].dump()) > 0))
+      c.fail("period", "must be a positive constant");
   }
   if (j.contains("jumps")) {
+    c.field = "jumps";
     if (j["jumps"] == json::array({"integers"}))
       a.jumps_at_integers = true;
     else
       a.jumps = parse_points(c, "jumps", j["jumps"]);
   }
-  if (j.contains("kinks")) a.kinks = parse_points(c, "kinks", j["kinks"]);
+  if (j.contains("kinks")) {
+    c.field = "kinks";
+    a.kinks = parse_points(c, "kinks", j["kinks"]);
+  }
   if (j.contains("monotone")) {
-    for (const auto& m : j["monotone"]) {
-      if (!m.contains("on") || !m.contains("inverse")) c.fail("monotone", "each piece needs 'on' and 'inverse'");
+    c.field = "monotone";
+    for (const auto& m : list_field(c, j["monotone"], "monotone", "{\"on\": [lo, hi], \"inverse\": g(y)}")) {
+      object_with(c, m, "monotone", {"on", "inverse"});
       Monotone mp;
       std::tie(mp.lo, mp.hi) = parse_interval(c, "monotone", m["on"]);
+      if (!m["inverse"].is_string() && !m["inverse"].is_number_integer())
+        c.fail("monotone", "expected an expression in y as 'inverse', got " + type_of(m["inverse"]));
       mp.inverse = parse_value(c, "monotone", m["inverse"]);
+      if (mp.inverse.has(var_x())) c.fail("monotone", "the inverse is an expression in y, not x");
       a.monotone.push_back(mp);
     }
   }
@@ -285,18 +341,21 @@ Atomic parse_atomic(const json& j, size_t index) {
     case AtomicClass::Periodic:
       if (a.cls == AtomicClass::Periodic) require(c, j, "period");
       require(c, j, "pieces");
-      for (const auto& p : j["pieces"]) {
-        if (!p.contains("on") || !p.contains("f")) c.fail("pieces", "each piece needs 'on' and 'f'");
+      for (const auto& p : list_field(c, j["pieces"], "pieces", "{\"on\": [lo, hi], \"f\": ...}")) {
+        object_with(c, p, "pieces", {"on", "f"});
         Piece pc;
         std::tie(pc.lo, pc.hi) = parse_interval(c, "pieces", p["on"]);
         pc.f = parse_fn(c, "pieces", p["f"]);
         a.pieces.push_back(pc);
       }
+      c.field = "pieces";
       check_polynomial_pieces(c, a);
+      c.field = "range";
+      check_range(a);
       break;
     case AtomicClass::Combination:
       require(c, j, "of");
-      a.of = j["of"].get<std::string>();
+      a.of = string_field(c, j, "of");
       break;
     case AtomicClass::Antiderivative: {
       for (const char* f : {"f", "F", "F_sq"}) require(c, j, f);
@@ -305,34 +364,86 @@ Atomic parse_atomic(const json& j, size_t index) {
       a.F_sq = parse_fn(c, "F_sq", j["F_sq"]);
       if (j.contains("F2")) a.F2 = parse_fn(c, "F2", j["F2"]);
       if (j.contains("F2_sq")) a.F2_sq = parse_fn(c, "F2_sq", j["F2_sq"]);
-      if (j.contains("singular")) a.singular = parse_points(c, "singular", j["singular"]);
-      if (j.contains("scale")) a.scale = parse_value(c, "scale", j["scale"]);
+      if (j.contains("singular")) {
+        c.field = "singular";
+        a.singular = parse_points(c, "singular", j["singular"]);
+      }
+      if (j.contains("scale")) {
+        c.field = "scale";
+        a.scale = parse_value(c, "scale", j["scale"]);
+        if (!(real_constant(c, "scale", *a.scale, j["scale"].dump()) > 0))
+          c.fail("scale", "must be a positive constant");
+      }
       if (j.contains("flat")) {
+        c.field = "flat";
         const json& fl = j["flat"];
-        if (!fl.contains("beyond") || !fl.contains("left") || !fl.contains("right"))
-          c.fail("flat", "needs beyond, left and right");
-        a.flat = Atomic::Flat{fl["beyond"].get<double>(), fl["left"].get<double>(), fl["right"].get<double>()};
+        object_with(c, fl, "flat", {"beyond", "left", "right"});
+        for (const char* k : {"beyond", "left", "right"})
+          if (!fl[k].is_number() || !std::isfinite(fl[k].get<double>()))
+            c.fail("flat", std::string("'") + k + "' must be a finite number, got " + type_of(fl[k]) + " " +
+                               fl[k].dump());
+        a.flat =
+            Atomic::Flat{fl["beyond"].get<double>(), fl["left"].get<double>(), fl["right"].get<double>()};
+        if (!(a.flat->beyond > 0)) c.fail("flat", "'beyond' must be positive");
       }
       if (j.contains("parity")) {
+        c.field = "parity";
         const std::string p = j["parity"].is_string() ? j["parity"].get<std::string>() : "";
-        if (p != "odd" && p != "even") c.fail("parity", "must be \"odd\" or \"even\"");
+        if (p != "odd" && p != "even")
+          c.fail("parity", "must be \"odd\" or \"even\", got " + j["parity"].dump());
         a.parity = p == "odd" ? -1 : 1;
         for (int k = 1; k <= 7; ++k) {  // f(-x) = parity f(x) at sample points, 30 digits
           const ex at = numeric(k * 3, 10);
           const ex diff = (a.f.subs(var_x() == -at) - a.parity * a.f.subs(var_x() == at)).evalf();
           if (!is_a<numeric>(diff) || abs(ex_to<numeric>(diff)) > numeric(1, 1000000000000))
-            c.fail("parity", "f(-x) != " + std::string(a.parity < 0 ? "-" : "") + "f(x) at x = " + std::to_string(k * 0.3));
+            c.fail("parity", "f(-x) != " + std::string(a.parity < 0 ? "-" : "") +
+                                 "f(x) at x = " + std::to_string(k * 0.3));
         }
       }
-      if (a.singular.empty() && !a.scale) c.fail("scale", "an atomic without singularities needs a scale (its Taylor radius)");
-      check_antiderivative(c, a, "F", a.F, a.f);
-      check_antiderivative(c, a, "F_sq", a.F_sq, pow(a.f, 2));
-      if (j.contains("F2")) check_antiderivative(c, a, "F2", a.F2, a.F);
-      if (j.contains("F2_sq")) check_antiderivative(c, a, "F2_sq", a.F2_sq, a.F_sq);
+      c.field = "scale";
+      if (a.singular.empty() && !a.scale)
+        c.fail("scale", "an atomic without singularities needs a scale (its Taylor radius)");
+      c.field = "f";
+      check_smooth(a);  // may rewrite abs in f (a.f) into a differentiable form
+      c.field = "flat";
+      check_flat(a);
+      struct Anti {
+        const char* field;
+        const ex* F;
+        ex f;
+      };
+      const Anti antis[] = {
+          {"F", &a.F, a.f}, {"F_sq", &a.F_sq, pow(a.f, 2)}, {"F2", &a.F2, a.F}, {"F2_sq", &a.F2_sq, a.F_sq}};
+      for (const Anti& an : antis) {
+        if (!j.contains(an.field)) continue;
+        c.field = an.field;
+        check_antiderivative(a, an.field, *an.F, an.f);
+        check_continuity(a, an.field, *an.F);
+      }
+      c.field = "range";
+      check_range(a);
       break;
     }
   }
   return a;
+}
+
+Atomic parse_atomic(const json& j, size_t index) {
+  const bool named = j.is_object() && j.contains("name") && j["name"].is_string();
+  Ctx c{named ? j["name"].get<std::string>() : "#" + std::to_string(index)};
+  if (!j.is_object()) c.fail("", "an entry must be a JSON object, got " + type_of(j) + " " + j.dump());
+  require(c, j, "name");
+  if (!named) c.fail("name", "expected a string, got " + type_of(j["name"]) + " " + j["name"].dump());
+  if (!std::regex_match(c.entry, std::regex("[a-z][a-z0-9_]*")))
+    c.fail("name", "must match [a-z][a-z0-9_]* (it becomes a C++ and GLSL identifier)");
+  try {
+    return parse_atomic_fields(j, c);
+  } catch (const CatalogError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // Safety net: what a check above did not anticipate still names the entry and the field.
+    c.fail(c.field, std::string("cannot be processed: ") + e.what());
+  }
 }
 
 }  // namespace
@@ -344,16 +455,33 @@ Catalog parse_catalog(const std::string& text, const std::string& origin) {
   } catch (const std::exception& e) {
     throw CatalogError(origin + ": not valid JSON: " + e.what());
   }
-  if (!j.contains("atomics") || !j["atomics"].is_array())
+  if (!j.is_object() || !j.contains("atomics") || !j["atomics"].is_array())
     throw CatalogError(origin + ": expected an object with an 'atomics' list");
+  for (auto& [k, v] : j.items()) {
+    if (k != "atomics" && k != "comment")
+      throw CatalogError(origin + ": unknown top-level field '" + k + "'");
+    if (k == "comment" && !v.is_string())
+      throw CatalogError(origin + ": top-level field 'comment': expected a string");
+  }
   Catalog cat;
   std::set<std::string> seen;
-  for (size_t i = 0; i < j["atomics"].size(); ++i) {
-    Atomic a = parse_atomic(j["atomics"][i], i);
-    check_monotone(a);  // Rule 2 inverts f on these pieces
-    if (!seen.insert(a.name).second)
-      throw CatalogError("catalog entry '" + a.name + "', field 'name': defined twice");
-    cat.atomics.push_back(std::move(a));
+  try {
+    for (size_t i = 0; i < j["atomics"].size(); ++i) {
+      Atomic a = parse_atomic(j["atomics"][i], i);
+      try {
+        check_monotone(a);  // Rule 2 inverts f on these pieces
+      } catch (const CatalogError&) {
+        throw;
+      } catch (const std::exception& e) {
+        throw CatalogError("catalog entry '" + a.name +
+                           "', field 'monotone': cannot be processed: " + e.what());
+      }
+      if (!seen.insert(a.name).second)
+        throw CatalogError("catalog entry '" + a.name + "', field 'name': defined twice");
+      cat.atomics.push_back(std::move(a));
+    }
+  } catch (const CatalogError& e) {
+    throw CatalogError(origin + ": " + e.what());  // the file, then the entry and the field
   }
   return cat;
 }
