@@ -57,9 +57,7 @@ std::vector<numeric> coefficients(const ex& poly) {
 }
 
 // t^n with t^0 = 1 also for t = 0 (GiNaC leaves 0^0 undefined).
-ex ipow(const ex& t, int n) {
-  return n == 0 ? ex(1) : pow(t, n);
-}
+ex ipow(const ex& t, int n) { return n == 0 ? ex(1) : pow(t, n); }
 
 ex from_coefficients(const std::vector<numeric>& c, const ex& t) {
   ex r = 0;
@@ -103,20 +101,16 @@ std::vector<PolyPiece> integrate_pieces(const std::vector<PolyPiece>& ps) {
   return out;
 }
 
-std::string text(const ex& e) {
-  return print(e, Lang::Text);
-}
+std::string text(const ex& e) { return print(e, Lang::Text); }
 
-std::string bound_text(const Bound& b) {
-  return b.inf ? (b.inf > 0 ? "inf" : "-inf") : text(b.value);
-}
+std::string bound_text(const Bound& b) { return b.inf ? (b.inf > 0 ? "inf" : "-inf") : text(b.value); }
 
 std::string pieces_text(const std::vector<PolyPiece>& ps, const std::string& var) {
   const symbol t(var);
   std::string s = "{";
   for (size_t i = 0; i < ps.size(); ++i)
-    s += (i ? "; " : "") + text(from_coefficients(ps[i].c, t)) + " on [" + bound_text(ps[i].lo) + ", " +
-         bound_text(ps[i].hi) + ")";
+    s += (i ? "; " : "") + text(from_coefficients(ps[i].c, t)) + " on [" + bound_text(ps[i].lo) +
+         ", " + bound_text(ps[i].hi) + ")";
   return s + "}";
 }
 
@@ -133,25 +127,16 @@ ex gaussian_closed_form(const std::vector<PolyPiece>& ps) {
     const int deg = q.degree(z);
     std::vector<ex> A(deg + 1), B(deg + 1);  // J_k = A_k Phi + B_k phi
     for (int k = 0; k <= deg; ++k) {
-      if (k == 0) {
-        A[0] = 1;
-        B[0] = 0;
-      } else if (k == 1) {
-        A[1] = 0;
-        B[1] = -1;
-      } else {
-        A[k] = (k - 1) * A[k - 2];
-        B[k] = -pow(z, k - 1) + (k - 1) * B[k - 2];
-      }
+      if (k == 0) { A[0] = 1; B[0] = 0; }
+      else if (k == 1) { A[1] = 0; B[1] = -1; }
+      else { A[k] = (k - 1) * A[k - 2]; B[k] = -pow(z, k - 1) + (k - 1) * B[k - 2]; }
     }
     auto J = [&](const Bound& b) -> ex {
       ex r = 0;
       for (int k = 0; k <= deg; ++k) {
         const ex d = q.coeff(z, k);
-        if (b.inf == 1)
-          r += d * A[k];  // Phi(inf) = 1, phi(inf) z^m = 0
-        else if (b.inf == -1)
-          continue;
+        if (b.inf == 1) r += d * A[k];  // Phi(inf) = 1, phi(inf) z^m = 0
+        else if (b.inf == -1) continue;
         else {
           const ex zb = (b.value - x) / sig;
           r += d * (A[k] * Phi(zb) + B[k].subs(z == zb) * phi(zb));
@@ -184,7 +169,8 @@ void derive_piecewise(const Atomic& a, Kernel k, bool sq, Derived& d) {
   }
   if (k == Kernel::Gaussian) {
     d.closed = gaussian_closed_form(d.pieces).expand();
-    d.formula = text(d.closed) + "  [Phi, phi: standard normal CDF and density]";
+    d.formula = text(d.closed) +
+                "  [Phi, phi: standard normal CDF and density]";
     return;
   }
   // Box/tent by repeated integration of the pieces (Heckbert).
@@ -199,8 +185,7 @@ void derive_piecewise(const Atomic& a, Kernel k, bool sq, Derived& d) {
 ex boundary_phase(const Atomic& a, const ex& t) {
   const ex r = (t / *a.period).normal();
   if (!is_a<numeric>(r) || !ex_to<numeric>(2 * ex_to<numeric>(r)).is_integer())
-    fail(a, "pieces",
-         "periodic piece boundaries must be multiples of half the period (for the Fourier form)");
+    fail(a, "pieces", "periodic piece boundaries must be multiples of half the period (for the Fourier form)");
   return ex_to<numeric>(r).is_integer() ? ex(1) : ex(var_pk());
 }
 
@@ -262,11 +247,10 @@ void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
   d.coef_bound = 4 * d.fmax;  // |a_k|, |b_k| <= (2/T) int |f| <= 2 max|f|
   if (k == Kernel::Gaussian && !sq) d.half_series = half_line_series(d.pieces, T);
   if (k != Kernel::Gaussian) {
-    d.formula =
-        std::string(k == Kernel::Box ? "(F(x+h) - F(x-h))/(2h)" : "(F2(x+w) - 2F2(x) + F2(x-w))/w^2") +
-        ", F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) + F_p2(T) q + "
-        "F_p2(x - qT), q = floor(x/T), T = " +
-        text(T) + ", F_p = " + pieces_text(d.P1, "t") + ", F_p2 = " + pieces_text(d.P2, "t");
+    d.formula = std::string(k == Kernel::Box ? "(F(x+h) - F(x-h))/(2h)" : "(F2(x+w) - 2F2(x) + F2(x-w))/w^2") +
+                ", F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) + F_p2(T) q + "
+                "F_p2(x - qT), q = floor(x/T), T = " + text(T) + ", F_p = " + pieces_text(d.P1, "t") +
+                ", F_p2 = " + pieces_text(d.P2, "t");
     return;
   }
   // Fourier coefficients: c_k = (1/T) int_0^T f e^{b t} dt, b = -2 pi i k / T, by parts:
@@ -292,13 +276,10 @@ void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
   d.a0 = (c0 / T).normal();
   d.ak = (2 * ck.real_part()).normal();
   d.bk = (-2 * ck.imag_part()).normal();
-  d.formula = text(d.a0) +
-              " + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), "
-              "a_k = " +
-              text(d.ak) + ", b_k = " + text(d.bk) + " (pk = (-1)^k), T = " + text(T) +
+  d.formula = text(d.a0) + " + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), "
+              "a_k = " + text(d.ak) + ", b_k = " + text(d.bk) + " (pk = (-1)^k), T = " + text(T) +
               " [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of "
-              "the pieces " +
-              pieces_text(d.pieces, "t") + " [for small sigma/T]";
+              "the pieces " + pieces_text(d.pieces, "t") + " [for small sigma/T]";
 }
 
 // A B with A periodic and B piecewise with constant pieces whose breaks are multiples of A's period:
@@ -364,8 +345,7 @@ void derive_combination(const Atomic& a, Kernel k, bool sq, const Catalog& cat, 
     } else {
       const Atomic* other = cat.find(name);
       if (!other) fail(a, "of", "unknown atomic '" + name + "'");
-      if (other->cls == AtomicClass::Combination)
-        fail(a, "of", "combinations of combinations are not supported");
+      if (other->cls == AtomicClass::Combination) fail(a, "of", "combinations of combinations are not supported");
       const std::string sym = "A_" + name + (m[2].length() ? "_neg" : "_pos");
       calls[sym] = {name, m[2].length() ? -1 : 1};
       rebuilt += m.prefix().str() + sym;
@@ -391,8 +371,7 @@ void derive_combination(const Atomic& a, Kernel k, bool sq, const Catalog& cat, 
     exmap at{{var_x(), sqrt(ex(2)) / 3}};
     for (auto& [n, sym] : syms) at[sym] = sqrt(ex(3)) / 5;
     const ex v = e.subs(at).evalf();
-    if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real())
-      fail(a, "of", "not a real linear identity in x and atomics");
+    if (!is_a<numeric>(v) || !ex_to<numeric>(v).is_real()) fail(a, "of", "not a real linear identity in x and atomics");
   }
   if (sq) e = pow(e, 2).expand();
   // Sort the monomials: polynomial part, c A(+-x), c x A(+-x) (A periodic), c A(+-x)^2.
@@ -481,8 +460,8 @@ void derive_combination(const Atomic& a, Kernel k, bool sq, const Catalog& cat, 
     } else if (t.squared)
       f += "(" + t.atomic + "^2)~(" + arg + ")";
     else if (t.xpow == 1)
-      f += "(x " + t.atomic + ")~(" + arg + ") [= x " + t.atomic + "~(" + arg + ")" +
-           (t.arg_sign < 0 ? " - " : " + ") + "E[U " + t.atomic + "(" + arg + "+U)]]";
+      f += "(x " + t.atomic + ")~(" + arg + ") [= x " + t.atomic + "~(" + arg + ")" + (t.arg_sign < 0 ? " - " : " + ") +
+           "E[U " + t.atomic + "(" + arg + "+U)]]";
     else
       f += t.atomic + "~(" + arg + ")";
   }
@@ -512,11 +491,8 @@ void derive_antiderivative(const Atomic& a, Kernel k, bool sq, Derived& d) {
   if (a.singular.empty())
     d.formula += ", hh = " + width;
   else
-    d.formula +=
-        ", hh = min(" + width + ", r/2) with r the distance to the nearest singularity (compact kernel)";
-  d.formula +=
-      "; Taylor series in hh (7 terms) where the difference cancels (hh <= scale/20 in double, 0.35 scale in "
-      "float)";
+    d.formula += ", hh = min(" + width + ", r/2) with r the distance to the nearest singularity (compact kernel)";
+  d.formula += "; Taylor series in hh (7 terms) where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)";
   (void)hh;
 }
 
@@ -545,12 +521,8 @@ std::vector<Derived> derive_all(const Catalog& cat, int max_moment, std::vector<
             d.formula = text(d.closed);
             break;
           }
-          case AtomicClass::Piecewise:
-            derive_piecewise(a, k, sq, d);
-            break;
-          case AtomicClass::Periodic:
-            derive_periodic(a, k, sq, d);
-            break;
+          case AtomicClass::Piecewise: derive_piecewise(a, k, sq, d); break;
+          case AtomicClass::Periodic: derive_periodic(a, k, sq, d); break;
           case AtomicClass::Combination:
             try {
               derive_combination(a, k, sq, cat, d);
