@@ -336,6 +336,8 @@ Atomic parse_atomic_fields(const json& j, const Ctx& c) {
     case AtomicClass::Entire:
       require(c, j, "f");
       a.f = parse_fn(c, "f", j["f"]);
+      c.field = "range";
+      check_range(a);
       break;
     case AtomicClass::Piecewise:
     case AtomicClass::Periodic:

@@ -389,7 +389,13 @@ void check_range(const Atomic& a) {
   }
   // Entire and antiderivative: f at the sample points and at the zeros of f' between them.
   const std::vector<numeric> pts = sample_points(a);
-  for (const numeric& t : pts)
+  std::vector<numeric> far = pts;  // and far out, where an unbounded f leaves a finite range
+  for (int e : {6, 12})
+    for (int side : {-1, 1}) {
+      const numeric t = side * constant(sqrt(ex(2))) * pow10(e);
+      if (in_domain(a, t)) far.push_back(t);
+    }
+  for (const numeric& t : far)
     if (const auto v = value_at(a.f, t)) check_value(a, {0, *v, "at x = " + show(t)});
   for (const numeric& t : sign_changes(a.f.diff(var_x()), pts))
     if (const auto v = value_at(a.f, t)) check_value(a, {0, *v, "at its critical point x = " + show(t)});

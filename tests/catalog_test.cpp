@@ -95,6 +95,67 @@ TEST(Catalog, OutsideTheDerivableClassIsRejected) {
                "flt", "range", "exact expressions");
 }
 
+TEST(Catalog, RangeMustContainEveryValue) {
+  // Polynomial pieces: the extremes are exact (critical point 3/4 of x(3 - 2x) on [0, 1] gives 9/8).
+  expect_error(wrap(R"J({"name": "hump", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "kinks": [0], "jumps": [1], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, 1], "f": "x*(3 - 2*x)"}, {"on": [1, "inf"], "f": "0"}]})J"),
+               "hump", "range", "critical point x = 0.75");
+  EXPECT_EQ(error_of(wrap(R"J({"name": "hump", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, "9/8"],
+    "kinks": [0], "jumps": [1], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, 1], "f": "x*(3 - 2*x)"}, {"on": [1, "inf"], "f": "0"}]})J")),
+            "");
+  expect_error(wrap(R"J({"name": "ramp", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1], "kinks": [0],
+    "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "x"}]})J"),
+               "ramp", "range", "+inf");
+  expect_error(wrap(R"J({"name": "sine", "class": "entire", "f": "sin(x)", "domain": ["-inf", "inf"], "range": [-1, "1/2"]})J"),
+               "sine", "range", "takes the value 0.99");
+  expect_error(wrap(R"J({"name": "sqr", "class": "antiderivative", "f": "sqrt(x)", "F": "2*x^(3/2)/3", "F_sq": "x^2/2",
+    "domain": [0, "inf"], "singular": [0], "range": [0, 100]})J"),
+               "sqr", "range");
+}
+
+TEST(Catalog, AbsOnlyAtASingularPointIsSmoothEnough) {
+  // |x| vanishes only at the declared singular point: accepted, and its derivatives print.
+  EXPECT_EQ(error_of(wrap(R"J({"name": "invabs", "class": "antiderivative", "f": "1/abs(x)", "F": "sgn(x)*log(abs(x))",
+    "F_sq": "-1/x", "domain": ["-inf", "inf"], "singular": [0], "range": [0, "inf"]})J")),
+            "");
+  // A pole that is not declared singular is not.
+  expect_error(wrap(R"J({"name": "shifted", "class": "antiderivative", "f": "1/(x - 1)", "F": "log(abs(x - 1))",
+    "F_sq": "-1/(x - 1)", "domain": ["-inf", "inf"], "singular": [0], "range": ["-inf", "inf"]})J"),
+               "shifted", "f", "not smooth at x = 1");
+}
+
+TEST(Catalog, MalformedValuesNameTheField) {
+  const std::string fract = R"J({"name": "fract", "class": "periodic", "period": 1, "domain": ["-inf", "inf"], "range": [0, 1], "jumps": [0], "pieces": [{"on": [0, 1], "f": "x"}]})J";
+  expect_error(wrap(R"J({"name": "e", "class": "entire", "f": true, "domain": ["-inf", "inf"], "range": [0, 1]})J"), "e", "f", "a boolean");
+  expect_error(wrap(R"J({"name": "e", "class": "entire", "f": "x", "domain": "everywhere", "range": [0, 1]})J"), "e", "domain");
+  expect_error(wrap(R"J({"name": "e", "class": "entire", "f": "x", "domain": ["-inf", "inf"], "range": [1, 0]})J"), "e", "range", "lo > hi");
+  expect_error(wrap(R"J({"name": "e", "class": "entire", "f": "x", "domain": ["-inf", "inf"], "range": ["sqrt(-1)", 1]})J"), "e", "range", "not a real number");
+  expect_error(wrap(R"J({"name": "e", "class": "entire", "f": "exp(x)", "period": "log(-1)", "domain": ["-inf", "inf"], "range": [0, "inf"]})J"), "e", "period");
+  expect_error(wrap(R"J({"name": "p", "class": "periodic", "period": 1, "domain": ["-inf", "inf"], "range": [0, 1], "jumps": [0], "pieces": {"on": [0, 1], "f": "x"}})J"), "p", "pieces", "expected a list");
+  expect_error(wrap(R"J({"name": "p", "class": "periodic", "period": 1, "domain": ["-inf", "inf"], "range": [0, 1], "jumps": [0], "pieces": [{"on": [0, 1], "f": "x", "g": 1}]})J"), "p", "pieces", "unknown key 'g'");
+  expect_error(wrap(R"J({"name": "p", "class": "periodic", "period": 1, "domain": ["-inf", "inf"], "range": [0, 1], "jumps": [0], "pieces": [{"on": [0, 1], "f": "Pi*x"}]})J"), "p", "pieces", "rational");
+  expect_error(wrap(R"J({"name": "p", "class": "periodic", "period": 1, "domain": ["-inf", "inf"], "range": [0, 1], "jumps": ["x"], "pieces": [{"on": [0, 1], "f": "x"}]})J"), "p", "jumps", "not a constant");
+  expect_error(wrap(R"J({"name": "p", "class": "periodic", "period": 1, "domain": ["-inf", "inf"], "range": [0, 1], "jumps": [0], "monotone": {"on": [0, 1]}, "pieces": [{"on": [0, 1], "f": "x"}]})J"), "p", "monotone", "expected a list");
+  expect_error(wrap(fract + R"J(, {"name": "flr", "class": "combination", "of": "x - log(-1)*fract(x)", "domain": ["-inf", "inf"], "range": ["-inf", "inf"]})J"), "flr", "of", "not a real");
+  expect_error(wrap(R"J({"name": 7, "class": "entire", "f": "x", "domain": ["-inf", "inf"], "range": ["-inf", "inf"]})J"), "#0", "name", "expected a string");
+  expect_error(wrap(R"J(["not", "an", "object"])J"), "#0", "");
+}
+
+TEST(Catalog, FlatMustHoldToMachinePrecision) {
+  expect_error(wrap(R"J({"name": "th", "class": "antiderivative", "f": "tanh(x)", "F": "logcosh(x)", "F_sq": "x - tanh(x)",
+    "domain": ["-inf", "inf"], "range": [-1, 1], "scale": "Pi/2", "flat": {"beyond": 5, "left": -1, "right": 1}})J"),
+               "th", "flat", "to within 2e-16");
+}
+
+TEST(Catalog, ErrorsNameTheFile) {
+  try {
+    bl::sym::parse_catalog(wrap(R"J({"name": "e", "class": "entire", "f": "x", "domain": [0], "range": [0, 1]})J"), "my.json");
+    FAIL() << "accepted";
+  } catch (const CatalogError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("my.json: catalog entry 'e', field 'domain'", 0), 0u) << e.what();
+  }
+}
+
 TEST(Catalog, NotJsonIsRejectedWithTheFileName) {
   try {
     bl::sym::parse_catalog("{\"atomics\": [", "broken.json");
