@@ -1,5 +1,5 @@
-// blverify: verifies every entry of the generated table against independent quadrature
-// references, and (--published) the published tables of Dorn et al. 2015 and Yang & Barnes 2018.
+// blverify: verifies every entry of a generated table (any tree `rulegen emit` wrote, without
+// rebuilding blverify: tree_loader.hpp) against independent quadrature references, and (--published) the published tables of Dorn et al. 2015 and Yang & Barnes 2018.
 //
 //   blverify [--generated DIR] [--record] [--only NAME]... [--threads N] [--report FILE.md] [--verbose]
 //   blverify --published [--report FILE.md]
@@ -25,6 +25,7 @@
 #include "rules_check.hpp"
 #include "registry_view.hpp"
 #include "report.hpp"
+#include "tree_loader.hpp"
 #include "verify_entry.hpp"
 
 #ifndef BLVERIFY_GENERATED_DIR
@@ -59,8 +60,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> only;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   app.add_option("--generated", generated,
-                 "generated/ directory holding manifest.json (read, and written by --record); the registry itself "
-                 "is compiled in");
+                 "generated tree to verify (any `rulegen emit` output): its manifest.json is read (and written by "
+                 "--record); its registry is the plugin CMake built when the tree is the one blverify was built "
+                 "against, else compiled at run time and cached by content hash (tree_loader.hpp)");
   app.add_flag("--record", record, "write each entry's verification record into manifest.json");
   app.add_option("--only", only, "verify only entries whose C++ name or atomic matches (repeatable)");
   app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1u, 256u));
@@ -71,6 +73,13 @@ int main(int argc, char** argv) {
   bool rules_only = false;
   app.add_flag("--rules-only", rules_only, "only the checks of the bivariate rules and Rule 2 (rules_check.hpp)");
   CLI11_PARSE(app, argc, argv);
+  {
+    std::string why;
+    if (!blv::load_tree(generated, &why) && !published) {  // --published also runs without a tree
+      std::fprintf(stderr, "blverify: %s\n", why.c_str());
+      return 2;
+    }
+  }
   if (rules_only) return blv::run_rule_checks(generated + "/manifest.json", record, 0);
 
   const auto t0 = std::chrono::steady_clock::now();

@@ -251,6 +251,15 @@ double kernel_density(const std::string& k, double c, double s, double u, double
   return std::max(0.0, 1 - std::abs(z) / std::sqrt(6.0));
 }
 
+// f of the atomic called name (the registry's plain function), or nullptr.
+double (*plain_of(const char* name))(double) {
+  int n = 0;
+  const auto* es = bl::registry::entries<double>(&n);
+  for (int i = 0; i < n; ++i)
+    if (es[i].atomic && es[i].plain && std::string(es[i].atomic->name) == name) return es[i].plain;
+  return nullptr;
+}
+
 // ---- Rule 1: (a) the renormalized kernel's truncated mean and variance by quadrature against the
 // target (variance clamped as documented), (b) the entry against quadrature of f under it.
 void verify_rule1(const bl::registry::RuleEntry<double>& e, const bl::registry::RuleEntry<float>& ef,
@@ -281,8 +290,8 @@ void verify_rule1(const bl::registry::RuleEntry<double>& e, const bl::registry::
       const double sd = std::sqrt(m.k2), mean = p.center + m.mean;
       r.upd_d(std::max(std::abs(mean - mu) / std::max(sd, 1e-5 * mu), rel(m.k2, target_v, 0)), mu, sigma);
       // (b) f under the kernel
-      double (*pl)(double) = &bl::detail::gen::plain_sqrt<double>;
-      if (std::string(a.name) == "log") pl = &bl::detail::gen::plain_log<double>;
+      double (*pl)(double) = plain_of(a.name);  // f from the registry (any tree, not only sqrt and log)
+      if (!pl) continue;
       const double s0 = integrate(w, l, rr, {p.center});
       const double fm = integrate([&](double u) { return pl(u) * w(u); }, l, rr, {p.center}) / s0;
       const double fv =
