@@ -1,6 +1,7 @@
 // bltune: the autoscheduler. Genetic search over per-node rule assignments for the Pareto front of
 // time (calibrated cost model) against error (RMS in display space vs the cached ground truth),
-// Nelder-Mead on sd factors, measured timings and reports against MSAA.
+// Nelder-Mead on sd factors, measured timings (the emitted C++ compiled with -O3 at run time; GLSL
+// with --glsl) and reports against MSAA.
 //
 //   bltune --calibrate                                   # print (and save) the cost model table
 //   bltune scenes/suite/checkerboard_none.json --out out/tune/checkerboard_none
@@ -246,7 +247,7 @@ int main(int argc, char** argv) {
 #endif
   CLI::App app{"bltune: genetic search for the time/error Pareto front of rule assignments"};
   std::string scene_path, suite_dir, rules_csv, only;
-  bool calibrate_only = false, no_glsl = false, no_rho = false;
+  bool calibrate_only = false, glsl = false, no_glsl = false, no_rho = false;
   SearchOptions& so = c.tune.search;
   app.add_option("scene", scene_path, "scene file (JSON)");
   app.add_option("--suite", suite_dir, "tune every *.json scene in this directory (sorted by name)");
@@ -270,7 +271,15 @@ int main(int argc, char** argv) {
   app.add_option("--max-points", c.fin.max_points, "front points refined and measured");
   app.add_option("--image", c.image, "override the scenes' image size (N x N pixels)");
   app.add_option("--truth-samples", c.truth_samples, "override the scenes' ground-truth samples per pixel");
-  app.add_flag("--no-glsl", no_glsl, "do not time the GLSL on the OpenGL driver");
+  app.add_flag("--glsl", glsl,
+               "also time the emitted GLSL on the OpenGL driver (opt-in: on llvmpipe compiling a large "
+               "shader takes minutes)");
+  app.add_flag("--no-glsl", no_glsl, "do not time the GLSL (the default; kept for scripts)");
+  app.add_option("--jit-cache", c.fin.jit.cache_dir,
+                 "compiled-shader cache directory (default build/jit_cache)");
+  app.add_option("--cxx", c.fin.jit.compiler,
+                 "C++ compiler for compiled-code timings (default $BL_JIT_CXX, $CXX, g++)");
+  app.add_option("--trials", c.fin.trials, "timing trials per measured variant (minimum kept)");
   app.add_flag("--no-rho-estimate", no_rho, "do not estimate constant rhos by sampling (B.1)");
   app.add_flag("--search-only", c.search_only, "write front_search.csv only (no refinement, timing, report)");
   try {
@@ -291,7 +300,7 @@ int main(int argc, char** argv) {
         std::printf("saved %s (machine '%s')\n", c.cost_model.c_str(), m.machine.c_str());
       }
     } else {
-      c.fin.glsl = !no_glsl;
+      c.fin.glsl = glsl && !no_glsl;
       c.tune.estimate_rho = !no_rho;
       if (!rules_csv.empty()) c.tune.rules = split(rules_csv, ',');
       if (!suite_dir.empty()) {

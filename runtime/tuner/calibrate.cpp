@@ -144,10 +144,13 @@ double time_inst(Program p, const Inst& inst, int prefix_stat, Inputs& in, const
 
 }  // namespace
 
-CostModel calibrate(const CalibrationOptions& opt,
-                    const std::function<void(const std::string&, double)>& progress) {
+namespace {
+
+CostModel calibrate_evaluator(const CalibrationOptions& opt,
+                              const std::function<void(const std::string&, double)>& progress) {
   CostModel m;
   m.machine = cpu_model();
+  m.method = "evaluator";
   Inputs in = make_inputs(opt.pixels);
   const Program base = base_program();
   const auto& fns = compiler::functions();
@@ -208,24 +211,42 @@ CostModel calibrate(const CalibrationOptions& opt,
   return m;
 }
 
+}  // namespace
+
+CostModel calibrate(const CalibrationOptions& opt,
+                    const std::function<void(const std::string&, double)>& progress) {
+  if (opt.method == CalibrationOptions::Method::Compiled) {
+    try {
+      return calibrate_compiled(opt, progress);
+    } catch (const jit::Error& e) {
+      std::fprintf(stderr,
+                   "calibrate: compiled-code calibration unavailable, timing the evaluator instead:\n%s\n",
+                   e.what());
+    }
+  }
+  return calibrate_evaluator(opt, progress);
+}
+
 CostModel load_or_calibrate(const std::string& path, bool verbose) {
   const std::string machine = cpu_model();
   try {
     CostModel m = load_cost_model(path, machine);
+    // A model timed on the evaluator is replaced once a compiler exists.
+    if (m.method != "compiled" && jit::compiler_available())
+      throw std::runtime_error("cost model " + path + " was calibrated on the evaluator");
     if (m.covers_all()) return m;
-    // Only what is missing (a new op or table function) is timed and merged: the entries already
-    // measured keep their values, so fronts computed before stay comparable.
+    // Only what is missing (a new op or table function) is merged from a fresh calibration: the
+    // entries already measured keep their values, so fronts computed before stay comparable.
     const std::string missing = m.missing();
     if (verbose)
       std::fprintf(stderr, "cost model %s lacks:%s; timing those\n", path.c_str(), missing.c_str());
+    const CostModel part = calibrate();
     std::istringstream names(missing);
     std::string name;
     while (names >> name) {
-      CalibrationOptions opt;
-      opt.only = name;
-      const CostModel part = calibrate(opt);
       if (part.op_ns.count(name)) m.op_ns[name] = part.op_ns.at(name);
       if (part.fn_ns.count(name)) m.fn_ns[name] = part.fn_ns.at(name);
+      if (part.fn_band_ns.count(name)) m.fn_band_ns[name] = part.fn_band_ns.at(name);
     }
     if (m.covers_all()) {
       save_cost_model(path, m);

@@ -60,17 +60,51 @@ const char* lop_name(LOp op) {
   return "?";
 }
 
-double CostModel::cost(const compiler::Program& p) const {
-  const auto& fns = compiler::functions();
+int CostModel::band_of(double ax) {
+  return ax < 10 ? 0 : ax < 1e3 ? 1 : ax < 1e5 ? 2 : 3;
+}
+
+double CostModel::band_magnitude(int band) {
+  static const double m[kBands] = {1, 1e2, 1e4, 1e6};
+  return m[band];
+}
+
+std::string CostModel::atomic_of(const std::string& cpp) {
+  for (const char* ns : {"bl::plain::", "bl::gaussian::", "bl::box::", "bl::tent::"}) {
+    const std::string prefix = ns;
+    if (cpp.rfind(prefix, 0) != 0) continue;
+    std::string a = cpp.substr(prefix.size());
+    // f^2 entries: "fract_sq" is fract's (an atomic named *_sq would have a plain entry of that name)
+    if (a.size() > 3 && a.compare(a.size() - 3, 3, "_sq") == 0 &&
+        compiler::find_function("bl::plain::" + a) < 0)
+      a.resize(a.size() - 3);
+    return a;
+  }
+  return "";
+}
+
+double CostModel::function_cost(int fn) const {
+  const std::string& name = compiler::functions().at(fn).cpp;
+  const auto it = fn_ns.find(name);
+  if (it == fn_ns.end())
+    throw std::out_of_range("cost model (" + machine + ") has no entry for function " + name +
+                            ": recalibrate (bltune --calibrate)");
+  const auto bands = fn_band_ns.find(name);
+  if (bands == fn_band_ns.end() || band_share.empty()) return it->second;
+  const auto share = band_share.find(atomic_of(name));
+  if (share == band_share.end()) return it->second;
   double ns = 0;
+  for (int b = 0; b < kBands && b < static_cast<int>(bands->second.size()); ++b)
+    ns += share->second[b] * bands->second[b];
+  return ns;
+}
+
+double CostModel::cost(const compiler::Program& p) const {
+  double ns = 0;
+  if (const auto px = op_ns.find("pixel"); px != op_ns.end()) ns += px->second;
   for (const compiler::Inst& in : p.insts) {
     if (in.op == LOp::Call || in.op == LOp::CallStat) {
-      const std::string& name = fns.at(in.fn).cpp;
-      const auto it = fn_ns.find(name);
-      if (it == fn_ns.end())
-        throw std::out_of_range("cost model (" + machine + ") has no entry for function " + name +
-                                ": recalibrate (bltune --calibrate)");
-      ns += it->second;
+      ns += function_cost(in.fn);
     } else {
       const auto it = op_ns.find(lop_name(in.op));
       if (it == op_ns.end())
@@ -128,8 +162,11 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
   const nlohmann::json& m = j["machines"][machine];
   CostModel cm;
   cm.machine = machine;
+  cm.method = m.value("method", std::string("evaluator"));  // files from before compiled calibration
   cm.op_ns = m.at("ops").get<std::map<std::string, double>>();
   cm.fn_ns = m.at("functions").get<std::map<std::string, double>>();
+  if (m.contains("function_bands"))
+    cm.fn_band_ns = m.at("function_bands").get<std::map<std::string, std::vector<double>>>();
   return cm;
 }
 
@@ -142,7 +179,8 @@ void save_cost_model(const std::string& path, const CostModel& m) {
       j = nlohmann::json::object();  // a corrupt file is replaced, not merged
     }
   }
-  j["machines"][m.machine] = {{"ops", m.op_ns}, {"functions", m.fn_ns}};
+  j["machines"][m.machine] = {
+      {"method", m.method}, {"ops", m.op_ns}, {"functions", m.fn_ns}, {"function_bands", m.fn_band_ns}};
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
   const std::string tmp = path + ".tmp";

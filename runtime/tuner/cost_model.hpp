@@ -1,21 +1,42 @@
 // The tuner's time axis: a per-instruction cost model. Every LOp and every generated function (by
-// its C++ name) has a cost in ns per pixel, calibrated on this machine by timing the batch evaluator
-// (calibrate.hpp). cost(Program) is the sum over instructions, so the search is deterministic given
-// the model file, and the file is keyed by machine (the CPU model string) so that one checkout can
-// carry calibrations of several machines.
+// its C++ name) has a cost in ns per pixel, calibrated on this machine by timing compiled code (the
+// emitted C++ built with -O3 by bl::jit; the batch evaluator only when no compiler exists), see
+// calibrate.hpp. Functions of an atomic's argument x (plain and kernel entries) also have a cost per
+// magnitude band of |x| (periodic and trigonometric atomics cost 10-30x more at |x| ~ 1e6 than at 1:
+// argument reduction); a scene's observed |x| distribution per atomic (band_share, from
+// magnitude_profile) weights them. cost(Program) is a sum over instructions plus a per-pixel
+// overhead, so the search is deterministic given the model file and the scene, and the file is keyed
+// by machine (the CPU model string) so that one checkout can carry calibrations of several machines.
 #pragma once
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "compiler/lir.hpp"
 
 namespace bl::tuner {
 
 struct CostModel {
+  // Magnitude bands of |x|: [0, 10), [10, 1e3), [1e3, 1e5), [1e5, inf); calibrated at 1, 1e2, 1e4, 1e6.
+  static constexpr int kBands = 4;
+  static int band_of(double abs_x);
+  static double band_magnitude(int band);  // 1, 1e2, 1e4, 1e6
+  // The atomic whose argument a function's first parameter is ("fract" for bl::plain::fract,
+  // bl::gaussian::fract and bl::box::fract_sq), "" for rule functions (their arguments are moments).
+  static std::string atomic_of(const std::string& cpp_name);
+
   std::string machine;                  // CPU model string the numbers were measured on
-  std::map<std::string, double> op_ns;  // LOp name -> ns per pixel
-  std::map<std::string, double> fn_ns;  // Function::cpp -> ns per pixel (the call's instruction)
+  std::string method = "compiled";      // "compiled" (-O3 via bl::jit) or "evaluator" (fallback)
+  std::map<std::string, double> op_ns;  // LOp name -> ns per pixel; "pixel": per-pixel overhead
+  std::map<std::string, double> fn_ns;  // Function::cpp -> ns per pixel at |x| ~ 1 (band 0)
+  std::map<std::string, std::vector<double>> fn_band_ns;  // Function::cpp -> ns per band (x functions)
+  // Not saved: the scene's share of calls per band, per atomic (rows sum to 1). Atomics without a
+  // row cost band 0.
+  std::map<std::string, std::vector<double>> band_share;
+
+  // ns per pixel of one call of function `fn` (index into compiler::functions()) under band_share.
+  double function_cost(int fn) const;
 
   // ns per pixel of p. Throws std::out_of_range naming an op or function the model lacks.
   double cost(const compiler::Program& p) const;
