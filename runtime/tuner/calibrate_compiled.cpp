@@ -128,16 +128,18 @@ struct Arrays {
   std::vector<const float*> ptr;
 };
 
-Arrays make_arrays(int n, double magnitude) {
+// sigma_scale > 0: the sds (arrays 1, 3) are sigma_scale x U[0.5, 1.5] instead of U[0.01, 0.5].
+Arrays make_arrays(int n, double magnitude, double sigma_scale = 0) {
   Arrays in;
   std::mt19937_64 rng(12345);
-  std::uniform_real_distribution<float> x(0.05f, 3.0f), s(0.01f, 0.5f), small(0.0f, 0.3f);
+  std::uniform_real_distribution<float> x(0.05f, 3.0f), s(0.01f, 0.5f), small(0.0f, 0.3f), half(0.5f, 1.5f);
+  auto sd = [&] { return sigma_scale > 0 ? static_cast<float>(sigma_scale * half(rng)) : s(rng); };
   in.v.assign(kArrays, std::vector<float>(n));
   for (int i = 0; i < n; ++i) {
     in.v[0][i] = static_cast<float>(x(rng) * magnitude);
-    in.v[1][i] = s(rng);
+    in.v[1][i] = sd();
     in.v[2][i] = x(rng);
-    in.v[3][i] = s(rng);
+    in.v[3][i] = sd();
     in.v[4][i] = small(rng);
     in.v[5][i] = in.v[1][i] * in.v[1][i];
   }
@@ -181,10 +183,15 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
   reinterpret_cast<void (*)(const void*)>(lib->symbol("bl_set_texture"))(&kernel_texture());
   auto kernel = [&](const std::string& sym) { return reinterpret_cast<Kernel>(lib->symbol(sym)); };
   std::vector<float> out(opt.pixels);
-  std::vector<Arrays> bands;
-  for (int b = 0; b < CostModel::kBands; ++b)
+  std::vector<Arrays> bands, joint;
+  for (int b = 0; b < CostModel::kBands; ++b) {
     bands.push_back(make_arrays(opt.pixels, CostModel::band_magnitude(b)));
+    for (int sb = 0; sb < CostModel::kSigmaBands; ++sb)
+      joint.push_back(make_arrays(opt.pixels, CostModel::band_magnitude(b), CostModel::sigma_band_scale(sb)));
+  }
   const Arrays& in = bands[0];
+  CalibrationOptions band_opt = opt;  // 4 or 16 more timings per function: shorter ones
+  band_opt.min_ms = opt.min_ms / 2;
   double base[7] = {0};
   for (int k = 1; k <= 6; ++k) base[k] = time_kernel(kernel("bl_base" + std::to_string(k)), in, out, opt);
   auto record = [&](const std::string& name, double ns, bool fn) {
@@ -214,12 +221,16 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
     const Kernel k = kernel("bl_fn" + std::to_string(f));
     const double b0 = base[F.arity];
     record(F.cpp, time_kernel(k, in, out, opt) - b0, true);
-    if (!CostModel::atomic_of(F.cpp).empty()) {
-      std::vector<double> per{m.fn_ns[F.cpp]};
+    if (CostModel::atomic_of(F.cpp).empty()) continue;
+    std::vector<double> per;
+    if (F.arity == 2 && !F.stat) {  // kernel entry f(x, sigma): every (|x|, sigma) band pair
+      for (const Arrays& a : joint) per.push_back(std::max(0.01, time_kernel(k, a, out, band_opt) - b0));
+    } else {
+      per.push_back(m.fn_ns[F.cpp]);
       for (int b = 1; b < CostModel::kBands; ++b)
-        per.push_back(std::max(0.01, time_kernel(k, bands[b], out, opt) - b0));
-      m.fn_band_ns[F.cpp] = per;
+        per.push_back(std::max(0.01, time_kernel(k, bands[b], out, band_opt) - b0));
     }
+    m.fn_band_ns[F.cpp] = per;
   }
   return m;
 }

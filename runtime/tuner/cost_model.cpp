@@ -69,6 +69,15 @@ double CostModel::band_magnitude(int band) {
   return m[band];
 }
 
+int CostModel::sigma_band_of(double sigma) {
+  return sigma < 0.01 ? 0 : sigma < 0.1 ? 1 : sigma < 1 ? 2 : 3;
+}
+
+double CostModel::sigma_band_scale(int band) {
+  static const double m[kSigmaBands] = {0.003, 0.03, 0.3, 3};
+  return m[band];
+}
+
 std::string CostModel::atomic_of(const std::string& cpp) {
   for (const char* ns : {"bl::plain::", "bl::gaussian::", "bl::box::", "bl::tent::"}) {
     const std::string prefix = ns;
@@ -90,12 +99,24 @@ double CostModel::function_cost(int fn) const {
     throw std::out_of_range("cost model (" + machine + ") has no entry for function " + name +
                             ": recalibrate (bltune --calibrate)");
   const auto bands = fn_band_ns.find(name);
-  if (bands == fn_band_ns.end() || band_share.empty()) return it->second;
-  const auto share = band_share.find(atomic_of(name));
-  if (share == band_share.end()) return it->second;
+  if (bands == fn_band_ns.end()) return it->second;
+  const std::vector<double>& c = bands->second;
+  const std::string atomic = atomic_of(name);
   double ns = 0;
-  for (int b = 0; b < kBands && b < static_cast<int>(bands->second.size()); ++b)
-    ns += share->second[b] * bands->second[b];
+  if (c.size() == static_cast<std::size_t>(kBands * kSigmaBands)) {
+    if (const auto joint = joint_share.find(atomic); joint != joint_share.end()) {
+      for (std::size_t b = 0; b < c.size(); ++b) ns += joint->second[b] * c[b];
+      return ns;
+    }
+    if (const auto share = band_share.find(atomic); share != band_share.end()) {
+      for (int b = 0; b < kBands; ++b) ns += share->second[b] * c[b * kSigmaBands + 2];
+      return ns;
+    }
+    return it->second;
+  }
+  const auto share = band_share.find(atomic);
+  if (share == band_share.end() || c.size() != static_cast<std::size_t>(kBands)) return it->second;
+  for (int b = 0; b < kBands; ++b) ns += share->second[b] * c[b];
   return ns;
 }
 

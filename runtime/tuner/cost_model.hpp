@@ -22,6 +22,11 @@ struct CostModel {
   static constexpr int kBands = 4;
   static int band_of(double abs_x);
   static double band_magnitude(int band);  // 1, 1e2, 1e4, 1e6
+  // Bands of a kernel entry's sigma (its regime and term counts follow sigma / period):
+  // [0, 0.01), [0.01, 0.1), [0.1, 1), [1, inf); calibrated at 0.003, 0.03, 0.3, 3 (x U[0.5, 1.5]).
+  static constexpr int kSigmaBands = 4;
+  static int sigma_band_of(double sigma);
+  static double sigma_band_scale(int band);
   // The atomic whose argument a function's first parameter is ("fract" for bl::plain::fract,
   // bl::gaussian::fract and bl::box::fract_sq), "" for rule functions (their arguments are moments).
   static std::string atomic_of(const std::string& cpp_name);
@@ -30,10 +35,14 @@ struct CostModel {
   std::string method = "compiled";      // "compiled" (-O3 via bl::jit) or "evaluator" (fallback)
   std::map<std::string, double> op_ns;  // LOp name -> ns per pixel; "pixel": per-pixel overhead
   std::map<std::string, double> fn_ns;  // Function::cpp -> ns per pixel at |x| ~ 1 (band 0)
-  std::map<std::string, std::vector<double>> fn_band_ns;  // Function::cpp -> ns per band (x functions)
-  // Not saved: the scene's share of calls per band, per atomic (rows sum to 1). Atomics without a
-  // row cost band 0.
-  std::map<std::string, std::vector<double>> band_share;
+  // Function::cpp -> ns per band: kBands values (plain f(x)), or kBands x kSigmaBands values
+  // (kernel entries f(x, sigma), index x_band * kSigmaBands + sigma_band).
+  std::map<std::string, std::vector<double>> fn_band_ns;
+  // Not saved, set per scene (magnitude_profile): per atomic, the share of calls per |x| band
+  // (band_share, from the plain program) and per (|x|, sigma) band pair (joint_share, from the
+  // all-Gaussian program); rows sum to 1. Without a row: band 0 (and the calibration's default
+  // sigma band, 2).
+  std::map<std::string, std::vector<double>> band_share, joint_share;
 
   // ns per pixel of one call of function `fn` (index into compiler::functions()) under band_share.
   double function_cost(int fn) const;

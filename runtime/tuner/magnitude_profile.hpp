@@ -14,8 +14,14 @@
 namespace bl::tuner {
 
 // Rows sum to 1; atomics whose calls saw no finite argument are absent. `plain` is the all-"none"
-// program (its Call instructions are the atomics, their first argument is x).
+// program (its Call instructions are the atomics, their first argument is x): CostModel::kBands
+// shares per atomic.
 std::map<std::string, std::vector<double>> magnitude_profile(const compiler::Program& plain,
                                                              const PixelSample& sample);
+
+// The same over the kernel entries f(x, sigma) a smoothed program (the all-Gaussian one) calls:
+// kBands x kSigmaBands shares per atomic (index x_band * kSigmaBands + sigma_band).
+std::map<std::string, std::vector<double>> joint_profile(const compiler::Program& smoothed,
+                                                         const PixelSample& sample);
 
 }  // namespace bl::tuner

@@ -37,8 +37,10 @@ SceneTuner::SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOpt
     : scene_(s), graph_(shaders::trace(shaders::find_shader(s.shader), s.effects())), cm_(cm), opt_(opt) {
   sample_ = std::make_unique<PixelSample>(s, opt.cache_dir, opt.sample_pixels, opt.sample_seed);
   // Banded function costs follow this scene's argument magnitudes (observed on the plain program).
-  cm_.band_share = magnitude_profile(
-      compiler::lower(graph_, compiler::uniform_schedule(graph_, rules::parse_rule("none"))), *sample_);
+  if (const auto plain = lower(compiler::uniform_schedule(graph_, rules::parse_rule("none"))))
+    cm_.band_share = magnitude_profile(*plain, *sample_);
+  if (const auto smoothed = lower(compiler::uniform_schedule(graph_, rules::parse_rule("gaussian"))))
+    cm_.joint_share = joint_profile(*smoothed, *sample_);
   problem_.graph = &graph_;
   problem_.space = SearchSpace::build(graph_);
   problem_.palette = Palette::parse(opt.rules);
