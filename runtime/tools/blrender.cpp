@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   std::string scene_path, rules_text = "gaussian", out_dir = "render_out", cache_dir = "build/truth_cache";
   std::vector<int> msaa{16};
   bool glsl = false;
-  int trials = 5;
+  int trials = 9;
   jit::Options jo;
   app.add_option("scene", scene_path, "scene file (JSON)")->required();
   app.add_option("--rules", rules_text,

@@ -234,6 +234,10 @@ CostModel load_or_calibrate(const std::string& path, bool verbose) {
     // A model timed on the evaluator is replaced once a compiler exists.
     if (m.method != "compiled" && jit::compiler_available())
       throw std::runtime_error("cost model " + path + " was calibrated on the evaluator");
+    for (const auto& [name, bands] : m.fn_band_ns)
+      if (bands.size() != std::size_t(CostModel::kBands) &&
+          bands.size() != std::size_t(CostModel::kBands * CostModel::kSigmaBands))
+        throw std::runtime_error("cost model " + path + " has another band layout (" + name + ")");
     if (m.covers_all()) return m;
     // Only what is missing (a new op or table function) is merged from a fresh calibration: the
     // entries already measured keep their values, so fronts computed before stay comparable.

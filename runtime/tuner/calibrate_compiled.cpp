@@ -132,11 +132,12 @@ struct Arrays {
 Arrays make_arrays(int n, double magnitude, double sigma_scale = 0) {
   Arrays in;
   std::mt19937_64 rng(12345);
-  std::uniform_real_distribution<float> x(0.05f, 3.0f), s(0.01f, 0.5f), small(0.0f, 0.3f), half(0.5f, 1.5f);
+  std::uniform_real_distribution<float> x(0.05f, 3.0f), s(0.01f, 0.5f), small(0.0f, 0.3f), half(0.5f, 1.5f),
+      decade(0.5f, 2.0f);
   auto sd = [&] { return sigma_scale > 0 ? static_cast<float>(sigma_scale * half(rng)) : s(rng); };
   in.v.assign(kArrays, std::vector<float>(n));
   for (int i = 0; i < n; ++i) {
-    in.v[0][i] = static_cast<float>(x(rng) * magnitude);
+    in.v[0][i] = static_cast<float>(decade(rng) * magnitude);
     in.v[1][i] = sd();
     in.v[2][i] = x(rng);
     in.v[3][i] = sd();
@@ -190,10 +191,15 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
       joint.push_back(make_arrays(opt.pixels, CostModel::band_magnitude(b), CostModel::sigma_band_scale(sb)));
   }
   const Arrays& in = bands[0];
-  CalibrationOptions band_opt = opt;  // 4 or 16 more timings per function: shorter ones
-  band_opt.min_ms = opt.min_ms / 2;
+  // Many short windows, the fastest kept: on a loaded machine a 0.25 ms window often runs
+  // undisturbed where a 4 ms one rarely does. Band timings (7 or 28 per function) use fewer.
+  CalibrationOptions main_opt = opt, band_opt = opt;
+  main_opt.min_ms = band_opt.min_ms = opt.min_ms / 16;
+  main_opt.trials = opt.trials * 5;
+  band_opt.trials = opt.trials * 3;
   double base[7] = {0};
-  for (int k = 1; k <= 6; ++k) base[k] = time_kernel(kernel("bl_base" + std::to_string(k)), in, out, opt);
+  for (int k = 1; k <= 6; ++k)
+    base[k] = time_kernel(kernel("bl_base" + std::to_string(k)), in, out, main_opt);
   auto record = [&](const std::string& name, double ns, bool fn) {
     ns = std::max(0.01, ns);
     (fn ? m.fn_ns : m.op_ns)[name] = ns;
@@ -209,18 +215,19 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
     if (wanted(name)) record(name, 0.01, false);
   for (const auto& op : kOps)
     if (wanted(op[0]))
-      record(op[0], (time_kernel(kernel(std::string("bl_op_") + op[0]), in, out, opt) - base[1]) / 16, false);
+      record(op[0], (time_kernel(kernel(std::string("bl_op_") + op[0]), in, out, main_opt) - base[1]) / 16,
+             false);
   // Negation folds into its user (a - b for -b + a) in compiled code: costed as a subtraction.
   if (wanted("neg") && m.op_ns.count("sub")) record("neg", m.op_ns["sub"], false);
   if (wanted("tex_plain"))
-    record("tex_plain", time_kernel(kernel("bl_op_tex_plain"), in, out, opt) - base[2], false);
+    record("tex_plain", time_kernel(kernel("bl_op_tex_plain"), in, out, main_opt) - base[2], false);
   if (wanted("tex_stat"))
-    record("tex_stat", time_kernel(kernel("bl_op_tex_stat"), in, out, opt) - base[4], false);
+    record("tex_stat", time_kernel(kernel("bl_op_tex_stat"), in, out, main_opt) - base[4], false);
   for (int f : fns) {
     const compiler::Function& F = all[f];
     const Kernel k = kernel("bl_fn" + std::to_string(f));
     const double b0 = base[F.arity];
-    record(F.cpp, time_kernel(k, in, out, opt) - b0, true);
+    record(F.cpp, time_kernel(k, in, out, main_opt) - b0, true);
     if (CostModel::atomic_of(F.cpp).empty()) continue;
     std::vector<double> per;
     if (F.arity == 2 && !F.stat) {  // kernel entry f(x, sigma): every (|x|, sigma) band pair

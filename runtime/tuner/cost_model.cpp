@@ -1,5 +1,7 @@
 #include "tuner/cost_model.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -61,12 +63,12 @@ const char* lop_name(LOp op) {
 }
 
 int CostModel::band_of(double ax) {
-  return ax < 10 ? 0 : ax < 1e3 ? 1 : ax < 1e5 ? 2 : 3;
+  if (!(ax >= 3.1622776601683795)) return 0;  // also NaN
+  return static_cast<int>(std::min<double>(kBands - 1, std::floor(std::log10(ax) + 0.5)));
 }
 
 double CostModel::band_magnitude(int band) {
-  static const double m[kBands] = {1, 1e2, 1e4, 1e6};
-  return m[band];
+  return std::pow(10.0, band);
 }
 
 int CostModel::sigma_band_of(double sigma) {

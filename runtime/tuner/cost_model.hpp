@@ -18,10 +18,11 @@
 namespace bl::tuner {
 
 struct CostModel {
-  // Magnitude bands of |x|: [0, 10), [10, 1e3), [1e3, 1e5), [1e5, inf); calibrated at 1, 1e2, 1e4, 1e6.
-  static constexpr int kBands = 4;
+  // Magnitude bands of |x|, one per decade: band k >= 1 is [10^(k-1/2), 10^(k+1/2)), band 0 below
+  // 10^(1/2), band 6 everything from 10^5.5 on; calibrated at |x| = 10^k x U[0.5, 2].
+  static constexpr int kBands = 7;
   static int band_of(double abs_x);
-  static double band_magnitude(int band);  // 1, 1e2, 1e4, 1e6
+  static double band_magnitude(int band);  // 10^band
   // Bands of a kernel entry's sigma (its regime and term counts follow sigma / period):
   // [0, 0.01), [0.01, 0.1), [0.1, 1), [1, inf); calibrated at 0.003, 0.03, 0.3, 3 (x U[0.5, 1.5]).
   static constexpr int kSigmaBands = 4;

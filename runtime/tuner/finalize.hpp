@@ -44,7 +44,7 @@ struct FinalizeOptions {
   bool glsl = false;    // time the GLSL when a driver exists (opt-in: llvmpipe compiles take minutes)
   int max_points = 12;  // at most this many front points are refined and measured (spread by error)
   std::string out_dir;  // images go here when non-empty
-  int trials = 5;       // timing trials (minimum kept)
+  int trials = 9;       // timing trials (minimum kept)
   jit::Options jit;     // compiler, flags, object cache of the compiled-code timings
 };
 

@@ -202,20 +202,26 @@ TEST(CostModel, CompiledCalibrationHasBandsAndTheProfileWeightsThem) {
   EXPECT_EQ(CostModel::atomic_of("bl::plain::fract"), "fract");
   EXPECT_EQ(CostModel::atomic_of("bl::rule2::sin"), "");
   EXPECT_EQ(CostModel::band_of(1), 0);
-  EXPECT_EQ(CostModel::band_of(5e4), 2);
-  EXPECT_EQ(CostModel::band_of(1e30), 3);
+  EXPECT_EQ(CostModel::band_of(3), 0);
+  EXPECT_EQ(CostModel::band_of(4), 1);
+  EXPECT_EQ(CostModel::band_of(5e4), 5);
+  EXPECT_EQ(CostModel::band_of(1e30), CostModel::kBands - 1);
+  EXPECT_EQ(CostModel::band_of(std::nan("")), 0);
   CostModel w = m;
   const int f = compiler::find_function("bl::plain::fract");
   EXPECT_EQ(w.function_cost(f), m.fn_ns.at("bl::plain::fract"));  // no profile: band 0
-  w.band_share["fract"] = {0.25, 0, 0, 0.75};
+  const int top = CostModel::kBands - 1, ns = CostModel::kSigmaBands;
+  w.band_share["fract"] = std::vector<double>(CostModel::kBands, 0.0);
+  w.band_share["fract"][0] = 0.25;
+  w.band_share["fract"][top] = 0.75;
   const auto& b = m.fn_band_ns.at("bl::plain::fract");
-  EXPECT_NEAR(w.function_cost(f), 0.25 * b[0] + 0.75 * b[3], 1e-12);
+  EXPECT_NEAR(w.function_cost(f), 0.25 * b[0] + 0.75 * b[top], 1e-12);
   const int g = compiler::find_function("bl::gaussian::fract");
   const auto& bg = m.fn_band_ns.at("bl::gaussian::fract");
-  EXPECT_NEAR(w.function_cost(g), 0.25 * bg[0 * 4 + 2] + 0.75 * bg[3 * 4 + 2], 1e-12);  // sigma band 2
-  w.joint_share["fract"] = std::vector<double>(16, 0.0);
-  w.joint_share["fract"][1 * 4 + 3] = 1;  // |x| ~ 1e2, sigma ~ 3
-  EXPECT_NEAR(w.function_cost(g), bg[1 * 4 + 3], 1e-12);
+  EXPECT_NEAR(w.function_cost(g), 0.25 * bg[0 * ns + 2] + 0.75 * bg[top * ns + 2], 1e-12);  // sigma band 2
+  w.joint_share["fract"] = std::vector<double>(CostModel::kBands * ns, 0.0);
+  w.joint_share["fract"][2 * ns + 3] = 1;  // |x| ~ 1e2, sigma ~ 3
+  EXPECT_NEAR(w.function_cost(g), bg[2 * ns + 3], 1e-12);
   EXPECT_EQ(CostModel::sigma_band_of(0.05), 1);
   const std::string path = temp_dir("cost_bands") + "/cost.json";
   save_cost_model(path, m);
