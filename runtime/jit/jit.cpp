@@ -102,6 +102,10 @@ std::string hex(std::uint64_t h) {
 Options resolved(const Options& opt) {
   Options o = opt;
   if (o.compiler.empty()) o.compiler = env_or("BL_JIT_CXX", env_or("CXX", "g++"));
+  if (o.flags.empty()) {
+    std::istringstream in(env_or("BL_JIT_FLAGS", "-O3 -std=c++17"));
+    for (std::string f; in >> f;) o.flags.push_back(f);
+  }
   if (o.include_dirs.empty()) o.include_dirs = {BL_JIT_INCLUDE_GENERATED, BL_JIT_INCLUDE_RUNTIME};
   if (o.cache_dir.empty()) o.cache_dir = env_or("BL_JIT_CACHE", "build/jit_cache");
   return o;
