@@ -43,14 +43,6 @@ std::string arg_list(const std::vector<int>& a) {
   return s;
 }
 
-struct Entry {
-  std::string name;    // model key
-  std::string symbol;  // kernel
-  bool is_fn = false, banded = false;
-  int base = 1;       // base kernel to subtract (number of inputs read)
-  double divide = 1;  // copies per pixel
-};
-
 const char* kOps[][2] = {{"add", "t = t + b"},
                          {"sub", "t = t - b"},
                          {"mul", "t = t * b"},
@@ -61,7 +53,7 @@ const char* kOps[][2] = {{"add", "t = t + b"},
                          {"sqrt", "t = std::sqrt(t)"},
                          {"nonneg", "t = t > 0.0f ? t : 0.0f"}};
 
-std::string source(const std::vector<Entry>& entries, const std::vector<int>& fns) {
+std::string source(const std::vector<int>& fns) {
   std::ostringstream os;
   os << "// bandlimit cost-model calibration kernels (runtime/tuner/calibrate_compiled.cpp)\n"
      << "#include <cmath>\n#include <bandlimit/table.hpp>\n#include <bandlimit/rules_bivariate.hpp>\n"
@@ -85,6 +77,27 @@ std::string source(const std::vector<Entry>& entries, const std::vector<int>& fn
     for (int c = 0; c < 16; ++c) os << "    " << op[1] << ";\n";
     os << "    out[j] = t;\n  }\n}\n";
   }
+  // Latency kernels: the result feeds the next pixel's first argument (x + t * 0, which keeps x
+  // and cannot be folded: t may be NaN or inf), so the pixels run one after another.
+  os << "extern \"C\" void bl_latbase(int n, const float* const* a, float* out) {\n"
+     << "  float t = 0.0f;\n  for (int j = 0; j < n; ++j) t = a[0][j] + t * 0.0f;\n  out[0] = t;\n}\n";
+  for (const auto& op : kOps) {
+    os << "extern \"C\" void bl_lat_" << op[0] << "(int n, const float* const* a, float* out) {\n"
+       << "  float t = 0.0f;\n  for (int j = 0; j < n; ++j) {\n    t = a[0][j] + t * 0.0f;\n"
+       << "    const float b = a[2][j];\n    (void)b;\n";
+    for (int c = 0; c < 16; ++c) os << "    " << op[1] << ";\n";
+    os << "  }\n  out[0] = t;\n}\n";
+  }
+  // The out-of-order window: 8 dependent sin calls per pixel, pixels independent, against the
+  // same calls fully independent (throughput) and fully chained (latency).
+  os << "extern \"C\" void bl_win_thr(int n, const float* const* a, float* out) {\n"
+     << "  for (int j = 0; j < n; ++j) out[j] = bl::plain::sin(a[0][j]);\n}\n"
+     << "extern \"C\" void bl_win_lat(int n, const float* const* a, float* out) {\n"
+     << "  float t = 0.0f;\n  for (int j = 0; j < n; ++j) t = bl::plain::sin(a[0][j] + t * 0.0f);\n  out[0] "
+        "= t;\n}\n"
+     << "extern \"C\" void bl_win_chain(int n, const float* const* a, float* out) {\n"
+     << "  for (int j = 0; j < n; ++j) {\n    float t = a[0][j];\n"
+     << "    for (int c = 0; c < 8; ++c) t = bl::plain::sin(t + a[2][j]);\n    out[j] = t;\n  }\n}\n";
   os << "extern \"C\" void bl_op_tex_plain(int n, const float* const* a, float* out) {\n"
      << "  for (int j = 0; j < n; ++j) out[j] = bl::texture::sample_plain(*g_tex, a[0][j], a[2][j], 0);\n}\n"
      << "extern \"C\" void bl_op_tex_stat(int n, const float* const* a, float* out) {\n"
@@ -104,8 +117,19 @@ std::string source(const std::vector<Entry>& entries, const std::vector<int>& fn
     else
       os << "    out[j] = " << F.cpp << "(" << arg_list(args_of(F.arity, false)) << ");\n";
     os << "  }\n}\n";
+    std::vector<int> args = args_of(F.arity, F.stat);
+    std::string chained = "a[" + std::to_string(args[0]) + "][j] + t * 0.0f";
+    std::string rest;
+    for (std::size_t k = 1; k < args.size(); ++k) rest += ", a[" + std::to_string(args[k]) + "][j]";
+    os << "extern \"C\" void bl_lat" << f << "(int n, const float* const* a, float* out) {\n"
+       << "  float t = 0.0f;\n  for (int j = 0; j < n; ++j) {\n";
+    if (F.stat)
+      os << "    const bl::stat<float> r = " << F.cpp << "(" << chained << rest
+         << ");\n    t = r.mean + r.var;\n";
+    else
+      os << "    t = " << F.cpp << "(" << chained << rest << ");\n";
+    os << "  }\n  out[0] = t;\n}\n";
   }
-  (void)entries;
   return os.str();
 }
 
@@ -180,7 +204,7 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
   std::vector<int> fns;
   for (std::size_t f = 0; f < all.size(); ++f)
     if (wanted(all[f].cpp)) fns.push_back(static_cast<int>(f));
-  const auto lib = jit::compile(source({}, fns), opt.jit);
+  const auto lib = jit::compile(source(fns), opt.jit);
   reinterpret_cast<void (*)(const void*)>(lib->symbol("bl_set_texture"))(&kernel_texture());
   auto kernel = [&](const std::string& sym) { return reinterpret_cast<Kernel>(lib->symbol(sym)); };
   std::vector<float> out(opt.pixels);
@@ -217,6 +241,20 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
     if (wanted(op[0]))
       record(op[0], (time_kernel(kernel(std::string("bl_op_") + op[0]), in, out, main_opt) - base[1]) / 16,
              false);
+  const double lat_base = time_kernel(kernel("bl_latbase"), in, out, main_opt);
+  {
+    // Pixels in flight = window / (throughput cost per pixel): from time = L x T / window when the
+    // chain binds (T = 8 thr, L = 8 lat per pixel).
+    const double thr = std::max(0.01, time_kernel(kernel("bl_win_thr"), in, out, main_opt) - base[1]);
+    const double lat = std::max(0.01, time_kernel(kernel("bl_win_lat"), in, out, main_opt) - lat_base);
+    const double chain = time_kernel(kernel("bl_win_chain"), in, out, main_opt) - base[2];
+    m.window_ns = chain > 8 * thr * 1.05 ? (8 * lat) * (8 * thr) / chain : 1e9;
+    if (progress) progress("window", m.window_ns);
+  }
+  for (const auto& op : kOps)
+    if (wanted(op[0]))
+      m.op_lat_ns[op[0]] = std::max(
+          0.01, (time_kernel(kernel(std::string("bl_lat_") + op[0]), in, out, main_opt) - lat_base) / 16);
   // Negation folds into its user (a - b for -b + a) in compiled code: costed as a subtraction.
   if (wanted("neg") && m.op_ns.count("sub")) record("neg", m.op_ns["sub"], false);
   if (wanted("tex_plain"))
@@ -228,6 +266,8 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
     const Kernel k = kernel("bl_fn" + std::to_string(f));
     const double b0 = base[F.arity];
     record(F.cpp, time_kernel(k, in, out, main_opt) - b0, true);
+    m.fn_lat_ns[F.cpp] =
+        std::max(0.01, time_kernel(kernel("bl_lat" + std::to_string(f)), in, out, main_opt) - lat_base);
     if (CostModel::atomic_of(F.cpp).empty()) continue;
     std::vector<double> per;
     if (F.arity == 2 && !F.stat) {  // kernel entry f(x, sigma): every (|x|, sigma) band pair

@@ -123,6 +123,45 @@ double CostModel::function_cost(int fn) const {
 }
 
 double CostModel::cost(const compiler::Program& p) const {
+  const double t = throughput(p), path = critical_path(p);
+  if (!(window_ns > 0) || path <= t) return t;
+  return std::max(t, path * std::min(1.0, t / window_ns));
+}
+
+double CostModel::critical_path(const compiler::Program& p) const {
+  if (fn_lat_ns.empty()) return 0;
+  std::vector<double> done(p.insts.size(), 0.0);
+  double longest = 0;
+  for (std::size_t i = 0; i < p.insts.size(); ++i) {
+    const compiler::Inst& in = p.insts[i];
+    double start = 0;
+    for (int a = 0; a < compiler::lop_arity(in); ++a)
+      if (in.arg[a] >= 0 && in.op != LOp::InMean && in.op != LOp::InSd && in.op != LOp::InGradX &&
+          in.op != LOp::InGradY)
+        start = std::max(start, done[in.arg[a]]);
+    double lat = 0;
+    if (in.op == LOp::Call || in.op == LOp::CallStat) {
+      const std::string& name = compiler::functions().at(in.fn).cpp;
+      const auto l = fn_lat_ns.find(name);
+      const auto t = fn_ns.find(name);
+      if (l != fn_lat_ns.end() && t != fn_ns.end() && t->second > 0)
+        lat = function_cost(in.fn) * l->second / t->second;
+      else
+        lat = function_cost(in.fn);
+    } else if (const auto l = op_lat_ns.find(lop_name(in.op)); l != op_lat_ns.end()) {
+      lat = l->second;
+    } else if (in.op == LOp::TexPlain || in.op == LOp::TexStat) {
+      lat = op_ns.at(lop_name(in.op));
+    } else if (in.op == LOp::Neg) {
+      lat = op_lat_ns.count("sub") ? op_lat_ns.at("sub") : 0;
+    }
+    done[i] = start + lat;
+    longest = std::max(longest, done[i]);
+  }
+  return longest;
+}
+
+double CostModel::throughput(const compiler::Program& p) const {
   double ns = 0;
   if (const auto px = op_ns.find("pixel"); px != op_ns.end()) ns += px->second;
   for (const compiler::Inst& in : p.insts) {
@@ -188,6 +227,10 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
   cm.method = m.value("method", std::string("evaluator"));  // files from before compiled calibration
   cm.op_ns = m.at("ops").get<std::map<std::string, double>>();
   cm.fn_ns = m.at("functions").get<std::map<std::string, double>>();
+  cm.window_ns = m.value("window_ns", 0.0);
+  if (m.contains("op_latency")) cm.op_lat_ns = m.at("op_latency").get<std::map<std::string, double>>();
+  if (m.contains("function_latency"))
+    cm.fn_lat_ns = m.at("function_latency").get<std::map<std::string, double>>();
   if (m.contains("function_bands"))
     cm.fn_band_ns = m.at("function_bands").get<std::map<std::string, std::vector<double>>>();
   return cm;
@@ -202,8 +245,10 @@ void save_cost_model(const std::string& path, const CostModel& m) {
       j = nlohmann::json::object();  // a corrupt file is replaced, not merged
     }
   }
-  j["machines"][m.machine] = {
-      {"method", m.method}, {"ops", m.op_ns}, {"functions", m.fn_ns}, {"function_bands", m.fn_band_ns}};
+  j["machines"][m.machine] = {{"method", m.method},        {"ops", m.op_ns},
+                              {"functions", m.fn_ns},      {"function_bands", m.fn_band_ns},
+                              {"op_latency", m.op_lat_ns}, {"function_latency", m.fn_lat_ns},
+                              {"window_ns", m.window_ns}};
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
   const std::string tmp = path + ".tmp";

@@ -39,6 +39,13 @@ struct CostModel {
   // Function::cpp -> ns per band: kBands values (plain f(x)), or kBands x kSigmaBands values
   // (kernel entries f(x, sigma), index x_band * kSigmaBands + sigma_band).
   std::map<std::string, std::vector<double>> fn_band_ns;
+  // Latencies (ns from an argument to the result, band 0), for the critical path: a program whose
+  // calls depend on each other (nested noise) is latency-bound in per-pixel code. A function's
+  // latency in band b is its band-b cost x fn_lat_ns / fn_ns. Empty: throughput only.
+  std::map<std::string, double> op_lat_ns, fn_lat_ns;
+  // The out-of-order window in ns of throughput work: a program of throughput T and critical path
+  // L overlaps max(1, window / T) pixels, so it costs max(T, L x min(1, T / window)).
+  double window_ns = 0;
   // Not saved, set per scene (magnitude_profile): per atomic, the share of calls per |x| band
   // (band_share, from the plain program) and per (|x|, sigma) band pair (joint_share, from the
   // all-Gaussian program); rows sum to 1. Without a row: band 0 (and the calibration's default
@@ -48,8 +55,12 @@ struct CostModel {
   // ns per pixel of one call of function `fn` (index into compiler::functions()) under band_share.
   double function_cost(int fn) const;
 
-  // ns per pixel of p. Throws std::out_of_range naming an op or function the model lacks.
+  // ns per pixel of p: max(T, L x min(1, T / window_ns)) with T the sum of per-instruction costs
+  // (plus the per-pixel overhead) and L the critical path of latencies. Throws std::out_of_range naming an op
+  // or function the model lacks.
   double cost(const compiler::Program& p) const;
+  double throughput(const compiler::Program& p) const;     // the sum alone (+ overhead)
+  double critical_path(const compiler::Program& p) const;  // the latency path alone (0 without latencies)
   // True when every LOp and every current generated function has an entry.
   bool covers_all() const;
   // The names covers_all() misses (for messages).

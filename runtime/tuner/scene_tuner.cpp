@@ -24,6 +24,9 @@ std::string model_digest(const CostModel& cm) {  // recalibration invalidates ch
   for (const auto& [k, v] : cm.op_ns) mix(k, v);
   for (const auto& [k, v] : cm.fn_ns) mix(k, v);
   h = ir::fnv1a(cm.method, h);
+  mix("window", cm.window_ns);
+  for (const auto& [k, v] : cm.fn_lat_ns) mix(k, v);
+  for (const auto& [k, v] : cm.op_lat_ns) mix(k, v);
   for (const auto& [k, v] : cm.fn_band_ns)
     for (double b : v) mix(k, b);
   char buf[32];
