@@ -257,6 +257,11 @@ int main(int argc, char** argv) {
   app.add_option("--cost-model", c.cost_model,
                  "cost model JSON (calibrated and saved when this machine lacks one)");
   app.add_flag("--calibrate", calibrate_only, "recalibrate the cost model, print the table, and exit");
+  std::string calibration = "compiled";
+  app.add_option("--calibration", calibration,
+                 "what the cost model times: compiled (the emitted C++, -O3; default) or evaluator (quick, "
+                 "for tests)")
+      ->check(CLI::IsMember({"compiled", "evaluator"}));
   app.add_option("--rules", rules_csv,
                  "comma-separated rule palette (default: every rule + gaussian:rho=const)");
   app.add_option("--seed", so.seed, "random seed");
@@ -294,8 +299,11 @@ int main(int argc, char** argv) {
   try {
     if (calibrate_only) {
       if (c.rank == 0) {
+        CalibrationOptions co;
+        co.method = calibration == "evaluator" ? CalibrationOptions::Method::Evaluator
+                                               : CalibrationOptions::Method::Compiled;
         const CostModel m = calibrate(
-            {}, [](const std::string& n, double ns) { std::printf("%-44s %9.2f ns/px\n", n.c_str(), ns); });
+            co, [](const std::string& n, double ns) { std::printf("%-44s %9.2f ns/px\n", n.c_str(), ns); });
         save_cost_model(c.cost_model, m);
         std::printf("saved %s (machine '%s')\n", c.cost_model.c_str(), m.machine.c_str());
       }
@@ -318,7 +326,10 @@ int main(int argc, char** argv) {
         so.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / c.size);
       // Rank 0 calibrates when needed; the others then read its file.
       CostModel cm;
-      if (c.rank == 0) cm = load_or_calibrate(c.cost_model, true);
+      if (c.rank == 0)
+        cm = load_or_calibrate(c.cost_model, true,
+                               calibration == "evaluator" ? CalibrationOptions::Method::Evaluator
+                                                          : CalibrationOptions::Method::Compiled);
 #ifdef BL_TUNER_MPI
       MPI_Barrier(MPI_COMM_WORLD);
       if (c.rank != 0) cm = load_cost_model(c.cost_model, cpu_model());

@@ -227,13 +227,21 @@ CostModel calibrate(const CalibrationOptions& opt,
   return calibrate_evaluator(opt, progress);
 }
 
-CostModel load_or_calibrate(const std::string& path, bool verbose) {
+CostModel load_or_calibrate(const std::string& path, bool verbose, CalibrationOptions::Method method) {
   const std::string machine = cpu_model();
+  CalibrationOptions opt;
+  opt.method = method;
+  const bool compiled = method == CalibrationOptions::Method::Compiled;
   try {
     CostModel m = load_cost_model(path, machine);
-    // A model timed on the evaluator is replaced once a compiler exists.
-    if (m.method != "compiled" && jit::compiler_available())
+    // A model timed on the evaluator is replaced once a compiler exists (when compiled is asked
+    // for), a compiled one when the evaluator is asked for, a compiled one without latencies always.
+    if (compiled && m.method != "compiled" && jit::compiler_available())
       throw std::runtime_error("cost model " + path + " was calibrated on the evaluator");
+    if (!compiled && m.method != "evaluator")
+      throw std::runtime_error("cost model " + path + " was calibrated on compiled code");
+    if (m.method == "compiled" && (m.fn_lat_ns.empty() || !(m.window_ns > 0)))
+      throw std::runtime_error("cost model " + path + " has no latencies");
     for (const auto& [name, bands] : m.fn_band_ns)
       if (bands.size() != std::size_t(CostModel::kBands) &&
           bands.size() != std::size_t(CostModel::kBands * CostModel::kSigmaBands))
@@ -244,13 +252,15 @@ CostModel load_or_calibrate(const std::string& path, bool verbose) {
     const std::string missing = m.missing();
     if (verbose)
       std::fprintf(stderr, "cost model %s lacks:%s; timing those\n", path.c_str(), missing.c_str());
-    const CostModel part = calibrate();
+    const CostModel part = calibrate(opt);
     std::istringstream names(missing);
     std::string name;
     while (names >> name) {
       if (part.op_ns.count(name)) m.op_ns[name] = part.op_ns.at(name);
       if (part.fn_ns.count(name)) m.fn_ns[name] = part.fn_ns.at(name);
       if (part.fn_band_ns.count(name)) m.fn_band_ns[name] = part.fn_band_ns.at(name);
+      if (part.fn_lat_ns.count(name)) m.fn_lat_ns[name] = part.fn_lat_ns.at(name);
+      if (part.op_lat_ns.count(name)) m.op_lat_ns[name] = part.op_lat_ns.at(name);
     }
     if (m.covers_all()) {
       save_cost_model(path, m);
@@ -260,9 +270,9 @@ CostModel load_or_calibrate(const std::string& path, bool verbose) {
     if (verbose) std::fprintf(stderr, "%s; calibrating\n", e.what());
   }
   CostModel m =
-      calibrate({}, verbose ? [](const std::string& n,
-                                 double ns) { std::fprintf(stderr, "  %-40s %8.2f ns\n", n.c_str(), ns); }
-                            : std::function<void(const std::string&, double)>{});
+      calibrate(opt, verbose ? [](const std::string& n,
+                                  double ns) { std::fprintf(stderr, "  %-40s %8.2f ns\n", n.c_str(), ns); }
+                             : std::function<void(const std::string&, double)>{});
   save_cost_model(path, m);
   return m;
 }

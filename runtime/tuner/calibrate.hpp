@@ -33,6 +33,9 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
 
 // The model for this machine from `path`, calibrating (and saving) first when the file lacks this
 // machine or any current op/function (new generated functions land from other branches).
-CostModel load_or_calibrate(const std::string& path, bool verbose);
+// `method`: the calibration wanted (a file calibrated otherwise is recalibrated; Compiled falls
+// back to the evaluator without a compiler).
+CostModel load_or_calibrate(const std::string& path, bool verbose,
+                            CalibrationOptions::Method method = CalibrationOptions::Method::Compiled);
 
 }  // namespace bl::tuner
