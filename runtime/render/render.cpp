@@ -4,25 +4,18 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <random>
 #include <stdexcept>
 
 #include "camera/plane_batch.hpp"
 #include "compiler/evaluator.hpp"
 #include "image/image_io.hpp"
 #include "render/frame.hpp"
+#include "render/jitter.hpp"
 #include "render/parallel.hpp"
 
 namespace bl::render {
 
 namespace {
-
-std::uint64_t mix64(std::uint64_t x) {  // splitmix64 finalizer: decorrelates seeds
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
 
 void set_pixel(Image& img, int x, int y, const double* rgb) {
   for (int c = 0; c < 3; ++c) img.at(x, y, c) = static_cast<float>(rgb[c]);
@@ -88,21 +81,20 @@ Image render_native(const scene::Scene& s, const Frame& f, int samples, std::uin
   const shaders::ShaderDef& shader = shaders::find_shader(s.shader);
   const shaders::Effects fx = s.effects();
   Image img(s.width, s.height);
-  std::uint64_t frame_key = mix64(seed ^ mix64(static_cast<std::uint64_t>(f.view)) ^
-                                  mix64(static_cast<std::uint64_t>(std::llround(f.time * 1e6))));
+  const std::uint64_t key = frame_key(seed, f.view, f.time);
   parallel_rows(
       s.height,
       [&](int y) {
         for (int x = 0; x < s.width; ++x) {
           double acc[3] = {0, 0, 0};
           const int n = samples > 0 ? samples : 1;
-          std::mt19937_64 rng(mix64(frame_key ^ (static_cast<std::uint64_t>(y) * s.width + x)));
-          std::normal_distribution<double> normal(0.0, s.sigma_px);
+          const std::uint64_t pixel = static_cast<std::uint64_t>(y) * s.width + x;
           for (int k = 0; k < n; ++k) {
             double px = x + 0.5, py = y + 0.5;
             if (samples > 0) {
-              px += normal(rng);
-              py += normal(rng);
+              const Offset o = gaussian_jitter(key, pixel, static_cast<std::uint32_t>(k), s.sigma_px);
+              px += o.x;
+              py += o.y;
             }
             const camera::PlaneSample p = camera::trace_pixel(cam, basis, opt, px, py);
             if (!p.hit) {
@@ -153,7 +145,7 @@ Image render_smoothed(const scene::Scene& s, const Frame& f, const compiler::Pro
 std::string truth_cache_path(const scene::Scene& s, const Frame& f, const std::string& cache_dir) {
   const std::uint64_t shader_hash = shaders::trace(shaders::find_shader(s.shader), s.effects()).hash();
   char name[160];
-  std::snprintf(name, sizeof name, "truth_%016llx_%016llx_v%d_t%.6f.exr",
+  std::snprintf(name, sizeof name, "truth_cb_%016llx_%016llx_v%d_t%.6f.exr",
                 static_cast<unsigned long long>(s.hash()), static_cast<unsigned long long>(shader_hash),
                 f.view, f.time);
   return (std::filesystem::path(cache_dir) / name).string();

@@ -20,8 +20,9 @@ struct Frame {
 };
 
 // samples = 0: one sample at each pixel centre (plain). Otherwise `samples` samples per pixel,
-// offsets ~ N(0, sigma_px^2) per axis (the same kernel the smoothing targets), seeded by `seed`, the
-// pixel and the frame, so renders are reproducible and independent of the thread count.
+// offsets ~ N(0, sigma_px^2) per axis (the same kernel the smoothing targets), counter-based
+// (render/jitter.hpp: a hash of seed, frame, pixel and sample), so renders are reproducible,
+// independent of the thread count and the same with every standard library.
 Image render_native(const scene::Scene& s, const Frame& f, int samples, std::uint64_t seed = 1,
                     const std::string& progress_label = "");
 
@@ -31,7 +32,7 @@ Image render_native(const scene::Scene& s, const Frame& f, int samples, std::uin
 Image render_smoothed(const scene::Scene& s, const Frame& f, const compiler::Program& program);
 
 // Ground truth with scene.truth_samples samples per pixel, cached as
-// <cache_dir>/truth_<scene hash>_<shader graph hash>_v<view>_t<time>.exr (the shader's traced
+// <cache_dir>/truth_cb_<scene hash>_<shader graph hash>_v<view>_t<time>.exr (the shader's traced
 // graph is part of the key, so editing a shader invalidates its cache). An empty cache_dir disables
 // the cache.
 Image render_truth(const scene::Scene& s, const Frame& f, const std::string& cache_dir);

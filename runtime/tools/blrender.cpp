@@ -1,14 +1,16 @@
 // blrender: render a scene plain, with MSAA, smoothed by a compiled rule assignment, and as ground
-// truth; write PNG images, error heatmaps and a report (RMS in display space, PSNR, SSIM, ms per frame).
+// truth; write PNG images, error heatmaps and a report (RMS in display space, PSNR, SSIM, and times:
+// the emitted C++ compiled with -O3 at run time (bl::jit), next to the batch evaluator's).
 //
 //   blrender scenes/suite/checkerboard_none.json --rules gaussian --msaa 16 --out out/checker
 #include <CLI/CLI.hpp>
-
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 
 #include "compiler/emit.hpp"
 #include "compiler/lower.hpp"
@@ -17,6 +19,7 @@
 #include "image/metrics.hpp"
 #include "image/report.hpp"
 #include "image/ssim.hpp"
+#include "render/compiled_frame.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
 
@@ -38,12 +41,19 @@ int main(int argc, char** argv) {
   std::string scene_path, rules_text = "gaussian", out_dir = "render_out", cache_dir = "build/truth_cache";
   std::vector<int> msaa{16};
   bool glsl = false;
+  int trials = 9;
+  jit::Options jo;
   app.add_option("scene", scene_path, "scene file (JSON)")->required();
-  app.add_option("--rules", rules_text, "rule for every node (none, dorn, gaussian, mc8, box, tent, rule1:box, ...)");
+  app.add_option("--rules", rules_text,
+                 "rule for every node (none, dorn, gaussian, mc8, box, tent, rule1:box, ...)");
   app.add_option("--msaa", msaa, "MSAA sample counts to render");
   app.add_option("--out", out_dir, "output directory (PNG images, heatmaps, report.md, compiled shader)");
   app.add_option("--cache", cache_dir, "ground-truth cache directory (EXR); empty disables");
   app.add_flag("--glsl", glsl, "also render the emitted GLSL on the headless OpenGL driver and compare");
+  app.add_option("--trials", trials, "timing trials per variant (the minimum is reported)");
+  app.add_option("--jit-cache", jo.cache_dir, "compiled-shader cache directory (default build/jit_cache)");
+  app.add_option("--cxx", jo.compiler,
+                 "C++ compiler for the compiled-code timings (default $BL_JIT_CXX, $CXX, g++)");
   CLI11_PARSE(app, argc, argv);
   try {
     const scene::Scene s = scene::load_scene(scene_path);
@@ -52,47 +62,104 @@ int main(int argc, char** argv) {
     const compiler::Program prog = compiler::lower(g, compiler::uniform_schedule(g, rule));
     std::filesystem::create_directories(out_dir);
     std::ofstream(out_dir + "/shader.hpp") << compiler::emit_cpp(prog, "shade", s.name + " / " + rules_text);
-    std::ofstream(out_dir + "/shader.glsl") << compiler::emit_glsl(prog, "shade", s.name + " / " + rules_text);
+    std::ofstream(out_dir + "/shader.glsl")
+        << compiler::emit_glsl(prog, "shade", s.name + " / " + rules_text);
+    // The plain program (rule none): what plain and MSAA renders run in compiled code.
+    const compiler::Program plain =
+        compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("none")));
+    std::unique_ptr<jit::CompiledProgram> cplain, cprog;
+    std::string jit_error;
+    try {
+      cplain = std::make_unique<jit::CompiledProgram>(plain, jo);
+      cprog = std::make_unique<jit::CompiledProgram>(prog, jo);
+      std::printf("compiled code: %s (%s), %s (%s)\n", cplain->library().path().c_str(),
+                  cplain->library().from_cache() ? "cached" : "compiled", cprog->library().path().c_str(),
+                  cprog->library().from_cache() ? "cached" : "compiled");
+    } catch (const jit::Error& e) {
+      jit_error = e.what();
+      std::fprintf(stderr,
+                   "blrender: compiled-code timing unavailable, images and times from the evaluator:\n%s\n",
+                   e.what());
+    }
     std::ofstream report(out_dir + "/report.md");
-    report << "# " << s.name << " (" << s.shader << ")\n\nDAG nodes: " << g.size() << ", lowered instructions ("
-           << rules_text << "): " << prog.insts.size() << ", image " << s.width << "x" << s.height << "\n\n"
-           << "| frame | method | ms/frame | RMS (display) | PSNR (dB) | SSIM |\n|---|---|---|---|---|---|\n";
+    report
+        << "# " << s.name << " (" << s.shader << ")\n\nDAG nodes: " << g.size() << ", lowered instructions ("
+        << rules_text << "): " << prog.insts.size() << ", plain: " << plain.insts.size() << ", image "
+        << s.width << "x" << s.height << "\n\n"
+        << "Times are single-threaded over the frame's pixel inputs (camera tracing excluded), the minimum "
+           "of "
+        << trials << " trials: *compiled* = the emitted C++ (`shader.hpp`) built with -O3 at run time; "
+        << "*evaluator* = the batch evaluator on the same inputs. MSAA n runs the plain program n times per "
+           "pixel at counter-based Gaussian-jittered positions. ns/px counts all samples of a pixel.\n\n"
+        << (jit_error.empty()
+                ? ""
+                : "**Compiled code unavailable** (" + jit_error.substr(0, jit_error.find('\n')) +
+                      "): images from the evaluator, compiled columns empty.\n\n")
+        << "| frame | method | compiled ns/px | compiled ms/frame | evaluator ns/px | evaluator ms/frame | "
+           "RMS "
+           "(display) | PSNR (dB) | SSIM |\n|---|---|---|---|---|---|---|---|---|\n";
     std::printf("%s: %d nodes, %zu instructions with %s\n", s.name.c_str(), g.size(), prog.insts.size(),
                 rules_text.c_str());
     std::unique_ptr<gl::Context> ctx;
     if (glsl) {
       const auto av = gl::Context::availability();
-      if (av.ok) ctx = std::make_unique<gl::Context>();
-      else std::printf("GLSL: skipped, no OpenGL driver (%s)\n", av.reason.c_str());
+      if (av.ok)
+        ctx = std::make_unique<gl::Context>();
+      else
+        std::printf("GLSL: skipped, no OpenGL driver (%s)\n", av.reason.c_str());
     }
+    auto fmt = [](double v) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%.3f", v);
+      return std::string(b);
+    };
     for (const render::Frame& f : render::frames(s)) {
       char tag[64];
       std::snprintf(tag, sizeof tag, "v%d_t%.3f", f.view, f.time);
       const Image truth = render::render_truth(s, f, cache_dir);
       write_png(out_dir + "/" + tag + "_truth.png", truth);
-      auto row = [&](const std::string& method, const Image& img, double ms) {
-        const double rms = rms_display(img, truth), psnr = psnr_display(img, truth), ssim = ssim_display(img, truth);
+      auto row = [&](const std::string& method, const Image& img, const render::FrameTiming* compiled,
+                     const render::FrameTiming& eval) {
+        const double rms = rms_display(img, truth), psnr = psnr_display(img, truth),
+                     ssim = ssim_display(img, truth);
         write_png(out_dir + "/" + tag + "_" + method + ".png", img);
         write_error_heatmap(out_dir + "/" + tag + "_" + method + "_error.png", img, truth);
-        report << "| " << tag << " | " << method << " | " << ms << " | " << rms << " | " << psnr << " | " << ssim
-               << " |\n";
-        std::printf("  %s %-12s %9.2f ms  RMS %.5f  PSNR %.2f dB  SSIM %.4f\n", tag, method.c_str(), ms, rms, psnr,
-                    ssim);
+        report << "| " << tag << " | " << method << " | " << (compiled ? fmt(compiled->ns_per_pixel) : "-")
+               << " | " << (compiled ? fmt(compiled->ms_per_frame) : "-") << " | " << fmt(eval.ns_per_pixel)
+               << " | " << fmt(eval.ms_per_frame) << " | " << rms << " | " << psnr << " | " << ssim << " |\n";
+        std::printf(
+            "  %s %-12s compiled %9.2f ns/px %8.3f ms  evaluator %9.2f ns/px  RMS %.5f  PSNR %.2f dB  SSIM "
+            "%.4f\n",
+            tag, method.c_str(), compiled ? compiled->ns_per_pixel : NAN,
+            compiled ? compiled->ms_per_frame : NAN, eval.ns_per_pixel, rms, psnr, ssim);
       };
-      Image img;
-      double ms = time_ms([&] { img = render::render_native(s, f, 0); });
-      row("plain", img, ms);
-      for (int n : msaa) {
-        ms = time_ms([&] { img = render::render_native(s, f, n); });
-        row("msaa" + std::to_string(n), img, ms);
-      }
-      ms = time_ms([&] { img = render::render_smoothed(s, f, prog); });
-      row(rules_text, img, ms);
+      // One variant: its image (compiled code when available) and both timings.
+      auto variant = [&](const std::string& method, const compiler::Program& p,
+                         const jit::CompiledProgram* cp, int samples) {
+        const render::BatchRunner ev = render::evaluator_runner(p);
+        const render::BatchRunner run = cp ? render::compiled_runner(*cp) : ev;
+        const Image img = render::render_program(s, f, p, run, samples);
+        const render::FrameTiming te = render::time_program(s, f, p, ev, samples, trials);
+        if (cp) {
+          const render::FrameTiming tc = render::time_program(s, f, p, run, samples, trials);
+          row(method, img, &tc, te);
+        } else {
+          row(method, img, nullptr, te);
+        }
+        return img;
+      };
+      variant("plain", plain, cplain.get(), 0);
+      for (int n : msaa) variant("msaa" + std::to_string(n), plain, cplain.get(), n);
+      const Image img = variant(rules_text, prog, cprog.get(), 0);
       if (ctx) {
         Image gimg;
-        ms = time_ms([&] { gimg = render::render_glsl(*ctx, s, f, prog); });
-        row(rules_text + "_glsl", gimg, ms);
-        std::printf("  GLSL vs C++ evaluator: RMS %.2e (display)\n", rms_display(gimg, img));
+        const double ms = time_ms([&] { gimg = render::render_glsl(*ctx, s, f, prog); });
+        report << "| " << tag << " | " << rules_text << "_glsl | - | " << fmt(ms)
+               << " (GL driver, incl. upload) | - | - | " << rms_display(gimg, truth) << " | "
+               << psnr_display(gimg, truth) << " | " << ssim_display(gimg, truth) << " |\n";
+        write_png(out_dir + "/" + tag + "_" + rules_text + "_glsl.png", gimg);
+        std::printf("  %s %-12s GL %9.2f ms  RMS %.5f; GLSL vs C++: RMS %.2e (display)\n", tag,
+                    (rules_text + "_glsl").c_str(), ms, rms_display(gimg, truth), rms_display(gimg, img));
       }
     }
     std::printf("wrote %s/report.md\n", out_dir.c_str());

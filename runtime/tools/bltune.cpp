@@ -1,6 +1,7 @@
 // bltune: the autoscheduler. Genetic search over per-node rule assignments for the Pareto front of
 // time (calibrated cost model) against error (RMS in display space vs the cached ground truth),
-// Nelder-Mead on sd factors, measured timings and reports against MSAA.
+// Nelder-Mead on sd factors, measured timings (the emitted C++ compiled with -O3 at run time; GLSL
+// with --glsl) and reports against MSAA.
 //
 //   bltune --calibrate                                   # print (and save) the cost model table
 //   bltune scenes/suite/checkerboard_none.json --out out/tune/checkerboard_none
@@ -246,7 +247,7 @@ int main(int argc, char** argv) {
 #endif
   CLI::App app{"bltune: genetic search for the time/error Pareto front of rule assignments"};
   std::string scene_path, suite_dir, rules_csv, only;
-  bool calibrate_only = false, no_glsl = false, no_rho = false;
+  bool calibrate_only = false, glsl = false, no_glsl = false, no_rho = false;
   SearchOptions& so = c.tune.search;
   app.add_option("scene", scene_path, "scene file (JSON)");
   app.add_option("--suite", suite_dir, "tune every *.json scene in this directory (sorted by name)");
@@ -256,6 +257,11 @@ int main(int argc, char** argv) {
   app.add_option("--cost-model", c.cost_model,
                  "cost model JSON (calibrated and saved when this machine lacks one)");
   app.add_flag("--calibrate", calibrate_only, "recalibrate the cost model, print the table, and exit");
+  std::string calibration = "compiled";
+  app.add_option("--calibration", calibration,
+                 "what the cost model times: compiled (the emitted C++, -O3; default) or evaluator (quick, "
+                 "for tests)")
+      ->check(CLI::IsMember({"compiled", "evaluator"}));
   app.add_option("--rules", rules_csv,
                  "comma-separated rule palette (default: every rule + gaussian:rho=const)");
   app.add_option("--seed", so.seed, "random seed");
@@ -270,7 +276,15 @@ int main(int argc, char** argv) {
   app.add_option("--max-points", c.fin.max_points, "front points refined and measured");
   app.add_option("--image", c.image, "override the scenes' image size (N x N pixels)");
   app.add_option("--truth-samples", c.truth_samples, "override the scenes' ground-truth samples per pixel");
-  app.add_flag("--no-glsl", no_glsl, "do not time the GLSL on the OpenGL driver");
+  app.add_flag("--glsl", glsl,
+               "also time the emitted GLSL on the OpenGL driver (opt-in: on llvmpipe compiling a large "
+               "shader takes minutes)");
+  app.add_flag("--no-glsl", no_glsl, "do not time the GLSL (the default; kept for scripts)");
+  app.add_option("--jit-cache", c.fin.jit.cache_dir,
+                 "compiled-shader cache directory (default build/jit_cache)");
+  app.add_option("--cxx", c.fin.jit.compiler,
+                 "C++ compiler for compiled-code timings (default $BL_JIT_CXX, $CXX, g++)");
+  app.add_option("--trials", c.fin.trials, "timing trials per measured variant (minimum kept)");
   app.add_flag("--no-rho-estimate", no_rho, "do not estimate constant rhos by sampling (B.1)");
   app.add_flag("--search-only", c.search_only, "write front_search.csv only (no refinement, timing, report)");
   try {
@@ -285,13 +299,16 @@ int main(int argc, char** argv) {
   try {
     if (calibrate_only) {
       if (c.rank == 0) {
+        CalibrationOptions co;
+        co.method = calibration == "evaluator" ? CalibrationOptions::Method::Evaluator
+                                               : CalibrationOptions::Method::Compiled;
         const CostModel m = calibrate(
-            {}, [](const std::string& n, double ns) { std::printf("%-44s %9.2f ns/px\n", n.c_str(), ns); });
+            co, [](const std::string& n, double ns) { std::printf("%-44s %9.2f ns/px\n", n.c_str(), ns); });
         save_cost_model(c.cost_model, m);
         std::printf("saved %s (machine '%s')\n", c.cost_model.c_str(), m.machine.c_str());
       }
     } else {
-      c.fin.glsl = !no_glsl;
+      c.fin.glsl = glsl && !no_glsl;
       c.tune.estimate_rho = !no_rho;
       if (!rules_csv.empty()) c.tune.rules = split(rules_csv, ',');
       if (!suite_dir.empty()) {
@@ -309,7 +326,10 @@ int main(int argc, char** argv) {
         so.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / c.size);
       // Rank 0 calibrates when needed; the others then read its file.
       CostModel cm;
-      if (c.rank == 0) cm = load_or_calibrate(c.cost_model, true);
+      if (c.rank == 0)
+        cm = load_or_calibrate(c.cost_model, true,
+                               calibration == "evaluator" ? CalibrationOptions::Method::Evaluator
+                                                          : CalibrationOptions::Method::Compiled);
 #ifdef BL_TUNER_MPI
       MPI_Barrier(MPI_COMM_WORLD);
       if (c.rank != 0) cm = load_cost_model(c.cost_model, cpu_model());

@@ -144,10 +144,13 @@ double time_inst(Program p, const Inst& inst, int prefix_stat, Inputs& in, const
 
 }  // namespace
 
-CostModel calibrate(const CalibrationOptions& opt,
-                    const std::function<void(const std::string&, double)>& progress) {
+namespace {
+
+CostModel calibrate_evaluator(const CalibrationOptions& opt,
+                              const std::function<void(const std::string&, double)>& progress) {
   CostModel m;
   m.machine = cpu_model();
+  m.method = "evaluator";
   Inputs in = make_inputs(opt.pixels);
   const Program base = base_program();
   const auto& fns = compiler::functions();
@@ -208,24 +211,56 @@ CostModel calibrate(const CalibrationOptions& opt,
   return m;
 }
 
-CostModel load_or_calibrate(const std::string& path, bool verbose) {
+}  // namespace
+
+CostModel calibrate(const CalibrationOptions& opt,
+                    const std::function<void(const std::string&, double)>& progress) {
+  if (opt.method == CalibrationOptions::Method::Compiled) {
+    try {
+      return calibrate_compiled(opt, progress);
+    } catch (const jit::Error& e) {
+      std::fprintf(stderr,
+                   "calibrate: compiled-code calibration unavailable, timing the evaluator instead:\n%s\n",
+                   e.what());
+    }
+  }
+  return calibrate_evaluator(opt, progress);
+}
+
+CostModel load_or_calibrate(const std::string& path, bool verbose, CalibrationOptions::Method method) {
   const std::string machine = cpu_model();
+  CalibrationOptions opt;
+  opt.method = method;
+  const bool compiled = method == CalibrationOptions::Method::Compiled;
   try {
     CostModel m = load_cost_model(path, machine);
+    // A model timed on the evaluator is replaced once a compiler exists (when compiled is asked
+    // for), a compiled one when the evaluator is asked for, a compiled one without latencies always.
+    if (compiled && m.method != "compiled" && jit::compiler_available())
+      throw std::runtime_error("cost model " + path + " was calibrated on the evaluator");
+    if (!compiled && m.method != "evaluator")
+      throw std::runtime_error("cost model " + path + " was calibrated on compiled code");
+    if (m.method == "compiled" && (m.fn_lat_ns.empty() || !(m.window_ns > 0)))
+      throw std::runtime_error("cost model " + path + " has no latencies");
+    for (const auto& [name, bands] : m.fn_band_ns)
+      if (bands.size() != std::size_t(CostModel::kBands) &&
+          bands.size() != std::size_t(CostModel::kBands * CostModel::kSigmaBands))
+        throw std::runtime_error("cost model " + path + " has another band layout (" + name + ")");
     if (m.covers_all()) return m;
-    // Only what is missing (a new op or table function) is timed and merged: the entries already
-    // measured keep their values, so fronts computed before stay comparable.
+    // Only what is missing (a new op or table function) is merged from a fresh calibration: the
+    // entries already measured keep their values, so fronts computed before stay comparable.
     const std::string missing = m.missing();
     if (verbose)
       std::fprintf(stderr, "cost model %s lacks:%s; timing those\n", path.c_str(), missing.c_str());
+    const CostModel part = calibrate(opt);
     std::istringstream names(missing);
     std::string name;
     while (names >> name) {
-      CalibrationOptions opt;
-      opt.only = name;
-      const CostModel part = calibrate(opt);
       if (part.op_ns.count(name)) m.op_ns[name] = part.op_ns.at(name);
       if (part.fn_ns.count(name)) m.fn_ns[name] = part.fn_ns.at(name);
+      if (part.fn_band_ns.count(name)) m.fn_band_ns[name] = part.fn_band_ns.at(name);
+      if (part.fn_lat_ns.count(name)) m.fn_lat_ns[name] = part.fn_lat_ns.at(name);
+      if (part.op_lat_ns.count(name)) m.op_lat_ns[name] = part.op_lat_ns.at(name);
     }
     if (m.covers_all()) {
       save_cost_model(path, m);
@@ -235,9 +270,9 @@ CostModel load_or_calibrate(const std::string& path, bool verbose) {
     if (verbose) std::fprintf(stderr, "%s; calibrating\n", e.what());
   }
   CostModel m =
-      calibrate({}, verbose ? [](const std::string& n,
-                                 double ns) { std::fprintf(stderr, "  %-40s %8.2f ns\n", n.c_str(), ns); }
-                            : std::function<void(const std::string&, double)>{});
+      calibrate(opt, verbose ? [](const std::string& n,
+                                  double ns) { std::fprintf(stderr, "  %-40s %8.2f ns\n", n.c_str(), ns); }
+                             : std::function<void(const std::string&, double)>{});
   save_cost_model(path, m);
   return m;
 }

@@ -1,10 +1,13 @@
-// Calibration of the cost model: times every LOp and every generated function through the batch
-// evaluator (the code path the tuner and render_smoothed use) on realistic inputs.
+// Calibration of the cost model: times every LOp and every generated function in compiled code (one
+// translation unit of loop kernels, one per op and function, built with -O3 by bl::jit: the code a
+// renderer runs), at each magnitude band of |x| for functions of an atomic's argument. Where no C++
+// compiler exists, the batch evaluator is timed instead (method "evaluator", with a warning).
 #pragma once
 
 #include <functional>
 #include <string>
 
+#include "jit/jit.hpp"
 #include "tuner/cost_model.hpp"
 
 namespace bl::tuner {
@@ -15,14 +18,24 @@ struct CalibrationOptions {
   double min_ms = 4;  // each timing repeats the batch until it took at least this long
   int trials = 3;     // the minimum over trials is kept (least disturbed by other load)
   std::string only;   // when non-empty: calibrate only entries whose name contains this
+  enum class Method { Compiled, Evaluator } method = Method::Compiled;
+  jit::Options jit;  // compiler and object cache of the compiled calibration
 };
 
 // Measures a fresh model for this machine (cpu_model()). `progress` (optional) gets each name.
+// Method::Compiled falls back to the evaluator (and says so on stderr) when the compiler is missing.
 CostModel calibrate(const CalibrationOptions& opt = {},
                     const std::function<void(const std::string&, double)>& progress = {});
 
+// The compiled-code calibration alone (throws jit::Error when the compiler is missing or fails).
+CostModel calibrate_compiled(const CalibrationOptions& opt,
+                             const std::function<void(const std::string&, double)>& progress = {});
+
 // The model for this machine from `path`, calibrating (and saving) first when the file lacks this
 // machine or any current op/function (new generated functions land from other branches).
-CostModel load_or_calibrate(const std::string& path, bool verbose);
+// `method`: the calibration wanted (a file calibrated otherwise is recalibrated; Compiled falls
+// back to the evaluator without a compiler).
+CostModel load_or_calibrate(const std::string& path, bool verbose,
+                            CalibrationOptions::Method method = CalibrationOptions::Method::Compiled);
 
 }  // namespace bl::tuner

@@ -1,5 +1,7 @@
 #include "tuner/cost_model.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -60,17 +62,111 @@ const char* lop_name(LOp op) {
   return "?";
 }
 
-double CostModel::cost(const compiler::Program& p) const {
-  const auto& fns = compiler::functions();
+int CostModel::band_of(double ax) {
+  if (!(ax >= 3.1622776601683795)) return 0;  // also NaN
+  return static_cast<int>(std::min<double>(kBands - 1, std::floor(std::log10(ax) + 0.5)));
+}
+
+double CostModel::band_magnitude(int band) {
+  return std::pow(10.0, band);
+}
+
+int CostModel::sigma_band_of(double sigma) {
+  return sigma < 0.01 ? 0 : sigma < 0.1 ? 1 : sigma < 1 ? 2 : 3;
+}
+
+double CostModel::sigma_band_scale(int band) {
+  static const double m[kSigmaBands] = {0.003, 0.03, 0.3, 3};
+  return m[band];
+}
+
+std::string CostModel::atomic_of(const std::string& cpp) {
+  for (const char* ns : {"bl::plain::", "bl::gaussian::", "bl::box::", "bl::tent::"}) {
+    const std::string prefix = ns;
+    if (cpp.rfind(prefix, 0) != 0) continue;
+    std::string a = cpp.substr(prefix.size());
+    // f^2 entries: "fract_sq" is fract's (an atomic named *_sq would have a plain entry of that name)
+    if (a.size() > 3 && a.compare(a.size() - 3, 3, "_sq") == 0 &&
+        compiler::find_function("bl::plain::" + a) < 0)
+      a.resize(a.size() - 3);
+    return a;
+  }
+  return "";
+}
+
+double CostModel::function_cost(int fn) const {
+  const std::string& name = compiler::functions().at(fn).cpp;
+  const auto it = fn_ns.find(name);
+  if (it == fn_ns.end())
+    throw std::out_of_range("cost model (" + machine + ") has no entry for function " + name +
+                            ": recalibrate (bltune --calibrate)");
+  const auto bands = fn_band_ns.find(name);
+  if (bands == fn_band_ns.end()) return it->second;
+  const std::vector<double>& c = bands->second;
+  const std::string atomic = atomic_of(name);
   double ns = 0;
+  if (c.size() == static_cast<std::size_t>(kBands * kSigmaBands)) {
+    if (const auto joint = joint_share.find(atomic); joint != joint_share.end()) {
+      for (std::size_t b = 0; b < c.size(); ++b) ns += joint->second[b] * c[b];
+      return ns;
+    }
+    if (const auto share = band_share.find(atomic); share != band_share.end()) {
+      for (int b = 0; b < kBands; ++b) ns += share->second[b] * c[b * kSigmaBands + 2];
+      return ns;
+    }
+    return it->second;
+  }
+  const auto share = band_share.find(atomic);
+  if (share == band_share.end() || c.size() != static_cast<std::size_t>(kBands)) return it->second;
+  for (int b = 0; b < kBands; ++b) ns += share->second[b] * c[b];
+  return ns;
+}
+
+double CostModel::cost(const compiler::Program& p) const {
+  const double t = throughput(p), path = critical_path(p);
+  if (!(window_ns > 0) || path <= t) return t;
+  return std::max(t, path * std::min(1.0, t / window_ns));
+}
+
+double CostModel::critical_path(const compiler::Program& p) const {
+  if (fn_lat_ns.empty()) return 0;
+  std::vector<double> done(p.insts.size(), 0.0);
+  double longest = 0;
+  for (std::size_t i = 0; i < p.insts.size(); ++i) {
+    const compiler::Inst& in = p.insts[i];
+    double start = 0;
+    for (int a = 0; a < compiler::lop_arity(in); ++a)
+      if (in.arg[a] >= 0 && in.op != LOp::InMean && in.op != LOp::InSd && in.op != LOp::InGradX &&
+          in.op != LOp::InGradY)
+        start = std::max(start, done[in.arg[a]]);
+    double lat = 0;
+    if (in.op == LOp::Call || in.op == LOp::CallStat) {
+      const std::string& name = compiler::functions().at(in.fn).cpp;
+      const auto l = fn_lat_ns.find(name);
+      const auto t = fn_ns.find(name);
+      if (l != fn_lat_ns.end() && t != fn_ns.end() && t->second > 0)
+        lat = function_cost(in.fn) * l->second / t->second;
+      else
+        lat = function_cost(in.fn);
+    } else if (const auto l = op_lat_ns.find(lop_name(in.op)); l != op_lat_ns.end()) {
+      lat = l->second;
+    } else if (in.op == LOp::TexPlain || in.op == LOp::TexStat) {
+      lat = op_ns.at(lop_name(in.op));
+    } else if (in.op == LOp::Neg) {
+      lat = op_lat_ns.count("sub") ? op_lat_ns.at("sub") : 0;
+    }
+    done[i] = start + lat;
+    longest = std::max(longest, done[i]);
+  }
+  return longest;
+}
+
+double CostModel::throughput(const compiler::Program& p) const {
+  double ns = 0;
+  if (const auto px = op_ns.find("pixel"); px != op_ns.end()) ns += px->second;
   for (const compiler::Inst& in : p.insts) {
     if (in.op == LOp::Call || in.op == LOp::CallStat) {
-      const std::string& name = fns.at(in.fn).cpp;
-      const auto it = fn_ns.find(name);
-      if (it == fn_ns.end())
-        throw std::out_of_range("cost model (" + machine + ") has no entry for function " + name +
-                                ": recalibrate (bltune --calibrate)");
-      ns += it->second;
+      ns += function_cost(in.fn);
     } else {
       const auto it = op_ns.find(lop_name(in.op));
       if (it == op_ns.end())
@@ -128,8 +224,15 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
   const nlohmann::json& m = j["machines"][machine];
   CostModel cm;
   cm.machine = machine;
+  cm.method = m.value("method", std::string("evaluator"));  // files from before compiled calibration
   cm.op_ns = m.at("ops").get<std::map<std::string, double>>();
   cm.fn_ns = m.at("functions").get<std::map<std::string, double>>();
+  cm.window_ns = m.value("window_ns", 0.0);
+  if (m.contains("op_latency")) cm.op_lat_ns = m.at("op_latency").get<std::map<std::string, double>>();
+  if (m.contains("function_latency"))
+    cm.fn_lat_ns = m.at("function_latency").get<std::map<std::string, double>>();
+  if (m.contains("function_bands"))
+    cm.fn_band_ns = m.at("function_bands").get<std::map<std::string, std::vector<double>>>();
   return cm;
 }
 
@@ -142,7 +245,10 @@ void save_cost_model(const std::string& path, const CostModel& m) {
       j = nlohmann::json::object();  // a corrupt file is replaced, not merged
     }
   }
-  j["machines"][m.machine] = {{"ops", m.op_ns}, {"functions", m.fn_ns}};
+  j["machines"][m.machine] = {{"method", m.method},        {"ops", m.op_ns},
+                              {"functions", m.fn_ns},      {"function_bands", m.fn_band_ns},
+                              {"op_latency", m.op_lat_ns}, {"function_latency", m.fn_lat_ns},
+                              {"window_ns", m.window_ns}};
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
   const std::string tmp = path + ".tmp";

@@ -1,24 +1,66 @@
 // The tuner's time axis: a per-instruction cost model. Every LOp and every generated function (by
-// its C++ name) has a cost in ns per pixel, calibrated on this machine by timing the batch evaluator
-// (calibrate.hpp). cost(Program) is the sum over instructions, so the search is deterministic given
-// the model file, and the file is keyed by machine (the CPU model string) so that one checkout can
-// carry calibrations of several machines.
+// its C++ name) has a cost in ns per pixel, calibrated on this machine by timing compiled code (the
+// emitted C++ built with -O3 by bl::jit; the batch evaluator only when no compiler exists), see
+// calibrate.hpp. Functions of an atomic's argument x (plain and kernel entries) also have a cost per
+// magnitude band of |x| (periodic and trigonometric atomics cost 10-30x more at |x| ~ 1e6 than at 1:
+// argument reduction); a scene's observed |x| distribution per atomic (band_share, from
+// magnitude_profile) weights them. cost(Program) is a sum over instructions plus a per-pixel
+// overhead, so the search is deterministic given the model file and the scene, and the file is keyed
+// by machine (the CPU model string) so that one checkout can carry calibrations of several machines.
 #pragma once
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "compiler/lir.hpp"
 
 namespace bl::tuner {
 
 struct CostModel {
-  std::string machine;                  // CPU model string the numbers were measured on
-  std::map<std::string, double> op_ns;  // LOp name -> ns per pixel
-  std::map<std::string, double> fn_ns;  // Function::cpp -> ns per pixel (the call's instruction)
+  // Magnitude bands of |x|, one per decade: band k >= 1 is [10^(k-1/2), 10^(k+1/2)), band 0 below
+  // 10^(1/2), band 6 everything from 10^5.5 on; calibrated at |x| = 10^k x U[0.5, 2].
+  static constexpr int kBands = 7;
+  static int band_of(double abs_x);
+  static double band_magnitude(int band);  // 10^band
+  // Bands of a kernel entry's sigma (its regime and term counts follow sigma / period):
+  // [0, 0.01), [0.01, 0.1), [0.1, 1), [1, inf); calibrated at 0.003, 0.03, 0.3, 3 (x U[0.5, 1.5]).
+  static constexpr int kSigmaBands = 4;
+  static int sigma_band_of(double sigma);
+  static double sigma_band_scale(int band);
+  // The atomic whose argument a function's first parameter is ("fract" for bl::plain::fract,
+  // bl::gaussian::fract and bl::box::fract_sq), "" for rule functions (their arguments are moments).
+  static std::string atomic_of(const std::string& cpp_name);
 
-  // ns per pixel of p. Throws std::out_of_range naming an op or function the model lacks.
+  std::string machine;                  // CPU model string the numbers were measured on
+  std::string method = "compiled";      // "compiled" (-O3 via bl::jit) or "evaluator" (fallback)
+  std::map<std::string, double> op_ns;  // LOp name -> ns per pixel; "pixel": per-pixel overhead
+  std::map<std::string, double> fn_ns;  // Function::cpp -> ns per pixel at |x| ~ 1 (band 0)
+  // Function::cpp -> ns per band: kBands values (plain f(x)), or kBands x kSigmaBands values
+  // (kernel entries f(x, sigma), index x_band * kSigmaBands + sigma_band).
+  std::map<std::string, std::vector<double>> fn_band_ns;
+  // Latencies (ns from an argument to the result, band 0), for the critical path: a program whose
+  // calls depend on each other (nested noise) is latency-bound in per-pixel code. A function's
+  // latency in band b is its band-b cost x fn_lat_ns / fn_ns. Empty: throughput only.
+  std::map<std::string, double> op_lat_ns, fn_lat_ns;
+  // The out-of-order window in ns of throughput work: a program of throughput T and critical path
+  // L overlaps max(1, window / T) pixels, so it costs max(T, L x min(1, T / window)).
+  double window_ns = 0;
+  // Not saved, set per scene (magnitude_profile): per atomic, the share of calls per |x| band
+  // (band_share, from the plain program) and per (|x|, sigma) band pair (joint_share, from the
+  // all-Gaussian program); rows sum to 1. Without a row: band 0 (and the calibration's default
+  // sigma band, 2).
+  std::map<std::string, std::vector<double>> band_share, joint_share;
+
+  // ns per pixel of one call of function `fn` (index into compiler::functions()) under band_share.
+  double function_cost(int fn) const;
+
+  // ns per pixel of p: max(T, L x min(1, T / window_ns)) with T the sum of per-instruction costs
+  // (plus the per-pixel overhead) and L the critical path of latencies. Throws std::out_of_range naming an op
+  // or function the model lacks.
   double cost(const compiler::Program& p) const;
+  double throughput(const compiler::Program& p) const;     // the sum alone (+ overhead)
+  double critical_path(const compiler::Program& p) const;  // the latency path alone (0 without latencies)
   // True when every LOp and every current generated function has an entry.
   bool covers_all() const;
   // The names covers_all() misses (for messages).

@@ -12,6 +12,8 @@
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "image/report.hpp"
+#include "jit/compiled_program.hpp"
+#include "render/compiled_frame.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
 
@@ -55,15 +57,37 @@ std::vector<int> spread(int n, int k) {
 struct Timer {
   std::unique_ptr<gl::Context> ctx;
   std::string renderer;
+  const FinalizeOptions* opt = nullptr;
+  std::string jit_error;  // set at the first jit::Error: no further compiles are tried
 };
 
-void measure(const SceneTuner& t, const compiler::Program& p, Timer& gl, Measured* m) {
+// Times of p on frame 0 over the same pixel inputs: compiled code and evaluator (single thread,
+// minimum of opt.trials), GLSL when a context exists. samples > 0: MSAA of p (plain) with that many
+// jittered samples per pixel; the evaluator's MSAA time is then samples x its plain time (passed
+// in as eval_plain_ms) rather than re-measured, to keep finalize short.
+void measure(const SceneTuner& t, const compiler::Program& p, Timer& gl, Measured* m, int samples = 0,
+             double eval_plain_ms = 0) {
   const scene::Scene& s = t.scene();
   const render::Frame f = render::frames(s).front();
-  // Best of 5 after a warm-up: the minimum is the least disturbed by other load on the machine.
-  render::render_smoothed(s, f, p);
-  m->eval_ms = best_ms(5, [&] { render::render_smoothed(s, f, p); });
-  if (gl.ctx) {
+  const int trials = gl.opt->trials;
+  m->eval_ms = samples > 0
+                   ? samples * eval_plain_ms
+                   : render::time_program(s, f, p, render::evaluator_runner(p), 0, trials).ms_per_frame;
+  if (gl.jit_error.empty()) {
+    try {
+      const jit::CompiledProgram cp(p, gl.opt->jit);
+      const render::FrameTiming tc =
+          render::time_program(s, f, p, render::compiled_runner(cp), samples, trials);
+      m->compiled_ns = tc.ns_per_pixel;
+      m->compiled_ms = tc.ms_per_frame;
+    } catch (const jit::Error& e) {
+      gl.jit_error = e.what();
+      std::fprintf(stderr,
+                   "finalize: compiled-code timing unavailable, reports fall back to the evaluator:\n%s\n",
+                   e.what());
+    }
+  }
+  if (gl.ctx && samples == 0) {
     try {
       const gl::Program prog = gl.ctx->compile(render::glsl_fragment_source(s, p));
       const render::GlTextures textures(*gl.ctx, s, p);
@@ -104,6 +128,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   res.pixels = s.width * s.height;
   res.frames = static_cast<int>(frames.size());
   Timer gl;
+  gl.opt = &opt;
   if (opt.glsl && gl::Context::availability().ok) {
     gl.ctx = std::make_unique<gl::Context>();
     gl.ctx->set_unknown_uniform(gl::UnknownUniform::kIgnore);
@@ -183,7 +208,8 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
       if (fi == 0) msaa_frame0.push_back(img);
     }
     set_error(m, std::sqrt(sq / frames.size()));
-    m.eval_ms = n * plain.eval_ms;
+    measure(t, *t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule("none"))), gl, &m, n,
+            plain.eval_ms);
     m.glsl_ms = plain.glsl_ms >= 0 ? n * plain.glsl_ms : -1;
     m.mix["none"] = 1;
     res.baselines.push_back(m);
@@ -220,6 +246,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
                          {truth.front(), img, msaa_frame0[best]}, {"ground truth", a, b});
     }
   }
+  if (!gl.jit_error.empty()) res.compiled_note = gl.jit_error.substr(0, gl.jit_error.find('\n'));
   res.finalize_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }

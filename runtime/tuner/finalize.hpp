@@ -1,12 +1,14 @@
 // After the search: Nelder-Mead on the front points, errors on full images, timings of the emitted
-// code (evaluator ms per frame; GLSL on the headless OpenGL driver when one exists), the baselines
-// (plain, MSAA 2..32, all-Dorn, all-adaptive-Gaussian) and images of chosen variants.
+// code (the emitted C++ compiled with -O3 at run time, the time the reports quote; the batch
+// evaluator; GLSL on the OpenGL driver only when asked), the baselines (plain, MSAA 2..32, all-Dorn,
+// all-adaptive-Gaussian) and images of chosen variants.
 #pragma once
 
 #include <map>
 #include <string>
 #include <vector>
 
+#include "jit/jit.hpp"
 #include "tuner/scene_tuner.hpp"
 
 namespace bl::tuner {
@@ -19,7 +21,9 @@ struct Measured {
   double search_error = 0;  // on the pixel sample (front points; NaN for baselines)
   double error = 0;         // RMS display, every pixel of every frame
   double psnr = 0;
-  double eval_ms = 0;                 // evaluator (render_smoothed) ms per frame, frame 0
+  double eval_ms = 0;                 // batch evaluator, single thread, ms per frame, frame 0
+  double compiled_ns = -1;            // compiled emitted C++ (-O3), single thread, ns per pixel, frame 0;
+  double compiled_ms = -1;            //   and ms per frame; -1 when no compiler (jit::Error)
   double glsl_ms = -1;                // GLSL ms per frame on the GL driver; -1 when not measured
   bool refined = false;               // Nelder-Mead improved it
   std::map<std::string, double> mix;  // share of genes per rule family
@@ -33,12 +37,15 @@ struct SceneResult {
   std::vector<Measured> front;      // sorted by model time
   std::vector<Measured> baselines;  // plain, msaa2..32, dorn, gaussian
   std::string gl_renderer;          // "" when GLSL was not timed
+  std::string compiled_note;        // why compiled times are missing ("" when measured)
 };
 
 struct FinalizeOptions {
-  bool glsl = true;     // time the GLSL when a driver exists
+  bool glsl = false;    // time the GLSL when a driver exists (opt-in: llvmpipe compiles take minutes)
   int max_points = 12;  // at most this many front points are refined and measured (spread by error)
   std::string out_dir;  // images go here when non-empty
+  int trials = 9;       // timing trials (minimum kept)
+  jit::Options jit;     // compiler, flags, object cache of the compiled-code timings
 };
 
 SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const FinalizeOptions& opt);

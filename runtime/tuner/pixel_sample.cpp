@@ -81,4 +81,22 @@ double PixelSample::error(const compiler::Program& p) const {
   return total_ > 0 ? std::sqrt(sum / (3.0 * total_)) : 0.0;
 }
 
+std::vector<std::vector<float>> PixelSample::outputs(const compiler::Program& p) const {
+  compiler::Evaluator ev(p);
+  std::vector<std::vector<float>> all(p.outputs.size());
+  for (const FrameData& d : frames_) {
+    if (d.n == 0) continue;
+    render::Frame f;
+    f.time = d.time;
+    render::InputStorage storage;
+    const compiler::Batch batch = render::bind_inputs(p, d.hits, scene_, f, storage);
+    std::vector<std::vector<float>> out(p.outputs.size(), std::vector<float>(d.n));
+    std::vector<float*> ptr;
+    for (auto& o : out) ptr.push_back(o.data());
+    ev.run(batch, ptr);
+    for (std::size_t k = 0; k < out.size(); ++k) all[k].insert(all[k].end(), out[k].begin(), out[k].end());
+  }
+  return all;
+}
+
 }  // namespace bl::tuner

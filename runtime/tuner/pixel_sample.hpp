@@ -25,6 +25,9 @@ class PixelSample {
   // outputs give +infinity.
   double error(const compiler::Program& p) const;
   int count() const { return total_; }
+  // p's outputs (any number) over the sampled hit pixels of all frames, concatenated in frame
+  // order: out[k][i]. For inspecting values (magnitude_profile), not errors.
+  std::vector<std::vector<float>> outputs(const compiler::Program& p) const;
 
  private:
   struct FrameData {

@@ -1,5 +1,6 @@
 #include "tuner/report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -38,6 +39,24 @@ bool run_gnuplot(const std::string& script) {
 
 }  // namespace
 
+double measured_ms(const Measured& m) {
+  return m.compiled_ms > 0 ? m.compiled_ms : m.eval_ms;
+}
+
+ModelAccuracy model_accuracy(const SceneResult& r) {
+  std::vector<double> e;
+  for (const auto* list : {&r.front, &r.baselines})
+    for (const Measured& m : *list)
+      if (m.compiled_ns > 0 && m.model_ns > 0) e.push_back(std::fabs(m.model_ns / m.compiled_ns - 1));
+  ModelAccuracy a;
+  a.points = static_cast<int>(e.size());
+  if (e.empty()) return a;
+  std::sort(e.begin(), e.end());
+  a.median = e.size() % 2 ? e[e.size() / 2] : 0.5 * (e[e.size() / 2 - 1] + e[e.size() / 2]);
+  a.worst = e.back();
+  return a;
+}
+
 std::vector<Speedup> speedups(const SceneResult& r) {
   std::vector<Speedup> out;
   for (const Measured& b : r.baselines) {
@@ -49,7 +68,8 @@ std::vector<Speedup> speedups(const SceneResult& r) {
       if (r.front[i].error <= b.error) {
         s.front_index = static_cast<int>(i);
         s.model = b.model_ns / r.front[i].model_ns;
-        s.measured = b.eval_ms / r.front[i].eval_ms;
+        s.compiled = b.compiled_ms > 0 && r.front[i].compiled_ms > 0;
+        s.measured = s.compiled ? b.compiled_ms / r.front[i].compiled_ms : b.eval_ms / r.front[i].eval_ms;
         break;
       }
     out.push_back(s);
@@ -64,11 +84,12 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
     std::ofstream csv(dir + "/front.csv");
     csv << "kind,label,model_ns_per_pixel,model_ms_per_frame,eval_ms_per_frame,glsl_ms_per_frame,search_"
            "error,"
-           "rms_display,psnr_db,refined,rule_mix,schedule\n";
+           "rms_display,psnr_db,refined,compiled_ns_per_pixel,compiled_ms_per_frame,rule_mix,schedule\n";
     auto row = [&](const char* kind, const Measured& m) {
       csv << kind << "," << m.label << "," << m.model_ns << "," << m.model_ns * px * 1e-6 << "," << m.eval_ms
           << "," << m.glsl_ms << "," << m.search_error << "," << m.error << "," << m.psnr << ","
-          << (m.refined ? 1 : 0) << ",\"" << mix_text(m) << "\",\"" << m.schedule << "\"\n";
+          << (m.refined ? 1 : 0) << "," << m.compiled_ns << "," << m.compiled_ms << ",\"" << mix_text(m)
+          << "\",\"" << m.schedule << "\"\n";
     };
     for (const Measured& m : r.front) row("front", m);
     for (const Measured& m : r.baselines) row("baseline", m);
@@ -85,8 +106,12 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
     << "set multiplot layout 1,2 title '" << r.scene
     << ": Pareto front vs MSAA, plain, all-Dorn, all-Gaussian'\n";
   for (int panel = 0; panel < 2; ++panel) {
-    const int c = panel == 0 ? 3 : 5;
-    g << "set xlabel '" << (panel == 0 ? "cost model (ns per pixel)" : "measured evaluator (ms per frame)")
+    const bool compiled = !r.front.empty() && r.front.front().compiled_ms > 0;
+    const int c = panel == 0 ? 3 : compiled ? 12 : 5;
+    g << "set xlabel '"
+      << (panel == 0 ? "cost model (ns per pixel)"
+          : compiled ? "measured compiled C++ -O3 (ms per frame, 1 thread)"
+                     : "measured evaluator (ms per frame)")
       << "'\n"
       << "plot f every ::1 u (front(" << c << ")):(front(8)) w lp pt 7 lc rgb '#d62728' t 'tuned front', \\\n"
       << "  '' every ::1 u (msaa(" << c << ")):(msaa(8)) w lp pt 5 lc rgb '#1f77b4' t 'MSAA 2..32', \\\n"
@@ -108,38 +133,51 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
      << " pixels. Search " << fmt("%.1f", r.search_seconds) << " s (" << r.evaluations
      << " distinct candidates), finalize " << fmt("%.1f", r.finalize_seconds) << " s.\n\n"
      << (plotted ? "![Pareto front](pareto.png)\n\n" : "(gnuplot not found: no plot)\n\n")
-     << "Times: *model* = cost model (ns per pixel, and ms per frame = ns x pixels); *eval* = batch "
-        "evaluator "
-        "(render_smoothed, all threads) ms per frame; *GLSL* = emitted GLSL on "
-     << (r.gl_renderer.empty() ? "(no GL driver: not measured)" : r.gl_renderer)
-     << " ms per frame. MSAA n is n evaluations of the plain program (model and measured times are n x "
-        "plain's). "
-        "Errors: RMS in display space over every pixel of every frame.\n\n"
-     << "| point | model ns/px | model ms/frame | eval ms/frame | GLSL ms/frame | search error | RMS | PSNR "
-        "dB | NM "
-        "| rule mix |\n|---|---|---|---|---|---|---|---|---|---|\n";
+     << "Times: *model* = cost model (ns per pixel, calibrated on compiled code); *compiled* = the emitted "
+        "C++ compiled with -O3 at run time, one thread, over frame 0's pixel inputs (ns per pixel; ms per "
+        "frame), the time the speed-ups quote"
+     << (r.compiled_note.empty()
+             ? ""
+             : " (**not measured**: " + r.compiled_note + "; the evaluator's time is quoted)")
+     << "; *eval* = the batch evaluator on the same inputs (ms per frame); *GLSL* = emitted GLSL on "
+     << (r.gl_renderer.empty() ? "(not measured: `bltune --glsl` times it)" : r.gl_renderer)
+     << " ms per frame. MSAA n: the plain program n times per pixel at counter-based jittered positions "
+        "(compiled: measured; model and eval: n x plain's). Errors: RMS in display space over every pixel "
+        "of every frame.\n\n"
+     << "| point | model ns/px | compiled ns/px | model / compiled | compiled ms/frame | eval ms/frame | "
+        "GLSL "
+        "ms/frame | search error | RMS | PSNR dB | NM | rule mix "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   auto row = [&](const Measured& m) {
+    const bool c = m.compiled_ns > 0;
     md << "| " << m.label << " | " << fmt("%.1f", m.model_ns) << " | "
-       << fmt("%.3f", m.model_ns * r.pixels * 1e-6) << " | " << fmt("%.3f", m.eval_ms) << " | "
+       << (c ? fmt("%.1f", m.compiled_ns) : "-") << " | "
+       << (c ? fmt("%.2f", m.model_ns / m.compiled_ns) : "-") << " | "
+       << (c ? fmt("%.3f", m.compiled_ms) : "-") << " | " << fmt("%.3f", m.eval_ms) << " | "
        << glsl_text(m.glsl_ms) << " | "
        << (std::isnan(m.search_error) ? std::string("-") : fmt("%.5f", m.search_error)) << " | "
        << fmt("%.5f", m.error) << " | " << fmt("%.2f", m.psnr) << " | " << (m.refined ? "yes" : "") << " | "
        << mix_text(m) << " |\n";
   };
   for (const Measured& m : r.front) row(m);
-  md << "| **baselines** | | | | | | | | | |\n";
+  md << "| **baselines** | | | | | | | | | | | |\n";
   for (const Measured& m : r.baselines) row(m);
   md << "\n## Speed-up against MSAA at equal error\n\n| MSAA | its RMS | fastest front point at <= that "
         "error | "
-        "speed-up (model) | speed-up (evaluator) |\n|---|---|---|---|---|\n";
+        "speed-up (model) | speed-up (measured) |\n|---|---|---|---|---|\n";
   for (const Speedup& s : speedups(r)) {
     md << "| " << s.msaa << " | " << fmt("%.5f", s.msaa_error) << " | ";
     if (s.front_index < 0)
       md << "none reaches it | - | - |\n";
     else
       md << r.front[s.front_index].label << " | " << fmt("%.1fx", s.model) << " | "
-         << fmt("%.1fx", s.measured) << " |\n";
+         << fmt("%.1fx", s.measured) << (s.compiled ? " compiled" : " evaluator") << " |\n";
   }
+  const ModelAccuracy acc = model_accuracy(r);
+  if (acc.points > 0)
+    md << "\nCost model vs compiled code over " << acc.points
+       << " measured points: median |model/compiled - 1| " << fmt("%.0f%%", 100 * acc.median) << ", worst "
+       << fmt("%.0f%%", 100 * acc.worst) << ".\n";
   md << "\nImages: `front*_vs_truth_msaa.png` (frame 0: ground truth | variant | MSAA of the nearest model "
         "time). Full schedules (node:rule) are in front.csv.\n";
 }
@@ -147,11 +185,13 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
 void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& dir) {
   std::filesystem::create_directories(dir);
   std::ofstream md(dir + "/summary.md"), csv(dir + "/summary.csv");
-  csv << "scene,nodes,search_s,finalize_s,front_size,msaa16_error,best_error,speedup16_model,speedup16_eval,"
-         "reaches_10x\n";
+  csv << "scene,nodes,search_s,finalize_s,front_size,msaa16_error,best_error,speedup16_model,speedup16_"
+         "measured,"
+         "reaches_10x,model_vs_compiled_median,model_vs_compiled_worst\n";
   md << "# Tuning summary\n\n| scene | nodes | search s | front | MSAA-16 RMS | best RMS | time at MSAA-16 "
         "error "
-        "(model / eval speed-up) | >= 10x |\n|---|---|---|---|---|---|---|---|\n";
+        "(model / measured speed-up) | >= 10x | model vs compiled (median / worst) "
+        "|\n|---|---|---|---|---|---|---|---|---|\n";
   for (const SceneResult& r : rs) {
     double best = INFINITY;
     for (const Measured& m : r.front) best = std::min(best, m.error);
@@ -159,14 +199,18 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
     for (const Speedup& s : speedups(r))
       if (s.msaa == 16) s16 = s;
     const bool ten = s16.front_index >= 0 && s16.model >= 10;
+    const ModelAccuracy acc = model_accuracy(r);
     md << "| " << r.scene << " | " << r.nodes << " | " << fmt("%.1f", r.search_seconds) << " | "
        << r.front.size() << " | " << fmt("%.5f", s16.msaa_error) << " | " << fmt("%.5f", best) << " | "
        << (s16.front_index < 0 ? std::string("not reached")
                                : fmt("%.1fx", s16.model) + " / " + fmt("%.1fx", s16.measured))
-       << " | " << (ten ? "yes" : "no") << " |\n";
+       << " | " << (ten ? "yes" : "no") << " | "
+       << (acc.points ? fmt("%.0f%%", 100 * acc.median) + " / " + fmt("%.0f%%", 100 * acc.worst)
+                      : std::string("-"))
+       << " |\n";
     csv << r.scene << "," << r.nodes << "," << r.search_seconds << "," << r.finalize_seconds << ","
         << r.front.size() << "," << s16.msaa_error << "," << best << "," << s16.model << "," << s16.measured
-        << "," << (ten ? 1 : 0) << "\n";
+        << "," << (ten ? 1 : 0) << "," << acc.median << "," << acc.worst << "\n";
   }
 }
 

@@ -3,6 +3,7 @@
 // equal error; for a suite, a summary table over scenes.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -14,14 +15,26 @@ struct Speedup {
   int msaa = 0;
   double msaa_error = 0;
   int front_index = -1;            // fastest front point with error <= MSAA's; -1 when none reaches it
-  double model = 0, measured = 0;  // MSAA time / front point time (cost model, evaluator)
+  double model = 0, measured = 0;  // MSAA time / front point time (cost model, measured)
+  bool compiled = false;           // `measured` is compiled code's time (else the evaluator's)
 };
+
+// The time a report quotes for m: compiled ms per frame when measured, else the evaluator's.
+double measured_ms(const Measured& m);
 
 std::vector<Speedup> speedups(const SceneResult& r);
 
 // Writes dir/front.csv, dir/report.md and dir/pareto.png (the plot is skipped, with a line in the
 // Markdown, when gnuplot is missing).
 void write_scene_report(const SceneResult& r, const std::string& dir);
+
+// The cost model against compiled code over a scene's measured points: median and largest
+// |model / compiled - 1| (NaN when no compiled time exists).
+struct ModelAccuracy {
+  int points = 0;
+  double median = NAN, worst = NAN;
+};
+ModelAccuracy model_accuracy(const SceneResult& r);
 
 // Writes dir/summary.md and dir/summary.csv over the scenes.
 void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& dir);

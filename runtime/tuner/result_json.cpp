@@ -26,6 +26,8 @@ json to(const Measured& m) {
           {"error", num(m.error)},
           {"psnr", num(m.psnr)},
           {"eval_ms", num(m.eval_ms)},
+          {"compiled_ns", num(m.compiled_ns)},
+          {"compiled_ms", num(m.compiled_ms)},
           {"glsl_ms", num(m.glsl_ms)},
           {"refined", m.refined},
           {"mix", m.mix}};
@@ -41,6 +43,8 @@ Measured from(const json& j) {
   m.error = num(j.at("error"));
   m.psnr = num(j.at("psnr"));
   m.eval_ms = num(j.at("eval_ms"));
+  m.compiled_ns = j.contains("compiled_ns") ? num(j.at("compiled_ns")) : -1;
+  m.compiled_ms = j.contains("compiled_ms") ? num(j.at("compiled_ms")) : -1;
   m.glsl_ms = num(j.at("glsl_ms"));
   m.refined = j.at("refined");
   m.mix = j.at("mix").get<std::map<std::string, double>>();
@@ -62,6 +66,7 @@ std::string result_to_json(const SceneResult& r) {
               {"finalize_seconds", r.finalize_seconds},
               {"evaluations", r.evaluations},
               {"gl_renderer", r.gl_renderer},
+              {"compiled_note", r.compiled_note},
               {"front", f},
               {"baselines", b}}
       .dump(1);
@@ -79,6 +84,7 @@ SceneResult result_from_json(const std::string& text) {
   r.finalize_seconds = j.at("finalize_seconds");
   r.evaluations = j.at("evaluations");
   r.gl_renderer = j.at("gl_renderer");
+  r.compiled_note = j.value("compiled_note", std::string());
   for (const json& m : j.at("front")) r.front.push_back(from(m));
   for (const json& m : j.at("baselines")) r.baselines.push_back(from(m));
   return r;

@@ -8,6 +8,7 @@
 
 #include "compiler/lower.hpp"
 #include "ir/hash.hpp"
+#include "tuner/magnitude_profile.hpp"
 #include "tuner/rho_estimate.hpp"
 
 namespace bl::tuner {
@@ -22,6 +23,12 @@ std::string model_digest(const CostModel& cm) {  // recalibration invalidates ch
   };
   for (const auto& [k, v] : cm.op_ns) mix(k, v);
   for (const auto& [k, v] : cm.fn_ns) mix(k, v);
+  h = ir::fnv1a(cm.method, h);
+  mix("window", cm.window_ns);
+  for (const auto& [k, v] : cm.fn_lat_ns) mix(k, v);
+  for (const auto& [k, v] : cm.op_lat_ns) mix(k, v);
+  for (const auto& [k, v] : cm.fn_band_ns)
+    for (double b : v) mix(k, b);
   char buf[32];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
@@ -32,6 +39,11 @@ std::string model_digest(const CostModel& cm) {  // recalibration invalidates ch
 SceneTuner::SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOptions& opt)
     : scene_(s), graph_(shaders::trace(shaders::find_shader(s.shader), s.effects())), cm_(cm), opt_(opt) {
   sample_ = std::make_unique<PixelSample>(s, opt.cache_dir, opt.sample_pixels, opt.sample_seed);
+  // Banded function costs follow this scene's argument magnitudes (observed on the plain program).
+  if (const auto plain = lower(compiler::uniform_schedule(graph_, rules::parse_rule("none"))))
+    cm_.band_share = magnitude_profile(*plain, *sample_);
+  if (const auto smoothed = lower(compiler::uniform_schedule(graph_, rules::parse_rule("gaussian"))))
+    cm_.joint_share = joint_profile(*smoothed, *sample_);
   problem_.graph = &graph_;
   problem_.space = SearchSpace::build(graph_);
   problem_.palette = Palette::parse(opt.rules);

@@ -3,7 +3,7 @@
 file(REMOVE_RECURSE ${WORK})
 set(args --suite ${SUITE} --only circles_none --image 20 --truth-samples 16 --rules none,dorn,mc2,mc4,box
          --population 8 --generations 2 --restarts 3 --pixels 200 --search-only --cache ${WORK}/cache
-         --cost-model ${WORK}/cost_model.json)
+         --cost-model ${WORK}/cost_model.json --calibration evaluator)
 execute_process(COMMAND ${BLTUNE} ${args} --out ${WORK}/single RESULT_VARIABLE rc OUTPUT_VARIABLE out
                 ERROR_VARIABLE out)
 if(NOT rc EQUAL 0)

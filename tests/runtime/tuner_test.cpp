@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include "compiler/functions.hpp"
 #include "compiler/lower.hpp"
 #include "image/metrics.hpp"
 #include "render/render.hpp"
@@ -11,6 +12,7 @@
 #include "tuner/calibrate.hpp"
 #include "tuner/checkpoint.hpp"
 #include "tuner/genetic.hpp"
+#include "tuner/magnitude_profile.hpp"
 #include "tuner/pareto.hpp"
 #include "tuner/pixel_sample.hpp"
 #include "tuner/scene_tuner.hpp"
@@ -35,10 +37,12 @@ scene::Scene tiny_scene() {
   return s;
 }
 
-// A cheap calibration (its numbers are noisy but complete).
+// A cheap calibration (its numbers are noisy but complete), on the evaluator: the compiled
+// calibration compiles every table function (a minute); CompiledCalibration below times a few.
 const CostModel& quick_model() {
   static const CostModel m = [] {
     CalibrationOptions o;
+    o.method = CalibrationOptions::Method::Evaluator;
     o.pixels = 512;
     o.copies = 4;
     o.min_ms = 0.05;
@@ -174,6 +178,81 @@ TEST(CostModel, OrdersAllMc32AboveAllNoneAndRoundTrips) {
   CostModel partial = m;
   partial.fn_ns.erase(partial.fn_ns.begin());
   EXPECT_FALSE(partial.covers_all());
+}
+
+// Compiled calibration of a few entries: every x function gets a cost per magnitude band, and the
+// scene's band shares weight them (the weighted sum computed here by hand).
+TEST(CostModel, CompiledCalibrationHasBandsAndTheProfileWeightsThem) {
+  CalibrationOptions o;
+  o.only = "::fract";
+  o.pixels = 512;
+  o.min_ms = 0.05;
+  o.trials = 1;
+  o.jit.cache_dir = temp_dir("jit_cal");
+  const CostModel m = calibrate_compiled(o);
+  EXPECT_EQ(m.method, "compiled");
+  ASSERT_TRUE(m.fn_band_ns.count("bl::plain::fract"));
+  ASSERT_TRUE(m.fn_band_ns.count("bl::gaussian::fract"));
+  EXPECT_EQ(m.fn_band_ns.at("bl::plain::fract").size(), std::size_t(CostModel::kBands));
+  EXPECT_EQ(m.fn_band_ns.at("bl::gaussian::fract").size(),
+            std::size_t(CostModel::kBands * CostModel::kSigmaBands));
+  for (const auto& [name, bands] : m.fn_band_ns)
+    for (double ns : bands) EXPECT_GT(ns, 0) << name;
+  EXPECT_EQ(CostModel::atomic_of("bl::box::fract_sq"), "fract");
+  EXPECT_EQ(CostModel::atomic_of("bl::plain::fract"), "fract");
+  EXPECT_EQ(CostModel::atomic_of("bl::rule2::sin"), "");
+  EXPECT_EQ(CostModel::band_of(1), 0);
+  EXPECT_EQ(CostModel::band_of(3), 0);
+  EXPECT_EQ(CostModel::band_of(4), 1);
+  EXPECT_EQ(CostModel::band_of(5e4), 5);
+  EXPECT_EQ(CostModel::band_of(1e30), CostModel::kBands - 1);
+  EXPECT_EQ(CostModel::band_of(std::nan("")), 0);
+  CostModel w = m;
+  const int f = compiler::find_function("bl::plain::fract");
+  EXPECT_EQ(w.function_cost(f), m.fn_ns.at("bl::plain::fract"));  // no profile: band 0
+  const int top = CostModel::kBands - 1, ns = CostModel::kSigmaBands;
+  w.band_share["fract"] = std::vector<double>(CostModel::kBands, 0.0);
+  w.band_share["fract"][0] = 0.25;
+  w.band_share["fract"][top] = 0.75;
+  const auto& b = m.fn_band_ns.at("bl::plain::fract");
+  EXPECT_NEAR(w.function_cost(f), 0.25 * b[0] + 0.75 * b[top], 1e-12);
+  const int g = compiler::find_function("bl::gaussian::fract");
+  const auto& bg = m.fn_band_ns.at("bl::gaussian::fract");
+  EXPECT_NEAR(w.function_cost(g), 0.25 * bg[0 * ns + 2] + 0.75 * bg[top * ns + 2], 1e-12);  // sigma band 2
+  w.joint_share["fract"] = std::vector<double>(CostModel::kBands * ns, 0.0);
+  w.joint_share["fract"][2 * ns + 3] = 1;  // |x| ~ 1e2, sigma ~ 3
+  EXPECT_NEAR(w.function_cost(g), bg[2 * ns + 3], 1e-12);
+  EXPECT_EQ(CostModel::sigma_band_of(0.05), 1);
+  const std::string path = temp_dir("cost_bands") + "/cost.json";
+  save_cost_model(path, m);
+  const CostModel back = load_cost_model(path, m.machine);
+  EXPECT_EQ(back.fn_band_ns, m.fn_band_ns);
+  EXPECT_EQ(back.method, "compiled");
+}
+
+// The profile of a scene's plain program: one row per atomic it calls, each summing to 1.
+TEST(MagnitudeProfile, RowsSumToOneOnTheCheckerboard) {
+  const std::string cache = temp_dir("cache_prof");
+  const scene::Scene s = tiny_scene();
+  const ir::Graph g = shaders::trace(shaders::find_shader(s.shader), s.effects());
+  const PixelSample sample(s, cache, 100, 1);
+  const auto prof =
+      magnitude_profile(compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("none"))), sample);
+  ASSERT_FALSE(prof.empty());
+  for (const auto& [atomic, share] : prof) {
+    double sum = 0;
+    for (double v : share) sum += v;
+    EXPECT_NEAR(sum, 1, 1e-12) << atomic;
+  }
+  const auto joint =
+      joint_profile(compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian"))), sample);
+  ASSERT_FALSE(joint.empty());
+  for (const auto& [atomic, share] : joint) {
+    EXPECT_EQ(share.size(), std::size_t(CostModel::kBands * CostModel::kSigmaBands));
+    double sum = 0;
+    for (double v : share) sum += v;
+    EXPECT_NEAR(sum, 1, 1e-12) << atomic;
+  }
 }
 
 TEST(PixelSample, AllPixelsEqualRmsOfRenderSmoothed) {
