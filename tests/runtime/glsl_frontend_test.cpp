@@ -355,3 +355,49 @@ TEST(GlslFrontEnd, ConstantSelectFoldsToTheChosenValue) {
 
 }  // namespace
 }  // namespace bl
+
+namespace bl {
+namespace {
+
+// The DSL's vector and variable-edge helpers trace to what the GLSL front end produces.
+TEST(GlslFrontEnd, DslVariableEdgesAndVectorsMatchTheFrontEnd) {
+  const glsl::Pattern p = trace(R"(
+vec3 shade(vec2 uv, float time) {
+  vec2 f = fract(uv) + floor(uv);
+  return vec3(smoothstep(uv.x, uv.y, time) + clamp(time, uv.x, uv.y), mod(uv.x, uv.y) + length(f),
+              mix(uv, f, time).y);
+})");
+  ir::Graph want;
+  {
+    dsl::Tracer t(want);
+    using dsl::Var;
+    const Var u = Var::input("u", true), v = Var::input("v", true), time = Var::input("time", false);
+    const dsl::Vec2<Var> uv{u, v};
+    const dsl::Vec2<Var> fr = dsl::fract(uv), fl = dsl::floor(uv);
+    const dsl::Vec2<Var> f = fr + fl;
+    const Var s = dsl::smoothstep(u, v, time);
+    const Var r = s + dsl::clamp(time, u, v);
+    const Var m = dsl::mod(u, v);
+    const Var g = m + dsl::length(f);
+    const Var b = dsl::mix(uv, f, time).y;
+    want.add_output("r", r.id());
+    want.add_output("g", g.id());
+    want.add_output("b", b.id());
+  }
+  // Values agree (node order may differ with evaluation order): evaluate both natively.
+  const glsl::NativeProgram a(p.graph), b(want);
+  for (float u : {-1.3f, 0.2f, 2.7f})
+    for (float v : {-0.6f, 1.1f, 3.4f}) {
+      float x[3], y[3];
+      a.run(u, v, 0.4f, nullptr, x);
+      b.run(u, v, 0.4f, nullptr, y);
+      for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(x[k], y[k]) << k << " " << u << " " << v;
+    }
+  // Float instantiations compile and agree with GLSL's definitions.
+  EXPECT_FLOAT_EQ(dsl::mod(-1.25f, 0.5f + 0.25f), 0.25f);
+  EXPECT_FLOAT_EQ(dsl::clamp(3.0f, 0.5f, 2.0f), 2.0f);
+  EXPECT_FLOAT_EQ(dsl::smoothstep(1.0f, 3.0f, 2.0f), 0.5f);
+}
+
+}  // namespace
+}  // namespace bl
