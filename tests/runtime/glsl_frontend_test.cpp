@@ -401,3 +401,32 @@ vec3 shade(vec2 uv, float time) {
 
 }  // namespace
 }  // namespace bl
+
+namespace bl {
+namespace {
+
+// return inside an unrolled loop under a traced condition: the first hit wins, later code is masked.
+TEST(GlslFrontEnd, ReturnInsideALoopUnderATracedCondition) {
+  expect_values(R"(
+vec3 hit(vec2 p) {
+  for (int i = 0; i < 4; i++) {
+    float r = 0.5 + float(i);
+    if (length(p) < r) return vec3(float(i), r, p.x);
+    p *= 0.9;
+  }
+  return vec3(-1.0, 0.0, p.y);
+}
+vec3 shade(vec2 uv, float time) { return hit(uv); })",
+                [](double u, double v, double) {
+                  double px = u, py = v;
+                  for (int i = 0; i < 4; i++) {
+                    const double r = 0.5 + i;
+                    if (std::hypot(px, py) < r) return V3{double(i), r, px};
+                    px *= 0.9, py *= 0.9;
+                  }
+                  return V3{-1, 0, py};
+                });
+}
+
+}  // namespace
+}  // namespace bl
