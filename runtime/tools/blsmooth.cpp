@@ -11,6 +11,7 @@
 
 #include "compiler/emit.hpp"
 #include "compiler/lower.hpp"
+#include "glsl/prelude.hpp"
 #include "glsl/shader.hpp"
 #include "scene/scene.hpp"
 
@@ -64,14 +65,22 @@ void write_atomically(const std::string& path, const std::string& text) {
 int main(int argc, char** argv) {
   CLI::App app{"blsmooth: a GLSL pattern or a scene -> smoothed GLSL or C++ (no rendering)"};
   std::string input, rules_text = "gaussian", out_path, name = "shade";
-  app.add_option("input", input, "pattern (.glsl, defines vec3 shade(vec2 uv, float time)) or scene (.json)")
-      ->required();
+  bool print_prelude = false;
+  app.add_option("input", input, "pattern (.glsl, defines vec3 shade(vec2 uv, float time)) or scene (.json)");
   app.add_option("--rules", rules_text,
                  "rule for every node (none, dorn, gaussian, mc8, box, tent, rule1:box, ...)");
-  app.add_option("--out", out_path, "output: .glsl (GLSL function) or .hpp/.h (C++ header)")->required();
+  app.add_option("--out", out_path, "output: .glsl (GLSL function) or .hpp/.h (C++ header)");
   app.add_option("--name", name, "name of the emitted function");
+  app.add_flag("--prelude", print_prelude,
+               "print the GLSL prelude (saturate, triangle, square, pow2..pow8, inv, inv2) and exit");
   CLI11_PARSE(app, argc, argv);
+  if (print_prelude) {
+    std::fputs(glsl::prelude().c_str(), stdout);
+    return 0;
+  }
   try {
+    if (input.empty() || out_path.empty())
+      throw std::invalid_argument("give an input file and --out (see --help)");
     const bool to_glsl = ends_with(out_path, ".glsl");
     if (!to_glsl && !ends_with(out_path, ".hpp") && !ends_with(out_path, ".h"))
       throw std::invalid_argument(out_path + ": the output must end in .glsl, .hpp or .h");

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # blsmooth end to end: a GLSL pattern and a scene to GLSL (validated by glslangValidator inside a
-# fragment shader, as 450 and 320 es) and to C++ (compiled against generated/ and run); bad
-# arguments exit non-zero and leave no output file.
+# fragment shader, as 450 and 320 es) and to C++ (compiled against generated/ and run); the example
+# patterns with the prelude are valid GLSL; bad arguments exit non-zero and leave no output file.
 set -euo pipefail
 blsmooth=$1 validator=$2 cxx=$3 src=$4 work=$5
 rm -rf "$work" && mkdir -p "$work"
@@ -31,6 +31,13 @@ int main() {
 }
 CPP
 "$cxx" -std=c++17 -O1 -I"$src/generated" -I"$work" "$work/main.cpp" -o "$work/main" && "$work/main"
+# Every example pattern is valid GLSL 450 once the prelude (blsmooth --prelude) is in front of it.
+for f in "$src"/scenes/glsl/*.glsl; do
+  { echo "#version 450"; "$blsmooth" --prelude; grep -v "^#version" "$f"
+    echo "layout(location = 0) out vec4 frag;"
+    echo "void main() { frag = vec4(shade(vec2(0.3, 0.7), 0.5), 1.0); }"; } > "$work/example.frag"
+  "$validator" -S frag "$work/example.frag" > /dev/null || { echo "FAILED: $f with the prelude"; exit 1; }
+done
 # Errors: exit non-zero, nothing written.
 if "$blsmooth" "$src/scenes/glsl/fire.glsl" --out "$work/bad.txt" 2> /dev/null; then echo "bad extension accepted"; exit 1; fi
 printf 'vec3 shade(vec2 uv, float time) {\n  if (uv.x < 0.0) discard;\n  return vec3(1.0);\n}\n' > "$work/bad.glsl"
