@@ -86,6 +86,19 @@ TEST(GlslScene, TheGlslCheckerboardRendersLikeTheBuiltIn) {
   }
 }
 
+// Every example scene in scenes/glsl loads and traces (the five user-style patterns included).
+TEST(GlslScene, ExampleScenesLoad) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(BL_SCENES_DIR "/glsl")) {
+    if (e.path().extension() != ".json") continue;
+    const scene::Scene s = scene::load_scene(e.path().string());
+    EXPECT_TRUE(s.glsl) << e.path();
+    EXPECT_GT(shaders::trace(s.shader_def(), s.effects()).size(), 10) << e.path();
+    ++n;
+  }
+  EXPECT_GE(n, 7);
+}
+
 TEST(GlslScene, ErrorsNameTheSceneTheFieldAndTheGlslLine) {
   const fs::path dir = temp_dir();
   write(dir / "scene.json", kScene);
