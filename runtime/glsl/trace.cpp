@@ -47,6 +47,7 @@ struct LRef {
   long long id = 0;
   std::vector<int> comps;
   const TIntermTyped* node = nullptr;
+  bool local = false;  // a function's temporary: lanes that returned never read it again
 };
 
 // Everything an if/else merges: variables, the function's "still running" mask and return value,
@@ -194,6 +195,7 @@ class Walker {
       LRef r;
       r.id = s->getId();
       r.node = n;
+      r.local = s->getQualifier().storage == glslang::EvqTemporary;
       const int k = var(s).size();
       for (int i = 0; i < k; ++i) r.comps.push_back(i);
       return r;
@@ -205,13 +207,13 @@ class Walker {
         const int idx = constant_index(b->getRight());
         const int es = components(b);
         if (idx < 0 || (idx + 1) * es > static_cast<int>(base.comps.size())) fail(b, "index out of range");
-        LRef r{base.id, {}, n};
+        LRef r{base.id, {}, n, base.local};
         for (int i = 0; i < es; ++i) r.comps.push_back(base.comps[idx * es + i]);
         return r;
       }
       if (op == glslang::EOpVectorSwizzle) {
         LRef base = lvalue(b->getLeft());
-        LRef r{base.id, {}, n};
+        LRef r{base.id, {}, n, base.local};
         for (TIntermNode* k : b->getRight()->getAsAggregate()->getSequence())
           r.comps.push_back(base.comps.at(k->getAsConstantUnion()->getConstArray()[0].getIConst()));
         return r;
@@ -227,9 +229,11 @@ class Walker {
     return out;
   }
   // Writes under the active mask (select against the old value where some lanes are inactive).
+  // A local is not masked by an earlier return (so a while loop's counter stays constant after a
+  // conditional return); globals and parameters are, since the caller reads them.
   void write(const LRef& r, const Value& x) {
     if (dead()) return;
-    const Var m = active();
+    const Var m = r.local ? land(st_.brk, st_.cont) : active();
     Value& v = st_.vars.at(r.id);
     for (std::size_t i = 0; i < r.comps.size(); ++i) v.c[r.comps[i]] = sel(m, x.c[i], v.c[r.comps[i]]);
   }

@@ -430,3 +430,40 @@ vec3 shade(vec2 uv, float time) { return hit(uv); })",
 
 }  // namespace
 }  // namespace bl
+
+namespace bl {
+namespace {
+
+// A while loop whose counter is updated after a conditional return still unrolls; a global and an
+// out parameter written after that return keep their value in the lanes that returned.
+TEST(GlslFrontEnd, WhileLoopWithAnEarlyReturn) {
+  expect_values(R"(
+float g = 0.0;
+float first_below(float x, out float steps) {
+  int j = 0;
+  steps = 0.0;
+  while (j < 4) {
+    if (x < float(j) - 1.0) return float(j);
+    j += 1;
+    g += 1.0;
+    steps += 1.0;
+  }
+  return -1.0;
+}
+vec3 shade(vec2 uv, float time) {
+  float steps;
+  float k = first_below(uv.x, steps);
+  return vec3(k, steps, g);
+})",
+                [](double u, double, double) {
+                  double steps = 0, g = 0;
+                  for (int j = 0; j < 4; ++j) {
+                    if (u < j - 1.0) return V3{double(j), steps, g};
+                    g += 1, steps += 1;
+                  }
+                  return V3{-1, steps, g};
+                });
+}
+
+}  // namespace
+}  // namespace bl
