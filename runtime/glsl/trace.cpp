@@ -119,10 +119,11 @@ class Walker {
   }
   Var div(Var a, Var b) { return is(b, 1) ? a : a / b; }
   Var atomic(const char* name, Var x) { return dsl::call(name, x); }
-  Var sel(Var c, Var a, Var b) {
+  Var sel(Var c, Var a, Var b) {  // c is a 0/1 condition
     if (a.id() == b.id()) return a;
     double k;
     if (cval(c, &k)) return k != 0 ? a : b;
+    if (is(a, 1) && is(b, 0)) return c;
     return dsl::select(c, a, b);
   }
   Var less(Var a, Var b) { return dsl::less(a, b); }

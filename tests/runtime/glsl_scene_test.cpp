@@ -86,6 +86,29 @@ TEST(GlslScene, TheGlslCheckerboardRendersLikeTheBuiltIn) {
   }
 }
 
+// A GLSL texture slot binds like a built-in shader's: the GLSL textured_tiles renders as the C++ one
+// (plain, MSAA and smoothed).
+TEST(GlslScene, TextureSlotsRenderLikeTheBuiltIn) {
+  const std::string tail = R"(, "geometry": {"uv_scale": 0.5}, "image": {"width": 16, "height": 12},
+    "textures": {"albedo": ")" +
+                           std::string(BL_SCENES_DIR) + "/textures/albedo_cells.png\"}}";
+  const scene::Scene a = scene::parse_scene(R"({"shader": ")" + std::string(BL_SCENES_DIR) +
+                                            "/glsl/textured_tiles.glsl\"" + tail);
+  const scene::Scene b = scene::parse_scene(R"({"shader": "textured_tiles")" + tail);
+  ASSERT_EQ(a.textures.size(), 1u);
+  const ir::Graph ga = shaders::trace(a.shader_def(), a.effects()),
+                  gb = shaders::trace(b.shader_def(), b.effects());
+  const rules::Rule rule = rules::parse_rule("gaussian");
+  const compiler::Program pa = compiler::lower(ga, compiler::uniform_schedule(ga, rule));
+  const compiler::Program pb = compiler::lower(gb, compiler::uniform_schedule(gb, rule));
+  for (const render::Frame& f : render::frames(a)) {
+    const Image x = render::render_native(a, f, 4), y = render::render_native(b, f, 4);
+    for (std::size_t i = 0; i < x.pixels.size(); ++i) ASSERT_NEAR(x.pixels[i], y.pixels[i], 1e-5);
+    const Image xs = render::render_smoothed(a, f, pa), ys = render::render_smoothed(b, f, pb);
+    for (std::size_t i = 0; i < xs.pixels.size(); ++i) ASSERT_NEAR(xs.pixels[i], ys.pixels[i], 1e-5);
+  }
+}
+
 // Every example scene in scenes/glsl loads and traces (the five user-style patterns included).
 TEST(GlslScene, ExampleScenesLoad) {
   int n = 0;
