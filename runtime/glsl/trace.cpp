@@ -607,10 +607,10 @@ class Walker {
   }
 
   // Float -> int (and int -> float, bool <-> number) conversions; ints are carried as whole floats.
-  Var to_int(const TIntermNode* n, Var x) {
+  // int(x) of a traced float is trunc(x) (exact); integer arithmetic on it is limited above.
+  Var to_int(Var x) {
     double k;
     if (cval(x, &k)) return Var(std::trunc(k));
-    (void)n;
     return atomic("trunc", x);
   }
   Var to_bool(Var x) { return lnot(equal(x, Var(0.0))); }
@@ -639,7 +639,7 @@ class Walker {
       const auto from = arg->getBasicType();
       if (to == glslang::EbtBool) return zip({x}, [&](const std::vector<Var>& a) { return to_bool(a[0]); });
       if ((to == glslang::EbtInt || to == glslang::EbtUint) && from == glslang::EbtFloat)
-        return zip({x}, [&](const std::vector<Var>& a) { return to_int(u, a[0]); });
+        return zip({x}, [&](const std::vector<Var>& a) { return to_int(a[0]); });
       if (to == glslang::EbtUint && from == glslang::EbtInt) {
         for (Var v : x.c) {
           double k;
@@ -693,7 +693,7 @@ class Walker {
         if (to == glslang::EbtBool && from != glslang::EbtBool)
           v = to_bool(v);
         else if ((to == glslang::EbtInt || to == glslang::EbtUint) && from == glslang::EbtFloat)
-          v = to_int(a, v);
+          v = to_int(v);
         flat.c.push_back(v);
       }
     }
