@@ -3,7 +3,7 @@
 set -euo pipefail
 pkgs=(g++ cmake make pkg-config
   libginac-dev ginac-tools libcln-dev libboost-math-dev libboost-dev
-  libopenimageio-dev openimageio-tools glslang-tools
+  libopenimageio-dev openimageio-tools glslang-tools glslang-dev
   libegl-dev libgles-dev libgl1-mesa-dri libosmesa6-dev
   libgtest-dev libbenchmark-dev libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev
   libnlopt-cxx-dev gnuplot-nox python3

@@ -128,4 +128,28 @@ S step_edge(double edge, S x) {
   return step(x - S(edge));
 }  // GLSL step(edge, x) up to the value at the edge
 
+// The same with traced (variable) edges and divisors, as the GLSL front end maps them (overloads,
+// not templates, so calls with constant edges keep the forms above).
+// GLSL smoothstep(e0, e1, x) = smoothstep((x - e0) / (e1 - e0)).
+inline Var smoothstep(Var e0, Var e1, Var x) {
+  return smoothstep((x - e0) / (e1 - e0));
+}
+inline float smoothstep(float e0, float e1, float x) {
+  return smoothstep((x - e0) / (e1 - e0));
+}
+// GLSL clamp(x, lo, hi) with varying bounds: min(max(x, lo), hi).
+inline Var clamp(Var x, Var lo, Var hi) {
+  return min(max(x, lo), hi);
+}
+inline float clamp(float x, float lo, float hi) {
+  return min(max(x, lo), hi);
+}
+// GLSL mod(a, b) with a varying divisor: a - b floor(a / b).
+inline Var mod(Var a, Var b) {
+  return a - b * floor(a / b);
+}
+inline float mod(float a, float b) {
+  return a - b * bl::plain::floor(a / b);
+}
+
 }  // namespace bl::dsl

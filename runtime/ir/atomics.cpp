@@ -67,5 +67,8 @@ double plain_atomic(int index, double x) {
 float plain_atomic(int index, float x) {
   return plains<float>().at(index)(x);
 }
+PlainFloatFn plain_atomic_fn(int index) {
+  return plains<float>().at(index);
+}
 
 }  // namespace bl::ir

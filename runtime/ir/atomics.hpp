@@ -12,5 +12,8 @@ int atomic_count();
 void atomic_range(int index, double* lo, double* hi);
 double plain_atomic(int index, double x);  // f(x) itself (the catalog definition, generated)
 float plain_atomic(int index, float x);
+// The float plain function itself, for evaluators that resolve calls once (throws on a bad index).
+using PlainFloatFn = float (*)(float);
+PlainFloatFn plain_atomic_fn(int index);
 
 }  // namespace bl::ir

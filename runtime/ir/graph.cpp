@@ -106,8 +106,8 @@ bool Graph::fold(const Node& n, double* out) const {
     case Op::Less:
       *out = a < b ? 1.0 : 0.0;
       return true;
-    case Op::Select:
-      *out = c * a + (1 - c) * b;
+    case Op::Select:  // a is the condition, b and c the values
+      *out = a * b + (1 - a) * c;
       return true;
     case Op::Mod:
       *out = a - n.value * std::floor(a / n.value);

@@ -78,7 +78,7 @@ Image render_native(const scene::Scene& s, const Frame& f, int samples, std::uin
   const camera::Camera cam = make_camera(s, f.view);
   const camera::Basis basis = camera::basis(cam);
   const camera::FootprintOptions opt = footprint_options(s);
-  const shaders::ShaderDef& shader = shaders::find_shader(s.shader);
+  const shaders::ShaderDef& shader = s.shader_def();
   const shaders::Effects fx = s.effects();
   Image img(s.width, s.height);
   const std::uint64_t key = frame_key(seed, f.view, f.time);
@@ -143,7 +143,7 @@ Image render_smoothed(const scene::Scene& s, const Frame& f, const compiler::Pro
 }
 
 std::string truth_cache_path(const scene::Scene& s, const Frame& f, const std::string& cache_dir) {
-  const std::uint64_t shader_hash = shaders::trace(shaders::find_shader(s.shader), s.effects()).hash();
+  const std::uint64_t shader_hash = shaders::trace(s.shader_def(), s.effects()).hash();
   char name[160];
   std::snprintf(name, sizeof name, "truth_cb_%016llx_%016llx_v%d_t%.6f.exr",
                 static_cast<unsigned long long>(s.hash()), static_cast<unsigned long long>(shader_hash),

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "glsl/shader.hpp"
 #include "ir/hash.hpp"
 
 namespace bl::scene {
@@ -71,7 +72,7 @@ const char* parallax_name(shaders::Parallax p) {
 
 // "textures": {"<slot>": "<file>"}: every slot the shader declares, no other.
 void load_textures(Scene& s, const json& j, const std::string& origin) {
-  const shaders::ShaderDef& def = shaders::find_shader(s.shader);
+  const shaders::ShaderDef& def = s.shader_def();
   std::string slots;
   for (const auto& t : def.textures) slots += (slots.empty() ? "" : ", ") + t.name;
   json bound = j.contains("textures") ? j["textures"] : json::object();
@@ -114,6 +115,10 @@ std::vector<const texture::Texture*> Scene::texture_slots(const std::vector<std:
   return out;
 }
 
+const shaders::ShaderDef& Scene::shader_def() const {
+  return glsl ? *glsl : shaders::find_shader(shader);
+}
+
 shaders::Effects Scene::effects() const {
   shaders::Effects fx;
   fx.parallax = parallax;
@@ -135,12 +140,31 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
   Scene s;
   if (!j.contains("shader")) fail(origin, "shader", "is required");
   s.shader = str(j["shader"], origin, "shader");
-  try {
-    shaders::find_shader(s.shader);
-  } catch (const std::invalid_argument& e) {
-    fail(origin, "shader", e.what());
+  const bool glsl_file = s.shader.size() > 5 && s.shader.compare(s.shader.size() - 5, 5, ".glsl") == 0;
+  if (glsl_file) {
+    // A GLSL pattern: absolute, or relative to the scene file's folder; traced now.
+    const std::filesystem::path base =
+        origin == "<text>" ? std::filesystem::path() : std::filesystem::path(origin).parent_path();
+    const std::filesystem::path file = std::filesystem::path(s.shader).is_absolute()
+                                           ? std::filesystem::path(s.shader)
+                                           : (base / s.shader).lexically_normal();
+    s.shader_file = file.string();
+    if (!std::filesystem::exists(file))
+      fail(origin, "shader", "GLSL file " + s.shader_file + " does not exist");
+    try {
+      s.glsl = glsl::load_shader(s.shader_file);
+    } catch (const std::exception& e) {
+      fail(origin, "shader", e.what());
+    }
+  } else {
+    try {
+      shaders::find_shader(s.shader);
+    } catch (const std::invalid_argument& e) {
+      fail(origin, "shader", std::string(e.what()) + ", or a .glsl file");
+    }
   }
-  s.name = j.contains("name") ? str(j["name"], origin, "name") : s.shader;
+  s.name = j.contains("name") ? str(j["name"], origin, "name")
+                              : (glsl_file ? std::filesystem::path(s.shader).stem().string() : s.shader);
   if (j.contains("geometry")) {
     const json& g = j["geometry"];
     only_fields(g, origin, "geometry", {"type", "uv_scale"});

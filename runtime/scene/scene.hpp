@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,9 @@ struct TextureFile {
 
 struct Scene {
   std::string name;
-  std::string shader;
+  std::string shader;       // a built-in shader's name, or a .glsl file as the scene file wrote it
+  std::string shader_file;  // a .glsl shader: the resolved path (relative to the scene's folder)
+  std::shared_ptr<const shaders::ShaderDef> glsl;  // a .glsl shader, traced when the scene loads
   // geometry: the infinite plane z = 0, surface coordinates (u, v) = (x, y) * uv_scale
   double uv_scale = 1;
   // camera
@@ -45,6 +48,8 @@ struct Scene {
   texture::Bindings textures;              // loaded with the scene, same order
 
   bool animated() const { return times.size() > 1; }
+  // The shader to render: the GLSL one when the scene names a .glsl file, else the built-in.
+  const shaders::ShaderDef& shader_def() const;
   shaders::Effects effects() const;
   std::string canonical_json() const;  // every field, fixed order (hashing, reports)
   std::uint64_t hash() const;          // of canonical_json() (texture contents included)
@@ -54,9 +59,10 @@ struct Scene {
 };
 
 // Parse a scene; throws std::invalid_argument naming the file (or "<text>"), the field and the
-// problem: unknown shader, unknown field, bad value, wrong type, malformed JSON, a texture slot the
+// problem: unknown shader, a .glsl shader that is missing or does not trace (its message:
+// file:line:col), unknown field, bad value, wrong type, malformed JSON, a texture slot the
 // shader lacks or needs, and a texture file that is missing, unreadable or has the wrong channel
-// count (the message names the file). Texture paths are relative to the scene file's folder
+// count (the message names the file). Texture and .glsl paths are relative to the scene file's folder
 // (to the working directory for "<text>").
 Scene parse_scene(const std::string& json_text, const std::string& origin = "<text>");
 Scene load_scene(const std::string& path);

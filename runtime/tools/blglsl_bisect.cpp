@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   }
   scene::Scene s = scene::load_scene(argv[1]);
   const std::string rule = argc > 2 ? argv[2] : "gaussian";
-  const ir::Graph g = shaders::trace(shaders::find_shader(s.shader), s.effects());
+  const ir::Graph g = shaders::trace(s.shader_def(), s.effects());
   const auto prog = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule(rule)));
   gl::Context ctx;
   const render::Frame f = render::frames(s).front();

@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
   try {
     const scene::Scene s = scene::load_scene(scene_path);
     const rules::Rule rule = rules::parse_rule(rules_text);
-    const ir::Graph g = shaders::trace(shaders::find_shader(s.shader), s.effects());
+    const ir::Graph g = shaders::trace(s.shader_def(), s.effects());
     const compiler::Program prog = compiler::lower(g, compiler::uniform_schedule(g, rule));
     std::filesystem::create_directories(out_dir);
     std::ofstream(out_dir + "/shader.hpp") << compiler::emit_cpp(prog, "shade", s.name + " / " + rules_text);

@@ -37,7 +37,7 @@ std::string model_digest(const CostModel& cm) {  // recalibration invalidates ch
 }  // namespace
 
 SceneTuner::SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOptions& opt)
-    : scene_(s), graph_(shaders::trace(shaders::find_shader(s.shader), s.effects())), cm_(cm), opt_(opt) {
+    : scene_(s), graph_(shaders::trace(s.shader_def(), s.effects())), cm_(cm), opt_(opt) {
   sample_ = std::make_unique<PixelSample>(s, opt.cache_dir, opt.sample_pixels, opt.sample_seed);
   // Banded function costs follow this scene's argument magnitudes (observed on the plain program).
   if (const auto plain = lower(compiler::uniform_schedule(graph_, rules::parse_rule("none"))))
