@@ -2,8 +2,8 @@
 // truth; write PNG images, error heatmaps and a report (RMS in display space, PSNR, SSIM, ms per frame).
 //
 //   blrender scenes/suite/checkerboard_none.json --rules gaussian --msaa 16 --out out/checker
+//   blrender scenes/suite/checkerboard_none.json --schedule out/tune/front.csv:front02   # a tuned point
 #include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +12,7 @@
 
 #include "compiler/emit.hpp"
 #include "compiler/lower.hpp"
+#include "compiler/schedule_csv.hpp"
 #include "gl/egl_runner.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
@@ -35,11 +36,16 @@ double time_ms(F&& f) {
 
 int main(int argc, char** argv) {
   CLI::App app{"blrender: render a bandlimit scene (plain, MSAA, smoothed, ground truth) and measure errors"};
-  std::string scene_path, rules_text = "gaussian", out_dir = "render_out", cache_dir = "build/truth_cache";
+  std::string scene_path, rules_text = "gaussian", schedule_spec, out_dir = "render_out",
+                          cache_dir = "build/truth_cache";
   std::vector<int> msaa{16};
   bool glsl = false;
   app.add_option("scene", scene_path, "scene file (JSON)")->required();
-  app.add_option("--rules", rules_text, "rule for every node (none, dorn, gaussian, mc8, box, tent, rule1:box, ...)");
+  auto* rules_opt = app.add_option(
+      "--rules", rules_text, "rule for every node (none, dorn, gaussian, mc8, box, tent, rule1:box, ...)");
+  app.add_option("--schedule", schedule_spec,
+                 "a tuned schedule instead of --rules: FRONT.csv:LABEL (bltune's front.csv, e.g. front02)")
+      ->excludes(rules_opt);
   app.add_option("--msaa", msaa, "MSAA sample counts to render");
   app.add_option("--out", out_dir, "output directory (PNG images, heatmaps, report.md, compiled shader)");
   app.add_option("--cache", cache_dir, "ground-truth cache directory (EXR); empty disables");
@@ -47,23 +53,35 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     const scene::Scene s = scene::load_scene(scene_path);
-    const rules::Rule rule = rules::parse_rule(rules_text);
     const ir::Graph g = shaders::trace(shaders::find_shader(s.shader), s.effects());
-    const compiler::Program prog = compiler::lower(g, compiler::uniform_schedule(g, rule));
+    compiler::Schedule schedule;
+    std::string banner = s.name + " / " + rules_text;
+    if (!schedule_spec.empty()) {
+      const compiler::LoadedSchedule l = compiler::load_schedule(schedule_spec, g);
+      schedule = l.schedule;
+      rules_text = l.label;  // names the method in the report and the image files
+      banner = s.name + " / " + l.file + ":" + l.label + ": " + l.text;
+    } else {
+      schedule = compiler::uniform_schedule(g, rules::parse_rule(rules_text));
+    }
+    const compiler::Program prog = compiler::lower(g, schedule);
     std::filesystem::create_directories(out_dir);
-    std::ofstream(out_dir + "/shader.hpp") << compiler::emit_cpp(prog, "shade", s.name + " / " + rules_text);
-    std::ofstream(out_dir + "/shader.glsl") << compiler::emit_glsl(prog, "shade", s.name + " / " + rules_text);
+    std::ofstream(out_dir + "/shader.hpp") << compiler::emit_cpp(prog, "shade", banner);
+    std::ofstream(out_dir + "/shader.glsl") << compiler::emit_glsl(prog, "shade", banner);
     std::ofstream report(out_dir + "/report.md");
-    report << "# " << s.name << " (" << s.shader << ")\n\nDAG nodes: " << g.size() << ", lowered instructions ("
-           << rules_text << "): " << prog.insts.size() << ", image " << s.width << "x" << s.height << "\n\n"
+    report << "# " << s.name << " (" << s.shader << ")\n\nDAG nodes: " << g.size()
+           << ", lowered instructions (" << rules_text << "): " << prog.insts.size() << ", image " << s.width
+           << "x" << s.height << "\n\n"
            << "| frame | method | ms/frame | RMS (display) | PSNR (dB) | SSIM |\n|---|---|---|---|---|---|\n";
     std::printf("%s: %d nodes, %zu instructions with %s\n", s.name.c_str(), g.size(), prog.insts.size(),
                 rules_text.c_str());
     std::unique_ptr<gl::Context> ctx;
     if (glsl) {
       const auto av = gl::Context::availability();
-      if (av.ok) ctx = std::make_unique<gl::Context>();
-      else std::printf("GLSL: skipped, no OpenGL driver (%s)\n", av.reason.c_str());
+      if (av.ok)
+        ctx = std::make_unique<gl::Context>();
+      else
+        std::printf("GLSL: skipped, no OpenGL driver (%s)\n", av.reason.c_str());
     }
     for (const render::Frame& f : render::frames(s)) {
       char tag[64];
@@ -71,13 +89,14 @@ int main(int argc, char** argv) {
       const Image truth = render::render_truth(s, f, cache_dir);
       write_png(out_dir + "/" + tag + "_truth.png", truth);
       auto row = [&](const std::string& method, const Image& img, double ms) {
-        const double rms = rms_display(img, truth), psnr = psnr_display(img, truth), ssim = ssim_display(img, truth);
+        const double rms = rms_display(img, truth), psnr = psnr_display(img, truth),
+                     ssim = ssim_display(img, truth);
         write_png(out_dir + "/" + tag + "_" + method + ".png", img);
         write_error_heatmap(out_dir + "/" + tag + "_" + method + "_error.png", img, truth);
-        report << "| " << tag << " | " << method << " | " << ms << " | " << rms << " | " << psnr << " | " << ssim
-               << " |\n";
-        std::printf("  %s %-12s %9.2f ms  RMS %.5f  PSNR %.2f dB  SSIM %.4f\n", tag, method.c_str(), ms, rms, psnr,
-                    ssim);
+        report << "| " << tag << " | " << method << " | " << ms << " | " << rms << " | " << psnr << " | "
+               << ssim << " |\n";
+        std::printf("  %s %-12s %9.2f ms  RMS %.5f  PSNR %.2f dB  SSIM %.4f\n", tag, method.c_str(), ms, rms,
+                    psnr, ssim);
       };
       Image img;
       double ms = time_ms([&] { img = render::render_native(s, f, 0); });

@@ -4,6 +4,8 @@
 //
 //   bltune --calibrate                                   # print (and save) the cost model table
 //   bltune scenes/suite/checkerboard_none.json --out out/tune/checkerboard_none
+//     (writes report.md, front.csv, result.json and front/<label>.glsl|.hpp per front point;
+//      blrender SCENE --schedule out/tune/checkerboard_none/front.csv:front02 renders one)
 //   bltune --suite scenes/suite --out out/tune           # every scene + summary.md
 //   mpirun -np 2 bltune_mpi --suite scenes/suite --out out/tune   # scenes x restarts over ranks
 //
@@ -20,6 +22,7 @@
 
 #include "tuner/calibrate.hpp"
 #include "tuner/checkpoint.hpp"
+#include "tuner/front_code.hpp"
 #include "tuner/report.hpp"
 #include "tuner/result_json.hpp"
 #include "tuner/scene_tuner.hpp"
@@ -93,6 +96,9 @@ SceneResult finish(const SceneTuner& t, const std::vector<Point>& front, double 
   if (!c.search_only) {
     write_scene_report(r, dir);
     std::ofstream(dir + "/result.json") << result_to_json(r) << "\n";
+    const int n = write_front_code(t, r, dir);
+    log_line(t.scene().name,
+             "wrote " + std::to_string(n) + " front point(s) as " + dir + "/front/<label>.glsl|.hpp");
   }
   return r;
 }
@@ -251,7 +257,9 @@ int main(int argc, char** argv) {
   app.add_option("scene", scene_path, "scene file (JSON)");
   app.add_option("--suite", suite_dir, "tune every *.json scene in this directory (sorted by name)");
   app.add_option("--only", only, "with --suite: only scenes whose file name contains this");
-  app.add_option("--out", c.out, "output directory (per scene: report.md, front.csv, pareto.png, images)");
+  app.add_option("--out", c.out,
+                 "output directory (per scene: report.md, front.csv, result.json, pareto.png, images, "
+                 "front/<label>.glsl|.hpp)");
   app.add_option("--cache", c.tune.cache_dir, "ground-truth cache directory (EXR)");
   app.add_option("--cost-model", c.cost_model,
                  "cost model JSON (calibrated and saved when this machine lacks one)");

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "compiler/lower.hpp"
+#include "compiler/schedule_text.hpp"
 #include "gl/egl_runner.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
@@ -29,13 +30,6 @@ double best_ms(int runs, F&& f) {
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
   return best;
-}
-
-std::string schedule_text(const SceneTuner& t, const compiler::Schedule& s) {
-  std::string out;
-  for (int n : t.problem().space.genes)
-    out += (out.empty() ? "" : " ") + std::to_string(n) + ":" + rules::to_string(s[n]);
-  return out;
 }
 
 // Indices of at most k front points spread evenly over the front (both ends kept).
@@ -99,6 +93,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   const std::vector<render::Frame> frames = render::frames(s);
   SceneResult res;
   res.scene = s.name;
+  res.graph_hash = compiler::graph_hash_text(t.graph());
   res.nodes = t.graph().size();
   res.genes = t.problem().space.size();
   res.pixels = s.width * s.height;
@@ -124,7 +119,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.refined = !(refined == sch);
     const auto p = t.lower(refined);
     if (!p) continue;
-    m.schedule = schedule_text(t, refined);
+    m.schedule = compiler::schedule_to_text(t.graph(), refined);
     m.model_ns = o.time;
     m.search_error = o.error;
     set_error(m, t.full_error(*p));

@@ -13,7 +13,7 @@ namespace bl::tuner {
 
 struct Measured {
   std::string label;
-  std::string schedule;     // per node rule texts joined by spaces ("" for MSAA)
+  std::string schedule;     // compiler::schedule_to_text; "all RULE" or "plain x N ..." for baselines
   int msaa = 0;             // MSAA sample count (baselines), 0 otherwise
   double model_ns = 0;      // cost model, ns per pixel
   double search_error = 0;  // on the pixel sample (front points; NaN for baselines)
@@ -27,6 +27,7 @@ struct Measured {
 
 struct SceneResult {
   std::string scene;
+  std::string graph_hash;  // compiler::graph_hash_text of the traced graph the schedules are for
   int nodes = 0, genes = 0, pixels = 0, frames = 0;
   double search_seconds = 0, finalize_seconds = 0;
   int evaluations = 0;

@@ -64,11 +64,12 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
     std::ofstream csv(dir + "/front.csv");
     csv << "kind,label,model_ns_per_pixel,model_ms_per_frame,eval_ms_per_frame,glsl_ms_per_frame,search_"
            "error,"
-           "rms_display,psnr_db,refined,rule_mix,schedule\n";
+           "rms_display,psnr_db,refined,rule_mix,schedule,graph_hash\n";
     auto row = [&](const char* kind, const Measured& m) {
       csv << kind << "," << m.label << "," << m.model_ns << "," << m.model_ns * px * 1e-6 << "," << m.eval_ms
           << "," << m.glsl_ms << "," << m.search_error << "," << m.error << "," << m.psnr << ","
-          << (m.refined ? 1 : 0) << ",\"" << mix_text(m) << "\",\"" << m.schedule << "\"\n";
+          << (m.refined ? 1 : 0) << ",\"" << mix_text(m) << "\",\"" << m.schedule << "\"," << r.graph_hash
+          << "\n";
     };
     for (const Measured& m : r.front) row("front", m);
     for (const Measured& m : r.baselines) row("baseline", m);

@@ -54,6 +54,7 @@ std::string result_to_json(const SceneResult& r) {
   for (const Measured& m : r.front) f.push_back(to(m));
   for (const Measured& m : r.baselines) b.push_back(to(m));
   return json{{"scene", r.scene},
+              {"graph_hash", r.graph_hash},
               {"nodes", r.nodes},
               {"genes", r.genes},
               {"pixels", r.pixels},
@@ -71,6 +72,7 @@ SceneResult result_from_json(const std::string& text) {
   const json j = json::parse(text);
   SceneResult r;
   r.scene = j.at("scene");
+  r.graph_hash = j.value("graph_hash", "");
   r.nodes = j.at("nodes");
   r.genes = j.at("genes");
   r.pixels = j.at("pixels");
