@@ -4,7 +4,9 @@
 //   blrender scenes/suite/checkerboard_none.json --rules gaussian --msaa 16 --out out/checker
 //   blrender scenes/suite/checkerboard_none.json --schedule out/tune/front.csv:front02   # a tuned point
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,10 +18,12 @@
 #include "gl/egl_runner.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
+#include "image/pixel_check.hpp"
 #include "image/report.hpp"
 #include "image/ssim.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
+#include "render/value_range.hpp"
 
 using namespace bl;
 
@@ -69,10 +73,15 @@ int main(int argc, char** argv) {
     std::ofstream(out_dir + "/shader.hpp") << compiler::emit_cpp(prog, "shade", banner);
     std::ofstream(out_dir + "/shader.glsl") << compiler::emit_glsl(prog, "shade", banner);
     std::ofstream report(out_dir + "/report.md");
-    report << "# " << s.name << " (" << s.shader << ")\n\nDAG nodes: " << g.size()
-           << ", lowered instructions (" << rules_text << "): " << prog.insts.size() << ", image " << s.width
-           << "x" << s.height << "\n\n"
-           << "| frame | method | ms/frame | RMS (display) | PSNR (dB) | SSIM |\n|---|---|---|---|---|---|\n";
+    report
+        << "# " << s.name << " (" << s.shader << ")\n\nDAG nodes: " << g.size() << ", lowered instructions ("
+        << rules_text << "): " << prog.insts.size() << ", image " << s.width << "x" << s.height << "\n\n"
+        << "RMS and PSNR on the unclamped display curve (values outside [0, 1] count with their distance, a "
+           "NaN/inf channel as 1); NaN px / range px: pixels with a NaN or infinite channel / with a channel "
+           "outside [0, 1] widened to the ground truth's range; min / max: the finite values (all "
+           "channels).\n\n"
+        << "| frame | method | ms/frame | RMS (display) | PSNR (dB) | SSIM | NaN px | range px | min | max "
+           "|\n|---|---|---|---|---|---|---|---|---|---|\n";
     std::printf("%s: %d nodes, %zu instructions with %s\n", s.name.c_str(), g.size(), prog.insts.size(),
                 rules_text.c_str());
     std::unique_ptr<gl::Context> ctx;
@@ -88,15 +97,23 @@ int main(int argc, char** argv) {
       std::snprintf(tag, sizeof tag, "v%d_t%.3f", f.view, f.time);
       const Image truth = render::render_truth(s, f, cache_dir);
       write_png(out_dir + "/" + tag + "_truth.png", truth);
+      const ValueRange range = render::valid_range(s, g, {truth});
       auto row = [&](const std::string& method, const Image& img, double ms) {
         const double rms = rms_display(img, truth), psnr = psnr_display(img, truth),
                      ssim = ssim_display(img, truth);
+        const PixelCounts bad = check_pixels(img, range);
+        float lo = INFINITY, hi = -INFINITY;
+        for (float v : img.pixels)
+          if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
         write_png(out_dir + "/" + tag + "_" + method + ".png", img);
         write_error_heatmap(out_dir + "/" + tag + "_" + method + "_error.png", img, truth);
         report << "| " << tag << " | " << method << " | " << ms << " | " << rms << " | " << psnr << " | "
-               << ssim << " |\n";
-        std::printf("  %s %-12s %9.2f ms  RMS %.5f  PSNR %.2f dB  SSIM %.4f\n", tag, method.c_str(), ms, rms,
-                    psnr, ssim);
+               << ssim << " | " << bad.nonfinite << " | " << bad.out_of_range << " | " << lo << " | " << hi
+               << " |\n";
+        std::printf(
+            "  %s %-12s %9.2f ms  RMS %.5f  PSNR %.2f dB  SSIM %.4f  NaN/inf px %zu  out-of-range px %zu  "
+            "[%.3g, %.3g]\n",
+            tag, method.c_str(), ms, rms, psnr, ssim, bad.nonfinite, bad.out_of_range, lo, hi);
       };
       Image img;
       double ms = time_ms([&] { img = render::render_native(s, f, 0); });

@@ -84,6 +84,8 @@ void write_search_front(const SceneTuner& t, const std::vector<Point>& front, co
 SceneResult finish(const SceneTuner& t, const std::vector<Point>& front, double search_s, int evals,
                    const Config& c, const std::string& dir) {
   write_search_front(t, front, dir);
+  // The search's count, before refinement evaluates more (under MPI: this rank's restarts only).
+  const long rejected = t.nonfinite_rejections();
   SceneResult r;
   r.scene = t.scene().name;
   if (!c.search_only) {
@@ -93,6 +95,7 @@ SceneResult finish(const SceneTuner& t, const std::vector<Point>& front, double 
   }
   r.search_seconds = search_s;
   r.evaluations = evals;
+  r.rejected_nonfinite = rejected;
   if (!c.search_only) {
     write_scene_report(r, dir);
     std::ofstream(dir + "/result.json") << result_to_json(r) << "\n";
@@ -127,6 +130,9 @@ int run_single(const Config& c, const CostModel& cm) {
     const RestartResult r = search(t.problem(), search_options(c, s));
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     log_line(s.name, "search " + std::to_string(secs) + " s, front of " + std::to_string(r.front.size()));
+    if (t.nonfinite_rejections() > 0)
+      log_line(s.name, std::to_string(t.nonfinite_rejections()) +
+                           " evaluation(s) gave NaN/inf on the sampled pixels: infeasible (error +inf)");
     if (!r.complete) {
       complete = false;
       log_line(s.name, "stopped early (--stop-after): run again to resume from the checkpoints");

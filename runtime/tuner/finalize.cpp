@@ -108,6 +108,11 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.error = e;
     m.psnr = -20 * std::log10(std::max(e, 1e-12));
   };
+  auto set_score = [&](Measured& m, const PixelSample::Score& sc) {
+    set_error(m, sc.rms);
+    m.nonfinite = sc.counts.nonfinite;
+    m.out_of_range = sc.counts.out_of_range;
+  };
   // Front points: refine sd factors, then measure on full images.
   std::vector<Measured> pts;
   std::vector<compiler::Schedule> schedules;
@@ -122,7 +127,13 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.schedule = compiler::schedule_to_text(t.graph(), refined);
     m.model_ns = o.time;
     m.search_error = o.error;
-    set_error(m, t.full_error(*p));
+    set_score(m, t.full_score(*p));
+    if (m.nonfinite > 0) {  // NaN/inf off the sample: as infeasible as on it
+      std::fprintf(stderr,
+                   "finalize: %s: a front point gives NaN/inf on %zu pixel(s) of the full images: dropped\n",
+                   s.name.c_str(), m.nonfinite);
+      continue;
+    }
     m.mix = rule_mix(t, refined);
     pts.push_back(m);
     schedules.push_back(std::move(refined));
@@ -154,7 +165,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.schedule = "all " + rule;
     m.model_ns = t.cost_model().cost(*p);
     m.search_error = std::numeric_limits<double>::quiet_NaN();
-    set_error(m, t.full_error(*p));
+    set_score(m, t.full_score(*p));
     m.mix[rule_family(rules::parse_rule(rule))] = 1;
     measure(t, *p, gl, &m);
     res.baselines.push_back(m);
@@ -173,6 +184,9 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     double sq = 0;
     for (std::size_t fi = 0; fi < frames.size(); ++fi) {
       const Image img = render::render_native(s, frames[fi], n);
+      const PixelCounts c = check_pixels(img, t.value_range());
+      m.nonfinite += c.nonfinite;
+      m.out_of_range += c.out_of_range;
       const double e = rms_display(img, truth[fi]);
       sq += e * e;
       if (fi == 0) msaa_frame0.push_back(img);

@@ -25,6 +25,8 @@ json to(const Measured& m) {
           {"search_error", num(m.search_error)},
           {"error", num(m.error)},
           {"psnr", num(m.psnr)},
+          {"nonfinite_pixels", m.nonfinite},
+          {"out_of_range_pixels", m.out_of_range},
           {"eval_ms", num(m.eval_ms)},
           {"glsl_ms", num(m.glsl_ms)},
           {"refined", m.refined},
@@ -40,6 +42,8 @@ Measured from(const json& j) {
   m.search_error = num(j.at("search_error"));
   m.error = num(j.at("error"));
   m.psnr = num(j.at("psnr"));
+  m.nonfinite = j.value("nonfinite_pixels", std::size_t{0});
+  m.out_of_range = j.value("out_of_range_pixels", std::size_t{0});
   m.eval_ms = num(j.at("eval_ms"));
   m.glsl_ms = num(j.at("glsl_ms"));
   m.refined = j.at("refined");
@@ -62,6 +66,7 @@ std::string result_to_json(const SceneResult& r) {
               {"search_seconds", r.search_seconds},
               {"finalize_seconds", r.finalize_seconds},
               {"evaluations", r.evaluations},
+              {"rejected_nonfinite", r.rejected_nonfinite},
               {"gl_renderer", r.gl_renderer},
               {"front", f},
               {"baselines", b}}
@@ -80,6 +85,7 @@ SceneResult result_from_json(const std::string& text) {
   r.search_seconds = j.at("search_seconds");
   r.finalize_seconds = j.at("finalize_seconds");
   r.evaluations = j.at("evaluations");
+  r.rejected_nonfinite = j.value("rejected_nonfinite", -1L);
   r.gl_renderer = j.at("gl_renderer");
   for (const json& m : j.at("front")) r.front.push_back(from(m));
   for (const json& m : j.at("baselines")) r.baselines.push_back(from(m));
