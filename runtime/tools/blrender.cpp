@@ -92,12 +92,16 @@ int main(int argc, char** argv) {
       else
         std::printf("GLSL: skipped, no OpenGL driver (%s)\n", av.reason.c_str());
     }
-    for (const render::Frame& f : render::frames(s)) {
+    const std::vector<render::Frame> frames = render::frames(s);
+    std::vector<Image> truths;
+    for (const render::Frame& f : frames) truths.push_back(render::render_truth(s, f, cache_dir));
+    const ValueRange range = render::valid_range(s, g, truths);  // over all frames
+    for (std::size_t fi = 0; fi < frames.size(); ++fi) {
+      const render::Frame& f = frames[fi];
       char tag[64];
       std::snprintf(tag, sizeof tag, "v%d_t%.3f", f.view, f.time);
-      const Image truth = render::render_truth(s, f, cache_dir);
+      const Image& truth = truths[fi];
       write_png(out_dir + "/" + tag + "_truth.png", truth);
-      const ValueRange range = render::valid_range(s, g, {truth});
       auto row = [&](const std::string& method, const Image& img, double ms) {
         const double rms = rms_display(img, truth), psnr = psnr_display(img, truth),
                      ssim = ssim_display(img, truth);
