@@ -8,6 +8,7 @@
 #include <string>
 
 #include "ir/atomics.hpp"
+#include "ir/ranges.hpp"
 
 namespace bl::compiler {
 namespace {
@@ -27,7 +28,8 @@ struct Val {
 
 class Lowering {
  public:
-  Lowering(const ir::Graph& g, const Schedule& s) : g_(g), s_(s), vals_(g.size()) {}
+  Lowering(const ir::Graph& g, const Schedule& s)
+      : g_(g), s_(s), vals_(g.size()), ranges_(ir::node_ranges(g)) {}
 
   Program run() {
     p_.input_count = static_cast<int>(g_.inputs().size());
@@ -124,10 +126,11 @@ class Lowering {
     for (Val* a : args) random = random || a->var >= 0;
     if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
     if (r.kind == Kind::MonteCarlo) return monte_carlo(i, n, r, args);
-    if (n.op == Op::Call) return call_node(n, r, *args[0]);
+    if (n.op == Op::Call)
+      return r.kind == Kind::Dorn ? in_range(i, call_node(n, r, *args[0])) : call_node(n, r, *args[0]);
     if (n.op == Op::Texture) return texture_node(n, r, *args[0], *args[1]);
     if (n.op == Op::Neg) return Val{op(LOp::Neg, args[0]->mean), args[0]->var, args[0]->sd};
-    if (r.kind == Kind::Dorn) return dorn(n, r, args);
+    if (r.kind == Kind::Dorn) return in_range(i, dorn(n, r, args));
     if (r.kind != Kind::Gaussian)
       note(std::string(rules::kind_name(r.kind)) + " on " + ir::op_name(n.op) + " -> gaussian (rho 0)");
     return gaussian(i, n, r, args);
@@ -275,6 +278,17 @@ class Lowering {
     in.arg[2] = u.var >= 0 ? scaled_sd(u, r) : k(0);
     in.arg[3] = v.var >= 0 ? scaled_sd(v, r) : k(0);
     return from_stat(emit(in));
+  }
+
+  // Dorn's mean is a heuristic (a Gaussian of the *input's* sd pushed through the node: a saturate
+  // with mean 1 and capped sd 0.5 feeding pow8 gives E[X^8] = 28 for X ~ N(1, 0.5^2), where
+  // pow8(saturate(.)) <= 1): a mean of values in the node's range lies in that range, so it is
+  // clamped there (docs/runtime.md, "Honest metrics").
+  Val in_range(int i, Val v) {
+    const ir::Interval& r = ranges_[i];
+    if (std::isfinite(r.lo)) v.mean = op(LOp::Max, v.mean, k(static_cast<float>(r.lo)));
+    if (std::isfinite(r.hi)) v.mean = op(LOp::Min, v.mean, k(static_cast<float>(r.hi)));
+    return v;
   }
 
   // Dorn et al. 2015 with Yang & Barnes' improvement (4.3): sd adds over +/-, scales by a constant
@@ -474,6 +488,7 @@ class Lowering {
   const ir::Graph& g_;
   const Schedule& s_;
   std::vector<Val> vals_;
+  std::vector<ir::Interval> ranges_;  // plain value ranges (ir/ranges.hpp): Dorn's means stay inside
   Program p_;
   std::set<std::string> notes_;
 };

@@ -10,4 +10,14 @@ namespace bl {
 float to_display(float linear);
 float from_display(float display);
 
+// The same curve without the clamp, for errors (metrics.hpp): odd-symmetric beyond 0 and continued
+// above 1 ("extended sRGB", as scRGB / Apple's extended sRGB do), so it equals to_display on [0, 1]
+// and a value outside [0, 1] keeps its distance instead of vanishing into the clamp. NaN and
+// infinities pass through (the metrics count them, image/pixel_check.hpp).
+float to_display_unclamped(float linear);
+
+// |error| of one channel as the metrics count it: to_display_unclamped(a) - to_display_unclamped(b),
+// and 1 (the whole display range) where either value is NaN or infinite.
+double display_error(float a, float b);
+
 }  // namespace bl

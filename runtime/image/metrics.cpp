@@ -22,7 +22,7 @@ double rms_display(const Image& a, const Image& b) {
   if (a.pixels.empty()) return 0.0;
   double sum = 0.0;
   for (size_t i = 0; i < a.pixels.size(); ++i) {
-    const double d = double(to_display(a.pixels[i])) - to_display(b.pixels[i]);
+    const double d = display_error(a.pixels[i], b.pixels[i]);
     sum += d * d;
   }
   return std::sqrt(sum / a.pixels.size());
@@ -40,7 +40,7 @@ std::vector<float> error_map_display(const Image& a, const Image& b) {
   for (size_t p = 0; p < err.size(); ++p) {
     double sum = 0.0;
     for (int c = 0; c < Image::kChannels; ++c) {
-      const double d = double(to_display(a.pixels[3 * p + c])) - to_display(b.pixels[3 * p + c]);
+      const double d = display_error(a.pixels[3 * p + c], b.pixels[3 * p + c]);
       sum += d * d;
     }
     err[p] = float(std::sqrt(sum));

@@ -1,5 +1,7 @@
 // Error metrics in display space (see display.hpp). All throw std::invalid_argument naming both
-// sizes when the images differ in size.
+// sizes when the images differ in size. Errors are measured on the unclamped display curve
+// (display_error): a value outside [0, 1] counts with its distance, a NaN or infinite channel as an
+// error of 1; image/pixel_check.hpp counts such pixels so reports can show them beside the RMS.
 #pragma once
 
 #include <vector>
@@ -8,7 +10,7 @@
 
 namespace bl {
 
-// sqrt(mean over all pixels and channels of (to_display(a) - to_display(b))^2).
+// sqrt(mean over all pixels and channels of display_error(a, b)^2).
 double rms_display(const Image& a, const Image& b);
 
 // 20 log10(1 / rms_display): peak value 1. +infinity for identical images.

@@ -11,10 +11,18 @@ namespace bl::render {
 
 std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program& p,
                                  const std::string& version) {
+  return glsl_version_line(version) + compiler::emit_glsl(p, "bl_shade", "scene " + s.name) + "\n" +
+         glsl_fragment_main(p, "bl_shade");
+}
+
+std::string glsl_version_line(const std::string& version) {
+  std::string v = "#version " + version + "\n";
+  if (version.find("es") != std::string::npos) v += "precision highp float;\nprecision highp int;\n";
+  return v;
+}
+
+std::string glsl_fragment_main(const compiler::Program& p, const std::string& function) {
   std::ostringstream os;
-  os << "#version " << version << "\n";
-  if (version.find("es") != std::string::npos) os << "precision highp float;\nprecision highp int;\n";
-  os << compiler::emit_glsl(p, "bl_shade", "scene " + s.name) << "\n";
   // The camera of runtime/camera/plane_hit.cpp, per fragment (gl_FragCoord: y down, see egl_runner).
   os << R"(uniform vec3 bl_cam_pos;
 uniform vec3 bl_cam_right;
@@ -76,7 +84,7 @@ void main() {
     os << "  m[" << i << "] = " << mean << "; s[" << i << "] = " << sd << "; gx[" << i << "] = " << gxs
        << "; gy[" << i << "] = " << gys << ";\n";
   }
-  os << "  float o[" << p.outputs.size() << "];\n  bl_shade(m, s, gx, gy, o);\n"
+  os << "  float o[" << p.outputs.size() << "];\n  " << function << "(m, s, gx, gy, o);\n"
      << "  bl_color = vec4(o[0], o[1], o[2], 1.0);\n}\n";
   return os.str();
 }
@@ -139,7 +147,11 @@ std::vector<gl::Uniform> with_textures(std::vector<gl::Uniform> frame, const GlT
 }
 
 Image render_glsl(gl::Context& ctx, const scene::Scene& s, const Frame& f, const compiler::Program& program) {
-  gl::Program prog = ctx.compile(glsl_fragment_source(s, program));
+  return render_glsl_compiled(ctx, s, f, program, ctx.compile(glsl_fragment_source(s, program)));
+}
+
+Image render_glsl_compiled(gl::Context& ctx, const scene::Scene& s, const Frame& f,
+                           const compiler::Program& program, const gl::Program& prog) {
   const GlTextures textures(ctx, s, program);
   // The driver drops uniforms a scene does not read (no lighting: bl_light): ignore those, the
   // names themselves are fixed above.

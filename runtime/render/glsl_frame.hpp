@@ -15,6 +15,11 @@ namespace bl::render {
 // The complete fragment shader (with its #version line) for `program` in scene `s`.
 std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program& program,
                                  const std::string& version = "450");
+// Its parts: the #version line (with the precision lines of an "es" version), and the uniforms and
+// main() that compute the program's inputs per fragment and call `function`, a function of the
+// emit_glsl signature defined before them (e.g. bltune's front/<label>.glsl, named "shade").
+std::string glsl_version_line(const std::string& version = "450");
+std::string glsl_fragment_main(const compiler::Program& program, const std::string& function);
 // Uniform values for frame f.
 std::vector<gl::Uniform> glsl_frame_uniforms(const scene::Scene& s, const Frame& f);
 
@@ -38,5 +43,9 @@ class GlTextures {
 std::vector<gl::Uniform> with_textures(std::vector<gl::Uniform> frame, const GlTextures& t);
 
 Image render_glsl(gl::Context& ctx, const scene::Scene& s, const Frame& f, const compiler::Program& program);
+// The same with a fragment shader compiled by the caller (one built with glsl_fragment_main for
+// `program`, e.g. around a front/<label>.glsl file; compiled once for every frame).
+Image render_glsl_compiled(gl::Context& ctx, const scene::Scene& s, const Frame& f,
+                           const compiler::Program& program, const gl::Program& fragment);
 
 }  // namespace bl::render

@@ -35,18 +35,33 @@ const char* kind_name(Kind k) {
   return "?";
 }
 
-std::string to_string(const Rule& r) {
+namespace {
+// The shortest decimal that reads back as the same double ("0.54", not "0.54000000000000004").
+std::string shortest(double v) {
+  for (int p = 1; p <= 17; ++p) {
+    std::ostringstream os;
+    os.precision(p);
+    os << v;
+    if (std::stod(os.str()) == v) return os.str();
+  }
   std::ostringstream os;
   os.precision(17);
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+std::string to_string(const Rule& r) {
+  std::ostringstream os;
   if (r.kind == Kind::MonteCarlo) {
     os << "mc" << r.samples;
   } else {
     os << kind_name(r.kind);
   }
   if (r.kind == Kind::Gaussian && r.rho == Rho::Gradient) os << ":rho=grad";
-  if (r.kind == Kind::Gaussian && r.rho == Rho::Constant) os << ":rho=" << r.rho_value;
+  if (r.kind == Kind::Gaussian && r.rho == Rho::Constant) os << ":rho=" << shortest(r.rho_value);
   if (r.kind == Kind::Rule1) os << ":" << r.kernel;
-  if (r.sigma_scale != 1) os << "@" << r.sigma_scale;
+  if (r.sigma_scale != 1) os << "@" << shortest(r.sigma_scale);
   return os.str();
 }
 

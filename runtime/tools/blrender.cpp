@@ -3,7 +3,9 @@
 // the emitted C++ compiled with -O3 at run time (bl::jit), next to the batch evaluator's).
 //
 //   blrender scenes/suite/checkerboard_none.json --rules gaussian --msaa 16 --out out/checker
+//   blrender scenes/suite/checkerboard_none.json --schedule out/tune/front.csv:front02   # a tuned point
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,14 +16,17 @@
 
 #include "compiler/emit.hpp"
 #include "compiler/lower.hpp"
+#include "compiler/schedule_csv.hpp"
 #include "gl/egl_runner.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
+#include "image/pixel_check.hpp"
 #include "image/report.hpp"
 #include "image/ssim.hpp"
 #include "render/compiled_frame.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
+#include "render/value_range.hpp"
 
 using namespace bl;
 
@@ -38,14 +43,18 @@ double time_ms(F&& f) {
 
 int main(int argc, char** argv) {
   CLI::App app{"blrender: render a bandlimit scene (plain, MSAA, smoothed, ground truth) and measure errors"};
-  std::string scene_path, rules_text = "gaussian", out_dir = "render_out", cache_dir = "build/truth_cache";
+  std::string scene_path, rules_text = "gaussian", schedule_spec, out_dir = "render_out",
+                          cache_dir = "build/truth_cache";
   std::vector<int> msaa{16};
   bool glsl = false;
   int trials = 9;
   jit::Options jo;
   app.add_option("scene", scene_path, "scene file (JSON)")->required();
-  app.add_option("--rules", rules_text,
-                 "rule for every node (none, dorn, gaussian, mc8, box, tent, rule1:box, ...)");
+  auto* rules_opt = app.add_option(
+      "--rules", rules_text, "rule for every node (none, dorn, gaussian, mc8, box, tent, rule1:box, ...)");
+  app.add_option("--schedule", schedule_spec,
+                 "a tuned schedule instead of --rules: FRONT.csv:LABEL (bltune's front.csv, e.g. front02)")
+      ->excludes(rules_opt);
   app.add_option("--msaa", msaa, "MSAA sample counts to render");
   app.add_option("--out", out_dir, "output directory (PNG images, heatmaps, report.md, compiled shader)");
   app.add_option("--cache", cache_dir, "ground-truth cache directory (EXR); empty disables");
@@ -57,13 +66,21 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     const scene::Scene s = scene::load_scene(scene_path);
-    const rules::Rule rule = rules::parse_rule(rules_text);
     const ir::Graph g = shaders::trace(s.shader_def(), s.effects());
-    const compiler::Program prog = compiler::lower(g, compiler::uniform_schedule(g, rule));
+    compiler::Schedule schedule;
+    std::string banner = s.name + " / " + rules_text;
+    if (!schedule_spec.empty()) {
+      const compiler::LoadedSchedule l = compiler::load_schedule(schedule_spec, g);
+      schedule = l.schedule;
+      rules_text = l.label;  // names the method in the report and the image files
+      banner = s.name + " / " + l.file + ":" + l.label + ": " + l.text;
+    } else {
+      schedule = compiler::uniform_schedule(g, rules::parse_rule(rules_text));
+    }
+    const compiler::Program prog = compiler::lower(g, schedule);
     std::filesystem::create_directories(out_dir);
-    std::ofstream(out_dir + "/shader.hpp") << compiler::emit_cpp(prog, "shade", s.name + " / " + rules_text);
-    std::ofstream(out_dir + "/shader.glsl")
-        << compiler::emit_glsl(prog, "shade", s.name + " / " + rules_text);
+    std::ofstream(out_dir + "/shader.hpp") << compiler::emit_cpp(prog, "shade", banner);
+    std::ofstream(out_dir + "/shader.glsl") << compiler::emit_glsl(prog, "shade", banner);
     // The plain program (rule none): what plain and MSAA renders run in compiled code.
     const compiler::Program plain =
         compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("none")));
@@ -91,13 +108,18 @@ int main(int argc, char** argv) {
         << trials << " trials: *compiled* = the emitted C++ (`shader.hpp`) built with -O3 at run time; "
         << "*evaluator* = the batch evaluator on the same inputs. MSAA n runs the plain program n times per "
            "pixel at counter-based Gaussian-jittered positions. ns/px counts all samples of a pixel.\n\n"
+        << "RMS and PSNR on the unclamped display curve (values outside [0, 1] count with their distance, a "
+           "NaN/inf channel as 1); NaN px / range px: pixels with a NaN or infinite channel / with a channel "
+           "outside [0, 1] widened to the ground truth's range; min / max: the finite values (all "
+           "channels).\n\n"
         << (jit_error.empty()
                 ? ""
                 : "**Compiled code unavailable** (" + jit_error.substr(0, jit_error.find('\n')) +
                       "): images from the evaluator, compiled columns empty.\n\n")
         << "| frame | method | compiled ns/px | compiled ms/frame | evaluator ns/px | evaluator ms/frame | "
            "RMS "
-           "(display) | PSNR (dB) | SSIM |\n|---|---|---|---|---|---|---|---|---|\n";
+           "(display) | PSNR (dB) | SSIM | NaN px | range px | min | max |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     std::printf("%s: %d nodes, %zu instructions with %s\n", s.name.c_str(), g.size(), prog.insts.size(),
                 rules_text.c_str());
     std::unique_ptr<gl::Context> ctx;
@@ -113,25 +135,36 @@ int main(int argc, char** argv) {
       std::snprintf(b, sizeof b, "%.3f", v);
       return std::string(b);
     };
-    for (const render::Frame& f : render::frames(s)) {
+    const std::vector<render::Frame> frames = render::frames(s);
+    std::vector<Image> truths;
+    for (const render::Frame& f : frames) truths.push_back(render::render_truth(s, f, cache_dir));
+    const ValueRange range = render::valid_range(s, g, truths);  // over all frames
+    for (std::size_t fi = 0; fi < frames.size(); ++fi) {
+      const render::Frame& f = frames[fi];
       char tag[64];
       std::snprintf(tag, sizeof tag, "v%d_t%.3f", f.view, f.time);
-      const Image truth = render::render_truth(s, f, cache_dir);
+      const Image& truth = truths[fi];
       write_png(out_dir + "/" + tag + "_truth.png", truth);
       auto row = [&](const std::string& method, const Image& img, const render::FrameTiming* compiled,
                      const render::FrameTiming& eval) {
         const double rms = rms_display(img, truth), psnr = psnr_display(img, truth),
                      ssim = ssim_display(img, truth);
+        const PixelCounts bad = check_pixels(img, range);
+        float lo = INFINITY, hi = -INFINITY;
+        for (float v : img.pixels)
+          if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
         write_png(out_dir + "/" + tag + "_" + method + ".png", img);
         write_error_heatmap(out_dir + "/" + tag + "_" + method + "_error.png", img, truth);
         report << "| " << tag << " | " << method << " | " << (compiled ? fmt(compiled->ns_per_pixel) : "-")
                << " | " << (compiled ? fmt(compiled->ms_per_frame) : "-") << " | " << fmt(eval.ns_per_pixel)
-               << " | " << fmt(eval.ms_per_frame) << " | " << rms << " | " << psnr << " | " << ssim << " |\n";
+               << " | " << fmt(eval.ms_per_frame) << " | " << rms << " | " << psnr << " | " << ssim << " | "
+               << bad.nonfinite << " | " << bad.out_of_range << " | " << lo << " | " << hi << " |\n";
         std::printf(
             "  %s %-12s compiled %9.2f ns/px %8.3f ms  evaluator %9.2f ns/px  RMS %.5f  PSNR %.2f dB  SSIM "
-            "%.4f\n",
+            "%.4f  NaN/inf px %zu  out-of-range px %zu  [%.3g, %.3g]\n",
             tag, method.c_str(), compiled ? compiled->ns_per_pixel : NAN,
-            compiled ? compiled->ms_per_frame : NAN, eval.ns_per_pixel, rms, psnr, ssim);
+            compiled ? compiled->ms_per_frame : NAN, eval.ns_per_pixel, rms, psnr, ssim, bad.nonfinite,
+            bad.out_of_range, lo, hi);
       };
       // One variant: its image (compiled code when available) and both timings.
       auto variant = [&](const std::string& method, const compiler::Program& p,
@@ -156,7 +189,9 @@ int main(int argc, char** argv) {
         const double ms = time_ms([&] { gimg = render::render_glsl(*ctx, s, f, prog); });
         report << "| " << tag << " | " << rules_text << "_glsl | - | " << fmt(ms)
                << " (GL driver, incl. upload) | - | - | " << rms_display(gimg, truth) << " | "
-               << psnr_display(gimg, truth) << " | " << ssim_display(gimg, truth) << " |\n";
+               << psnr_display(gimg, truth) << " | " << ssim_display(gimg, truth) << " | "
+               << check_pixels(gimg, range).nonfinite << " | " << check_pixels(gimg, range).out_of_range
+               << " | | |\n";
         write_png(out_dir + "/" + tag + "_" + rules_text + "_glsl.png", gimg);
         std::printf("  %s %-12s GL %9.2f ms  RMS %.5f; GLSL vs C++: RMS %.2e (display)\n", tag,
                     (rules_text + "_glsl").c_str(), ms, rms_display(gimg, truth), rms_display(gimg, img));

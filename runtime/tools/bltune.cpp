@@ -5,6 +5,8 @@
 //
 //   bltune --calibrate                                   # print (and save) the cost model table
 //   bltune scenes/suite/checkerboard_none.json --out out/tune/checkerboard_none
+//     (writes report.md, front.csv, result.json and front/<label>.glsl|.hpp per front point;
+//      blrender SCENE --schedule out/tune/checkerboard_none/front.csv:front02 renders one)
 //   bltune --suite scenes/suite --out out/tune           # every scene + summary.md
 //   mpirun -np 2 bltune_mpi --suite scenes/suite --out out/tune   # scenes x restarts over ranks
 //
@@ -21,6 +23,7 @@
 
 #include "tuner/calibrate.hpp"
 #include "tuner/checkpoint.hpp"
+#include "tuner/front_code.hpp"
 #include "tuner/report.hpp"
 #include "tuner/result_json.hpp"
 #include "tuner/scene_tuner.hpp"
@@ -82,6 +85,8 @@ void write_search_front(const SceneTuner& t, const std::vector<Point>& front, co
 SceneResult finish(const SceneTuner& t, const std::vector<Point>& front, double search_s, int evals,
                    const Config& c, const std::string& dir) {
   write_search_front(t, front, dir);
+  // The search's count, before refinement evaluates more (under MPI: this rank's restarts only).
+  const long rejected = t.nonfinite_rejections();
   SceneResult r;
   r.scene = t.scene().name;
   if (!c.search_only) {
@@ -91,9 +96,13 @@ SceneResult finish(const SceneTuner& t, const std::vector<Point>& front, double 
   }
   r.search_seconds = search_s;
   r.evaluations = evals;
+  r.rejected_nonfinite = rejected;
   if (!c.search_only) {
     write_scene_report(r, dir);
     std::ofstream(dir + "/result.json") << result_to_json(r) << "\n";
+    const int n = write_front_code(t, r, dir);
+    log_line(t.scene().name,
+             "wrote " + std::to_string(n) + " front point(s) as " + dir + "/front/<label>.glsl|.hpp");
   }
   return r;
 }
@@ -122,6 +131,9 @@ int run_single(const Config& c, const CostModel& cm) {
     const RestartResult r = search(t.problem(), search_options(c, s));
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     log_line(s.name, "search " + std::to_string(secs) + " s, front of " + std::to_string(r.front.size()));
+    if (t.nonfinite_rejections() > 0)
+      log_line(s.name, std::to_string(t.nonfinite_rejections()) +
+                           " evaluation(s) gave NaN/inf on the sampled pixels: infeasible (error +inf)");
     if (!r.complete) {
       complete = false;
       log_line(s.name, "stopped early (--stop-after): run again to resume from the checkpoints");
@@ -252,7 +264,9 @@ int main(int argc, char** argv) {
   app.add_option("scene", scene_path, "scene file (JSON)");
   app.add_option("--suite", suite_dir, "tune every *.json scene in this directory (sorted by name)");
   app.add_option("--only", only, "with --suite: only scenes whose file name contains this");
-  app.add_option("--out", c.out, "output directory (per scene: report.md, front.csv, pareto.png, images)");
+  app.add_option("--out", c.out,
+                 "output directory (per scene: report.md, front.csv, result.json, pareto.png, images, "
+                 "front/<label>.glsl|.hpp)");
   app.add_option("--cache", c.tune.cache_dir, "ground-truth cache directory (EXR)");
   app.add_option("--cost-model", c.cost_model,
                  "cost model JSON (calibrated and saved when this machine lacks one)");

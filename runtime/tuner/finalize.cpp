@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "compiler/lower.hpp"
+#include "compiler/schedule_text.hpp"
 #include "gl/egl_runner.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
@@ -31,13 +32,6 @@ double best_ms(int runs, F&& f) {
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
   return best;
-}
-
-std::string schedule_text(const SceneTuner& t, const compiler::Schedule& s) {
-  std::string out;
-  for (int n : t.problem().space.genes)
-    out += (out.empty() ? "" : " ") + std::to_string(n) + ":" + rules::to_string(s[n]);
-  return out;
 }
 
 // Indices of at most k front points spread evenly over the front (both ends kept).
@@ -123,6 +117,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   const std::vector<render::Frame> frames = render::frames(s);
   SceneResult res;
   res.scene = s.name;
+  res.graph_hash = compiler::graph_hash_text(t.graph());
   res.nodes = t.graph().size();
   res.genes = t.problem().space.size();
   res.pixels = s.width * s.height;
@@ -138,6 +133,11 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.error = e;
     m.psnr = -20 * std::log10(std::max(e, 1e-12));
   };
+  auto set_score = [&](Measured& m, const PixelSample::Score& sc) {
+    set_error(m, sc.rms);
+    m.nonfinite = sc.counts.nonfinite;
+    m.out_of_range = sc.counts.out_of_range;
+  };
   // Front points: refine sd factors, then measure on full images.
   std::vector<Measured> pts;
   std::vector<compiler::Schedule> schedules;
@@ -149,10 +149,16 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.refined = !(refined == sch);
     const auto p = t.lower(refined);
     if (!p) continue;
-    m.schedule = schedule_text(t, refined);
+    m.schedule = compiler::schedule_to_text(t.graph(), refined);
     m.model_ns = o.time;
     m.search_error = o.error;
-    set_error(m, t.full_error(*p));
+    set_score(m, t.full_score(*p));
+    if (m.nonfinite > 0) {  // NaN/inf off the sample: as infeasible as on it
+      std::fprintf(stderr,
+                   "finalize: %s: a front point gives NaN/inf on %zu pixel(s) of the full images: dropped\n",
+                   s.name.c_str(), m.nonfinite);
+      continue;
+    }
     m.mix = rule_mix(t, refined);
     pts.push_back(m);
     schedules.push_back(std::move(refined));
@@ -184,7 +190,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.schedule = "all " + rule;
     m.model_ns = t.cost_model().cost(*p);
     m.search_error = std::numeric_limits<double>::quiet_NaN();
-    set_error(m, t.full_error(*p));
+    set_score(m, t.full_score(*p));
     m.mix[rule_family(rules::parse_rule(rule))] = 1;
     measure(t, *p, gl, &m);
     res.baselines.push_back(m);
@@ -203,6 +209,9 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     double sq = 0;
     for (std::size_t fi = 0; fi < frames.size(); ++fi) {
       const Image img = render::render_native(s, frames[fi], n);
+      const PixelCounts c = check_pixels(img, t.value_range());
+      m.nonfinite += c.nonfinite;
+      m.out_of_range += c.out_of_range;
       const double e = rms_display(img, truth[fi]);
       sq += e * e;
       if (fi == 0) msaa_frame0.push_back(img);

@@ -15,12 +15,14 @@ namespace bl::tuner {
 
 struct Measured {
   std::string label;
-  std::string schedule;     // per node rule texts joined by spaces ("" for MSAA)
+  std::string schedule;     // compiler::schedule_to_text; "all RULE" or "plain x N ..." for baselines
   int msaa = 0;             // MSAA sample count (baselines), 0 otherwise
   double model_ns = 0;      // cost model, ns per pixel
   double search_error = 0;  // on the pixel sample (front points; NaN for baselines)
-  double error = 0;         // RMS display, every pixel of every frame
+  double error = 0;         // RMS display (display_error), every pixel of every frame
   double psnr = 0;
+  std::size_t nonfinite = 0;          // pixels (all frames) with a NaN or infinite channel
+  std::size_t out_of_range = 0;       // other pixels with a channel outside the truth's range (pixel_check)
   double eval_ms = 0;                 // batch evaluator, single thread, ms per frame, frame 0
   double compiled_ns = -1;            // compiled emitted C++ (-O3), single thread, ns per pixel, frame 0;
   double compiled_ms = -1;            //   and ms per frame; -1 when no compiler (jit::Error)
@@ -31,9 +33,11 @@ struct Measured {
 
 struct SceneResult {
   std::string scene;
+  std::string graph_hash;  // compiler::graph_hash_text of the traced graph the schedules are for
   int nodes = 0, genes = 0, pixels = 0, frames = 0;
   double search_seconds = 0, finalize_seconds = 0;
   int evaluations = 0;
+  long rejected_nonfinite = -1;     // search evaluations infeasible for NaN/inf on the sample (-1: unknown)
   std::vector<Measured> front;      // sorted by model time
   std::vector<Measured> baselines;  // plain, msaa2..32, dorn, gaussian
   std::string gl_renderer;          // "" when GLSL was not timed

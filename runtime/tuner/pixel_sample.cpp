@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -11,10 +12,15 @@
 #include "image/display.hpp"
 #include "render/frame.hpp"
 #include "render/render.hpp"
+#include "render/value_range.hpp"
 
 namespace bl::tuner {
 
 PixelSample::PixelSample(const scene::Scene& s, const std::string& cache_dir, int pixels, std::uint64_t seed)
+    : PixelSample(s, shaders::trace(s.shader_def(), s.effects()), cache_dir, pixels, seed) {}
+
+PixelSample::PixelSample(const scene::Scene& s, const ir::Graph& g, const std::string& cache_dir, int pixels,
+                         std::uint64_t seed)
     : scene_(s) {
   const std::vector<render::Frame> fr = render::frames(s);
   const int all = s.width * s.height;
@@ -22,8 +28,12 @@ PixelSample::PixelSample(const scene::Scene& s, const std::string& cache_dir, in
       pixels <= 0 ? all
                   : std::min(all, (pixels + static_cast<int>(fr.size()) - 1) / static_cast<int>(fr.size()));
   std::mt19937_64 rng(seed);
-  for (const render::Frame& f : fr) {
-    const Image truth = render::render_truth(s, f, cache_dir);
+  std::vector<Image> truths;
+  for (const render::Frame& f : fr) truths.push_back(render::render_truth(s, f, cache_dir));
+  range_ = render::valid_range(s, g, truths);
+  for (std::size_t fi = 0; fi < fr.size(); ++fi) {
+    const render::Frame& f = fr[fi];
+    const Image& truth = truths[fi];
     camera::PlaneBatch b;
     camera::trace_plane(render::make_camera(s, f.view), render::footprint_options(s), b);
     // A partial Fisher-Yates shuffle: the first per_frame entries are the sample (sorted for locality).
@@ -40,13 +50,13 @@ PixelSample::PixelSample(const scene::Scene& s, const std::string& cache_dir, in
       const int x = i % s.width, y = i / s.width;
       if (!b.hit[i]) {
         for (int c = 0; c < 3; ++c) {
-          const double e = to_display(static_cast<float>(s.background[c])) - to_display(truth.at(x, y, c));
+          const double e = display_error(static_cast<float>(s.background[c]), truth.at(x, y, c));
           d.miss_sq += e * e;
         }
         continue;
       }
       hit.push_back(i);
-      for (int c = 0; c < 3; ++c) d.truth.push_back(to_display(truth.at(x, y, c)));
+      for (int c = 0; c < 3; ++c) d.truth.push_back(truth.at(x, y, c));
     }
     d.n = static_cast<int>(hit.size());
     d.hits = b.gather(hit);
@@ -56,10 +66,16 @@ PixelSample::PixelSample(const scene::Scene& s, const std::string& cache_dir, in
 }
 
 double PixelSample::error(const compiler::Program& p) const {
+  const Score s = score(p);
+  return s.counts.nonfinite > 0 ? std::numeric_limits<double>::infinity() : s.rms;
+}
+
+PixelSample::Score PixelSample::score(const compiler::Program& p) const {
   if (p.outputs.size() != 3)
     throw std::invalid_argument("PixelSample: the program has " + std::to_string(p.outputs.size()) +
                                 " outputs, a colour needs 3");
   compiler::Evaluator ev(p);
+  Score score;
   double sum = 0;
   for (std::size_t fi = 0; fi < frames_.size(); ++fi) {
     const FrameData& d = frames_[fi];
@@ -71,14 +87,17 @@ double PixelSample::error(const compiler::Program& p) const {
     const compiler::Batch batch = render::bind_inputs(p, d.hits, scene_, f, storage);
     std::vector<std::vector<float>> out(3, std::vector<float>(d.n));
     ev.run(batch, {out[0].data(), out[1].data(), out[2].data()});
-    for (int i = 0; i < d.n; ++i)
+    for (int i = 0; i < d.n; ++i) {
+      const float rgb[3] = {out[0][i], out[1][i], out[2][i]};
+      score.counts += check_pixel(rgb, range_);
       for (int c = 0; c < 3; ++c) {
-        if (!std::isfinite(out[c][i])) return std::numeric_limits<double>::infinity();
-        const double e = to_display(out[c][i]) - d.truth[3 * i + c];
+        const double e = display_error(rgb[c], d.truth[3 * i + c]);
         sum += e * e;
       }
+    }
   }
-  return total_ > 0 ? std::sqrt(sum / (3.0 * total_)) : 0.0;
+  score.rms = total_ > 0 ? std::sqrt(sum / (3.0 * total_)) : 0.0;
+  return score;
 }
 
 std::vector<std::vector<float>> PixelSample::outputs(const compiler::Program& p) const {

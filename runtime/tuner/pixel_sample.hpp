@@ -11,6 +11,7 @@
 
 #include "camera/plane_batch.hpp"
 #include "compiler/lir.hpp"
+#include "image/pixel_check.hpp"
 #include "scene/scene.hpp"
 
 namespace bl::tuner {
@@ -20,14 +21,25 @@ class PixelSample {
   // `pixels` in total over all frames (split evenly), <= 0 or more than the image: every pixel.
   // Ground truth comes from render_truth with `cache_dir` (rendered and cached when missing).
   PixelSample(const scene::Scene& s, const std::string& cache_dir, int pixels, std::uint64_t seed);
+  PixelSample(const scene::Scene& s, const ir::Graph& g, const std::string& cache_dir, int pixels,
+              std::uint64_t seed);  // the same, with the scene's traced graph (not traced again)
 
-  // RMS (display space) of p over the sampled pixels of all frames; thread-safe. Non-finite
-  // outputs give +infinity.
+  struct Score {
+    double rms = 0;      // display_error (image/display.hpp): unclamped, a NaN/inf channel counts 1
+    PixelCounts counts;  // sampled pixels with a NaN/inf channel, or one outside range()
+  };
+  // p over the sampled pixels of all frames; thread-safe.
+  Score score(const compiler::Program& p) const;
+  // The search's objective: score(p).rms, or +infinity when any sampled pixel has a NaN or infinite
+  // channel (such a schedule is infeasible, however few pixels it breaks).
   double error(const compiler::Program& p) const;
   int count() const { return total_; }
   // p's outputs (any number) over the sampled hit pixels of all frames, concatenated in frame
   // order: out[k][i]. For inspecting values (magnitude_profile), not errors.
   std::vector<std::vector<float>> outputs(const compiler::Program& p) const;
+  // render::valid_range of the scene (the declared range of the shader's outputs, else [0, 1]
+  // widened to the ground truth's and the plain render's values).
+  const ValueRange& range() const { return range_; }
 
  private:
   struct FrameData {
@@ -40,6 +52,7 @@ class PixelSample {
   scene::Scene scene_;
   std::vector<FrameData> frames_;
   int total_ = 0;  // sampled pixels over all frames (hit or not)
+  ValueRange range_;
 };
 
 }  // namespace bl::tuner

@@ -84,12 +84,14 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
     std::ofstream csv(dir + "/front.csv");
     csv << "kind,label,model_ns_per_pixel,model_ms_per_frame,eval_ms_per_frame,glsl_ms_per_frame,search_"
            "error,"
-           "rms_display,psnr_db,refined,compiled_ns_per_pixel,compiled_ms_per_frame,rule_mix,schedule\n";
+           "rms_display,psnr_db,refined,compiled_ns_per_pixel,compiled_ms_per_frame,rule_mix,schedule,"
+           "nonfinite_pixels,out_of_range_pixels,graph_hash\n";
     auto row = [&](const char* kind, const Measured& m) {
       csv << kind << "," << m.label << "," << m.model_ns << "," << m.model_ns * px * 1e-6 << "," << m.eval_ms
           << "," << m.glsl_ms << "," << m.search_error << "," << m.error << "," << m.psnr << ","
           << (m.refined ? 1 : 0) << "," << m.compiled_ns << "," << m.compiled_ms << ",\"" << mix_text(m)
-          << "\",\"" << m.schedule << "\"\n";
+          << "\",\"" << m.schedule << "\"," << m.nonfinite << "," << m.out_of_range << "," << r.graph_hash
+          << "\n";
     };
     for (const Measured& m : r.front) row("front", m);
     for (const Measured& m : r.baselines) row("baseline", m);
@@ -143,11 +145,18 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
      << (r.gl_renderer.empty() ? "(not measured: `bltune --glsl` times it)" : r.gl_renderer)
      << " ms per frame. MSAA n: the plain program n times per pixel at counter-based jittered positions "
         "(compiled: measured; model and eval: n x plain's). Errors: RMS in display space over every pixel "
-        "of every frame.\n\n"
+        "of every frame, on the unclamped display curve (a value outside [0, 1] counts with its distance, a "
+        "NaN/inf channel as 1; docs/runtime.md); *NaN px* / *range px*: pixels (all frames) with a NaN/inf "
+        "channel / a channel outside [0, 1] widened to the ground truth's range. "
+     << (r.rejected_nonfinite >= 0
+             ? "Search: " + std::to_string(r.rejected_nonfinite) +
+                   " evaluation(s) infeasible for NaN/inf on the sampled pixels (error +inf)."
+             : std::string())
+     << "\n\n"
      << "| point | model ns/px | compiled ns/px | model / compiled | compiled ms/frame | eval ms/frame | "
         "GLSL "
-        "ms/frame | search error | RMS | PSNR dB | NM | rule mix "
-        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "ms/frame | search error | RMS | PSNR dB | NaN px | range px | NM | rule mix "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   auto row = [&](const Measured& m) {
     const bool c = m.compiled_ns > 0;
     md << "| " << m.label << " | " << fmt("%.1f", m.model_ns) << " | "
@@ -156,11 +165,11 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
        << (c ? fmt("%.3f", m.compiled_ms) : "-") << " | " << fmt("%.3f", m.eval_ms) << " | "
        << glsl_text(m.glsl_ms) << " | "
        << (std::isnan(m.search_error) ? std::string("-") : fmt("%.5f", m.search_error)) << " | "
-       << fmt("%.5f", m.error) << " | " << fmt("%.2f", m.psnr) << " | " << (m.refined ? "yes" : "") << " | "
-       << mix_text(m) << " |\n";
+       << fmt("%.5f", m.error) << " | " << fmt("%.2f", m.psnr) << " | " << m.nonfinite << " | "
+       << m.out_of_range << " | " << (m.refined ? "yes" : "") << " | " << mix_text(m) << " |\n";
   };
   for (const Measured& m : r.front) row(m);
-  md << "| **baselines** | | | | | | | | | | | |\n";
+  md << "| **baselines** | | | | | | | | | | | | | |\n";
   for (const Measured& m : r.baselines) row(m);
   md << "\n## Speed-up against MSAA at equal error\n\n| MSAA | its RMS | fastest front point at <= that "
         "error | "

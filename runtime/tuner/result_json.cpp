@@ -25,6 +25,8 @@ json to(const Measured& m) {
           {"search_error", num(m.search_error)},
           {"error", num(m.error)},
           {"psnr", num(m.psnr)},
+          {"nonfinite_pixels", m.nonfinite},
+          {"out_of_range_pixels", m.out_of_range},
           {"eval_ms", num(m.eval_ms)},
           {"compiled_ns", num(m.compiled_ns)},
           {"compiled_ms", num(m.compiled_ms)},
@@ -42,6 +44,8 @@ Measured from(const json& j) {
   m.search_error = num(j.at("search_error"));
   m.error = num(j.at("error"));
   m.psnr = num(j.at("psnr"));
+  m.nonfinite = j.value("nonfinite_pixels", std::size_t{0});
+  m.out_of_range = j.value("out_of_range_pixels", std::size_t{0});
   m.eval_ms = num(j.at("eval_ms"));
   m.compiled_ns = j.contains("compiled_ns") ? num(j.at("compiled_ns")) : -1;
   m.compiled_ms = j.contains("compiled_ms") ? num(j.at("compiled_ms")) : -1;
@@ -58,6 +62,7 @@ std::string result_to_json(const SceneResult& r) {
   for (const Measured& m : r.front) f.push_back(to(m));
   for (const Measured& m : r.baselines) b.push_back(to(m));
   return json{{"scene", r.scene},
+              {"graph_hash", r.graph_hash},
               {"nodes", r.nodes},
               {"genes", r.genes},
               {"pixels", r.pixels},
@@ -65,6 +70,7 @@ std::string result_to_json(const SceneResult& r) {
               {"search_seconds", r.search_seconds},
               {"finalize_seconds", r.finalize_seconds},
               {"evaluations", r.evaluations},
+              {"rejected_nonfinite", r.rejected_nonfinite},
               {"gl_renderer", r.gl_renderer},
               {"compiled_note", r.compiled_note},
               {"front", f},
@@ -76,6 +82,7 @@ SceneResult result_from_json(const std::string& text) {
   const json j = json::parse(text);
   SceneResult r;
   r.scene = j.at("scene");
+  r.graph_hash = j.value("graph_hash", "");
   r.nodes = j.at("nodes");
   r.genes = j.at("genes");
   r.pixels = j.at("pixels");
@@ -83,6 +90,7 @@ SceneResult result_from_json(const std::string& text) {
   r.search_seconds = j.at("search_seconds");
   r.finalize_seconds = j.at("finalize_seconds");
   r.evaluations = j.at("evaluations");
+  r.rejected_nonfinite = j.value("rejected_nonfinite", -1L);
   r.gl_renderer = j.at("gl_renderer");
   r.compiled_note = j.value("compiled_note", std::string());
   for (const json& m : j.at("front")) r.front.push_back(from(m));

@@ -38,7 +38,7 @@ std::string model_digest(const CostModel& cm) {  // recalibration invalidates ch
 
 SceneTuner::SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOptions& opt)
     : scene_(s), graph_(shaders::trace(s.shader_def(), s.effects())), cm_(cm), opt_(opt) {
-  sample_ = std::make_unique<PixelSample>(s, opt.cache_dir, opt.sample_pixels, opt.sample_seed);
+  sample_ = std::make_unique<PixelSample>(s, graph_, opt.cache_dir, opt.sample_pixels, opt.sample_seed);
   // Banded function costs follow this scene's argument magnitudes (observed on the plain program).
   if (const auto plain = lower(compiler::uniform_schedule(graph_, rules::parse_rule("none"))))
     cm_.band_share = magnitude_profile(*plain, *sample_);
@@ -69,13 +69,16 @@ std::unique_ptr<compiler::Program> SceneTuner::lower(const compiler::Schedule& s
 Objectives SceneTuner::evaluate(const compiler::Schedule& s) const {
   const auto p = lower(s);
   if (!p) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  return {cm_.cost(*p), sample_->error(*p)};
+  const double e = sample_->error(*p);
+  if (std::isinf(e)) ++nonfinite_;
+  return {cm_.cost(*p), e};
 }
 
-double SceneTuner::full_error(const compiler::Program& p) const {
+PixelSample::Score SceneTuner::full_score(const compiler::Program& p) const {
   // Built on first use: the search itself never needs all pixels.
-  std::call_once(full_once_, [&] { full_ = std::make_unique<PixelSample>(scene_, opt_.cache_dir, 0, 0); });
-  return full_->error(p);
+  std::call_once(full_once_,
+                 [&] { full_ = std::make_unique<PixelSample>(scene_, graph_, opt_.cache_dir, 0, 0); });
+  return full_->score(p);
 }
 
 compiler::Schedule SceneTuner::schedule(const Genome& x) const {

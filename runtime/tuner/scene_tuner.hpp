@@ -3,6 +3,7 @@
 // and the Nelder-Mead refinement of sd scale factors (Yang & Barnes 4.7).
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -39,8 +40,15 @@ class SceneTuner {
   // Lowered program, or nullptr when lowering needs a function the generated table lacks (a rule
   // not available yet for some node: "infeasible"). Other lowering errors propagate.
   std::unique_ptr<compiler::Program> lower(const compiler::Schedule& s) const;
-  Objectives evaluate(const compiler::Schedule& s) const;  // sample error; infinities if infeasible
-  double full_error(const compiler::Program& p) const;     // RMS over every pixel of every frame
+  // Model time and sample error. Infeasible: both +inf when lowering lacks a function; error +inf
+  // when any sampled pixel has a NaN or infinite channel (counted in nonfinite_rejections()).
+  Objectives evaluate(const compiler::Schedule& s) const;
+  // RMS (display_error) and NaN/out-of-range pixel counts over every pixel of every frame.
+  PixelSample::Score full_score(const compiler::Program& p) const;
+  double full_error(const compiler::Program& p) const { return full_score(p).rms; }
+  // Evaluations (distinct or not) that were infeasible because of NaN/inf on the sampled pixels.
+  long nonfinite_rejections() const { return nonfinite_.load(); }
+  const ValueRange& value_range() const { return sample_->range(); }
   compiler::Schedule schedule(const Genome& x) const;
 
   // Nelder-Mead (NLopt LN_NELDERMEAD) over log2 sd factors of the smoothed nodes, grouped into at
@@ -56,6 +64,7 @@ class SceneTuner {
   std::unique_ptr<PixelSample> sample_;
   mutable std::once_flag full_once_;
   mutable std::unique_ptr<PixelSample> full_;
+  mutable std::atomic<long> nonfinite_{0};
   Problem problem_;
 };
 

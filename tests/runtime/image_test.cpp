@@ -11,6 +11,7 @@
 #include "image/display.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
+#include "image/pixel_check.hpp"
 #include "image/report.hpp"
 
 namespace fs = std::filesystem;
@@ -100,10 +101,12 @@ TEST_F(RuntimeImage, RowZeroIsTop) {
 TEST(RuntimeImageMetrics, RmsAndPsnrByHand) {
   bl::Image a(2, 1, 0.0f), b(2, 1, 0.0f);
   b.at(0, 0, 0) = 1.0f;
-  b.at(1, 0, 2) = 4.0f;  // clamps to 1 in display space
-  // Squared display differences: 1, 0, 0, 0, 0, 1 -> mean 1/3.
-  EXPECT_NEAR(bl::rms_display(a, b), std::sqrt(1.0 / 3.0), 1e-7);
-  EXPECT_NEAR(bl::psnr_display(a, b), 10.0 * std::log10(3.0), 1e-6);
+  b.at(1, 0, 2) = 4.0f;  // not clamped: 1.055 * 4^(1/2.4) - 0.055 = 1.8247962952761159 (Python)
+  // Squared display differences: 1, 0, 0, 0, 0, 1.8248^2 -> sqrt((1 + 1.8248^2) / 6).
+  EXPECT_NEAR(bl::rms_display(a, b), 0.8494980399480465, 1e-6);
+  EXPECT_NEAR(bl::psnr_display(a, b), 1.4167523768811647, 1e-5);
+  b.at(1, 0, 2) = NAN;  // a NaN channel counts as the whole display range
+  EXPECT_NEAR(bl::rms_display(a, b), std::sqrt(2.0 / 6.0), 1e-7);
   b.at(0, 0, 0) = 0.5f;
   b.at(1, 0, 2) = 0.0f;
   EXPECT_NEAR(bl::rms_display(a, b), 0.7353569830524495 / std::sqrt(6.0), 1e-7);
@@ -204,3 +207,45 @@ TEST_F(RuntimeImage, SideBySidePastesLeftToRight) {
 }
 
 }  // namespace
+
+// The error curve: the display curve on [0, 1], continued (odd-symmetric, same power law) outside.
+TEST(RuntimeImageMetrics, UnclampedDisplayCurve) {
+  for (float v = 0; v <= 1.0f; v += 1.0f / 64) EXPECT_EQ(bl::to_display_unclamped(v), bl::to_display(v)) << v;
+  EXPECT_NEAR(bl::to_display_unclamped(-0.5f), -0.7353569830524495, 1e-6);
+  EXPECT_NEAR(bl::to_display_unclamped(4.0f), 1.8247962952761159, 1e-6);
+  EXPECT_NEAR(bl::to_display_unclamped(-0.002f), -0.02584, 1e-6);
+  EXPECT_TRUE(std::isnan(bl::to_display_unclamped(NAN)));
+  EXPECT_EQ(bl::display_error(NAN, 0.3f), 1.0);
+  EXPECT_EQ(bl::display_error(0.3f, -INFINITY), 1.0);
+  // The clamp hid this: 10.95 against 0.95 was an error of 0.023 in display space.
+  EXPECT_NEAR(bl::display_error(10.95f, 0.95f),
+              (1.055 * std::pow(10.95, 1 / 2.4) - 0.055) - (1.055 * std::pow(0.95, 1 / 2.4) - 0.055), 1e-5);
+}
+
+// NaN/inf and out-of-range pixels are counted, once per pixel, nonfinite first.
+TEST(RuntimeImageMetrics, CountsNonFiniteAndOutOfRangePixels) {
+  bl::Image img(4, 3, 0.5f);
+  img.at(0, 0, 1) = NAN;        // nonfinite
+  img.at(1, 0, 0) = INFINITY;   // nonfinite
+  img.at(2, 0, 2) = -INFINITY;  // nonfinite
+  img.at(2, 0, 0) = 7.0f;       //   (the same pixel: still one nonfinite pixel, not out of range)
+  img.at(3, 0, 0) = -0.2f;      // out of range
+  img.at(0, 1, 1) = 1.5f;       // out of range for [0, 1]; inside a truth range reaching 1.6 in G
+  img.at(1, 1, 2) = 1.0001f;    // out of range
+  img.at(2, 1, 0) = 0.0f;       // the ends are inside
+  img.at(2, 1, 2) = 1.0f;
+  img.at(3, 2, 0) = 1.5f;  // out of range in R (the truth reaches 1.6 in G only)
+  bl::PixelCounts n = bl::check_pixels(img);
+  EXPECT_EQ(n.nonfinite, 3u);
+  EXPECT_EQ(n.out_of_range, 4u);
+  bl::Image truth(4, 3, 0.2f);
+  truth.at(1, 2, 1) = 1.6f;
+  truth.at(0, 2, 0) = NAN;  // ignored by the range
+  const bl::ValueRange r = bl::ValueRange::of({truth});
+  EXPECT_EQ(r.lo[0], 0.0f);
+  EXPECT_EQ(r.hi[0], 1.0f);
+  EXPECT_EQ(r.hi[1], 1.6f);
+  n = bl::check_pixels(img, r);
+  EXPECT_EQ(n.nonfinite, 3u);
+  EXPECT_EQ(n.out_of_range, 3u);
+}

@@ -331,3 +331,34 @@ TEST(SceneTuner, NelderMeadDoesNotIncreaseError) {
   t.refine_sigma(s, &after);
   EXPECT_LE(after.error, before.error);
 }
+
+// A schedule whose program gives NaN on the sampled pixels is infeasible (error +inf), counted,
+// and its NaN pixels are counted on the full images too (not hidden by the display clamp).
+TEST(SceneTuner, NanScheduleIsInfeasible) {
+  const std::string cache = temp_dir("cache_nan");
+  TuneOptions o = tiny_options(cache);
+  SceneTuner t(tiny_scene(), quick_model(), o);
+  compiler::Schedule bad = compiler::uniform_schedule(t.graph(), rules::parse_rule("dorn"));
+  for (auto& r : bad) r.sigma_scale = std::nan("");  // every smoothed sd becomes NaN
+  const compiler::Schedule good = compiler::uniform_schedule(t.graph(), rules::parse_rule("dorn"));
+  EXPECT_EQ(t.nonfinite_rejections(), 0);
+  const Objectives ok = t.evaluate(good);
+  EXPECT_TRUE(std::isfinite(ok.error));
+  EXPECT_EQ(t.nonfinite_rejections(), 0);
+  const Objectives o_bad = t.evaluate(bad);
+  EXPECT_TRUE(std::isinf(o_bad.error));
+  EXPECT_TRUE(std::isfinite(o_bad.time));
+  EXPECT_EQ(t.nonfinite_rejections(), 1);
+  // On all pixels: every pixel the plane covers is NaN; the RMS counts each NaN channel as 1.
+  const PixelSample::Score full = t.full_score(*t.lower(bad));
+  const scene::Scene s = tiny_scene();
+  std::size_t hit = 0;
+  for (const auto& f : render::frames(s)) {
+    const Image img = render::render_smoothed(s, f, *t.lower(bad));
+    for (std::size_t p = 0; p < img.pixels.size(); p += 3) hit += std::isnan(img.pixels[p]);
+  }
+  EXPECT_GT(hit, 0u);
+  EXPECT_EQ(full.counts.nonfinite, hit);
+  EXPECT_GT(full.rms, 0.5);
+  EXPECT_EQ(t.full_score(*t.lower(good)).counts.nonfinite, 0u);
+}

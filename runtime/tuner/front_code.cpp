@@ -1,0 +1,38 @@
+#include "tuner/front_code.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "compiler/emit.hpp"
+#include "compiler/schedule_text.hpp"
+
+namespace bl::tuner {
+
+int write_front_code(const SceneTuner& t, const SceneResult& r, const std::string& dir) {
+  const std::string out = dir + "/front";
+  std::filesystem::create_directories(out);
+  int n = 0;
+  for (const Measured& m : r.front) {
+    const compiler::Schedule s = compiler::parse_schedule(t.graph(), m.schedule, "front point " + m.label);
+    const auto p = t.lower(s);
+    if (!p) throw std::logic_error("write_front_code: front point " + m.label + " no longer lowers");
+    char measured[256];
+    std::snprintf(
+        measured, sizeof measured,
+        "measured: RMS %.5f (display space, every pixel of %d frame(s) vs ground truth), PSNR %.2f dB, "
+        "cost model %.1f ns/pixel",
+        m.error, r.frames, m.psnr, m.model_ns);
+    const std::string banner = "bltune front point " + m.label + " of scene " + t.scene().name + " (shader " +
+                               t.scene().shader + ", graph " + r.graph_hash + ")\n// " + measured +
+                               "\n// schedule (node:rule; blrender SCENE --schedule front.csv:" + m.label +
+                               " renders it): " + m.schedule;
+    std::ofstream(out + "/" + m.label + ".glsl") << compiler::emit_glsl(*p, "shade", banner);
+    std::ofstream(out + "/" + m.label + ".hpp") << compiler::emit_cpp(*p, "shade", banner);
+    ++n;
+  }
+  return n;
+}
+
+}  // namespace bl::tuner
