@@ -3,6 +3,7 @@
 //
 //   blsmooth scenes/glsl/circles.glsl --rules gaussian --out circles_smooth.glsl
 //   blsmooth scenes/glsl/stripes.json --out stripes_smooth.hpp
+//   blsmooth scenes/glsl/stripes.json --schedule out/tune/stripes/front.csv:front02 --out s.glsl
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,7 @@
 
 #include "compiler/emit.hpp"
 #include "compiler/lower.hpp"
+#include "compiler/schedule_csv.hpp"
 #include "glsl/prelude.hpp"
 #include "glsl/shader.hpp"
 #include "scene/scene.hpp"
@@ -43,9 +45,18 @@ Source load(const std::string& input) {
   throw std::invalid_argument(input + ": expected a .glsl pattern or a .json scene");
 }
 
-// The schedule: one rule for every node (--rules). A tuned schedule is another way to build one.
-compiler::Schedule schedule(const ir::Graph& g, const std::string& rules_text) {
-  return compiler::uniform_schedule(g, rules::parse_rule(rules_text));
+// The schedule: one rule for every node (--rules), or a tuned front point (--schedule CSV:LABEL,
+// which must have been tuned on this graph: the scene file, not the bare pattern, when the scene adds
+// parallax, lighting or a fixed time). `what` names it in the banner.
+compiler::Schedule schedule(const ir::Graph& g, const std::string& rules_text, const std::string& spec,
+                            std::string* what) {
+  if (spec.empty()) {
+    *what = "rules " + rules_text;
+    return compiler::uniform_schedule(g, rules::parse_rule(rules_text));
+  }
+  const compiler::LoadedSchedule l = compiler::load_schedule(spec, g);
+  *what = "schedule " + l.file + ":" + l.label + ": " + l.text;
+  return l.schedule;
 }
 
 // Writes via a temporary file and a rename: an error leaves no half-written output.
@@ -64,11 +75,15 @@ void write_atomically(const std::string& path, const std::string& text) {
 
 int main(int argc, char** argv) {
   CLI::App app{"blsmooth: a GLSL pattern or a scene -> smoothed GLSL or C++ (no rendering)"};
-  std::string input, rules_text = "gaussian", out_path, name = "shade";
+  std::string input, rules_text = "gaussian", schedule_spec, out_path, name = "shade";
   bool print_prelude = false;
   app.add_option("input", input, "pattern (.glsl, defines vec3 shade(vec2 uv, float time)) or scene (.json)");
-  app.add_option("--rules", rules_text,
-                 "rule for every node (none, dorn, gaussian, mc8, box, tent, rule1:box, ...)");
+  auto* rules_opt = app.add_option(
+      "--rules", rules_text, "rule for every node (none, dorn, gaussian, mc8, box, tent, rule1:box, ...)");
+  app.add_option("--schedule", schedule_spec,
+                 "a tuned schedule instead of --rules: FRONT.csv:LABEL from bltune (give the scene file "
+                 "it was tuned on as input)")
+      ->excludes(rules_opt);
   app.add_option("--out", out_path, "output: .glsl (GLSL function) or .hpp/.h (C++ header)");
   app.add_option("--name", name, "name of the emitted function");
   app.add_flag("--prelude", print_prelude,
@@ -85,8 +100,10 @@ int main(int argc, char** argv) {
     if (!to_glsl && !ends_with(out_path, ".hpp") && !ends_with(out_path, ".h"))
       throw std::invalid_argument(out_path + ": the output must end in .glsl, .hpp or .h");
     const Source src = load(input);
-    const compiler::Program prog = compiler::lower(src.graph, schedule(src.graph, rules_text));
-    const std::string banner = src.label + " / rules " + rules_text;
+    std::string what;
+    const compiler::Program prog =
+        compiler::lower(src.graph, schedule(src.graph, rules_text, schedule_spec, &what));
+    const std::string banner = src.label + " / " + what;
     write_atomically(
         out_path, to_glsl ? compiler::emit_glsl(prog, name, banner) : compiler::emit_cpp(prog, name, banner));
     std::string inputs, outputs;

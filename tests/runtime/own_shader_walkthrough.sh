@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # docs/own_shader.md's commands on a small scene whose GLSL lives outside the repository: blrender
-# renders it (plain, MSAA 16, gaussian, ground truth) with no rebuild, blsmooth emits it.
+# renders it (plain, MSAA 16, gaussian, ground truth) with no rebuild, blsmooth emits it, a tiny
+# bltune writes every front point as code, and --schedule rebuilds a front point in both tools.
 set -euo pipefail
-blrender=$1 blsmooth=$2 work=$3
+blrender=$1 blsmooth=$2 work=$3 bltune=$4
 rm -rf "$work" && mkdir -p "$work/my"
 cat > "$work/my/stripes.glsl" <<'GLSL'
 #version 450
@@ -23,4 +24,25 @@ ls "$work/out/v0_t0.000_truth.png" "$work/out/shader.glsl" "$work/out/shader.hpp
 "$blsmooth" "$work/my/stripes.json" --rules gaussian --out "$work/stripes_smooth.hpp"
 grep -q "void shade(in float bl_m\[2\]" "$work/stripes_smooth.glsl"
 grep -q "inline void shade(" "$work/stripes_smooth.hpp"
+# Section 5: tune (tiny settings, quick evaluator-calibrated cost model), then use a front point.
+"$bltune" "$work/my/stripes.json" --out "$work/tune" --cache "$work/cache" --cost-model "$work/cost.json" \
+  --calibration evaluator --jit-cache "$work/jit" --population 6 --generations 1 --restarts 1 --pixels 120 \
+  --nm-evals 3 --max-points 3 > "$work/tune.log" 2>&1 || { cat "$work/tune.log"; exit 1; }
+label=$(awk -F, '$1 == "front" { l = $2 } END { print l }' "$work/tune/front.csv")
+[ -n "$label" ] || { echo "no front point in front.csv"; exit 1; }
+ls "$work/tune/front/$label.glsl" "$work/tune/front/$label.hpp" > /dev/null
+"$blrender" "$work/my/stripes.json" --schedule "$work/tune/front.csv:$label" --msaa 4 --out "$work/out_$label" \
+  --cache "$work/cache" > "$work/render_$label.log"
+grep -q "| v0_t0.000 | $label |" "$work/out_$label/report.md" || { cat "$work/render_$label.log"; exit 1; }
+"$blsmooth" "$work/my/stripes.json" --schedule "$work/tune/front.csv:$label" --out "$work/stripes_$label.glsl"
+# The code bltune wrote and the code blsmooth rebuilds from the schedule are the same function.
+diff <(grep -v '^//' "$work/tune/front/$label.glsl") <(grep -v '^//' "$work/stripes_$label.glsl")
+# A schedule is refused for another graph (an edited shader), naming both graph hashes.
+sed 's/0\.5, fract/0.25, fract/' "$work/my/stripes.glsl" > "$work/my/edited.glsl"
+sed 's/stripes.glsl/edited.glsl/' "$work/my/stripes.json" > "$work/my/edited.json"
+if "$blsmooth" "$work/my/edited.json" --schedule "$work/tune/front.csv:$label" --out "$work/x.glsl" 2> "$work/err.txt"; then
+  echo "a schedule for another graph was accepted"; exit 1
+fi
+grep -q "tuned for graph" "$work/err.txt" || { cat "$work/err.txt"; exit 1; }
+[ ! -e "$work/x.glsl" ]
 echo ok
