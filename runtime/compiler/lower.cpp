@@ -1,5 +1,6 @@
 #include "compiler/lower.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -27,7 +28,12 @@ struct Val {
 
 class Lowering {
  public:
-  Lowering(const ir::Graph& g, const Schedule& s) : g_(g), s_(s), vals_(g.size()) {}
+  Lowering(const ir::Graph& g, const Schedule& s) : g_(g), s_(s), vals_(g.size()), consumers_(g.size()) {
+    for (int i = 0; i < g.size(); ++i)
+      for (int a : {g.node(i).a, g.node(i).b, g.node(i).c})
+        if (a >= 0) consumers_[a].push_back(i);
+    for (int o : g.outputs()) consumers_[o].push_back(-1);  // an output is a consumer of its own
+  }
 
   Program run() {
     p_.input_count = static_cast<int>(g_.inputs().size());
@@ -124,7 +130,7 @@ class Lowering {
     for (Val* a : args) random = random || a->var >= 0;
     if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
     if (r.kind == Kind::MonteCarlo) return monte_carlo(i, n, r, args);
-    if (n.op == Op::Call) return call_node(n, r, *args[0]);
+    if (n.op == Op::Call) return call_node(i, n, r, *args[0]);
     if (n.op == Op::Texture) return texture_node(n, r, *args[0], *args[1]);
     if (n.op == Op::Neg) return Val{op(LOp::Neg, args[0]->mean), args[0]->var, args[0]->sd};
     if (r.kind == Kind::Dorn) return dorn(n, r, args);
@@ -222,9 +228,13 @@ class Lowering {
     return v;
   }
 
-  Val call_node(const ir::Node& n, const Rule& r, Val& x) {
+  Val call_node(int i, const ir::Node& n, const Rule& r, Val& x) {
     const std::string f = ir::atomic_name(n.atomic);
     const int s = scaled_sd(x, r);
+    if (r.kind == Kind::Gaussian) {
+      if (f == "fract" && wrap_continuous(i)) return mode_fract(x.mean, s);
+      if (f == "floor" || f == "ceil") return shifted(f, x.mean, s, x.var);
+    }
     switch (r.kind) {
       case Kind::Dorn: {
         // Dorn: Gaussian mean, and the output sd is the input's (the "sample spacing" heuristic).
@@ -260,6 +270,111 @@ class Lowering {
       default:
         throw std::logic_error("compiler: call_node with rule " + to_string(r));
     }
+  }
+
+  // ---- fract whose consumers do not see its jump ----
+  // True when every path from node i passes through unary steps (atomics, constant affine maps,
+  // x*x) to a value that is the same for fract = 0 and fract = 1, e.g. pow2(fract(x) - 0.5): the
+  // composite is continuous at fract's jumps, so fract may report the side of the jump that holds
+  // most of the kernel instead of the average of both sides (whose large variance would blur every
+  // later step: the grey grid lines of all-Gaussian circles).
+  bool wrap_continuous(int i) const {
+    double lo = 0, hi = 1;
+    int cur = i;
+    for (int depth = 0; depth < 32; ++depth) {
+      if (consumers_[cur].size() != 1 || consumers_[cur][0] < 0) return false;
+      const int nx = consumers_[cur][0];
+      const ir::Node& n = g_.node(nx);
+      const bool a_is = n.a == cur, b_is = n.b == cur;
+      auto constant = [&](int j, double* c) {
+        if (j < 0 || g_.node(j).op != Op::Const) return false;
+        *c = g_.node(j).value;
+        return true;
+      };
+      double c = 0;
+      auto apply = [&](auto fn) {
+        lo = fn(lo);
+        hi = fn(hi);
+      };
+      switch (n.op) {
+        case Op::Call:
+          apply([&](double x) { return ir::plain_atomic(n.atomic, x); });
+          break;
+        case Op::Neg:
+          apply([](double x) { return -x; });
+          break;
+        case Op::Add:
+          if (a_is && b_is)
+            apply([](double x) { return 2 * x; });
+          else if (!constant(a_is ? n.b : n.a, &c))
+            return false;
+          else
+            apply([&](double x) { return x + c; });
+          break;
+        case Op::Sub:
+          if (a_is && b_is) return false;  // x - x: constant, handled by identical_operands
+          if (!constant(a_is ? n.b : n.a, &c)) return false;
+          apply([&](double x) { return a_is ? x - c : c - x; });
+          break;
+        case Op::Mul:
+          if (a_is && b_is)
+            apply([](double x) { return x * x; });
+          else if (!constant(a_is ? n.b : n.a, &c))
+            return false;
+          else
+            apply([&](double x) { return x * c; });
+          break;
+        default:
+          return false;
+      }
+      if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+      if (std::fabs(lo - hi) <= 1e-9 * std::max(1.0, std::fabs(lo))) return true;
+      cur = nx;
+    }
+    return false;
+  }
+
+  // fract of N(m, s^2) reported as the side of the nearest jump that holds most of the kernel: the
+  // moments of a normal truncated at the jump (the 2018 smoothing code's "probabilistic" fract, with
+  // a Gaussian instead of a tent). Blended linearly (first and second moments) into the full
+  // Gaussian rule as s grows from kModeS0 to kModeS1 periods, where both sides carry weight.
+  // Thresholds measured on circles_none (all-Gaussian / MSAA-16 error: 0.05/0.10 -> 1.70, 0.10/0.25
+  // -> 1.15, 0.15/0.40 -> 0.93, 0.25/0.60 -> 0.90, 0.30/0.80 -> 0.92); the 2018 tent widths 1/4 and
+  // 1/2 period correspond to 0.05/0.10.
+  static constexpr float kModeS0 = 0.25f;
+  static constexpr float kModeS1 = 0.6f;
+  Val mode_fract(int m, int s) {
+    const int d = sub(call(plain_name("fract"), {add(m, k(0.5f))}), k(0.5f));  // m - round(m)
+    const int ad = absolute(d);
+    const int safe_s = op(LOp::Max, s, k(1e-30f));
+    const int q = div(ad, safe_s);
+    const int pdf = mul(k(0.3989422804f), call(plain_name("exp"), {mul(k(-0.5f), sq(q))}));
+    const int cdf = call(kernel_name("gaussian", "step", false), {ad, s});  // Phi(|d|/s) >= 1/2
+    const int sl = mul(s, div(pdf, cdf));                                   // s lambda
+    const int neg = op(LOp::Less, d, k(0));
+    // Dominant side: d < 0 -> fract = x - (k - 1), mean 1 + d - s lambda; d >= 0 -> d + s lambda.
+    const int mm = add(add(d, neg), mul(sub(k(1), mul(k(2), neg)), sl));
+    const int vm = op(LOp::NonNeg, sub(sub(sq(s), mul(ad, sl)), sq(sl)));
+    const int fm = call(kernel_name("gaussian", "fract", false), {m, s});
+    const int f2 = call(kernel_name("gaussian", "fract", true), {m, s});
+    const int t = call(plain_name("saturate"), {mul(sub(s, k(kModeS0)), k(1.0f / (kModeS1 - kModeS0)))});
+    // (1 - t) a + t b, not a + t (b - a): the mode's moments grow like s^2 and would cancel b away.
+    const int u = sub(k(1), t);
+    Val v;
+    v.mean = add(mul(u, mm), mul(t, fm));
+    const int m2 = add(mul(u, add(vm, sq(mm))), mul(t, f2));
+    v.var = op(LOp::NonNeg, sub(m2, sq(v.mean)));
+    return v;
+  }
+
+  // floor and ceil commute with integer shifts: smoothing at m - K, K = floor(m) (plain, exact in
+  // float below 2^24), keeps the moments near 0, so E[f^2] - E[f]^2 does not cancel (floor at 40.7,
+  // sd 0.01 reported a variance of 1.2e-4 from float rounding; the true one is ~1e-300).
+  Val shifted(const std::string& f, int m, int s, int var_in) {
+    const int K = call(plain_name("floor"), {m});
+    Val v = convolve("gaussian", f, sub(m, K), s, var_in);
+    v.mean = add(v.mean, K);
+    return v;
   }
 
   // A texture is a discrete function: every smoothing rule reads the mean and mean-of-squares
@@ -476,6 +591,7 @@ class Lowering {
   std::vector<Val> vals_;
   Program p_;
   std::set<std::string> notes_;
+  std::vector<std::vector<int>> consumers_;  // per node: the nodes reading it (-1: a graph output)
 };
 
 }  // namespace
