@@ -455,6 +455,22 @@ class Lowering {
     Val& b = grad(n.b);
     (void)i;
     const int dot = add(mul(a.gx, b.gx), mul(a.gy, b.gy));
+    if (r.rho == Rho::Covariance) {
+      // Cov(A, B) ~ sigma_px^2 (ga . gb) with Stein slopes (smoothed_slope): it fades as a wide
+      // footprint averages the jumps out, where the normalised dot product stays at +-1.
+      // sigma_px^2 is read off input 0 (the surface u): its sd over its screen gradient's length.
+      Inst in;
+      in.arg[0] = 0;
+      in.op = LOp::InSd;
+      const int s0 = emit(in);
+      in.op = LOp::InGradX;
+      const int g0x = emit(in);
+      in.op = LOp::InGradY;
+      const int g0y = emit(in);
+      const int sig2 = div(sq(s0), op(LOp::Max, add(sq(g0x), sq(g0y)), k(1e-30f)));
+      const int den = op(LOp::Max, mul(sd(vals_[n.a]), sd(vals_[n.b])), k(1e-30f));
+      return op(LOp::Min, op(LOp::Max, div(mul(dot, sig2), den), k(-1)), k(1));
+    }
     const int na = add(sq(a.gx), sq(a.gy)), nb = add(sq(b.gx), sq(b.gy));
     // Zero gradients (a constant-in-screen input) give rho 0 rather than 0/0.
     const int den = op(LOp::Sqrt, op(LOp::Max, mul(na, nb), k(1e-30f)));
@@ -501,6 +517,21 @@ class Lowering {
     return from_stat(call(name, {a[0]->mean, sd(*a[0]), a[1]->mean, sd(*a[1]), rho(i, n, r)}, true));
   }
 
+  // d/dm of the node's smoothed mean (for a smoothing rule; the plain f' for none or a non-random
+  // input). By Stein's lemma E[f'(X)] = d/dm E[f(X)], so for a jump (step, square, fract) the slope is
+  // the kernel's density at the jump, not the plain derivative's 0: two values that jump together
+  // (zigzag's hue and band) then get correlated gradients. Central difference at h = s/2.
+  int smoothed_slope(int i, const ir::Node& n) {
+    const std::string f = ir::atomic_name(n.atomic);
+    Val& x = vals_[n.a];
+    const Rule& r = s_.at(i);
+    if (r.kind == Kind::None || r.kind == Kind::MonteCarlo || x.var < 0)
+      return call("bl::deriv::" + f + "_d1", {x.mean});
+    const std::string kern = kernel_name(kernel_for("gaussian", f), f, false);
+    const int s = scaled_sd(x, r), h = add(mul(k(0.5f), s), k(1e-4f));
+    return div(sub(call(kern, {add(x.mean, h), s}), call(kern, {sub(x.mean, h), s})), mul(k(2), h));
+  }
+
   // Screen-space gradient of node i's mean (forward mode through the plain derivatives at the
   // means: the affine assumption of Yang & Barnes, Appendix B).
   Val& grad(int i) {
@@ -542,9 +573,22 @@ class Lowering {
       case Op::Mod:
         set(G(n.a).gx, G(n.a).gy);
         break;
-      case Op::Less:
-        set(k(0), k(0));
+      case Op::Less: {
+        // Smoothed less(a, b) = Phi((mb - ma) / s): its slope in mb - ma (Stein's lemma) is the
+        // Gaussian density there, where the plain derivative is 0 almost everywhere.
+        Val &a = vals_[n.a], &b = vals_[n.b];
+        if (s_.at(i).kind == Kind::None || (a.var < 0 && b.var < 0)) {
+          set(k(0), k(0));
+          break;
+        }
+        const int va = a.var < 0 ? k(0) : a.var, vb = b.var < 0 ? k(0) : b.var;
+        const int sab = op(LOp::Sqrt, op(LOp::Max, add(va, vb), k(1e-30f)));
+        const int x = sub(b.mean, a.mean), h = add(mul(k(0.5f), sab), k(1e-4f));
+        const std::string st = kernel_name("gaussian", "step", false);
+        const int fp = div(sub(call(st, {add(x, h), sab}), call(st, {sub(x, h), sab})), mul(k(2), h));
+        set(mul(fp, sub(G(n.b).gx, G(n.a).gx)), mul(fp, sub(G(n.b).gy, G(n.a).gy)));
         break;
+      }
       // Texels are treated as uncorrelated with the shader's other values (no derivative of a
       // discrete function): a rho=grad product with a texture value gets rho 0.
       case Op::Texture:
@@ -577,8 +621,7 @@ class Lowering {
         break;
       }
       case Op::Call: {
-        const std::string d1 = "bl::deriv::" + std::string(ir::atomic_name(n.atomic)) + "_d1";
-        const int fp = call(d1, {vals_[n.a].mean});
+        const int fp = smoothed_slope(i, n);
         set(mul(fp, G(n.a).gx), mul(fp, G(n.a).gy));
         break;
       }
