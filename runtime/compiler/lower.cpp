@@ -477,14 +477,45 @@ class Lowering {
     return op(LOp::Min, op(LOp::Max, div(dot, den), k(-1)), k(1));
   }
 
+  // rho = 0 known while lowering: the covariance terms are left out rather than multiplied by 0
+  // (x * 0 is not folded: it is NaN for an infinite x), so optimize() can drop what feeds them.
+  bool rho_zero(const Rule& r) const {
+    return r.rho == Rho::Zero || (r.rho == Rho::Constant && r.rho_value == 0);
+  }
+
   Val gaussian(int i, const ir::Node& n, const Rule& r, const std::vector<Val*>& a) {
     Val v;
     const bool ca = a[0]->var<0, cb = a.size()> 1 && a[1]->var < 0;
+    // Identical operands (hash-consing gives them one node id) are perfectly correlated: x - x = 0,
+    // x + x = 2x, x / x = 1 exactly, and x * x is pow2 with its exact Gaussian moments.
+    if (n.op != Op::Select && n.b >= 0 && n.a == n.b) {
+      switch (n.op) {
+        case Op::Sub:
+          return Val{k(0), -1};
+        case Op::Div:
+          return Val{k(1), -1};
+        case Op::Add:
+          return Val{mul(k(2), a[0]->mean), mul(k(4), a[0]->var)};
+        case Op::Min:
+        case Op::Max:
+          return *a[0];
+        case Op::Less:
+          return Val{k(0), -1};
+        case Op::Mul:
+          return convolve("gaussian", "pow2", a[0]->mean, scaled_sd(*a[0], r), a[0]->var);
+        default:
+          break;
+      }
+    }
     switch (n.op) {
       case Op::Add:
       case Op::Sub: {
         v.mean = plain(n, a);
         if (ca || cb) return Val{v.mean, ca ? a[1]->var : a[0]->var, ca ? a[1]->sd : a[0]->sd};
+        if (rho_zero(r)) {
+          v.var = add(a[0]->var, a[1]->var);
+          return v;
+        }
         int cov = mul(mul(k(2), rho(i, n, r)), mul(sd(*a[0]), sd(*a[1])));
         if (n.op == Op::Sub) cov = op(LOp::Neg, cov);
         v.var = op(LOp::NonNeg, add(add(a[0]->var, a[1]->var), cov));
@@ -494,6 +525,14 @@ class Lowering {
         if (ca || cb) {  // product with a non-random factor: exact
           v.mean = plain(n, a);
           v.var = ca ? mul(sq(a[0]->mean), a[1]->var) : mul(sq(a[1]->mean), a[0]->var);
+          return v;
+        }
+        if (rho_zero(r)) {
+          // Independent factors (bivariate::mul at rho 0, inlined): the mean reads no variance, so
+          // a variance only this product's variance reads is dead when nothing reads that one.
+          v.mean = plain(n, a);
+          v.var = add(add(mul(a[0]->var, a[1]->var), mul(sq(a[0]->mean), a[1]->var)),
+                      mul(sq(a[1]->mean), a[0]->var));
           return v;
         }
         break;
