@@ -33,6 +33,13 @@ class Lowering {
       for (int a : {g.node(i).a, g.node(i).b, g.node(i).c})
         if (a >= 0) consumers_[a].push_back(i);
     for (int o : g.outputs()) consumers_[o].push_back(-1);  // an output is a consumer of its own
+    aff_.resize(g.size());
+    root_.resize(g.size());
+    for (int i = 0; i < g.size(); ++i) {
+      aff_[i] = affine_form(i);
+      root_[i] = root_of(i);
+    }
+    slope_.assign(g.size(), -1);
   }
 
   Program run() {
@@ -449,13 +456,20 @@ class Lowering {
   }
 
   int rho(int i, const ir::Node& n, const Rule& r) {
-    if (r.kind != Kind::Gaussian || r.rho == Rho::Zero) return k(0);
+    if (r.kind != Kind::Gaussian) return k(0);
+    if (r.rho == Rho::Zero) {
+      const int sh = shared_rho(n);
+      return sh < 0 ? k(0) : sh;
+    }
     if (r.rho == Rho::Constant) return k(static_cast<float>(r.rho_value));
     Val& a = grad(n.a);
     Val& b = grad(n.b);
     (void)i;
     const int dot = add(mul(a.gx, b.gx), mul(a.gy, b.gy));
     if (r.rho == Rho::Covariance) {
+      const Affine &fa = aff_[n.a], &fb = aff_[n.b];
+      if (fa.base >= 0 && fa.base == fb.base && fa.beta != 0 && fb.beta != 0)
+        return k(fa.beta * fb.beta > 0 ? 1.0f : -1.0f);  // affine in one base: exact
       // Cov(A, B) ~ sigma_px^2 (ga . gb) with Stein slopes (smoothed_slope): it fades as a wide
       // footprint averages the jumps out, where the normalised dot product stays at +-1.
       // sigma_px^2 is read off input 0 (the surface u): its sd over its screen gradient's length.
@@ -512,7 +526,7 @@ class Lowering {
       case Op::Sub: {
         v.mean = plain(n, a);
         if (ca || cb) return Val{v.mean, ca ? a[1]->var : a[0]->var, ca ? a[1]->sd : a[0]->sd};
-        if (rho_zero(r)) {
+        if (rho_zero(r) && shared_rho(n) < 0) {
           v.var = add(a[0]->var, a[1]->var);
           return v;
         }
@@ -527,7 +541,7 @@ class Lowering {
           v.var = ca ? mul(sq(a[0]->mean), a[1]->var) : mul(sq(a[1]->mean), a[0]->var);
           return v;
         }
-        if (rho_zero(r)) {
+        if (rho_zero(r) && shared_rho(n) < 0) {
           // Independent factors (bivariate::mul at rho 0, inlined): the mean reads no variance, so
           // a variance only this product's variance reads is dead when nothing reads that one.
           v.mean = plain(n, a);
@@ -668,12 +682,94 @@ class Lowering {
     return vals_[i];
   }
 
+  // ---- correlation of operands that are functions of one common node ----
+  // Node i as alpha + beta * base (base -1: the constant alpha), through constant affine steps.
+  struct Affine {
+    int base = -1;
+    double alpha = 0, beta = 0;
+  };
+  Affine affine_form(int i) const {
+    const ir::Node& n = g_.node(i);
+    auto cst = [&](int j) { return j >= 0 && g_.node(j).op == Op::Const; };
+    const Affine self{i, 0, 1};
+    switch (n.op) {
+      case Op::Const:
+        return Affine{-1, n.value, 0};
+      case Op::Neg:
+        return Affine{aff_[n.a].base, -aff_[n.a].alpha, -aff_[n.a].beta};
+      case Op::Add:
+      case Op::Sub: {
+        const Affine &a = aff_[n.a], &b = aff_[n.b];
+        const double sg = n.op == Op::Add ? 1 : -1;
+        if (a.base == b.base || a.base < 0 || b.base < 0)
+          return Affine{a.base >= 0 ? a.base : b.base, a.alpha + sg * b.alpha, a.beta + sg * b.beta};
+        return self;
+      }
+      case Op::Mul:
+        if (cst(n.b))
+          return Affine{aff_[n.a].base, aff_[n.a].alpha * g_.node(n.b).value,
+                        aff_[n.a].beta * g_.node(n.b).value};
+        if (cst(n.a))
+          return Affine{aff_[n.b].base, aff_[n.b].alpha * g_.node(n.a).value,
+                        aff_[n.b].beta * g_.node(n.a).value};
+        return self;
+      case Op::Div:
+        if (cst(n.b))
+          return Affine{aff_[n.a].base, aff_[n.a].alpha / g_.node(n.b).value,
+                        aff_[n.a].beta / g_.node(n.b).value};
+        return self;
+      default:
+        return self;
+    }
+  }
+  // The node a value is a function of alone (its root): through constant affine steps to the base,
+  // through atomics to the argument.
+  int root_of(int i) const {
+    const ir::Node& n = g_.node(i);
+    if (aff_[i].base >= 0 && aff_[i].base != i) return root_[aff_[i].base];
+    if (n.op == Op::Call) return root_[n.a];
+    return i;
+  }
+  // d E[node] / d E[root]: beta through affine steps, the atomics' Stein slopes (smoothed_slope).
+  int root_slope(int i) {
+    if (slope_[i] >= 0) return slope_[i];
+    const ir::Node& n = g_.node(i);
+    int sl;
+    if (aff_[i].base >= 0 && aff_[i].base != i)
+      sl = mul(k(static_cast<float>(aff_[i].beta)), root_slope(aff_[i].base));
+    else if (n.op == Op::Call)
+      sl = mul(smoothed_slope(i, n), root_slope(n.a));
+    else
+      sl = k(1);
+    return slope_[i] = sl;
+  }
+  // The correlation of binary node n's operands when the rule says rho 0 but the graph knows
+  // better, or -1 (none known: independent). Affine functions of one base node are perfectly
+  // correlated (+-1); functions of one root node R (zigzag's hue and band, both of y) get
+  // Cov ~ Var(R) E[A'(R)] E[B'(R)] (Stein's lemma, exact when one of them is affine in R).
+  int shared_rho(const ir::Node& n) {
+    if (n.b < 0 || n.a == n.b) return -1;
+    const Affine &a = aff_[n.a], &b = aff_[n.b];
+    if (a.base >= 0 && a.base == b.base && a.beta != 0 && b.beta != 0)
+      return k(a.beta * b.beta > 0 ? 1.0f : -1.0f);
+    const int r = root_[n.a];
+    if (r != root_[n.b] || r == n.a || r == n.b || vals_[r].var < 0) return -1;
+    if (vals_[n.a].var < 0 || vals_[n.b].var < 0) return -1;
+    const int cov = mul(vals_[r].var, mul(root_slope(n.a), root_slope(n.b)));
+    const int den = op(LOp::Max, mul(sd(vals_[n.a]), sd(vals_[n.b])), k(1e-30f));
+    return op(LOp::Min, op(LOp::Max, div(cov, den), k(-1)), k(1));
+  }
+
   const ir::Graph& g_;
   const Schedule& s_;
   std::vector<Val> vals_;
   Program p_;
   std::set<std::string> notes_;
-  std::vector<std::vector<int>> consumers_;  // per node: the nodes reading it (-1: a graph output)
+  std::vector<std::vector<int>> consumers_;
+  std::vector<Affine> aff_;
+  std::vector<int> root_;   // per node: the node it is a function of alone (itself if none)
+  std::vector<int> slope_;  // root_slope's instruction per node (-1: not yet)  // per node: the nodes reading
+                            // it (-1: a graph output)
 };
 
 }  // namespace

@@ -104,19 +104,31 @@ TEST(Rules, IdenticalOperandsArePerfectlyCorrelated) {
   EXPECT_NEAR(run1(sn, "gaussian", 0.7f, 0.05f), want, 2e-3);
 }
 
-TEST(Rules, CovarianceRhoCorrelatesJumpsThatCoincide) {
-  // step(u) step(2u) = step(u): E = Phi(m / s). rho = 0 gives Phi^2; rho=cov, from the Stein slopes
-  // of both steps, must at least halve that error at and near the shared jump, and be near-exact
-  // far from it.
+TEST(Rules, OperandsOfOneRootAreCorrelated) {
+  // step(u) step(2u) = step(u): E = Phi(m / s). Independence (rho forced to the constant 0) gives
+  // Phi^2; the default rule (shared root u: Stein covariance) and rho=cov (screen gradients with
+  // Stein slopes) must at least halve that error at and near the shared jump, and be near-exact far
+  // from it.
   const ir::Graph g = one_input([](dsl::Var u) { return dsl::step(u) * dsl::step(u * 2.0); });
   for (double mu : {-0.01, 0.0, 0.01}) {
     const double s = 0.02, want = 0.5 * std::erfc(-mu / (s * std::sqrt(2.0)));
-    const double e0 = std::fabs(run1(g, "gaussian", static_cast<float>(mu), static_cast<float>(s)) - want);
-    const double ec =
-        std::fabs(run1(g, "gaussian:rho=cov", static_cast<float>(mu), static_cast<float>(s)) - want);
-    EXPECT_LT(ec, 0.5 * e0) << "mu " << mu;
+    const float m = static_cast<float>(mu), sf = static_cast<float>(s);
+    const double e0 = std::fabs(run1(g, "gaussian:rho=0.0", m, sf) - want);
+    EXPECT_NEAR(e0, want - want * want, 1e-6);  // the independent product, as a check of the setup
+    for (const char* rule : {"gaussian", "gaussian:rho=cov"})
+      EXPECT_LT(std::fabs(run1(g, rule, m, sf) - want), 0.5 * e0) << rule << " mu " << mu;
   }
+  EXPECT_NEAR(run1(g, "gaussian", 0.3f, 0.02f), 1.0, 1e-6);
   EXPECT_NEAR(run1(g, "gaussian:rho=cov", 0.3f, 0.02f), 1.0, 1e-6);
+  // Affine functions of one base are perfectly correlated: (2 step(u) + 1) - step(u) = step(u) + 1
+  // has the variance of step(u), Phi (1 - Phi); read through sin(10 .) against quadrature.
+  const ir::Graph aff = one_input([](dsl::Var u) {
+    const dsl::Var st = dsl::step(u);
+    return dsl::sin((st * 2.0 + 1.0 - st) * 10.0);
+  });
+  const double p = 0.5 * std::erfc(-0.01 / (0.02 * std::sqrt(2.0))), v = p * (1 - p);
+  const double want = std::sin(10 * (1 + p)) * std::exp(-50 * v);  // Gaussian rule on exact moments
+  EXPECT_NEAR(run1(aff, "gaussian", 0.01f, 0.02f), want, 1e-4);
   EXPECT_EQ(rules::to_string(rules::parse_rule("gaussian:rho=cov")), "gaussian:rho=cov");
 }
 
