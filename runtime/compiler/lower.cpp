@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -40,6 +41,8 @@ class Lowering {
       root_[i] = root_of(i);
     }
     slope_.assign(g.size(), -1);
+    lattice_.resize(g.size());
+    for (int i = 0; i < g.size(); ++i) lattice_[i] = lattice_sources(i);
   }
 
   Program run() {
@@ -136,6 +139,7 @@ class Lowering {
     bool random = false;
     for (Val* a : args) random = random || a->var >= 0;
     if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
+    if (r.kind != Kind::MonteCarlo && lattice_boundary(i)) return lattice_mixture(i, r);
     if (r.kind == Kind::MonteCarlo) return monte_carlo(i, n, r, args);
     if (n.op == Op::Call) return call_node(i, n, r, *args[0]);
     if (n.op == Op::Texture) return texture_node(n, r, *args[0], *args[1]);
@@ -760,6 +764,105 @@ class Lowering {
     return op(LOp::Min, op(LOp::Max, div(cov, den), k(-1)), k(1));
   }
 
+  // ---- integer-valued nodes as small discrete distributions ----
+  // floor and ceil of N(m, s^2) take the values K-1, K, K+1 (K = floor(m), ceil(m)) with Gaussian
+  // interval probabilities (mass beyond them is dropped and the rest renormalised: exact to
+  // Phi(-1/s) for s < 1/4). A node computed from at most two such nodes and constants (a lattice
+  // hash) is then an exact finite mixture over their <= 9 value pairs: the plain sub-DAG evaluated
+  // per pair, weighted. Smoothed as one value instead, the hash of a cell index collapses to 1/2.
+  struct Lattice {
+    bool ok = false;
+    std::vector<int> src;  // the floor/ceil nodes it depends on (sorted)
+  };
+  bool integer_source(int i) const {
+    const ir::Node& n = g_.node(i);
+    if (n.op != Op::Call) return false;
+    const std::string f = ir::atomic_name(n.atomic);
+    return f == "floor" || f == "ceil";
+  }
+  Lattice lattice_sources(int i) const {
+    const ir::Node& n = g_.node(i);
+    if (n.op == Op::Const) return Lattice{true, {}};
+    if (integer_source(i)) return Lattice{true, {i}};
+    if (n.op == Op::Input || n.op == Op::Texture) return Lattice{};
+    Lattice out{true, {}};
+    for (int a : {n.a, n.b, n.c}) {
+      if (a < 0) continue;
+      if (!lattice_[a].ok) return Lattice{};
+      for (int d : lattice_[a].src)
+        if (std::find(out.src.begin(), out.src.end(), d) == out.src.end()) out.src.push_back(d);
+    }
+    std::sort(out.src.begin(), out.src.end());
+    if (out.src.size() > 2) return Lattice{};
+    return out;
+  }
+  // A lattice node (not a source) that some non-lattice node or an output reads.
+  bool lattice_boundary(int i) const {
+    if (!lattice_[i].ok || lattice_[i].src.empty() || integer_source(i)) return false;
+    for (int c : consumers_[i])
+      if (c < 0 || !lattice_[c].ok) return true;
+    return false;
+  }
+  Val lattice_mixture(int i, const Rule& r) {
+    const std::vector<int>& src = lattice_[i].src;
+    struct Choice {
+      std::vector<int> value, weight;  // instruction per candidate
+    };
+    std::vector<Choice> ch(src.size());
+    const std::string step = kernel_name("gaussian", "step", false);
+    for (std::size_t d = 0; d < src.size(); ++d) {
+      const ir::Node& fl = g_.node(src[d]);
+      const bool is_floor = std::string(ir::atomic_name(fl.atomic)) == "floor";
+      Val& x = vals_[fl.a];
+      const int K = call(plain_name(is_floor ? "floor" : "ceil"), {x.mean});
+      const int s = x.var < 0 ? k(0) : scaled_sd(x, r);
+      for (int o = -1; o <= 1; ++o) {
+        const int v = add(K, k(static_cast<float>(o)));
+        // floor = v on [v, v + 1); ceil = v on (v - 1, v]: P = Phi((hi - m)/s) - Phi((lo - m)/s).
+        const int lo = is_floor ? v : sub(v, k(1)), hi = is_floor ? add(v, k(1)) : v;
+        const int p = sub(call(step, {sub(hi, x.mean), s}), call(step, {sub(lo, x.mean), s}));
+        ch[d].value.push_back(v);
+        ch[d].weight.push_back(p);
+      }
+    }
+    int sum_w = -1, sum_h = -1, sum_h2 = -1;
+    const int combos = src.size() == 1 ? 3 : 9;
+    for (int c = 0; c < combos; ++c) {
+      std::map<int, int> memo;
+      int w = -1;
+      for (std::size_t d = 0; d < src.size(); ++d) {
+        const int pick = d == 0 ? c % 3 : c / 3;
+        memo[src[d]] = ch[d].value[pick];
+        w = w < 0 ? ch[d].weight[pick] : mul(w, ch[d].weight[pick]);
+      }
+      const int h = lattice_eval(i, memo);
+      sum_w = sum_w < 0 ? w : add(sum_w, w);
+      sum_h = sum_h < 0 ? mul(w, h) : add(sum_h, mul(w, h));
+      sum_h2 = sum_h2 < 0 ? mul(w, sq(h)) : add(sum_h2, mul(w, sq(h)));
+    }
+    const int inv = div(k(1), op(LOp::Max, sum_w, k(1e-30f)));
+    Val v;
+    v.mean = mul(sum_h, inv);
+    v.var = op(LOp::NonNeg, sub(mul(sum_h2, inv), sq(v.mean)));
+    return v;
+  }
+  // The plain value of lattice node i with its sources fixed (memo: node -> instruction).
+  int lattice_eval(int i, std::map<int, int>& memo) {
+    auto it = memo.find(i);
+    if (it != memo.end()) return it->second;
+    const ir::Node& n = g_.node(i);
+    int out;
+    if (n.op == Op::Const) {
+      out = k(static_cast<float>(n.value));
+    } else {
+      std::vector<int> x;
+      for (int a : {n.a, n.b, n.c})
+        if (a >= 0) x.push_back(lattice_eval(a, memo));
+      out = plain(n, x);
+    }
+    return memo[i] = out;
+  }
+
   const ir::Graph& g_;
   const Schedule& s_;
   std::vector<Val> vals_;
@@ -767,9 +870,11 @@ class Lowering {
   std::set<std::string> notes_;
   std::vector<std::vector<int>> consumers_;
   std::vector<Affine> aff_;
-  std::vector<int> root_;   // per node: the node it is a function of alone (itself if none)
-  std::vector<int> slope_;  // root_slope's instruction per node (-1: not yet)  // per node: the nodes reading
-                            // it (-1: a graph output)
+  std::vector<int> root_;  // per node: the node it is a function of alone (itself if none)
+  std::vector<int> slope_;
+  std::vector<Lattice>
+      lattice_;  // per node: its integer sources, when it is a lattice node  // root_slope's instruction per
+                 // node (-1: not yet)  // per node: the nodes reading it (-1: a graph output)
 };
 
 }  // namespace

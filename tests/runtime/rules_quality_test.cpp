@@ -132,6 +132,25 @@ TEST(Rules, OperandsOfOneRootAreCorrelated) {
   EXPECT_EQ(rules::to_string(rules::parse_rule("gaussian:rho=cov")), "gaussian:rho=cov");
 }
 
+TEST(Rules, AHashOfAFloorIsAFiniteMixture) {
+  // h(floor(u)) for a lattice hash h: E = sum_K P(floor = K) h(K), against quadrature of the plain
+  // composite (the old rule smoothed the hash of a smoothed floor: ~1/2 whatever the cells hold).
+  const auto h = [](double i) { return fract(std::sin(i * 1.7 + 0.3) * 13.37); };
+  const ir::Graph g =
+      one_input([](dsl::Var u) { return dsl::fract(dsl::sin(dsl::floor(u) * 1.7 + 0.3) * 13.37); });
+  for (double mu : {3.02, 3.5, 3.97, -7.4})
+    for (double s : {0.01, 0.05, 0.2}) {
+      const double want = expect([&](double x) { return h(std::floor(x)); }, mu, s);
+      EXPECT_NEAR(run1(g, "gaussian", static_cast<float>(mu), static_cast<float>(s)), want, 1e-4)
+          << "mu " << mu << " s " << s;
+    }
+  // The mixture's variance reaches the next rule: sin(6 h) against quadrature (the Gaussian rule on
+  // the mixture's two moments: exact only for a narrow footprint inside one cell).
+  const ir::Graph g2 = one_input(
+      [](dsl::Var u) { return dsl::sin(dsl::fract(dsl::sin(dsl::floor(u) * 1.7 + 0.3) * 13.37) * 6.0); });
+  EXPECT_NEAR(run1(g2, "gaussian", 3.5f, 0.01f), std::sin(6 * h(3)), 1e-4);
+}
+
 // Every rule tends to the plain shader as the footprint goes to 0: at 64 fixed points of each suite
 // shader, the output error against the plain value at sd = eps. Away from jumps a smoothing rule's
 // error is O(eps^2) (Gaussian, box, tent, Dorn, antithetic MC: symmetric kernels); a point within a
