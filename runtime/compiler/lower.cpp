@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "ir/atomics.hpp"
 
@@ -584,6 +585,8 @@ class Lowering {
     const Rule& r = s_.at(i);
     if (r.kind == Kind::None || r.kind == Kind::MonteCarlo || x.var < 0)
       return call("bl::deriv::" + f + "_d1", {x.mean});
+    // A fract reported as one side of its jump (mode_fract) has slope 1 there, not the jump's.
+    if (r.kind == Kind::Gaussian && f == "fract" && wrap_continuous(i)) return k(1);
     const std::string kern = kernel_name(kernel_for("gaussian", f), f, false);
     const int s = scaled_sd(x, r), h = add(mul(k(0.5f), s), k(1e-4f));
     return div(sub(call(kern, {add(x.mean, h), s}), call(kern, {sub(x.mean, h), s})), mul(k(2), h));
@@ -747,6 +750,16 @@ class Lowering {
       sl = k(1);
     return slope_[i] = sl;
   }
+  // InGradX and InGradY of input node i.
+  std::pair<int, int> input_gradient(int i) {
+    Inst in;
+    in.arg[0] = static_cast<int>(g_.node(i).value);
+    in.op = LOp::InGradX;
+    const int gx = emit(in);
+    in.op = LOp::InGradY;
+    return {gx, emit(in)};
+  }
+
   // The correlation of binary node n's operands when the rule says rho 0 but the graph knows
   // better, or -1 (none known: independent). Affine functions of one base node are perfectly
   // correlated (+-1); functions of one root node R (zigzag's hue and band, both of y) get
@@ -756,10 +769,24 @@ class Lowering {
     const Affine &a = aff_[n.a], &b = aff_[n.b];
     if (a.base >= 0 && a.base == b.base && a.beta != 0 && b.beta != 0)
       return k(a.beta * b.beta > 0 ? 1.0f : -1.0f);
-    const int r = root_[n.a];
-    if (r != root_[n.b] || r == n.a || r == n.b || vals_[r].var < 0) return -1;
     if (vals_[n.a].var < 0 || vals_[n.b].var < 0) return -1;
-    const int cov = mul(vals_[r].var, mul(root_slope(n.a), root_slope(n.b)));
+    const int ra = root_[n.a], rb = root_[n.b];
+    if (vals_[ra].var < 0 || vals_[rb].var < 0) return -1;
+    int cov;
+    if (ra == rb) {
+      cov = mul(vals_[ra].var, mul(root_slope(n.a), root_slope(n.b)));
+    } else if (g_.node(ra).op == Op::Input && g_.node(rb).op == Op::Input) {
+      // Functions of two surface coordinates: u and v are affine in screen space over a pixel, so
+      // their correlation is the normalised dot product of their screen gradients (exact for the
+      // isotropic pixel Gaussian); the footprint of a rotated view correlates them.
+      const auto ga = input_gradient(ra), gb = input_gradient(rb);
+      const int dot = add(mul(ga.first, gb.first), mul(ga.second, gb.second));
+      const int na = add(sq(ga.first), sq(ga.second)), nb = add(sq(gb.first), sq(gb.second));
+      const int ruv = div(dot, op(LOp::Sqrt, op(LOp::Max, mul(na, nb), k(1e-30f))));
+      cov = mul(mul(ruv, mul(sd(vals_[ra]), sd(vals_[rb]))), mul(root_slope(n.a), root_slope(n.b)));
+    } else {
+      return -1;
+    }
     const int den = op(LOp::Max, mul(sd(vals_[n.a]), sd(vals_[n.b])), k(1e-30f));
     return op(LOp::Min, op(LOp::Max, div(cov, den), k(-1)), k(1));
   }
@@ -767,8 +794,8 @@ class Lowering {
   // ---- integer-valued nodes as small discrete distributions ----
   // floor and ceil of N(m, s^2) take the values K-1, K, K+1 (K = floor(m), ceil(m)) with Gaussian
   // interval probabilities (mass beyond them is dropped and the rest renormalised: exact to
-  // Phi(-1/s) for s < 1/4). A node computed from at most two such nodes and constants (a lattice
-  // hash) is then an exact finite mixture over their <= 9 value pairs: the plain sub-DAG evaluated
+  // Phi(-1/s) for s < 1/4). A node computed from at most two such nodes (of different roots) and constants (a
+  // lattice hash) is then an exact finite mixture over their <= 9 value pairs: the plain sub-DAG evaluated
   // per pair, weighted. Smoothed as one value instead, the hash of a cell index collapses to 1/2.
   struct Lattice {
     bool ok = false;
@@ -794,6 +821,10 @@ class Lowering {
     }
     std::sort(out.src.begin(), out.src.end());
     if (out.src.size() > 2) return Lattice{};
+    // The mixture weighs value pairs by the product of their probabilities: the two sources must be
+    // functions of different roots (floor(u) and floor(v)); floor(u + 1/2) and floor(u) are not
+    // independent (checkerboard), and are left to the Gaussian rules.
+    if (out.src.size() == 2 && root_[g_.node(out.src[0]).a] == root_[g_.node(out.src[1]).a]) return Lattice{};
     return out;
   }
   // A lattice node (not a source) that some non-lattice node or an output reads.

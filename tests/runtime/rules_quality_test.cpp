@@ -151,6 +151,36 @@ TEST(Rules, AHashOfAFloorIsAFiniteMixture) {
   EXPECT_NEAR(run1(g2, "gaussian", 3.5f, 0.01f), std::sin(6 * h(3)), 1e-4);
 }
 
+TEST(Rules, SurfaceCoordinatesAreCorrelatedByTheirScreenGradients) {
+  // u and v with parallel screen gradients are one variable: u - v = mu - mv exactly, so
+  // step(u - v + 0.3 s) is 1 (independence would give Phi(0.3 / sqrt 2) = 0.58); orthogonal
+  // gradients keep them independent.
+  ir::Graph g;
+  {
+    dsl::Tracer t(g);
+    const dsl::Var u = dsl::Var::input("u", true), v = dsl::Var::input("v", true);
+    g.add_output("r", dsl::step(u - v + 0.003).id());
+  }
+  const compiler::Program p =
+      compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
+  auto run = [&](float gvx, float gvy) {
+    const float m[2] = {0.5f, 0.5f}, s[2] = {0.01f, 0.01f}, gx[2] = {0.02f, gvx}, gy[2] = {0, gvy};
+    compiler::Batch b;
+    b.count = 1;
+    for (int j = 0; j < 2; ++j) {
+      b.mean.push_back(&m[j]);
+      b.sd.push_back(&s[j]);
+      b.grad_x.push_back(&gx[j]);
+      b.grad_y.push_back(&gy[j]);
+    }
+    float out;
+    compiler::Evaluator(p).run(b, {&out});
+    return out;
+  };
+  EXPECT_NEAR(run(0.02f, 0), 1.0, 1e-4);
+  EXPECT_NEAR(run(0, 0.02f), 0.5 * std::erfc(-0.3 / std::sqrt(2.0) / std::sqrt(2.0)), 1e-4);
+}
+
 // Every rule tends to the plain shader as the footprint goes to 0: at 64 fixed points of each suite
 // shader, the output error against the plain value at sd = eps. Away from jumps a smoothing rule's
 // error is O(eps^2) (Gaussian, box, tent, Dorn, antithetic MC: symmetric kernels); a point within a
