@@ -24,6 +24,6 @@ echo "[main] rendering a demo scene: plain, MSAA 4/16, adaptive Gaussian, ground
 # Error and time summed over the scene's views, from the report's table.
 awk -F'|' '$3 ~ /msaa16|gaussian/ { gsub(/ /, "", $3); t[$3] += $4; e[$3] += $5 }
   END { if (e["msaa16"] > 0 && t["gaussian"] > 0)
-          printf "[main] demo: all-Gaussian RMS %.4f vs MSAA 16 %.4f (%.2fx its error) at %.1fx its speed\n",
+          printf "[main] demo (checkerboard_none, RMS summed over views): all-Gaussian %.4f vs MSAA 16 %.4f (%.2fx its error) at %.1fx its speed\n",
                  e["gaussian"], e["msaa16"], e["gaussian"] / e["msaa16"], t["msaa16"] / t["gaussian"] }' \
   build/demo/report.md
