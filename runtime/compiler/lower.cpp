@@ -496,6 +496,23 @@ class Lowering {
     return op(LOp::Min, op(LOp::Max, div(dot, den), k(-1)), k(1));
   }
 
+  // Node i as (base, n) with i = base^n: pow<n> atomics and products of powers of one base.
+  std::pair<int, int> monomial(int i) const {
+    const ir::Node& n = g_.node(i);
+    if (n.op == Op::Call) {
+      const std::string f = ir::atomic_name(n.atomic);
+      if (f.size() == 4 && f.compare(0, 3, "pow") == 0 && f[3] >= '2' && f[3] <= '8') {
+        const std::pair<int, int> c = monomial(n.a);
+        return {c.first, c.second * (f[3] - '0')};
+      }
+    }
+    if (n.op == Op::Mul) {
+      const std::pair<int, int> a = monomial(n.a), b = monomial(n.b);
+      if (a.first == b.first) return {a.first, a.second + b.second};
+    }
+    return {i, 1};
+  }
+
   // rho = 0 known while lowering: the covariance terms are left out rather than multiplied by 0
   // (x * 0 is not folded: it is NaN for an infinite x), so optimize() can drop what feeds them.
   bool rho_zero(const Rule& r) const {
@@ -505,6 +522,16 @@ class Lowering {
   Val gaussian(int i, const ir::Node& n, const Rule& r, const std::vector<Val*>& a) {
     Val v;
     const bool ca = a[0]->var<0, cb = a.size()> 1 && a[1]->var < 0;
+    // A product of powers of one base (x * x * x, pow2(x) * pow2(x)) is x^n: its exact Gaussian
+    // moments from the pow<n> entry (n <= 8), not a product of correlated factors.
+    if (n.op == Op::Mul) {
+      const std::pair<int, int> pa = monomial(n.a), pb = monomial(n.b);
+      const int deg = pa.second + pb.second;
+      if (pa.first == pb.first && deg >= 2 && deg <= 8 && vals_[pa.first].var >= 0) {
+        Val& x = vals_[pa.first];
+        return convolve("gaussian", "pow" + std::to_string(deg), x.mean, scaled_sd(x, r), x.var);
+      }
+    }
     // Identical operands (hash-consing gives them one node id) are perfectly correlated: x - x = 0,
     // x + x = 2x, x / x = 1 exactly, and x * x is pow2 with its exact Gaussian moments.
     if (n.op != Op::Select && n.b >= 0 && n.a == n.b) {

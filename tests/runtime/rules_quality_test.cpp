@@ -98,6 +98,15 @@ TEST(Rules, IdenticalOperandsArePerfectlyCorrelated) {
   EXPECT_NEAR(run1(sq, "gaussian", 0.7f, 0.3f), 0.49 + 0.09, 1e-6);
   const ir::Graph zero = one_input([](dsl::Var u) { return dsl::step(u - u + 0.1); });
   EXPECT_NEAR(run1(zero, "gaussian", 0.7f, 0.3f), 1.0, 1e-6);
+  // Products of powers of one base use the exact moments: E[X^3] = m^3 + 3 m s^2,
+  // E[X^4] = m^4 + 6 m^2 s^2 + 3 s^4 (pow2(X) pow2(X) and X X X X), E[X^5] via X pow4(X).
+  const ir::Graph cube = one_input([](dsl::Var u) { return u * u * u; });
+  EXPECT_NEAR(run1(cube, "gaussian", 0.7f, 0.3f), 0.343 + 3 * 0.7 * 0.09, 1e-5);
+  const ir::Graph quart = one_input([](dsl::Var u) { return dsl::pow2(u) * dsl::pow2(u); });
+  EXPECT_NEAR(run1(quart, "gaussian", 0.7f, 0.3f), 0.2401 + 6 * 0.49 * 0.09 + 3 * 0.0081, 1e-5);
+  const ir::Graph fifth = one_input([](dsl::Var u) { return u * dsl::pow4(u); });
+  EXPECT_NEAR(run1(fifth, "gaussian", 0.7f, 0.3f), expect([](double x) { return std::pow(x, 5); }, 0.7, 0.3),
+              1e-5);
   // Var(X X) = 4 m^2 s^2 + 2 s^4 reaches the next rule: E[sin(X^2)] against quadrature.
   const ir::Graph sn = one_input([](dsl::Var u) { return dsl::sin(u * u); });
   const double want = expect([](double x) { return std::sin(x * x); }, 0.7, 0.05);
