@@ -244,7 +244,7 @@ class Lowering {
     const std::string f = ir::atomic_name(n.atomic);
     const int s = scaled_sd(x, r);
     if (r.kind == Kind::Gaussian) {
-      if (f == "fract" && wrap_continuous(i)) return mode_fract(x.mean, s);
+      if (f == "fract" && (wrap_continuous(i) || cell_continuous(n.a))) return mode_fract(x.mean, s);
       if (f == "floor" || f == "ceil") return shifted(f, x.mean, s, x.var);
     }
     switch (r.kind) {
@@ -369,7 +369,7 @@ class Lowering {
     const int vm = op(LOp::NonNeg, sub(sub(sq(s), mul(ad, sl)), sq(sl)));
     const int fm = call(kernel_name("gaussian", "fract", false), {m, s});
     const int f2 = call(kernel_name("gaussian", "fract", true), {m, s});
-    const int t = call(plain_name("saturate"), {mul(sub(s, k(kModeS0)), k(1.0f / (kModeS1 - kModeS0)))});
+    const int t = mode_blend(s);
     // (1 - t) a + t b, not a + t (b - a): the mode's moments grow like s^2 and would cancel b away.
     const int u = sub(k(1), t);
     Val v;
@@ -377,6 +377,120 @@ class Lowering {
     const int m2 = add(mul(u, add(vm, sq(mm))), mul(t, f2));
     v.var = op(LOp::NonNeg, sub(m2, sq(v.mean)));
     return v;
+  }
+
+  // 0 below kModeS0, 1 above kModeS1: the weight of the full rule against the mode's.
+  int mode_blend(int s) {
+    return call(plain_name("saturate"), {mul(sub(s, k(kModeS0)), k(1.0f / (kModeS1 - kModeS0)))});
+  }
+
+  // ---- floors whose jumps the output does not show ----
+  // The plain graph in double at surface point (u, v) (other inputs: time 0, view and light (0,0,1)).
+  std::vector<double> plain_graph(double u, double v, std::vector<double>* all = nullptr) const {
+    std::vector<double> x(g_.size());
+    for (int i = 0; i < g_.size(); ++i) {
+      const ir::Node& n = g_.node(i);
+      auto A = [&](int j) { return x[j]; };
+      switch (n.op) {
+        case Op::Const:
+          x[i] = n.value;
+          break;
+        case Op::Input: {
+          const std::string& nm = g_.inputs()[static_cast<int>(n.value)].name;
+          x[i] = nm == "u" ? u : nm == "v" ? v : (nm == "view_z" || nm == "light_z") ? 1 : 0;
+          break;
+        }
+        case Op::Add:
+          x[i] = A(n.a) + A(n.b);
+          break;
+        case Op::Sub:
+          x[i] = A(n.a) - A(n.b);
+          break;
+        case Op::Mul:
+          x[i] = A(n.a) * A(n.b);
+          break;
+        case Op::Div:
+          x[i] = A(n.a) / A(n.b);
+          break;
+        case Op::Neg:
+          x[i] = -A(n.a);
+          break;
+        case Op::Min:
+          x[i] = std::min(A(n.a), A(n.b));
+          break;
+        case Op::Max:
+          x[i] = std::max(A(n.a), A(n.b));
+          break;
+        case Op::Less:
+          x[i] = A(n.a) < A(n.b) ? 1 : 0;
+          break;
+        case Op::Select:
+          x[i] = A(n.a) * A(n.b) + (1 - A(n.a)) * A(n.c);
+          break;
+        case Op::Mod:
+          x[i] = A(n.a) - n.value * std::floor(A(n.a) / n.value);
+          break;
+        case Op::Call:
+          x[i] = ir::plain_atomic(n.atomic, A(n.a));
+          break;
+        default:
+          x[i] = std::nan("");
+          break;  // textures: no probe
+      }
+    }
+    std::vector<double> out;
+    for (int o : g_.outputs()) out.push_back(x[o]);
+    if (all) *all = x;
+    return out;
+  }
+  // True when the outputs are continuous where floor(a) jumps: at 6 fixed surface points, walk u
+  // (or v, if a does not change with u) until floor(a) changes, bisect the jump to 1e-10 and
+  // compare the outputs on both sides (1e-4). Value noise and Truchet tiles are continuous across
+  // their cells' edges (a hash of the cell is hidden by the blend or the mortar there);
+  // checkerboard's floor(u + 0.5) - floor(u) is not.
+  bool cell_continuous(int a) {
+    auto it = cell_cont_.find(a);
+    if (it != cell_cont_.end()) return it->second;
+    bool ok = true;
+    int probes = 0;
+    std::mt19937_64 rng(0xC0FFEEull + static_cast<std::uint64_t>(a));
+    std::uniform_real_distribution<double> U(-4, 4);
+    for (int t = 0; t < 6 && ok; ++t) {
+      const double u0 = U(rng), v0 = U(rng);
+      for (int axis = 0; axis < 2 && ok; ++axis) {
+        auto at = [&](double w) {
+          std::vector<double> all;
+          const auto out = axis == 0 ? plain_graph(w, v0, &all) : plain_graph(u0, w, &all);
+          return std::make_pair(std::floor(all[a]), out);
+        };
+        const double w0 = axis == 0 ? u0 : v0;
+        const double f0 = at(w0).first;
+        if (!std::isfinite(f0)) {
+          ok = false;
+          break;
+        }
+        double lo = w0, hi = w0;
+        bool found = false;
+        for (int step = 1; step <= 400 && !found; ++step) {
+          hi = w0 + 0.01 * step;
+          if (at(hi).first != f0)
+            found = true;
+          else
+            lo = hi;
+        }
+        if (!found) continue;  // a does not change along this axis here
+        for (int b = 0; b < 60 && hi - lo > 1e-10; ++b) {
+          const double mid = 0.5 * (lo + hi);
+          (at(mid).first == f0 ? lo : hi) = mid;
+        }
+        const auto L = at(lo).second, R = at(hi).second;
+        for (std::size_t c = 0; c < L.size(); ++c)
+          if (!(std::fabs(L[c] - R[c]) <= 1e-4)) ok = false;
+        ++probes;
+        break;  // one jump per probe point
+      }
+    }
+    return cell_cont_[a] = ok && probes >= 3;
   }
 
   // floor and ceil commute with integer shifts: smoothing at m - K, K = floor(m) (plain, exact in
@@ -613,7 +727,7 @@ class Lowering {
     if (r.kind == Kind::None || r.kind == Kind::MonteCarlo || x.var < 0)
       return call("bl::deriv::" + f + "_d1", {x.mean});
     // A fract reported as one side of its jump (mode_fract) has slope 1 there, not the jump's.
-    if (r.kind == Kind::Gaussian && f == "fract" && wrap_continuous(i)) return k(1);
+    if (r.kind == Kind::Gaussian && f == "fract" && (wrap_continuous(i) || cell_continuous(n.a))) return k(1);
     const std::string kern = kernel_name(kernel_for("gaussian", f), f, false);
     const int s = scaled_sd(x, r), h = add(mul(k(0.5f), s), k(1e-4f));
     return div(sub(call(kern, {add(x.mean, h), s}), call(kern, {sub(x.mean, h), s})), mul(k(2), h));
@@ -878,7 +992,13 @@ class Lowering {
         const int v = add(K, k(static_cast<float>(o)));
         // floor = v on [v, v + 1); ceil = v on (v - 1, v]: P = Phi((hi - m)/s) - Phi((lo - m)/s).
         const int lo = is_floor ? v : sub(v, k(1)), hi = is_floor ? add(v, k(1)) : v;
-        const int p = sub(call(step, {sub(hi, x.mean), s}), call(step, {sub(lo, x.mean), s}));
+        int p = sub(call(step, {sub(hi, x.mean), s}), call(step, {sub(lo, x.mean), s}));
+        if (cell_continuous(fl.a)) {
+          // The output does not jump where this floor does: take the cell holding m (as mode_fract
+          // takes the side holding m), blended into the probabilities as s grows.
+          const int t = mode_blend(s);
+          p = add(mul(t, p), o == 0 ? sub(k(1), t) : k(0));
+        }
         ch[d].value.push_back(v);
         ch[d].weight.push_back(p);
       }
@@ -926,13 +1046,17 @@ class Lowering {
   std::vector<Val> vals_;
   Program p_;
   std::set<std::string> notes_;
+  // Per node: the nodes reading it (-1: a graph output).
   std::vector<std::vector<int>> consumers_;
   std::vector<Affine> aff_;
-  std::vector<int> root_;  // per node: the node it is a function of alone (itself if none)
+  // Per node: the node it is a function of alone (itself if none).
+  std::vector<int> root_;
+  // Per node: root_slope's instruction (-1: not yet).
   std::vector<int> slope_;
-  std::vector<Lattice>
-      lattice_;  // per node: its integer sources, when it is a lattice node  // root_slope's instruction per
-                 // node (-1: not yet)  // per node: the nodes reading it (-1: a graph output)
+  // Per node: its integer sources, when it is a lattice node.
+  std::vector<Lattice> lattice_;
+  // cell_continuous per floor argument.
+  std::map<int, bool> cell_cont_;
 };
 
 }  // namespace
