@@ -190,6 +190,33 @@ TEST(Rules, SurfaceCoordinatesAreCorrelatedByTheirScreenGradients) {
   EXPECT_NEAR(run(0, 0.02f), 0.5 * std::erfc(-0.3 / std::sqrt(2.0) / std::sqrt(2.0)), 1e-4);
 }
 
+TEST(Rules, ACellBlendThatHidesItsJumpsTakesTheCellOfTheMean) {
+  // 1D value noise: mix(h(i), h(i + 1), smoothstep(fract(u))), i = floor(u), is continuous where i
+  // jumps (cell_continuous finds that on the plain graph): narrow footprints near a cell edge then
+  // see one cell's blend, with fract's dominant side, instead of independent averages of the hash
+  // and of the weight (which differ from the truth by ~0.1 here).
+  const auto h = [](double i) { return fract(std::sin(i * 1.7 + 0.3) * 13.37); };
+  const auto noise = [&](double x) {
+    const double i = std::floor(x), f = x - i, w = f * f * (3 - 2 * f);
+    return h(i) + (h(i + 1) - h(i)) * w;
+  };
+  const ir::Graph g = one_input([](dsl::Var u) {
+    auto hash = [](dsl::Var i) { return dsl::fract(dsl::sin(i * 1.7 + 0.3) * 13.37); };
+    const dsl::Var i = dsl::floor(u);
+    return dsl::mix(hash(i), hash(i + 1.0), dsl::smoothstep(dsl::fract(u)));
+  });
+  for (double mu : {2.97, 2.995, 3.0, 3.005, 3.03, 3.5})
+    for (double s : {0.005, 0.02, 0.05}) {
+      const double want = expect(noise, mu, s);
+      EXPECT_NEAR(run1(g, "gaussian", static_cast<float>(mu), static_cast<float>(s)), want, 0.01)
+          << "mu " << mu << " s " << s;
+    }
+  // A floor whose jump shows (checkerboard's floor(u + 0.5) - floor(u)) keeps the Gaussian rules:
+  // the expectation of the jump, 1/2 at it.
+  const ir::Graph c = one_input([](dsl::Var u) { return dsl::floor(u + 0.5) - dsl::floor(u); });
+  EXPECT_NEAR(run1(c, "gaussian", 3.0f, 0.02f), 0.5, 1e-4);
+}
+
 // Every rule tends to the plain shader as the footprint goes to 0: at 64 fixed points of each suite
 // shader, the output error against the plain value at sd = eps. Away from jumps a smoothing rule's
 // error is O(eps^2) (Gaussian, box, tent, Dorn, antithetic MC: symmetric kernels); a point within a
