@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "compiler/graph_facts.hpp"
 #include "ir/atomics.hpp"
 
 namespace bl::compiler {
@@ -30,20 +31,11 @@ struct Val {
 
 class Lowering {
  public:
-  Lowering(const ir::Graph& g, const Schedule& s) : g_(g), s_(s), vals_(g.size()), consumers_(g.size()) {
-    for (int i = 0; i < g.size(); ++i)
-      for (int a : {g.node(i).a, g.node(i).b, g.node(i).c})
-        if (a >= 0) consumers_[a].push_back(i);
-    for (int o : g.outputs()) consumers_[o].push_back(-1);  // an output is a consumer of its own
-    aff_.resize(g.size());
-    root_.resize(g.size());
-    for (int i = 0; i < g.size(); ++i) {
-      aff_[i] = affine_form(i);
-      root_[i] = root_of(i);
-    }
+  using Affine = GraphFacts::Affine;
+  using Lattice = GraphFacts::Lattice;
+
+  Lowering(const ir::Graph& g, const Schedule& s) : g_(g), s_(s), vals_(g.size()), facts_(g) {
     slope_.assign(g.size(), -1);
-    lattice_.resize(g.size());
-    for (int i = 0; i < g.size(); ++i) lattice_[i] = lattice_sources(i);
   }
 
   Program run() {
@@ -140,7 +132,7 @@ class Lowering {
     bool random = false;
     for (Val* a : args) random = random || a->var >= 0;
     if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
-    if (r.kind != Kind::MonteCarlo && lattice_boundary(i)) return lattice_mixture(i, r);
+    if (r.kind != Kind::MonteCarlo && facts_.lattice_boundary(i)) return lattice_mixture(i, r);
     if (r.kind == Kind::MonteCarlo) return monte_carlo(i, n, r, args);
     if (n.op == Op::Call) return call_node(i, n, r, *args[0]);
     if (n.op == Op::Texture) return texture_node(n, r, *args[0], *args[1]);
@@ -244,7 +236,8 @@ class Lowering {
     const std::string f = ir::atomic_name(n.atomic);
     const int s = scaled_sd(x, r);
     if (r.kind == Kind::Gaussian) {
-      if (f == "fract" && (wrap_continuous(i) || cell_continuous(n.a))) return mode_fract(x.mean, s);
+      if (f == "fract" && (facts_.wrap_continuous(i) || facts_.cell_continuous(n.a)))
+        return mode_fract(x.mean, s);
       if (f == "floor" || f == "ceil") return shifted(f, x.mean, s, x.var);
     }
     switch (r.kind) {
@@ -284,68 +277,6 @@ class Lowering {
     }
   }
 
-  // ---- fract whose consumers do not see its jump ----
-  // True when every path from node i passes through unary steps (atomics, constant affine maps,
-  // x*x) to a value that is the same for fract = 0 and fract = 1, e.g. pow2(fract(x) - 0.5): the
-  // composite is continuous at fract's jumps, so fract may report the side of the jump that holds
-  // most of the kernel instead of the average of both sides (whose large variance would blur every
-  // later step: the grey grid lines of all-Gaussian circles).
-  bool wrap_continuous(int i) const {
-    double lo = 0, hi = 1;
-    int cur = i;
-    for (int depth = 0; depth < 32; ++depth) {
-      if (consumers_[cur].size() != 1 || consumers_[cur][0] < 0) return false;
-      const int nx = consumers_[cur][0];
-      const ir::Node& n = g_.node(nx);
-      const bool a_is = n.a == cur, b_is = n.b == cur;
-      auto constant = [&](int j, double* c) {
-        if (j < 0 || g_.node(j).op != Op::Const) return false;
-        *c = g_.node(j).value;
-        return true;
-      };
-      double c = 0;
-      auto apply = [&](auto fn) {
-        lo = fn(lo);
-        hi = fn(hi);
-      };
-      switch (n.op) {
-        case Op::Call:
-          apply([&](double x) { return ir::plain_atomic(n.atomic, x); });
-          break;
-        case Op::Neg:
-          apply([](double x) { return -x; });
-          break;
-        case Op::Add:
-          if (a_is && b_is)
-            apply([](double x) { return 2 * x; });
-          else if (!constant(a_is ? n.b : n.a, &c))
-            return false;
-          else
-            apply([&](double x) { return x + c; });
-          break;
-        case Op::Sub:
-          if (a_is && b_is) return false;  // x - x: constant, handled by identical_operands
-          if (!constant(a_is ? n.b : n.a, &c)) return false;
-          apply([&](double x) { return a_is ? x - c : c - x; });
-          break;
-        case Op::Mul:
-          if (a_is && b_is)
-            apply([](double x) { return x * x; });
-          else if (!constant(a_is ? n.b : n.a, &c))
-            return false;
-          else
-            apply([&](double x) { return x * c; });
-          break;
-        default:
-          return false;
-      }
-      if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
-      if (std::fabs(lo - hi) <= 1e-9 * std::max(1.0, std::fabs(lo))) return true;
-      cur = nx;
-    }
-    return false;
-  }
-
   // fract of N(m, s^2) reported as the side of the nearest jump that holds most of the kernel: the
   // moments of a normal truncated at the jump (the 2018 smoothing code's "probabilistic" fract, with
   // a Gaussian instead of a tent). Blended linearly (first and second moments) into the full
@@ -382,115 +313,6 @@ class Lowering {
   // 0 below kModeS0, 1 above kModeS1: the weight of the full rule against the mode's.
   int mode_blend(int s) {
     return call(plain_name("saturate"), {mul(sub(s, k(kModeS0)), k(1.0f / (kModeS1 - kModeS0)))});
-  }
-
-  // ---- floors whose jumps the output does not show ----
-  // The plain graph in double at surface point (u, v) (other inputs: time 0, view and light (0,0,1)).
-  std::vector<double> plain_graph(double u, double v, std::vector<double>* all = nullptr) const {
-    std::vector<double> x(g_.size());
-    for (int i = 0; i < g_.size(); ++i) {
-      const ir::Node& n = g_.node(i);
-      auto A = [&](int j) { return x[j]; };
-      switch (n.op) {
-        case Op::Const:
-          x[i] = n.value;
-          break;
-        case Op::Input: {
-          const std::string& nm = g_.inputs()[static_cast<int>(n.value)].name;
-          x[i] = nm == "u" ? u : nm == "v" ? v : (nm == "view_z" || nm == "light_z") ? 1 : 0;
-          break;
-        }
-        case Op::Add:
-          x[i] = A(n.a) + A(n.b);
-          break;
-        case Op::Sub:
-          x[i] = A(n.a) - A(n.b);
-          break;
-        case Op::Mul:
-          x[i] = A(n.a) * A(n.b);
-          break;
-        case Op::Div:
-          x[i] = A(n.a) / A(n.b);
-          break;
-        case Op::Neg:
-          x[i] = -A(n.a);
-          break;
-        case Op::Min:
-          x[i] = std::min(A(n.a), A(n.b));
-          break;
-        case Op::Max:
-          x[i] = std::max(A(n.a), A(n.b));
-          break;
-        case Op::Less:
-          x[i] = A(n.a) < A(n.b) ? 1 : 0;
-          break;
-        case Op::Select:
-          x[i] = A(n.a) * A(n.b) + (1 - A(n.a)) * A(n.c);
-          break;
-        case Op::Mod:
-          x[i] = A(n.a) - n.value * std::floor(A(n.a) / n.value);
-          break;
-        case Op::Call:
-          x[i] = ir::plain_atomic(n.atomic, A(n.a));
-          break;
-        default:
-          x[i] = std::nan("");
-          break;  // textures: no probe
-      }
-    }
-    std::vector<double> out;
-    for (int o : g_.outputs()) out.push_back(x[o]);
-    if (all) *all = x;
-    return out;
-  }
-  // True when the outputs are continuous where floor(a) jumps: at 6 fixed surface points, walk u
-  // (or v, if a does not change with u) until floor(a) changes, bisect the jump to 1e-10 and
-  // compare the outputs on both sides (1e-4). Value noise and Truchet tiles are continuous across
-  // their cells' edges (a hash of the cell is hidden by the blend or the mortar there);
-  // checkerboard's floor(u + 0.5) - floor(u) is not.
-  bool cell_continuous(int a) {
-    auto it = cell_cont_.find(a);
-    if (it != cell_cont_.end()) return it->second;
-    bool ok = true;
-    int probes = 0;
-    std::mt19937_64 rng(0xC0FFEEull + static_cast<std::uint64_t>(a));
-    std::uniform_real_distribution<double> U(-4, 4);
-    for (int t = 0; t < 6 && ok; ++t) {
-      const double u0 = U(rng), v0 = U(rng);
-      for (int axis = 0; axis < 2 && ok; ++axis) {
-        auto at = [&](double w) {
-          std::vector<double> all;
-          const auto out = axis == 0 ? plain_graph(w, v0, &all) : plain_graph(u0, w, &all);
-          return std::make_pair(std::floor(all[a]), out);
-        };
-        const double w0 = axis == 0 ? u0 : v0;
-        const double f0 = at(w0).first;
-        if (!std::isfinite(f0)) {
-          ok = false;
-          break;
-        }
-        double lo = w0, hi = w0;
-        bool found = false;
-        for (int step = 1; step <= 400 && !found; ++step) {
-          hi = w0 + 0.01 * step;
-          if (at(hi).first != f0)
-            found = true;
-          else
-            lo = hi;
-        }
-        if (!found) continue;  // a does not change along this axis here
-        for (int b = 0; b < 60 && hi - lo > 1e-10; ++b) {
-          const double mid = 0.5 * (lo + hi);
-          (at(mid).first == f0 ? lo : hi) = mid;
-        }
-        const auto L = at(lo).second, R = at(hi).second;
-        for (std::size_t c = 0; c < L.size(); ++c)
-          if (!(std::fabs(L[c] - R[c]) <= 1e-4)) ok = false;
-        ++probes;
-        break;  // one jump per probe point
-      }
-    }
-    return cell_cont_[a] = ok && probes >= 3;
   }
 
   // floor and ceil commute with integer shifts: smoothing at m - K, K = floor(m) (plain, exact in
@@ -586,7 +408,7 @@ class Lowering {
     (void)i;
     const int dot = add(mul(a.gx, b.gx), mul(a.gy, b.gy));
     if (r.rho == Rho::Covariance) {
-      const Affine &fa = aff_[n.a], &fb = aff_[n.b];
+      const Affine &fa = facts_.aff[n.a], &fb = facts_.aff[n.b];
       if (fa.base >= 0 && fa.base == fb.base && fa.beta != 0 && fb.beta != 0)
         return k(fa.beta * fb.beta > 0 ? 1.0f : -1.0f);  // affine in one base: exact
       // Cov(A, B) ~ sigma_px^2 (ga . gb) with Stein slopes (smoothed_slope): it fades as a wide
@@ -610,23 +432,6 @@ class Lowering {
     return op(LOp::Min, op(LOp::Max, div(dot, den), k(-1)), k(1));
   }
 
-  // Node i as (base, n) with i = base^n: pow<n> atomics and products of powers of one base.
-  std::pair<int, int> monomial(int i) const {
-    const ir::Node& n = g_.node(i);
-    if (n.op == Op::Call) {
-      const std::string f = ir::atomic_name(n.atomic);
-      if (f.size() == 4 && f.compare(0, 3, "pow") == 0 && f[3] >= '2' && f[3] <= '8') {
-        const std::pair<int, int> c = monomial(n.a);
-        return {c.first, c.second * (f[3] - '0')};
-      }
-    }
-    if (n.op == Op::Mul) {
-      const std::pair<int, int> a = monomial(n.a), b = monomial(n.b);
-      if (a.first == b.first) return {a.first, a.second + b.second};
-    }
-    return {i, 1};
-  }
-
   // rho = 0 known while lowering: the covariance terms are left out rather than multiplied by 0
   // (x * 0 is not folded: it is NaN for an infinite x), so optimize() can drop what feeds them.
   bool rho_zero(const Rule& r) const {
@@ -639,7 +444,7 @@ class Lowering {
     // A product of powers of one base (x * x * x, pow2(x) * pow2(x)) is x^n: its exact Gaussian
     // moments from the pow<n> entry (n <= 8), not a product of correlated factors.
     if (n.op == Op::Mul) {
-      const std::pair<int, int> pa = monomial(n.a), pb = monomial(n.b);
+      const std::pair<int, int> pa = facts_.monomial(n.a), pb = facts_.monomial(n.b);
       const int deg = pa.second + pb.second;
       if (pa.first == pb.first && deg >= 2 && deg <= 8 && vals_[pa.first].var >= 0) {
         Val& x = vals_[pa.first];
@@ -727,7 +532,9 @@ class Lowering {
     if (r.kind == Kind::None || r.kind == Kind::MonteCarlo || x.var < 0)
       return call("bl::deriv::" + f + "_d1", {x.mean});
     // A fract reported as one side of its jump (mode_fract) has slope 1 there, not the jump's.
-    if (r.kind == Kind::Gaussian && f == "fract" && (wrap_continuous(i) || cell_continuous(n.a))) return k(1);
+    if (r.kind == Kind::Gaussian && f == "fract" &&
+        (facts_.wrap_continuous(i) || facts_.cell_continuous(n.a)))
+      return k(1);
     const std::string kern = kernel_name(kernel_for("gaussian", f), f, false);
     const int s = scaled_sd(x, r), h = add(mul(k(0.5f), s), k(1e-4f));
     return div(sub(call(kern, {add(x.mean, h), s}), call(kern, {sub(x.mean, h), s})), mul(k(2), h));
@@ -830,61 +637,13 @@ class Lowering {
     return vals_[i];
   }
 
-  // ---- correlation of operands that are functions of one common node ----
-  // Node i as alpha + beta * base (base -1: the constant alpha), through constant affine steps.
-  struct Affine {
-    int base = -1;
-    double alpha = 0, beta = 0;
-  };
-  Affine affine_form(int i) const {
-    const ir::Node& n = g_.node(i);
-    auto cst = [&](int j) { return j >= 0 && g_.node(j).op == Op::Const; };
-    const Affine self{i, 0, 1};
-    switch (n.op) {
-      case Op::Const:
-        return Affine{-1, n.value, 0};
-      case Op::Neg:
-        return Affine{aff_[n.a].base, -aff_[n.a].alpha, -aff_[n.a].beta};
-      case Op::Add:
-      case Op::Sub: {
-        const Affine &a = aff_[n.a], &b = aff_[n.b];
-        const double sg = n.op == Op::Add ? 1 : -1;
-        if (a.base == b.base || a.base < 0 || b.base < 0)
-          return Affine{a.base >= 0 ? a.base : b.base, a.alpha + sg * b.alpha, a.beta + sg * b.beta};
-        return self;
-      }
-      case Op::Mul:
-        if (cst(n.b))
-          return Affine{aff_[n.a].base, aff_[n.a].alpha * g_.node(n.b).value,
-                        aff_[n.a].beta * g_.node(n.b).value};
-        if (cst(n.a))
-          return Affine{aff_[n.b].base, aff_[n.b].alpha * g_.node(n.a).value,
-                        aff_[n.b].beta * g_.node(n.a).value};
-        return self;
-      case Op::Div:
-        if (cst(n.b))
-          return Affine{aff_[n.a].base, aff_[n.a].alpha / g_.node(n.b).value,
-                        aff_[n.a].beta / g_.node(n.b).value};
-        return self;
-      default:
-        return self;
-    }
-  }
-  // The node a value is a function of alone (its root): through constant affine steps to the base,
-  // through atomics to the argument.
-  int root_of(int i) const {
-    const ir::Node& n = g_.node(i);
-    if (aff_[i].base >= 0 && aff_[i].base != i) return root_[aff_[i].base];
-    if (n.op == Op::Call) return root_[n.a];
-    return i;
-  }
   // d E[node] / d E[root]: beta through affine steps, the atomics' Stein slopes (smoothed_slope).
   int root_slope(int i) {
     if (slope_[i] >= 0) return slope_[i];
     const ir::Node& n = g_.node(i);
     int sl;
-    if (aff_[i].base >= 0 && aff_[i].base != i)
-      sl = mul(k(static_cast<float>(aff_[i].beta)), root_slope(aff_[i].base));
+    if (facts_.aff[i].base >= 0 && facts_.aff[i].base != i)
+      sl = mul(k(static_cast<float>(facts_.aff[i].beta)), root_slope(facts_.aff[i].base));
     else if (n.op == Op::Call)
       sl = mul(smoothed_slope(i, n), root_slope(n.a));
     else
@@ -907,11 +666,11 @@ class Lowering {
   // Cov ~ Var(R) E[A'(R)] E[B'(R)] (Stein's lemma, exact when one of them is affine in R).
   int shared_rho(const ir::Node& n) {
     if (n.b < 0 || n.a == n.b) return -1;
-    const Affine &a = aff_[n.a], &b = aff_[n.b];
+    const Affine &a = facts_.aff[n.a], &b = facts_.aff[n.b];
     if (a.base >= 0 && a.base == b.base && a.beta != 0 && b.beta != 0)
       return k(a.beta * b.beta > 0 ? 1.0f : -1.0f);
     if (vals_[n.a].var < 0 || vals_[n.b].var < 0) return -1;
-    const int ra = root_[n.a], rb = root_[n.b];
+    const int ra = facts_.root[n.a], rb = facts_.root[n.b];
     if (vals_[ra].var < 0 || vals_[rb].var < 0) return -1;
     int cov;
     if (ra == rb) {
@@ -932,51 +691,10 @@ class Lowering {
     return op(LOp::Min, op(LOp::Max, div(cov, den), k(-1)), k(1));
   }
 
-  // ---- integer-valued nodes as small discrete distributions ----
-  // floor and ceil of N(m, s^2) take the values K-1, K, K+1 (K = floor(m), ceil(m)) with Gaussian
-  // interval probabilities (mass beyond them is dropped and the rest renormalised: exact to
-  // Phi(-1/s) for s < 1/4). A node computed from at most two such nodes (of different roots) and constants (a
-  // lattice hash) is then an exact finite mixture over their <= 9 value pairs: the plain sub-DAG evaluated
-  // per pair, weighted. Smoothed as one value instead, the hash of a cell index collapses to 1/2.
-  struct Lattice {
-    bool ok = false;
-    std::vector<int> src;  // the floor/ceil nodes it depends on (sorted)
-  };
-  bool integer_source(int i) const {
-    const ir::Node& n = g_.node(i);
-    if (n.op != Op::Call) return false;
-    const std::string f = ir::atomic_name(n.atomic);
-    return f == "floor" || f == "ceil";
-  }
-  Lattice lattice_sources(int i) const {
-    const ir::Node& n = g_.node(i);
-    if (n.op == Op::Const) return Lattice{true, {}};
-    if (integer_source(i)) return Lattice{true, {i}};
-    if (n.op == Op::Input || n.op == Op::Texture) return Lattice{};
-    Lattice out{true, {}};
-    for (int a : {n.a, n.b, n.c}) {
-      if (a < 0) continue;
-      if (!lattice_[a].ok) return Lattice{};
-      for (int d : lattice_[a].src)
-        if (std::find(out.src.begin(), out.src.end(), d) == out.src.end()) out.src.push_back(d);
-    }
-    std::sort(out.src.begin(), out.src.end());
-    if (out.src.size() > 2) return Lattice{};
-    // The mixture weighs value pairs by the product of their probabilities: the two sources must be
-    // functions of different roots (floor(u) and floor(v)); floor(u + 1/2) and floor(u) are not
-    // independent (checkerboard), and are left to the Gaussian rules.
-    if (out.src.size() == 2 && root_[g_.node(out.src[0]).a] == root_[g_.node(out.src[1]).a]) return Lattice{};
-    return out;
-  }
-  // A lattice node (not a source) that some non-lattice node or an output reads.
-  bool lattice_boundary(int i) const {
-    if (!lattice_[i].ok || lattice_[i].src.empty() || integer_source(i)) return false;
-    for (int c : consumers_[i])
-      if (c < 0 || !lattice_[c].ok) return true;
-    return false;
-  }
+  // A lattice node as the finite mixture over its sources' values (GraphFacts::Lattice): floor/ceil
+  // of N(m, s^2) is K-1, K or K+1 with Gaussian interval probabilities; the plain sub-DAG per pair.
   Val lattice_mixture(int i, const Rule& r) {
-    const std::vector<int>& src = lattice_[i].src;
+    const std::vector<int>& src = facts_.lattice[i].src;
     struct Choice {
       std::vector<int> value, weight;  // instruction per candidate
     };
@@ -993,7 +711,7 @@ class Lowering {
         // floor = v on [v, v + 1); ceil = v on (v - 1, v]: P = Phi((hi - m)/s) - Phi((lo - m)/s).
         const int lo = is_floor ? v : sub(v, k(1)), hi = is_floor ? add(v, k(1)) : v;
         int p = sub(call(step, {sub(hi, x.mean), s}), call(step, {sub(lo, x.mean), s}));
-        if (cell_continuous(fl.a)) {
+        if (facts_.cell_continuous(fl.a)) {
           // The output does not jump where this floor does: take the cell holding m (as mode_fract
           // takes the side holding m), blended into the probabilities as s grows.
           const int t = mode_blend(s);
@@ -1046,17 +764,9 @@ class Lowering {
   std::vector<Val> vals_;
   Program p_;
   std::set<std::string> notes_;
-  // Per node: the nodes reading it (-1: a graph output).
-  std::vector<std::vector<int>> consumers_;
-  std::vector<Affine> aff_;
-  // Per node: the node it is a function of alone (itself if none).
-  std::vector<int> root_;
+  GraphFacts facts_;
   // Per node: root_slope's instruction (-1: not yet).
   std::vector<int> slope_;
-  // Per node: its integer sources, when it is a lattice node.
-  std::vector<Lattice> lattice_;
-  // cell_continuous per floor argument.
-  std::map<int, bool> cell_cont_;
 };
 
 }  // namespace
