@@ -229,7 +229,8 @@ TEST(Rules, EveryRuleConvergesToThePlainShader) {
   std::uniform_real_distribution<float> U(-3, 3);
   std::vector<float> mu(64), mv(64);
   for (int i = 0; i < 64; ++i) mu[i] = U(rng), mv[i] = U(rng);
-  for (const char* shader : {"checkerboard", "circles", "zigzag", "quadratic_sine", "fire", "bricks"}) {
+  for (const char* shader :
+       {"checkerboard", "circles", "zigzag", "quadratic_sine", "fire", "bricks", "value_noise", "truchet"}) {
     shaders::Effects fx;
     const ir::Graph g = shaders::trace(shaders::find_shader(shader), fx);
     auto eval = [&](const std::string& rule, float eps) {
