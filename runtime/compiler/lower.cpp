@@ -1,12 +1,16 @@
 #include "compiler/lower.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
+#include "compiler/graph_facts.hpp"
 #include "ir/atomics.hpp"
 #include "ir/ranges.hpp"
 
@@ -28,8 +32,13 @@ struct Val {
 
 class Lowering {
  public:
+  using Affine = GraphFacts::Affine;
+  using Lattice = GraphFacts::Lattice;
+
   Lowering(const ir::Graph& g, const Schedule& s)
-      : g_(g), s_(s), vals_(g.size()), ranges_(ir::node_ranges(g)) {}
+      : g_(g), s_(s), vals_(g.size()), ranges_(ir::node_ranges(g)), facts_(g) {
+    slope_.assign(g.size(), -1);
+  }
 
   Program run() {
     p_.input_count = static_cast<int>(g_.inputs().size());
@@ -125,9 +134,10 @@ class Lowering {
     bool random = false;
     for (Val* a : args) random = random || a->var >= 0;
     if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
+    if (r.kind != Kind::MonteCarlo && facts_.lattice_boundary(i)) return lattice_mixture(i, r);
     if (r.kind == Kind::MonteCarlo) return monte_carlo(i, n, r, args);
     if (n.op == Op::Call)
-      return r.kind == Kind::Dorn ? in_range(i, call_node(n, r, *args[0])) : call_node(n, r, *args[0]);
+      return r.kind == Kind::Dorn ? in_range(i, call_node(i, n, r, *args[0])) : call_node(i, n, r, *args[0]);
     if (n.op == Op::Texture) return texture_node(n, r, *args[0], *args[1]);
     if (n.op == Op::Neg) return Val{op(LOp::Neg, args[0]->mean), args[0]->var, args[0]->sd};
     if (r.kind == Kind::Dorn) return in_range(i, dorn(n, r, args));
@@ -187,19 +197,24 @@ class Lowering {
     const std::vector<float> z = mc_normals(i, r.samples, dims);
     std::vector<int> s(dims);
     for (int d = 0; d < dims; ++d) s[d] = args[d]->var >= 0 ? scaled_sd(*args[d], r) : -1;
-    int sum = -1, sumsq = -1;
+    int sum = -1;
+    std::vector<int> ys;
     for (int j = 0; j < r.samples; ++j) {
       std::vector<int> x(dims);
       for (int d = 0; d < dims; ++d)
         x[d] = s[d] < 0 ? args[d]->mean : add(args[d]->mean, mul(s[d], k(z[j * dims + d])));
       const int y = plain(n, x);
       sum = sum < 0 ? y : add(sum, y);
-      sumsq = sumsq < 0 ? sq(y) : add(sumsq, sq(y));
+      ys.push_back(y);
     }
     const int inv_n = k(1.0f / static_cast<float>(r.samples));
     Val v;
     v.mean = mul(sum, inv_n);
-    v.var = op(LOp::NonNeg, sub(mul(sumsq, inv_n), sq(v.mean)));
+    // The sample variance from deviations, not E[y^2] - E[y]^2: that cancels in float for a value
+    // far from 0 (y ~ 25, sd 1e-5 reported sd ~ 6e-3; found by the convergence test on value noise).
+    int dev = -1;
+    for (int y : ys) dev = dev < 0 ? sq(sub(y, v.mean)) : add(dev, sq(sub(y, v.mean)));
+    v.var = mul(dev, inv_n);
     return v;
   }
 
@@ -225,9 +240,14 @@ class Lowering {
     return v;
   }
 
-  Val call_node(const ir::Node& n, const Rule& r, Val& x) {
+  Val call_node(int i, const ir::Node& n, const Rule& r, Val& x) {
     const std::string f = ir::atomic_name(n.atomic);
     const int s = scaled_sd(x, r);
+    if (r.kind == Kind::Gaussian) {
+      if (f == "fract" && (facts_.wrap_continuous(i) || facts_.cell_continuous(n.a)))
+        return mode_fract(x.mean, s);
+      if (f == "floor" || f == "ceil") return shifted(f, x.mean, s, x.var);
+    }
     switch (r.kind) {
       case Kind::Dorn: {
         // Dorn: Gaussian mean, and the output sd is the input's (the "sample spacing" heuristic).
@@ -263,6 +283,54 @@ class Lowering {
       default:
         throw std::logic_error("compiler: call_node with rule " + to_string(r));
     }
+  }
+
+  // fract of N(m, s^2) reported as the side of the nearest jump that holds most of the kernel: the
+  // moments of a normal truncated at the jump (the 2018 smoothing code's "probabilistic" fract, with
+  // a Gaussian instead of a tent). Blended linearly (first and second moments) into the full
+  // Gaussian rule as s grows from kModeS0 to kModeS1 periods, where both sides carry weight.
+  // Thresholds measured on circles_none (all-Gaussian / MSAA-16 error: 0.05/0.10 -> 1.70, 0.10/0.25
+  // -> 1.15, 0.15/0.40 -> 0.93, 0.25/0.60 -> 0.90, 0.30/0.80 -> 0.92); the 2018 tent widths 1/4 and
+  // 1/2 period correspond to 0.05/0.10.
+  static constexpr float kModeS0 = 0.25f;
+  static constexpr float kModeS1 = 0.6f;
+  Val mode_fract(int m, int s) {
+    const int d = sub(call(plain_name("fract"), {add(m, k(0.5f))}), k(0.5f));  // m - round(m)
+    const int ad = absolute(d);
+    const int safe_s = op(LOp::Max, s, k(1e-30f));
+    const int q = div(ad, safe_s);
+    const int pdf = mul(k(0.3989422804f), call(plain_name("exp"), {mul(k(-0.5f), sq(q))}));
+    const int cdf = call(kernel_name("gaussian", "step", false), {ad, s});  // Phi(|d|/s) >= 1/2
+    const int sl = mul(s, div(pdf, cdf));                                   // s lambda
+    const int neg = op(LOp::Less, d, k(0));
+    // Dominant side: d < 0 -> fract = x - (k - 1), mean 1 + d - s lambda; d >= 0 -> d + s lambda.
+    const int mm = add(add(d, neg), mul(sub(k(1), mul(k(2), neg)), sl));
+    const int vm = op(LOp::NonNeg, sub(sub(sq(s), mul(ad, sl)), sq(sl)));
+    const int fm = call(kernel_name("gaussian", "fract", false), {m, s});
+    const int f2 = call(kernel_name("gaussian", "fract", true), {m, s});
+    const int t = mode_blend(s);
+    // (1 - t) a + t b, not a + t (b - a): the mode's moments grow like s^2 and would cancel b away.
+    const int u = sub(k(1), t);
+    Val v;
+    v.mean = add(mul(u, mm), mul(t, fm));
+    const int m2 = add(mul(u, add(vm, sq(mm))), mul(t, f2));
+    v.var = op(LOp::NonNeg, sub(m2, sq(v.mean)));
+    return v;
+  }
+
+  // 0 below kModeS0, 1 above kModeS1: the weight of the full rule against the mode's.
+  int mode_blend(int s) {
+    return call(plain_name("saturate"), {mul(sub(s, k(kModeS0)), k(1.0f / (kModeS1 - kModeS0)))});
+  }
+
+  // floor and ceil commute with integer shifts: smoothing at m - K, K = floor(m) (plain, exact in
+  // float below 2^24), keeps the moments near 0, so E[f^2] - E[f]^2 does not cancel (floor at 40.7,
+  // sd 0.01 reported a variance of 1.2e-4 from float rounding; the true one is ~1e-300).
+  Val shifted(const std::string& f, int m, int s, int var_in) {
+    const int K = call(plain_name("floor"), {m});
+    Val v = convolve("gaussian", f, sub(m, K), s, var_in);
+    v.mean = add(v.mean, K);
+    return v;
   }
 
   // A texture is a discrete function: every smoothing rule reads the mean and mean-of-squares
@@ -348,26 +416,90 @@ class Lowering {
   }
 
   int rho(int i, const ir::Node& n, const Rule& r) {
-    if (r.kind != Kind::Gaussian || r.rho == Rho::Zero) return k(0);
+    if (r.kind != Kind::Gaussian) return k(0);
+    if (r.rho == Rho::Zero) {
+      const int sh = shared_rho(n);
+      return sh < 0 ? k(0) : sh;
+    }
     if (r.rho == Rho::Constant) return k(static_cast<float>(r.rho_value));
     Val& a = grad(n.a);
     Val& b = grad(n.b);
     (void)i;
     const int dot = add(mul(a.gx, b.gx), mul(a.gy, b.gy));
+    if (r.rho == Rho::Covariance) {
+      const Affine &fa = facts_.aff[n.a], &fb = facts_.aff[n.b];
+      if (fa.base >= 0 && fa.base == fb.base && fa.beta != 0 && fb.beta != 0)
+        return k(fa.beta * fb.beta > 0 ? 1.0f : -1.0f);  // affine in one base: exact
+      // Cov(A, B) ~ sigma_px^2 (ga . gb) with Stein slopes (smoothed_slope): it fades as a wide
+      // footprint averages the jumps out, where the normalised dot product stays at +-1.
+      // sigma_px^2 is read off input 0 (the surface u): its sd over its screen gradient's length.
+      Inst in;
+      in.arg[0] = 0;
+      in.op = LOp::InSd;
+      const int s0 = emit(in);
+      in.op = LOp::InGradX;
+      const int g0x = emit(in);
+      in.op = LOp::InGradY;
+      const int g0y = emit(in);
+      const int sig2 = div(sq(s0), op(LOp::Max, add(sq(g0x), sq(g0y)), k(1e-30f)));
+      const int den = op(LOp::Max, mul(sd(vals_[n.a]), sd(vals_[n.b])), k(1e-30f));
+      return op(LOp::Min, op(LOp::Max, div(mul(dot, sig2), den), k(-1)), k(1));
+    }
     const int na = add(sq(a.gx), sq(a.gy)), nb = add(sq(b.gx), sq(b.gy));
     // Zero gradients (a constant-in-screen input) give rho 0 rather than 0/0.
     const int den = op(LOp::Sqrt, op(LOp::Max, mul(na, nb), k(1e-30f)));
     return op(LOp::Min, op(LOp::Max, div(dot, den), k(-1)), k(1));
   }
 
+  // rho = 0 known while lowering: the covariance terms are left out rather than multiplied by 0
+  // (x * 0 is not folded: it is NaN for an infinite x), so optimize() can drop what feeds them.
+  bool rho_zero(const Rule& r) const {
+    return r.rho == Rho::Zero || (r.rho == Rho::Constant && r.rho_value == 0);
+  }
+
   Val gaussian(int i, const ir::Node& n, const Rule& r, const std::vector<Val*>& a) {
     Val v;
     const bool ca = a[0]->var<0, cb = a.size()> 1 && a[1]->var < 0;
+    // A product of powers of one base (x * x * x, pow2(x) * pow2(x)) is x^n: its exact Gaussian
+    // moments from the pow<n> entry (n <= 8), not a product of correlated factors.
+    if (n.op == Op::Mul) {
+      const std::pair<int, int> pa = facts_.monomial(n.a), pb = facts_.monomial(n.b);
+      const int deg = pa.second + pb.second;
+      if (pa.first == pb.first && deg >= 2 && deg <= 8 && vals_[pa.first].var >= 0) {
+        Val& x = vals_[pa.first];
+        return convolve("gaussian", "pow" + std::to_string(deg), x.mean, scaled_sd(x, r), x.var);
+      }
+    }
+    // Identical operands (hash-consing gives them one node id) are perfectly correlated: x - x = 0,
+    // x + x = 2x, x / x = 1 exactly, and x * x is pow2 with its exact Gaussian moments.
+    if (n.op != Op::Select && n.b >= 0 && n.a == n.b) {
+      switch (n.op) {
+        case Op::Sub:
+          return Val{k(0), -1};
+        case Op::Div:
+          return Val{k(1), -1};
+        case Op::Add:
+          return Val{mul(k(2), a[0]->mean), mul(k(4), a[0]->var)};
+        case Op::Min:
+        case Op::Max:
+          return *a[0];
+        case Op::Less:
+          return Val{k(0), -1};
+        case Op::Mul:
+          return convolve("gaussian", "pow2", a[0]->mean, scaled_sd(*a[0], r), a[0]->var);
+        default:
+          break;
+      }
+    }
     switch (n.op) {
       case Op::Add:
       case Op::Sub: {
         v.mean = plain(n, a);
         if (ca || cb) return Val{v.mean, ca ? a[1]->var : a[0]->var, ca ? a[1]->sd : a[0]->sd};
+        if (rho_zero(r) && shared_rho(n) < 0) {
+          v.var = add(a[0]->var, a[1]->var);
+          return v;
+        }
         int cov = mul(mul(k(2), rho(i, n, r)), mul(sd(*a[0]), sd(*a[1])));
         if (n.op == Op::Sub) cov = op(LOp::Neg, cov);
         v.var = op(LOp::NonNeg, add(add(a[0]->var, a[1]->var), cov));
@@ -377,6 +509,14 @@ class Lowering {
         if (ca || cb) {  // product with a non-random factor: exact
           v.mean = plain(n, a);
           v.var = ca ? mul(sq(a[0]->mean), a[1]->var) : mul(sq(a[1]->mean), a[0]->var);
+          return v;
+        }
+        if (rho_zero(r) && shared_rho(n) < 0) {
+          // Independent factors (bivariate::mul at rho 0, inlined): the mean reads no variance, so
+          // a variance only this product's variance reads is dead when nothing reads that one.
+          v.mean = plain(n, a);
+          v.var = add(add(mul(a[0]->var, a[1]->var), mul(sq(a[0]->mean), a[1]->var)),
+                      mul(sq(a[1]->mean), a[0]->var));
           return v;
         }
         break;
@@ -398,6 +538,25 @@ class Lowering {
     }
     const std::string name = std::string("bl::bivariate::") + ir::op_name(n.op);
     return from_stat(call(name, {a[0]->mean, sd(*a[0]), a[1]->mean, sd(*a[1]), rho(i, n, r)}, true));
+  }
+
+  // d/dm of the node's smoothed mean (for a smoothing rule; the plain f' for none or a non-random
+  // input). By Stein's lemma E[f'(X)] = d/dm E[f(X)], so for a jump (step, square, fract) the slope is
+  // the kernel's density at the jump, not the plain derivative's 0: two values that jump together
+  // (zigzag's hue and band) then get correlated gradients. Central difference at h = s/2.
+  int smoothed_slope(int i, const ir::Node& n) {
+    const std::string f = ir::atomic_name(n.atomic);
+    Val& x = vals_[n.a];
+    const Rule& r = s_.at(i);
+    if (r.kind == Kind::None || r.kind == Kind::MonteCarlo || x.var < 0)
+      return call("bl::deriv::" + f + "_d1", {x.mean});
+    // A fract reported as one side of its jump (mode_fract) has slope 1 there, not the jump's.
+    if (r.kind == Kind::Gaussian && f == "fract" &&
+        (facts_.wrap_continuous(i) || facts_.cell_continuous(n.a)))
+      return k(1);
+    const std::string kern = kernel_name(kernel_for("gaussian", f), f, false);
+    const int s = scaled_sd(x, r), h = add(mul(k(0.5f), s), k(1e-4f));
+    return div(sub(call(kern, {add(x.mean, h), s}), call(kern, {sub(x.mean, h), s})), mul(k(2), h));
   }
 
   // Screen-space gradient of node i's mean (forward mode through the plain derivatives at the
@@ -441,9 +600,22 @@ class Lowering {
       case Op::Mod:
         set(G(n.a).gx, G(n.a).gy);
         break;
-      case Op::Less:
-        set(k(0), k(0));
+      case Op::Less: {
+        // Smoothed less(a, b) = Phi((mb - ma) / s): its slope in mb - ma (Stein's lemma) is the
+        // Gaussian density there, where the plain derivative is 0 almost everywhere.
+        Val &a = vals_[n.a], &b = vals_[n.b];
+        if (s_.at(i).kind == Kind::None || (a.var < 0 && b.var < 0)) {
+          set(k(0), k(0));
+          break;
+        }
+        const int va = a.var < 0 ? k(0) : a.var, vb = b.var < 0 ? k(0) : b.var;
+        const int sab = op(LOp::Sqrt, op(LOp::Max, add(va, vb), k(1e-30f)));
+        const int x = sub(b.mean, a.mean), h = add(mul(k(0.5f), sab), k(1e-4f));
+        const std::string st = kernel_name("gaussian", "step", false);
+        const int fp = div(sub(call(st, {add(x, h), sab}), call(st, {sub(x, h), sab})), mul(k(2), h));
+        set(mul(fp, sub(G(n.b).gx, G(n.a).gx)), mul(fp, sub(G(n.b).gy, G(n.a).gy)));
         break;
+      }
       // Texels are treated as uncorrelated with the shader's other values (no derivative of a
       // discrete function): a rho=grad product with a texture value gets rho 0.
       case Op::Texture:
@@ -476,13 +648,134 @@ class Lowering {
         break;
       }
       case Op::Call: {
-        const std::string d1 = "bl::deriv::" + std::string(ir::atomic_name(n.atomic)) + "_d1";
-        const int fp = call(d1, {vals_[n.a].mean});
+        const int fp = smoothed_slope(i, n);
         set(mul(fp, G(n.a).gx), mul(fp, G(n.a).gy));
         break;
       }
     }
     return vals_[i];
+  }
+
+  // d E[node] / d E[root]: beta through affine steps, the atomics' Stein slopes (smoothed_slope).
+  int root_slope(int i) {
+    if (slope_[i] >= 0) return slope_[i];
+    const ir::Node& n = g_.node(i);
+    int sl;
+    if (facts_.aff[i].base >= 0 && facts_.aff[i].base != i)
+      sl = mul(k(static_cast<float>(facts_.aff[i].beta)), root_slope(facts_.aff[i].base));
+    else if (n.op == Op::Call)
+      sl = mul(smoothed_slope(i, n), root_slope(n.a));
+    else
+      sl = k(1);
+    return slope_[i] = sl;
+  }
+  // InGradX and InGradY of input node i.
+  std::pair<int, int> input_gradient(int i) {
+    Inst in;
+    in.arg[0] = static_cast<int>(g_.node(i).value);
+    in.op = LOp::InGradX;
+    const int gx = emit(in);
+    in.op = LOp::InGradY;
+    return {gx, emit(in)};
+  }
+
+  // The correlation of binary node n's operands when the rule says rho 0 but the graph knows
+  // better, or -1 (none known: independent). Affine functions of one base node are perfectly
+  // correlated (+-1); functions of one root node R (zigzag's hue and band, both of y) get
+  // Cov ~ Var(R) E[A'(R)] E[B'(R)] (Stein's lemma, exact when one of them is affine in R).
+  int shared_rho(const ir::Node& n) {
+    if (n.b < 0 || n.a == n.b) return -1;
+    const Affine &a = facts_.aff[n.a], &b = facts_.aff[n.b];
+    if (a.base >= 0 && a.base == b.base && a.beta != 0 && b.beta != 0)
+      return k(a.beta * b.beta > 0 ? 1.0f : -1.0f);
+    if (vals_[n.a].var < 0 || vals_[n.b].var < 0) return -1;
+    const int ra = facts_.root[n.a], rb = facts_.root[n.b];
+    if (vals_[ra].var < 0 || vals_[rb].var < 0) return -1;
+    int cov;
+    if (ra == rb) {
+      cov = mul(vals_[ra].var, mul(root_slope(n.a), root_slope(n.b)));
+    } else if (g_.node(ra).op == Op::Input && g_.node(rb).op == Op::Input) {
+      // Functions of two surface coordinates: u and v are affine in screen space over a pixel, so
+      // their correlation is the normalised dot product of their screen gradients (exact for the
+      // isotropic pixel Gaussian); the footprint of a rotated view correlates them.
+      const auto ga = input_gradient(ra), gb = input_gradient(rb);
+      const int dot = add(mul(ga.first, gb.first), mul(ga.second, gb.second));
+      const int na = add(sq(ga.first), sq(ga.second)), nb = add(sq(gb.first), sq(gb.second));
+      const int ruv = div(dot, op(LOp::Sqrt, op(LOp::Max, mul(na, nb), k(1e-30f))));
+      cov = mul(mul(ruv, mul(sd(vals_[ra]), sd(vals_[rb]))), mul(root_slope(n.a), root_slope(n.b)));
+    } else {
+      return -1;
+    }
+    const int den = op(LOp::Max, mul(sd(vals_[n.a]), sd(vals_[n.b])), k(1e-30f));
+    return op(LOp::Min, op(LOp::Max, div(cov, den), k(-1)), k(1));
+  }
+
+  // A lattice node as the finite mixture over its sources' values (GraphFacts::Lattice): floor/ceil
+  // of N(m, s^2) is K-1, K or K+1 with Gaussian interval probabilities; the plain sub-DAG per pair.
+  Val lattice_mixture(int i, const Rule& r) {
+    const std::vector<int>& src = facts_.lattice[i].src;
+    struct Choice {
+      std::vector<int> value, weight;  // instruction per candidate
+    };
+    std::vector<Choice> ch(src.size());
+    const std::string step = kernel_name("gaussian", "step", false);
+    for (std::size_t d = 0; d < src.size(); ++d) {
+      const ir::Node& fl = g_.node(src[d]);
+      const bool is_floor = std::string(ir::atomic_name(fl.atomic)) == "floor";
+      Val& x = vals_[fl.a];
+      const int K = call(plain_name(is_floor ? "floor" : "ceil"), {x.mean});
+      const int s = x.var < 0 ? k(0) : scaled_sd(x, r);
+      for (int o = -1; o <= 1; ++o) {
+        const int v = add(K, k(static_cast<float>(o)));
+        // floor = v on [v, v + 1); ceil = v on (v - 1, v]: P = Phi((hi - m)/s) - Phi((lo - m)/s).
+        const int lo = is_floor ? v : sub(v, k(1)), hi = is_floor ? add(v, k(1)) : v;
+        int p = sub(call(step, {sub(hi, x.mean), s}), call(step, {sub(lo, x.mean), s}));
+        if (facts_.cell_continuous(fl.a)) {
+          // The output does not jump where this floor does: take the cell holding m (as mode_fract
+          // takes the side holding m), blended into the probabilities as s grows.
+          const int t = mode_blend(s);
+          p = add(mul(t, p), o == 0 ? sub(k(1), t) : k(0));
+        }
+        ch[d].value.push_back(v);
+        ch[d].weight.push_back(p);
+      }
+    }
+    int sum_w = -1, sum_h = -1, sum_h2 = -1;
+    const int combos = src.size() == 1 ? 3 : 9;
+    for (int c = 0; c < combos; ++c) {
+      std::map<int, int> memo;
+      int w = -1;
+      for (std::size_t d = 0; d < src.size(); ++d) {
+        const int pick = d == 0 ? c % 3 : c / 3;
+        memo[src[d]] = ch[d].value[pick];
+        w = w < 0 ? ch[d].weight[pick] : mul(w, ch[d].weight[pick]);
+      }
+      const int h = lattice_eval(i, memo);
+      sum_w = sum_w < 0 ? w : add(sum_w, w);
+      sum_h = sum_h < 0 ? mul(w, h) : add(sum_h, mul(w, h));
+      sum_h2 = sum_h2 < 0 ? mul(w, sq(h)) : add(sum_h2, mul(w, sq(h)));
+    }
+    const int inv = div(k(1), op(LOp::Max, sum_w, k(1e-30f)));
+    Val v;
+    v.mean = mul(sum_h, inv);
+    v.var = op(LOp::NonNeg, sub(mul(sum_h2, inv), sq(v.mean)));
+    return v;
+  }
+  // The plain value of lattice node i with its sources fixed (memo: node -> instruction).
+  int lattice_eval(int i, std::map<int, int>& memo) {
+    auto it = memo.find(i);
+    if (it != memo.end()) return it->second;
+    const ir::Node& n = g_.node(i);
+    int out;
+    if (n.op == Op::Const) {
+      out = k(static_cast<float>(n.value));
+    } else {
+      std::vector<int> x;
+      for (int a : {n.a, n.b, n.c})
+        if (a >= 0) x.push_back(lattice_eval(a, memo));
+      out = plain(n, x);
+    }
+    return memo[i] = out;
   }
 
   const ir::Graph& g_;
@@ -491,6 +784,9 @@ class Lowering {
   std::vector<ir::Interval> ranges_;  // plain value ranges (ir/ranges.hpp): Dorn's means stay inside
   Program p_;
   std::set<std::string> notes_;
+  GraphFacts facts_;
+  // Per node: root_slope's instruction (-1: not yet).
+  std::vector<int> slope_;
 };
 
 }  // namespace

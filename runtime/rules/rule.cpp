@@ -59,6 +59,7 @@ std::string to_string(const Rule& r) {
     os << kind_name(r.kind);
   }
   if (r.kind == Kind::Gaussian && r.rho == Rho::Gradient) os << ":rho=grad";
+  if (r.kind == Kind::Gaussian && r.rho == Rho::Covariance) os << ":rho=cov";
   if (r.kind == Kind::Gaussian && r.rho == Rho::Constant) os << ":rho=" << shortest(r.rho_value);
   if (r.kind == Kind::Rule1) os << ":" << r.kernel;
   if (r.sigma_scale != 1) os << "@" << shortest(r.sigma_scale);
@@ -120,6 +121,8 @@ Rule parse_rule(const std::string& text) {
       const std::string v = opt.substr(4);
       if (v == "grad") {
         r.rho = Rho::Gradient;
+      } else if (v == "cov") {
+        r.rho = Rho::Covariance;
       } else if (v == "0") {
         r.rho = Rho::Zero;
       } else {

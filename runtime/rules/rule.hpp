@@ -20,7 +20,9 @@ enum class Kind {
   Rule3,       // Taylor in the clamped domain (Li et al. 2020)
 };
 
-enum class Rho { Zero, Constant, Gradient };  // correlation of a binary node's inputs
+// Correlation of a binary node's inputs: 0, a constant, the normalised dot product of the inputs'
+// screen gradients (Yang & Barnes), or the linearised covariance sigma_px^2 (ga . gb) / (sa sb).
+enum class Rho { Zero, Constant, Gradient, Covariance };
 
 struct Rule {
   Kind kind = Kind::None;
@@ -34,7 +36,8 @@ struct Rule {
 };
 
 // Text form used in schedules, reports and the CLI: "none", "dorn", "gaussian", "gaussian:rho=grad",
-// "gaussian:rho=0.3", "mc8", "box", "tent", "rule1:tent", "rule2", "rule3", with an optional
+// "gaussian:rho=0.3", "gaussian:rho=cov", "mc8", "box", "tent", "rule1:tent", "rule2", "rule3", with an
+// optional
 // "@1.25" sd scale suffix. parse_rule throws std::invalid_argument naming the bad text.
 std::string to_string(const Rule& r);
 Rule parse_rule(const std::string& text);

@@ -129,4 +129,44 @@ Vec3<S> pulse(Vec2<S> uv, S) {
   return splat3(step(fract(uv.x) - S(0.5)));
 }
 
+
+// Lattice patterns a user writes (issue 13): a hash of integer cell coordinates (floor) drives the
+// value. hash(i, j) = fract(13.37 sin(1.7 i + 2.9 j + 0.3)): a low gain (not 43758) keeps float
+// rounding far below a display step, so native, evaluator and GLSL agree; neighbours still differ.
+template <class S>
+S lattice_hash(S i, S j) {
+  return fract(sin(i * S(1.7) + j * S(2.9) + S(0.3)) * S(13.37));
+}
+
+// Value noise: hashed values at the lattice corners, blended with smoothstep weights (one octave at
+// 4 cells per unit, one at 8.3 with half the weight), through a blue-to-sand ramp.
+template <class S>
+Vec3<S> value_noise(Vec2<S> uv, S) {
+  S n = S(0);
+  const double freq[2] = {4.0, 8.3}, amp[2] = {0.67, 0.33};
+  for (int o = 0; o < 2; ++o) {
+    S x = uv.x * S(freq[o]) + S(o * 0.37), y = uv.y * S(freq[o]) + S(o * 0.61);
+    S i = floor(x), j = floor(y);
+    S wx = smoothstep(fract(x)), wy = smoothstep(fract(y));
+    S bottom = mix(lattice_hash(i, j), lattice_hash(i + S(1), j), wx);
+    S top = mix(lattice_hash(i, j + S(1)), lattice_hash(i + S(1), j + S(1)), wx);
+    n = n + S(amp[o]) * mix(bottom, top, wy);
+  }
+  return mix(Vec3<S>{S(0.1), S(0.2), S(0.5)}, Vec3<S>{S(0.95), S(0.85), S(0.6)}, n);
+}
+
+// Truchet tiles: per cell (2 per unit) a hashed orientation picks one of the two quarter-arc
+// pairings; the arcs (radius 1/2 about opposite corners, half-width 0.08) are drawn dark on light.
+template <class S>
+Vec3<S> truchet(Vec2<S> uv, S) {
+  S x = uv.x * S(2), y = uv.y * S(2);
+  S flip = step(lattice_hash(floor(x), floor(y)) - S(0.5));
+  S fx = fract(x), fy = fract(y);
+  S gx = select(flip, S(1) - fx, fx);
+  S d1 = abs(sqrt(pow2(gx) + pow2(fy)) - S(0.5));
+  S d2 = abs(sqrt(pow2(gx - S(1)) + pow2(fy - S(1))) - S(0.5));
+  S line = step(S(0.08) - min(d1, d2));
+  return mix(Vec3<S>{S(0.9), S(0.88), S(0.8)}, Vec3<S>{S(0.15), S(0.25), S(0.35)}, line);
+}
+
 }  // namespace bl::shaders::patterns

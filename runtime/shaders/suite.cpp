@@ -40,6 +40,8 @@ const std::vector<ShaderDef>& suite() {
       BL_SHADER(step_edge, false, "Black and white half-planes (Dorn et al. 'step')"),
       BL_SHADER(ridges, false, "fract(u) ramps (Dorn et al. 'ridges')"),
       BL_SHADER(pulse, false, "Black and white stripes (Dorn et al. 'pulse')"),
+      BL_SHADER(value_noise, false, "Two-octave value noise (hashed lattice corners, smoothstep blend)"),
+      BL_SHADER(truchet, false, "Truchet quarter-arc tiles (hashed orientation per cell)"),
       ShaderDef{
           "textured_tiles",
           "Colour texture (mean/variance pyramids) under procedural grout lines",

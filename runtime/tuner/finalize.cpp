@@ -97,9 +97,10 @@ void measure(const SceneTuner& t, const compiler::Program& p, Timer& gl, Measure
 
 std::string rule_family(const rules::Rule& r) {
   if (r.kind == rules::Kind::Gaussian)
-    return r.rho == rules::Rho::Zero       ? "gaussian(rho=0)"
-           : r.rho == rules::Rho::Gradient ? "gaussian(rho=grad)"
-                                           : "gaussian(rho=const)";
+    return r.rho == rules::Rho::Zero         ? "gaussian(rho=0)"
+           : r.rho == rules::Rho::Gradient   ? "gaussian(rho=grad)"
+           : r.rho == rules::Rho::Covariance ? "gaussian(rho=cov)"
+                                             : "gaussian(rho=const)";
   return rules::kind_name(r.kind);
 }
 

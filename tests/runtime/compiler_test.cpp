@@ -222,8 +222,14 @@ TEST(Compiler, DeadCodeIsRemoved) {
   // Variance is computed only where a later rule consumes it: smoothing only the last node
   // (mean output) needs no variance of anything after the inputs.
   compiler::Schedule sched = compiler::uniform_schedule(g, rules::parse_rule("none"));
+  // All-Gaussian checkerboard: its products and sums are rho 0, whose means read no variance, and
+  // the output is a mean, so no variance is computed at all (dead-variance elimination).
   const auto gauss = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
-  EXPECT_GT(count(gauss, compiler::LOp::NonNeg), 0);
+  EXPECT_EQ(count(gauss, compiler::LOp::NonNeg), 0);
+  EXPECT_EQ(count(gauss, compiler::LOp::CallStat), 0);
+  // With rho=grad the products need the variances (bivariate::mul's mean reads rho sa sb).
+  const auto grad = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian:rho=grad")));
+  EXPECT_GT(count(grad, compiler::LOp::NonNeg), 0);
   for (int i = 0; i < g.size(); ++i)
     if (g.node(i).op == ir::Op::Call) sched[i] = rules::parse_rule("gaussian");
   for (int i = 0; i < g.size(); ++i)

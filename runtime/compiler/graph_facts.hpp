@@ -1,0 +1,335 @@
+// Facts about a traced graph that the lowering's rules read, independent of the schedule: who
+// reads each node, each node as an affine function of a base, the node each value is a function of
+// alone (its root), the lattice nodes (functions of floor/ceil values only), and two continuity
+// probes (fract before a wrap-continuous consumer; floors whose jumps the outputs hide).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ir/atomics.hpp"
+#include "ir/graph.hpp"
+
+namespace bl::compiler {
+
+class GraphFacts {
+ public:
+  explicit GraphFacts(const ir::Graph& graph) : g(graph), consumers(graph.size()) {
+    for (int i = 0; i < g.size(); ++i)
+      for (int a : {g.node(i).a, g.node(i).b, g.node(i).c})
+        if (a >= 0) consumers[a].push_back(i);
+    for (int o : g.outputs()) consumers[o].push_back(-1);  // an output is a consumer of its own
+    aff.resize(g.size());
+    root.resize(g.size());
+    for (int i = 0; i < g.size(); ++i) {
+      aff[i] = affine_form(i);
+      root[i] = root_of(i);
+    }
+    lattice.resize(g.size());
+    for (int i = 0; i < g.size(); ++i) lattice[i] = lattice_sources(i);
+  }
+
+  // ---- fract whose consumers do not see its jump ----
+  // True when every path from node i passes through unary steps (atomics, constant affine maps,
+  // x*x) to a value that is the same for fract = 0 and fract = 1, e.g. pow2(fract(x) - 0.5): the
+  // composite is continuous at fract's jumps, so fract may report the side of the jump that holds
+  // most of the kernel instead of the average of both sides (whose large variance would blur every
+  // later step: the grey grid lines of all-Gaussian circles).
+  bool wrap_continuous(int i) const {
+    double lo = 0, hi = 1;
+    int cur = i;
+    for (int depth = 0; depth < 32; ++depth) {
+      if (consumers[cur].size() != 1 || consumers[cur][0] < 0) return false;
+      const int nx = consumers[cur][0];
+      const ir::Node& n = g.node(nx);
+      const bool a_is = n.a == cur, b_is = n.b == cur;
+      auto constant = [&](int j, double* c) {
+        if (j < 0 || g.node(j).op != ir::Op::Const) return false;
+        *c = g.node(j).value;
+        return true;
+      };
+      double c = 0;
+      auto apply = [&](auto fn) {
+        lo = fn(lo);
+        hi = fn(hi);
+      };
+      switch (n.op) {
+        case ir::Op::Call:
+          apply([&](double x) { return ir::plain_atomic(n.atomic, x); });
+          break;
+        case ir::Op::Neg:
+          apply([](double x) { return -x; });
+          break;
+        case ir::Op::Add:
+          if (a_is && b_is)
+            apply([](double x) { return 2 * x; });
+          else if (!constant(a_is ? n.b : n.a, &c))
+            return false;
+          else
+            apply([&](double x) { return x + c; });
+          break;
+        case ir::Op::Sub:
+          if (a_is && b_is) return false;  // x - x: constant, handled by identical_operands
+          if (!constant(a_is ? n.b : n.a, &c)) return false;
+          apply([&](double x) { return a_is ? x - c : c - x; });
+          break;
+        case ir::Op::Mul:
+          if (a_is && b_is)
+            apply([](double x) { return x * x; });
+          else if (!constant(a_is ? n.b : n.a, &c))
+            return false;
+          else
+            apply([&](double x) { return x * c; });
+          break;
+        default:
+          return false;
+      }
+      if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+      if (std::fabs(lo - hi) <= 1e-9 * std::max(1.0, std::fabs(lo))) return true;
+      cur = nx;
+    }
+    return false;
+  }
+
+  // ---- floors whose jumps the output does not show ----
+  // The plain graph in double at surface point (u, v) (other inputs: time 0, view and light (0,0,1)).
+  std::vector<double> plain_graph(double u, double v, std::vector<double>* all = nullptr) const {
+    std::vector<double> x(g.size());
+    for (int i = 0; i < g.size(); ++i) {
+      const ir::Node& n = g.node(i);
+      auto A = [&](int j) { return x[j]; };
+      switch (n.op) {
+        case ir::Op::Const:
+          x[i] = n.value;
+          break;
+        case ir::Op::Input: {
+          const std::string& nm = g.inputs()[static_cast<int>(n.value)].name;
+          x[i] = nm == "u" ? u : nm == "v" ? v : (nm == "view_z" || nm == "light_z") ? 1 : 0;
+          break;
+        }
+        case ir::Op::Add:
+          x[i] = A(n.a) + A(n.b);
+          break;
+        case ir::Op::Sub:
+          x[i] = A(n.a) - A(n.b);
+          break;
+        case ir::Op::Mul:
+          x[i] = A(n.a) * A(n.b);
+          break;
+        case ir::Op::Div:
+          x[i] = A(n.a) / A(n.b);
+          break;
+        case ir::Op::Neg:
+          x[i] = -A(n.a);
+          break;
+        case ir::Op::Min:
+          x[i] = std::min(A(n.a), A(n.b));
+          break;
+        case ir::Op::Max:
+          x[i] = std::max(A(n.a), A(n.b));
+          break;
+        case ir::Op::Less:
+          x[i] = A(n.a) < A(n.b) ? 1 : 0;
+          break;
+        case ir::Op::Select:
+          x[i] = A(n.a) * A(n.b) + (1 - A(n.a)) * A(n.c);
+          break;
+        case ir::Op::Mod:
+          x[i] = A(n.a) - n.value * std::floor(A(n.a) / n.value);
+          break;
+        case ir::Op::Call:
+          x[i] = ir::plain_atomic(n.atomic, A(n.a));
+          break;
+        default:
+          x[i] = std::nan("");
+          break;  // textures: no probe
+      }
+    }
+    std::vector<double> out;
+    for (int o : g.outputs()) out.push_back(x[o]);
+    if (all) *all = x;
+    return out;
+  }
+
+  // True when the outputs are continuous where floor(a) jumps: at 6 fixed surface points, walk u
+  // (or v, if a does not change with u) until floor(a) changes, bisect the jump to 1e-10 and
+  // compare the outputs on both sides (1e-4). Value noise and Truchet tiles are continuous across
+  // their cells' edges (a hash of the cell is hidden by the blend or the mortar there);
+  // checkerboard's floor(u + 0.5) - floor(u) is not.
+  bool cell_continuous(int a) const {
+    auto it = cell_cont.find(a);
+    if (it != cell_cont.end()) return it->second;
+    bool ok = true;
+    int probes = 0;
+    std::mt19937_64 rng(0xC0FFEEull + static_cast<std::uint64_t>(a));
+    std::uniform_real_distribution<double> U(-4, 4);
+    for (int t = 0; t < 6 && ok; ++t) {
+      const double u0 = U(rng), v0 = U(rng);
+      for (int axis = 0; axis < 2 && ok; ++axis) {
+        auto at = [&](double w) {
+          std::vector<double> all;
+          const auto out = axis == 0 ? plain_graph(w, v0, &all) : plain_graph(u0, w, &all);
+          return std::make_pair(std::floor(all[a]), out);
+        };
+        const double w0 = axis == 0 ? u0 : v0;
+        const double f0 = at(w0).first;
+        if (!std::isfinite(f0)) {
+          ok = false;
+          break;
+        }
+        double lo = w0, hi = w0;
+        bool found = false;
+        for (int step = 1; step <= 400 && !found; ++step) {
+          hi = w0 + 0.01 * step;
+          if (at(hi).first != f0)
+            found = true;
+          else
+            lo = hi;
+        }
+        if (!found) continue;  // a does not change along this axis here
+        for (int b = 0; b < 60 && hi - lo > 1e-10; ++b) {
+          const double mid = 0.5 * (lo + hi);
+          (at(mid).first == f0 ? lo : hi) = mid;
+        }
+        const auto L = at(lo).second, R = at(hi).second;
+        for (std::size_t c = 0; c < L.size(); ++c)
+          if (!(std::fabs(L[c] - R[c]) <= 1e-4)) ok = false;
+        ++probes;
+        break;  // one jump per probe point
+      }
+    }
+    return cell_cont[a] = ok && probes >= 3;
+  }
+
+  // Node i as (base, n) with i = base^n: pow<n> atomics and products of powers of one base.
+  std::pair<int, int> monomial(int i) const {
+    const ir::Node& n = g.node(i);
+    if (n.op == ir::Op::Call) {
+      const std::string f = ir::atomic_name(n.atomic);
+      if (f.size() == 4 && f.compare(0, 3, "pow") == 0 && f[3] >= '2' && f[3] <= '8') {
+        const std::pair<int, int> c = monomial(n.a);
+        return {c.first, c.second * (f[3] - '0')};
+      }
+    }
+    if (n.op == ir::Op::Mul) {
+      const std::pair<int, int> a = monomial(n.a), b = monomial(n.b);
+      if (a.first == b.first) return {a.first, a.second + b.second};
+    }
+    return {i, 1};
+  }
+
+  // ---- correlation of operands that are functions of one common node ----
+  // Node i as alpha + beta * base (base -1: the constant alpha), through constant affine steps.
+  struct Affine {
+    int base = -1;
+    double alpha = 0, beta = 0;
+  };
+
+  Affine affine_form(int i) const {
+    const ir::Node& n = g.node(i);
+    auto cst = [&](int j) { return j >= 0 && g.node(j).op == ir::Op::Const; };
+    const Affine self{i, 0, 1};
+    switch (n.op) {
+      case ir::Op::Const:
+        return Affine{-1, n.value, 0};
+      case ir::Op::Neg:
+        return Affine{aff[n.a].base, -aff[n.a].alpha, -aff[n.a].beta};
+      case ir::Op::Add:
+      case ir::Op::Sub: {
+        const Affine &a = aff[n.a], &b = aff[n.b];
+        const double sg = n.op == ir::Op::Add ? 1 : -1;
+        if (a.base == b.base || a.base < 0 || b.base < 0)
+          return Affine{a.base >= 0 ? a.base : b.base, a.alpha + sg * b.alpha, a.beta + sg * b.beta};
+        return self;
+      }
+      case ir::Op::Mul:
+        if (cst(n.b))
+          return Affine{aff[n.a].base, aff[n.a].alpha * g.node(n.b).value, aff[n.a].beta * g.node(n.b).value};
+        if (cst(n.a))
+          return Affine{aff[n.b].base, aff[n.b].alpha * g.node(n.a).value, aff[n.b].beta * g.node(n.a).value};
+        return self;
+      case ir::Op::Div:
+        if (cst(n.b))
+          return Affine{aff[n.a].base, aff[n.a].alpha / g.node(n.b).value, aff[n.a].beta / g.node(n.b).value};
+        return self;
+      default:
+        return self;
+    }
+  }
+
+  // The node a value is a function of alone (its root): through constant affine steps to the base,
+  // through atomics to the argument.
+  int root_of(int i) const {
+    const ir::Node& n = g.node(i);
+    if (aff[i].base >= 0 && aff[i].base != i) return root[aff[i].base];
+    if (n.op == ir::Op::Call) return root[n.a];
+    return i;
+  }
+
+  // ---- integer-valued nodes as small discrete distributions ----
+  // floor and ceil of N(m, s^2) take the values K-1, K, K+1 (K = floor(m), ceil(m)) with Gaussian
+  // interval probabilities (mass beyond them is dropped and the rest renormalised: exact to
+  // Phi(-1/s) for s < 1/4). A node computed from at most two such nodes (of different roots) and constants (a
+  // lattice hash) is then an exact finite mixture over their <= 9 value pairs: the plain sub-DAG evaluated
+  // per pair, weighted. Smoothed as one value instead, the hash of a cell index collapses to 1/2.
+  struct Lattice {
+    bool ok = false;
+    std::vector<int> src;  // the floor/ceil nodes it depends on (sorted)
+  };
+
+  bool integer_source(int i) const {
+    const ir::Node& n = g.node(i);
+    if (n.op != ir::Op::Call) return false;
+    const std::string f = ir::atomic_name(n.atomic);
+    return f == "floor" || f == "ceil";
+  }
+
+  Lattice lattice_sources(int i) const {
+    const ir::Node& n = g.node(i);
+    if (n.op == ir::Op::Const) return Lattice{true, {}};
+    if (integer_source(i)) return Lattice{true, {i}};
+    if (n.op == ir::Op::Input || n.op == ir::Op::Texture) return Lattice{};
+    Lattice out{true, {}};
+    for (int a : {n.a, n.b, n.c}) {
+      if (a < 0) continue;
+      if (!lattice[a].ok) return Lattice{};
+      for (int d : lattice[a].src)
+        if (std::find(out.src.begin(), out.src.end(), d) == out.src.end()) out.src.push_back(d);
+    }
+    std::sort(out.src.begin(), out.src.end());
+    if (out.src.size() > 2) return Lattice{};
+    // The mixture weighs value pairs by the product of their probabilities: the two sources must be
+    // functions of different roots (floor(u) and floor(v)); floor(u + 1/2) and floor(u) are not
+    // independent (checkerboard), and are left to the Gaussian rules.
+    if (out.src.size() == 2 && root[g.node(out.src[0]).a] == root[g.node(out.src[1]).a]) return Lattice{};
+    return out;
+  }
+
+  // A lattice node (not a source) that some non-lattice node or an output reads.
+  bool lattice_boundary(int i) const {
+    if (!lattice[i].ok || lattice[i].src.empty() || integer_source(i)) return false;
+    for (int c : consumers[i])
+      if (c < 0 || !lattice[c].ok) return true;
+    return false;
+  }
+
+  const ir::Graph& g;
+  // Per node: the nodes reading it (-1: a graph output).
+  std::vector<std::vector<int>> consumers;
+  std::vector<Affine> aff;
+  // Per node: the node it is a function of alone (itself if none).
+  std::vector<int> root;
+  // Per node: its integer sources, when it is a lattice node.
+  std::vector<Lattice> lattice;
+
+ private:
+  mutable std::map<int, bool> cell_cont;  // cell_continuous per floor argument
+};
+
+}  // namespace bl::compiler
