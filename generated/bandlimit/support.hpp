@@ -703,6 +703,118 @@ inline T image_z(T fmax, T tol) {
   return sqrt(T(2) * log(arg));
 }
 
+// J-weighted tail sum of one break: sum_k e_k step^k J_k(t), J_k(t) = int_t^inf (z - t)^k phi(z) dz
+// (see gauss_pw_breaks), e the jump polynomial about the break, step = +-sigma.
+template <class T>
+inline T break_tail(const T* e, int dd, T t, T step) {
+  T U[kMaxCoef];
+  upper_moments(t, dd, U);
+  T s = T(0), sk = T(1);
+  for (int k = 0; k <= dd; ++k) {
+    if (e[k] != T(0)) {
+      T J = T(0), binom = T(1), tp = T(1);
+      for (int m = k; m >= 0; --m) {
+        J += binom * tp * U[m];
+        binom = binom * T(m) / T(k - m + 1);
+        tp *= -t;
+      }
+      s += e[k] * sk * J;
+    }
+    if (k < dd) sk *= step;
+  }
+  return s;
+}
+
+// Break decomposition of a periodic f (one period of pieces on [0, period)), or with half = true
+// of f(y) 1{y >= 0}: the polynomial of the piece containing x plus one far-side tail per break
+// within z sigma of x (gauss_pw_breaks, repeated every period; the jump polynomial of each break
+// type is the same in every period). z = image_z(4 fmax, tol) + 1: dropping the breaks beyond it
+// replaces f there by a polynomial continuation of degree <= 7 whose weight sigma^k z^k Phic(z)
+// stays below tol for sigma <= period. Valid for sigma at most the narrowest piece (/4 when the
+// degree exceeds 3), like gauss_pw_breaks; one erfc and one exp per break in the window instead
+// of a Gauss-Legendre rule per piece. x is the exact signed remainder (full period) or x itself
+// (half line, |x| a few sigma).
+template <class T, int N>
+inline T gauss_periodic_breaks(T x, T sigma, T period, const Piece<T> (&p)[N], T fmax, bool half) {
+  using std::floor;
+  // Jump polynomials, about the break, of each break type: i = 0 the period boundary (last piece
+  // of the previous period to the first), i > 0 between pieces i-1 and i; e0: from 0 to p[0] at
+  // the half line's start.
+  T e[N][kMaxCoef], e0[kMaxCoef];
+  int deg[N], deg0;
+  for (int i = 0; i < N; ++i) {
+    T a[kMaxCoef], b[kMaxCoef];
+    taylor_shift(p[i].c, kMaxCoef - 1, p[i].lo, a);
+    const Piece<T>& prev = p[i == 0 ? N - 1 : i - 1];
+    taylor_shift(prev.c, kMaxCoef - 1, i == 0 ? period : p[i].lo, b);
+    for (int k = 0; k < kMaxCoef; ++k) e[i][k] = a[k] - b[k];
+    deg[i] = degree(e[i]);
+    if (i == 0) {
+      for (int k = 0; k < kMaxCoef; ++k) e0[k] = a[k];
+      deg0 = degree(e0);
+    }
+  }
+  // Base piece j of period m0 containing x (right-continuous; for x < 0 the piece is found on the
+  // signed remainder as periodic_eval does), or none (0) left of a half line.
+  T s = T(0);
+  if (!(half && x < T(0))) {
+    const T m0 = half ? floor(x / period) : (x < T(0) ? T(-1) : T(0));
+    const T r = x - m0 * period;
+    int j = N - 1;
+    for (int i = 0; i < N - 1; ++i)
+      if (half || !(x < T(0)) ? r < p[i].hi : x < p[i].hi - period) {
+        j = i;
+        break;
+      }
+    T g[kMaxCoef];
+    const int dj = degree(p[j].c);
+    taylor_shift(p[j].c, dj, r, g);
+    s = g[0];
+    T s2k = T(1), mk = T(1);
+    for (int k = 2; k <= dj; k += 2) {
+      s2k *= sigma * sigma;
+      mk *= T(k - 1);
+      if (g[k] != T(0)) s += g[k] * s2k * mk;
+    }
+  }
+  const T z = image_z(T(4) * fmax, series_tol<T>()) + T(1);
+  const T R = z * sigma;
+  T m1 = floor((x - R) / period);
+  if (half && m1 < T(0)) m1 = T(0);
+  const T m2 = floor((x + R) / period);
+  for (T m = m1; m <= m2; m += T(1)) {
+    const T shift = m * period;
+    for (int i = 0; i < N; ++i) {
+      const bool start = half && m == T(0) && i == 0;
+      const T* ei = start ? e0 : e[i];
+      const int di = start ? deg0 : deg[i];
+      if (di == 0 && ei[0] == T(0)) continue;
+      const T d = (p[i].lo + shift) - x;  // break minus x
+      if (!(d < R) || !(d > -R)) continue;
+      if (d > T(0)) {
+        s += break_tail(ei, di, d / sigma, sigma);
+      } else {
+        T ne[kMaxCoef];
+        for (int k = 0; k <= di; ++k) ne[k] = -ei[k];
+        s += break_tail(ne, di, -d / sigma, -sigma);
+      }
+    }
+  }
+  return s;
+}
+
+// sigma small enough for gauss_periodic_breaks (see there).
+template <class T, int N>
+inline bool periodic_breaks_ok(T sigma, const Piece<T> (&p)[N]) {
+  T wmin = inf<T>();
+  int maxdeg = 0;
+  for (int i = 0; i < N; ++i) {
+    wmin = min_of(wmin, p[i].hi - p[i].lo);
+    maxdeg = degree(p[i].c) > maxdeg ? degree(p[i].c) : maxdeg;
+  }
+  return sigma <= (maxdeg <= 3 ? wmin : T(0.25) * wmin);
+}
+
 // Image sum: f smoothed = sum over periods m of the pieces shifted by m period. Only pieces that
 // meet [x_r - z sigma, x_r + z sigma] are summed, z = image_z(fmax, series_tol): the neglected
 // ones carry at most fmax P(|Z| > z) <= series_tol in total. x_r is the exact signed remainder
@@ -712,6 +824,7 @@ inline T gauss_periodic_image(T x, T sigma, T period, const Piece<T> (&p)[N], T 
   using std::floor;
   if (sigma == T(0)) return periodic_eval(x, period, p);
   const T xr = reduce_signed(x, period);
+  if (periodic_breaks_ok(sigma, p)) return gauss_periodic_breaks(xr, sigma, period, p, fmax, false);
   const T R = image_z(fmax, series_tol<T>()) * sigma;
   const T m0 = floor((xr - R) / period), m1 = floor((xr + R) / period);
   T s = T(0);
@@ -917,6 +1030,7 @@ inline T gauss_periodic_right(T x, T sigma, T period, const Piece<T> (&p)[N], T 
       return a0 * Phi(z) + rho * phi(z) * acc;
     }
   }
+  if (periodic_breaks_ok(sigma, p)) return gauss_periodic_breaks(x, sigma, period, p, fmax, true);
   const T R = image_z(fmax, tol) * sigma;
   T m0 = floor((x - R) / period);
   if (m0 < T(0)) m0 = T(0);
