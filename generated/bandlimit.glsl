@@ -163,11 +163,13 @@ void bl_upper_moments(float t, int deg, out float U[8]) {
 // Gauss-Legendre for narrow pieces not deep in a tail, otherwise Taylor coefficients about the
 // centre times partial moments built from non-negative tails.
 float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float hi, float c[8]) {
-  if (!(hi > lo)) return 0.0;
+  int deg = bl_degree(c);
+  if (!(hi > lo) || (deg == 0 && c[0] == 0.0)) return 0.0;  // empty piece or f = 0 on it
   bool loinf = bl_is_inf(lo);
   bool hiinf = bl_is_inf(hi);
-  int deg = bl_degree(c);
   if (!loinf && !hiinf) {
+    // A bounded piece 40 sd away carries no mass in float (support.hpp, gauss_core).
+    if (dl >= 40.0 * sigma || dh <= -40.0 * sigma) return 0.0;
     float hw = (hi - lo) / (2.0 * sigma);
     float cz = (dl + dh) / (2.0 * sigma);
     if (hw <= 1.0 && abs(cz) * hw <= 10.0) {
@@ -967,6 +969,8 @@ float bl_li2_series(float y) {
   for (int k = 1; k <= 30; ++k) {
     sum += p / float(k * k);
     p *= y;
+    // |y| <= 1/2: the tail is at most 2 |y|^(k+1)/(k+1)^2 (see emit_helpers.hpp)
+    if (2.0 * abs(p) <= 3e-8 * abs(sum) * float((k + 1) * (k + 1))) break;
   }
   return sum;
 }
@@ -2394,16 +2398,27 @@ float bl_gaussian_fract_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   float s = sigma / period;
-  int K = bl_fourier_terms_if_preferred(s, 1, (4.0), (1.0));
-  if (K >= 0) {
+  if (s >= (0.08357381802701377)) {
+    int K = int(floor((1.0370742988786399) / s));
     float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
     float acc = (1.0/2.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
-      float w = (2.0) * bl_pi() * kf / period;
-      float th = w * xr;
-      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
-      acc += damp * ((-(1.0/(bl_pi()))*(1.0/(kf))) * sin(th));
+      acc += damp * ((-(1.0/(bl_pi()))*(1.0/(kf))) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -2427,16 +2442,28 @@ float bl_gaussian_fract_u(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   float s = sigma / period;
-  int K = bl_fourier_terms_if_preferred(s, 1, (4.0), (1.0));
-  if (K >= 0) {
+  if (s >= (0.08357381802701377)) {
+    int K = int(floor((1.0370742988786399) / s));
     float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
     float acc = (0.0);
     for (int k = 1; k <= K + 2; ++k) {
       float kf = float(k);
-      float w = (2.0) * bl_pi() * kf / period;
-      float th = w * xr;
-      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
-      acc += damp * w * ((-(1.0/(bl_pi()))*(1.0/(kf))) * cos(th));
+      float w = w1 * kf;
+      acc += damp * w * ((-(1.0/(bl_pi()))*(1.0/(kf))) * ck);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return sigma * sigma * acc;
   }
@@ -2469,16 +2496,27 @@ float bl_gaussian_fract_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   float s = sigma / period;
-  int K = bl_fourier_terms_if_preferred(s, 1, (4.0), (1.0));
-  if (K >= 0) {
+  if (s >= (0.08357381802701377)) {
+    int K = int(floor((1.0370742988786399) / s));
     float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
     float acc = (1.0/3.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
-      float w = (2.0) * bl_pi() * kf / period;
-      float th = w * xr;
-      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
-      acc += damp * (((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * cos(th) + (-(1.0/(bl_pi()))*(1.0/(kf))) * sin(th));
+      acc += damp * (((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * ck + (-(1.0/(bl_pi()))*(1.0/(kf))) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -2677,17 +2715,28 @@ float bl_gaussian_triangle_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
-  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
-  if (K >= 0) {
+  if (s >= (0.03785605326894285)) {
+    int K = int(floor((1.0725509182905828) / s));
     float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
     float acc = (1.0/2.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      float w = (2.0) * bl_pi() * kf / period;
-      float th = w * xr;
-      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
-      acc += damp * ((2.0*((-1.0) + pk)*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * cos(th));
+      acc += damp * ((2.0*((-1.0) + pk)*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * ck);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -2711,17 +2760,29 @@ float bl_gaussian_triangle_u(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   float s = sigma / period;
-  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
-  if (K >= 0) {
+  if (s >= (0.04147822195785659)) {
+    int K = int(floor((1.0683591926374918) / s));
     float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
     float acc = (0.0);
     for (int k = 1; k <= K + 2; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      float w = (2.0) * bl_pi() * kf / period;
-      float th = w * xr;
-      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
-      acc += damp * w * (-(2.0*((-1.0) + pk)*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * sin(th));
+      float w = w1 * kf;
+      acc += damp * w * (-(2.0*((-1.0) + pk)*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return sigma * sigma * acc;
   }
@@ -2754,17 +2815,28 @@ float bl_gaussian_triangle_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
-  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
-  if (K >= 0) {
+  if (s >= (0.03785605326894285)) {
+    int K = int(floor((1.0725509182905828) / s));
     float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
     float acc = (1.0/3.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      float w = (2.0) * bl_pi() * kf / period;
-      float th = w * xr;
-      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
-      acc += damp * ((4.0*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))*pk) * cos(th));
+      acc += damp * ((4.0*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))*pk) * ck);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -2963,17 +3035,28 @@ float bl_gaussian_square_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
-  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
-  if (K >= 0) {
+  if (s >= (0.03785605326894285)) {
+    int K = int(floor((1.0725509182905828) / s));
     float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
     float acc = (1.0/2.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      float w = (2.0) * bl_pi() * kf / period;
-      float th = w * xr;
-      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
-      acc += damp * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * sin(th));
+      acc += damp * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -2997,17 +3080,29 @@ float bl_gaussian_square_u(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   float s = sigma / period;
-  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
-  if (K >= 0) {
+  if (s >= (0.04147822195785659)) {
+    int K = int(floor((1.0683591926374918) / s));
     float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
     float acc = (0.0);
     for (int k = 1; k <= K + 2; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      float w = (2.0) * bl_pi() * kf / period;
-      float th = w * xr;
-      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
-      acc += damp * w * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * cos(th));
+      float w = w1 * kf;
+      acc += damp * w * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * ck);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return sigma * sigma * acc;
   }
@@ -3040,17 +3135,28 @@ float bl_gaussian_square_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
-  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
-  if (K >= 0) {
+  if (s >= (0.03785605326894285)) {
+    int K = int(floor((1.0725509182905828) / s));
     float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
     float acc = (1.0/2.0);
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
       float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      float w = (2.0) * bl_pi() * kf / period;
-      float th = w * xr;
-      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
-      acc += damp * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * sin(th));
+      acc += damp * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -3411,15 +3517,16 @@ float bl_box_tan_diff(float x, float hh) {
 
 float bl_box_tan(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return -bl_box_tan(-x, sigma);  // odd
+  float sx = x < (0.0) ? (-1.0) : (1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
   float period = bl_pi();
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
   float hh = min((sigma*sqrt(3.0)), (0.5) * r);
   if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
-    return bl_box_tan_series(x, hh);
+    return sx * (bl_box_tan_series(x, hh));
   }
-  return bl_box_tan_diff(x, hh);
+  return sx * (bl_box_tan_diff(x, hh));
 }
 
 float bl_box_tan_sq_series(float x, float hh) {
@@ -3435,7 +3542,7 @@ float bl_box_tan_sq_diff(float x, float hh) {
 
 float bl_box_tan_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return bl_box_tan_sq_raw(-x, sigma);  // even
+  x = abs(x);  // even
   float period = bl_pi();
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
@@ -3465,15 +3572,16 @@ float bl_tent_tan_diff(float x, float hh) {
 
 float bl_tent_tan(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return -bl_tent_tan(-x, sigma);  // odd
+  float sx = x < (0.0) ? (-1.0) : (1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
   float period = bl_pi();
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
   float hh = min((sigma*sqrt(6.0)), (0.5) * r);
   if (hh <= bl_series_reach() * min(r, ((1.0/2.0)*bl_pi()))) {
-    return bl_tent_tan_series(x, hh);
+    return sx * (bl_tent_tan_series(x, hh));
   }
-  return bl_tent_tan_diff(x, hh);
+  return sx * (bl_tent_tan_diff(x, hh));
 }
 
 float bl_tent_tan_sq_series(float x, float hh) {
@@ -3489,7 +3597,7 @@ float bl_tent_tan_sq_diff(float x, float hh) {
 
 float bl_tent_tan_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return bl_tent_tan_sq_raw(-x, sigma);  // even
+  x = abs(x);  // even
   float period = bl_pi();
   float xr = x - period * floor(x / period);
   float r = min(abs(xr - ((1.0/2.0)*bl_pi())), period - abs(xr - ((1.0/2.0)*bl_pi())));
@@ -3519,14 +3627,15 @@ float bl_box_tanh_diff(float x, float hh) {
 
 float bl_box_tanh_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return -bl_box_tanh_raw(-x, sigma);  // odd
+  float sx = x < (0.0) ? (-1.0) : (1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
   float hh = (sigma*sqrt(3.0));
-  if (x - hh > (20.0)) return (1.0);  // flat to machine precision
-  if (x + hh < (-20.0)) return (-1.0);
+  if (x - hh > (20.0)) return sx * ((1.0));  // flat to machine precision
+  if (x + hh < (-20.0)) return sx * ((-1.0));
   if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
-    return bl_box_tanh_series(x, hh);
+    return sx * (bl_box_tanh_series(x, hh));
   }
-  return bl_box_tanh_diff(x, hh);
+  return sx * (bl_box_tanh_diff(x, hh));
 }
 
 float bl_box_tanh(float x, float sigma) {
@@ -3549,7 +3658,7 @@ float bl_box_tanh_sq_diff(float x, float hh) {
 
 float bl_box_tanh_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return bl_box_tanh_sq_raw(-x, sigma);  // even
+  x = abs(x);  // even
   float hh = (sigma*sqrt(3.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (1.0);
@@ -3579,14 +3688,15 @@ float bl_tent_tanh_diff(float x, float hh) {
 
 float bl_tent_tanh_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return -bl_tent_tanh_raw(-x, sigma);  // odd
+  float sx = x < (0.0) ? (-1.0) : (1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
   float hh = (sigma*sqrt(6.0));
-  if (x - hh > (20.0)) return (1.0);  // flat to machine precision
-  if (x + hh < (-20.0)) return (-1.0);
+  if (x - hh > (20.0)) return sx * ((1.0));  // flat to machine precision
+  if (x + hh < (-20.0)) return sx * ((-1.0));
   if (hh <= bl_series_reach() * ((1.0/2.0)*bl_pi())) {
-    return bl_tent_tanh_series(x, hh);
+    return sx * (bl_tent_tanh_series(x, hh));
   }
-  return bl_tent_tanh_diff(x, hh);
+  return sx * (bl_tent_tanh_diff(x, hh));
 }
 
 float bl_tent_tanh(float x, float sigma) {
@@ -3609,7 +3719,7 @@ float bl_tent_tanh_sq_diff(float x, float hh) {
 
 float bl_tent_tanh_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x < (0.0)) return bl_tent_tanh_sq_raw(-x, sigma);  // even
+  x = abs(x);  // even
   float hh = (sigma*sqrt(6.0));
   if (x - hh > (20.0)) return (1.0);  // flat to machine precision
   if (x + hh < (-20.0)) return (1.0);

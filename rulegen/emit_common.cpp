@@ -1,5 +1,6 @@
 #include "emit_common.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -120,29 +121,86 @@ std::string body_piecewise(const Derived& d, const Syntax& s) {
          s.helper("pw_eval") + "(x, " + P + ");\n  return " + s.helper(call) + "(x, sigma, " + P + ");\n";
 }
 
-// The Fourier branch of a Gaussian periodic entry: "if the Fourier series is the cheaper of the
-// dual series, sum it". Per term k the loop defines kf, pk = (-1)^k (when the coefficients use it),
-// w = 2 pi k / T, th = w x_r and damp = exp(-2 pi^2 k^2 s^2); `term` is added to acc (initially
-// acc0) and `result` returned. extra: terms beyond the tolerance count (for k-weighted series).
+// Emit-time plan of the Gaussian dual series for one tolerance (series_tol: 1e-8 float, 1e-13
+// double). The Fourier series is used for s = sigma/T >= s_min, with K = floor(C/s) terms:
+// u = K + 1 > C/s gives a u^2 > 2 pi^2 C^2 = L + G (a = 2 pi^2 s^2, L = log(B/tol),
+// G = -log(1 - e^{-2 a_min}), a_min = 2 pi^2 s_min^2), so the tail bound B e^{-a u^2} / (1 - e^{-2 a u})
+// of fourier_terms (support.hpp) is <= tol: certified, and K at most one above the minimum. s_min is
+// where the costs cross (unit: one transcendental call): Fourier 3 + 0.5 (K + extra) (one exp, cos,
+// sin, then recurrences), image sum P npieces c (P = ceil(2 z s) + 1 periods, z = image_z, c = 4 for
+// an erfc and an exp per piece, 20 for the Gauss-Legendre rule of a piece narrower than 2 sigma).
+struct FourierPlan {
+  double s_min, C;
+};
+
+FourierPlan plan_fourier(const Derived& d, double tol, int extra) {
+  const double B = d.coef_bound, pi = 3.14159265358979323846;
+  const int np = static_cast<int>(d.pieces.size());
+  auto exact_K = [&](double s) {  // smallest certified K, as fourier_terms computes it
+    const double a = 2 * pi * pi * s * s;
+    for (int K = 0; K < 100000; ++K) {
+      const double u = K + 1.0;
+      if (B * std::exp(-a * u * u) / (-std::expm1(-2 * a * u)) <= tol) return K;
+    }
+    return 100000;
+  };
+  const double arg = 0.7978845608028654 * d.fmax / tol;
+  const double z = arg > 1.6487212707001282 ? std::sqrt(2 * std::log(arg)) : 1.0;
+  auto fourier_cheaper = [&](double s) {
+    const double P = std::ceil(2 * z * s) + 1;
+    const double per_piece = s * np > 0.5 ? 20.0 : 4.0;
+    return 3.0 + 0.5 * (exact_K(s) + extra) <= P * np * per_piece;
+  };
+  // Scan down from s = 4 (Fourier always cheaper there) to the first s where it is not.
+  double s_min = 4.0;
+  for (double sv = 4.0; sv > 1e-3; sv *= 0.97) {
+    if (!fourier_cheaper(sv)) break;
+    s_min = sv;
+  }
+  const double L = B > tol ? std::log(B / tol) : 0.0;
+  const double amin = 2 * pi * pi * s_min * s_min;
+  const double G = -std::log(-std::expm1(-2 * amin));
+  return {s_min, std::sqrt((L + G) / (2 * pi * pi))};
+}
+
+// The Fourier branch of a Gaussian periodic entry: for s >= s_min (plan_fourier) sum K = floor(C/s)
+// terms. Per term k the loop defines kf, pk = (-1)^k (when the coefficients use it), w = 2 pi k / T,
+// ck = cos(k w1 x_r), sk = sin(k w1 x_r) (by rotation: one cos and one sin per call; the error grows
+// like k eps) and damp = exp(-2 pi^2 k^2 s^2) (by damp_k = damp_{k-1} q^{2k-1}, q = e^{-2 pi^2 s^2});
+// `term` is added to acc (initially acc0) and `result` returned. extra: terms beyond the tolerance
+// count (for k-weighted series).
 std::string fourier_branch(const Derived& d, const Syntax& s, int extra, const std::string& acc0,
                            const std::string& term, const std::string& result) {
+  const FourierPlan pf = plan_fourier(d, 1e-8, extra), pd = plan_fourier(d, 1e-13, extra);
+  auto pick = [&](double vf, double vd) {
+    return s.cpp() ? "(sizeof(T) < sizeof(double) ? " + s.dbl(vf) + " : " + s.dbl(vd) + ")" : s.dbl(vf);
+  };
+  std::string body = term;
+  for (auto [from, to] : {std::pair<std::string, std::string>{"cos(th)", "ck"}, {"sin(th)", "sk"}})
+    for (size_t at; (at = body.find(from)) != std::string::npos;) body.replace(at, from.size(), to);
   std::string out = s.decl("s", "sigma / period");
-  out += std::string("  ") + (s.cpp() ? "const " : "") + "int K = " + s.helper("fourier_terms_if_preferred") +
-         "(s, " + std::to_string(d.pieces.size()) + ", " + s.dbl(d.coef_bound) + ", " + s.dbl(d.fmax) +
-         ");\n";
-  out += "  if (K >= 0) {\n";
+  out += "  if (s >= " + pick(pf.s_min, pd.s_min) + ") {\n";
+  out +=
+      std::string("    ") + (s.cpp() ? "const " : "") + "int K = int(floor(" + pick(pf.C, pd.C) + " / s));\n";
   out += "  " + s.decl("xr", "x - period * floor(x / period)");
+  out += "  " + s.decl("w1", s.dbl(2) + " * " + s.pi() + " / period");
+  out += "  " + s.decl("c1", "cos(w1 * xr)");
+  out += "  " + s.decl("s1", "sin(w1 * xr)");
+  out += "  " + s.decl("q", "exp(" + s.dbl(-2) + " * " + s.pi() + " * " + s.pi() + " * s * s)");
+  out += "  " + s.decl("q2", "q * q");
+  out += "    " + s.T() + " ck = c1;\n    " + s.T() + " sk = s1;\n";
+  out += "    " + s.T() + " ratio = q;\n    " + s.T() + " damp = q;\n";
   out += "    " + s.T() + " acc = " + acc0 + ";\n";
   out +=
       "    for (int k = 1; k <= K" + (extra ? " + " + std::to_string(extra) : std::string()) + "; ++k) {\n";
   out += "    " + s.decl("kf", s.cpp() ? "T(k)" : "float(k)");
   if (d.ak.has(sym::var_pk()) || d.bk.has(sym::var_pk()))
     out += "    " + s.decl("pk", std::string("(k % 2 == 1) ? ") + s.dbl(-1) + " : " + s.dbl(1));
-  out += "    " + s.decl("w", s.dbl(2) + " * " + s.pi() + " * kf / period");
-  out += "    " + s.decl("th", "w * xr");
-  out +=
-      "    " + s.decl("damp", "exp(" + s.dbl(-2) + " * " + s.pi() + " * " + s.pi() + " * kf * kf * s * s)");
-  out += "      acc += " + term + ";\n    }\n    return " + result + ";\n  }\n";
+  if (body.find("w") != std::string::npos) out += "    " + s.decl("w", "w1 * kf");
+  out += "      acc += " + body + ";\n";
+  out += "    " + s.decl("cn", "ck * c1 - sk * s1");
+  out += "      sk = sk * c1 + ck * s1;\n      ck = cn;\n      ratio *= q2;\n      damp *= ratio;\n";
+  out += "    }\n    return " + result + ";\n  }\n";
   return out;
 }
 
@@ -247,15 +305,15 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
     // (GLSL stays in float: see docs/derivations.md).
     out += "  if constexpr (sizeof(T) < sizeof(double)) return T(" + impl_name(d) +
            "<double>(double(x), double(sigma)));\n";
+  // Parity: the body runs on |x| and an odd entry multiplies its result by the sign of x. Done in
+  // place (no reflected self-call): GLSL forbids recursion and Mesa refuses it at link time.
+  bool odd = false;
   if (a.parity != 0) {
-    const bool odd = a.parity < 0 && !d.squared;
-    // The reflected call goes to the unclamped body when the entry is clamped (range_clamp): in GLSL
-    // the clamped wrapper is defined after it.
-    const std::string self =
-        impl_name(d) + (range_clamp(d, s.cpp() ? Lang::Cpp : Lang::Glsl).empty() ? "" : "_raw");
-    out += "  if (x < " + s.dbl(0) + ") return " + (odd ? "-" : "") + s.fn(self) + "(-x, sigma);  // " +
-           (odd ? "odd" : "even") + "\n";
+    odd = a.parity < 0 && !d.squared;
+    if (odd) out += s.decl("sx", "x < " + s.dbl(0) + " ? " + s.dbl(-1) + " : " + s.dbl(1));
+    out += std::string("  x = abs(x);  // ") + (odd ? "odd: f(-x) = -f(x)" : "even") + "\n";
   }
+  auto ret = [odd](const std::string& v) { return "return " + (odd ? "sx * (" + v + ")" : v) + ";"; };
   if (a.domain_lo.finite())
     out += "  if (x < " + s.ex(a.domain_lo.value) + ") return " + s.nan() + ";  // outside the domain\n";
   if (a.domain_hi.finite())
@@ -288,9 +346,9 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   if (a.flat) {
     const double l = d.squared ? a.flat->left * a.flat->left : a.flat->left;
     const double rr = d.squared ? a.flat->right * a.flat->right : a.flat->right;
-    out += "  if (x - hh > " + s.dbl(a.flat->beyond) + ") return " + s.dbl(rr) +
-           ";  // flat to machine precision\n";
-    out += "  if (x + hh < " + s.dbl(-a.flat->beyond) + ") return " + s.dbl(l) + ";\n";
+    out += "  if (x - hh > " + s.dbl(a.flat->beyond) + ") " + ret(s.dbl(rr)) +
+           "  // flat to machine precision\n";
+    out += "  if (x + hh < " + s.dbl(-a.flat->beyond) + ") " + ret(s.dbl(l)) + "\n";
   }
   std::string rho;
   if (has_r) rho = "r";
@@ -305,17 +363,22 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
   out += "  if (hh <= " + s.helper(s.cpp() ? "series_reach<T>" : "series_reach") + "() * " + rho +
          (tiny_series ? " || x < 1e-18" : "") + ") {\n";
   if (s.cpp())
-    out +=
-        "    using W = detail::wide_t<T>;\n    return T(" + impl_name(d) + "_series<W>(W(x), W(hh)));\n  }\n";
+    out += "    using W = detail::wide_t<T>;\n    " + ret("T(" + impl_name(d) + "_series<W>(W(x), W(hh)))") +
+           "\n  }\n";
   else
-    out += "    return " + s.fn(impl_name(d) + "_series") + "(x, hh);\n  }\n";
+    out += "    " + ret(s.fn(impl_name(d) + "_series") + "(x, hh)") + "\n  }\n";
   // The difference quotient, in its own function (diff_body). Next to a periodic pole its argument
   // (pi - 2x for tan) loses digits: C++ evaluates it there in long double (11 more bits on x86),
   // with hh as computed above, so the compact half-width is the same in every precision.
   if (s.cpp() && a.period && has_r)
-    out += "  if constexpr (sizeof(T) == sizeof(double)) {\n    if (r < T(1e-3)) return T(" + impl_name(d) +
-           "_diff<long double>((long double)x, (long double)hh));\n  }\n";
-  out += "  return " + s.fn(impl_name(d) + "_diff") + "(x, hh);\n";
+    out += "  if constexpr (sizeof(T) == sizeof(double)) {\n    if (r < T(1e-3)) " +
+           ret("T(" + impl_name(d) + "_diff<long double>((long double)x, (long double)hh))") + "\n  }\n";
+  // A tent's second difference of F2 (~ x^2 growth) over hh^2 overflows float once hh^2 does
+  // (sigma ~ 1e19): C++ takes the difference in double there.
+  if (s.cpp() && d.kernel == Kernel::Tent)
+    out += "  if constexpr (sizeof(T) < sizeof(double)) {\n    if (hh > T(1e15)) " +
+           ret("T(" + impl_name(d) + "_diff<double>(double(x), double(hh)))") + "\n  }\n";
+  out += "  " + ret(s.fn(impl_name(d) + "_diff") + "(x, hh)") + "\n";
 
   return out;
 }

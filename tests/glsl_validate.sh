@@ -21,7 +21,7 @@ for v in "450" "320 es"; do
     echo "  color = vec4(acc);"
     echo "}"
   } > "$f"
-  if ! out=$("$validator" "$f" 2>&1); then
+  if ! out=$("$validator" -l "$f" 2>&1); then
     echo "glslangValidator failed for #version $v on $src:"
     echo "$out" | head -40
     exit 1

@@ -26,7 +26,7 @@ for v in "450" "320 es"; do
     echo "  color = vec4(acc, 0.0, 1.0);"
     echo "}"
   } > "$f"
-  if ! out=$("$validator" "$f" 2>&1); then
+  if ! out=$("$validator" -l "$f" 2>&1); then
     echo "glslangValidator failed for #version $v on $rules:"
     echo "$out" | head -40
     exit 1

@@ -337,15 +337,42 @@ inline void upper_moments(T t, int deg, T* U) {
   }
 }
 
+// Tail moments U_k(|t|) at one piece end, shared by the two pieces that meet there (gauss_pw):
+// each finite break then costs one erfc and one exp, not two of each. deg < 0: not computed yet.
+template <class T>
+struct EndTails {
+  int deg = -1;
+  T U[kMaxCoef];
+};
+
+// U_k(t) for k <= deg (t >= 0), from the cache when it holds them (it is filled with cache_deg >= deg).
+template <class T>
+inline const T* end_tails(T t, int deg, EndTails<T>* cache, int cache_deg, T* local) {
+  if (!cache) {
+    upper_moments(t, deg, local);
+    return local;
+  }
+  if (cache->deg < deg) {
+    upper_moments(t, cache_deg, cache->U);
+    cache->deg = cache_deg;
+  }
+  return cache->U;
+}
+
 // Core of gauss_piece on offsets: the piece [lo, hi) lies at [x + dl, x + dh) relative to the
 // kernel centre, xq is the centre in the polynomial's own coordinate.
 template <class T>
-inline T gauss_core(T xq, T sigma, T dl, T dh, T lo, T hi, const T* c) {
+inline T gauss_core(T xq, T sigma, T dl, T dh, T lo, T hi, const T* c, EndTails<T>* cl = nullptr,
+                    EndTails<T>* ch = nullptr, int cache_deg = kMaxCoef - 1) {
   const int deg = degree(c);
-  if (!(hi > lo)) return T(0);
-  const T a = dl / sigma, b = dh / sigma;  // alpha, beta (possibly infinite)
+  if (!(hi > lo) || (deg == 0 && c[0] == T(0))) return T(0);  // empty piece or f = 0 on it
+  const T a = dl / sigma, b = dh / sigma;                     // alpha, beta (possibly infinite)
   const T width = hi - lo;
   if (width < inf<T>()) {
+    // A bounded piece 40 sd or more from the centre carries less than Phic(40) ~ 4e-350 of the
+    // mass: 0 in double. Skipping it also keeps the Taylor shift about a huge x (x^7 overflows
+    // float at |x| ~ 3e5) from turning a negligible piece into inf - inf.
+    if (a >= T(40) || b <= T(-40)) return T(0);
     // Narrow piece (<= 2 standard deviations wide) not deep in a tail: the moment recursion would
     // subtract O(1) tail integrals to get an O(width/sigma) result while d_k ~ sigma^k, so use
     // Gauss-Legendre on q(t) phi((t - x)/sigma) directly. The Gaussian factor varies like
@@ -373,11 +400,11 @@ inline T gauss_core(T xq, T sigma, T dl, T dh, T lo, T hi, const T* c) {
   // not relative, accuracy: the Taylor terms about x are then much larger than q on the piece.
   T g[kMaxCoef];
   taylor_shift(c, deg, xq, g);
-  T Ua[kMaxCoef], Ub[kMaxCoef];
+  T La[kMaxCoef], Lb[kMaxCoef];
   T sum = T(0), sk = T(1);
   if (a < T(0) && b > T(0)) {
-    upper_moments(-a, deg, Ua);
-    upper_moments(b, deg, Ub);
+    const T* Ua = end_tails(-a, deg, cl, cache_deg, La);
+    const T* Ub = end_tails(b, deg, ch, cache_deg, Lb);
     T m[kMaxCoef];  // full moments: m_0 = 1, m_1 = 0, m_k = (k-1) m_{k-2}
     for (int k = 0; k <= deg; ++k) {
       m[k] = k == 0 ? T(1) : (k == 1 ? T(0) : T(k - 1) * m[k - 2]);
@@ -388,8 +415,8 @@ inline T gauss_core(T xq, T sigma, T dl, T dh, T lo, T hi, const T* c) {
     return sum;
   }
   if (a >= T(0)) {
-    upper_moments(a, deg, Ua);
-    upper_moments(b, deg, Ub);
+    const T* Ua = end_tails(a, deg, cl, cache_deg, La);
+    const T* Ub = end_tails(b, deg, ch, cache_deg, Lb);
     for (int k = 0; k <= deg; ++k) {
       if (g[k] != T(0)) sum += g[k] * sk * (Ua[k] - Ub[k]);
       if (k < deg) sk *= sigma;
@@ -397,8 +424,8 @@ inline T gauss_core(T xq, T sigma, T dl, T dh, T lo, T hi, const T* c) {
     return sum;
   }
   // b <= 0: mirror, I_k = (-1)^k (U_k(-b) - U_k(-a)).
-  upper_moments(-b, deg, Ub);
-  upper_moments(-a, deg, Ua);
+  const T* Ub = end_tails(-b, deg, ch, cache_deg, Lb);
+  const T* Ua = end_tails(-a, deg, cl, cache_deg, La);
   for (int k = 0; k <= deg; ++k) {
     const T Ik = Ub[k] - Ua[k];
     if (g[k] != T(0)) sum += g[k] * sk * ((k & 1) ? -Ik : Ik);
@@ -506,12 +533,84 @@ inline T pw_eval(T x, const Piece<T> (&p)[N]) {
   return poly(p[N - 1].c, x);
 }
 
+// Break decomposition. With j the piece containing x,
+//   f = q_j + sum_{i >= j} (q_{i+1} - q_i) 1{y >= b_i} + sum_{i < j} (q_i - q_{i+1}) 1{y < b_i},
+// so E f(x+U) = E q_j(x+U) (the exact polynomial moment sum_k g_k sigma^k m_k, m_k = (k-1)!!) plus
+// one tail per break on its far side from x: t = |b - x|/sigma >= 0, D(b + s sigma v) = sum_k e_k
+// (s sigma)^k v^k (s = +1 right of x, -1 left), and
+//   E[D(x+U) 1{far side}] = sum_k e_k (s sigma)^k J_k(t),  J_k(t) = int_t^inf (z - t)^k phi(z) dz
+//                         = sum_m C(k, m) (-t)^(k-m) U_m(t)   (U: upper_moments, t >= 0).
+// One erfc and one exp per break within 40 sd (the others carry < Phic(40): 0 in double); the
+// difference is expanded about the fixed break, never about a huge x. Each term is at most
+// |e_k| sigma^k (k-1)!! ~ max|f| when sigma is at most the narrowest bounded piece, so nothing
+// cancels beyond O(max|f| eps) there; gauss_pw takes the per-piece form for wider kernels.
+template <class T, int N>
+inline T gauss_pw_breaks(T x, T sigma, const Piece<T> (&p)[N]) {
+  int j = N - 1;
+  for (int i = 0; i < N - 1; ++i)
+    if (x < p[i].hi) {
+      j = i;
+      break;
+    }
+  T g[kMaxCoef];
+  const int dj = degree(p[j].c);
+  taylor_shift(p[j].c, dj, x, g);
+  T s = g[0];
+  T s2k = T(1), mk = T(1);
+  for (int k = 2; k <= dj; k += 2) {
+    s2k *= sigma * sigma;
+    mk *= T(k - 1);
+    if (g[k] != T(0)) s += g[k] * s2k * mk;
+  }
+  for (int i = 0; i < N - 1; ++i) {
+    const bool right = i >= j;
+    const T b = p[i].hi;
+    const T t = right ? (b - x) / sigma : (x - b) / sigma;
+    if (!(t < T(40))) continue;
+    T dc[kMaxCoef];
+    for (int k = 0; k < kMaxCoef; ++k) dc[k] = right ? p[i + 1].c[k] - p[i].c[k] : p[i].c[k] - p[i + 1].c[k];
+    const int dd = degree(dc);
+    if (dd == 0 && dc[0] == T(0)) continue;  // f continuous and smooth there
+    T e[kMaxCoef], U[kMaxCoef];
+    taylor_shift(dc, dd, b, e);
+    upper_moments(t, dd, U);
+    const T step = right ? sigma : -sigma;
+    T sk = T(1);
+    for (int k = 0; k <= dd; ++k) {
+      if (e[k] != T(0)) {
+        T J = T(0), binom = T(1), tp = T(1);
+        for (int m = k; m >= 0; --m) {
+          J += binom * tp * U[m];
+          binom = binom * T(m) / T(k - m + 1);
+          tp *= -t;
+        }
+        s += e[k] * sk * J;
+      }
+      if (k < dd) sk *= step;
+    }
+  }
+  return s;
+}
+
+// The pieces are contiguous (p[i].hi == p[i+1].lo), so both pieces at a break see the same
+// |t| = |b - x|/sigma: its tail moments are computed once (EndTails), up to the highest degree.
+// sigma at most the narrowest bounded piece (always, for a single break): gauss_pw_breaks.
 template <class T, int N>
 inline T gauss_pw(T x, T sigma, const Piece<T> (&p)[N]) {
   if (sigma == T(0)) return pw_eval(x, p);
+  T wmin = inf<T>();
+  int maxdeg = 0;
+  for (int i = 0; i < N; ++i) {
+    if (i > 0 && i < N - 1) wmin = min_of(wmin, p[i].hi - p[i].lo);
+    maxdeg = degree(p[i].c) > maxdeg ? degree(p[i].c) : maxdeg;
+  }
+  // Degree > 3 (smoothstep^2: |e_6| 5!! = 60) keeps the terms small only for sigma <= width/4.
+  if (sigma <= (maxdeg <= 3 ? wmin : T(0.25) * wmin)) return gauss_pw_breaks(x, sigma, p);
+  EndTails<T> ends[N > 1 ? N - 1 : 1];
   T s = T(0);
   for (int i = 0; i < N; ++i)
-    s += gauss_core(x, sigma, p[i].lo - x, p[i].hi - x, p[i].lo, p[i].hi, p[i].c);
+    s += gauss_core(x, sigma, p[i].lo - x, p[i].hi - x, p[i].lo, p[i].hi, p[i].c,
+                    i > 0 ? &ends[i - 1] : nullptr, i < N - 1 ? &ends[i] : nullptr, maxdeg);
   return s;
 }
 
@@ -604,6 +703,118 @@ inline T image_z(T fmax, T tol) {
   return sqrt(T(2) * log(arg));
 }
 
+// J-weighted tail sum of one break: sum_k e_k step^k J_k(t), J_k(t) = int_t^inf (z - t)^k phi(z) dz
+// (see gauss_pw_breaks), e the jump polynomial about the break, step = +-sigma.
+template <class T>
+inline T break_tail(const T* e, int dd, T t, T step) {
+  T U[kMaxCoef];
+  upper_moments(t, dd, U);
+  T s = T(0), sk = T(1);
+  for (int k = 0; k <= dd; ++k) {
+    if (e[k] != T(0)) {
+      T J = T(0), binom = T(1), tp = T(1);
+      for (int m = k; m >= 0; --m) {
+        J += binom * tp * U[m];
+        binom = binom * T(m) / T(k - m + 1);
+        tp *= -t;
+      }
+      s += e[k] * sk * J;
+    }
+    if (k < dd) sk *= step;
+  }
+  return s;
+}
+
+// Break decomposition of a periodic f (one period of pieces on [0, period)), or with half = true
+// of f(y) 1{y >= 0}: the polynomial of the piece containing x plus one far-side tail per break
+// within z sigma of x (gauss_pw_breaks, repeated every period; the jump polynomial of each break
+// type is the same in every period). z = image_z(4 fmax, tol) + 1: dropping the breaks beyond it
+// replaces f there by a polynomial continuation of degree <= 7 whose weight sigma^k z^k Phic(z)
+// stays below tol for sigma <= period. Valid for sigma at most the narrowest piece (/4 when the
+// degree exceeds 3), like gauss_pw_breaks; one erfc and one exp per break in the window instead
+// of a Gauss-Legendre rule per piece. x is the exact signed remainder (full period) or x itself
+// (half line, |x| a few sigma).
+template <class T, int N>
+inline T gauss_periodic_breaks(T x, T sigma, T period, const Piece<T> (&p)[N], T fmax, bool half) {
+  using std::floor;
+  // Jump polynomials, about the break, of each break type: i = 0 the period boundary (last piece
+  // of the previous period to the first), i > 0 between pieces i-1 and i; e0: from 0 to p[0] at
+  // the half line's start.
+  T e[N][kMaxCoef], e0[kMaxCoef];
+  int deg[N], deg0;
+  for (int i = 0; i < N; ++i) {
+    T a[kMaxCoef], b[kMaxCoef];
+    taylor_shift(p[i].c, kMaxCoef - 1, p[i].lo, a);
+    const Piece<T>& prev = p[i == 0 ? N - 1 : i - 1];
+    taylor_shift(prev.c, kMaxCoef - 1, i == 0 ? period : p[i].lo, b);
+    for (int k = 0; k < kMaxCoef; ++k) e[i][k] = a[k] - b[k];
+    deg[i] = degree(e[i]);
+    if (i == 0) {
+      for (int k = 0; k < kMaxCoef; ++k) e0[k] = a[k];
+      deg0 = degree(e0);
+    }
+  }
+  // Base piece j of period m0 containing x (right-continuous; for x < 0 the piece is found on the
+  // signed remainder as periodic_eval does), or none (0) left of a half line.
+  T s = T(0);
+  if (!(half && x < T(0))) {
+    const T m0 = half ? floor(x / period) : (x < T(0) ? T(-1) : T(0));
+    const T r = x - m0 * period;
+    int j = N - 1;
+    for (int i = 0; i < N - 1; ++i)
+      if (half || !(x < T(0)) ? r < p[i].hi : x < p[i].hi - period) {
+        j = i;
+        break;
+      }
+    T g[kMaxCoef];
+    const int dj = degree(p[j].c);
+    taylor_shift(p[j].c, dj, r, g);
+    s = g[0];
+    T s2k = T(1), mk = T(1);
+    for (int k = 2; k <= dj; k += 2) {
+      s2k *= sigma * sigma;
+      mk *= T(k - 1);
+      if (g[k] != T(0)) s += g[k] * s2k * mk;
+    }
+  }
+  const T z = image_z(T(4) * fmax, series_tol<T>()) + T(1);
+  const T R = z * sigma;
+  T m1 = floor((x - R) / period);
+  if (half && m1 < T(0)) m1 = T(0);
+  const T m2 = floor((x + R) / period);
+  for (T m = m1; m <= m2; m += T(1)) {
+    const T shift = m * period;
+    for (int i = 0; i < N; ++i) {
+      const bool start = half && m == T(0) && i == 0;
+      const T* ei = start ? e0 : e[i];
+      const int di = start ? deg0 : deg[i];
+      if (di == 0 && ei[0] == T(0)) continue;
+      const T d = (p[i].lo + shift) - x;  // break minus x
+      if (!(d < R) || !(d > -R)) continue;
+      if (d > T(0)) {
+        s += break_tail(ei, di, d / sigma, sigma);
+      } else {
+        T ne[kMaxCoef];
+        for (int k = 0; k <= di; ++k) ne[k] = -ei[k];
+        s += break_tail(ne, di, -d / sigma, -sigma);
+      }
+    }
+  }
+  return s;
+}
+
+// sigma small enough for gauss_periodic_breaks (see there).
+template <class T, int N>
+inline bool periodic_breaks_ok(T sigma, const Piece<T> (&p)[N]) {
+  T wmin = inf<T>();
+  int maxdeg = 0;
+  for (int i = 0; i < N; ++i) {
+    wmin = min_of(wmin, p[i].hi - p[i].lo);
+    maxdeg = degree(p[i].c) > maxdeg ? degree(p[i].c) : maxdeg;
+  }
+  return sigma <= (maxdeg <= 3 ? wmin : T(0.25) * wmin);
+}
+
 // Image sum: f smoothed = sum over periods m of the pieces shifted by m period. Only pieces that
 // meet [x_r - z sigma, x_r + z sigma] are summed, z = image_z(fmax, series_tol): the neglected
 // ones carry at most fmax P(|Z| > z) <= series_tol in total. x_r is the exact signed remainder
@@ -613,6 +824,7 @@ inline T gauss_periodic_image(T x, T sigma, T period, const Piece<T> (&p)[N], T 
   using std::floor;
   if (sigma == T(0)) return periodic_eval(x, period, p);
   const T xr = reduce_signed(x, period);
+  if (periodic_breaks_ok(sigma, p)) return gauss_periodic_breaks(xr, sigma, period, p, fmax, false);
   const T R = image_z(fmax, series_tol<T>()) * sigma;
   const T m0 = floor((xr - R) / period), m1 = floor((xr + R) / period);
   T s = T(0);
@@ -758,12 +970,15 @@ inline T tent_periodic(T x, T sigma, T period, const Piece<T> (&p)[N], const Pie
   const T r2 = reduce_period(xr + w, period, q2);
   const T A = poly(P1[N - 1].c, period);
   const T B = poly(P2[N - 1].c, period);
-  const T g1 = period * q1 * (q1 - T(1)) * T(0.5);
-  const T g2 = period * q2 * (q2 - T(1)) * T(0.5);
-  const T num = A * ((g2 + g1) + (r2 * q2 + r1 * q1)) + B * (q2 + q1) +
-                ((periodic_piece_eval(r2, P2) + periodic_piece_eval(r1, P2)) -
-                 T(2) * periodic_piece_eval(xr, P2));
-  return num / (w * w);
+  // Every term is divided by w^2 as it is formed (q/w ~ 1/period): q^2 and w^2 overflow float
+  // once w exceeds ~1e19, and inf/inf would be NaN.
+  const T iw = T(1) / w;
+  const T s1 = q1 * iw, s2 = q2 * iw;
+  const T g1 = period * s1 * ((q1 - T(1)) * iw) * T(0.5);
+  const T g2 = period * s2 * ((q2 - T(1)) * iw) * T(0.5);
+  return A * ((g2 + g1) + (r2 * iw * s2 + r1 * iw * s1)) + B * iw * (s2 + s1) +
+         ((periodic_piece_eval(r2, P2) + periodic_piece_eval(r1, P2)) - T(2) * periodic_piece_eval(xr, P2)) *
+             iw * iw;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -815,6 +1030,7 @@ inline T gauss_periodic_right(T x, T sigma, T period, const Piece<T> (&p)[N], T 
       return a0 * Phi(z) + rho * phi(z) * acc;
     }
   }
+  if (periodic_breaks_ok(sigma, p)) return gauss_periodic_breaks(x, sigma, period, p, fmax, true);
   const T R = image_z(fmax, tol) * sigma;
   T m0 = floor((x - R) / period);
   if (m0 < T(0)) m0 = T(0);

@@ -2553,16 +2553,27 @@ T gaussian_fract_raw(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  const int K = detail::fourier_terms_if_preferred(s, 1, T(4.0), T(1.0));
-  if (K >= 0) {
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.08357381802701377) : T(0.06752621123868706))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0370742988786399) : T(1.2953937915302423)) / s));
     const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
     T acc = (T(1)/T(2));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
-      const T w = T(2.0) * detail::pi<T>() * kf / period;
-      const T th = w * xr;
-      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
-      acc += damp * ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sin(th));
+      acc += damp * ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -2589,16 +2600,28 @@ T gaussian_fract_u(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   const T s = sigma / period;
-  const int K = detail::fourier_terms_if_preferred(s, 1, T(4.0), T(1.0));
-  if (K >= 0) {
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.08357381802701377) : T(0.07627556722016873))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0370742988786399) : T(1.2910908840548492)) / s));
     const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
     T acc = T(0.0);
     for (int k = 1; k <= K + 2; ++k) {
       const T kf = T(k);
-      const T w = T(2.0) * detail::pi<T>() * kf / period;
-      const T th = w * xr;
-      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
-      acc += damp * w * ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * cos(th));
+      const T w = w1 * kf;
+      acc += damp * w * ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * ck);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return sigma * sigma * acc;
   }
@@ -2637,16 +2660,27 @@ T gaussian_fract_sq_raw(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  const int K = detail::fourier_terms_if_preferred(s, 1, T(4.0), T(1.0));
-  if (K >= 0) {
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.08357381802701377) : T(0.06752621123868706))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0370742988786399) : T(1.2953937915302423)) / s));
     const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
     T acc = (T(1)/T(3));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
-      const T w = T(2.0) * detail::pi<T>() * kf / period;
-      const T th = w * xr;
-      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
-      acc += damp * (((T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) * cos(th) + (-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sin(th));
+      acc += damp * (((T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) * ck + (-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -2860,17 +2894,28 @@ T gaussian_triangle_raw(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
-  if (K >= 0) {
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
     const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
     T acc = (T(1)/T(2));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
-      const T w = T(2.0) * detail::pi<T>() * kf / period;
-      const T th = w * xr;
-      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
-      acc += damp * (((T(-2))*((-pk) + T(1))*(T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) * cos(th));
+      acc += damp * (((T(-2))*((-pk) + T(1))*(T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) * ck);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -2898,17 +2943,29 @@ T gaussian_triangle_u(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   const T s = sigma / period;
-  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
-  if (K >= 0) {
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.04147822195785659) : T(0.051335523056918866))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0683591926374918) : T(1.3053511503851918)) / s));
     const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
     T acc = T(0.0);
     for (int k = 1; k <= K + 2; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
-      const T w = T(2.0) * detail::pi<T>() * kf / period;
-      const T th = w * xr;
-      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
-      acc += damp * w * (-((T(-2))*((-pk) + T(1))*(T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) * sin(th));
+      const T w = w1 * kf;
+      acc += damp * w * (-((T(-2))*((-pk) + T(1))*(T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return sigma * sigma * acc;
   }
@@ -2949,17 +3006,28 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
-  if (K >= 0) {
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
     const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
     T acc = (T(1)/T(3));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
-      const T w = T(2.0) * detail::pi<T>() * kf / period;
-      const T th = w * xr;
-      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
-      acc += damp * ((T(4)*(T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))*pk) * cos(th));
+      acc += damp * ((T(4)*(T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))*pk) * ck);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -3194,17 +3262,28 @@ T gaussian_square_raw(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
-  if (K >= 0) {
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
     const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
     T acc = (T(1)/T(2));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
-      const T w = T(2.0) * detail::pi<T>() * kf / period;
-      const T th = w * xr;
-      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
-      acc += damp * ((((-pk) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sin(th));
+      acc += damp * ((((-pk) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -3232,17 +3311,29 @@ T gaussian_square_u(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   const T s = sigma / period;
-  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
-  if (K >= 0) {
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.04147822195785659) : T(0.051335523056918866))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0683591926374918) : T(1.3053511503851918)) / s));
     const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
     T acc = T(0.0);
     for (int k = 1; k <= K + 2; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
-      const T w = T(2.0) * detail::pi<T>() * kf / period;
-      const T th = w * xr;
-      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
-      acc += damp * w * ((((-pk) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * cos(th));
+      const T w = w1 * kf;
+      acc += damp * w * ((((-pk) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * ck);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return sigma * sigma * acc;
   }
@@ -3283,17 +3374,28 @@ T gaussian_square_sq_raw(T x, T sigma) {
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
-  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
-  if (K >= 0) {
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
     const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
     T acc = (T(1)/T(2));
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
       const T pk = (k % 2 == 1) ? T(-1.0) : T(1.0);
-      const T w = T(2.0) * detail::pi<T>() * kf / period;
-      const T th = w * xr;
-      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
-      acc += damp * ((((-pk) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sin(th));
+      acc += damp * ((((-pk) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
     }
     return acc;
   }
@@ -3778,19 +3880,20 @@ T box_tan(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(box_tan<double>(double(x), double(sigma)));
-  if (x < T(0.0)) return -box_tan<T>(-x, sigma);  // odd
+  const T sx = x < T(0.0) ? T(-1.0) : T(1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * detail::min2(r, ((T(1)/T(2))*detail::pi<T>()))) {
     using W = detail::wide_t<T>;
-    return T(box_tan_series<W>(W(x), W(hh)));
+    return sx * (T(box_tan_series<W>(W(x), W(hh))));
   }
   if constexpr (sizeof(T) == sizeof(double)) {
-    if (r < T(1e-3)) return T(box_tan_diff<long double>((long double)x, (long double)hh));
+    if (r < T(1e-3)) return sx * (T(box_tan_diff<long double>((long double)x, (long double)hh)));
   }
-  return box_tan_diff<T>(x, hh);
+  return sx * (box_tan_diff<T>(x, hh));
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3818,7 +3921,7 @@ T box_tan_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(box_tan_sq<double>(double(x), double(sigma)));
-  if (x < T(0.0)) return box_tan_sq_raw<T>(-x, sigma);  // even
+  x = abs(x);  // even
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
@@ -3867,19 +3970,23 @@ T tent_tan(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(tent_tan<double>(double(x), double(sigma)));
-  if (x < T(0.0)) return -tent_tan<T>(-x, sigma);  // odd
+  const T sx = x < T(0.0) ? T(-1.0) : T(1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * detail::min2(r, ((T(1)/T(2))*detail::pi<T>()))) {
     using W = detail::wide_t<T>;
-    return T(tent_tan_series<W>(W(x), W(hh)));
+    return sx * (T(tent_tan_series<W>(W(x), W(hh))));
   }
   if constexpr (sizeof(T) == sizeof(double)) {
-    if (r < T(1e-3)) return T(tent_tan_diff<long double>((long double)x, (long double)hh));
+    if (r < T(1e-3)) return sx * (T(tent_tan_diff<long double>((long double)x, (long double)hh)));
   }
-  return tent_tan_diff<T>(x, hh);
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return sx * (T(tent_tan_diff<double>(double(x), double(hh))));
+  }
+  return sx * (tent_tan_diff<T>(x, hh));
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -3908,7 +4015,7 @@ T tent_tan_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if constexpr (sizeof(T) < sizeof(double)) return T(tent_tan_sq<double>(double(x), double(sigma)));
-  if (x < T(0.0)) return tent_tan_sq_raw<T>(-x, sigma);  // even
+  x = abs(x);  // even
   const T period = detail::pi<T>();
   const T xr = x - period * floor(x / period);
   const T r = detail::min2(abs(xr - ((T(1)/T(2))*detail::pi<T>())), period - abs(xr - ((T(1)/T(2))*detail::pi<T>())));
@@ -3919,6 +4026,9 @@ T tent_tan_sq_raw(T x, T sigma) {
   }
   if constexpr (sizeof(T) == sizeof(double)) {
     if (r < T(1e-3)) return T(tent_tan_sq_diff<long double>((long double)x, (long double)hh));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_tan_sq_diff<double>(double(x), double(hh)));
   }
   return tent_tan_sq_diff<T>(x, hh);
 }
@@ -3954,15 +4064,16 @@ template <class T>
 T box_tanh_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x < T(0.0)) return -box_tanh_raw<T>(-x, sigma);  // odd
+  const T sx = x < T(0.0) ? T(-1.0) : T(1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
   const T hh = (sigma*sqrt(T(3)));
-  if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
-  if (x + hh < T(-20.0)) return T(-1.0);
+  if (x - hh > T(20.0)) return sx * (T(1.0));  // flat to machine precision
+  if (x + hh < T(-20.0)) return sx * (T(-1.0));
   if (hh <= detail::series_reach<T>() * ((T(1)/T(2))*detail::pi<T>())) {
     using W = detail::wide_t<T>;
-    return T(box_tanh_series<W>(W(x), W(hh)));
+    return sx * (T(box_tanh_series<W>(W(x), W(hh))));
   }
-  return box_tanh_diff<T>(x, hh);
+  return sx * (box_tanh_diff<T>(x, hh));
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3997,7 +4108,7 @@ template <class T>
 T box_tanh_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x < T(0.0)) return box_tanh_sq_raw<T>(-x, sigma);  // even
+  x = abs(x);  // even
   const T hh = (sigma*sqrt(T(3)));
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(1.0);
@@ -4041,15 +4152,19 @@ template <class T>
 T tent_tanh_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x < T(0.0)) return -tent_tanh_raw<T>(-x, sigma);  // odd
+  const T sx = x < T(0.0) ? T(-1.0) : T(1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
   const T hh = (sigma*sqrt(T(6)));
-  if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
-  if (x + hh < T(-20.0)) return T(-1.0);
+  if (x - hh > T(20.0)) return sx * (T(1.0));  // flat to machine precision
+  if (x + hh < T(-20.0)) return sx * (T(-1.0));
   if (hh <= detail::series_reach<T>() * ((T(1)/T(2))*detail::pi<T>())) {
     using W = detail::wide_t<T>;
-    return T(tent_tanh_series<W>(W(x), W(hh)));
+    return sx * (T(tent_tanh_series<W>(W(x), W(hh))));
   }
-  return tent_tanh_diff<T>(x, hh);
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return sx * (T(tent_tanh_diff<double>(double(x), double(hh))));
+  }
+  return sx * (tent_tanh_diff<T>(x, hh));
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4085,13 +4200,16 @@ template <class T>
 T tent_tanh_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x < T(0.0)) return tent_tanh_sq_raw<T>(-x, sigma);  // even
+  x = abs(x);  // even
   const T hh = (sigma*sqrt(T(6)));
   if (x - hh > T(20.0)) return T(1.0);  // flat to machine precision
   if (x + hh < T(-20.0)) return T(1.0);
   if (hh <= detail::series_reach<T>() * ((T(1)/T(2))*detail::pi<T>())) {
     using W = detail::wide_t<T>;
     return T(tent_tanh_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_tanh_sq_diff<double>(double(x), double(hh)));
   }
   return tent_tanh_sq_diff<T>(x, hh);
 }
@@ -4217,6 +4335,9 @@ T tent_log(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_log_series<W>(W(x), W(hh)));
   }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_log_diff<double>(double(x), double(hh)));
+  }
   return tent_log_diff<T>(x, hh);
 }
 
@@ -4252,6 +4373,9 @@ T tent_log_sq_raw(T x, T sigma) {
   if (hh <= detail::series_reach<T>() * r) {
     using W = detail::wide_t<T>;
     return T(tent_log_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_log_sq_diff<double>(double(x), double(hh)));
   }
   return tent_log_sq_diff<T>(x, hh);
 }
@@ -4379,6 +4503,9 @@ T tent_sqrt_raw(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_sqrt_series<W>(W(x), W(hh)));
   }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_sqrt_diff<double>(double(x), double(hh)));
+  }
   return tent_sqrt_diff<T>(x, hh);
 }
 
@@ -4420,6 +4547,9 @@ T tent_sqrt_sq_raw(T x, T sigma) {
   if (hh <= detail::series_reach<T>() * r) {
     using W = detail::wide_t<T>;
     return T(tent_sqrt_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_sqrt_sq_diff<double>(double(x), double(hh)));
   }
   return tent_sqrt_sq_diff<T>(x, hh);
 }
@@ -4536,6 +4666,9 @@ T tent_inv(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_inv_series<W>(W(x), W(hh)));
   }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_inv_diff<double>(double(x), double(hh)));
+  }
   return tent_inv_diff<T>(x, hh);
 }
 
@@ -4568,6 +4701,9 @@ T tent_inv_sq_raw(T x, T sigma) {
   if (hh <= detail::series_reach<T>() * r) {
     using W = detail::wide_t<T>;
     return T(tent_inv_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_inv_sq_diff<double>(double(x), double(hh)));
   }
   return tent_inv_sq_diff<T>(x, hh);
 }
@@ -4692,6 +4828,9 @@ T tent_inv2_raw(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(tent_inv2_series<W>(W(x), W(hh)));
   }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_inv2_diff<double>(double(x), double(hh)));
+  }
   return tent_inv2_diff<T>(x, hh);
 }
 
@@ -4732,6 +4871,9 @@ T tent_inv2_sq_raw(T x, T sigma) {
   if (hh <= detail::series_reach<T>() * r) {
     using W = detail::wide_t<T>;
     return T(tent_inv2_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_inv2_sq_diff<double>(double(x), double(hh)));
   }
   return tent_inv2_sq_diff<T>(x, hh);
 }

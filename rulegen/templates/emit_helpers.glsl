@@ -27,6 +27,8 @@ float bl_li2_series(float y) {
   for (int k = 1; k <= 30; ++k) {
     sum += p / float(k * k);
     p *= y;
+    // |y| <= 1/2: the tail is at most 2 |y|^(k+1)/(k+1)^2 (see emit_helpers.hpp)
+    if (2.0 * abs(p) <= 3e-8 * abs(sum) * float((k + 1) * (k + 1))) break;
   }
   return sum;
 }

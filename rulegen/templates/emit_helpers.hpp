@@ -99,10 +99,17 @@ T clausen2(T t) {
 // At most 60 terms of ratio <= 1/2.
 template <class T>
 T li2_series(T y) {
+  using std::abs;
   T sum = T(0), p = y;
+  // |y| <= 1/2 (li2's own arguments): the tail after term k is at most 2 |y|^(k+1)/(k+1)^2, so
+  // stop once that is below eps |sum| (~45 terms in double, ~20 in float at |y| = 1/2, fewer
+  // for small |y|: tanh's -exp(-2|x|)).
+  const bool fast = abs(y) <= T(0.5);
+  const T tol = std::numeric_limits<T>::epsilon() * T(0.5);
   for (int k = 1; k <= 60; ++k) {
     sum += p / T(k * k);
     p *= y;
+    if (fast && T(2) * abs(p) <= tol * abs(sum) * T((k + 1) * (k + 1))) break;
   }
   return sum;
 }

@@ -157,11 +157,13 @@ void bl_upper_moments(float t, int deg, out float U[8]) {
 // Gauss-Legendre for narrow pieces not deep in a tail, otherwise Taylor coefficients about the
 // centre times partial moments built from non-negative tails.
 float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float hi, float c[8]) {
-  if (!(hi > lo)) return 0.0;
+  int deg = bl_degree(c);
+  if (!(hi > lo) || (deg == 0 && c[0] == 0.0)) return 0.0;  // empty piece or f = 0 on it
   bool loinf = bl_is_inf(lo);
   bool hiinf = bl_is_inf(hi);
-  int deg = bl_degree(c);
   if (!loinf && !hiinf) {
+    // A bounded piece 40 sd away carries no mass in float (support.hpp, gauss_core).
+    if (dl >= 40.0 * sigma || dh <= -40.0 * sigma) return 0.0;
     float hw = (hi - lo) / (2.0 * sigma);
     float cz = (dl + dh) / (2.0 * sigma);
     if (hw <= 1.0 && abs(cz) * hw <= 10.0) {

@@ -5,7 +5,7 @@ validator=$1
 dir=$2
 n=0
 for f in "$dir"/*.frag; do
-  if ! out=$("$validator" -S frag "$f" 2>&1); then
+  if ! out=$("$validator" -l -S frag "$f" 2>&1); then
     echo "FAILED: $f"
     echo "$out" | head -20
     exit 1
