@@ -1,4 +1,5 @@
-// Code out (issue 12 item 5): a tiny bltune run over the 7 suite patterns writes front/<label>.glsl
+// Code out (issue 12 item 5): a tiny bltune run over the 7 suite patterns, written in GLSL
+// (scenes/glsl/suite: the suite's *_none scenes naming scenes/glsl/<pattern>.glsl), writes front/<label>.glsl
 // and .hpp for every front point; each GLSL file compiles with glslangValidator (-l, as 450 and as
 // 320 es, wrapped in the renderer's fragment main) and, executed on the headless GL driver, renders
 // what the C++ evaluator renders for the schedule read back from front.csv (blrender --schedule's
@@ -66,7 +67,7 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
   phase("cost model");
   const std::string out = (work / "out").string();
   const std::string cmd =
-      std::string(BLTUNE) + " --suite " BL_SOURCE_DIR "/scenes/suite --only _none --out " + out +
+      std::string(BLTUNE) + " --suite " BL_SOURCE_DIR "/scenes/glsl/suite --only _none --out " + out +
       " --cache " + (work / "cache").string() + " --cost-model " + (work / "cost.json").string() +
       " --image 24 --truth-samples 8 --rules none,dorn,mc2,box,rule2"
       " --population 6 --generations 1 --restarts 1 --pixels 120 --nm-evals 3 --max-points 3"
@@ -87,7 +88,7 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
   for (const char* name : {"bricks_none", "checkerboard_none", "circles_none", "color_circles_none",
                            "fire_none", "quadratic_sine_none", "zigzag_none"}) {
     SCOPED_TRACE(name);
-    scene::Scene s = scene::load_scene(std::string(BL_SOURCE_DIR "/scenes/suite/") + name + ".json");
+    scene::Scene s = scene::load_scene(std::string(BL_SOURCE_DIR "/scenes/glsl/suite/") + name + ".json");
     s.width = s.height = kImage;
     const ir::Graph g = shaders::trace(shaders::find_shader(s.shader), s.effects());
     const std::string dir = out + "/" + name, csv = dir + "/front.csv";

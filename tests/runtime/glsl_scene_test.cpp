@@ -109,17 +109,18 @@ TEST(GlslScene, TextureSlotsRenderLikeTheBuiltIn) {
   }
 }
 
-// Every example scene in scenes/glsl loads and traces (the five user-style patterns included).
+// Every example scene under scenes/glsl loads and traces (the five user-style patterns and the
+// suite's *_none scenes in GLSL included).
 TEST(GlslScene, ExampleScenesLoad) {
   int n = 0;
-  for (const auto& e : fs::directory_iterator(BL_SCENES_DIR "/glsl")) {
+  for (const auto& e : fs::recursive_directory_iterator(BL_SCENES_DIR "/glsl")) {
     if (e.path().extension() != ".json") continue;
     const scene::Scene s = scene::load_scene(e.path().string());
     EXPECT_TRUE(s.glsl) << e.path();
     EXPECT_GT(shaders::trace(s.shader_def(), s.effects()).size(), 10) << e.path();
     ++n;
   }
-  EXPECT_GE(n, 7);
+  EXPECT_GE(n, 14);
 }
 
 TEST(GlslScene, ErrorsNameTheSceneTheFieldAndTheGlslLine) {
