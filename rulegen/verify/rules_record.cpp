@@ -15,6 +15,49 @@ double round2(double v) {
   const double e = std::pow(10.0, std::floor(std::log10(std::abs(v))) - 1);
   return std::round(v / e) * e;
 }
+
+bool read_manifest(const std::string& path, nlohmann::ordered_json* doc, std::string* error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    *error = "cannot read " + path;
+    return false;
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  try {
+    *doc = nlohmann::ordered_json::parse(ss.str());
+  } catch (const std::exception& e) {
+    *error = path + ": " + e.what();
+    return false;
+  }
+  return true;
+}
+
+// A check the tree lacks fails when the manifest lists the rule: the compiled tree and its manifest
+// disagree, and passing would hide an unchecked rule.
+void absent_but_listed(const std::string& path, std::vector<RuleCheck>& rs) {
+  nlohmann::ordered_json doc;
+  std::string error;
+  if (!read_manifest(path, &doc, &error)) {
+    for (auto& r : rs)
+      if (!r.absent.empty()) {
+        r.absent.clear();  // cannot tell: fail rather than pass unchecked
+        r.worst_case = "absent from the tree, and its manifest is unreadable (" + error + ")";
+        r.worst_mean = INFINITY;
+      }
+    return;
+  }
+  for (auto& r : rs) {
+    if (r.absent.empty()) continue;
+    for (const auto& e : doc["entries"])
+      if (e.contains("cpp") && e["cpp"] == r.cpp) {
+        r.worst_case = "absent from the compiled tree, but " + path + " lists it";
+        r.absent.clear();
+        r.worst_mean = INFINITY;
+        break;
+      }
+  }
+}
 }  // namespace
 
 void print_rule_checks(std::FILE* out, const std::vector<RuleCheck>& rs) {
@@ -23,27 +66,20 @@ void print_rule_checks(std::FILE* out, const std::vector<RuleCheck>& rs) {
   for (const auto& r : rs)
     std::fprintf(out, "                 %-26s %-15s %6ld %8ld %10.2g %10.2g  %s\n", r.cpp.c_str(),
                  r.kind.c_str(), r.cases, r.skipped, round2(r.worst_mean), round2(r.worst_var),
-                 r.failed() ? "FAIL" : "pass");
+                 !r.absent.empty() ? "absent"
+                 : r.failed()      ? "FAIL"
+                                   : "pass");
+  for (const auto& r : rs)
+    if (!r.absent.empty()) std::fprintf(out, "  %s: not checked: %s\n", r.cpp.c_str(), r.absent.c_str());
   for (const auto& r : rs)
     if (r.failed()) std::fprintf(out, "  %s worst case %s\n", r.cpp.c_str(), r.worst_case.c_str());
 }
 
 bool record_rule_checks(const std::string& path, const std::vector<RuleCheck>& rs, std::string* error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    *error = "cannot read " + path;
-    return false;
-  }
-  std::stringstream ss;
-  ss << in.rdbuf();
   nlohmann::ordered_json doc;
-  try {
-    doc = nlohmann::ordered_json::parse(ss.str());
-  } catch (const std::exception& e) {
-    *error = path + ": " + e.what();
-    return false;
-  }
+  if (!read_manifest(path, &doc, error)) return false;
   for (const auto& r : rs) {
+    if (!r.absent.empty()) continue;  // not in the tree, so no manifest entry (absent_but_listed)
     bool found = false;
     for (auto& e : doc["entries"]) {
       if (!e.contains("cpp") || e["cpp"] != r.cpp) continue;
@@ -84,6 +120,7 @@ bool record_rule_checks(const std::string& path, const std::vector<RuleCheck>& r
 int run_rule_checks(const std::string& manifest, bool record, int rc) {
   std::vector<RuleCheck> rs = check_bivariate();
   for (auto& r : check_rule2()) rs.push_back(r);
+  absent_but_listed(manifest, rs);
   print_rule_checks(stdout, rs);
   std::fflush(stdout);
   for (const auto& r : rs)
@@ -93,8 +130,12 @@ int run_rule_checks(const std::string& manifest, bool record, int rc) {
     }
   double secs = 0;
   for (const auto& r : rs) secs += r.seconds;
-  std::fprintf(stderr, "blverify: %zu rule checks (bivariate Monte Carlo, Rule 2 references) in %.1f s\n",
-               rs.size(), secs);
+  int nabsent = 0;
+  for (const auto& r : rs) nabsent += !r.absent.empty();
+  std::fprintf(stderr,
+               "blverify: %zu rule checks (bivariate Monte Carlo, Rule 2 references) in %.1f s, %d rules "
+               "absent from this tree (not checked)\n",
+               rs.size() - nabsent, secs, nabsent);
   std::string error;
   if (record && !record_rule_checks(manifest, rs, &error)) {
     std::fprintf(stderr, "blverify: --record: %s\n", error.c_str());

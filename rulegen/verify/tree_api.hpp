@@ -14,7 +14,7 @@
 namespace blv {
 
 // Bumped whenever TreeApi or the types it passes change (a cached plugin of another ABI is rebuilt).
-constexpr int kTreeAbi = 1;
+constexpr int kTreeAbi = 2;
 
 struct TreeApi {
   int abi;
