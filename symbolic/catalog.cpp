@@ -1,13 +1,13 @@
 #include "catalog.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
 #include <sstream>
 
+#include "exp_poly.hpp"
 #include "functions.hpp"
 #include "monotone.hpp"
 
@@ -155,12 +155,51 @@ void check_breaks(const Ctx& c, const Atomic& a) {
     c.fail("kinks", "declares " + show(sorted(a.kinks)) + " but the pieces have kinks at " + show(sorted(kinks)));
 }
 
+// A piecewise piece outside the polynomials: an exp-polynomial sum c x^n e^{a x} with real rational
+// rates a (sin/cos on a finite interval would need a complex erf), polynomial degree <= 3 per rate
+// (f^2 then has degree 6 and the tent's weight one more: the runtime's 8 coefficients), and no
+// exponential growth towards an infinite end of the piece (the smoothed values would not exist for
+// box/tent in a shader's float range, and such an f has no finite range).
+void check_exp_piece(const Ctx& c, size_t i, const Piece& p, const ex& f) {
+  const std::string which = "piece " + std::to_string(i);
+  ExpPoly e;
+  try {
+    e = ExpPoly::from(f);
+  } catch (const std::invalid_argument& err) {
+    c.fail("pieces", which + " is neither a polynomial nor an exp-polynomial in x (" + err.what() + ")");
+  }
+  for (const auto& [k, coeff] : e.terms()) {
+    std::ostringstream t;
+    t << "x^" << k.n << " e^(" << k.a << " x)";
+    if (!k.a.is_real() || !coeff.is_real())
+      c.fail(
+          "pieces",
+          which + ": the term " + t.str() +
+              " has a complex rate (sin/cos pieces on an interval are not supported; use the entire class)");
+    if (k.n > 3) c.fail("pieces", which + ": the term " + t.str() + " has a power above 3");
+    if (p.hi.inf == 1 && k.a > 0)
+      c.fail("pieces", which + ": the term " + t.str() + " grows exponentially towards +inf");
+    if (p.lo.inf == -1 && k.a < 0)
+      c.fail("pieces", which + ": the term " + t.str() + " grows exponentially towards -inf");
+  }
+}
+
 void check_polynomial_pieces(const Ctx& c, Atomic& a) {
   const symbol& x = var_x();
   if (a.pieces.empty()) c.fail("pieces", "at least one piece is required");
   for (size_t i = 0; i < a.pieces.size(); ++i) {
     const ex f = a.pieces[i].f.expand();
-    if (!f.is_polynomial(x)) c.fail("pieces", "piece " + std::to_string(i) + " is not a polynomial in x");
+    if (!f.is_polynomial(x)) {
+      if (a.cls == AtomicClass::Periodic)
+        c.fail("pieces",
+               "piece " + std::to_string(i) + " is not a polynomial in x (periodic pieces are polynomials)");
+      check_exp_piece(c, i, a.pieces[i], f);
+      a.pieces[i].f = f;
+      if (i > 0 && !same_value(a.pieces[i - 1].hi.value, a.pieces[i].lo.value))
+        c.fail("pieces", "piece " + std::to_string(i) + " does not start where piece " +
+                             std::to_string(i - 1) + " ends");
+      continue;
+    }
     if (f.degree(x) > (a.cls == AtomicClass::Periodic ? 2 : 3))
       c.fail("pieces", "piece " + std::to_string(i) + " has too high a degree (max 3, periodic 2: its square and, for a period, its second integral must fit the runtime degree-7 pieces)");
     a.pieces[i].f = f;

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -85,6 +86,60 @@ std::vector<PolyPiece> polynomial_pieces(const Atomic& a, bool squared) {
   return out;
 }
 
+bool has_exp_pieces(const Atomic& a) {
+  if (a.cls != AtomicClass::Piecewise) return false;
+  for (const Piece& p : a.pieces)
+    if (!p.f.expand().is_polynomial(var_x())) return true;
+  return false;
+}
+
+namespace {
+
+// Terms of one exp-polynomial g on [lo, hi): per rate a, the polynomial q_a with g = sum q_a(x) e^{a x},
+// rewritten in s = x - ref as e^{a s} [e^{a ref} q_a(ref + s)].
+void append_terms(const ex& g, const Bound& lo, const Bound& hi, std::vector<ExpTermSpec>& out) {
+  const symbol& x = var_x();
+  const ExpPoly e = ExpPoly::from(g.expand());
+  std::map<numeric, ex, std::function<bool(const numeric&, const numeric&)>> by_rate(
+      [](const numeric& u, const numeric& v) { return u < v; });
+  for (const auto& [k, c] : e.terms()) {
+    if (!k.a.is_real() || !c.is_real())
+      throw std::invalid_argument("complex exp-polynomial term on an interval");
+    auto it = by_rate.find(k.a);
+    if (it == by_rate.end()) it = by_rate.emplace(k.a, ex(0)).first;
+    it->second += c * pow(x, k.n);
+  }
+  const ex ref = lo.finite() ? lo.value : (hi.finite() ? hi.value : ex(0));
+  const symbol s("s");
+  for (const auto& [a, q] : by_rate) {
+    const ex qs = (q.subs(x == ref + s) * exp(a * ref)).expand();
+    ExpTermSpec t{lo, hi, a, ref, {}};
+    for (int k = 0; k <= qs.degree(s); ++k) {
+      ex ck = qs.coeff(s, k);
+      if (!is_a<numeric>(ck)) ck = ck.evalf();  // e^{a ref}: a float constant
+      t.c.push_back(ck);
+    }
+    out.push_back(t);
+  }
+}
+
+}  // namespace
+
+std::vector<ExpTermSpec> exp_terms(const Atomic& a, bool squared) {
+  std::vector<ExpTermSpec> out;
+  for (const Piece& p : a.pieces) append_terms(squared ? pow(p.f, 2) : p.f, p.lo, p.hi, out);
+  return out;
+}
+
+std::vector<ExpTermSpec> exp_terms_whole_line(const ex& f) {
+  std::vector<ExpTermSpec> out;
+  Bound lo, hi;
+  lo.inf = -1;
+  hi.inf = 1;
+  append_terms(f, lo, hi, out);
+  return out;
+}
+
 namespace {
 
 // Continuous antiderivative of whole-line pieces, 0 at the first finite break (Heckbert's
@@ -149,7 +204,52 @@ ex gaussian_closed_form(const std::vector<PolyPiece>& ps) {
   return result;
 }
 
+// The exp-polynomial terms as text, for the manifest.
+std::string eterms_text(const std::vector<ExpTermSpec>& ts) {
+  const symbol s("s");
+  std::string out = "{";
+  for (size_t i = 0; i < ts.size(); ++i) {
+    ex q = 0;
+    for (size_t k = 0; k < ts[i].c.size(); ++k) q += ts[i].c[k] * ipow(s, static_cast<int>(k));
+    out += (i ? "; " : "") + text(q) + (ts[i].a.is_zero() ? "" : " * exp(" + text(ts[i].a * s) + ")") +
+           ", s = x - " + text(ts[i].ref) + " on [" + bound_text(ts[i].lo) + ", " + bound_text(ts[i].hi) +
+           ")";
+  }
+  return out + "}";
+}
+
+void derive_exp_table(Kernel k, Derived& d) {
+  d.body = Body::ExpPieceTable;
+  std::string how;
+  switch (k) {
+    case Kernel::Gaussian:
+      how =
+          "sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds over "
+          "the "
+          "term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal moments in "
+          "erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >= 2 sigma "
+          "outside)";
+      break;
+    case Kernel::Box:
+      how =
+          "sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h = sqrt(3) "
+          "sigma (incomplete gamma moments from the end where e^(a s) is largest)";
+      break;
+    case Kernel::Tent:
+      how =
+          "sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w], w = "
+          "sqrt(6) sigma (each half by incomplete gamma moments)";
+      break;
+  }
+  d.formula = how + "; terms " + eterms_text(d.eterms);
+}
+
 void derive_piecewise(const Atomic& a, Kernel k, bool sq, Derived& d) {
+  if (has_exp_pieces(a)) {
+    d.eterms = exp_terms(a, sq);
+    derive_exp_table(k, d);
+    return;
+  }
   d.body = Body::PiecewiseTable;
   // Adjacent pieces with the same polynomial merge (abs^2 = x^2, sign^2 = 1 on the whole line).
   for (const PolyPiece& p : polynomial_pieces(a, sq)) {
@@ -507,6 +607,17 @@ std::vector<Derived> derive_all(const Catalog& cat, int max_moment, std::vector<
             try {
               ExpPoly f = ExpPoly::from(a.f.expand());
               if (sq) f = f * f;
+              // x^n e^{a x} (n > 0, a real != 0): the exp-polynomial terms on the whole line.
+              bool power_times_exp = false, complex_rate = false;
+              for (const auto& [key, c] : f.terms()) {
+                if (key.n > 0 && !key.a.is_zero()) power_times_exp = true;
+                if (!key.a.is_real()) complex_rate = true;
+              }
+              if (power_times_exp && !complex_rate) {
+                d.eterms = exp_terms_whole_line(f.to_ex());
+                derive_exp_table(k, d);
+                break;
+              }
               d.body = Body::Closed;
               d.closed = f.convolve(k);
             } catch (const std::invalid_argument& e) {

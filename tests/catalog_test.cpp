@@ -95,6 +95,31 @@ TEST(Catalog, OutsideTheDerivableClassIsRejected) {
                "flt", "range", "exact expressions");
 }
 
+// Issue 15: exp(-|x|) was rejected ("piece 0 is not a polynomial in x"); exp-polynomial pieces are
+// in the piecewise class now, within limits that name the piece and the term.
+TEST(Catalog, ExpPolynomialPieces) {
+  EXPECT_EQ(
+      error_of(wrap(R"J({"name": "bump", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "kinks": [0], "pieces": [{"on": ["-inf", 0], "f": "exp(x)"}, {"on": [0, "inf"], "f": "exp(-x)"}]})J")),
+      "");
+  EXPECT_EQ(
+      error_of(wrap(R"J({"name": "charge", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "kinks": [0], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "1 - exp(-x/2)"}]})J")),
+      "");
+  expect_error(wrap(R"J({"name": "grow", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, "inf"],
+    "jumps": [0], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "exp(x)"}]})J"),
+               "grow", "pieces", "grows exponentially towards +inf");
+  expect_error(wrap(R"J({"name": "wave", "class": "piecewise", "domain": ["-inf", "inf"], "range": [-1, 1],
+    "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "sin(x)*exp(-x)"}]})J"),
+               "wave", "pieces", "complex rate");
+  expect_error(wrap(R"J({"name": "steep", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "x^4*exp(-x)"}]})J"),
+               "steep", "pieces", "power above 3");
+  expect_error(wrap(R"J({"name": "lg", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "pieces": [{"on": ["-inf", 1], "f": "0"}, {"on": [1, "inf"], "f": "log(x)"}]})J"),
+               "lg", "pieces", "neither a polynomial nor an exp-polynomial");
+}
+
 TEST(Catalog, NotJsonIsRejectedWithTheFileName) {
   try {
     bl::sym::parse_catalog("{\"atomics\": [", "broken.json");

@@ -47,6 +47,12 @@ T plain_saturate(T x);
 template <class T>
 T plain_smoothstep(T x);
 template <class T>
+T plain_laplace(T x);
+template <class T>
+T plain_exp_decay(T x);
+template <class T>
+T plain_exp_ramp(T x);
+template <class T>
 T plain_fract(T x);
 template <class T>
 T plain_triangle(T x);
@@ -274,6 +280,42 @@ template <class T>
 T tent_smoothstep(T x, T sigma);
 template <class T>
 T tent_smoothstep_sq(T x, T sigma);
+template <class T>
+T gaussian_laplace(T x, T sigma);
+template <class T>
+T gaussian_laplace_sq(T x, T sigma);
+template <class T>
+T box_laplace(T x, T sigma);
+template <class T>
+T box_laplace_sq(T x, T sigma);
+template <class T>
+T tent_laplace(T x, T sigma);
+template <class T>
+T tent_laplace_sq(T x, T sigma);
+template <class T>
+T gaussian_exp_decay(T x, T sigma);
+template <class T>
+T gaussian_exp_decay_sq(T x, T sigma);
+template <class T>
+T box_exp_decay(T x, T sigma);
+template <class T>
+T box_exp_decay_sq(T x, T sigma);
+template <class T>
+T tent_exp_decay(T x, T sigma);
+template <class T>
+T tent_exp_decay_sq(T x, T sigma);
+template <class T>
+T gaussian_exp_ramp(T x, T sigma);
+template <class T>
+T gaussian_exp_ramp_sq(T x, T sigma);
+template <class T>
+T box_exp_ramp(T x, T sigma);
+template <class T>
+T box_exp_ramp_sq(T x, T sigma);
+template <class T>
+T tent_exp_ramp(T x, T sigma);
+template <class T>
+T tent_exp_ramp_sq(T x, T sigma);
 template <class T>
 T gaussian_fract(T x, T sigma);
 template <class T>
@@ -655,6 +697,27 @@ T plain_smoothstep(T x) {
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   return detail::pw_eval(x, p);
+}
+
+template <class T>
+T plain_laplace(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return exp(x);
+  return exp((-x));
+}
+
+template <class T>
+T plain_exp_decay(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return T(0);
+  return exp((-x));
+}
+
+template <class T>
+T plain_exp_ramp(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return T(0);
+  return (exp((-x))*x);
 }
 
 template <class T>
@@ -2536,6 +2599,434 @@ T tent_smoothstep_sq(T x, T sigma) {
   const T v = tent_smoothstep_sq_raw<T>(x, sigma);
   if (v < T(0)) return T(0);
   if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {1 * exp(s), s = x - 0 on [-inf, 0); 1 * exp((-s)), s = x - 0 on [0,
+//   inf)}
+template <class T>
+T gaussian_laplace_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_laplace(T x, T sigma) {
+  const T v = gaussian_laplace_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {1 * exp((2*s)), s = x - 0 on [-inf, 0); 1 * exp(((-2)*s)), s = x - 0
+//   on [0, inf)}
+template <class T>
+T gaussian_laplace_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_laplace_sq(T x, T sigma) {
+  const T v = gaussian_laplace_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {1 *
+//   exp(s), s = x - 0 on [-inf, 0); 1 * exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_laplace_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_laplace(T x, T sigma) {
+  const T v = box_laplace_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {1 *
+//   exp((2*s)), s = x - 0 on [-inf, 0); 1 * exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_laplace_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_laplace_sq(T x, T sigma) {
+  const T v = box_laplace_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {1 * exp(s), s = x - 0 on
+//   [-inf, 0); 1 * exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T tent_laplace_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_laplace(T x, T sigma) {
+  const T v = tent_laplace_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {1 * exp((2*s)), s = x - 0
+//   on [-inf, 0); 1 * exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T tent_laplace_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_laplace_sq(T x, T sigma) {
+  const T v = tent_laplace_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {1 * exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T gaussian_exp_decay_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_exp_decay(T x, T sigma) {
+  const T v = gaussian_exp_decay_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {1 * exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T gaussian_exp_decay_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_exp_decay_sq(T x, T sigma) {
+  const T v = gaussian_exp_decay_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {1 *
+//   exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_exp_decay_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_exp_decay(T x, T sigma) {
+  const T v = box_exp_decay_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {1 *
+//   exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_exp_decay_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_exp_decay_sq(T x, T sigma) {
+  const T v = box_exp_decay_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {1 * exp((-s)), s = x - 0 on
+//   [0, inf)}
+template <class T>
+T tent_exp_decay_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_exp_decay(T x, T sigma) {
+  const T v = tent_exp_decay_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {1 * exp(((-2)*s)), s = x -
+//   0 on [0, inf)}
+template <class T>
+T tent_exp_decay_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_exp_decay_sq(T x, T sigma) {
+  const T v = tent_exp_decay_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {s * exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T gaussian_exp_ramp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_exp_ramp(T x, T sigma) {
+  const T v = gaussian_exp_ramp_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-1)))) return exp((T(-1)));
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {(s)^(2) * exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T gaussian_exp_ramp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_exp_ramp_sq(T x, T sigma) {
+  const T v = gaussian_exp_ramp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-2)))) return exp((T(-2)));
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {s *
+//   exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_exp_ramp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_exp_ramp(T x, T sigma) {
+  const T v = box_exp_ramp_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-1)))) return exp((T(-1)));
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms
+//   {(s)^(2) * exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_exp_ramp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_exp_ramp_sq(T x, T sigma) {
+  const T v = box_exp_ramp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-2)))) return exp((T(-2)));
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {s * exp((-s)), s = x - 0 on
+//   [0, inf)}
+template <class T>
+T tent_exp_ramp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_exp_ramp(T x, T sigma) {
+  const T v = tent_exp_ramp_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-1)))) return exp((T(-1)));
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {(s)^(2) * exp(((-2)*s)), s
+//   = x - 0 on [0, inf)}
+template <class T>
+T tent_exp_ramp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_exp_ramp_sq(T x, T sigma) {
+  const T v = tent_exp_ramp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-2)))) return exp((T(-2)));
   return v;
 }
 
@@ -5016,6 +5507,12 @@ inline float saturate(float x) { return detail::gen::plain_saturate<float>(x); }
 inline double saturate(double x) { return detail::gen::plain_saturate<double>(x); }
 inline float smoothstep(float x) { return detail::gen::plain_smoothstep<float>(x); }
 inline double smoothstep(double x) { return detail::gen::plain_smoothstep<double>(x); }
+inline float laplace(float x) { return detail::gen::plain_laplace<float>(x); }
+inline double laplace(double x) { return detail::gen::plain_laplace<double>(x); }
+inline float exp_decay(float x) { return detail::gen::plain_exp_decay<float>(x); }
+inline double exp_decay(double x) { return detail::gen::plain_exp_decay<double>(x); }
+inline float exp_ramp(float x) { return detail::gen::plain_exp_ramp<float>(x); }
+inline double exp_ramp(double x) { return detail::gen::plain_exp_ramp<double>(x); }
 inline float fract(float x) { return detail::gen::plain_fract<float>(x); }
 inline double fract(double x) { return detail::gen::plain_fract<double>(x); }
 inline float triangle(float x) { return detail::gen::plain_triangle<float>(x); }
@@ -5111,6 +5608,18 @@ inline float smoothstep(float x, float sigma) { return detail::gen::gaussian_smo
 inline double smoothstep(double x, double sigma) { return detail::gen::gaussian_smoothstep<double>(x, sigma); }
 inline float smoothstep_sq(float x, float sigma) { return detail::gen::gaussian_smoothstep_sq<float>(x, sigma); }
 inline double smoothstep_sq(double x, double sigma) { return detail::gen::gaussian_smoothstep_sq<double>(x, sigma); }
+inline float laplace(float x, float sigma) { return detail::gen::gaussian_laplace<float>(x, sigma); }
+inline double laplace(double x, double sigma) { return detail::gen::gaussian_laplace<double>(x, sigma); }
+inline float laplace_sq(float x, float sigma) { return detail::gen::gaussian_laplace_sq<float>(x, sigma); }
+inline double laplace_sq(double x, double sigma) { return detail::gen::gaussian_laplace_sq<double>(x, sigma); }
+inline float exp_decay(float x, float sigma) { return detail::gen::gaussian_exp_decay<float>(x, sigma); }
+inline double exp_decay(double x, double sigma) { return detail::gen::gaussian_exp_decay<double>(x, sigma); }
+inline float exp_decay_sq(float x, float sigma) { return detail::gen::gaussian_exp_decay_sq<float>(x, sigma); }
+inline double exp_decay_sq(double x, double sigma) { return detail::gen::gaussian_exp_decay_sq<double>(x, sigma); }
+inline float exp_ramp(float x, float sigma) { return detail::gen::gaussian_exp_ramp<float>(x, sigma); }
+inline double exp_ramp(double x, double sigma) { return detail::gen::gaussian_exp_ramp<double>(x, sigma); }
+inline float exp_ramp_sq(float x, float sigma) { return detail::gen::gaussian_exp_ramp_sq<float>(x, sigma); }
+inline double exp_ramp_sq(double x, double sigma) { return detail::gen::gaussian_exp_ramp_sq<double>(x, sigma); }
 inline float fract(float x, float sigma) { return detail::gen::gaussian_fract<float>(x, sigma); }
 inline double fract(double x, double sigma) { return detail::gen::gaussian_fract<double>(x, sigma); }
 inline float fract_sq(float x, float sigma) { return detail::gen::gaussian_fract_sq<float>(x, sigma); }
@@ -5208,6 +5717,18 @@ inline float smoothstep(float x, float sigma) { return detail::gen::box_smoothst
 inline double smoothstep(double x, double sigma) { return detail::gen::box_smoothstep<double>(x, sigma); }
 inline float smoothstep_sq(float x, float sigma) { return detail::gen::box_smoothstep_sq<float>(x, sigma); }
 inline double smoothstep_sq(double x, double sigma) { return detail::gen::box_smoothstep_sq<double>(x, sigma); }
+inline float laplace(float x, float sigma) { return detail::gen::box_laplace<float>(x, sigma); }
+inline double laplace(double x, double sigma) { return detail::gen::box_laplace<double>(x, sigma); }
+inline float laplace_sq(float x, float sigma) { return detail::gen::box_laplace_sq<float>(x, sigma); }
+inline double laplace_sq(double x, double sigma) { return detail::gen::box_laplace_sq<double>(x, sigma); }
+inline float exp_decay(float x, float sigma) { return detail::gen::box_exp_decay<float>(x, sigma); }
+inline double exp_decay(double x, double sigma) { return detail::gen::box_exp_decay<double>(x, sigma); }
+inline float exp_decay_sq(float x, float sigma) { return detail::gen::box_exp_decay_sq<float>(x, sigma); }
+inline double exp_decay_sq(double x, double sigma) { return detail::gen::box_exp_decay_sq<double>(x, sigma); }
+inline float exp_ramp(float x, float sigma) { return detail::gen::box_exp_ramp<float>(x, sigma); }
+inline double exp_ramp(double x, double sigma) { return detail::gen::box_exp_ramp<double>(x, sigma); }
+inline float exp_ramp_sq(float x, float sigma) { return detail::gen::box_exp_ramp_sq<float>(x, sigma); }
+inline double exp_ramp_sq(double x, double sigma) { return detail::gen::box_exp_ramp_sq<double>(x, sigma); }
 inline float fract(float x, float sigma) { return detail::gen::box_fract<float>(x, sigma); }
 inline double fract(double x, double sigma) { return detail::gen::box_fract<double>(x, sigma); }
 inline float fract_sq(float x, float sigma) { return detail::gen::box_fract_sq<float>(x, sigma); }
@@ -5329,6 +5850,18 @@ inline float smoothstep(float x, float sigma) { return detail::gen::tent_smooths
 inline double smoothstep(double x, double sigma) { return detail::gen::tent_smoothstep<double>(x, sigma); }
 inline float smoothstep_sq(float x, float sigma) { return detail::gen::tent_smoothstep_sq<float>(x, sigma); }
 inline double smoothstep_sq(double x, double sigma) { return detail::gen::tent_smoothstep_sq<double>(x, sigma); }
+inline float laplace(float x, float sigma) { return detail::gen::tent_laplace<float>(x, sigma); }
+inline double laplace(double x, double sigma) { return detail::gen::tent_laplace<double>(x, sigma); }
+inline float laplace_sq(float x, float sigma) { return detail::gen::tent_laplace_sq<float>(x, sigma); }
+inline double laplace_sq(double x, double sigma) { return detail::gen::tent_laplace_sq<double>(x, sigma); }
+inline float exp_decay(float x, float sigma) { return detail::gen::tent_exp_decay<float>(x, sigma); }
+inline double exp_decay(double x, double sigma) { return detail::gen::tent_exp_decay<double>(x, sigma); }
+inline float exp_decay_sq(float x, float sigma) { return detail::gen::tent_exp_decay_sq<float>(x, sigma); }
+inline double exp_decay_sq(double x, double sigma) { return detail::gen::tent_exp_decay_sq<double>(x, sigma); }
+inline float exp_ramp(float x, float sigma) { return detail::gen::tent_exp_ramp<float>(x, sigma); }
+inline double exp_ramp(double x, double sigma) { return detail::gen::tent_exp_ramp<double>(x, sigma); }
+inline float exp_ramp_sq(float x, float sigma) { return detail::gen::tent_exp_ramp_sq<float>(x, sigma); }
+inline double exp_ramp_sq(double x, double sigma) { return detail::gen::tent_exp_ramp_sq<double>(x, sigma); }
 inline float fract(float x, float sigma) { return detail::gen::tent_fract<float>(x, sigma); }
 inline double fract(double x, double sigma) { return detail::gen::tent_fract<double>(x, sigma); }
 inline float fract_sq(float x, float sigma) { return detail::gen::tent_fract_sq<float>(x, sigma); }
