@@ -598,7 +598,7 @@ float bl_gauss_exp_term(float x, float sigma, BlExpTerm p) {
   }
   float sum = 0.0;
   float sk = 1.0;
-  if (loinf || (al < 0.0 && (hiinf || be > 0.0))) {
+  if ((loinf || al < 0.0) && (hiinf || be > 0.0)) {  // the shifted centre inside the piece
     if (!loinf) bl_upper_moments_scaled(-al, bl_exp_lw(p, p.lo, el, sigma), deg, Ua);
     if (!hiinf) bl_upper_moments_scaled(be, bl_exp_lw(p, p.hi, eh, sigma), deg, Ub);
     float eL = exp(L);
@@ -1460,6 +1460,15 @@ float bl_plain_square(float x) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   return bl_periodic_eval(x, 1.0, 2, p);
+}
+
+float bl_plain_pulse30(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 10.0, 2, p);
 }
 
 float bl_plain_floor(float x) {
@@ -3985,6 +3994,295 @@ float bl_tent_square_sq_raw(float x, float sigma) {
 
 float bl_tent_square_sq(float x, float sigma) {
   float v = bl_tent_square_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_pulse30_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  float s = sigma / period;
+  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
+  if (K >= 0) {
+    float xr = x - period * floor(x / period);
+    float acc = (3.0/10.0);
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      float cph3_10 = cos((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      float sph3_10 = sin((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
+      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
+      acc += damp * (((1.0/(bl_pi()))*(1.0/(kf))*sph3_10) * cos(th) + (-((-1.0) + cph3_10)*(1.0/(bl_pi()))*(1.0/(kf))) * sin(th));
+    }
+    return acc;
+  }
+  return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
+}
+
+float bl_gaussian_pulse30(float x, float sigma) {
+  float v = bl_gaussian_pulse30_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_pulse30_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  float s = sigma / period;
+  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
+  if (K >= 0) {
+    float xr = x - period * floor(x / period);
+    float acc = (0.0);
+    for (int k = 1; k <= K + 2; ++k) {
+      float kf = float(k);
+      float cph3_10 = cos((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      float sph3_10 = sin((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
+      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
+      acc += damp * w * ((-((-1.0) + cph3_10)*(1.0/(bl_pi()))*(1.0/(kf))) * cos(th) - ((1.0/(bl_pi()))*(1.0/(kf))*sph3_10) * sin(th));
+    }
+    return sigma * sigma * acc;
+  }
+  return bl_gauss_periodic_u_image(x, sigma, period, 2, p, (1.0));
+}
+
+float bl_gaussian_pulse30_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  if (x - R >= (0.0)) return bl_gaussian_pulse30(x, sigma);
+  if (x + R < (0.0)) return (0.0);
+  float cs[40] = float[40]((0.6597344572538566), (-0.27634892323050203), (-0.45579226720040733), (0.2963833943194581), (0.4258569933471977), (-0.30120109792671274), (-0.41893681950964473), (0.3023568905207193), (0.4172366915153417), (-0.3026383503577255), (-0.4168137637217804), (0.30270773949989743), (0.41670820988046586), (-0.30272496892497025), (-0.41668183839772005), (0.30272926258170507), (0.41667524726189387), (-0.3027303344355449), (-0.4166735996621471), (0.3027306022232349), (0.41667318778217927), (-0.30273066915047714), (-0.4166730848143763), (0.3027306858800916), (0.416673059072667), (-0.3027306900622506), (-0.4166730526372664), (0.30273069110776313), (0.4166730510284192), (-0.30273069136913827), (-0.4166730506262077), (0.3027306914344817), (0.4166730505256549), (-0.30273069145081755), (-0.4166730505005167), (0.3027306914549015), (0.41667305049423214), (-0.30273069145592246), (-0.41667305049266096), (0.3027306914561777));
+  return bl_gauss_periodic_right(x, sigma, period, 2, p, (1.0), (4.0), (3.0/10.0), 40, cs);
+}
+
+float bl_gaussian_pulse30_sq_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  float s = sigma / period;
+  int K = bl_fourier_terms_if_preferred(s, 2, (4.0), (1.0));
+  if (K >= 0) {
+    float xr = x - period * floor(x / period);
+    float acc = (3.0/10.0);
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      float cph3_10 = cos((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      float sph3_10 = sin((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      float w = (2.0) * bl_pi() * kf / period;
+      float th = w * xr;
+      float damp = exp((-2.0) * bl_pi() * bl_pi() * kf * kf * s * s);
+      acc += damp * (((1.0/(bl_pi()))*(1.0/(kf))*sph3_10) * cos(th) + (-((-1.0) + cph3_10)*(1.0/(bl_pi()))*(1.0/(kf))) * sin(th));
+    }
+    return acc;
+  }
+  return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
+}
+
+float bl_gaussian_pulse30_sq(float x, float sigma) {
+  float v = bl_gaussian_pulse30_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_pulse30_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  return bl_box_periodic(x, sigma, period, 2, p, p1);
+}
+
+float bl_box_pulse30(float x, float sigma) {
+  float v = bl_box_pulse30_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_pulse30_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  return bl_box_periodic_u(x, sigma, period, 2, p);
+}
+
+float bl_box_pulse30_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float hw = BL_SQRT3 * sigma;
+  if (x - hw >= (0.0)) return bl_box_pulse30(x, sigma);
+  if (x + hw <= (0.0)) return (0.0);
+  return bl_box_periodic_right(x, hw, period, 2, p, p1);
+}
+
+float bl_box_pulse30_sq_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  return bl_box_periodic(x, sigma, period, 2, p, p1);
+}
+
+float bl_box_pulse30_sq(float x, float sigma) {
+  float v = bl_box_pulse30_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_pulse30_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p2[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+}
+
+float bl_tent_pulse30(float x, float sigma) {
+  float v = bl_tent_pulse30_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_pulse30_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  return bl_tent_periodic_u(x, sigma, period, 2, p);
+}
+
+float bl_tent_pulse30_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p2[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float hw = BL_SQRT6 * sigma;
+  if (x - hw >= (0.0)) return bl_tent_pulse30(x, sigma);
+  if (x + hw <= (0.0)) return (0.0);
+  return bl_tent_periodic_right(x, hw, period, 2, p, p1, p2);
+}
+
+float bl_tent_pulse30_sq_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p2[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+}
+
+float bl_tent_pulse30_sq(float x, float sigma) {
+  float v = bl_tent_pulse30_sq_raw(x, sigma);
   if (v < 0.0) return 0.0;
   if (v > 1.0) return 1.0;
   return v;

@@ -526,6 +526,24 @@ float bl_deriv_square_d2(float x) {
   return bl_periodic_eval(x, 1.0, 2, p);
 }
 
+float bl_deriv_pulse30_d1(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 10.0, 2, p);
+}
+
+float bl_deriv_pulse30_d2(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 10.0, 2, p);
+}
+
 float bl_deriv_floor_d1(float x) {
   return 1.0 + (-1.0) * bl_deriv_fract_d1(x);
 }
@@ -735,6 +753,15 @@ float bl_clamped_plain_square(float x) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   return bl_periodic_eval(x, 1.0, 2, p);
+}
+
+float bl_clamped_plain_pulse30(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 10.0, 2, p);
 }
 
 float bl_clamped_plain_floor(float x) {
@@ -954,6 +981,14 @@ vec2 bl_rule3_square(float mu, float sigma) {
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_square(c), bl_deriv_square_d1(c), bl_deriv_square_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, 1.0);
+}
+
+vec2 bl_rule3_pulse30(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float c = m.mean;
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pulse30(c), bl_deriv_pulse30_d1(c), bl_deriv_pulse30_d2(c), m);
   return bl_rule3_in_range(s, 0.0, 1.0);
 }
 
@@ -1181,6 +1216,18 @@ vec2 bl_bimodal_square(float mu, float sigma) {
   vec2 cs = bl_bimodal_cut(mu, sigma, lo, hi, at, count);
   float m = bl_box_square(cs.x, cs.y);
   return vec2(m, max(bl_box_square_sq(cs.x, cs.y) - m * m, 0.0));
+}
+
+vec2 bl_bimodal_pulse30(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  if (sigma == 0.0) return vec2(bl_box_pulse30(mu, 0.0), 0.0);
+  float h = BL_SQRT3 * sigma, lo = mu - h, hi = mu + h, at = 0.0;
+  int count = 0;
+  { float kh = floor((hi - (0.0)) / (10.0)), kl = floor((lo - (0.0)) / (10.0)); count += int(kh - kl); if (kh > kl) at = (0.0) + (10.0) * kh; }
+  { float kh = floor((hi - (3.0)) / (10.0)), kl = floor((lo - (3.0)) / (10.0)); count += int(kh - kl); if (kh > kl) at = (3.0) + (10.0) * kh; }
+  vec2 cs = bl_bimodal_cut(mu, sigma, lo, hi, at, count);
+  float m = bl_box_pulse30(cs.x, cs.y);
+  return vec2(m, max(bl_box_pulse30_sq(cs.x, cs.y) - m * m, 0.0));
 }
 
 vec2 bl_bimodal_floor(float mu, float sigma) {

@@ -178,6 +178,16 @@ std::string fourier_branch(const Derived& d, const Syntax& s, int extra, const s
   out += "    " + s.decl("kf", s.cpp() ? "T(k)" : "float(k)");
   if (d.ak.has(sym::var_pk()) || d.bk.has(sym::var_pk()))
     out += "    " + s.decl("pk", std::string("(k % 2 == 1) ? ") + s.dbl(-1) + " : " + s.dbl(1));
+  // Phases of boundaries at p/q of the period, from the exact residue (k p) mod q.
+  for (const auto& ph : d.phases) {
+    const std::string pq = std::to_string(ph.p) + "_" + std::to_string(ph.q);
+    const std::string arg = s.dbl(2) + " * " + s.pi() + " * " + (s.cpp() ? "T(" : "float(") + "((k % " +
+                            std::to_string(ph.q) + ") * " + std::to_string(ph.p) + ") % " +
+                            std::to_string(ph.q) + ") / " + s.dbl(static_cast<double>(ph.q));
+    for (bool c : {true, false})
+      if (d.ak.has(sym::var_phase(ph.p, ph.q, c)) || d.bk.has(sym::var_phase(ph.p, ph.q, c)))
+        out += "    " + s.decl((c ? "cph" : "sph") + pq, std::string(c ? "cos(" : "sin(") + arg + ")");
+  }
   out += "    " + s.decl("w", s.dbl(2) + " * " + s.pi() + " * kf / period");
   out += "    " + s.decl("th", "w * xr");
   out +=

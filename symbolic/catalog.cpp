@@ -10,6 +10,7 @@
 #include "exp_poly.hpp"
 #include "functions.hpp"
 #include "monotone.hpp"
+#include "printer.hpp"
 
 namespace bl::sym {
 using namespace GiNaC;
@@ -210,6 +211,14 @@ void check_polynomial_pieces(const Ctx& c, Atomic& a) {
     if (a.pieces.front().lo.inf != -1 || a.pieces.back().hi.inf != 1)
       c.fail("pieces", "the pieces must cover the whole line, from -inf to inf");
   } else {
+    // The engine integrates one period exactly (and phases its Fourier series at the breaks, any
+    // rational fraction of the period): the period and every break must be rational numbers.
+    for (size_t i = 0; i < a.pieces.size(); ++i)
+      for (const Bound* b : {&a.pieces[i].lo, &a.pieces[i].hi})
+        if (b->finite() && !(is_a<numeric>(b->value) && ex_to<numeric>(b->value).is_rational()))
+          c.fail("pieces", "piece " + std::to_string(i) +
+                               ": periodic piece boundaries must be rational numbers, got " +
+                               print(b->value, Lang::Text));
     if (!a.pieces.front().lo.finite() || !a.pieces.front().lo.value.is_zero())
       c.fail("pieces", "the pieces of one period must start at 0");
     if (!a.pieces.back().hi.finite() || !same_value(a.pieces.back().hi.value, *a.period))

@@ -23,6 +23,17 @@ const symbol& var_pk() {
   static const realsymbol pk("pk");
   return pk;
 }
+const symbol& var_phase(long p, long q, bool cosine) {
+  static std::map<std::tuple<long, long, bool>, realsymbol> cache;
+  auto key = std::make_tuple(p, q, cosine);
+  auto it = cache.find(key);
+  if (it == cache.end())
+    it = cache
+             .emplace(key, realsymbol(std::string(cosine ? "cph" : "sph") + std::to_string(p) + "_" +
+                                      std::to_string(q)))
+             .first;
+  return it->second;
+}
 const symbol& var_hh() {
   static const symbol hh("hh");
   return hh;
@@ -281,12 +292,23 @@ void derive_piecewise(const Atomic& a, Kernel k, bool sq, Derived& d) {
     d.formula = "(F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = " + pieces_text(F2, "t");
 }
 
-// e^{-2 pi i k r} for a piece boundary r T: 1 or (-1)^k.
-ex boundary_phase(const Atomic& a, const ex& t) {
+// e^{-2 pi i k r} for a piece boundary r T, r = p/q rational: 1 (r integer), (-1)^k (r = 1/2), else
+// cos(2 pi k p/q) - i sin(2 pi k p/q) through two symbols the Fourier loop defines from the exact
+// integer residue (k p) mod q (no large angle is formed), recorded in d.phases.
+ex boundary_phase(const Atomic& a, const ex& t, Derived& d) {
   const ex r = (t / *a.period).normal();
-  if (!is_a<numeric>(r) || !ex_to<numeric>(2 * ex_to<numeric>(r)).is_integer())
-    fail(a, "pieces", "periodic piece boundaries must be multiples of half the period (for the Fourier form)");
-  return ex_to<numeric>(r).is_integer() ? ex(1) : ex(var_pk());
+  if (!is_a<numeric>(r) || !ex_to<numeric>(r).is_rational())
+    fail(a, "pieces",
+         "periodic piece boundaries must be rational multiples of the period (for the Fourier form)");
+  const numeric rr = ex_to<numeric>(r);
+  if (rr.is_integer()) return 1;
+  if ((2 * rr).is_integer()) return var_pk();
+  const long q = rr.denom().to_long();
+  long p = rr.numer().to_long() % q;
+  if (p < 0) p += q;
+  if (std::find(d.phases.begin(), d.phases.end(), FourierPhase{p, q}) == d.phases.end())
+    d.phases.push_back({p, q});
+  return var_phase(p, q, true) - I * var_phase(p, q, false);
 }
 
 // Continuous antiderivative of one period's pieces, 0 at t = 0.
@@ -322,6 +344,17 @@ std::vector<numeric> half_line_series(const std::vector<PolyPiece>& pieces, cons
     for (PolyPiece& p : S) p.c[0] = ex_to<numeric>((p.c[0] - m).expand());
     const numeric sj0 = S.front().c[0];  // the first piece starts at t = 0
     out.push_back(j % 2 == 1 ? sj0 : -sj0);
+  }
+  return out;
+}
+
+std::string phases_text(const Derived& d) {
+  std::string out;
+  for (const auto& ph : d.phases) {
+    const std::string pq = std::to_string(ph.p) + "_" + std::to_string(ph.q);
+    const std::string arg =
+        "2 pi ((k " + std::to_string(ph.p) + ") mod " + std::to_string(ph.q) + ")/" + std::to_string(ph.q);
+    out += ", cph" + pq + " = cos(" + arg + "), sph" + pq + " = sin(" + arg + ")";
   }
   return out;
 }
@@ -368,7 +401,8 @@ void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
         prim_hi += coef * ipow(p.hi.value, m - j);
         prim_lo += coef * ipow(p.lo.value, m - j);
       }
-      ck += p.c[m] * (boundary_phase(a, p.hi.value) * prim_hi - boundary_phase(a, p.lo.value) * prim_lo);
+      ck +=
+          p.c[m] * (boundary_phase(a, p.hi.value, d) * prim_hi - boundary_phase(a, p.lo.value, d) * prim_lo);
       c0 += p.c[m] * (ipow(p.hi.value, m + 1) - ipow(p.lo.value, m + 1)) / (m + 1);
     }
   }
@@ -376,10 +410,13 @@ void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
   d.a0 = (c0 / T).normal();
   d.ak = (2 * ck.real_part()).normal();
   d.bk = (-2 * ck.imag_part()).normal();
-  d.formula = text(d.a0) + " + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), "
-              "a_k = " + text(d.ak) + ", b_k = " + text(d.bk) + " (pk = (-1)^k), T = " + text(T) +
+  d.formula = text(d.a0) +
+              " + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), "
+              "a_k = " +
+              text(d.ak) + ", b_k = " + text(d.bk) + " (pk = (-1)^k" + phases_text(d) + "), T = " + text(T) +
               " [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of "
-              "the pieces " + pieces_text(d.pieces, "t") + " [for small sigma/T]";
+              "the pieces " +
+              pieces_text(d.pieces, "t") + " [for small sigma/T]";
 }
 
 // A B with A periodic and B piecewise with constant pieces whose breaks are multiples of A's period:

@@ -27,6 +27,13 @@ struct ExpTermSpec {
   std::vector<GiNaC::ex> c;
 };
 
+// A Fourier phase e^{-2 pi i k p/q} of a periodic piece boundary at p/q of the period (q > 2): the
+// Fourier loop defines cph<p>_<q> = cos(2 pi ((k p) mod q)/q) and sph<p>_<q> = sin(...).
+struct FourierPhase {
+  long p, q;
+  bool operator==(const FourierPhase& o) const { return p == o.p && q == o.q; }
+};
+
 enum class Body {
   Closed,          // one closed-form expression in x and sigma (exp-polynomial class, moments)
   PiecewiseTable,  // whole-line polynomial pieces, evaluated by the runtime's stable primitives
@@ -83,7 +90,8 @@ struct Derived {
   GiNaC::ex period;                       // PeriodicTable
   double fmax = 0;                        // max |f| (image-sum tolerance)
   double coef_bound = 0;                  // bound on |a_k| + |b_k|
-  GiNaC::ex a0, ak, bk;                   // Fourier coefficients in k (and (-1)^k)
+  GiNaC::ex a0, ak, bk;                   // Fourier coefficients in k (and (-1)^k, the phases)
+  std::vector<FourierPhase> phases;       // boundaries at p/q of the period, q > 2
   // Periodic, not squared: the half-line companion's boundary series (Euler-Maclaurin at t = 0),
   // half_series[m] = (-1)^(m+1) S_{m+2}(0) with S_1 = f - a0 and S_{j+1} the periodic, mean-free
   // antiderivative of S_j (exact); see docs/derivations.md.
@@ -106,6 +114,7 @@ struct Derived {
 const GiNaC::symbol& var_k();   // Fourier index
 const GiNaC::symbol& var_pk();  // (-1)^k
 const GiNaC::symbol& var_hh();  // the (possibly compacted) half-width in antiderivative rules
+const GiNaC::symbol& var_phase(long p, long q, bool cosine);  // cph<p>_<q> / sph<p>_<q>
 
 // The pieces of a piecewise or periodic atomic (of f^2 when squared) with exact coefficients.
 std::vector<PolyPiece> polynomial_pieces(const Atomic& a, bool squared);

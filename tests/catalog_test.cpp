@@ -88,9 +88,11 @@ TEST(Catalog, OutsideTheDerivableClassIsRejected) {
   expect_error(wrap(R"J({"name": "gauss", "class": "entire", "f": "exp(x^2)", "domain": ["-inf", "inf"],
     "range": [1, "inf"]})J"),
                "gauss", "f", "rational multiple of x");
-  expect_error(wrap(R"J({"name": "third", "class": "periodic", "period": 3, "domain": ["-inf", "inf"], "range": [0, 1],
-    "jumps": [0, 1], "pieces": [{"on": [0, 1], "f": "1"}, {"on": [1, 3], "f": "0"}]})J"),
-               "third", "pieces", "multiples of half the period");
+  expect_error(
+      wrap(
+          R"J({"name": "irr", "class": "periodic", "period": "2*Pi", "domain": ["-inf", "inf"], "range": [0, 1],
+    "jumps": [0, 1], "pieces": [{"on": [0, 1], "f": "1"}, {"on": [1, "2*Pi"], "f": "0"}]})J"),
+      "irr", "pieces", "rational numbers");
   expect_error(wrap(R"J({"name": "flt", "class": "entire", "f": "x", "domain": ["-inf", "inf"], "range": [-0.5, 1]})J"),
                "flt", "range", "exact expressions");
 }
@@ -118,6 +120,27 @@ TEST(Catalog, ExpPolynomialPieces) {
   expect_error(wrap(R"J({"name": "lg", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
     "pieces": [{"on": ["-inf", 1], "f": "0"}, {"on": [1, "inf"], "f": "log(x)"}]})J"),
                "lg", "pieces", "neither a polynomial nor an exp-polynomial");
+}
+
+// Issue 15: periodic breaks had to be multiples of half the period (a duty-3/10 pulse was rejected).
+TEST(Catalog, PeriodicBreaksAtRationalPoints) {
+  EXPECT_EQ(error_of(wrap(R"J({"name": "duty", "class": "periodic", "period": 1, "domain": ["-inf", "inf"],
+    "range": [0, 1], "jumps": [0, "3/10"], "pieces": [{"on": [0, "3/10"], "f": "1"}, {"on": ["3/10", 1], "f": "0"}]})J")),
+            "");
+  EXPECT_EQ(
+      error_of(wrap(
+          R"J({"name": "third", "class": "periodic", "period": 3, "domain": ["-inf", "inf"], "range": [0, 1],
+    "jumps": [0, 1], "pieces": [{"on": [0, 1], "f": "1"}, {"on": [1, 3], "f": "0"}]})J")),
+      "");
+}
+
+// Issue 15: x^n e^{ax} was refused in the entire class.
+TEST(Catalog, PowerTimesExpInTheEntireClass) {
+  EXPECT_EQ(
+      error_of(
+          wrap(R"J({"name": "xe", "class": "entire", "f": "x^2*exp(-x/3) + exp(x)", "domain": ["-inf", "inf"],
+    "range": ["-inf", "inf"]})J")),
+      "");
 }
 
 TEST(Catalog, NotJsonIsRejectedWithTheFileName) {

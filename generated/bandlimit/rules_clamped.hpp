@@ -108,6 +108,10 @@ T deriv_square_d1(T x);
 template <class T>
 T deriv_square_d2(T x);
 template <class T>
+T deriv_pulse30_d1(T x);
+template <class T>
+T deriv_pulse30_d2(T x);
+template <class T>
 T deriv_floor_d1(T x);
 template <class T>
 T deriv_floor_d2(T x);
@@ -538,6 +542,28 @@ T deriv_square_d2(T x) {
   return detail::periodic_eval(x, T(1), p);
 }
 
+// 0 on [0, 3); 0 on [3, 10) (period 10); right piece at a break, jumps' delta functions dropped
+template <class T>
+T deriv_pulse30_d1(T x) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  return detail::periodic_eval(x, T(10), p);
+}
+
+// 0 on [0, 3); 0 on [3, 10) (period 10); right piece at a break, jumps' delta functions dropped
+template <class T>
+T deriv_pulse30_d2(T x) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  return detail::periodic_eval(x, T(10), p);
+}
+
 // 1 + -1*fract_d1(x)
 template <class T>
 T deriv_floor_d1(T x) {
@@ -963,6 +989,19 @@ stat<T> rule3_square(T mu, T sigma) {
   return {T(r.mean), T(r.var)};
 }
 
+// Rule 3: second-order Taylor of pulse30 at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_pulse30(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_pulse30<double>(c), deriv_pulse30_d1<double>(c), deriv_pulse30_d2<double>(c), m);
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
+}
+
 // Rule 3: second-order Taylor of floor at the mean of N(mu, sigma^2) truncated to the domain.
 template <class T>
 stat<T> rule3_floor(T mu, T sigma) {
@@ -1181,6 +1220,15 @@ stat<T> bimodal_square(T mu, T sigma) {
 
 // Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
 template <class T>
+stat<T> bimodal_pulse30(T mu, T sigma) {
+  static const double jumps[2] = {(0.0), (3.0)};
+  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (10.0), jumps, 2, [](double x, double s) { return box_pulse30<double>(x, s); }, [](double x, double s) { return box_pulse30_sq<double>(x, s); });
+  return {T(r.mean), T(r.var)};
+}
+
+// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
+template <class T>
 stat<T> bimodal_floor(T mu, T sigma) {
   static const double jumps[1] = {0.0};
   // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
@@ -1386,6 +1434,10 @@ inline float square_d1(float x) { return ::bl::detail::gen::deriv_square_d1<floa
 inline double square_d1(double x) { return ::bl::detail::gen::deriv_square_d1<double>(x); }
 inline float square_d2(float x) { return ::bl::detail::gen::deriv_square_d2<float>(x); }
 inline double square_d2(double x) { return ::bl::detail::gen::deriv_square_d2<double>(x); }
+inline float pulse30_d1(float x) { return ::bl::detail::gen::deriv_pulse30_d1<float>(x); }
+inline double pulse30_d1(double x) { return ::bl::detail::gen::deriv_pulse30_d1<double>(x); }
+inline float pulse30_d2(float x) { return ::bl::detail::gen::deriv_pulse30_d2<float>(x); }
+inline double pulse30_d2(double x) { return ::bl::detail::gen::deriv_pulse30_d2<double>(x); }
 inline float floor_d1(float x) { return ::bl::detail::gen::deriv_floor_d1<float>(x); }
 inline double floor_d1(double x) { return ::bl::detail::gen::deriv_floor_d1<double>(x); }
 inline float floor_d2(float x) { return ::bl::detail::gen::deriv_floor_d2<float>(x); }
@@ -1471,6 +1523,8 @@ inline stat<float> triangle(float mu, float sigma) { return ::bl::detail::gen::r
 inline stat<double> triangle(double mu, double sigma) { return ::bl::detail::gen::rule3_triangle<double>(mu, sigma); }
 inline stat<float> square(float mu, float sigma) { return ::bl::detail::gen::rule3_square<float>(mu, sigma); }
 inline stat<double> square(double mu, double sigma) { return ::bl::detail::gen::rule3_square<double>(mu, sigma); }
+inline stat<float> pulse30(float mu, float sigma) { return ::bl::detail::gen::rule3_pulse30<float>(mu, sigma); }
+inline stat<double> pulse30(double mu, double sigma) { return ::bl::detail::gen::rule3_pulse30<double>(mu, sigma); }
 inline stat<float> floor(float mu, float sigma) { return ::bl::detail::gen::rule3_floor<float>(mu, sigma); }
 inline stat<double> floor(double mu, double sigma) { return ::bl::detail::gen::rule3_floor<double>(mu, sigma); }
 inline stat<float> ceil(float mu, float sigma) { return ::bl::detail::gen::rule3_ceil<float>(mu, sigma); }
@@ -1523,6 +1577,8 @@ inline stat<float> fract(float mu, float sigma) { return ::bl::detail::gen::bimo
 inline stat<double> fract(double mu, double sigma) { return ::bl::detail::gen::bimodal_fract<double>(mu, sigma); }
 inline stat<float> square(float mu, float sigma) { return ::bl::detail::gen::bimodal_square<float>(mu, sigma); }
 inline stat<double> square(double mu, double sigma) { return ::bl::detail::gen::bimodal_square<double>(mu, sigma); }
+inline stat<float> pulse30(float mu, float sigma) { return ::bl::detail::gen::bimodal_pulse30<float>(mu, sigma); }
+inline stat<double> pulse30(double mu, double sigma) { return ::bl::detail::gen::bimodal_pulse30<double>(mu, sigma); }
 inline stat<float> floor(float mu, float sigma) { return ::bl::detail::gen::bimodal_floor<float>(mu, sigma); }
 inline stat<double> floor(double mu, double sigma) { return ::bl::detail::gen::bimodal_floor<double>(mu, sigma); }
 inline stat<float> ceil(float mu, float sigma) { return ::bl::detail::gen::bimodal_ceil<float>(mu, sigma); }
@@ -1616,24 +1672,26 @@ const DerivativeEntry<T>* derivative_entries(int* count) {
       {&kAtomics[21], 2, "bl::deriv::triangle_d2", "bl_deriv_triangle_d2", &detail::gen::deriv_triangle_d2<T>},
       {&kAtomics[22], 1, "bl::deriv::square_d1", "bl_deriv_square_d1", &detail::gen::deriv_square_d1<T>},
       {&kAtomics[22], 2, "bl::deriv::square_d2", "bl_deriv_square_d2", &detail::gen::deriv_square_d2<T>},
-      {&kAtomics[23], 1, "bl::deriv::floor_d1", "bl_deriv_floor_d1", &detail::gen::deriv_floor_d1<T>},
-      {&kAtomics[23], 2, "bl::deriv::floor_d2", "bl_deriv_floor_d2", &detail::gen::deriv_floor_d2<T>},
-      {&kAtomics[24], 1, "bl::deriv::ceil_d1", "bl_deriv_ceil_d1", &detail::gen::deriv_ceil_d1<T>},
-      {&kAtomics[24], 2, "bl::deriv::ceil_d2", "bl_deriv_ceil_d2", &detail::gen::deriv_ceil_d2<T>},
-      {&kAtomics[25], 1, "bl::deriv::trunc_d1", "bl_deriv_trunc_d1", &detail::gen::deriv_trunc_d1<T>},
-      {&kAtomics[25], 2, "bl::deriv::trunc_d2", "bl_deriv_trunc_d2", &detail::gen::deriv_trunc_d2<T>},
-      {&kAtomics[26], 1, "bl::deriv::tan_d1", "bl_deriv_tan_d1", &detail::gen::deriv_tan_d1<T>},
-      {&kAtomics[26], 2, "bl::deriv::tan_d2", "bl_deriv_tan_d2", &detail::gen::deriv_tan_d2<T>},
-      {&kAtomics[27], 1, "bl::deriv::tanh_d1", "bl_deriv_tanh_d1", &detail::gen::deriv_tanh_d1<T>},
-      {&kAtomics[27], 2, "bl::deriv::tanh_d2", "bl_deriv_tanh_d2", &detail::gen::deriv_tanh_d2<T>},
-      {&kAtomics[28], 1, "bl::deriv::log_d1", "bl_deriv_log_d1", &detail::gen::deriv_log_d1<T>},
-      {&kAtomics[28], 2, "bl::deriv::log_d2", "bl_deriv_log_d2", &detail::gen::deriv_log_d2<T>},
-      {&kAtomics[29], 1, "bl::deriv::sqrt_d1", "bl_deriv_sqrt_d1", &detail::gen::deriv_sqrt_d1<T>},
-      {&kAtomics[29], 2, "bl::deriv::sqrt_d2", "bl_deriv_sqrt_d2", &detail::gen::deriv_sqrt_d2<T>},
-      {&kAtomics[30], 1, "bl::deriv::inv_d1", "bl_deriv_inv_d1", &detail::gen::deriv_inv_d1<T>},
-      {&kAtomics[30], 2, "bl::deriv::inv_d2", "bl_deriv_inv_d2", &detail::gen::deriv_inv_d2<T>},
-      {&kAtomics[31], 1, "bl::deriv::inv2_d1", "bl_deriv_inv2_d1", &detail::gen::deriv_inv2_d1<T>},
-      {&kAtomics[31], 2, "bl::deriv::inv2_d2", "bl_deriv_inv2_d2", &detail::gen::deriv_inv2_d2<T>},
+      {&kAtomics[23], 1, "bl::deriv::pulse30_d1", "bl_deriv_pulse30_d1", &detail::gen::deriv_pulse30_d1<T>},
+      {&kAtomics[23], 2, "bl::deriv::pulse30_d2", "bl_deriv_pulse30_d2", &detail::gen::deriv_pulse30_d2<T>},
+      {&kAtomics[24], 1, "bl::deriv::floor_d1", "bl_deriv_floor_d1", &detail::gen::deriv_floor_d1<T>},
+      {&kAtomics[24], 2, "bl::deriv::floor_d2", "bl_deriv_floor_d2", &detail::gen::deriv_floor_d2<T>},
+      {&kAtomics[25], 1, "bl::deriv::ceil_d1", "bl_deriv_ceil_d1", &detail::gen::deriv_ceil_d1<T>},
+      {&kAtomics[25], 2, "bl::deriv::ceil_d2", "bl_deriv_ceil_d2", &detail::gen::deriv_ceil_d2<T>},
+      {&kAtomics[26], 1, "bl::deriv::trunc_d1", "bl_deriv_trunc_d1", &detail::gen::deriv_trunc_d1<T>},
+      {&kAtomics[26], 2, "bl::deriv::trunc_d2", "bl_deriv_trunc_d2", &detail::gen::deriv_trunc_d2<T>},
+      {&kAtomics[27], 1, "bl::deriv::tan_d1", "bl_deriv_tan_d1", &detail::gen::deriv_tan_d1<T>},
+      {&kAtomics[27], 2, "bl::deriv::tan_d2", "bl_deriv_tan_d2", &detail::gen::deriv_tan_d2<T>},
+      {&kAtomics[28], 1, "bl::deriv::tanh_d1", "bl_deriv_tanh_d1", &detail::gen::deriv_tanh_d1<T>},
+      {&kAtomics[28], 2, "bl::deriv::tanh_d2", "bl_deriv_tanh_d2", &detail::gen::deriv_tanh_d2<T>},
+      {&kAtomics[29], 1, "bl::deriv::log_d1", "bl_deriv_log_d1", &detail::gen::deriv_log_d1<T>},
+      {&kAtomics[29], 2, "bl::deriv::log_d2", "bl_deriv_log_d2", &detail::gen::deriv_log_d2<T>},
+      {&kAtomics[30], 1, "bl::deriv::sqrt_d1", "bl_deriv_sqrt_d1", &detail::gen::deriv_sqrt_d1<T>},
+      {&kAtomics[30], 2, "bl::deriv::sqrt_d2", "bl_deriv_sqrt_d2", &detail::gen::deriv_sqrt_d2<T>},
+      {&kAtomics[31], 1, "bl::deriv::inv_d1", "bl_deriv_inv_d1", &detail::gen::deriv_inv_d1<T>},
+      {&kAtomics[31], 2, "bl::deriv::inv_d2", "bl_deriv_inv_d2", &detail::gen::deriv_inv_d2<T>},
+      {&kAtomics[32], 1, "bl::deriv::inv2_d1", "bl_deriv_inv2_d1", &detail::gen::deriv_inv2_d1<T>},
+      {&kAtomics[32], 2, "bl::deriv::inv2_d2", "bl_deriv_inv2_d2", &detail::gen::deriv_inv2_d2<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;
@@ -1666,29 +1724,31 @@ const RuleEntry<T>* clamped_rule_entries(int* count) {
       {&kAtomics[20], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::fract", "bl_rule3_fract", &detail::gen::rule3_fract<T>},
       {&kAtomics[21], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::triangle", "bl_rule3_triangle", &detail::gen::rule3_triangle<T>},
       {&kAtomics[22], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::square", "bl_rule3_square", &detail::gen::rule3_square<T>},
-      {&kAtomics[23], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::floor", "bl_rule3_floor", &detail::gen::rule3_floor<T>},
-      {&kAtomics[24], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::ceil", "bl_rule3_ceil", &detail::gen::rule3_ceil<T>},
-      {&kAtomics[25], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::trunc", "bl_rule3_trunc", &detail::gen::rule3_trunc<T>},
-      {&kAtomics[26], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tan", "bl_rule3_tan", &detail::gen::rule3_tan<T>},
-      {&kAtomics[27], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tanh", "bl_rule3_tanh", &detail::gen::rule3_tanh<T>},
-      {&kAtomics[28], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::log", "bl_rule3_log", &detail::gen::rule3_log<T>},
-      {&kAtomics[29], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sqrt", "bl_rule3_sqrt", &detail::gen::rule3_sqrt<T>},
-      {&kAtomics[30], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv", "bl_rule3_inv", &detail::gen::rule3_inv<T>},
-      {&kAtomics[31], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv2", "bl_rule3_inv2", &detail::gen::rule3_inv2<T>},
-      {&kAtomics[28], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::log", "bl_rule1_gaussian_log", &detail::gen::rule1_gaussian_log<T>},
-      {&kAtomics[28], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::log", "bl_rule1_box_log", &detail::gen::rule1_box_log<T>},
-      {&kAtomics[28], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::log", "bl_rule1_tent_log", &detail::gen::rule1_tent_log<T>},
-      {&kAtomics[29], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::sqrt", "bl_rule1_gaussian_sqrt", &detail::gen::rule1_gaussian_sqrt<T>},
-      {&kAtomics[29], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::sqrt", "bl_rule1_box_sqrt", &detail::gen::rule1_box_sqrt<T>},
-      {&kAtomics[29], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::sqrt", "bl_rule1_tent_sqrt", &detail::gen::rule1_tent_sqrt<T>},
+      {&kAtomics[23], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pulse30", "bl_rule3_pulse30", &detail::gen::rule3_pulse30<T>},
+      {&kAtomics[24], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::floor", "bl_rule3_floor", &detail::gen::rule3_floor<T>},
+      {&kAtomics[25], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::ceil", "bl_rule3_ceil", &detail::gen::rule3_ceil<T>},
+      {&kAtomics[26], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::trunc", "bl_rule3_trunc", &detail::gen::rule3_trunc<T>},
+      {&kAtomics[27], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tan", "bl_rule3_tan", &detail::gen::rule3_tan<T>},
+      {&kAtomics[28], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tanh", "bl_rule3_tanh", &detail::gen::rule3_tanh<T>},
+      {&kAtomics[29], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::log", "bl_rule3_log", &detail::gen::rule3_log<T>},
+      {&kAtomics[30], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sqrt", "bl_rule3_sqrt", &detail::gen::rule3_sqrt<T>},
+      {&kAtomics[31], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv", "bl_rule3_inv", &detail::gen::rule3_inv<T>},
+      {&kAtomics[32], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv2", "bl_rule3_inv2", &detail::gen::rule3_inv2<T>},
+      {&kAtomics[29], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::log", "bl_rule1_gaussian_log", &detail::gen::rule1_gaussian_log<T>},
+      {&kAtomics[29], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::log", "bl_rule1_box_log", &detail::gen::rule1_box_log<T>},
+      {&kAtomics[29], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::log", "bl_rule1_tent_log", &detail::gen::rule1_tent_log<T>},
+      {&kAtomics[30], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::sqrt", "bl_rule1_gaussian_sqrt", &detail::gen::rule1_gaussian_sqrt<T>},
+      {&kAtomics[30], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::sqrt", "bl_rule1_box_sqrt", &detail::gen::rule1_box_sqrt<T>},
+      {&kAtomics[30], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::sqrt", "bl_rule1_tent_sqrt", &detail::gen::rule1_tent_sqrt<T>},
       {&kAtomics[13], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::sign", "bl_bimodal_sign", &detail::gen::bimodal_sign<T>},
       {&kAtomics[14], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::step", "bl_bimodal_step", &detail::gen::bimodal_step<T>},
       {&kAtomics[18], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::exp_decay", "bl_bimodal_exp_decay", &detail::gen::bimodal_exp_decay<T>},
       {&kAtomics[20], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::fract", "bl_bimodal_fract", &detail::gen::bimodal_fract<T>},
       {&kAtomics[22], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::square", "bl_bimodal_square", &detail::gen::bimodal_square<T>},
-      {&kAtomics[23], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::floor", "bl_bimodal_floor", &detail::gen::bimodal_floor<T>},
-      {&kAtomics[24], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::ceil", "bl_bimodal_ceil", &detail::gen::bimodal_ceil<T>},
-      {&kAtomics[25], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::trunc", "bl_bimodal_trunc", &detail::gen::bimodal_trunc<T>},
+      {&kAtomics[23], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::pulse30", "bl_bimodal_pulse30", &detail::gen::bimodal_pulse30<T>},
+      {&kAtomics[24], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::floor", "bl_bimodal_floor", &detail::gen::bimodal_floor<T>},
+      {&kAtomics[25], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::ceil", "bl_bimodal_ceil", &detail::gen::bimodal_ceil<T>},
+      {&kAtomics[26], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::trunc", "bl_bimodal_trunc", &detail::gen::bimodal_trunc<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;

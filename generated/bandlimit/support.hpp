@@ -565,13 +565,14 @@ struct ExpTerm {
 // ~ 1/(t sqrt(pi)) for large t). t < 3: the product (erfc has full relative accuracy, e^{t^2}
 // carries the rounding of t^2, < 9 eps); t >= 3: the continued fraction
 // 1/sqrt(pi) / (t + (1/2)/(t + 1/(t + (3/2)/(t + ...)))) cut after 30 levels (relative error < 1e-16
-// at t = 3, smaller beyond). Wider types: the product (no underflow in their exponent range).
+// at t = 3, smaller beyond). Wider types: the product up to t = 1000 (no underflow in their exponent
+// range, and the fraction's 30 levels would not reach their precision below that), then the fraction.
 template <class T>
 inline T erfcx(T t) {
   using std::erfc;
   using std::exp;
   if (t < T(0)) return T(2) * exp(t * t) - erfcx(-t);
-  if (kWide<T> || t < T(3)) return exp(t * t) * erfc(t);
+  if (t < T(3) || (kWide<T> && t < T(1000))) return exp(t * t) * erfc(t);
   T f = t;
   for (int k = 30; k >= 1; --k) f = t + T(k) * T(0.5) / f;
   return T(0.5641895835477563) / f;  // 1/sqrt(pi)

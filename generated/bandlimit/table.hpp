@@ -59,6 +59,8 @@ T plain_triangle(T x);
 template <class T>
 T plain_square(T x);
 template <class T>
+T plain_pulse30(T x);
+template <class T>
 T plain_floor(T x);
 template <class T>
 T plain_ceil(T x);
@@ -388,6 +390,30 @@ template <class T>
 T tent_square_right(T x, T sigma);
 template <class T>
 T tent_square_sq(T x, T sigma);
+template <class T>
+T gaussian_pulse30(T x, T sigma);
+template <class T>
+T gaussian_pulse30_u(T x, T sigma);
+template <class T>
+T gaussian_pulse30_right(T x, T sigma);
+template <class T>
+T gaussian_pulse30_sq(T x, T sigma);
+template <class T>
+T box_pulse30(T x, T sigma);
+template <class T>
+T box_pulse30_u(T x, T sigma);
+template <class T>
+T box_pulse30_right(T x, T sigma);
+template <class T>
+T box_pulse30_sq(T x, T sigma);
+template <class T>
+T tent_pulse30(T x, T sigma);
+template <class T>
+T tent_pulse30_u(T x, T sigma);
+template <class T>
+T tent_pulse30_right(T x, T sigma);
+template <class T>
+T tent_pulse30_sq(T x, T sigma);
 template <class T>
 T gaussian_floor(T x, T sigma);
 template <class T>
@@ -747,6 +773,16 @@ T plain_square(T x) {
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   return detail::periodic_eval(x, T(1), p);
+}
+
+template <class T>
+T plain_pulse30(T x) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  return detail::periodic_eval(x, T(10), p);
 }
 
 template <class T>
@@ -4000,6 +4036,341 @@ T tent_square_sq(T x, T sigma) {
   return v;
 }
 
+//   (3/10) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)),
+//   a_k = ((kf)^((-1))*(pi)^((-1))*sph3_10), b_k = (-((-1) + cph3_10)*(kf)^((-1))*(pi)^((-1)))
+//   (pk = (-1)^k, cph3_10 = cos(2 pi ((k 3) mod 10)/10), sph3_10 = sin(2 pi ((k 3) mod 10)/10)),
+//   T = 10 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
+//   the pieces {1 on [0, 3); 0 on [3, 10)} [for small sigma/T]
+template <class T>
+T gaussian_pulse30_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  const T s = sigma / period;
+  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
+  if (K >= 0) {
+    const T xr = x - period * floor(x / period);
+    T acc = (T(3)/T(10));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      const T cph3_10 = cos(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      const T sph3_10 = sin(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
+      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
+      acc += damp * (((T(1)/(detail::pi<T>()))*(T(1)/(kf))*sph3_10) * cos(th) + (((-cph3_10) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sin(th));
+    }
+    return acc;
+  }
+  return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pulse30(T x, T sigma) {
+  const T v = gaussian_pulse30_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T gaussian_pulse30_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  const T s = sigma / period;
+  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
+  if (K >= 0) {
+    const T xr = x - period * floor(x / period);
+    T acc = T(0.0);
+    for (int k = 1; k <= K + 2; ++k) {
+      const T kf = T(k);
+      const T cph3_10 = cos(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      const T sph3_10 = sin(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
+      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
+      acc += damp * w * ((((-cph3_10) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * cos(th) - ((T(1)/(detail::pi<T>()))*(T(1)/(kf))*sph3_10) * sin(th));
+    }
+    return sigma * sigma * acc;
+  }
+  return detail::gauss_periodic_u_image(x, sigma, period, p, T(1.0));
+}
+
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T gaussian_pulse30_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  if (x - R >= T(0.0)) return gaussian_pulse30<T>(x, sigma);
+  if (x + R < T(0.0)) return T(0.0);
+  const T cs[40] = {T(0.6597344572538566), T(-0.27634892323050203), T(-0.45579226720040733), T(0.2963833943194581), T(0.4258569933471977), T(-0.30120109792671274), T(-0.41893681950964473), T(0.3023568905207193), T(0.4172366915153417), T(-0.3026383503577255), T(-0.4168137637217804), T(0.30270773949989743), T(0.41670820988046586), T(-0.30272496892497025), T(-0.41668183839772005), T(0.30272926258170507), T(0.41667524726189387), T(-0.3027303344355449), T(-0.4166735996621471), T(0.3027306022232349), T(0.41667318778217927), T(-0.30273066915047714), T(-0.4166730848143763), T(0.3027306858800916), T(0.416673059072667), T(-0.3027306900622506), T(-0.4166730526372664), T(0.30273069110776313), T(0.4166730510284192), T(-0.30273069136913827), T(-0.4166730506262077), T(0.3027306914344817), T(0.4166730505256549), T(-0.30273069145081755), T(-0.4166730505005167), T(0.3027306914549015), T(0.41667305049423214), T(-0.30273069145592246), T(-0.41667305049266096), T(0.3027306914561777)};
+  return detail::gauss_periodic_right(x, sigma, period, p, T(1.0), T(4.0), (T(3)/T(10)), cs);
+}
+
+//   (3/10) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)),
+//   a_k = ((kf)^((-1))*(pi)^((-1))*sph3_10), b_k = (-((-1) + cph3_10)*(kf)^((-1))*(pi)^((-1)))
+//   (pk = (-1)^k, cph3_10 = cos(2 pi ((k 3) mod 10)/10), sph3_10 = sin(2 pi ((k 3) mod 10)/10)),
+//   T = 10 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
+//   the pieces {1 on [0, 3); 0 on [3, 10)} [for small sigma/T]
+template <class T>
+T gaussian_pulse30_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  const T s = sigma / period;
+  const int K = detail::fourier_terms_if_preferred(s, 2, T(4.0), T(1.0));
+  if (K >= 0) {
+    const T xr = x - period * floor(x / period);
+    T acc = (T(3)/T(10));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      const T cph3_10 = cos(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      const T sph3_10 = sin(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      const T w = T(2.0) * detail::pi<T>() * kf / period;
+      const T th = w * xr;
+      const T damp = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * kf * kf * s * s);
+      acc += damp * (((T(1)/(detail::pi<T>()))*(T(1)/(kf))*sph3_10) * cos(th) + (((-cph3_10) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sin(th));
+    }
+    return acc;
+  }
+  return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pulse30_sq(T x, T sigma) {
+  const T v = gaussian_pulse30_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3, 10)}, F_p2 =
+//   {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+template <class T>
+T box_pulse30_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  return detail::box_periodic(x, sigma, period, p, p1);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pulse30(T x, T sigma) {
+  const T v = box_pulse30_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T box_pulse30_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  return detail::box_periodic_u(x, sigma, period, p);
+}
+
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T box_pulse30_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (x - hw >= T(0.0)) return box_pulse30<T>(x, sigma);
+  if (x + hw <= T(0.0)) return T(0.0);
+  return detail::box_periodic_right(x, hw, period, p, p1);
+}
+
+//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3, 10)}, F_p2 =
+//   {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+template <class T>
+T box_pulse30_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  return detail::box_periodic(x, sigma, period, p, p1);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pulse30_sq(T x, T sigma) {
+  const T v = box_pulse30_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3,
+//   10)}, F_p2 = {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+template <class T>
+T tent_pulse30_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p2[2] = {
+      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pulse30(T x, T sigma) {
+  const T v = tent_pulse30_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T tent_pulse30_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  return detail::tent_periodic_u(x, sigma, period, p);
+}
+
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T tent_pulse30_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p2[2] = {
+      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (x - hw >= T(0.0)) return tent_pulse30<T>(x, sigma);
+  if (x + hw <= T(0.0)) return T(0.0);
+  return detail::tent_periodic_right(x, hw, period, p, p1, p2);
+}
+
+//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3,
+//   10)}, F_p2 = {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+template <class T>
+T tent_pulse30_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p2[2] = {
+      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pulse30_sq(T x, T sigma) {
+  const T v = tent_pulse30_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
 //   x + (-1) * fract~(x) [~: the same kernel's smoothed atomic]
 template <class T>
 T gaussian_floor(T x, T sigma) {
@@ -5519,6 +5890,8 @@ inline float triangle(float x) { return detail::gen::plain_triangle<float>(x); }
 inline double triangle(double x) { return detail::gen::plain_triangle<double>(x); }
 inline float square(float x) { return detail::gen::plain_square<float>(x); }
 inline double square(double x) { return detail::gen::plain_square<double>(x); }
+inline float pulse30(float x) { return detail::gen::plain_pulse30<float>(x); }
+inline double pulse30(double x) { return detail::gen::plain_pulse30<double>(x); }
 inline float floor(float x) { return detail::gen::plain_floor<float>(x); }
 inline double floor(double x) { return detail::gen::plain_floor<double>(x); }
 inline float ceil(float x) { return detail::gen::plain_ceil<float>(x); }
@@ -5632,6 +6005,10 @@ inline float square(float x, float sigma) { return detail::gen::gaussian_square<
 inline double square(double x, double sigma) { return detail::gen::gaussian_square<double>(x, sigma); }
 inline float square_sq(float x, float sigma) { return detail::gen::gaussian_square_sq<float>(x, sigma); }
 inline double square_sq(double x, double sigma) { return detail::gen::gaussian_square_sq<double>(x, sigma); }
+inline float pulse30(float x, float sigma) { return detail::gen::gaussian_pulse30<float>(x, sigma); }
+inline double pulse30(double x, double sigma) { return detail::gen::gaussian_pulse30<double>(x, sigma); }
+inline float pulse30_sq(float x, float sigma) { return detail::gen::gaussian_pulse30_sq<float>(x, sigma); }
+inline double pulse30_sq(double x, double sigma) { return detail::gen::gaussian_pulse30_sq<double>(x, sigma); }
 inline float floor(float x, float sigma) { return detail::gen::gaussian_floor<float>(x, sigma); }
 inline double floor(double x, double sigma) { return detail::gen::gaussian_floor<double>(x, sigma); }
 inline float floor_sq(float x, float sigma) { return detail::gen::gaussian_floor_sq<float>(x, sigma); }
@@ -5741,6 +6118,10 @@ inline float square(float x, float sigma) { return detail::gen::box_square<float
 inline double square(double x, double sigma) { return detail::gen::box_square<double>(x, sigma); }
 inline float square_sq(float x, float sigma) { return detail::gen::box_square_sq<float>(x, sigma); }
 inline double square_sq(double x, double sigma) { return detail::gen::box_square_sq<double>(x, sigma); }
+inline float pulse30(float x, float sigma) { return detail::gen::box_pulse30<float>(x, sigma); }
+inline double pulse30(double x, double sigma) { return detail::gen::box_pulse30<double>(x, sigma); }
+inline float pulse30_sq(float x, float sigma) { return detail::gen::box_pulse30_sq<float>(x, sigma); }
+inline double pulse30_sq(double x, double sigma) { return detail::gen::box_pulse30_sq<double>(x, sigma); }
 inline float floor(float x, float sigma) { return detail::gen::box_floor<float>(x, sigma); }
 inline double floor(double x, double sigma) { return detail::gen::box_floor<double>(x, sigma); }
 inline float floor_sq(float x, float sigma) { return detail::gen::box_floor_sq<float>(x, sigma); }
@@ -5874,6 +6255,10 @@ inline float square(float x, float sigma) { return detail::gen::tent_square<floa
 inline double square(double x, double sigma) { return detail::gen::tent_square<double>(x, sigma); }
 inline float square_sq(float x, float sigma) { return detail::gen::tent_square_sq<float>(x, sigma); }
 inline double square_sq(double x, double sigma) { return detail::gen::tent_square_sq<double>(x, sigma); }
+inline float pulse30(float x, float sigma) { return detail::gen::tent_pulse30<float>(x, sigma); }
+inline double pulse30(double x, double sigma) { return detail::gen::tent_pulse30<double>(x, sigma); }
+inline float pulse30_sq(float x, float sigma) { return detail::gen::tent_pulse30_sq<float>(x, sigma); }
+inline double pulse30_sq(double x, double sigma) { return detail::gen::tent_pulse30_sq<double>(x, sigma); }
 inline float floor(float x, float sigma) { return detail::gen::tent_floor<float>(x, sigma); }
 inline double floor(double x, double sigma) { return detail::gen::tent_floor<double>(x, sigma); }
 inline float floor_sq(float x, float sigma) { return detail::gen::tent_floor_sq<float>(x, sigma); }

@@ -592,7 +592,7 @@ float bl_gauss_exp_term(float x, float sigma, BlExpTerm p) {
   }
   float sum = 0.0;
   float sk = 1.0;
-  if (loinf || (al < 0.0 && (hiinf || be > 0.0))) {
+  if ((loinf || al < 0.0) && (hiinf || be > 0.0)) {  // the shifted centre inside the piece
     if (!loinf) bl_upper_moments_scaled(-al, bl_exp_lw(p, p.lo, el, sigma), deg, Ua);
     if (!hiinf) bl_upper_moments_scaled(be, bl_exp_lw(p, p.hi, eh, sigma), deg, Ub);
     float eL = exp(L);
