@@ -1375,6 +1375,10 @@ float bl_plain_pow8(float x) {
   return (x*x*x*x*x*x*x*x);
 }
 
+float bl_plain_xexp(float x) {
+  return (exp(x)*x);
+}
+
 float bl_plain_abs(float x) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2246,6 +2250,132 @@ float bl_tent_pow8_sq_raw(float x, float sigma) {
 
 float bl_tent_pow8_sq(float x, float sigma) {
   float v = bl_tent_pow8_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_gaussian_xexp_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 1.0, 0.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_gauss_ept(x, sigma, 1, p);
+}
+
+float bl_gaussian_xexp(float x, float sigma) {
+  float v = bl_gaussian_xexp_raw(x, sigma);
+  if (v < (-exp((-1.0)))) return (-exp((-1.0)));
+  return v;
+}
+
+float bl_gaussian_xexp_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 2.0, 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_gauss_ept(x, sigma, 1, p);
+}
+
+float bl_gaussian_xexp_sq(float x, float sigma) {
+  float v = bl_gaussian_xexp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_xexp_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 1.0, 0.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_box_ept(x, sigma, 1, p);
+}
+
+float bl_box_xexp(float x, float sigma) {
+  float v = bl_box_xexp_raw(x, sigma);
+  if (v < (-exp((-1.0)))) return (-exp((-1.0)));
+  return v;
+}
+
+float bl_box_xexp_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 2.0, 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_box_ept(x, sigma, 1, p);
+}
+
+float bl_box_xexp_sq(float x, float sigma) {
+  float v = bl_box_xexp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_xexp_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 1.0, 0.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_tent_ept(x, sigma, 1, p);
+}
+
+float bl_tent_xexp(float x, float sigma) {
+  float v = bl_tent_xexp_raw(x, sigma);
+  if (v < (-exp((-1.0)))) return (-exp((-1.0)));
+  return v;
+}
+
+float bl_tent_xexp_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 2.0, 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_tent_ept(x, sigma, 1, p);
+}
+
+float bl_tent_xexp_sq(float x, float sigma) {
+  float v = bl_tent_xexp_sq_raw(x, sigma);
   if (v < 0.0) return 0.0;
   return v;
 }

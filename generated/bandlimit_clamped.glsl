@@ -352,6 +352,14 @@ float bl_deriv_pow8_d2(float x) {
   return (56.0*(x*x*x*x*x*x));
 }
 
+float bl_deriv_xexp_d1(float x) {
+  return ((exp(x)*x) + exp(x));
+}
+
+float bl_deriv_xexp_d2(float x) {
+  return ((2.0*exp(x)) + (exp(x)*x));
+}
+
 float bl_deriv_abs_d1(float x) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-BL_INF, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -668,6 +676,10 @@ float bl_clamped_plain_pow8(float x) {
   return (x*x*x*x*x*x*x*x);
 }
 
+float bl_clamped_plain_xexp(float x) {
+  return (exp(x)*x);
+}
+
 float bl_clamped_plain_abs(float x) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -894,6 +906,14 @@ vec2 bl_rule3_pow8(float mu, float sigma) {
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow8(c), bl_deriv_pow8_d1(c), bl_deriv_pow8_d2(c), m);
   return bl_rule3_in_range(s, 0.0, BL_INF);
+}
+
+vec2 bl_rule3_xexp(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float c = m.mean;
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_xexp(c), bl_deriv_xexp_d1(c), bl_deriv_xexp_d2(c), m);
+  return bl_rule3_in_range(s, (-exp((-1.0))), BL_INF);
 }
 
 vec2 bl_rule3_abs(float mu, float sigma) {

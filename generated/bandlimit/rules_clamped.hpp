@@ -64,6 +64,10 @@ T deriv_pow8_d1(T x);
 template <class T>
 T deriv_pow8_d2(T x);
 template <class T>
+T deriv_xexp_d1(T x);
+template <class T>
+T deriv_xexp_d2(T x);
+template <class T>
 T deriv_abs_d1(T x);
 template <class T>
 T deriv_abs_d2(T x);
@@ -314,6 +318,20 @@ template <class T>
 T deriv_pow8_d2(T x) {
   BL_MATH_USING
   return (T(56)*(x*x*x*x*x*x));
+}
+
+// ((exp(x)*x) + exp(x))
+template <class T>
+T deriv_xexp_d1(T x) {
+  BL_MATH_USING
+  return ((exp(x)*x) + exp(x));
+}
+
+// ((2*exp(x)) + (exp(x)*x))
+template <class T>
+T deriv_xexp_d2(T x) {
+  BL_MATH_USING
+  return ((T(2)*exp(x)) + (exp(x)*x));
 }
 
 // (-1) on [-inf, 0); 1 on [0, inf); right piece at a break, jumps' delta functions dropped
@@ -843,6 +861,19 @@ stat<T> rule3_pow8(T mu, T sigma) {
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow8<double>(c), deriv_pow8_d1<double>(c), deriv_pow8_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
+}
+
+// Rule 3: second-order Taylor of xexp at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_xexp(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_xexp<double>(c), deriv_xexp_d1<double>(c), deriv_xexp_d2<double>(c), m);
+  const stat<double> r = rule3::in_range<double>(s, (-0.36787944117144233), truncnorm::detail::inf());  // f's range
   return {T(r.mean), T(r.var)};
 }
 
@@ -1390,6 +1421,10 @@ inline float pow8_d1(float x) { return ::bl::detail::gen::deriv_pow8_d1<float>(x
 inline double pow8_d1(double x) { return ::bl::detail::gen::deriv_pow8_d1<double>(x); }
 inline float pow8_d2(float x) { return ::bl::detail::gen::deriv_pow8_d2<float>(x); }
 inline double pow8_d2(double x) { return ::bl::detail::gen::deriv_pow8_d2<double>(x); }
+inline float xexp_d1(float x) { return ::bl::detail::gen::deriv_xexp_d1<float>(x); }
+inline double xexp_d1(double x) { return ::bl::detail::gen::deriv_xexp_d1<double>(x); }
+inline float xexp_d2(float x) { return ::bl::detail::gen::deriv_xexp_d2<float>(x); }
+inline double xexp_d2(double x) { return ::bl::detail::gen::deriv_xexp_d2<double>(x); }
 inline float abs_d1(float x) { return ::bl::detail::gen::deriv_abs_d1<float>(x); }
 inline double abs_d1(double x) { return ::bl::detail::gen::deriv_abs_d1<double>(x); }
 inline float abs_d2(float x) { return ::bl::detail::gen::deriv_abs_d2<float>(x); }
@@ -1501,6 +1536,8 @@ inline stat<float> pow7(float mu, float sigma) { return ::bl::detail::gen::rule3
 inline stat<double> pow7(double mu, double sigma) { return ::bl::detail::gen::rule3_pow7<double>(mu, sigma); }
 inline stat<float> pow8(float mu, float sigma) { return ::bl::detail::gen::rule3_pow8<float>(mu, sigma); }
 inline stat<double> pow8(double mu, double sigma) { return ::bl::detail::gen::rule3_pow8<double>(mu, sigma); }
+inline stat<float> xexp(float mu, float sigma) { return ::bl::detail::gen::rule3_xexp<float>(mu, sigma); }
+inline stat<double> xexp(double mu, double sigma) { return ::bl::detail::gen::rule3_xexp<double>(mu, sigma); }
 inline stat<float> abs(float mu, float sigma) { return ::bl::detail::gen::rule3_abs<float>(mu, sigma); }
 inline stat<double> abs(double mu, double sigma) { return ::bl::detail::gen::rule3_abs<double>(mu, sigma); }
 inline stat<float> sign(float mu, float sigma) { return ::bl::detail::gen::rule3_sign<float>(mu, sigma); }
@@ -1650,48 +1687,50 @@ const DerivativeEntry<T>* derivative_entries(int* count) {
       {&kAtomics[10], 2, "bl::deriv::pow7_d2", "bl_deriv_pow7_d2", &detail::gen::deriv_pow7_d2<T>},
       {&kAtomics[11], 1, "bl::deriv::pow8_d1", "bl_deriv_pow8_d1", &detail::gen::deriv_pow8_d1<T>},
       {&kAtomics[11], 2, "bl::deriv::pow8_d2", "bl_deriv_pow8_d2", &detail::gen::deriv_pow8_d2<T>},
-      {&kAtomics[12], 1, "bl::deriv::abs_d1", "bl_deriv_abs_d1", &detail::gen::deriv_abs_d1<T>},
-      {&kAtomics[12], 2, "bl::deriv::abs_d2", "bl_deriv_abs_d2", &detail::gen::deriv_abs_d2<T>},
-      {&kAtomics[13], 1, "bl::deriv::sign_d1", "bl_deriv_sign_d1", &detail::gen::deriv_sign_d1<T>},
-      {&kAtomics[13], 2, "bl::deriv::sign_d2", "bl_deriv_sign_d2", &detail::gen::deriv_sign_d2<T>},
-      {&kAtomics[14], 1, "bl::deriv::step_d1", "bl_deriv_step_d1", &detail::gen::deriv_step_d1<T>},
-      {&kAtomics[14], 2, "bl::deriv::step_d2", "bl_deriv_step_d2", &detail::gen::deriv_step_d2<T>},
-      {&kAtomics[15], 1, "bl::deriv::saturate_d1", "bl_deriv_saturate_d1", &detail::gen::deriv_saturate_d1<T>},
-      {&kAtomics[15], 2, "bl::deriv::saturate_d2", "bl_deriv_saturate_d2", &detail::gen::deriv_saturate_d2<T>},
-      {&kAtomics[16], 1, "bl::deriv::smoothstep_d1", "bl_deriv_smoothstep_d1", &detail::gen::deriv_smoothstep_d1<T>},
-      {&kAtomics[16], 2, "bl::deriv::smoothstep_d2", "bl_deriv_smoothstep_d2", &detail::gen::deriv_smoothstep_d2<T>},
-      {&kAtomics[17], 1, "bl::deriv::laplace_d1", "bl_deriv_laplace_d1", &detail::gen::deriv_laplace_d1<T>},
-      {&kAtomics[17], 2, "bl::deriv::laplace_d2", "bl_deriv_laplace_d2", &detail::gen::deriv_laplace_d2<T>},
-      {&kAtomics[18], 1, "bl::deriv::exp_decay_d1", "bl_deriv_exp_decay_d1", &detail::gen::deriv_exp_decay_d1<T>},
-      {&kAtomics[18], 2, "bl::deriv::exp_decay_d2", "bl_deriv_exp_decay_d2", &detail::gen::deriv_exp_decay_d2<T>},
-      {&kAtomics[19], 1, "bl::deriv::exp_ramp_d1", "bl_deriv_exp_ramp_d1", &detail::gen::deriv_exp_ramp_d1<T>},
-      {&kAtomics[19], 2, "bl::deriv::exp_ramp_d2", "bl_deriv_exp_ramp_d2", &detail::gen::deriv_exp_ramp_d2<T>},
-      {&kAtomics[20], 1, "bl::deriv::fract_d1", "bl_deriv_fract_d1", &detail::gen::deriv_fract_d1<T>},
-      {&kAtomics[20], 2, "bl::deriv::fract_d2", "bl_deriv_fract_d2", &detail::gen::deriv_fract_d2<T>},
-      {&kAtomics[21], 1, "bl::deriv::triangle_d1", "bl_deriv_triangle_d1", &detail::gen::deriv_triangle_d1<T>},
-      {&kAtomics[21], 2, "bl::deriv::triangle_d2", "bl_deriv_triangle_d2", &detail::gen::deriv_triangle_d2<T>},
-      {&kAtomics[22], 1, "bl::deriv::square_d1", "bl_deriv_square_d1", &detail::gen::deriv_square_d1<T>},
-      {&kAtomics[22], 2, "bl::deriv::square_d2", "bl_deriv_square_d2", &detail::gen::deriv_square_d2<T>},
-      {&kAtomics[23], 1, "bl::deriv::pulse30_d1", "bl_deriv_pulse30_d1", &detail::gen::deriv_pulse30_d1<T>},
-      {&kAtomics[23], 2, "bl::deriv::pulse30_d2", "bl_deriv_pulse30_d2", &detail::gen::deriv_pulse30_d2<T>},
-      {&kAtomics[24], 1, "bl::deriv::floor_d1", "bl_deriv_floor_d1", &detail::gen::deriv_floor_d1<T>},
-      {&kAtomics[24], 2, "bl::deriv::floor_d2", "bl_deriv_floor_d2", &detail::gen::deriv_floor_d2<T>},
-      {&kAtomics[25], 1, "bl::deriv::ceil_d1", "bl_deriv_ceil_d1", &detail::gen::deriv_ceil_d1<T>},
-      {&kAtomics[25], 2, "bl::deriv::ceil_d2", "bl_deriv_ceil_d2", &detail::gen::deriv_ceil_d2<T>},
-      {&kAtomics[26], 1, "bl::deriv::trunc_d1", "bl_deriv_trunc_d1", &detail::gen::deriv_trunc_d1<T>},
-      {&kAtomics[26], 2, "bl::deriv::trunc_d2", "bl_deriv_trunc_d2", &detail::gen::deriv_trunc_d2<T>},
-      {&kAtomics[27], 1, "bl::deriv::tan_d1", "bl_deriv_tan_d1", &detail::gen::deriv_tan_d1<T>},
-      {&kAtomics[27], 2, "bl::deriv::tan_d2", "bl_deriv_tan_d2", &detail::gen::deriv_tan_d2<T>},
-      {&kAtomics[28], 1, "bl::deriv::tanh_d1", "bl_deriv_tanh_d1", &detail::gen::deriv_tanh_d1<T>},
-      {&kAtomics[28], 2, "bl::deriv::tanh_d2", "bl_deriv_tanh_d2", &detail::gen::deriv_tanh_d2<T>},
-      {&kAtomics[29], 1, "bl::deriv::log_d1", "bl_deriv_log_d1", &detail::gen::deriv_log_d1<T>},
-      {&kAtomics[29], 2, "bl::deriv::log_d2", "bl_deriv_log_d2", &detail::gen::deriv_log_d2<T>},
-      {&kAtomics[30], 1, "bl::deriv::sqrt_d1", "bl_deriv_sqrt_d1", &detail::gen::deriv_sqrt_d1<T>},
-      {&kAtomics[30], 2, "bl::deriv::sqrt_d2", "bl_deriv_sqrt_d2", &detail::gen::deriv_sqrt_d2<T>},
-      {&kAtomics[31], 1, "bl::deriv::inv_d1", "bl_deriv_inv_d1", &detail::gen::deriv_inv_d1<T>},
-      {&kAtomics[31], 2, "bl::deriv::inv_d2", "bl_deriv_inv_d2", &detail::gen::deriv_inv_d2<T>},
-      {&kAtomics[32], 1, "bl::deriv::inv2_d1", "bl_deriv_inv2_d1", &detail::gen::deriv_inv2_d1<T>},
-      {&kAtomics[32], 2, "bl::deriv::inv2_d2", "bl_deriv_inv2_d2", &detail::gen::deriv_inv2_d2<T>},
+      {&kAtomics[12], 1, "bl::deriv::xexp_d1", "bl_deriv_xexp_d1", &detail::gen::deriv_xexp_d1<T>},
+      {&kAtomics[12], 2, "bl::deriv::xexp_d2", "bl_deriv_xexp_d2", &detail::gen::deriv_xexp_d2<T>},
+      {&kAtomics[13], 1, "bl::deriv::abs_d1", "bl_deriv_abs_d1", &detail::gen::deriv_abs_d1<T>},
+      {&kAtomics[13], 2, "bl::deriv::abs_d2", "bl_deriv_abs_d2", &detail::gen::deriv_abs_d2<T>},
+      {&kAtomics[14], 1, "bl::deriv::sign_d1", "bl_deriv_sign_d1", &detail::gen::deriv_sign_d1<T>},
+      {&kAtomics[14], 2, "bl::deriv::sign_d2", "bl_deriv_sign_d2", &detail::gen::deriv_sign_d2<T>},
+      {&kAtomics[15], 1, "bl::deriv::step_d1", "bl_deriv_step_d1", &detail::gen::deriv_step_d1<T>},
+      {&kAtomics[15], 2, "bl::deriv::step_d2", "bl_deriv_step_d2", &detail::gen::deriv_step_d2<T>},
+      {&kAtomics[16], 1, "bl::deriv::saturate_d1", "bl_deriv_saturate_d1", &detail::gen::deriv_saturate_d1<T>},
+      {&kAtomics[16], 2, "bl::deriv::saturate_d2", "bl_deriv_saturate_d2", &detail::gen::deriv_saturate_d2<T>},
+      {&kAtomics[17], 1, "bl::deriv::smoothstep_d1", "bl_deriv_smoothstep_d1", &detail::gen::deriv_smoothstep_d1<T>},
+      {&kAtomics[17], 2, "bl::deriv::smoothstep_d2", "bl_deriv_smoothstep_d2", &detail::gen::deriv_smoothstep_d2<T>},
+      {&kAtomics[18], 1, "bl::deriv::laplace_d1", "bl_deriv_laplace_d1", &detail::gen::deriv_laplace_d1<T>},
+      {&kAtomics[18], 2, "bl::deriv::laplace_d2", "bl_deriv_laplace_d2", &detail::gen::deriv_laplace_d2<T>},
+      {&kAtomics[19], 1, "bl::deriv::exp_decay_d1", "bl_deriv_exp_decay_d1", &detail::gen::deriv_exp_decay_d1<T>},
+      {&kAtomics[19], 2, "bl::deriv::exp_decay_d2", "bl_deriv_exp_decay_d2", &detail::gen::deriv_exp_decay_d2<T>},
+      {&kAtomics[20], 1, "bl::deriv::exp_ramp_d1", "bl_deriv_exp_ramp_d1", &detail::gen::deriv_exp_ramp_d1<T>},
+      {&kAtomics[20], 2, "bl::deriv::exp_ramp_d2", "bl_deriv_exp_ramp_d2", &detail::gen::deriv_exp_ramp_d2<T>},
+      {&kAtomics[21], 1, "bl::deriv::fract_d1", "bl_deriv_fract_d1", &detail::gen::deriv_fract_d1<T>},
+      {&kAtomics[21], 2, "bl::deriv::fract_d2", "bl_deriv_fract_d2", &detail::gen::deriv_fract_d2<T>},
+      {&kAtomics[22], 1, "bl::deriv::triangle_d1", "bl_deriv_triangle_d1", &detail::gen::deriv_triangle_d1<T>},
+      {&kAtomics[22], 2, "bl::deriv::triangle_d2", "bl_deriv_triangle_d2", &detail::gen::deriv_triangle_d2<T>},
+      {&kAtomics[23], 1, "bl::deriv::square_d1", "bl_deriv_square_d1", &detail::gen::deriv_square_d1<T>},
+      {&kAtomics[23], 2, "bl::deriv::square_d2", "bl_deriv_square_d2", &detail::gen::deriv_square_d2<T>},
+      {&kAtomics[24], 1, "bl::deriv::pulse30_d1", "bl_deriv_pulse30_d1", &detail::gen::deriv_pulse30_d1<T>},
+      {&kAtomics[24], 2, "bl::deriv::pulse30_d2", "bl_deriv_pulse30_d2", &detail::gen::deriv_pulse30_d2<T>},
+      {&kAtomics[25], 1, "bl::deriv::floor_d1", "bl_deriv_floor_d1", &detail::gen::deriv_floor_d1<T>},
+      {&kAtomics[25], 2, "bl::deriv::floor_d2", "bl_deriv_floor_d2", &detail::gen::deriv_floor_d2<T>},
+      {&kAtomics[26], 1, "bl::deriv::ceil_d1", "bl_deriv_ceil_d1", &detail::gen::deriv_ceil_d1<T>},
+      {&kAtomics[26], 2, "bl::deriv::ceil_d2", "bl_deriv_ceil_d2", &detail::gen::deriv_ceil_d2<T>},
+      {&kAtomics[27], 1, "bl::deriv::trunc_d1", "bl_deriv_trunc_d1", &detail::gen::deriv_trunc_d1<T>},
+      {&kAtomics[27], 2, "bl::deriv::trunc_d2", "bl_deriv_trunc_d2", &detail::gen::deriv_trunc_d2<T>},
+      {&kAtomics[28], 1, "bl::deriv::tan_d1", "bl_deriv_tan_d1", &detail::gen::deriv_tan_d1<T>},
+      {&kAtomics[28], 2, "bl::deriv::tan_d2", "bl_deriv_tan_d2", &detail::gen::deriv_tan_d2<T>},
+      {&kAtomics[29], 1, "bl::deriv::tanh_d1", "bl_deriv_tanh_d1", &detail::gen::deriv_tanh_d1<T>},
+      {&kAtomics[29], 2, "bl::deriv::tanh_d2", "bl_deriv_tanh_d2", &detail::gen::deriv_tanh_d2<T>},
+      {&kAtomics[30], 1, "bl::deriv::log_d1", "bl_deriv_log_d1", &detail::gen::deriv_log_d1<T>},
+      {&kAtomics[30], 2, "bl::deriv::log_d2", "bl_deriv_log_d2", &detail::gen::deriv_log_d2<T>},
+      {&kAtomics[31], 1, "bl::deriv::sqrt_d1", "bl_deriv_sqrt_d1", &detail::gen::deriv_sqrt_d1<T>},
+      {&kAtomics[31], 2, "bl::deriv::sqrt_d2", "bl_deriv_sqrt_d2", &detail::gen::deriv_sqrt_d2<T>},
+      {&kAtomics[32], 1, "bl::deriv::inv_d1", "bl_deriv_inv_d1", &detail::gen::deriv_inv_d1<T>},
+      {&kAtomics[32], 2, "bl::deriv::inv_d2", "bl_deriv_inv_d2", &detail::gen::deriv_inv_d2<T>},
+      {&kAtomics[33], 1, "bl::deriv::inv2_d1", "bl_deriv_inv2_d1", &detail::gen::deriv_inv2_d1<T>},
+      {&kAtomics[33], 2, "bl::deriv::inv2_d2", "bl_deriv_inv2_d2", &detail::gen::deriv_inv2_d2<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;
@@ -1713,42 +1752,43 @@ const RuleEntry<T>* clamped_rule_entries(int* count) {
       {&kAtomics[9], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow6", "bl_rule3_pow6", &detail::gen::rule3_pow6<T>},
       {&kAtomics[10], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow7", "bl_rule3_pow7", &detail::gen::rule3_pow7<T>},
       {&kAtomics[11], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow8", "bl_rule3_pow8", &detail::gen::rule3_pow8<T>},
-      {&kAtomics[12], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::abs", "bl_rule3_abs", &detail::gen::rule3_abs<T>},
-      {&kAtomics[13], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sign", "bl_rule3_sign", &detail::gen::rule3_sign<T>},
-      {&kAtomics[14], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::step", "bl_rule3_step", &detail::gen::rule3_step<T>},
-      {&kAtomics[15], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::saturate", "bl_rule3_saturate", &detail::gen::rule3_saturate<T>},
-      {&kAtomics[16], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::smoothstep", "bl_rule3_smoothstep", &detail::gen::rule3_smoothstep<T>},
-      {&kAtomics[17], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::laplace", "bl_rule3_laplace", &detail::gen::rule3_laplace<T>},
-      {&kAtomics[18], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::exp_decay", "bl_rule3_exp_decay", &detail::gen::rule3_exp_decay<T>},
-      {&kAtomics[19], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::exp_ramp", "bl_rule3_exp_ramp", &detail::gen::rule3_exp_ramp<T>},
-      {&kAtomics[20], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::fract", "bl_rule3_fract", &detail::gen::rule3_fract<T>},
-      {&kAtomics[21], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::triangle", "bl_rule3_triangle", &detail::gen::rule3_triangle<T>},
-      {&kAtomics[22], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::square", "bl_rule3_square", &detail::gen::rule3_square<T>},
-      {&kAtomics[23], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pulse30", "bl_rule3_pulse30", &detail::gen::rule3_pulse30<T>},
-      {&kAtomics[24], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::floor", "bl_rule3_floor", &detail::gen::rule3_floor<T>},
-      {&kAtomics[25], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::ceil", "bl_rule3_ceil", &detail::gen::rule3_ceil<T>},
-      {&kAtomics[26], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::trunc", "bl_rule3_trunc", &detail::gen::rule3_trunc<T>},
-      {&kAtomics[27], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tan", "bl_rule3_tan", &detail::gen::rule3_tan<T>},
-      {&kAtomics[28], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tanh", "bl_rule3_tanh", &detail::gen::rule3_tanh<T>},
-      {&kAtomics[29], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::log", "bl_rule3_log", &detail::gen::rule3_log<T>},
-      {&kAtomics[30], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sqrt", "bl_rule3_sqrt", &detail::gen::rule3_sqrt<T>},
-      {&kAtomics[31], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv", "bl_rule3_inv", &detail::gen::rule3_inv<T>},
-      {&kAtomics[32], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv2", "bl_rule3_inv2", &detail::gen::rule3_inv2<T>},
-      {&kAtomics[29], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::log", "bl_rule1_gaussian_log", &detail::gen::rule1_gaussian_log<T>},
-      {&kAtomics[29], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::log", "bl_rule1_box_log", &detail::gen::rule1_box_log<T>},
-      {&kAtomics[29], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::log", "bl_rule1_tent_log", &detail::gen::rule1_tent_log<T>},
-      {&kAtomics[30], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::sqrt", "bl_rule1_gaussian_sqrt", &detail::gen::rule1_gaussian_sqrt<T>},
-      {&kAtomics[30], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::sqrt", "bl_rule1_box_sqrt", &detail::gen::rule1_box_sqrt<T>},
-      {&kAtomics[30], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::sqrt", "bl_rule1_tent_sqrt", &detail::gen::rule1_tent_sqrt<T>},
-      {&kAtomics[13], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::sign", "bl_bimodal_sign", &detail::gen::bimodal_sign<T>},
-      {&kAtomics[14], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::step", "bl_bimodal_step", &detail::gen::bimodal_step<T>},
-      {&kAtomics[18], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::exp_decay", "bl_bimodal_exp_decay", &detail::gen::bimodal_exp_decay<T>},
-      {&kAtomics[20], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::fract", "bl_bimodal_fract", &detail::gen::bimodal_fract<T>},
-      {&kAtomics[22], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::square", "bl_bimodal_square", &detail::gen::bimodal_square<T>},
-      {&kAtomics[23], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::pulse30", "bl_bimodal_pulse30", &detail::gen::bimodal_pulse30<T>},
-      {&kAtomics[24], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::floor", "bl_bimodal_floor", &detail::gen::bimodal_floor<T>},
-      {&kAtomics[25], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::ceil", "bl_bimodal_ceil", &detail::gen::bimodal_ceil<T>},
-      {&kAtomics[26], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::trunc", "bl_bimodal_trunc", &detail::gen::bimodal_trunc<T>},
+      {&kAtomics[12], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::xexp", "bl_rule3_xexp", &detail::gen::rule3_xexp<T>},
+      {&kAtomics[13], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::abs", "bl_rule3_abs", &detail::gen::rule3_abs<T>},
+      {&kAtomics[14], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sign", "bl_rule3_sign", &detail::gen::rule3_sign<T>},
+      {&kAtomics[15], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::step", "bl_rule3_step", &detail::gen::rule3_step<T>},
+      {&kAtomics[16], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::saturate", "bl_rule3_saturate", &detail::gen::rule3_saturate<T>},
+      {&kAtomics[17], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::smoothstep", "bl_rule3_smoothstep", &detail::gen::rule3_smoothstep<T>},
+      {&kAtomics[18], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::laplace", "bl_rule3_laplace", &detail::gen::rule3_laplace<T>},
+      {&kAtomics[19], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::exp_decay", "bl_rule3_exp_decay", &detail::gen::rule3_exp_decay<T>},
+      {&kAtomics[20], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::exp_ramp", "bl_rule3_exp_ramp", &detail::gen::rule3_exp_ramp<T>},
+      {&kAtomics[21], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::fract", "bl_rule3_fract", &detail::gen::rule3_fract<T>},
+      {&kAtomics[22], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::triangle", "bl_rule3_triangle", &detail::gen::rule3_triangle<T>},
+      {&kAtomics[23], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::square", "bl_rule3_square", &detail::gen::rule3_square<T>},
+      {&kAtomics[24], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pulse30", "bl_rule3_pulse30", &detail::gen::rule3_pulse30<T>},
+      {&kAtomics[25], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::floor", "bl_rule3_floor", &detail::gen::rule3_floor<T>},
+      {&kAtomics[26], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::ceil", "bl_rule3_ceil", &detail::gen::rule3_ceil<T>},
+      {&kAtomics[27], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::trunc", "bl_rule3_trunc", &detail::gen::rule3_trunc<T>},
+      {&kAtomics[28], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tan", "bl_rule3_tan", &detail::gen::rule3_tan<T>},
+      {&kAtomics[29], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tanh", "bl_rule3_tanh", &detail::gen::rule3_tanh<T>},
+      {&kAtomics[30], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::log", "bl_rule3_log", &detail::gen::rule3_log<T>},
+      {&kAtomics[31], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sqrt", "bl_rule3_sqrt", &detail::gen::rule3_sqrt<T>},
+      {&kAtomics[32], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv", "bl_rule3_inv", &detail::gen::rule3_inv<T>},
+      {&kAtomics[33], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv2", "bl_rule3_inv2", &detail::gen::rule3_inv2<T>},
+      {&kAtomics[30], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::log", "bl_rule1_gaussian_log", &detail::gen::rule1_gaussian_log<T>},
+      {&kAtomics[30], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::log", "bl_rule1_box_log", &detail::gen::rule1_box_log<T>},
+      {&kAtomics[30], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::log", "bl_rule1_tent_log", &detail::gen::rule1_tent_log<T>},
+      {&kAtomics[31], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::sqrt", "bl_rule1_gaussian_sqrt", &detail::gen::rule1_gaussian_sqrt<T>},
+      {&kAtomics[31], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::sqrt", "bl_rule1_box_sqrt", &detail::gen::rule1_box_sqrt<T>},
+      {&kAtomics[31], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::sqrt", "bl_rule1_tent_sqrt", &detail::gen::rule1_tent_sqrt<T>},
+      {&kAtomics[14], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::sign", "bl_bimodal_sign", &detail::gen::bimodal_sign<T>},
+      {&kAtomics[15], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::step", "bl_bimodal_step", &detail::gen::bimodal_step<T>},
+      {&kAtomics[19], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::exp_decay", "bl_bimodal_exp_decay", &detail::gen::bimodal_exp_decay<T>},
+      {&kAtomics[21], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::fract", "bl_bimodal_fract", &detail::gen::bimodal_fract<T>},
+      {&kAtomics[23], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::square", "bl_bimodal_square", &detail::gen::bimodal_square<T>},
+      {&kAtomics[24], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::pulse30", "bl_bimodal_pulse30", &detail::gen::bimodal_pulse30<T>},
+      {&kAtomics[25], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::floor", "bl_bimodal_floor", &detail::gen::bimodal_floor<T>},
+      {&kAtomics[26], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::ceil", "bl_bimodal_ceil", &detail::gen::bimodal_ceil<T>},
+      {&kAtomics[27], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::trunc", "bl_bimodal_trunc", &detail::gen::bimodal_trunc<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;

@@ -37,6 +37,8 @@ T plain_pow7(T x);
 template <class T>
 T plain_pow8(T x);
 template <class T>
+T plain_xexp(T x);
+template <class T>
 T plain_abs(T x);
 template <class T>
 T plain_sign(T x);
@@ -222,6 +224,18 @@ template <class T>
 T tent_pow8(T x, T sigma);
 template <class T>
 T tent_pow8_sq(T x, T sigma);
+template <class T>
+T gaussian_xexp(T x, T sigma);
+template <class T>
+T gaussian_xexp_sq(T x, T sigma);
+template <class T>
+T box_xexp(T x, T sigma);
+template <class T>
+T box_xexp_sq(T x, T sigma);
+template <class T>
+T tent_xexp(T x, T sigma);
+template <class T>
+T tent_xexp_sq(T x, T sigma);
 template <class T>
 T gaussian_abs(T x, T sigma);
 template <class T>
@@ -671,6 +685,12 @@ template <class T>
 T plain_pow8(T x) {
   BL_MATH_USING
   return (x*x*x*x*x*x*x*x);
+}
+
+template <class T>
+T plain_xexp(T x) {
+  BL_MATH_USING
+  return (exp(x)*x);
 }
 
 template <class T>
@@ -1940,6 +1960,140 @@ T tent_pow8_sq_raw(T x, T sigma) {
 template <class T>
 T tent_pow8_sq(T x, T sigma) {
   const T v = tent_pow8_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {s * exp(s), s = x - 0 on [-inf, inf)}
+template <class T>
+T gaussian_xexp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_xexp(T x, T sigma) {
+  const T v = gaussian_xexp_raw<T>(x, sigma);
+  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {(s)^(2) * exp((2*s)), s = x - 0 on [-inf, inf)}
+template <class T>
+T gaussian_xexp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_xexp_sq(T x, T sigma) {
+  const T v = gaussian_xexp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {s *
+//   exp(s), s = x - 0 on [-inf, inf)}
+template <class T>
+T box_xexp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_xexp(T x, T sigma) {
+  const T v = box_xexp_raw<T>(x, sigma);
+  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms
+//   {(s)^(2) * exp((2*s)), s = x - 0 on [-inf, inf)}
+template <class T>
+T box_xexp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_xexp_sq(T x, T sigma) {
+  const T v = box_xexp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {s * exp(s), s = x - 0 on
+//   [-inf, inf)}
+template <class T>
+T tent_xexp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_xexp(T x, T sigma) {
+  const T v = tent_xexp_raw<T>(x, sigma);
+  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {(s)^(2) * exp((2*s)), s = x
+//   - 0 on [-inf, inf)}
+template <class T>
+T tent_xexp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_xexp_sq(T x, T sigma) {
+  const T v = tent_xexp_sq_raw<T>(x, sigma);
   if (v < T(0)) return T(0);
   return v;
 }
@@ -5868,6 +6022,8 @@ inline float pow7(float x) { return detail::gen::plain_pow7<float>(x); }
 inline double pow7(double x) { return detail::gen::plain_pow7<double>(x); }
 inline float pow8(float x) { return detail::gen::plain_pow8<float>(x); }
 inline double pow8(double x) { return detail::gen::plain_pow8<double>(x); }
+inline float xexp(float x) { return detail::gen::plain_xexp<float>(x); }
+inline double xexp(double x) { return detail::gen::plain_xexp<double>(x); }
 inline float abs(float x) { return detail::gen::plain_abs<float>(x); }
 inline double abs(double x) { return detail::gen::plain_abs<double>(x); }
 inline float sign(float x) { return detail::gen::plain_sign<float>(x); }
@@ -5961,6 +6117,10 @@ inline float pow8(float x, float sigma) { return detail::gen::gaussian_pow8<floa
 inline double pow8(double x, double sigma) { return detail::gen::gaussian_pow8<double>(x, sigma); }
 inline float pow8_sq(float x, float sigma) { return detail::gen::gaussian_pow8_sq<float>(x, sigma); }
 inline double pow8_sq(double x, double sigma) { return detail::gen::gaussian_pow8_sq<double>(x, sigma); }
+inline float xexp(float x, float sigma) { return detail::gen::gaussian_xexp<float>(x, sigma); }
+inline double xexp(double x, double sigma) { return detail::gen::gaussian_xexp<double>(x, sigma); }
+inline float xexp_sq(float x, float sigma) { return detail::gen::gaussian_xexp_sq<float>(x, sigma); }
+inline double xexp_sq(double x, double sigma) { return detail::gen::gaussian_xexp_sq<double>(x, sigma); }
 inline float abs(float x, float sigma) { return detail::gen::gaussian_abs<float>(x, sigma); }
 inline double abs(double x, double sigma) { return detail::gen::gaussian_abs<double>(x, sigma); }
 inline float abs_sq(float x, float sigma) { return detail::gen::gaussian_abs_sq<float>(x, sigma); }
@@ -6074,6 +6234,10 @@ inline float pow8(float x, float sigma) { return detail::gen::box_pow8<float>(x,
 inline double pow8(double x, double sigma) { return detail::gen::box_pow8<double>(x, sigma); }
 inline float pow8_sq(float x, float sigma) { return detail::gen::box_pow8_sq<float>(x, sigma); }
 inline double pow8_sq(double x, double sigma) { return detail::gen::box_pow8_sq<double>(x, sigma); }
+inline float xexp(float x, float sigma) { return detail::gen::box_xexp<float>(x, sigma); }
+inline double xexp(double x, double sigma) { return detail::gen::box_xexp<double>(x, sigma); }
+inline float xexp_sq(float x, float sigma) { return detail::gen::box_xexp_sq<float>(x, sigma); }
+inline double xexp_sq(double x, double sigma) { return detail::gen::box_xexp_sq<double>(x, sigma); }
 inline float abs(float x, float sigma) { return detail::gen::box_abs<float>(x, sigma); }
 inline double abs(double x, double sigma) { return detail::gen::box_abs<double>(x, sigma); }
 inline float abs_sq(float x, float sigma) { return detail::gen::box_abs_sq<float>(x, sigma); }
@@ -6211,6 +6375,10 @@ inline float pow8(float x, float sigma) { return detail::gen::tent_pow8<float>(x
 inline double pow8(double x, double sigma) { return detail::gen::tent_pow8<double>(x, sigma); }
 inline float pow8_sq(float x, float sigma) { return detail::gen::tent_pow8_sq<float>(x, sigma); }
 inline double pow8_sq(double x, double sigma) { return detail::gen::tent_pow8_sq<double>(x, sigma); }
+inline float xexp(float x, float sigma) { return detail::gen::tent_xexp<float>(x, sigma); }
+inline double xexp(double x, double sigma) { return detail::gen::tent_xexp<double>(x, sigma); }
+inline float xexp_sq(float x, float sigma) { return detail::gen::tent_xexp_sq<float>(x, sigma); }
+inline double xexp_sq(double x, double sigma) { return detail::gen::tent_xexp_sq<double>(x, sigma); }
 inline float abs(float x, float sigma) { return detail::gen::tent_abs<float>(x, sigma); }
 inline double abs(double x, double sigma) { return detail::gen::tent_abs<double>(x, sigma); }
 inline float abs_sq(float x, float sigma) { return detail::gen::tent_abs_sq<float>(x, sigma); }
