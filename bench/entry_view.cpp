@@ -30,7 +30,9 @@ std::string family_of(const std::string& atomic) {
       {"tan", "singular"},       {"tanh", "singular"},
       {"log", "singular"},       {"sqrt", "singular"},
       {"inv", "singular"},       {"inv2", "singular"},
-      {"moment", "powers"}};
+      {"laplace", "piecewise"},  {"exp_decay", "piecewise"},
+      {"exp_ramp", "piecewise"}, {"pulse30", "periodic"},
+      {"xexp", "exp-like"},      {"moment", "powers"}};
   if (atomic.rfind("pow", 0) == 0) return "powers";
   auto it = kFamily.find(atomic);
   return it == kFamily.end() ? "other" : it->second;

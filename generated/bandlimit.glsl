@@ -365,6 +365,346 @@ float bl_tent_pw(float x, float sigma, int n, BlPiece p[4]) {
   return s;
 }
 
+// ---- exp-polynomial terms (see support.hpp: ExpTerm, erfcx, tail_laplace, exp_moments) ----
+// A term is e^{a s} sum_k c[k] s^k, s = t - ref, on [lo, hi); tables hold n <= 8 terms.
+struct BlExpTerm {
+  float lo;
+  float hi;
+  float a;
+  float ref;
+  float c[8];
+};
+
+// erfcx(t) = e^{t^2} erfc(t), t >= 0: the Chebyshev fit bl_erfc is built on (relative error
+// < 1.2e-7), without its e^{-t^2} factor, so it stays finite for every t.
+float bl_erfcx(float x) {
+  float z = abs(x);
+  float t = 1.0 / (1.0 + 0.5 * z);
+  return t * exp(-1.26551223 +
+                 t * (1.00002368 +
+                      t * (0.37409196 +
+                           t * (0.09678418 +
+                                t * (-0.18628806 +
+                                     t * (0.27886807 +
+                                          t * (-1.13520398 +
+                                               t * (1.48851587 + t * (-0.82215223 + t * 0.17087277)))))))));
+}
+
+// e^{lw} U_k(t), t >= 0 finite, lwt = lw - t^2/2 (upper_moments_scaled in support.hpp).
+void bl_upper_moments_scaled(float t, float lwt, int deg, out float U[8]) {
+  float e0 = exp(lwt);
+  float e = BL_INV_SQRT_2PI * e0;
+  U[0] = 0.5 * bl_erfcx(t * BL_INV_SQRT2) * e0;
+  U[1] = e;
+  for (int k = 2; k < 8; ++k) {
+    e *= t;
+    U[k] = (k <= deg) ? e + float(k - 1) * U[k - 2] : 0.0;
+  }
+}
+
+// V_k(al) = int_0^inf u^k e^{-al u - u^2/2} du (tail_laplace in support.hpp): upwards for al < 2,
+// Miller's backward ratios from K = 40 otherwise.
+void bl_tail_laplace(float al, int deg, out float V[8]) {
+  V[0] = 1.2533141373155003 * bl_erfcx(al * BL_INV_SQRT2);
+  for (int k = 1; k < 8; ++k) V[k] = 0.0;
+  if (deg == 0) return;
+  if (al < 2.0) {
+    V[1] = 1.0 - al * V[0];
+    for (int k = 1; k < 7; ++k) {
+      if (k >= deg) break;
+      V[k + 1] = float(k) * V[k - 1] - al * V[k];
+    }
+    return;
+  }
+  float ratio[8];
+  for (int k = 0; k < 8; ++k) ratio[k] = 1.0;
+  float r = al / 40.0;
+  for (int k = 39; k >= 1; --k) {
+    r = (1.0 / r + al) / float(k);
+    if (k <= deg) ratio[k] = r;
+  }
+  for (int k = 1; k < 8; ++k) {
+    if (k > deg) break;
+    V[k] = V[k - 1] / ratio[k];
+  }
+}
+
+// I_k = int_0^L v^k e^{-b v} dv, k <= deg (exp_moments in support.hpp).
+void bl_exp_moments(float L, float b, int deg, out float I[9]) {
+  float y = b * L;
+  float ey = exp(-y);
+  float Lk1 = L;
+  float kfact = 1.0;
+  float bk1 = b;
+  for (int k = 0; k < 9; ++k) {
+    I[k] = 0.0;
+    if (k > deg) continue;
+    if (y < float(2 * (k + 1))) {
+      float term = 1.0 / float(k + 1);
+      float sum = term;
+      for (int n = 1; n < 100; ++n) {
+        term *= y / float(k + 1 + n);
+        sum += term;
+        if (term <= 3.0e-8 * sum) break;
+      }
+      I[k] = Lk1 * ey * sum;
+    } else if (ey == 0.0) {
+      I[k] = kfact / bk1;
+    } else {
+      float term = 1.0;
+      float sum = 1.0;
+      for (int j = 1; j <= 8; ++j) {
+        if (j > k) break;
+        term *= y / float(j);
+        sum += term;
+      }
+      I[k] = kfact / bk1 * (1.0 - ey * sum);
+    }
+    Lk1 *= L;
+    kfact *= float(k + 1);
+    bk1 *= b;
+  }
+}
+
+float bl_exp_scaled(float pre, float s, float d) {
+  if (pre < 30.0) return exp(pre) * s / d;
+  return exp(pre - log(d)) * s;
+}
+
+// sum_k g_k dir^k int_0^len v^k (G + sw v) e^{-b v} dv, g the Taylor coefficients at s0.
+float bl_exp_side(float c[8], int deg, float s0, float dir, float len, float b, float G, float sw) {
+  float g[8];
+  bl_taylor_shift(c, deg, s0, g);
+  float I[9];
+  bl_exp_moments(len, b, sw != 0.0 ? deg + 1 : deg, I);
+  float sum = 0.0;
+  float dk = 1.0;
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
+    if (g[k] != 0.0) sum += g[k] * dk * (sw != 0.0 ? G * I[k] + sw * I[k + 1] : I[k]);
+    dk *= dir;
+  }
+  return sum;
+}
+
+float bl_ept_eval(float x, int n, BlExpTerm p[8]) {
+  float s = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    if (i >= n) break;
+    if ((bl_is_inf(p[i].lo) || p[i].lo <= x) && (bl_is_inf(p[i].hi) || x < p[i].hi)) {
+      float u = x - p[i].ref;
+      s += bl_poly(p[i].c, u) * exp(p[i].a * u);
+    }
+  }
+  return s;
+}
+
+// int from the end E of q(s) e^{a s} phi_sigma(t - x) over the side away from the shifted centre.
+float bl_gauss_exp_end(BlExpTerm p, int deg, float E, float e, float f, float sigma, bool right) {
+  float al = (right ? f : -f) / sigma;
+  float g[8];
+  float V[8];
+  bl_taylor_shift(p.c, deg, E - p.ref, g);
+  bl_tail_laplace(al, deg, V);
+  float s = 0.0;
+  float sk = 1.0;
+  float step = right ? sigma : -sigma;
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
+    if (g[k] != 0.0) s += g[k] * sk * V[k];
+    sk *= step;
+  }
+  float z = e / sigma;
+  return BL_INV_SQRT_2PI * exp(p.a * (E - p.ref) - 0.5 * z * z) * s;
+}
+
+float bl_exp_lw(BlExpTerm p, float E, float e, float sigma) {
+  float z = e / sigma;
+  return p.a * (E - p.ref) - 0.5 * z * z;
+}
+
+// Gaussian of one term (gauss_exp_term in support.hpp).
+float bl_gauss_exp_term(float x, float sigma, BlExpTerm p) {
+  if (!(p.hi > p.lo)) return 0.0;
+  bool loinf = bl_is_inf(p.lo);
+  bool hiinf = bl_is_inf(p.hi);
+  int deg = bl_degree(p.c);
+  float a = p.a;
+  float el = p.lo - x;
+  float eh = p.hi - x;
+  float as2 = a * sigma * sigma;
+  float fl = el - as2;
+  float fh = eh - as2;
+  float two_sigma = 2.0 * sigma;
+  if (!loinf && fl >= two_sigma) {
+    float r = bl_gauss_exp_end(p, deg, p.lo, el, fl, sigma, true);
+    if (!hiinf) r -= bl_gauss_exp_end(p, deg, p.hi, eh, fh, sigma, true);
+    return r;
+  }
+  if (!hiinf && fh <= -two_sigma) {
+    float r = bl_gauss_exp_end(p, deg, p.hi, eh, fh, sigma, false);
+    if (!loinf) r -= bl_gauss_exp_end(p, deg, p.lo, el, fl, sigma, false);
+    return r;
+  }
+  if (!loinf && !hiinf) {
+    float width = p.hi - p.lo;
+    float hw = width / two_sigma;
+    float cz = (fl + fh) / two_sigma;
+    if (hw <= 1.0 && abs(cz) * hw <= 10.0) {
+      float gx[10];
+      float gw[10];
+      gx[0] = 0.076526521133497338;
+      gx[1] = 0.22778585114164507;
+      gx[2] = 0.37370608871541955;
+      gx[3] = 0.51086700195082713;
+      gx[4] = 0.63605368072651502;
+      gx[5] = 0.7463319064601508;
+      gx[6] = 0.83911697182221878;
+      gx[7] = 0.91223442825132595;
+      gx[8] = 0.96397192727791381;
+      gx[9] = 0.99312859918509488;
+      gw[0] = 0.15275338713072584;
+      gw[1] = 0.14917298647260374;
+      gw[2] = 0.14209610931838204;
+      gw[3] = 0.13168863844917664;
+      gw[4] = 0.11819453196151841;
+      gw[5] = 0.10193011981724044;
+      gw[6] = 0.083276741576704755;
+      gw[7] = 0.062672048334109068;
+      gw[8] = 0.040601429800386939;
+      gw[9] = 0.017614007139152118;
+      float half_ = 0.5 * width;
+      float sm = 0.5 * ((p.lo - p.ref) + (p.hi - p.ref));
+      float em = 0.5 * (el + eh);
+      float s = 0.0;
+      for (int i = 0; i < 10; ++i) {
+        for (int j = 0; j < 2; ++j) {
+          float xi = j == 0 ? gx[i] : -gx[i];
+          float z = (em + half_ * xi) / sigma;
+          s += gw[i] * bl_poly(p.c, sm + half_ * xi) * exp(a * (sm + half_ * xi) - 0.5 * z * z);
+        }
+      }
+      return hw * BL_INV_SQRT_2PI * s;
+    }
+  }
+  float g[8];
+  bl_taylor_shift(p.c, deg, (x - p.ref) + as2, g);
+  float L = a * (x - p.ref) + 0.5 * a * as2;
+  float al = fl / sigma;
+  float be = fh / sigma;
+  float Ua[8];
+  float Ub[8];
+  for (int k = 0; k < 8; ++k) {
+    Ua[k] = 0.0;
+    Ub[k] = 0.0;
+  }
+  float sum = 0.0;
+  float sk = 1.0;
+  if ((loinf || al < 0.0) && (hiinf || be > 0.0)) {  // the shifted centre inside the piece
+    if (!loinf) bl_upper_moments_scaled(-al, bl_exp_lw(p, p.lo, el, sigma), deg, Ua);
+    if (!hiinf) bl_upper_moments_scaled(be, bl_exp_lw(p, p.hi, eh, sigma), deg, Ub);
+    float eL = exp(L);
+    float m[8];
+    for (int k = 0; k < 8; ++k) {
+      if (k > deg) break;
+      m[k] = (k == 0) ? 1.0 : ((k == 1) ? 0.0 : float(k - 1) * m[k - 2]);
+      float ik = eL * m[k] - (((k & 1) == 1) ? -Ua[k] : Ua[k]) - Ub[k];
+      if (g[k] != 0.0) sum += g[k] * sk * ik;
+      sk *= sigma;
+    }
+    return sum;
+  }
+  if (al >= 0.0) {
+    bl_upper_moments_scaled(al, bl_exp_lw(p, p.lo, el, sigma), deg, Ua);
+    if (!hiinf) bl_upper_moments_scaled(be, bl_exp_lw(p, p.hi, eh, sigma), deg, Ub);
+    for (int k = 0; k < 8; ++k) {
+      if (k > deg) break;
+      if (g[k] != 0.0) sum += g[k] * sk * (Ua[k] - Ub[k]);
+      sk *= sigma;
+    }
+    return sum;
+  }
+  bl_upper_moments_scaled(-be, bl_exp_lw(p, p.hi, eh, sigma), deg, Ub);
+  if (!loinf) bl_upper_moments_scaled(-al, bl_exp_lw(p, p.lo, el, sigma), deg, Ua);
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
+    float ik = Ub[k] - Ua[k];
+    if (g[k] != 0.0) sum += g[k] * sk * (((k & 1) == 1) ? -ik : ik);
+    sk *= sigma;
+  }
+  return sum;
+}
+
+// Box of one term (box_exp_term in support.hpp).
+float bl_box_exp_term(float x, float h, BlExpTerm p) {
+  float el = p.lo - x;
+  float eh = p.hi - x;
+  if (!(el < h) || !(eh > -h) || !(p.hi > p.lo)) return 0.0;
+  bool cl = el > -h && !bl_is_inf(p.lo);
+  bool cr = eh < h && !bl_is_inf(p.hi);
+  float len = cl ? (cr ? p.hi - p.lo : h - el) : (cr ? eh + h : 2.0 * h);
+  int deg = bl_degree(p.c);
+  bool left = !(p.a > 0.0);
+  float s0 = left ? (cl ? p.lo - p.ref : (x - p.ref) - h) : (cr ? p.hi - p.ref : (x - p.ref) + h);
+  float sum = bl_exp_side(p.c, deg, s0, left ? 1.0 : -1.0, len, abs(p.a), 1.0, 0.0);
+  return bl_exp_scaled(p.a * s0, sum, 2.0 * h);
+}
+
+// One half [o0, o1] (offsets from x) of the tent of one term; e0/e1: o0/o1 is an end of the piece.
+float bl_tent_exp_half(float x, float w, BlExpTerm p, int deg, float o0, bool e0, float o1, bool e1, bool right) {
+  float len = (e0 && e1) ? p.hi - p.lo : o1 - o0;
+  if (!(len > 0.0)) return 0.0;
+  bool left_anchor = !(p.a > 0.0);
+  float o = left_anchor ? o0 : o1;
+  bool e = left_anchor ? e0 : e1;
+  float s0 = e ? (left_anchor ? p.lo - p.ref : p.hi - p.ref) : (x - p.ref) + o;
+  float G = right ? w - o : w + o;
+  float sw = (right == left_anchor) ? -1.0 : 1.0;
+  float sum = bl_exp_side(p.c, deg, s0, left_anchor ? 1.0 : -1.0, len, abs(p.a), G, sw);
+  return bl_exp_scaled(p.a * s0, sum / w, w);
+}
+
+float bl_tent_exp_term(float x, float w, BlExpTerm p) {
+  float el = p.lo - x;
+  float eh = p.hi - x;
+  if (!(el < w) || !(eh > -w) || !(p.hi > p.lo)) return 0.0;
+  int deg = bl_degree(p.c);
+  float r = 0.0;
+  if (eh > 0.0) r += bl_tent_exp_half(x, w, p, deg, el > 0.0 ? el : 0.0, el > 0.0, eh < w ? eh : w, eh < w, true);
+  if (el < 0.0) r += bl_tent_exp_half(x, w, p, deg, el > -w ? el : -w, el > -w, eh < 0.0 ? eh : 0.0, eh < 0.0, false);
+  return r;
+}
+
+float bl_gauss_ept(float x, float sigma, int n, BlExpTerm p[8]) {
+  if (sigma == 0.0) return bl_ept_eval(x, n, p);
+  float s = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    if (i >= n) break;
+    s += bl_gauss_exp_term(x, sigma, p[i]);
+  }
+  return s;
+}
+float bl_box_ept(float x, float sigma, int n, BlExpTerm p[8]) {
+  if (sigma == 0.0) return bl_ept_eval(x, n, p);
+  float h = BL_SQRT3 * sigma;
+  float s = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    if (i >= n) break;
+    s += bl_box_exp_term(x, h, p[i]);
+  }
+  return s;
+}
+float bl_tent_ept(float x, float sigma, int n, BlExpTerm p[8]) {
+  if (sigma == 0.0) return bl_ept_eval(x, n, p);
+  float w = BL_SQRT6 * sigma;
+  float s = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    if (i >= n) break;
+    s += bl_tent_exp_term(x, w, p[i]);
+  }
+  return s;
+}
+
 // Periodic functions: pieces cover [0, period). Returns vec2(r, q), y = q period + r,
 // r in [0, period); q is adjusted with r so the pair stays consistent after rounding.
 vec2 bl_reduce_period(float y, float period) {
@@ -1039,6 +1379,10 @@ float bl_plain_pow8(float x) {
   return (x*x*x*x*x*x*x*x);
 }
 
+float bl_plain_xexp(float x) {
+  return (exp(x)*x);
+}
+
 float bl_plain_abs(float x) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1084,6 +1428,21 @@ float bl_plain_smoothstep(float x) {
   return bl_pw_eval(x, 3, p);
 }
 
+float bl_plain_laplace(float x) {
+  if (x < 0.0) return exp(x);
+  return exp((-x));
+}
+
+float bl_plain_exp_decay(float x) {
+  if (x < 0.0) return 0.0;
+  return exp((-x));
+}
+
+float bl_plain_exp_ramp(float x) {
+  if (x < 0.0) return 0.0;
+  return (exp((-x))*x);
+}
+
 float bl_plain_fract(float x) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -1109,6 +1468,15 @@ float bl_plain_square(float x) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   return bl_periodic_eval(x, 1.0, 2, p);
+}
+
+float bl_plain_pulse30(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 10.0, 2, p);
 }
 
 float bl_plain_floor(float x) {
@@ -1890,6 +2258,132 @@ float bl_tent_pow8_sq(float x, float sigma) {
   return v;
 }
 
+float bl_gaussian_xexp_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 1.0, 0.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_gauss_ept(x, sigma, 1, p);
+}
+
+float bl_gaussian_xexp(float x, float sigma) {
+  float v = bl_gaussian_xexp_raw(x, sigma);
+  if (v < (-exp((-1.0)))) return (-exp((-1.0)));
+  return v;
+}
+
+float bl_gaussian_xexp_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 2.0, 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_gauss_ept(x, sigma, 1, p);
+}
+
+float bl_gaussian_xexp_sq(float x, float sigma) {
+  float v = bl_gaussian_xexp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_xexp_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 1.0, 0.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_box_ept(x, sigma, 1, p);
+}
+
+float bl_box_xexp(float x, float sigma) {
+  float v = bl_box_xexp_raw(x, sigma);
+  if (v < (-exp((-1.0)))) return (-exp((-1.0)));
+  return v;
+}
+
+float bl_box_xexp_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 2.0, 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_box_ept(x, sigma, 1, p);
+}
+
+float bl_box_xexp_sq(float x, float sigma) {
+  float v = bl_box_xexp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_tent_xexp_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 1.0, 0.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_tent_ept(x, sigma, 1, p);
+}
+
+float bl_tent_xexp(float x, float sigma) {
+  float v = bl_tent_xexp_raw(x, sigma);
+  if (v < (-exp((-1.0)))) return (-exp((-1.0)));
+  return v;
+}
+
+float bl_tent_xexp_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 1e30, 2.0, 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_tent_ept(x, sigma, 1, p);
+}
+
+float bl_tent_xexp_sq(float x, float sigma) {
+  float v = bl_tent_xexp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  return v;
+}
+
 float bl_gaussian_abs_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2385,6 +2879,402 @@ float bl_tent_smoothstep_sq(float x, float sigma) {
   float v = bl_tent_smoothstep_sq_raw(x, sigma);
   if (v < 0.0) return 0.0;
   if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_laplace_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 0.0, 1.0, 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 1e30, (-1.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
+  return bl_gauss_ept(x, sigma, 2, p);
+}
+
+float bl_gaussian_laplace(float x, float sigma) {
+  float v = bl_gaussian_laplace_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_laplace_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 0.0, 2.0, 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 1e30, (-2.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
+  return bl_gauss_ept(x, sigma, 2, p);
+}
+
+float bl_gaussian_laplace_sq(float x, float sigma) {
+  float v = bl_gaussian_laplace_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_laplace_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 0.0, 1.0, 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 1e30, (-1.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
+  return bl_box_ept(x, sigma, 2, p);
+}
+
+float bl_box_laplace(float x, float sigma) {
+  float v = bl_box_laplace_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_laplace_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 0.0, 2.0, 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 1e30, (-2.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
+  return bl_box_ept(x, sigma, 2, p);
+}
+
+float bl_box_laplace_sq(float x, float sigma) {
+  float v = bl_box_laplace_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_laplace_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 0.0, 1.0, 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 1e30, (-1.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
+  return bl_tent_ept(x, sigma, 2, p);
+}
+
+float bl_tent_laplace(float x, float sigma) {
+  float v = bl_tent_laplace_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_laplace_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(-1e30, 0.0, 2.0, 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 1e30, (-2.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
+  return bl_tent_ept(x, sigma, 2, p);
+}
+
+float bl_tent_laplace_sq(float x, float sigma) {
+  float v = bl_tent_laplace_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_exp_decay_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-1.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_gauss_ept(x, sigma, 1, p);
+}
+
+float bl_gaussian_exp_decay(float x, float sigma) {
+  float v = bl_gaussian_exp_decay_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_exp_decay_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-2.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_gauss_ept(x, sigma, 1, p);
+}
+
+float bl_gaussian_exp_decay_sq(float x, float sigma) {
+  float v = bl_gaussian_exp_decay_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_exp_decay_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-1.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_box_ept(x, sigma, 1, p);
+}
+
+float bl_box_exp_decay(float x, float sigma) {
+  float v = bl_box_exp_decay_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_exp_decay_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-2.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_box_ept(x, sigma, 1, p);
+}
+
+float bl_box_exp_decay_sq(float x, float sigma) {
+  float v = bl_box_exp_decay_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_exp_decay_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-1.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_tent_ept(x, sigma, 1, p);
+}
+
+float bl_tent_exp_decay(float x, float sigma) {
+  float v = bl_tent_exp_decay_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_exp_decay_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-2.0), 0.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_tent_ept(x, sigma, 1, p);
+}
+
+float bl_tent_exp_decay_sq(float x, float sigma) {
+  float v = bl_tent_exp_decay_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_exp_ramp_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-1.0), 0.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_gauss_ept(x, sigma, 1, p);
+}
+
+float bl_gaussian_exp_ramp(float x, float sigma) {
+  float v = bl_gaussian_exp_ramp_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > exp((-1.0))) return exp((-1.0));
+  return v;
+}
+
+float bl_gaussian_exp_ramp_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-2.0), 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_gauss_ept(x, sigma, 1, p);
+}
+
+float bl_gaussian_exp_ramp_sq(float x, float sigma) {
+  float v = bl_gaussian_exp_ramp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > exp((-2.0))) return exp((-2.0));
+  return v;
+}
+
+float bl_box_exp_ramp_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-1.0), 0.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_box_ept(x, sigma, 1, p);
+}
+
+float bl_box_exp_ramp(float x, float sigma) {
+  float v = bl_box_exp_ramp_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > exp((-1.0))) return exp((-1.0));
+  return v;
+}
+
+float bl_box_exp_ramp_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-2.0), 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_box_ept(x, sigma, 1, p);
+}
+
+float bl_box_exp_ramp_sq(float x, float sigma) {
+  float v = bl_box_exp_ramp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > exp((-2.0))) return exp((-2.0));
+  return v;
+}
+
+float bl_tent_exp_ramp_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-1.0), 0.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_tent_ept(x, sigma, 1, p);
+}
+
+float bl_tent_exp_ramp(float x, float sigma) {
+  float v = bl_tent_exp_ramp_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > exp((-1.0))) return exp((-1.0));
+  return v;
+}
+
+float bl_tent_exp_ramp_sq_raw(float x, float sigma) {
+  BlExpTerm p[8] = BlExpTerm[8](
+      BlExpTerm(0.0, 1e30, (-2.0), 0.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
+  return bl_tent_ept(x, sigma, 1, p);
+}
+
+float bl_tent_exp_ramp_sq(float x, float sigma) {
+  float v = bl_tent_exp_ramp_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > exp((-2.0))) return exp((-2.0));
   return v;
 }
 
@@ -3340,6 +4230,329 @@ float bl_tent_square_sq_raw(float x, float sigma) {
 
 float bl_tent_square_sq(float x, float sigma) {
   float v = bl_tent_square_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_pulse30_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  float s = sigma / period;
+  if (s >= (0.03785605326894285)) {
+    int K = int(floor((1.0725509182905828) / s));
+    float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
+    float acc = (3.0/10.0);
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      float cph3_10 = cos((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      float sph3_10 = sin((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      acc += damp * (((1.0/(bl_pi()))*(1.0/(kf))*sph3_10) * ck + (-((-1.0) + cph3_10)*(1.0/(bl_pi()))*(1.0/(kf))) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return acc;
+  }
+  return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
+}
+
+float bl_gaussian_pulse30(float x, float sigma) {
+  float v = bl_gaussian_pulse30_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_gaussian_pulse30_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  float s = sigma / period;
+  if (s >= (0.04147822195785659)) {
+    int K = int(floor((1.0683591926374918) / s));
+    float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
+    float acc = (0.0);
+    for (int k = 1; k <= K + 2; ++k) {
+      float kf = float(k);
+      float cph3_10 = cos((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      float sph3_10 = sin((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      float w = w1 * kf;
+      acc += damp * w * ((-((-1.0) + cph3_10)*(1.0/(bl_pi()))*(1.0/(kf))) * ck - ((1.0/(bl_pi()))*(1.0/(kf))*sph3_10) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return sigma * sigma * acc;
+  }
+  return bl_gauss_periodic_u_image(x, sigma, period, 2, p, (1.0));
+}
+
+float bl_gaussian_pulse30_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  if (x - R >= (0.0)) return bl_gaussian_pulse30(x, sigma);
+  if (x + R < (0.0)) return (0.0);
+  float cs[40] = float[40]((0.6597344572538566), (-0.27634892323050203), (-0.45579226720040733), (0.2963833943194581), (0.4258569933471977), (-0.30120109792671274), (-0.41893681950964473), (0.3023568905207193), (0.4172366915153417), (-0.3026383503577255), (-0.4168137637217804), (0.30270773949989743), (0.41670820988046586), (-0.30272496892497025), (-0.41668183839772005), (0.30272926258170507), (0.41667524726189387), (-0.3027303344355449), (-0.4166735996621471), (0.3027306022232349), (0.41667318778217927), (-0.30273066915047714), (-0.4166730848143763), (0.3027306858800916), (0.416673059072667), (-0.3027306900622506), (-0.4166730526372664), (0.30273069110776313), (0.4166730510284192), (-0.30273069136913827), (-0.4166730506262077), (0.3027306914344817), (0.4166730505256549), (-0.30273069145081755), (-0.4166730505005167), (0.3027306914549015), (0.41667305049423214), (-0.30273069145592246), (-0.41667305049266096), (0.3027306914561777));
+  return bl_gauss_periodic_right(x, sigma, period, 2, p, (1.0), (4.0), (3.0/10.0), 40, cs);
+}
+
+float bl_gaussian_pulse30_sq_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  float s = sigma / period;
+  if (s >= (0.03785605326894285)) {
+    int K = int(floor((1.0725509182905828) / s));
+    float xr = x - period * floor(x / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
+    float acc = (3.0/10.0);
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      float cph3_10 = cos((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      float sph3_10 = sin((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
+      acc += damp * (((1.0/(bl_pi()))*(1.0/(kf))*sph3_10) * ck + (-((-1.0) + cph3_10)*(1.0/(bl_pi()))*(1.0/(kf))) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return acc;
+  }
+  return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
+}
+
+float bl_gaussian_pulse30_sq(float x, float sigma) {
+  float v = bl_gaussian_pulse30_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_pulse30_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  return bl_box_periodic(x, sigma, period, 2, p, p1);
+}
+
+float bl_box_pulse30(float x, float sigma) {
+  float v = bl_box_pulse30_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_box_pulse30_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  return bl_box_periodic_u(x, sigma, period, 2, p);
+}
+
+float bl_box_pulse30_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float hw = BL_SQRT3 * sigma;
+  if (x - hw >= (0.0)) return bl_box_pulse30(x, sigma);
+  if (x + hw <= (0.0)) return (0.0);
+  return bl_box_periodic_right(x, hw, period, 2, p, p1);
+}
+
+float bl_box_pulse30_sq_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  return bl_box_periodic(x, sigma, period, 2, p, p1);
+}
+
+float bl_box_pulse30_sq(float x, float sigma) {
+  float v = bl_box_pulse30_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_pulse30_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p2[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+}
+
+float bl_tent_pulse30(float x, float sigma) {
+  float v = bl_tent_pulse30_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > 1.0) return 1.0;
+  return v;
+}
+
+float bl_tent_pulse30_u(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return (0.0);
+  return bl_tent_periodic_u(x, sigma, period, 2, p);
+}
+
+float bl_tent_pulse30_right(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p2[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
+  float hw = BL_SQRT6 * sigma;
+  if (x - hw >= (0.0)) return bl_tent_pulse30(x, sigma);
+  if (x + hw <= (0.0)) return (0.0);
+  return bl_tent_periodic_right(x, hw, period, 2, p, p1, p2);
+}
+
+float bl_tent_pulse30_sq_raw(float x, float sigma) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p1[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  BlPiece p2[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float period = 10.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+}
+
+float bl_tent_pulse30_sq(float x, float sigma) {
+  float v = bl_tent_pulse30_sq_raw(x, sigma);
   if (v < 0.0) return 0.0;
   if (v > 1.0) return 1.0;
   return v;

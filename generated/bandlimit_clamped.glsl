@@ -147,6 +147,13 @@ vec2 bl_rule3_from_derivatives(float f0, float f1, float f2, BlTruncMoments m) {
   return vec2(mean, max(f1 * f1 * m.var + f1 * f2 * m.mu3 + 0.25 * f2 * f2 * (m.mu4 - m.var * m.var), 0.0));
 }
 
+// Rule 3 kept inside f's range [lo, hi] (mean) and Popoviciu's bound (variance); see clamped_support.hpp.
+vec2 bl_rule3_in_range(vec2 s, float lo, float hi) {
+  float mean = min(max(s.x, lo), hi);
+  float pop = 0.25 * (hi - lo) * (hi - lo);
+  return vec2(mean, min(s.y, pop));
+}
+
 // Variance of the density proportional to e^(k t) on [0, 1] with mean t (see clamped_support.hpp).
 float bl_exp_family_var(float t) {
   float lo = -1e4, hi = 1e4;
@@ -345,6 +352,14 @@ float bl_deriv_pow8_d2(float x) {
   return (56.0*(x*x*x*x*x*x));
 }
 
+float bl_deriv_xexp_d1(float x) {
+  return ((exp(x)*x) + exp(x));
+}
+
+float bl_deriv_xexp_d2(float x) {
+  return ((2.0*exp(x)) + (exp(x)*x));
+}
+
 float bl_deriv_abs_d1(float x) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-BL_INF, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -435,6 +450,36 @@ float bl_deriv_smoothstep_d2(float x) {
   return bl_pw_eval(x, 3, p);
 }
 
+float bl_deriv_laplace_d1(float x) {
+  if (x < 0.0) return exp(x);
+  return (-exp((-x)));
+}
+
+float bl_deriv_laplace_d2(float x) {
+  if (x < 0.0) return exp(x);
+  return exp((-x));
+}
+
+float bl_deriv_exp_decay_d1(float x) {
+  if (x < 0.0) return 0.0;
+  return (-exp((-x)));
+}
+
+float bl_deriv_exp_decay_d2(float x) {
+  if (x < 0.0) return 0.0;
+  return exp((-x));
+}
+
+float bl_deriv_exp_ramp_d1(float x) {
+  if (x < 0.0) return 0.0;
+  return ((-exp((-x))*x) + exp((-x)));
+}
+
+float bl_deriv_exp_ramp_d2(float x) {
+  if (x < 0.0) return 0.0;
+  return (((-2.0)*exp((-x))) + (exp((-x))*x));
+}
+
 float bl_deriv_fract_d1(float x) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -487,6 +532,24 @@ float bl_deriv_square_d2(float x) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   return bl_periodic_eval(x, 1.0, 2, p);
+}
+
+float bl_deriv_pulse30_d1(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 10.0, 2, p);
+}
+
+float bl_deriv_pulse30_d2(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 10.0, 2, p);
 }
 
 float bl_deriv_floor_d1(float x) {
@@ -613,6 +676,10 @@ float bl_clamped_plain_pow8(float x) {
   return (x*x*x*x*x*x*x*x);
 }
 
+float bl_clamped_plain_xexp(float x) {
+  return (exp(x)*x);
+}
+
 float bl_clamped_plain_abs(float x) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -658,6 +725,21 @@ float bl_clamped_plain_smoothstep(float x) {
   return bl_pw_eval(x, 3, p);
 }
 
+float bl_clamped_plain_laplace(float x) {
+  if (x < 0.0) return exp(x);
+  return exp((-x));
+}
+
+float bl_clamped_plain_exp_decay(float x) {
+  if (x < 0.0) return 0.0;
+  return exp((-x));
+}
+
+float bl_clamped_plain_exp_ramp(float x) {
+  if (x < 0.0) return 0.0;
+  return (exp((-x))*x);
+}
+
 float bl_clamped_plain_fract(float x) {
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -683,6 +765,15 @@ float bl_clamped_plain_square(float x) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   return bl_periodic_eval(x, 1.0, 2, p);
+}
+
+float bl_clamped_plain_pulse30(float x) {
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  return bl_periodic_eval(x, 10.0, 2, p);
 }
 
 float bl_clamped_plain_floor(float x) {
@@ -725,203 +816,272 @@ vec2 bl_rule3_sin(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_sin(c), bl_deriv_sin_d1(c), bl_deriv_sin_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_sin(c), bl_deriv_sin_d1(c), bl_deriv_sin_d2(c), m);
+  return bl_rule3_in_range(s, (-1.0), 1.0);
 }
 
 vec2 bl_rule3_cos(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_cos(c), bl_deriv_cos_d1(c), bl_deriv_cos_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_cos(c), bl_deriv_cos_d1(c), bl_deriv_cos_d2(c), m);
+  return bl_rule3_in_range(s, (-1.0), 1.0);
 }
 
 vec2 bl_rule3_exp(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_exp(c), bl_deriv_exp_d1(c), bl_deriv_exp_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_exp(c), bl_deriv_exp_d1(c), bl_deriv_exp_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, BL_INF);
 }
 
 vec2 bl_rule3_sinh(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_sinh(c), bl_deriv_sinh_d1(c), bl_deriv_sinh_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_sinh(c), bl_deriv_sinh_d1(c), bl_deriv_sinh_d2(c), m);
+  return s;
 }
 
 vec2 bl_rule3_cosh(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_cosh(c), bl_deriv_cosh_d1(c), bl_deriv_cosh_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_cosh(c), bl_deriv_cosh_d1(c), bl_deriv_cosh_d2(c), m);
+  return bl_rule3_in_range(s, 1.0, BL_INF);
 }
 
 vec2 bl_rule3_pow2(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_pow2(c), bl_deriv_pow2_d1(c), bl_deriv_pow2_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow2(c), bl_deriv_pow2_d1(c), bl_deriv_pow2_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, BL_INF);
 }
 
 vec2 bl_rule3_pow3(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_pow3(c), bl_deriv_pow3_d1(c), bl_deriv_pow3_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow3(c), bl_deriv_pow3_d1(c), bl_deriv_pow3_d2(c), m);
+  return s;
 }
 
 vec2 bl_rule3_pow4(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_pow4(c), bl_deriv_pow4_d1(c), bl_deriv_pow4_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow4(c), bl_deriv_pow4_d1(c), bl_deriv_pow4_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, BL_INF);
 }
 
 vec2 bl_rule3_pow5(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_pow5(c), bl_deriv_pow5_d1(c), bl_deriv_pow5_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow5(c), bl_deriv_pow5_d1(c), bl_deriv_pow5_d2(c), m);
+  return s;
 }
 
 vec2 bl_rule3_pow6(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_pow6(c), bl_deriv_pow6_d1(c), bl_deriv_pow6_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow6(c), bl_deriv_pow6_d1(c), bl_deriv_pow6_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, BL_INF);
 }
 
 vec2 bl_rule3_pow7(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_pow7(c), bl_deriv_pow7_d1(c), bl_deriv_pow7_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow7(c), bl_deriv_pow7_d1(c), bl_deriv_pow7_d2(c), m);
+  return s;
 }
 
 vec2 bl_rule3_pow8(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_pow8(c), bl_deriv_pow8_d1(c), bl_deriv_pow8_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow8(c), bl_deriv_pow8_d1(c), bl_deriv_pow8_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, BL_INF);
+}
+
+vec2 bl_rule3_xexp(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float c = m.mean;
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_xexp(c), bl_deriv_xexp_d1(c), bl_deriv_xexp_d2(c), m);
+  return bl_rule3_in_range(s, (-exp((-1.0))), BL_INF);
 }
 
 vec2 bl_rule3_abs(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_abs(c), bl_deriv_abs_d1(c), bl_deriv_abs_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_abs(c), bl_deriv_abs_d1(c), bl_deriv_abs_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, BL_INF);
 }
 
 vec2 bl_rule3_sign(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_sign(c), bl_deriv_sign_d1(c), bl_deriv_sign_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_sign(c), bl_deriv_sign_d1(c), bl_deriv_sign_d2(c), m);
+  return bl_rule3_in_range(s, (-1.0), 1.0);
 }
 
 vec2 bl_rule3_step(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_step(c), bl_deriv_step_d1(c), bl_deriv_step_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_step(c), bl_deriv_step_d1(c), bl_deriv_step_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, 1.0);
 }
 
 vec2 bl_rule3_saturate(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_saturate(c), bl_deriv_saturate_d1(c), bl_deriv_saturate_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_saturate(c), bl_deriv_saturate_d1(c), bl_deriv_saturate_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, 1.0);
 }
 
 vec2 bl_rule3_smoothstep(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_smoothstep(c), bl_deriv_smoothstep_d1(c), bl_deriv_smoothstep_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_smoothstep(c), bl_deriv_smoothstep_d1(c), bl_deriv_smoothstep_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, 1.0);
+}
+
+vec2 bl_rule3_laplace(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float c = m.mean;
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_laplace(c), bl_deriv_laplace_d1(c), bl_deriv_laplace_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, 1.0);
+}
+
+vec2 bl_rule3_exp_decay(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float c = m.mean;
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_exp_decay(c), bl_deriv_exp_decay_d1(c), bl_deriv_exp_decay_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, 1.0);
+}
+
+vec2 bl_rule3_exp_ramp(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float c = m.mean;
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_exp_ramp(c), bl_deriv_exp_ramp_d1(c), bl_deriv_exp_ramp_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, exp((-1.0)));
 }
 
 vec2 bl_rule3_fract(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_fract(c), bl_deriv_fract_d1(c), bl_deriv_fract_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_fract(c), bl_deriv_fract_d1(c), bl_deriv_fract_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, 1.0);
 }
 
 vec2 bl_rule3_triangle(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_triangle(c), bl_deriv_triangle_d1(c), bl_deriv_triangle_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_triangle(c), bl_deriv_triangle_d1(c), bl_deriv_triangle_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, 1.0);
 }
 
 vec2 bl_rule3_square(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_square(c), bl_deriv_square_d1(c), bl_deriv_square_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_square(c), bl_deriv_square_d1(c), bl_deriv_square_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, 1.0);
+}
+
+vec2 bl_rule3_pulse30(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float c = m.mean;
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pulse30(c), bl_deriv_pulse30_d1(c), bl_deriv_pulse30_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, 1.0);
 }
 
 vec2 bl_rule3_floor(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_floor(c), bl_deriv_floor_d1(c), bl_deriv_floor_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_floor(c), bl_deriv_floor_d1(c), bl_deriv_floor_d2(c), m);
+  return s;
 }
 
 vec2 bl_rule3_ceil(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_ceil(c), bl_deriv_ceil_d1(c), bl_deriv_ceil_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_ceil(c), bl_deriv_ceil_d1(c), bl_deriv_ceil_d2(c), m);
+  return s;
 }
 
 vec2 bl_rule3_trunc(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_trunc(c), bl_deriv_trunc_d1(c), bl_deriv_trunc_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_trunc(c), bl_deriv_trunc_d1(c), bl_deriv_trunc_d2(c), m);
+  return s;
 }
 
 vec2 bl_rule3_tan(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_tan(c), bl_deriv_tan_d1(c), bl_deriv_tan_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_tan(c), bl_deriv_tan_d1(c), bl_deriv_tan_d2(c), m);
+  return s;
 }
 
 vec2 bl_rule3_tanh(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_tanh(c), bl_deriv_tanh_d1(c), bl_deriv_tanh_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_tanh(c), bl_deriv_tanh_d1(c), bl_deriv_tanh_d2(c), m);
+  return bl_rule3_in_range(s, (-1.0), 1.0);
 }
 
 vec2 bl_rule3_log(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, 0.0, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_log(c), bl_deriv_log_d1(c), bl_deriv_log_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_log(c), bl_deriv_log_d1(c), bl_deriv_log_d2(c), m);
+  return s;
 }
 
 vec2 bl_rule3_sqrt(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, 0.0, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_sqrt(c), bl_deriv_sqrt_d1(c), bl_deriv_sqrt_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_sqrt(c), bl_deriv_sqrt_d1(c), bl_deriv_sqrt_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, BL_INF);
 }
 
 vec2 bl_rule3_inv(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_inv(c), bl_deriv_inv_d1(c), bl_deriv_inv_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_inv(c), bl_deriv_inv_d1(c), bl_deriv_inv_d2(c), m);
+  return s;
 }
 
 vec2 bl_rule3_inv2(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
   float c = m.mean;
-  return bl_rule3_from_derivatives(bl_clamped_plain_inv2(c), bl_deriv_inv2_d1(c), bl_deriv_inv2_d2(c), m);
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_inv2(c), bl_deriv_inv2_d1(c), bl_deriv_inv2_d2(c), m);
+  return bl_rule3_in_range(s, 0.0, BL_INF);
 }
 
 vec2 bl_rule1_expect_log(int kernel, vec3 p, float a, float b) {
@@ -1044,6 +1204,17 @@ vec2 bl_bimodal_step(float mu, float sigma) {
   return vec2(m, max(bl_box_step_sq(cs.x, cs.y) - m * m, 0.0));
 }
 
+vec2 bl_bimodal_exp_decay(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  if (sigma == 0.0) return vec2(bl_box_exp_decay(mu, 0.0), 0.0);
+  float h = BL_SQRT3 * sigma, lo = mu - h, hi = mu + h, at = 0.0;
+  int count = 0;
+  if (lo < (0.0) && (0.0) <= hi) { count += 1; at = (0.0); }
+  vec2 cs = bl_bimodal_cut(mu, sigma, lo, hi, at, count);
+  float m = bl_box_exp_decay(cs.x, cs.y);
+  return vec2(m, max(bl_box_exp_decay_sq(cs.x, cs.y) - m * m, 0.0));
+}
+
 vec2 bl_bimodal_fract(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
   if (sigma == 0.0) return vec2(bl_box_fract(mu, 0.0), 0.0);
@@ -1065,6 +1236,18 @@ vec2 bl_bimodal_square(float mu, float sigma) {
   vec2 cs = bl_bimodal_cut(mu, sigma, lo, hi, at, count);
   float m = bl_box_square(cs.x, cs.y);
   return vec2(m, max(bl_box_square_sq(cs.x, cs.y) - m * m, 0.0));
+}
+
+vec2 bl_bimodal_pulse30(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  if (sigma == 0.0) return vec2(bl_box_pulse30(mu, 0.0), 0.0);
+  float h = BL_SQRT3 * sigma, lo = mu - h, hi = mu + h, at = 0.0;
+  int count = 0;
+  { float kh = floor((hi - (0.0)) / (10.0)), kl = floor((lo - (0.0)) / (10.0)); count += int(kh - kl); if (kh > kl) at = (0.0) + (10.0) * kh; }
+  { float kh = floor((hi - (3.0)) / (10.0)), kl = floor((lo - (3.0)) / (10.0)); count += int(kh - kl); if (kh > kl) at = (3.0) + (10.0) * kh; }
+  vec2 cs = bl_bimodal_cut(mu, sigma, lo, hi, at, count);
+  float m = bl_box_pulse30(cs.x, cs.y);
+  return vec2(m, max(bl_box_pulse30_sq(cs.x, cs.y) - m * m, 0.0));
 }
 
 vec2 bl_bimodal_floor(float mu, float sigma) {

@@ -93,6 +93,37 @@ std::string piece_table(const Syntax& s, const std::string& name, const std::vec
   return out;
 }
 
+// A table of exp-polynomial terms (detail::ExpTerm / BlExpTerm); GLSL takes at most 8.
+std::string eterm_table(const Syntax& s, const std::string& name, const std::vector<sym::ExpTermSpec>& ts) {
+  if (ts.empty()) throw std::runtime_error("an exp-polynomial table without terms");
+  if (ts.size() > 8)
+    throw std::runtime_error("more than 8 exp-polynomial terms: the GLSL runtime takes at most 8");
+  auto coeffs = [&](const sym::ExpTermSpec& t) {
+    if (t.c.size() > 8) throw std::runtime_error("an exp-polynomial term of degree > 7");
+    std::string c;
+    for (size_t k = 0; k < 8; ++k) c += (k ? ", " : "") + s.num(k < t.c.size() ? t.c[k] : GiNaC::ex(0));
+    return c;
+  };
+  auto fields = [&](const sym::ExpTermSpec& t) {
+    return s.bound(t.lo) + ", " + s.bound(t.hi) + ", " + s.num(t.a) + ", " + s.ex(t.ref);
+  };
+  std::string out;
+  if (s.cpp()) {
+    out = "  const detail::ExpTerm<T> " + name + "[" + std::to_string(ts.size()) + "] = {\n";
+    for (const auto& t : ts) out += "      {" + fields(t) + ", {" + coeffs(t) + "}},\n";
+    return out + "  };\n";
+  }
+  out = "  BlExpTerm " + name + "[8] = BlExpTerm[8](\n";
+  for (size_t i = 0; i < 8; ++i) {
+    if (i < ts.size())
+      out += "      BlExpTerm(" + fields(ts[i]) + ", float[8](" + coeffs(ts[i]) + "))";
+    else
+      out += "      BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0))";
+    out += i < 7 ? ",\n" : ");\n";
+  }
+  return out;
+}
+
 // Arguments of a piecewise runtime call: C++ passes the array (size deduced), GLSL the count too.
 std::string pieces_arg(const Syntax& s, const std::string& name, size_t n) {
   return s.cpp() ? name : std::to_string(n) + ", " + name;
@@ -119,6 +150,15 @@ std::string body_piecewise(const Derived& d, const Syntax& s) {
                                                   : "tent_pw";
   return piece_table(s, "p", d.pieces) + guard_sigma(s) + "  if (sigma == " + s.dbl(0) + ") return " +
          s.helper("pw_eval") + "(x, " + P + ");\n  return " + s.helper(call) + "(x, sigma, " + P + ");\n";
+}
+
+std::string body_exp_table(const Derived& d, const Syntax& s) {
+  const std::string P = pieces_arg(s, "p", d.eterms.size());
+  const std::string call = d.kernel == Kernel::Gaussian ? "gauss_ept"
+                           : d.kernel == Kernel::Box    ? "box_ept"
+                                                        : "tent_ept";
+  return eterm_table(s, "p", d.eterms) + guard_sigma(s) + "  if (sigma == " + s.dbl(0) + ") return " +
+         s.helper("ept_eval") + "(x, " + P + ");\n  return " + s.helper(call) + "(x, sigma, " + P + ");\n";
 }
 
 // Emit-time plan of the Gaussian dual series for one tolerance (series_tol: 1e-8 float, 1e-13
@@ -196,6 +236,16 @@ std::string fourier_branch(const Derived& d, const Syntax& s, int extra, const s
   out += "    " + s.decl("kf", s.cpp() ? "T(k)" : "float(k)");
   if (d.ak.has(sym::var_pk()) || d.bk.has(sym::var_pk()))
     out += "    " + s.decl("pk", std::string("(k % 2 == 1) ? ") + s.dbl(-1) + " : " + s.dbl(1));
+  // Phases of boundaries at p/q of the period, from the exact residue (k p) mod q.
+  for (const auto& ph : d.phases) {
+    const std::string pq = std::to_string(ph.p) + "_" + std::to_string(ph.q);
+    const std::string arg = s.dbl(2) + " * " + s.pi() + " * " + (s.cpp() ? "T(" : "float(") + "((k % " +
+                            std::to_string(ph.q) + ") * " + std::to_string(ph.p) + ") % " +
+                            std::to_string(ph.q) + ") / " + s.dbl(static_cast<double>(ph.q));
+    for (bool c : {true, false})
+      if (d.ak.has(sym::var_phase(ph.p, ph.q, c)) || d.bk.has(sym::var_phase(ph.p, ph.q, c)))
+        out += "    " + s.decl((c ? "cph" : "sph") + pq, std::string(c ? "cos(" : "sin(") + arg + ")");
+  }
   if (body.find("w") != std::string::npos) out += "    " + s.decl("w", "w1 * kf");
   out += "      acc += " + body + ";\n";
   out += "    " + s.decl("cn", "ck * c1 - sk * s1");
@@ -579,6 +629,9 @@ std::string body(const Derived& d, Lang lang) {
     case Body::Antiderivative:
       b = body_antiderivative(d, s);
       break;
+    case Body::ExpPieceTable:
+      b = body_exp_table(d, s);
+      break;
   }
   return (s.cpp() ? "  BL_MATH_USING\n" : "") + b;
 }
@@ -591,6 +644,12 @@ std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lan
     case sym::AtomicClass::Antiderivative:
       return pre + "  return " + s.ex(a.f) + ";\n";
     case sym::AtomicClass::Piecewise: {
+      if (sym::has_exp_pieces(a)) {  // the pieces' expressions, right-continuous at the breaks
+        std::string out = pre;
+        for (size_t i = 0; i + 1 < a.pieces.size(); ++i)
+          out += "  if (x < " + s.ex(a.pieces[i].hi.value) + ") return " + s.ex(a.pieces[i].f) + ";\n";
+        return out + "  return " + s.ex(a.pieces.back().f) + ";\n";
+      }
       const std::vector<PolyPiece> ps = sym::polynomial_pieces(a, false);
       return pre + piece_table(s, "p", ps) + "  return " + s.helper("pw_eval") + "(x, " +
              pieces_arg(s, "p", ps.size()) + ");\n";

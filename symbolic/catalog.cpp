@@ -9,8 +9,10 @@
 #include <sstream>
 
 #include "catalog_checks.hpp"
+#include "exp_poly.hpp"
 #include "functions.hpp"
 #include "monotone.hpp"
+#include "printer.hpp"
 
 namespace bl::sym {
 using namespace GiNaC;
@@ -219,12 +221,54 @@ void check_breaks(const Ctx& c, const Atomic& a) {
            "declares " + show(sorted(a.kinks)) + " but the pieces have kinks at " + show(sorted(kinks)));
 }
 
+// A piecewise piece outside the polynomials: an exp-polynomial sum c x^n e^{a x} with real rational
+// rates a (sin/cos on a finite interval would need a complex erf), polynomial degree <= 3 per rate
+// (f^2 then has degree 6 and the tent's weight one more: the runtime's 8 coefficients), and no
+// exponential growth towards an infinite end of the piece (the smoothed values would not exist for
+// box/tent in a shader's float range, and such an f has no finite range).
+void check_exp_piece(const Ctx& c, size_t i, const Piece& p, const ex& f) {
+  const std::string which = "piece " + std::to_string(i);
+  ExpPoly e;
+  try {
+    e = ExpPoly::from(f);
+  } catch (const std::invalid_argument& err) {
+    c.fail("pieces", which + " is neither a polynomial nor an exp-polynomial in x (" + err.what() + ")");
+  }
+  for (const auto& [k, coeff] : e.terms()) {
+    std::ostringstream t;
+    t << "x^" << k.n << " e^(" << k.a << " x)";
+    if (!k.a.is_real() || !coeff.is_real())
+      c.fail(
+          "pieces",
+          which + ": the term " + t.str() +
+              " has a complex rate (sin/cos pieces on an interval are not supported; use the entire class)");
+    if (k.n > 3) c.fail("pieces", which + ": the term " + t.str() + " has a power above 3");
+    if (p.hi.inf == 1 && k.a > 0)
+      c.fail("pieces", which + ": the term " + t.str() + " grows exponentially towards +inf");
+    if (p.lo.inf == -1 && k.a < 0)
+      c.fail("pieces", which + ": the term " + t.str() + " grows exponentially towards -inf");
+  }
+}
+
 void check_polynomial_pieces(const Ctx& c, Atomic& a) {
   const symbol& x = var_x();
   if (a.pieces.empty()) c.fail("pieces", "at least one piece is required");
   for (size_t i = 0; i < a.pieces.size(); ++i) {
     const ex f = a.pieces[i].f.expand();
-    if (!f.is_polynomial(x)) c.fail("pieces", "piece " + std::to_string(i) + " is not a polynomial in x");
+    if (!f.is_polynomial(x)) {
+      if (a.cls == AtomicClass::Periodic)
+        c.fail("pieces",
+               "piece " + std::to_string(i) + " is not a polynomial in x (periodic pieces are polynomials)");
+      check_exp_piece(c, i, a.pieces[i], f);
+      a.pieces[i].f = f;
+      if (i > 0 && (!a.pieces[i - 1].hi.finite() || !a.pieces[i].lo.finite()))
+        c.fail("pieces", "piece " + std::to_string(i) +
+                             ": only the first piece may start at -inf and the last end at inf");
+      if (i > 0 && !same_value(a.pieces[i - 1].hi.value, a.pieces[i].lo.value))
+        c.fail("pieces", "piece " + std::to_string(i) + " does not start where piece " +
+                             std::to_string(i - 1) + " ends");
+      continue;
+    }
     if (f.degree(x) > (a.cls == AtomicClass::Periodic ? 2 : 3))
       c.fail("pieces", "piece " + std::to_string(i) +
                            " has too high a degree (max 3, periodic 2: its square and, for a period, its "
@@ -244,6 +288,14 @@ void check_polynomial_pieces(const Ctx& c, Atomic& a) {
     if (a.pieces.front().lo.inf != -1 || a.pieces.back().hi.inf != 1)
       c.fail("pieces", "the pieces must cover the whole line, from -inf to inf");
   } else {
+    // The engine integrates one period exactly (and phases its Fourier series at the breaks, any
+    // rational fraction of the period): the period and every break must be rational numbers.
+    for (size_t i = 0; i < a.pieces.size(); ++i)
+      for (const Bound* b : {&a.pieces[i].lo, &a.pieces[i].hi})
+        if (b->finite() && !(is_a<numeric>(b->value) && ex_to<numeric>(b->value).is_rational()))
+          c.fail("pieces", "piece " + std::to_string(i) +
+                               ": periodic piece boundaries must be rational numbers, got " +
+                               print(b->value, Lang::Text));
     if (!a.pieces.front().lo.finite() || !a.pieces.front().lo.value.is_zero())
       c.fail("pieces", "the pieces of one period must start at 0");
     if (!a.pieces.back().hi.finite() || !same_value(a.pieces.back().hi.value, *a.period))

@@ -269,6 +269,40 @@ void check_polynomial_range(const Atomic& a, const Piece& p, size_t index) {
     check_value(a, {0, peval(c, r), piece + "critical point x = " + show(r) + ")"});
 }
 
+// An exp-polynomial piece (sum of c x^n e^{ax}): checked, not proved. f at the finite ends, at
+// points spread over the piece (geometrically towards an infinite end, out to 1e6 from its finite
+// end: check_exp_piece has made every growing term impossible there, so f settles to its polynomial
+// part's constant) and at the zeros of f' between them.
+void check_sampled_piece_range(const Atomic& a, const Piece& p, size_t index) {
+  const std::string piece = "(piece " + std::to_string(index) + ", ";
+  const numeric off = constant(Pi / 1000);
+  std::vector<numeric> pts;
+  if (p.lo.finite() && p.hi.finite()) {
+    const numeric lo = constant(p.lo.value), hi = constant(p.hi.value);
+    for (int k = 0; k <= 256; ++k) pts.push_back(lo + (hi - lo) * numeric(k, 256));
+  } else {
+    const int dir = p.lo.finite() ? 1 : -1;  // towards the infinite end
+    const numeric base = p.lo.finite() ? constant(p.lo.value) : p.hi.finite() ? constant(p.hi.value) : 0;
+    if (!p.lo.finite() && !p.hi.finite())
+      for (int k = 1; k <= 400; ++k) pts.push_back(-numeric(k) * constant(sqrt(ex(2))) / 16 - off);
+    pts.push_back(base);
+    for (int k = 1; k <= 600; ++k) {  // steps of 1/64 growing by 2% each: past 1e6 by the end
+      const numeric d = numeric(k, 64) * constant(exp(ex(numeric(k, 50))));
+      pts.push_back(base + dir * (d + off));
+    }
+  }
+  std::sort(pts.begin(), pts.end(), [](const numeric& u, const numeric& v) { return u < v; });
+  // Ends and critical points first: an error then names the extreme, not the first sample past it.
+  for (const Bound* b : {&p.lo, &p.hi})
+    if (b->finite())
+      if (const auto v = value_at(p.f, constant(b->value)))
+        check_value(a, {0, *v, piece + "as x -> " + show(constant(b->value)) + ")"});
+  for (const numeric& t : sign_changes(p.f.diff(var_x()), pts))
+    if (const auto v = value_at(p.f, t)) check_value(a, {0, *v, piece + "critical point x = " + show(t) + ")"});
+  for (const numeric& t : pts)
+    if (const auto v = value_at(p.f, t)) check_value(a, {0, *v, piece + "at x = " + show(t) + ")"});
+}
+
 }  // namespace
 
 std::vector<numeric> sample_points(const Atomic& a) {
@@ -384,7 +418,12 @@ void check_range(const Atomic& a) {
   DigitsGuard g(kDigits);
   if (a.cls == AtomicClass::Combination) return;  // its range follows from the atomics it combines
   if (a.cls == AtomicClass::Piecewise || a.cls == AtomicClass::Periodic) {
-    for (size_t i = 0; i < a.pieces.size(); ++i) check_polynomial_range(a, a.pieces[i], i);
+    for (size_t i = 0; i < a.pieces.size(); ++i) {
+      if (a.pieces[i].f.is_polynomial(var_x()))
+        check_polynomial_range(a, a.pieces[i], i);
+      else
+        check_sampled_piece_range(a, a.pieces[i], i);  // exp-polynomial pieces
+    }
     return;
   }
   // Entire and antiderivative: f at the sample points and at the zeros of f' between them.

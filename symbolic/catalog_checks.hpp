@@ -36,7 +36,8 @@ void check_smooth(Atomic& a);
 void check_flat(const Atomic& a);
 
 // The declared range contains every value f takes. Polynomial pieces: exact extremes (end points,
-// limits at +-inf, critical points by root isolation at 40 digits). Entire and antiderivative
+// limits at +-inf, critical points by root isolation at 40 digits); exp-polynomial pieces: checked at
+// spread points and the critical points between them. Entire and antiderivative
 // atomics: f at the sample points and at the critical points between them.
 void check_range(const Atomic& a);
 

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -21,6 +22,17 @@ const symbol& var_k() {
 const symbol& var_pk() {
   static const realsymbol pk("pk");
   return pk;
+}
+const symbol& var_phase(long p, long q, bool cosine) {
+  static std::map<std::tuple<long, long, bool>, realsymbol> cache;
+  auto key = std::make_tuple(p, q, cosine);
+  auto it = cache.find(key);
+  if (it == cache.end())
+    it = cache
+             .emplace(key, realsymbol(std::string(cosine ? "cph" : "sph") + std::to_string(p) + "_" +
+                                      std::to_string(q)))
+             .first;
+  return it->second;
 }
 const symbol& var_hh() {
   static const symbol hh("hh");
@@ -82,6 +94,60 @@ std::vector<PolyPiece> polynomial_pieces(const Atomic& a, bool squared) {
     const ex f = squared ? pow(p.f, 2).expand() : p.f;
     out.push_back({p.lo, p.hi, coefficients(f)});
   }
+  return out;
+}
+
+bool has_exp_pieces(const Atomic& a) {
+  if (a.cls != AtomicClass::Piecewise) return false;
+  for (const Piece& p : a.pieces)
+    if (!p.f.expand().is_polynomial(var_x())) return true;
+  return false;
+}
+
+namespace {
+
+// Terms of one exp-polynomial g on [lo, hi): per rate a, the polynomial q_a with g = sum q_a(x) e^{a x},
+// rewritten in s = x - ref as e^{a s} [e^{a ref} q_a(ref + s)].
+void append_terms(const ex& g, const Bound& lo, const Bound& hi, std::vector<ExpTermSpec>& out) {
+  const symbol& x = var_x();
+  const ExpPoly e = ExpPoly::from(g.expand());
+  std::map<numeric, ex, std::function<bool(const numeric&, const numeric&)>> by_rate(
+      [](const numeric& u, const numeric& v) { return u < v; });
+  for (const auto& [k, c] : e.terms()) {
+    if (!k.a.is_real() || !c.is_real())
+      throw std::invalid_argument("complex exp-polynomial term on an interval");
+    auto it = by_rate.find(k.a);
+    if (it == by_rate.end()) it = by_rate.emplace(k.a, ex(0)).first;
+    it->second += c * pow(x, k.n);
+  }
+  const ex ref = lo.finite() ? lo.value : (hi.finite() ? hi.value : ex(0));
+  const symbol s("s");
+  for (const auto& [a, q] : by_rate) {
+    const ex qs = (q.subs(x == ref + s) * exp(a * ref)).expand();
+    ExpTermSpec t{lo, hi, a, ref, {}};
+    for (int k = 0; k <= qs.degree(s); ++k) {
+      ex ck = qs.coeff(s, k);
+      if (!is_a<numeric>(ck)) ck = ck.evalf();  // e^{a ref}: a float constant
+      t.c.push_back(ck);
+    }
+    out.push_back(t);
+  }
+}
+
+}  // namespace
+
+std::vector<ExpTermSpec> exp_terms(const Atomic& a, bool squared) {
+  std::vector<ExpTermSpec> out;
+  for (const Piece& p : a.pieces) append_terms(squared ? pow(p.f, 2) : p.f, p.lo, p.hi, out);
+  return out;
+}
+
+std::vector<ExpTermSpec> exp_terms_whole_line(const ex& f) {
+  std::vector<ExpTermSpec> out;
+  Bound lo, hi;
+  lo.inf = -1;
+  hi.inf = 1;
+  append_terms(f, lo, hi, out);
   return out;
 }
 
@@ -149,7 +215,52 @@ ex gaussian_closed_form(const std::vector<PolyPiece>& ps) {
   return result;
 }
 
+// The exp-polynomial terms as text, for the manifest.
+std::string eterms_text(const std::vector<ExpTermSpec>& ts) {
+  const symbol s("s");
+  std::string out = "{";
+  for (size_t i = 0; i < ts.size(); ++i) {
+    ex q = 0;
+    for (size_t k = 0; k < ts[i].c.size(); ++k) q += ts[i].c[k] * ipow(s, static_cast<int>(k));
+    out += (i ? "; " : "") + text(q) + (ts[i].a.is_zero() ? "" : " * exp(" + text(ts[i].a * s) + ")") +
+           ", s = x - " + text(ts[i].ref) + " on [" + bound_text(ts[i].lo) + ", " + bound_text(ts[i].hi) +
+           ")";
+  }
+  return out + "}";
+}
+
+void derive_exp_table(Kernel k, Derived& d) {
+  d.body = Body::ExpPieceTable;
+  std::string how;
+  switch (k) {
+    case Kernel::Gaussian:
+      how =
+          "sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds over "
+          "the "
+          "term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal moments in "
+          "erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >= 2 sigma "
+          "outside)";
+      break;
+    case Kernel::Box:
+      how =
+          "sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h = sqrt(3) "
+          "sigma (incomplete gamma moments from the end where e^(a s) is largest)";
+      break;
+    case Kernel::Tent:
+      how =
+          "sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w], w = "
+          "sqrt(6) sigma (each half by incomplete gamma moments)";
+      break;
+  }
+  d.formula = how + "; terms " + eterms_text(d.eterms);
+}
+
 void derive_piecewise(const Atomic& a, Kernel k, bool sq, Derived& d) {
+  if (has_exp_pieces(a)) {
+    d.eterms = exp_terms(a, sq);
+    derive_exp_table(k, d);
+    return;
+  }
   d.body = Body::PiecewiseTable;
   // Adjacent pieces with the same polynomial merge (abs^2 = x^2, sign^2 = 1 on the whole line).
   for (const PolyPiece& p : polynomial_pieces(a, sq)) {
@@ -181,12 +292,23 @@ void derive_piecewise(const Atomic& a, Kernel k, bool sq, Derived& d) {
     d.formula = "(F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = " + pieces_text(F2, "t");
 }
 
-// e^{-2 pi i k r} for a piece boundary r T: 1 or (-1)^k.
-ex boundary_phase(const Atomic& a, const ex& t) {
+// e^{-2 pi i k r} for a piece boundary r T, r = p/q rational: 1 (r integer), (-1)^k (r = 1/2), else
+// cos(2 pi k p/q) - i sin(2 pi k p/q) through two symbols the Fourier loop defines from the exact
+// integer residue (k p) mod q (no large angle is formed), recorded in d.phases.
+ex boundary_phase(const Atomic& a, const ex& t, Derived& d) {
   const ex r = (t / *a.period).normal();
-  if (!is_a<numeric>(r) || !ex_to<numeric>(2 * ex_to<numeric>(r)).is_integer())
-    fail(a, "pieces", "periodic piece boundaries must be multiples of half the period (for the Fourier form)");
-  return ex_to<numeric>(r).is_integer() ? ex(1) : ex(var_pk());
+  if (!is_a<numeric>(r) || !ex_to<numeric>(r).is_rational())
+    fail(a, "pieces",
+         "periodic piece boundaries must be rational multiples of the period (for the Fourier form)");
+  const numeric rr = ex_to<numeric>(r);
+  if (rr.is_integer()) return 1;
+  if ((2 * rr).is_integer()) return var_pk();
+  const long q = rr.denom().to_long();
+  long p = rr.numer().to_long() % q;
+  if (p < 0) p += q;
+  if (std::find(d.phases.begin(), d.phases.end(), FourierPhase{p, q}) == d.phases.end())
+    d.phases.push_back({p, q});
+  return var_phase(p, q, true) - I * var_phase(p, q, false);
 }
 
 // Continuous antiderivative of one period's pieces, 0 at t = 0.
@@ -222,6 +344,17 @@ std::vector<numeric> half_line_series(const std::vector<PolyPiece>& pieces, cons
     for (PolyPiece& p : S) p.c[0] = ex_to<numeric>((p.c[0] - m).expand());
     const numeric sj0 = S.front().c[0];  // the first piece starts at t = 0
     out.push_back(j % 2 == 1 ? sj0 : -sj0);
+  }
+  return out;
+}
+
+std::string phases_text(const Derived& d) {
+  std::string out;
+  for (const auto& ph : d.phases) {
+    const std::string pq = std::to_string(ph.p) + "_" + std::to_string(ph.q);
+    const std::string arg =
+        "2 pi ((k " + std::to_string(ph.p) + ") mod " + std::to_string(ph.q) + ")/" + std::to_string(ph.q);
+    out += ", cph" + pq + " = cos(" + arg + "), sph" + pq + " = sin(" + arg + ")";
   }
   return out;
 }
@@ -268,7 +401,8 @@ void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
         prim_hi += coef * ipow(p.hi.value, m - j);
         prim_lo += coef * ipow(p.lo.value, m - j);
       }
-      ck += p.c[m] * (boundary_phase(a, p.hi.value) * prim_hi - boundary_phase(a, p.lo.value) * prim_lo);
+      ck +=
+          p.c[m] * (boundary_phase(a, p.hi.value, d) * prim_hi - boundary_phase(a, p.lo.value, d) * prim_lo);
       c0 += p.c[m] * (ipow(p.hi.value, m + 1) - ipow(p.lo.value, m + 1)) / (m + 1);
     }
   }
@@ -276,10 +410,13 @@ void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
   d.a0 = (c0 / T).normal();
   d.ak = (2 * ck.real_part()).normal();
   d.bk = (-2 * ck.imag_part()).normal();
-  d.formula = text(d.a0) + " + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), "
-              "a_k = " + text(d.ak) + ", b_k = " + text(d.bk) + " (pk = (-1)^k), T = " + text(T) +
+  d.formula = text(d.a0) +
+              " + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), "
+              "a_k = " +
+              text(d.ak) + ", b_k = " + text(d.bk) + " (pk = (-1)^k" + phases_text(d) + "), T = " + text(T) +
               " [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of "
-              "the pieces " + pieces_text(d.pieces, "t") + " [for small sigma/T]";
+              "the pieces " +
+              pieces_text(d.pieces, "t") + " [for small sigma/T]";
 }
 
 // A B with A periodic and B piecewise with constant pieces whose breaks are multiples of A's period:
@@ -513,6 +650,17 @@ std::vector<Derived> derive_all(const Catalog& cat, int max_moment, std::vector<
             try {
               ExpPoly f = ExpPoly::from(a.f.expand());
               if (sq) f = f * f;
+              // x^n e^{a x} (n > 0, a real != 0): the exp-polynomial terms on the whole line.
+              bool power_times_exp = false, complex_rate = false;
+              for (const auto& [key, c] : f.terms()) {
+                if (key.n > 0 && !key.a.is_zero()) power_times_exp = true;
+                if (!key.a.is_real()) complex_rate = true;
+              }
+              if (power_times_exp && !complex_rate) {
+                d.eterms = exp_terms_whole_line(f.to_ex());
+                derive_exp_table(k, d);
+                break;
+              }
               d.body = Body::Closed;
               d.closed = f.convolve(k);
             } catch (const std::invalid_argument& e) {

@@ -18,12 +18,29 @@ struct PolyPiece {
   std::vector<GiNaC::numeric> c;
 };
 
+// One exp-polynomial term e^{a s} sum_k c[k] s^k, s = t - ref, on [lo, hi) (ref a finite end of the
+// interval, 0 on the whole line); c exact where rational, else a float constant (e^{a ref}).
+struct ExpTermSpec {
+  Bound lo, hi;
+  GiNaC::numeric a;
+  GiNaC::ex ref;
+  std::vector<GiNaC::ex> c;
+};
+
+// A Fourier phase e^{-2 pi i k p/q} of a periodic piece boundary at p/q of the period (q > 2): the
+// Fourier loop defines cph<p>_<q> = cos(2 pi ((k p) mod q)/q) and sph<p>_<q> = sin(...).
+struct FourierPhase {
+  long p, q;
+  bool operator==(const FourierPhase& o) const { return p == o.p && q == o.q; }
+};
+
 enum class Body {
   Closed,          // one closed-form expression in x and sigma (exp-polynomial class, moments)
   PiecewiseTable,  // whole-line polynomial pieces, evaluated by the runtime's stable primitives
   PeriodicTable,   // one period of pieces + first/second integrals + Fourier coefficients
   Combination,     // polynomial part + linear combination of other entries of the same kernel
-  Antiderivative   // box/tent from F or F2, Taylor series in the half-width where it cancels
+  Antiderivative,  // box/tent from F or F2, Taylor series in the half-width where it cancels
+  ExpPieceTable    // exp-polynomial terms on intervals, evaluated by the runtime's *_ept primitives
 };
 
 // One smoothed term of a combination. The rules (Kind):
@@ -68,11 +85,13 @@ struct Derived {
   GiNaC::ex closed;  // Closed; Combination: the polynomial part's convolution; PiecewiseTable
                      // (Gaussian): the erf/exp closed form the runtime evaluates stably
 
+  std::vector<ExpTermSpec> eterms;        // ExpPieceTable
   std::vector<PolyPiece> pieces, P1, P2;  // tables (P1, P2: first/second integral over a period)
   GiNaC::ex period;                       // PeriodicTable
   double fmax = 0;                        // max |f| (image-sum tolerance)
   double coef_bound = 0;                  // bound on |a_k| + |b_k|
-  GiNaC::ex a0, ak, bk;                   // Fourier coefficients in k (and (-1)^k)
+  GiNaC::ex a0, ak, bk;                   // Fourier coefficients in k (and (-1)^k, the phases)
+  std::vector<FourierPhase> phases;       // boundaries at p/q of the period, q > 2
   // Periodic, not squared: the half-line companion's boundary series (Euler-Maclaurin at t = 0),
   // half_series[m] = (-1)^(m+1) S_{m+2}(0) with S_1 = f - a0 and S_{j+1} the periodic, mean-free
   // antiderivative of S_j (exact); see docs/derivations.md.
@@ -95,9 +114,17 @@ struct Derived {
 const GiNaC::symbol& var_k();   // Fourier index
 const GiNaC::symbol& var_pk();  // (-1)^k
 const GiNaC::symbol& var_hh();  // the (possibly compacted) half-width in antiderivative rules
+const GiNaC::symbol& var_phase(long p, long q, bool cosine);  // cph<p>_<q> / sph<p>_<q>
 
 // The pieces of a piecewise or periodic atomic (of f^2 when squared) with exact coefficients.
 std::vector<PolyPiece> polynomial_pieces(const Atomic& a, bool squared);
+
+// True when a piecewise atomic has a piece that is not a polynomial (exp-polynomial pieces).
+bool has_exp_pieces(const Atomic& a);
+// The exp-polynomial terms of a piecewise atomic (of f^2 when squared), zero terms dropped.
+std::vector<ExpTermSpec> exp_terms(const Atomic& a, bool squared);
+// The terms of a whole-line exp-polynomial with real rates.
+std::vector<ExpTermSpec> exp_terms_whole_line(const GiNaC::ex& f);
 
 // Derives every entry of the catalog, plus raw moments n <= max_moment. Throws CatalogError
 // (naming entry and field) when an entry's definition is outside what its class can derive.

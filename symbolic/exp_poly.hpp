@@ -28,6 +28,8 @@ class ExpPoly {
   // E[f(x + U)] as a real closed form in x and sigma.
   GiNaC::ex convolve(Kernel k) const;
   GiNaC::ex to_ex() const;
+  // The terms c x^n e^{a x}, keyed by (n, a).
+  const std::map<ExpPolyKey, GiNaC::numeric>& terms() const { return terms_; }
 
  private:
   std::map<ExpPolyKey, GiNaC::numeric> terms_;

@@ -88,9 +88,11 @@ TEST(Catalog, OutsideTheDerivableClassIsRejected) {
   expect_error(wrap(R"J({"name": "gauss", "class": "entire", "f": "exp(x^2)", "domain": ["-inf", "inf"],
     "range": [1, "inf"]})J"),
                "gauss", "f", "rational multiple of x");
-  expect_error(wrap(R"J({"name": "third", "class": "periodic", "period": 3, "domain": ["-inf", "inf"], "range": [0, 1],
-    "jumps": [0, 1], "pieces": [{"on": [0, 1], "f": "1"}, {"on": [1, 3], "f": "0"}]})J"),
-               "third", "pieces", "multiples of half the period");
+  expect_error(
+      wrap(
+          R"J({"name": "irr", "class": "periodic", "period": "2*Pi", "domain": ["-inf", "inf"], "range": [0, 1],
+    "jumps": [0, 1], "pieces": [{"on": [0, 1], "f": "1"}, {"on": [1, "2*Pi"], "f": "0"}]})J"),
+      "irr", "pieces", "rational numbers");
   expect_error(wrap(R"J({"name": "flt", "class": "entire", "f": "x", "domain": ["-inf", "inf"], "range": [-0.5, 1]})J"),
                "flt", "range", "exact expressions");
 }
@@ -154,6 +156,64 @@ TEST(Catalog, ErrorsNameTheFile) {
   } catch (const CatalogError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("my.json: catalog entry 'e', field 'domain'", 0), 0u) << e.what();
   }
+}
+
+// Issue 15: exp(-|x|) was rejected ("piece 0 is not a polynomial in x"); exp-polynomial pieces are
+// in the piecewise class now, within limits that name the piece and the term.
+TEST(Catalog, ExpPolynomialPieces) {
+  EXPECT_EQ(
+      error_of(wrap(R"J({"name": "bump", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "kinks": [0], "pieces": [{"on": ["-inf", 0], "f": "exp(x)"}, {"on": [0, "inf"], "f": "exp(-x)"}]})J")),
+      "");
+  EXPECT_EQ(
+      error_of(wrap(R"J({"name": "charge", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "kinks": [0], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "1 - exp(-x/2)"}]})J")),
+      "");
+  // The declared range is checked on exp pieces too: at the ends and at the critical points
+  // (x e^{-x} peaks at 1/e = 0.3679 at x = 1).
+  expect_error(wrap(R"J({"name": "bump", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, "1/2"],
+    "kinks": [0], "pieces": [{"on": ["-inf", 0], "f": "exp(x)"}, {"on": [0, "inf"], "f": "exp(-x)"}]})J"),
+               "bump", "range", "takes the value 1");
+  expect_error(wrap(R"J({"name": "ramp", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, "1/3"],
+    "kinks": [0], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "x*exp(-x)"}]})J"),
+               "ramp", "range", "critical point x = 1");
+  EXPECT_EQ(
+      error_of(wrap(R"J({"name": "ramp", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, "1/2"],
+    "kinks": [0], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "x*exp(-x)"}]})J")),
+      "");
+  expect_error(wrap(R"J({"name": "grow", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, "inf"],
+    "jumps": [0], "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "exp(x)"}]})J"),
+               "grow", "pieces", "grows exponentially towards +inf");
+  expect_error(wrap(R"J({"name": "wave", "class": "piecewise", "domain": ["-inf", "inf"], "range": [-1, 1],
+    "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "sin(x)*exp(-x)"}]})J"),
+               "wave", "pieces", "complex rate");
+  expect_error(wrap(R"J({"name": "steep", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "pieces": [{"on": ["-inf", 0], "f": "0"}, {"on": [0, "inf"], "f": "x^4*exp(-x)"}]})J"),
+               "steep", "pieces", "power above 3");
+  expect_error(wrap(R"J({"name": "lg", "class": "piecewise", "domain": ["-inf", "inf"], "range": [0, 1],
+    "pieces": [{"on": ["-inf", 1], "f": "0"}, {"on": [1, "inf"], "f": "log(x)"}]})J"),
+               "lg", "pieces", "neither a polynomial nor an exp-polynomial");
+}
+
+// Issue 15: periodic breaks had to be multiples of half the period (a duty-3/10 pulse was rejected).
+TEST(Catalog, PeriodicBreaksAtRationalPoints) {
+  EXPECT_EQ(error_of(wrap(R"J({"name": "duty", "class": "periodic", "period": 1, "domain": ["-inf", "inf"],
+    "range": [0, 1], "jumps": [0, "3/10"], "pieces": [{"on": [0, "3/10"], "f": "1"}, {"on": ["3/10", 1], "f": "0"}]})J")),
+            "");
+  EXPECT_EQ(
+      error_of(wrap(
+          R"J({"name": "third", "class": "periodic", "period": 3, "domain": ["-inf", "inf"], "range": [0, 1],
+    "jumps": [0, 1], "pieces": [{"on": [0, 1], "f": "1"}, {"on": [1, 3], "f": "0"}]})J")),
+      "");
+}
+
+// Issue 15: x^n e^{ax} was refused in the entire class.
+TEST(Catalog, PowerTimesExpInTheEntireClass) {
+  EXPECT_EQ(
+      error_of(
+          wrap(R"J({"name": "xe", "class": "entire", "f": "x^2*exp(-x/3) + exp(x)", "domain": ["-inf", "inf"],
+    "range": ["-inf", "inf"]})J")),
+      "");
 }
 
 TEST(Catalog, NotJsonIsRejectedWithTheFileName) {

@@ -64,6 +64,10 @@ T deriv_pow8_d1(T x);
 template <class T>
 T deriv_pow8_d2(T x);
 template <class T>
+T deriv_xexp_d1(T x);
+template <class T>
+T deriv_xexp_d2(T x);
+template <class T>
 T deriv_abs_d1(T x);
 template <class T>
 T deriv_abs_d2(T x);
@@ -84,6 +88,18 @@ T deriv_smoothstep_d1(T x);
 template <class T>
 T deriv_smoothstep_d2(T x);
 template <class T>
+T deriv_laplace_d1(T x);
+template <class T>
+T deriv_laplace_d2(T x);
+template <class T>
+T deriv_exp_decay_d1(T x);
+template <class T>
+T deriv_exp_decay_d2(T x);
+template <class T>
+T deriv_exp_ramp_d1(T x);
+template <class T>
+T deriv_exp_ramp_d2(T x);
+template <class T>
 T deriv_fract_d1(T x);
 template <class T>
 T deriv_fract_d2(T x);
@@ -95,6 +111,10 @@ template <class T>
 T deriv_square_d1(T x);
 template <class T>
 T deriv_square_d2(T x);
+template <class T>
+T deriv_pulse30_d1(T x);
+template <class T>
+T deriv_pulse30_d2(T x);
 template <class T>
 T deriv_floor_d1(T x);
 template <class T>
@@ -300,6 +320,20 @@ T deriv_pow8_d2(T x) {
   return (T(56)*(x*x*x*x*x*x));
 }
 
+// ((exp(x)*x) + exp(x))
+template <class T>
+T deriv_xexp_d1(T x) {
+  BL_MATH_USING
+  return ((exp(x)*x) + exp(x));
+}
+
+// ((2*exp(x)) + (exp(x)*x))
+template <class T>
+T deriv_xexp_d2(T x) {
+  BL_MATH_USING
+  return ((T(2)*exp(x)) + (exp(x)*x));
+}
+
 // (-1) on [-inf, 0); 1 on [0, inf); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_abs_d1(T x) {
@@ -414,6 +448,54 @@ T deriv_smoothstep_d2(T x) {
   return detail::pw_eval(x, p);
 }
 
+// exp(x) below 0; (-exp((-x))) below inf; right piece at a break, jumps' delta functions dropped
+template <class T>
+T deriv_laplace_d1(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return exp(x);
+  return (-exp((-x)));
+}
+
+// exp(x) below 0; exp((-x)) below inf; right piece at a break, jumps' delta functions dropped
+template <class T>
+T deriv_laplace_d2(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return exp(x);
+  return exp((-x));
+}
+
+// 0 below 0; (-exp((-x))) below inf; right piece at a break, jumps' delta functions dropped
+template <class T>
+T deriv_exp_decay_d1(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return T(0);
+  return (-exp((-x)));
+}
+
+// 0 below 0; exp((-x)) below inf; right piece at a break, jumps' delta functions dropped
+template <class T>
+T deriv_exp_decay_d2(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return T(0);
+  return exp((-x));
+}
+
+// 0 below 0; ((-exp((-x))*x) + exp((-x))) below inf; right piece at a break, jumps' delta functions dropped
+template <class T>
+T deriv_exp_ramp_d1(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return T(0);
+  return ((-exp((-x))*x) + exp((-x)));
+}
+
+// 0 below 0; (((-2)*exp((-x))) + (exp((-x))*x)) below inf; right piece at a break, jumps' delta functions dropped
+template <class T>
+T deriv_exp_ramp_d2(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return T(0);
+  return (((T(-2))*exp((-x))) + (exp((-x))*x));
+}
+
 // 1 on [0, 1) (period 1); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_fract_d1(T x) {
@@ -476,6 +558,28 @@ T deriv_square_d2(T x) {
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   return detail::periodic_eval(x, T(1), p);
+}
+
+// 0 on [0, 3); 0 on [3, 10) (period 10); right piece at a break, jumps' delta functions dropped
+template <class T>
+T deriv_pulse30_d1(T x) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  return detail::periodic_eval(x, T(10), p);
+}
+
+// 0 on [0, 3); 0 on [3, 10) (period 10); right piece at a break, jumps' delta functions dropped
+template <class T>
+T deriv_pulse30_d2(T x) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  return detail::periodic_eval(x, T(10), p);
 }
 
 // 1 + -1*fract_d1(x)
@@ -617,7 +721,8 @@ stat<T> rule3_sin(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_sin<double>(c), deriv_sin_d1<double>(c), deriv_sin_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (-1.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of cos at the mean of N(mu, sigma^2) truncated to the domain.
@@ -629,7 +734,8 @@ stat<T> rule3_cos(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_cos<double>(c), deriv_cos_d1<double>(c), deriv_cos_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (-1.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of exp at the mean of N(mu, sigma^2) truncated to the domain.
@@ -641,7 +747,8 @@ stat<T> rule3_exp(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_exp<double>(c), deriv_exp_d1<double>(c), deriv_exp_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of sinh at the mean of N(mu, sigma^2) truncated to the domain.
@@ -665,7 +772,8 @@ stat<T> rule3_cosh(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_cosh<double>(c), deriv_cosh_d1<double>(c), deriv_cosh_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (1.0), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of pow2 at the mean of N(mu, sigma^2) truncated to the domain.
@@ -677,7 +785,8 @@ stat<T> rule3_pow2(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow2<double>(c), deriv_pow2_d1<double>(c), deriv_pow2_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of pow3 at the mean of N(mu, sigma^2) truncated to the domain.
@@ -701,7 +810,8 @@ stat<T> rule3_pow4(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow4<double>(c), deriv_pow4_d1<double>(c), deriv_pow4_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of pow5 at the mean of N(mu, sigma^2) truncated to the domain.
@@ -725,7 +835,8 @@ stat<T> rule3_pow6(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow6<double>(c), deriv_pow6_d1<double>(c), deriv_pow6_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of pow7 at the mean of N(mu, sigma^2) truncated to the domain.
@@ -749,7 +860,21 @@ stat<T> rule3_pow8(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow8<double>(c), deriv_pow8_d1<double>(c), deriv_pow8_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
+}
+
+// Rule 3: second-order Taylor of xexp at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_xexp(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_xexp<double>(c), deriv_xexp_d1<double>(c), deriv_xexp_d2<double>(c), m);
+  const stat<double> r = rule3::in_range<double>(s, (-0.36787944117144233), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of abs at the mean of N(mu, sigma^2) truncated to the domain.
@@ -761,7 +886,8 @@ stat<T> rule3_abs(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_abs<double>(c), deriv_abs_d1<double>(c), deriv_abs_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of sign at the mean of N(mu, sigma^2) truncated to the domain.
@@ -773,7 +899,8 @@ stat<T> rule3_sign(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_sign<double>(c), deriv_sign_d1<double>(c), deriv_sign_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (-1.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of step at the mean of N(mu, sigma^2) truncated to the domain.
@@ -785,7 +912,8 @@ stat<T> rule3_step(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_step<double>(c), deriv_step_d1<double>(c), deriv_step_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of saturate at the mean of N(mu, sigma^2) truncated to the domain.
@@ -797,7 +925,8 @@ stat<T> rule3_saturate(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_saturate<double>(c), deriv_saturate_d1<double>(c), deriv_saturate_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of smoothstep at the mean of N(mu, sigma^2) truncated to the domain.
@@ -809,7 +938,47 @@ stat<T> rule3_smoothstep(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_smoothstep<double>(c), deriv_smoothstep_d1<double>(c), deriv_smoothstep_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
+}
+
+// Rule 3: second-order Taylor of laplace at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_laplace(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_laplace<double>(c), deriv_laplace_d1<double>(c), deriv_laplace_d2<double>(c), m);
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
+}
+
+// Rule 3: second-order Taylor of exp_decay at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_exp_decay(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_exp_decay<double>(c), deriv_exp_decay_d1<double>(c), deriv_exp_decay_d2<double>(c), m);
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
+}
+
+// Rule 3: second-order Taylor of exp_ramp at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_exp_ramp(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_exp_ramp<double>(c), deriv_exp_ramp_d1<double>(c), deriv_exp_ramp_d2<double>(c), m);
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (0.36787944117144233));  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of fract at the mean of N(mu, sigma^2) truncated to the domain.
@@ -821,7 +990,8 @@ stat<T> rule3_fract(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_fract<double>(c), deriv_fract_d1<double>(c), deriv_fract_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of triangle at the mean of N(mu, sigma^2) truncated to the domain.
@@ -833,7 +1003,8 @@ stat<T> rule3_triangle(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_triangle<double>(c), deriv_triangle_d1<double>(c), deriv_triangle_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of square at the mean of N(mu, sigma^2) truncated to the domain.
@@ -845,7 +1016,21 @@ stat<T> rule3_square(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_square<double>(c), deriv_square_d1<double>(c), deriv_square_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
+}
+
+// Rule 3: second-order Taylor of pulse30 at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_pulse30(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_pulse30<double>(c), deriv_pulse30_d1<double>(c), deriv_pulse30_d2<double>(c), m);
+  const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of floor at the mean of N(mu, sigma^2) truncated to the domain.
@@ -905,7 +1090,8 @@ stat<T> rule3_tanh(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_tanh<double>(c), deriv_tanh_d1<double>(c), deriv_tanh_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (-1.0), (1.0));  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of log at the mean of N(mu, sigma^2) truncated to the domain.
@@ -929,7 +1115,8 @@ stat<T> rule3_sqrt(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_sqrt<double>(c), deriv_sqrt_d1<double>(c), deriv_sqrt_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 3: second-order Taylor of inv at the mean of N(mu, sigma^2) truncated to the domain.
@@ -953,7 +1140,8 @@ stat<T> rule3_inv2(T mu, T sigma) {
   const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_inv2<double>(c), deriv_inv2_d1<double>(c), deriv_inv2_d2<double>(c), m);
-  return {T(s.mean), T(s.var)};
+  const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
+  return {T(r.mean), T(r.var)};
 }
 
 // Rule 1 (gaussian): X with mean mu and deviation sigma, the kernel renormalized on the domain of log.
@@ -1036,6 +1224,15 @@ stat<T> bimodal_step(T mu, T sigma) {
 
 // Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
 template <class T>
+stat<T> bimodal_exp_decay(T mu, T sigma) {
+  static const double jumps[1] = {(0.0)};
+  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (0.0), jumps, 1, [](double x, double s) { return box_exp_decay<double>(x, s); }, [](double x, double s) { return box_exp_decay_sq<double>(x, s); });
+  return {T(r.mean), T(r.var)};
+}
+
+// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
+template <class T>
 stat<T> bimodal_fract(T mu, T sigma) {
   static const double jumps[1] = {(0.0)};
   // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
@@ -1049,6 +1246,15 @@ stat<T> bimodal_square(T mu, T sigma) {
   static const double jumps[2] = {(0.0), (0.5)};
   // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
   const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (1.0), jumps, 2, [](double x, double s) { return box_square<double>(x, s); }, [](double x, double s) { return box_square_sq<double>(x, s); });
+  return {T(r.mean), T(r.var)};
+}
+
+// Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
+template <class T>
+stat<T> bimodal_pulse30(T mu, T sigma) {
+  static const double jumps[2] = {(0.0), (3.0)};
+  // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (10.0), jumps, 2, [](double x, double s) { return box_pulse30<double>(x, s); }, [](double x, double s) { return box_pulse30_sq<double>(x, s); });
   return {T(r.mean), T(r.var)};
 }
 
@@ -1215,6 +1421,10 @@ inline float pow8_d1(float x) { return ::bl::detail::gen::deriv_pow8_d1<float>(x
 inline double pow8_d1(double x) { return ::bl::detail::gen::deriv_pow8_d1<double>(x); }
 inline float pow8_d2(float x) { return ::bl::detail::gen::deriv_pow8_d2<float>(x); }
 inline double pow8_d2(double x) { return ::bl::detail::gen::deriv_pow8_d2<double>(x); }
+inline float xexp_d1(float x) { return ::bl::detail::gen::deriv_xexp_d1<float>(x); }
+inline double xexp_d1(double x) { return ::bl::detail::gen::deriv_xexp_d1<double>(x); }
+inline float xexp_d2(float x) { return ::bl::detail::gen::deriv_xexp_d2<float>(x); }
+inline double xexp_d2(double x) { return ::bl::detail::gen::deriv_xexp_d2<double>(x); }
 inline float abs_d1(float x) { return ::bl::detail::gen::deriv_abs_d1<float>(x); }
 inline double abs_d1(double x) { return ::bl::detail::gen::deriv_abs_d1<double>(x); }
 inline float abs_d2(float x) { return ::bl::detail::gen::deriv_abs_d2<float>(x); }
@@ -1235,6 +1445,18 @@ inline float smoothstep_d1(float x) { return ::bl::detail::gen::deriv_smoothstep
 inline double smoothstep_d1(double x) { return ::bl::detail::gen::deriv_smoothstep_d1<double>(x); }
 inline float smoothstep_d2(float x) { return ::bl::detail::gen::deriv_smoothstep_d2<float>(x); }
 inline double smoothstep_d2(double x) { return ::bl::detail::gen::deriv_smoothstep_d2<double>(x); }
+inline float laplace_d1(float x) { return ::bl::detail::gen::deriv_laplace_d1<float>(x); }
+inline double laplace_d1(double x) { return ::bl::detail::gen::deriv_laplace_d1<double>(x); }
+inline float laplace_d2(float x) { return ::bl::detail::gen::deriv_laplace_d2<float>(x); }
+inline double laplace_d2(double x) { return ::bl::detail::gen::deriv_laplace_d2<double>(x); }
+inline float exp_decay_d1(float x) { return ::bl::detail::gen::deriv_exp_decay_d1<float>(x); }
+inline double exp_decay_d1(double x) { return ::bl::detail::gen::deriv_exp_decay_d1<double>(x); }
+inline float exp_decay_d2(float x) { return ::bl::detail::gen::deriv_exp_decay_d2<float>(x); }
+inline double exp_decay_d2(double x) { return ::bl::detail::gen::deriv_exp_decay_d2<double>(x); }
+inline float exp_ramp_d1(float x) { return ::bl::detail::gen::deriv_exp_ramp_d1<float>(x); }
+inline double exp_ramp_d1(double x) { return ::bl::detail::gen::deriv_exp_ramp_d1<double>(x); }
+inline float exp_ramp_d2(float x) { return ::bl::detail::gen::deriv_exp_ramp_d2<float>(x); }
+inline double exp_ramp_d2(double x) { return ::bl::detail::gen::deriv_exp_ramp_d2<double>(x); }
 inline float fract_d1(float x) { return ::bl::detail::gen::deriv_fract_d1<float>(x); }
 inline double fract_d1(double x) { return ::bl::detail::gen::deriv_fract_d1<double>(x); }
 inline float fract_d2(float x) { return ::bl::detail::gen::deriv_fract_d2<float>(x); }
@@ -1247,6 +1469,10 @@ inline float square_d1(float x) { return ::bl::detail::gen::deriv_square_d1<floa
 inline double square_d1(double x) { return ::bl::detail::gen::deriv_square_d1<double>(x); }
 inline float square_d2(float x) { return ::bl::detail::gen::deriv_square_d2<float>(x); }
 inline double square_d2(double x) { return ::bl::detail::gen::deriv_square_d2<double>(x); }
+inline float pulse30_d1(float x) { return ::bl::detail::gen::deriv_pulse30_d1<float>(x); }
+inline double pulse30_d1(double x) { return ::bl::detail::gen::deriv_pulse30_d1<double>(x); }
+inline float pulse30_d2(float x) { return ::bl::detail::gen::deriv_pulse30_d2<float>(x); }
+inline double pulse30_d2(double x) { return ::bl::detail::gen::deriv_pulse30_d2<double>(x); }
 inline float floor_d1(float x) { return ::bl::detail::gen::deriv_floor_d1<float>(x); }
 inline double floor_d1(double x) { return ::bl::detail::gen::deriv_floor_d1<double>(x); }
 inline float floor_d2(float x) { return ::bl::detail::gen::deriv_floor_d2<float>(x); }
@@ -1310,6 +1536,8 @@ inline stat<float> pow7(float mu, float sigma) { return ::bl::detail::gen::rule3
 inline stat<double> pow7(double mu, double sigma) { return ::bl::detail::gen::rule3_pow7<double>(mu, sigma); }
 inline stat<float> pow8(float mu, float sigma) { return ::bl::detail::gen::rule3_pow8<float>(mu, sigma); }
 inline stat<double> pow8(double mu, double sigma) { return ::bl::detail::gen::rule3_pow8<double>(mu, sigma); }
+inline stat<float> xexp(float mu, float sigma) { return ::bl::detail::gen::rule3_xexp<float>(mu, sigma); }
+inline stat<double> xexp(double mu, double sigma) { return ::bl::detail::gen::rule3_xexp<double>(mu, sigma); }
 inline stat<float> abs(float mu, float sigma) { return ::bl::detail::gen::rule3_abs<float>(mu, sigma); }
 inline stat<double> abs(double mu, double sigma) { return ::bl::detail::gen::rule3_abs<double>(mu, sigma); }
 inline stat<float> sign(float mu, float sigma) { return ::bl::detail::gen::rule3_sign<float>(mu, sigma); }
@@ -1320,12 +1548,20 @@ inline stat<float> saturate(float mu, float sigma) { return ::bl::detail::gen::r
 inline stat<double> saturate(double mu, double sigma) { return ::bl::detail::gen::rule3_saturate<double>(mu, sigma); }
 inline stat<float> smoothstep(float mu, float sigma) { return ::bl::detail::gen::rule3_smoothstep<float>(mu, sigma); }
 inline stat<double> smoothstep(double mu, double sigma) { return ::bl::detail::gen::rule3_smoothstep<double>(mu, sigma); }
+inline stat<float> laplace(float mu, float sigma) { return ::bl::detail::gen::rule3_laplace<float>(mu, sigma); }
+inline stat<double> laplace(double mu, double sigma) { return ::bl::detail::gen::rule3_laplace<double>(mu, sigma); }
+inline stat<float> exp_decay(float mu, float sigma) { return ::bl::detail::gen::rule3_exp_decay<float>(mu, sigma); }
+inline stat<double> exp_decay(double mu, double sigma) { return ::bl::detail::gen::rule3_exp_decay<double>(mu, sigma); }
+inline stat<float> exp_ramp(float mu, float sigma) { return ::bl::detail::gen::rule3_exp_ramp<float>(mu, sigma); }
+inline stat<double> exp_ramp(double mu, double sigma) { return ::bl::detail::gen::rule3_exp_ramp<double>(mu, sigma); }
 inline stat<float> fract(float mu, float sigma) { return ::bl::detail::gen::rule3_fract<float>(mu, sigma); }
 inline stat<double> fract(double mu, double sigma) { return ::bl::detail::gen::rule3_fract<double>(mu, sigma); }
 inline stat<float> triangle(float mu, float sigma) { return ::bl::detail::gen::rule3_triangle<float>(mu, sigma); }
 inline stat<double> triangle(double mu, double sigma) { return ::bl::detail::gen::rule3_triangle<double>(mu, sigma); }
 inline stat<float> square(float mu, float sigma) { return ::bl::detail::gen::rule3_square<float>(mu, sigma); }
 inline stat<double> square(double mu, double sigma) { return ::bl::detail::gen::rule3_square<double>(mu, sigma); }
+inline stat<float> pulse30(float mu, float sigma) { return ::bl::detail::gen::rule3_pulse30<float>(mu, sigma); }
+inline stat<double> pulse30(double mu, double sigma) { return ::bl::detail::gen::rule3_pulse30<double>(mu, sigma); }
 inline stat<float> floor(float mu, float sigma) { return ::bl::detail::gen::rule3_floor<float>(mu, sigma); }
 inline stat<double> floor(double mu, double sigma) { return ::bl::detail::gen::rule3_floor<double>(mu, sigma); }
 inline stat<float> ceil(float mu, float sigma) { return ::bl::detail::gen::rule3_ceil<float>(mu, sigma); }
@@ -1372,10 +1608,14 @@ inline stat<float> sign(float mu, float sigma) { return ::bl::detail::gen::bimod
 inline stat<double> sign(double mu, double sigma) { return ::bl::detail::gen::bimodal_sign<double>(mu, sigma); }
 inline stat<float> step(float mu, float sigma) { return ::bl::detail::gen::bimodal_step<float>(mu, sigma); }
 inline stat<double> step(double mu, double sigma) { return ::bl::detail::gen::bimodal_step<double>(mu, sigma); }
+inline stat<float> exp_decay(float mu, float sigma) { return ::bl::detail::gen::bimodal_exp_decay<float>(mu, sigma); }
+inline stat<double> exp_decay(double mu, double sigma) { return ::bl::detail::gen::bimodal_exp_decay<double>(mu, sigma); }
 inline stat<float> fract(float mu, float sigma) { return ::bl::detail::gen::bimodal_fract<float>(mu, sigma); }
 inline stat<double> fract(double mu, double sigma) { return ::bl::detail::gen::bimodal_fract<double>(mu, sigma); }
 inline stat<float> square(float mu, float sigma) { return ::bl::detail::gen::bimodal_square<float>(mu, sigma); }
 inline stat<double> square(double mu, double sigma) { return ::bl::detail::gen::bimodal_square<double>(mu, sigma); }
+inline stat<float> pulse30(float mu, float sigma) { return ::bl::detail::gen::bimodal_pulse30<float>(mu, sigma); }
+inline stat<double> pulse30(double mu, double sigma) { return ::bl::detail::gen::bimodal_pulse30<double>(mu, sigma); }
 inline stat<float> floor(float mu, float sigma) { return ::bl::detail::gen::bimodal_floor<float>(mu, sigma); }
 inline stat<double> floor(double mu, double sigma) { return ::bl::detail::gen::bimodal_floor<double>(mu, sigma); }
 inline stat<float> ceil(float mu, float sigma) { return ::bl::detail::gen::bimodal_ceil<float>(mu, sigma); }
@@ -1447,40 +1687,50 @@ const DerivativeEntry<T>* derivative_entries(int* count) {
       {&kAtomics[10], 2, "bl::deriv::pow7_d2", "bl_deriv_pow7_d2", &detail::gen::deriv_pow7_d2<T>},
       {&kAtomics[11], 1, "bl::deriv::pow8_d1", "bl_deriv_pow8_d1", &detail::gen::deriv_pow8_d1<T>},
       {&kAtomics[11], 2, "bl::deriv::pow8_d2", "bl_deriv_pow8_d2", &detail::gen::deriv_pow8_d2<T>},
-      {&kAtomics[12], 1, "bl::deriv::abs_d1", "bl_deriv_abs_d1", &detail::gen::deriv_abs_d1<T>},
-      {&kAtomics[12], 2, "bl::deriv::abs_d2", "bl_deriv_abs_d2", &detail::gen::deriv_abs_d2<T>},
-      {&kAtomics[13], 1, "bl::deriv::sign_d1", "bl_deriv_sign_d1", &detail::gen::deriv_sign_d1<T>},
-      {&kAtomics[13], 2, "bl::deriv::sign_d2", "bl_deriv_sign_d2", &detail::gen::deriv_sign_d2<T>},
-      {&kAtomics[14], 1, "bl::deriv::step_d1", "bl_deriv_step_d1", &detail::gen::deriv_step_d1<T>},
-      {&kAtomics[14], 2, "bl::deriv::step_d2", "bl_deriv_step_d2", &detail::gen::deriv_step_d2<T>},
-      {&kAtomics[15], 1, "bl::deriv::saturate_d1", "bl_deriv_saturate_d1", &detail::gen::deriv_saturate_d1<T>},
-      {&kAtomics[15], 2, "bl::deriv::saturate_d2", "bl_deriv_saturate_d2", &detail::gen::deriv_saturate_d2<T>},
-      {&kAtomics[16], 1, "bl::deriv::smoothstep_d1", "bl_deriv_smoothstep_d1", &detail::gen::deriv_smoothstep_d1<T>},
-      {&kAtomics[16], 2, "bl::deriv::smoothstep_d2", "bl_deriv_smoothstep_d2", &detail::gen::deriv_smoothstep_d2<T>},
-      {&kAtomics[17], 1, "bl::deriv::fract_d1", "bl_deriv_fract_d1", &detail::gen::deriv_fract_d1<T>},
-      {&kAtomics[17], 2, "bl::deriv::fract_d2", "bl_deriv_fract_d2", &detail::gen::deriv_fract_d2<T>},
-      {&kAtomics[18], 1, "bl::deriv::triangle_d1", "bl_deriv_triangle_d1", &detail::gen::deriv_triangle_d1<T>},
-      {&kAtomics[18], 2, "bl::deriv::triangle_d2", "bl_deriv_triangle_d2", &detail::gen::deriv_triangle_d2<T>},
-      {&kAtomics[19], 1, "bl::deriv::square_d1", "bl_deriv_square_d1", &detail::gen::deriv_square_d1<T>},
-      {&kAtomics[19], 2, "bl::deriv::square_d2", "bl_deriv_square_d2", &detail::gen::deriv_square_d2<T>},
-      {&kAtomics[20], 1, "bl::deriv::floor_d1", "bl_deriv_floor_d1", &detail::gen::deriv_floor_d1<T>},
-      {&kAtomics[20], 2, "bl::deriv::floor_d2", "bl_deriv_floor_d2", &detail::gen::deriv_floor_d2<T>},
-      {&kAtomics[21], 1, "bl::deriv::ceil_d1", "bl_deriv_ceil_d1", &detail::gen::deriv_ceil_d1<T>},
-      {&kAtomics[21], 2, "bl::deriv::ceil_d2", "bl_deriv_ceil_d2", &detail::gen::deriv_ceil_d2<T>},
-      {&kAtomics[22], 1, "bl::deriv::trunc_d1", "bl_deriv_trunc_d1", &detail::gen::deriv_trunc_d1<T>},
-      {&kAtomics[22], 2, "bl::deriv::trunc_d2", "bl_deriv_trunc_d2", &detail::gen::deriv_trunc_d2<T>},
-      {&kAtomics[23], 1, "bl::deriv::tan_d1", "bl_deriv_tan_d1", &detail::gen::deriv_tan_d1<T>},
-      {&kAtomics[23], 2, "bl::deriv::tan_d2", "bl_deriv_tan_d2", &detail::gen::deriv_tan_d2<T>},
-      {&kAtomics[24], 1, "bl::deriv::tanh_d1", "bl_deriv_tanh_d1", &detail::gen::deriv_tanh_d1<T>},
-      {&kAtomics[24], 2, "bl::deriv::tanh_d2", "bl_deriv_tanh_d2", &detail::gen::deriv_tanh_d2<T>},
-      {&kAtomics[25], 1, "bl::deriv::log_d1", "bl_deriv_log_d1", &detail::gen::deriv_log_d1<T>},
-      {&kAtomics[25], 2, "bl::deriv::log_d2", "bl_deriv_log_d2", &detail::gen::deriv_log_d2<T>},
-      {&kAtomics[26], 1, "bl::deriv::sqrt_d1", "bl_deriv_sqrt_d1", &detail::gen::deriv_sqrt_d1<T>},
-      {&kAtomics[26], 2, "bl::deriv::sqrt_d2", "bl_deriv_sqrt_d2", &detail::gen::deriv_sqrt_d2<T>},
-      {&kAtomics[27], 1, "bl::deriv::inv_d1", "bl_deriv_inv_d1", &detail::gen::deriv_inv_d1<T>},
-      {&kAtomics[27], 2, "bl::deriv::inv_d2", "bl_deriv_inv_d2", &detail::gen::deriv_inv_d2<T>},
-      {&kAtomics[28], 1, "bl::deriv::inv2_d1", "bl_deriv_inv2_d1", &detail::gen::deriv_inv2_d1<T>},
-      {&kAtomics[28], 2, "bl::deriv::inv2_d2", "bl_deriv_inv2_d2", &detail::gen::deriv_inv2_d2<T>},
+      {&kAtomics[12], 1, "bl::deriv::xexp_d1", "bl_deriv_xexp_d1", &detail::gen::deriv_xexp_d1<T>},
+      {&kAtomics[12], 2, "bl::deriv::xexp_d2", "bl_deriv_xexp_d2", &detail::gen::deriv_xexp_d2<T>},
+      {&kAtomics[13], 1, "bl::deriv::abs_d1", "bl_deriv_abs_d1", &detail::gen::deriv_abs_d1<T>},
+      {&kAtomics[13], 2, "bl::deriv::abs_d2", "bl_deriv_abs_d2", &detail::gen::deriv_abs_d2<T>},
+      {&kAtomics[14], 1, "bl::deriv::sign_d1", "bl_deriv_sign_d1", &detail::gen::deriv_sign_d1<T>},
+      {&kAtomics[14], 2, "bl::deriv::sign_d2", "bl_deriv_sign_d2", &detail::gen::deriv_sign_d2<T>},
+      {&kAtomics[15], 1, "bl::deriv::step_d1", "bl_deriv_step_d1", &detail::gen::deriv_step_d1<T>},
+      {&kAtomics[15], 2, "bl::deriv::step_d2", "bl_deriv_step_d2", &detail::gen::deriv_step_d2<T>},
+      {&kAtomics[16], 1, "bl::deriv::saturate_d1", "bl_deriv_saturate_d1", &detail::gen::deriv_saturate_d1<T>},
+      {&kAtomics[16], 2, "bl::deriv::saturate_d2", "bl_deriv_saturate_d2", &detail::gen::deriv_saturate_d2<T>},
+      {&kAtomics[17], 1, "bl::deriv::smoothstep_d1", "bl_deriv_smoothstep_d1", &detail::gen::deriv_smoothstep_d1<T>},
+      {&kAtomics[17], 2, "bl::deriv::smoothstep_d2", "bl_deriv_smoothstep_d2", &detail::gen::deriv_smoothstep_d2<T>},
+      {&kAtomics[18], 1, "bl::deriv::laplace_d1", "bl_deriv_laplace_d1", &detail::gen::deriv_laplace_d1<T>},
+      {&kAtomics[18], 2, "bl::deriv::laplace_d2", "bl_deriv_laplace_d2", &detail::gen::deriv_laplace_d2<T>},
+      {&kAtomics[19], 1, "bl::deriv::exp_decay_d1", "bl_deriv_exp_decay_d1", &detail::gen::deriv_exp_decay_d1<T>},
+      {&kAtomics[19], 2, "bl::deriv::exp_decay_d2", "bl_deriv_exp_decay_d2", &detail::gen::deriv_exp_decay_d2<T>},
+      {&kAtomics[20], 1, "bl::deriv::exp_ramp_d1", "bl_deriv_exp_ramp_d1", &detail::gen::deriv_exp_ramp_d1<T>},
+      {&kAtomics[20], 2, "bl::deriv::exp_ramp_d2", "bl_deriv_exp_ramp_d2", &detail::gen::deriv_exp_ramp_d2<T>},
+      {&kAtomics[21], 1, "bl::deriv::fract_d1", "bl_deriv_fract_d1", &detail::gen::deriv_fract_d1<T>},
+      {&kAtomics[21], 2, "bl::deriv::fract_d2", "bl_deriv_fract_d2", &detail::gen::deriv_fract_d2<T>},
+      {&kAtomics[22], 1, "bl::deriv::triangle_d1", "bl_deriv_triangle_d1", &detail::gen::deriv_triangle_d1<T>},
+      {&kAtomics[22], 2, "bl::deriv::triangle_d2", "bl_deriv_triangle_d2", &detail::gen::deriv_triangle_d2<T>},
+      {&kAtomics[23], 1, "bl::deriv::square_d1", "bl_deriv_square_d1", &detail::gen::deriv_square_d1<T>},
+      {&kAtomics[23], 2, "bl::deriv::square_d2", "bl_deriv_square_d2", &detail::gen::deriv_square_d2<T>},
+      {&kAtomics[24], 1, "bl::deriv::pulse30_d1", "bl_deriv_pulse30_d1", &detail::gen::deriv_pulse30_d1<T>},
+      {&kAtomics[24], 2, "bl::deriv::pulse30_d2", "bl_deriv_pulse30_d2", &detail::gen::deriv_pulse30_d2<T>},
+      {&kAtomics[25], 1, "bl::deriv::floor_d1", "bl_deriv_floor_d1", &detail::gen::deriv_floor_d1<T>},
+      {&kAtomics[25], 2, "bl::deriv::floor_d2", "bl_deriv_floor_d2", &detail::gen::deriv_floor_d2<T>},
+      {&kAtomics[26], 1, "bl::deriv::ceil_d1", "bl_deriv_ceil_d1", &detail::gen::deriv_ceil_d1<T>},
+      {&kAtomics[26], 2, "bl::deriv::ceil_d2", "bl_deriv_ceil_d2", &detail::gen::deriv_ceil_d2<T>},
+      {&kAtomics[27], 1, "bl::deriv::trunc_d1", "bl_deriv_trunc_d1", &detail::gen::deriv_trunc_d1<T>},
+      {&kAtomics[27], 2, "bl::deriv::trunc_d2", "bl_deriv_trunc_d2", &detail::gen::deriv_trunc_d2<T>},
+      {&kAtomics[28], 1, "bl::deriv::tan_d1", "bl_deriv_tan_d1", &detail::gen::deriv_tan_d1<T>},
+      {&kAtomics[28], 2, "bl::deriv::tan_d2", "bl_deriv_tan_d2", &detail::gen::deriv_tan_d2<T>},
+      {&kAtomics[29], 1, "bl::deriv::tanh_d1", "bl_deriv_tanh_d1", &detail::gen::deriv_tanh_d1<T>},
+      {&kAtomics[29], 2, "bl::deriv::tanh_d2", "bl_deriv_tanh_d2", &detail::gen::deriv_tanh_d2<T>},
+      {&kAtomics[30], 1, "bl::deriv::log_d1", "bl_deriv_log_d1", &detail::gen::deriv_log_d1<T>},
+      {&kAtomics[30], 2, "bl::deriv::log_d2", "bl_deriv_log_d2", &detail::gen::deriv_log_d2<T>},
+      {&kAtomics[31], 1, "bl::deriv::sqrt_d1", "bl_deriv_sqrt_d1", &detail::gen::deriv_sqrt_d1<T>},
+      {&kAtomics[31], 2, "bl::deriv::sqrt_d2", "bl_deriv_sqrt_d2", &detail::gen::deriv_sqrt_d2<T>},
+      {&kAtomics[32], 1, "bl::deriv::inv_d1", "bl_deriv_inv_d1", &detail::gen::deriv_inv_d1<T>},
+      {&kAtomics[32], 2, "bl::deriv::inv_d2", "bl_deriv_inv_d2", &detail::gen::deriv_inv_d2<T>},
+      {&kAtomics[33], 1, "bl::deriv::inv2_d1", "bl_deriv_inv2_d1", &detail::gen::deriv_inv2_d1<T>},
+      {&kAtomics[33], 2, "bl::deriv::inv2_d2", "bl_deriv_inv2_d2", &detail::gen::deriv_inv2_d2<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;
@@ -1502,36 +1752,43 @@ const RuleEntry<T>* clamped_rule_entries(int* count) {
       {&kAtomics[9], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow6", "bl_rule3_pow6", &detail::gen::rule3_pow6<T>},
       {&kAtomics[10], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow7", "bl_rule3_pow7", &detail::gen::rule3_pow7<T>},
       {&kAtomics[11], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pow8", "bl_rule3_pow8", &detail::gen::rule3_pow8<T>},
-      {&kAtomics[12], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::abs", "bl_rule3_abs", &detail::gen::rule3_abs<T>},
-      {&kAtomics[13], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sign", "bl_rule3_sign", &detail::gen::rule3_sign<T>},
-      {&kAtomics[14], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::step", "bl_rule3_step", &detail::gen::rule3_step<T>},
-      {&kAtomics[15], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::saturate", "bl_rule3_saturate", &detail::gen::rule3_saturate<T>},
-      {&kAtomics[16], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::smoothstep", "bl_rule3_smoothstep", &detail::gen::rule3_smoothstep<T>},
-      {&kAtomics[17], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::fract", "bl_rule3_fract", &detail::gen::rule3_fract<T>},
-      {&kAtomics[18], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::triangle", "bl_rule3_triangle", &detail::gen::rule3_triangle<T>},
-      {&kAtomics[19], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::square", "bl_rule3_square", &detail::gen::rule3_square<T>},
-      {&kAtomics[20], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::floor", "bl_rule3_floor", &detail::gen::rule3_floor<T>},
-      {&kAtomics[21], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::ceil", "bl_rule3_ceil", &detail::gen::rule3_ceil<T>},
-      {&kAtomics[22], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::trunc", "bl_rule3_trunc", &detail::gen::rule3_trunc<T>},
-      {&kAtomics[23], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tan", "bl_rule3_tan", &detail::gen::rule3_tan<T>},
-      {&kAtomics[24], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tanh", "bl_rule3_tanh", &detail::gen::rule3_tanh<T>},
-      {&kAtomics[25], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::log", "bl_rule3_log", &detail::gen::rule3_log<T>},
-      {&kAtomics[26], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sqrt", "bl_rule3_sqrt", &detail::gen::rule3_sqrt<T>},
-      {&kAtomics[27], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv", "bl_rule3_inv", &detail::gen::rule3_inv<T>},
-      {&kAtomics[28], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv2", "bl_rule3_inv2", &detail::gen::rule3_inv2<T>},
-      {&kAtomics[25], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::log", "bl_rule1_gaussian_log", &detail::gen::rule1_gaussian_log<T>},
-      {&kAtomics[25], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::log", "bl_rule1_box_log", &detail::gen::rule1_box_log<T>},
-      {&kAtomics[25], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::log", "bl_rule1_tent_log", &detail::gen::rule1_tent_log<T>},
-      {&kAtomics[26], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::sqrt", "bl_rule1_gaussian_sqrt", &detail::gen::rule1_gaussian_sqrt<T>},
-      {&kAtomics[26], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::sqrt", "bl_rule1_box_sqrt", &detail::gen::rule1_box_sqrt<T>},
-      {&kAtomics[26], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::sqrt", "bl_rule1_tent_sqrt", &detail::gen::rule1_tent_sqrt<T>},
-      {&kAtomics[13], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::sign", "bl_bimodal_sign", &detail::gen::bimodal_sign<T>},
-      {&kAtomics[14], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::step", "bl_bimodal_step", &detail::gen::bimodal_step<T>},
-      {&kAtomics[17], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::fract", "bl_bimodal_fract", &detail::gen::bimodal_fract<T>},
-      {&kAtomics[19], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::square", "bl_bimodal_square", &detail::gen::bimodal_square<T>},
-      {&kAtomics[20], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::floor", "bl_bimodal_floor", &detail::gen::bimodal_floor<T>},
-      {&kAtomics[21], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::ceil", "bl_bimodal_ceil", &detail::gen::bimodal_ceil<T>},
-      {&kAtomics[22], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::trunc", "bl_bimodal_trunc", &detail::gen::bimodal_trunc<T>},
+      {&kAtomics[12], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::xexp", "bl_rule3_xexp", &detail::gen::rule3_xexp<T>},
+      {&kAtomics[13], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::abs", "bl_rule3_abs", &detail::gen::rule3_abs<T>},
+      {&kAtomics[14], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sign", "bl_rule3_sign", &detail::gen::rule3_sign<T>},
+      {&kAtomics[15], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::step", "bl_rule3_step", &detail::gen::rule3_step<T>},
+      {&kAtomics[16], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::saturate", "bl_rule3_saturate", &detail::gen::rule3_saturate<T>},
+      {&kAtomics[17], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::smoothstep", "bl_rule3_smoothstep", &detail::gen::rule3_smoothstep<T>},
+      {&kAtomics[18], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::laplace", "bl_rule3_laplace", &detail::gen::rule3_laplace<T>},
+      {&kAtomics[19], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::exp_decay", "bl_rule3_exp_decay", &detail::gen::rule3_exp_decay<T>},
+      {&kAtomics[20], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::exp_ramp", "bl_rule3_exp_ramp", &detail::gen::rule3_exp_ramp<T>},
+      {&kAtomics[21], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::fract", "bl_rule3_fract", &detail::gen::rule3_fract<T>},
+      {&kAtomics[22], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::triangle", "bl_rule3_triangle", &detail::gen::rule3_triangle<T>},
+      {&kAtomics[23], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::square", "bl_rule3_square", &detail::gen::rule3_square<T>},
+      {&kAtomics[24], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::pulse30", "bl_rule3_pulse30", &detail::gen::rule3_pulse30<T>},
+      {&kAtomics[25], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::floor", "bl_rule3_floor", &detail::gen::rule3_floor<T>},
+      {&kAtomics[26], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::ceil", "bl_rule3_ceil", &detail::gen::rule3_ceil<T>},
+      {&kAtomics[27], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::trunc", "bl_rule3_trunc", &detail::gen::rule3_trunc<T>},
+      {&kAtomics[28], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tan", "bl_rule3_tan", &detail::gen::rule3_tan<T>},
+      {&kAtomics[29], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::tanh", "bl_rule3_tanh", &detail::gen::rule3_tanh<T>},
+      {&kAtomics[30], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::log", "bl_rule3_log", &detail::gen::rule3_log<T>},
+      {&kAtomics[31], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sqrt", "bl_rule3_sqrt", &detail::gen::rule3_sqrt<T>},
+      {&kAtomics[32], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv", "bl_rule3_inv", &detail::gen::rule3_inv<T>},
+      {&kAtomics[33], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv2", "bl_rule3_inv2", &detail::gen::rule3_inv2<T>},
+      {&kAtomics[30], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::log", "bl_rule1_gaussian_log", &detail::gen::rule1_gaussian_log<T>},
+      {&kAtomics[30], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::log", "bl_rule1_box_log", &detail::gen::rule1_box_log<T>},
+      {&kAtomics[30], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::log", "bl_rule1_tent_log", &detail::gen::rule1_tent_log<T>},
+      {&kAtomics[31], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::sqrt", "bl_rule1_gaussian_sqrt", &detail::gen::rule1_gaussian_sqrt<T>},
+      {&kAtomics[31], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::sqrt", "bl_rule1_box_sqrt", &detail::gen::rule1_box_sqrt<T>},
+      {&kAtomics[31], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::sqrt", "bl_rule1_tent_sqrt", &detail::gen::rule1_tent_sqrt<T>},
+      {&kAtomics[14], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::sign", "bl_bimodal_sign", &detail::gen::bimodal_sign<T>},
+      {&kAtomics[15], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::step", "bl_bimodal_step", &detail::gen::bimodal_step<T>},
+      {&kAtomics[19], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::exp_decay", "bl_bimodal_exp_decay", &detail::gen::bimodal_exp_decay<T>},
+      {&kAtomics[21], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::fract", "bl_bimodal_fract", &detail::gen::bimodal_fract<T>},
+      {&kAtomics[23], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::square", "bl_bimodal_square", &detail::gen::bimodal_square<T>},
+      {&kAtomics[24], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::pulse30", "bl_bimodal_pulse30", &detail::gen::bimodal_pulse30<T>},
+      {&kAtomics[25], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::floor", "bl_bimodal_floor", &detail::gen::bimodal_floor<T>},
+      {&kAtomics[26], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::ceil", "bl_bimodal_ceil", &detail::gen::bimodal_ceil<T>},
+      {&kAtomics[27], "bimodal", "box", "closed form (box entries on the cut footprint)", "bl::bimodal::trunc", "bl_bimodal_trunc", &detail::gen::bimodal_trunc<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;

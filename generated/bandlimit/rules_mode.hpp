@@ -540,14 +540,14 @@ const RuleEntry<T>* rule2_entries(int* count) {
   static const RuleEntry<T> e[] = {
       {&kAtomics[2], "rule2", "gaussian", "closed form", "bl::rule2::exp", "bl_rule2_exp", &detail::gen_rule2::exp<T>},
       {&kAtomics[3], "rule2", "gaussian", "newton (bracket from x0 = mu by doubling steps, safeguarded Newton <= 100 iterations, |dx| <= 4 eps (|x| + sigma))", "bl::rule2::sinh", "bl_rule2_sinh", &detail::gen_rule2::sinh<T>},
-      {&kAtomics[12], "rule2", "gaussian", "closed form", "bl::rule2::abs", "bl_rule2_abs", &detail::gen_rule2::abs<T>},
-      {&kAtomics[17], "rule2", "gaussian", "closed form", "bl::rule2::fract", "bl_rule2_fract", &detail::gen_rule2::fract<T>},
-      {&kAtomics[23], "rule2", "gaussian", "newton (bracket from x0 = mu by doubling steps, safeguarded Newton <= 100 iterations, |dx| <= 4 eps (|x| + sigma))", "bl::rule2::tan", "bl_rule2_tan", &detail::gen_rule2::tan<T>},
-      {&kAtomics[24], "rule2", "gaussian", "newton (bracket from x0 = mu by doubling steps, safeguarded Newton <= 100 iterations, |dx| <= 4 eps (|x| + sigma))", "bl::rule2::tanh", "bl_rule2_tanh", &detail::gen_rule2::tanh<T>},
-      {&kAtomics[25], "rule2", "gaussian", "closed form", "bl::rule2::log", "bl_rule2_log", &detail::gen_rule2::log<T>},
-      {&kAtomics[26], "rule2", "gaussian", "closed form", "bl::rule2::sqrt", "bl_rule2_sqrt", &detail::gen_rule2::sqrt<T>},
-      {&kAtomics[27], "rule2", "gaussian", "closed form", "bl::rule2::inv", "bl_rule2_inv", &detail::gen_rule2::inv<T>},
-      {&kAtomics[28], "rule2", "gaussian", "closed form", "bl::rule2::inv2", "bl_rule2_inv2", &detail::gen_rule2::inv2<T>},
+      {&kAtomics[13], "rule2", "gaussian", "closed form", "bl::rule2::abs", "bl_rule2_abs", &detail::gen_rule2::abs<T>},
+      {&kAtomics[21], "rule2", "gaussian", "closed form", "bl::rule2::fract", "bl_rule2_fract", &detail::gen_rule2::fract<T>},
+      {&kAtomics[28], "rule2", "gaussian", "newton (bracket from x0 = mu by doubling steps, safeguarded Newton <= 100 iterations, |dx| <= 4 eps (|x| + sigma))", "bl::rule2::tan", "bl_rule2_tan", &detail::gen_rule2::tan<T>},
+      {&kAtomics[29], "rule2", "gaussian", "newton (bracket from x0 = mu by doubling steps, safeguarded Newton <= 100 iterations, |dx| <= 4 eps (|x| + sigma))", "bl::rule2::tanh", "bl_rule2_tanh", &detail::gen_rule2::tanh<T>},
+      {&kAtomics[30], "rule2", "gaussian", "closed form", "bl::rule2::log", "bl_rule2_log", &detail::gen_rule2::log<T>},
+      {&kAtomics[31], "rule2", "gaussian", "closed form", "bl::rule2::sqrt", "bl_rule2_sqrt", &detail::gen_rule2::sqrt<T>},
+      {&kAtomics[32], "rule2", "gaussian", "closed form", "bl::rule2::inv", "bl_rule2_inv", &detail::gen_rule2::inv<T>},
+      {&kAtomics[33], "rule2", "gaussian", "closed form", "bl::rule2::inv2", "bl_rule2_inv2", &detail::gen_rule2::inv2<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;

@@ -37,6 +37,8 @@ T plain_pow7(T x);
 template <class T>
 T plain_pow8(T x);
 template <class T>
+T plain_xexp(T x);
+template <class T>
 T plain_abs(T x);
 template <class T>
 T plain_sign(T x);
@@ -47,11 +49,19 @@ T plain_saturate(T x);
 template <class T>
 T plain_smoothstep(T x);
 template <class T>
+T plain_laplace(T x);
+template <class T>
+T plain_exp_decay(T x);
+template <class T>
+T plain_exp_ramp(T x);
+template <class T>
 T plain_fract(T x);
 template <class T>
 T plain_triangle(T x);
 template <class T>
 T plain_square(T x);
+template <class T>
+T plain_pulse30(T x);
 template <class T>
 T plain_floor(T x);
 template <class T>
@@ -215,6 +225,18 @@ T tent_pow8(T x, T sigma);
 template <class T>
 T tent_pow8_sq(T x, T sigma);
 template <class T>
+T gaussian_xexp(T x, T sigma);
+template <class T>
+T gaussian_xexp_sq(T x, T sigma);
+template <class T>
+T box_xexp(T x, T sigma);
+template <class T>
+T box_xexp_sq(T x, T sigma);
+template <class T>
+T tent_xexp(T x, T sigma);
+template <class T>
+T tent_xexp_sq(T x, T sigma);
+template <class T>
 T gaussian_abs(T x, T sigma);
 template <class T>
 T gaussian_abs_sq(T x, T sigma);
@@ -274,6 +296,42 @@ template <class T>
 T tent_smoothstep(T x, T sigma);
 template <class T>
 T tent_smoothstep_sq(T x, T sigma);
+template <class T>
+T gaussian_laplace(T x, T sigma);
+template <class T>
+T gaussian_laplace_sq(T x, T sigma);
+template <class T>
+T box_laplace(T x, T sigma);
+template <class T>
+T box_laplace_sq(T x, T sigma);
+template <class T>
+T tent_laplace(T x, T sigma);
+template <class T>
+T tent_laplace_sq(T x, T sigma);
+template <class T>
+T gaussian_exp_decay(T x, T sigma);
+template <class T>
+T gaussian_exp_decay_sq(T x, T sigma);
+template <class T>
+T box_exp_decay(T x, T sigma);
+template <class T>
+T box_exp_decay_sq(T x, T sigma);
+template <class T>
+T tent_exp_decay(T x, T sigma);
+template <class T>
+T tent_exp_decay_sq(T x, T sigma);
+template <class T>
+T gaussian_exp_ramp(T x, T sigma);
+template <class T>
+T gaussian_exp_ramp_sq(T x, T sigma);
+template <class T>
+T box_exp_ramp(T x, T sigma);
+template <class T>
+T box_exp_ramp_sq(T x, T sigma);
+template <class T>
+T tent_exp_ramp(T x, T sigma);
+template <class T>
+T tent_exp_ramp_sq(T x, T sigma);
 template <class T>
 T gaussian_fract(T x, T sigma);
 template <class T>
@@ -346,6 +404,30 @@ template <class T>
 T tent_square_right(T x, T sigma);
 template <class T>
 T tent_square_sq(T x, T sigma);
+template <class T>
+T gaussian_pulse30(T x, T sigma);
+template <class T>
+T gaussian_pulse30_u(T x, T sigma);
+template <class T>
+T gaussian_pulse30_right(T x, T sigma);
+template <class T>
+T gaussian_pulse30_sq(T x, T sigma);
+template <class T>
+T box_pulse30(T x, T sigma);
+template <class T>
+T box_pulse30_u(T x, T sigma);
+template <class T>
+T box_pulse30_right(T x, T sigma);
+template <class T>
+T box_pulse30_sq(T x, T sigma);
+template <class T>
+T tent_pulse30(T x, T sigma);
+template <class T>
+T tent_pulse30_u(T x, T sigma);
+template <class T>
+T tent_pulse30_right(T x, T sigma);
+template <class T>
+T tent_pulse30_sq(T x, T sigma);
 template <class T>
 T gaussian_floor(T x, T sigma);
 template <class T>
@@ -606,6 +688,12 @@ T plain_pow8(T x) {
 }
 
 template <class T>
+T plain_xexp(T x) {
+  BL_MATH_USING
+  return (exp(x)*x);
+}
+
+template <class T>
 T plain_abs(T x) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
@@ -658,6 +746,27 @@ T plain_smoothstep(T x) {
 }
 
 template <class T>
+T plain_laplace(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return exp(x);
+  return exp((-x));
+}
+
+template <class T>
+T plain_exp_decay(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return T(0);
+  return exp((-x));
+}
+
+template <class T>
+T plain_exp_ramp(T x) {
+  BL_MATH_USING
+  if (x < T(0)) return T(0);
+  return (exp((-x))*x);
+}
+
+template <class T>
 T plain_fract(T x) {
   BL_MATH_USING
   const detail::Piece<T> p[1] = {
@@ -684,6 +793,16 @@ T plain_square(T x) {
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   return detail::periodic_eval(x, T(1), p);
+}
+
+template <class T>
+T plain_pulse30(T x) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  return detail::periodic_eval(x, T(10), p);
 }
 
 template <class T>
@@ -1845,6 +1964,140 @@ T tent_pow8_sq(T x, T sigma) {
   return v;
 }
 
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {s * exp(s), s = x - 0 on [-inf, inf)}
+template <class T>
+T gaussian_xexp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_xexp(T x, T sigma) {
+  const T v = gaussian_xexp_raw<T>(x, sigma);
+  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {(s)^(2) * exp((2*s)), s = x - 0 on [-inf, inf)}
+template <class T>
+T gaussian_xexp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_xexp_sq(T x, T sigma) {
+  const T v = gaussian_xexp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {s *
+//   exp(s), s = x - 0 on [-inf, inf)}
+template <class T>
+T box_xexp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_xexp(T x, T sigma) {
+  const T v = box_xexp_raw<T>(x, sigma);
+  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms
+//   {(s)^(2) * exp((2*s)), s = x - 0 on [-inf, inf)}
+template <class T>
+T box_xexp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_xexp_sq(T x, T sigma) {
+  const T v = box_xexp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {s * exp(s), s = x - 0 on
+//   [-inf, inf)}
+template <class T>
+T tent_xexp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_xexp(T x, T sigma) {
+  const T v = tent_xexp_raw<T>(x, sigma);
+  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {(s)^(2) * exp((2*s)), s = x
+//   - 0 on [-inf, inf)}
+template <class T>
+T tent_xexp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_xexp_sq(T x, T sigma) {
+  const T v = tent_xexp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  return v;
+}
+
 //   (((-2)*Phi((-(sigma)^((-1))*x))*x) + (2*phi((-(sigma)^((-1))*x))*sigma) + x) [Phi, phi:
 //   standard normal CDF and density]
 template <class T>
@@ -2536,6 +2789,434 @@ T tent_smoothstep_sq(T x, T sigma) {
   const T v = tent_smoothstep_sq_raw<T>(x, sigma);
   if (v < T(0)) return T(0);
   if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {1 * exp(s), s = x - 0 on [-inf, 0); 1 * exp((-s)), s = x - 0 on [0,
+//   inf)}
+template <class T>
+T gaussian_laplace_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_laplace(T x, T sigma) {
+  const T v = gaussian_laplace_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {1 * exp((2*s)), s = x - 0 on [-inf, 0); 1 * exp(((-2)*s)), s = x - 0
+//   on [0, inf)}
+template <class T>
+T gaussian_laplace_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_laplace_sq(T x, T sigma) {
+  const T v = gaussian_laplace_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {1 *
+//   exp(s), s = x - 0 on [-inf, 0); 1 * exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_laplace_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_laplace(T x, T sigma) {
+  const T v = box_laplace_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {1 *
+//   exp((2*s)), s = x - 0 on [-inf, 0); 1 * exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_laplace_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_laplace_sq(T x, T sigma) {
+  const T v = box_laplace_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {1 * exp(s), s = x - 0 on
+//   [-inf, 0); 1 * exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T tent_laplace_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_laplace(T x, T sigma) {
+  const T v = tent_laplace_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {1 * exp((2*s)), s = x - 0
+//   on [-inf, 0); 1 * exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T tent_laplace_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[2] = {
+      {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_laplace_sq(T x, T sigma) {
+  const T v = tent_laplace_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {1 * exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T gaussian_exp_decay_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_exp_decay(T x, T sigma) {
+  const T v = gaussian_exp_decay_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {1 * exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T gaussian_exp_decay_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_exp_decay_sq(T x, T sigma) {
+  const T v = gaussian_exp_decay_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {1 *
+//   exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_exp_decay_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_exp_decay(T x, T sigma) {
+  const T v = box_exp_decay_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {1 *
+//   exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_exp_decay_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_exp_decay_sq(T x, T sigma) {
+  const T v = box_exp_decay_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {1 * exp((-s)), s = x - 0 on
+//   [0, inf)}
+template <class T>
+T tent_exp_decay_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_exp_decay(T x, T sigma) {
+  const T v = tent_exp_decay_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {1 * exp(((-2)*s)), s = x -
+//   0 on [0, inf)}
+template <class T>
+T tent_exp_decay_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_exp_decay_sq(T x, T sigma) {
+  const T v = tent_exp_decay_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {s * exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T gaussian_exp_ramp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_exp_ramp(T x, T sigma) {
+  const T v = gaussian_exp_ramp_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-1)))) return exp((T(-1)));
+  return v;
+}
+
+//   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
+//   over the term's interval, s_mu = x - ref + a sigma^2 (completing the square; truncated-normal
+//   moments in erfcx-scaled form, Laplace tail integrals V_k from the piece ends when s_mu is >=
+//   2 sigma outside); terms {(s)^(2) * exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T gaussian_exp_ramp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::gauss_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_exp_ramp_sq(T x, T sigma) {
+  const T v = gaussian_exp_ramp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-2)))) return exp((T(-2)));
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms {s *
+//   exp((-s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_exp_ramp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_exp_ramp(T x, T sigma) {
+  const T v = box_exp_ramp_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-1)))) return exp((T(-1)));
+  return v;
+}
+
+//   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
+//   sqrt(3) sigma (incomplete gamma moments from the end where e^(a s) is largest); terms
+//   {(s)^(2) * exp(((-2)*s)), s = x - 0 on [0, inf)}
+template <class T>
+T box_exp_ramp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::box_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_exp_ramp_sq(T x, T sigma) {
+  const T v = box_exp_ramp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-2)))) return exp((T(-2)));
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {s * exp((-s)), s = x - 0 on
+//   [0, inf)}
+template <class T>
+T tent_exp_ramp_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_exp_ramp(T x, T sigma) {
+  const T v = tent_exp_ramp_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-1)))) return exp((T(-1)));
+  return v;
+}
+
+//   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
+//   w = sqrt(6) sigma (each half by incomplete gamma moments); terms {(s)^(2) * exp(((-2)*s)), s
+//   = x - 0 on [0, inf)}
+template <class T>
+T tent_exp_ramp_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::ExpTerm<T> p[1] = {
+      {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::ept_eval(x, p);
+  return detail::tent_ept(x, sigma, p);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_exp_ramp_sq(T x, T sigma) {
+  const T v = tent_exp_ramp_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > exp((T(-2)))) return exp((T(-2)));
   return v;
 }
 
@@ -3606,6 +4287,375 @@ T tent_square_sq_raw(T x, T sigma) {
 template <class T>
 T tent_square_sq(T x, T sigma) {
   const T v = tent_square_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   (3/10) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)),
+//   a_k = ((kf)^((-1))*(pi)^((-1))*sph3_10), b_k = (-((-1) + cph3_10)*(kf)^((-1))*(pi)^((-1)))
+//   (pk = (-1)^k, cph3_10 = cos(2 pi ((k 3) mod 10)/10), sph3_10 = sin(2 pi ((k 3) mod 10)/10)),
+//   T = 10 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
+//   the pieces {1 on [0, 3); 0 on [3, 10)} [for small sigma/T]
+template <class T>
+T gaussian_pulse30_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  const T s = sigma / period;
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
+    const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
+    T acc = (T(3)/T(10));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      const T cph3_10 = cos(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      const T sph3_10 = sin(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      acc += damp * (((T(1)/(detail::pi<T>()))*(T(1)/(kf))*sph3_10) * ck + (((-cph3_10) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return acc;
+  }
+  return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pulse30(T x, T sigma) {
+  const T v = gaussian_pulse30_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T gaussian_pulse30_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  const T s = sigma / period;
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.04147822195785659) : T(0.051335523056918866))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0683591926374918) : T(1.3053511503851918)) / s));
+    const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
+    T acc = T(0.0);
+    for (int k = 1; k <= K + 2; ++k) {
+      const T kf = T(k);
+      const T cph3_10 = cos(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      const T sph3_10 = sin(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      const T w = w1 * kf;
+      acc += damp * w * ((((-cph3_10) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * ck - ((T(1)/(detail::pi<T>()))*(T(1)/(kf))*sph3_10) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return sigma * sigma * acc;
+  }
+  return detail::gauss_periodic_u_image(x, sigma, period, p, T(1.0));
+}
+
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T gaussian_pulse30_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  if (x - R >= T(0.0)) return gaussian_pulse30<T>(x, sigma);
+  if (x + R < T(0.0)) return T(0.0);
+  const T cs[40] = {T(0.6597344572538566), T(-0.27634892323050203), T(-0.45579226720040733), T(0.2963833943194581), T(0.4258569933471977), T(-0.30120109792671274), T(-0.41893681950964473), T(0.3023568905207193), T(0.4172366915153417), T(-0.3026383503577255), T(-0.4168137637217804), T(0.30270773949989743), T(0.41670820988046586), T(-0.30272496892497025), T(-0.41668183839772005), T(0.30272926258170507), T(0.41667524726189387), T(-0.3027303344355449), T(-0.4166735996621471), T(0.3027306022232349), T(0.41667318778217927), T(-0.30273066915047714), T(-0.4166730848143763), T(0.3027306858800916), T(0.416673059072667), T(-0.3027306900622506), T(-0.4166730526372664), T(0.30273069110776313), T(0.4166730510284192), T(-0.30273069136913827), T(-0.4166730506262077), T(0.3027306914344817), T(0.4166730505256549), T(-0.30273069145081755), T(-0.4166730505005167), T(0.3027306914549015), T(0.41667305049423214), T(-0.30273069145592246), T(-0.41667305049266096), T(0.3027306914561777)};
+  return detail::gauss_periodic_right(x, sigma, period, p, T(1.0), T(4.0), (T(3)/T(10)), cs);
+}
+
+//   (3/10) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)),
+//   a_k = ((kf)^((-1))*(pi)^((-1))*sph3_10), b_k = (-((-1) + cph3_10)*(kf)^((-1))*(pi)^((-1)))
+//   (pk = (-1)^k, cph3_10 = cos(2 pi ((k 3) mod 10)/10), sph3_10 = sin(2 pi ((k 3) mod 10)/10)),
+//   T = 10 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
+//   the pieces {1 on [0, 3); 0 on [3, 10)} [for small sigma/T]
+template <class T>
+T gaussian_pulse30_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  const T s = sigma / period;
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
+    const T xr = x - period * floor(x / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
+    T acc = (T(3)/T(10));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      const T cph3_10 = cos(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      const T sph3_10 = sin(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
+      acc += damp * (((T(1)/(detail::pi<T>()))*(T(1)/(kf))*sph3_10) * ck + (((-cph3_10) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return acc;
+  }
+  return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T gaussian_pulse30_sq(T x, T sigma) {
+  const T v = gaussian_pulse30_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3, 10)}, F_p2 =
+//   {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+template <class T>
+T box_pulse30_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  return detail::box_periodic(x, sigma, period, p, p1);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pulse30(T x, T sigma) {
+  const T v = box_pulse30_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T box_pulse30_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  return detail::box_periodic_u(x, sigma, period, p);
+}
+
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T box_pulse30_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (x - hw >= T(0.0)) return box_pulse30<T>(x, sigma);
+  if (x + hw <= T(0.0)) return T(0.0);
+  return detail::box_periodic_right(x, hw, period, p, p1);
+}
+
+//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3, 10)}, F_p2 =
+//   {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+template <class T>
+T box_pulse30_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  return detail::box_periodic(x, sigma, period, p, p1);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_pulse30_sq(T x, T sigma) {
+  const T v = box_pulse30_sq_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3,
+//   10)}, F_p2 = {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+template <class T>
+T tent_pulse30_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p2[2] = {
+      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pulse30(T x, T sigma) {
+  const T v = tent_pulse30_raw<T>(x, sigma);
+  if (v < T(0)) return T(0);
+  if (v > T(1)) return T(1);
+  return v;
+}
+
+// E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
+template <class T>
+T tent_pulse30_u(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return T(0.0);
+  return detail::tent_periodic_u(x, sigma, period, p);
+}
+
+// E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
+// such as trunc^2's fract * step.
+template <class T>
+T tent_pulse30_right(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p2[2] = {
+      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (x - hw >= T(0.0)) return tent_pulse30<T>(x, sigma);
+  if (x + hw <= T(0.0)) return T(0.0);
+  return detail::tent_periodic_right(x, hw, period, p, p1, p2);
+}
+
+//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3,
+//   10)}, F_p2 = {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+template <class T>
+T tent_pulse30_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const detail::Piece<T> p[2] = {
+      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p1[2] = {
+      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const detail::Piece<T> p2[2] = {
+      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  const T period = T(10);
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_pulse30_sq(T x, T sigma) {
+  const T v = tent_pulse30_sq_raw<T>(x, sigma);
   if (v < T(0)) return T(0);
   if (v > T(1)) return T(1);
   return v;
@@ -5148,6 +6198,8 @@ inline float pow7(float x) { return detail::gen::plain_pow7<float>(x); }
 inline double pow7(double x) { return detail::gen::plain_pow7<double>(x); }
 inline float pow8(float x) { return detail::gen::plain_pow8<float>(x); }
 inline double pow8(double x) { return detail::gen::plain_pow8<double>(x); }
+inline float xexp(float x) { return detail::gen::plain_xexp<float>(x); }
+inline double xexp(double x) { return detail::gen::plain_xexp<double>(x); }
 inline float abs(float x) { return detail::gen::plain_abs<float>(x); }
 inline double abs(double x) { return detail::gen::plain_abs<double>(x); }
 inline float sign(float x) { return detail::gen::plain_sign<float>(x); }
@@ -5158,12 +6210,20 @@ inline float saturate(float x) { return detail::gen::plain_saturate<float>(x); }
 inline double saturate(double x) { return detail::gen::plain_saturate<double>(x); }
 inline float smoothstep(float x) { return detail::gen::plain_smoothstep<float>(x); }
 inline double smoothstep(double x) { return detail::gen::plain_smoothstep<double>(x); }
+inline float laplace(float x) { return detail::gen::plain_laplace<float>(x); }
+inline double laplace(double x) { return detail::gen::plain_laplace<double>(x); }
+inline float exp_decay(float x) { return detail::gen::plain_exp_decay<float>(x); }
+inline double exp_decay(double x) { return detail::gen::plain_exp_decay<double>(x); }
+inline float exp_ramp(float x) { return detail::gen::plain_exp_ramp<float>(x); }
+inline double exp_ramp(double x) { return detail::gen::plain_exp_ramp<double>(x); }
 inline float fract(float x) { return detail::gen::plain_fract<float>(x); }
 inline double fract(double x) { return detail::gen::plain_fract<double>(x); }
 inline float triangle(float x) { return detail::gen::plain_triangle<float>(x); }
 inline double triangle(double x) { return detail::gen::plain_triangle<double>(x); }
 inline float square(float x) { return detail::gen::plain_square<float>(x); }
 inline double square(double x) { return detail::gen::plain_square<double>(x); }
+inline float pulse30(float x) { return detail::gen::plain_pulse30<float>(x); }
+inline double pulse30(double x) { return detail::gen::plain_pulse30<double>(x); }
 inline float floor(float x) { return detail::gen::plain_floor<float>(x); }
 inline double floor(double x) { return detail::gen::plain_floor<double>(x); }
 inline float ceil(float x) { return detail::gen::plain_ceil<float>(x); }
@@ -5233,6 +6293,10 @@ inline float pow8(float x, float sigma) { return detail::gen::gaussian_pow8<floa
 inline double pow8(double x, double sigma) { return detail::gen::gaussian_pow8<double>(x, sigma); }
 inline float pow8_sq(float x, float sigma) { return detail::gen::gaussian_pow8_sq<float>(x, sigma); }
 inline double pow8_sq(double x, double sigma) { return detail::gen::gaussian_pow8_sq<double>(x, sigma); }
+inline float xexp(float x, float sigma) { return detail::gen::gaussian_xexp<float>(x, sigma); }
+inline double xexp(double x, double sigma) { return detail::gen::gaussian_xexp<double>(x, sigma); }
+inline float xexp_sq(float x, float sigma) { return detail::gen::gaussian_xexp_sq<float>(x, sigma); }
+inline double xexp_sq(double x, double sigma) { return detail::gen::gaussian_xexp_sq<double>(x, sigma); }
 inline float abs(float x, float sigma) { return detail::gen::gaussian_abs<float>(x, sigma); }
 inline double abs(double x, double sigma) { return detail::gen::gaussian_abs<double>(x, sigma); }
 inline float abs_sq(float x, float sigma) { return detail::gen::gaussian_abs_sq<float>(x, sigma); }
@@ -5253,6 +6317,18 @@ inline float smoothstep(float x, float sigma) { return detail::gen::gaussian_smo
 inline double smoothstep(double x, double sigma) { return detail::gen::gaussian_smoothstep<double>(x, sigma); }
 inline float smoothstep_sq(float x, float sigma) { return detail::gen::gaussian_smoothstep_sq<float>(x, sigma); }
 inline double smoothstep_sq(double x, double sigma) { return detail::gen::gaussian_smoothstep_sq<double>(x, sigma); }
+inline float laplace(float x, float sigma) { return detail::gen::gaussian_laplace<float>(x, sigma); }
+inline double laplace(double x, double sigma) { return detail::gen::gaussian_laplace<double>(x, sigma); }
+inline float laplace_sq(float x, float sigma) { return detail::gen::gaussian_laplace_sq<float>(x, sigma); }
+inline double laplace_sq(double x, double sigma) { return detail::gen::gaussian_laplace_sq<double>(x, sigma); }
+inline float exp_decay(float x, float sigma) { return detail::gen::gaussian_exp_decay<float>(x, sigma); }
+inline double exp_decay(double x, double sigma) { return detail::gen::gaussian_exp_decay<double>(x, sigma); }
+inline float exp_decay_sq(float x, float sigma) { return detail::gen::gaussian_exp_decay_sq<float>(x, sigma); }
+inline double exp_decay_sq(double x, double sigma) { return detail::gen::gaussian_exp_decay_sq<double>(x, sigma); }
+inline float exp_ramp(float x, float sigma) { return detail::gen::gaussian_exp_ramp<float>(x, sigma); }
+inline double exp_ramp(double x, double sigma) { return detail::gen::gaussian_exp_ramp<double>(x, sigma); }
+inline float exp_ramp_sq(float x, float sigma) { return detail::gen::gaussian_exp_ramp_sq<float>(x, sigma); }
+inline double exp_ramp_sq(double x, double sigma) { return detail::gen::gaussian_exp_ramp_sq<double>(x, sigma); }
 inline float fract(float x, float sigma) { return detail::gen::gaussian_fract<float>(x, sigma); }
 inline double fract(double x, double sigma) { return detail::gen::gaussian_fract<double>(x, sigma); }
 inline float fract_sq(float x, float sigma) { return detail::gen::gaussian_fract_sq<float>(x, sigma); }
@@ -5265,6 +6341,10 @@ inline float square(float x, float sigma) { return detail::gen::gaussian_square<
 inline double square(double x, double sigma) { return detail::gen::gaussian_square<double>(x, sigma); }
 inline float square_sq(float x, float sigma) { return detail::gen::gaussian_square_sq<float>(x, sigma); }
 inline double square_sq(double x, double sigma) { return detail::gen::gaussian_square_sq<double>(x, sigma); }
+inline float pulse30(float x, float sigma) { return detail::gen::gaussian_pulse30<float>(x, sigma); }
+inline double pulse30(double x, double sigma) { return detail::gen::gaussian_pulse30<double>(x, sigma); }
+inline float pulse30_sq(float x, float sigma) { return detail::gen::gaussian_pulse30_sq<float>(x, sigma); }
+inline double pulse30_sq(double x, double sigma) { return detail::gen::gaussian_pulse30_sq<double>(x, sigma); }
 inline float floor(float x, float sigma) { return detail::gen::gaussian_floor<float>(x, sigma); }
 inline double floor(double x, double sigma) { return detail::gen::gaussian_floor<double>(x, sigma); }
 inline float floor_sq(float x, float sigma) { return detail::gen::gaussian_floor_sq<float>(x, sigma); }
@@ -5330,6 +6410,10 @@ inline float pow8(float x, float sigma) { return detail::gen::box_pow8<float>(x,
 inline double pow8(double x, double sigma) { return detail::gen::box_pow8<double>(x, sigma); }
 inline float pow8_sq(float x, float sigma) { return detail::gen::box_pow8_sq<float>(x, sigma); }
 inline double pow8_sq(double x, double sigma) { return detail::gen::box_pow8_sq<double>(x, sigma); }
+inline float xexp(float x, float sigma) { return detail::gen::box_xexp<float>(x, sigma); }
+inline double xexp(double x, double sigma) { return detail::gen::box_xexp<double>(x, sigma); }
+inline float xexp_sq(float x, float sigma) { return detail::gen::box_xexp_sq<float>(x, sigma); }
+inline double xexp_sq(double x, double sigma) { return detail::gen::box_xexp_sq<double>(x, sigma); }
 inline float abs(float x, float sigma) { return detail::gen::box_abs<float>(x, sigma); }
 inline double abs(double x, double sigma) { return detail::gen::box_abs<double>(x, sigma); }
 inline float abs_sq(float x, float sigma) { return detail::gen::box_abs_sq<float>(x, sigma); }
@@ -5350,6 +6434,18 @@ inline float smoothstep(float x, float sigma) { return detail::gen::box_smoothst
 inline double smoothstep(double x, double sigma) { return detail::gen::box_smoothstep<double>(x, sigma); }
 inline float smoothstep_sq(float x, float sigma) { return detail::gen::box_smoothstep_sq<float>(x, sigma); }
 inline double smoothstep_sq(double x, double sigma) { return detail::gen::box_smoothstep_sq<double>(x, sigma); }
+inline float laplace(float x, float sigma) { return detail::gen::box_laplace<float>(x, sigma); }
+inline double laplace(double x, double sigma) { return detail::gen::box_laplace<double>(x, sigma); }
+inline float laplace_sq(float x, float sigma) { return detail::gen::box_laplace_sq<float>(x, sigma); }
+inline double laplace_sq(double x, double sigma) { return detail::gen::box_laplace_sq<double>(x, sigma); }
+inline float exp_decay(float x, float sigma) { return detail::gen::box_exp_decay<float>(x, sigma); }
+inline double exp_decay(double x, double sigma) { return detail::gen::box_exp_decay<double>(x, sigma); }
+inline float exp_decay_sq(float x, float sigma) { return detail::gen::box_exp_decay_sq<float>(x, sigma); }
+inline double exp_decay_sq(double x, double sigma) { return detail::gen::box_exp_decay_sq<double>(x, sigma); }
+inline float exp_ramp(float x, float sigma) { return detail::gen::box_exp_ramp<float>(x, sigma); }
+inline double exp_ramp(double x, double sigma) { return detail::gen::box_exp_ramp<double>(x, sigma); }
+inline float exp_ramp_sq(float x, float sigma) { return detail::gen::box_exp_ramp_sq<float>(x, sigma); }
+inline double exp_ramp_sq(double x, double sigma) { return detail::gen::box_exp_ramp_sq<double>(x, sigma); }
 inline float fract(float x, float sigma) { return detail::gen::box_fract<float>(x, sigma); }
 inline double fract(double x, double sigma) { return detail::gen::box_fract<double>(x, sigma); }
 inline float fract_sq(float x, float sigma) { return detail::gen::box_fract_sq<float>(x, sigma); }
@@ -5362,6 +6458,10 @@ inline float square(float x, float sigma) { return detail::gen::box_square<float
 inline double square(double x, double sigma) { return detail::gen::box_square<double>(x, sigma); }
 inline float square_sq(float x, float sigma) { return detail::gen::box_square_sq<float>(x, sigma); }
 inline double square_sq(double x, double sigma) { return detail::gen::box_square_sq<double>(x, sigma); }
+inline float pulse30(float x, float sigma) { return detail::gen::box_pulse30<float>(x, sigma); }
+inline double pulse30(double x, double sigma) { return detail::gen::box_pulse30<double>(x, sigma); }
+inline float pulse30_sq(float x, float sigma) { return detail::gen::box_pulse30_sq<float>(x, sigma); }
+inline double pulse30_sq(double x, double sigma) { return detail::gen::box_pulse30_sq<double>(x, sigma); }
 inline float floor(float x, float sigma) { return detail::gen::box_floor<float>(x, sigma); }
 inline double floor(double x, double sigma) { return detail::gen::box_floor<double>(x, sigma); }
 inline float floor_sq(float x, float sigma) { return detail::gen::box_floor_sq<float>(x, sigma); }
@@ -5451,6 +6551,10 @@ inline float pow8(float x, float sigma) { return detail::gen::tent_pow8<float>(x
 inline double pow8(double x, double sigma) { return detail::gen::tent_pow8<double>(x, sigma); }
 inline float pow8_sq(float x, float sigma) { return detail::gen::tent_pow8_sq<float>(x, sigma); }
 inline double pow8_sq(double x, double sigma) { return detail::gen::tent_pow8_sq<double>(x, sigma); }
+inline float xexp(float x, float sigma) { return detail::gen::tent_xexp<float>(x, sigma); }
+inline double xexp(double x, double sigma) { return detail::gen::tent_xexp<double>(x, sigma); }
+inline float xexp_sq(float x, float sigma) { return detail::gen::tent_xexp_sq<float>(x, sigma); }
+inline double xexp_sq(double x, double sigma) { return detail::gen::tent_xexp_sq<double>(x, sigma); }
 inline float abs(float x, float sigma) { return detail::gen::tent_abs<float>(x, sigma); }
 inline double abs(double x, double sigma) { return detail::gen::tent_abs<double>(x, sigma); }
 inline float abs_sq(float x, float sigma) { return detail::gen::tent_abs_sq<float>(x, sigma); }
@@ -5471,6 +6575,18 @@ inline float smoothstep(float x, float sigma) { return detail::gen::tent_smooths
 inline double smoothstep(double x, double sigma) { return detail::gen::tent_smoothstep<double>(x, sigma); }
 inline float smoothstep_sq(float x, float sigma) { return detail::gen::tent_smoothstep_sq<float>(x, sigma); }
 inline double smoothstep_sq(double x, double sigma) { return detail::gen::tent_smoothstep_sq<double>(x, sigma); }
+inline float laplace(float x, float sigma) { return detail::gen::tent_laplace<float>(x, sigma); }
+inline double laplace(double x, double sigma) { return detail::gen::tent_laplace<double>(x, sigma); }
+inline float laplace_sq(float x, float sigma) { return detail::gen::tent_laplace_sq<float>(x, sigma); }
+inline double laplace_sq(double x, double sigma) { return detail::gen::tent_laplace_sq<double>(x, sigma); }
+inline float exp_decay(float x, float sigma) { return detail::gen::tent_exp_decay<float>(x, sigma); }
+inline double exp_decay(double x, double sigma) { return detail::gen::tent_exp_decay<double>(x, sigma); }
+inline float exp_decay_sq(float x, float sigma) { return detail::gen::tent_exp_decay_sq<float>(x, sigma); }
+inline double exp_decay_sq(double x, double sigma) { return detail::gen::tent_exp_decay_sq<double>(x, sigma); }
+inline float exp_ramp(float x, float sigma) { return detail::gen::tent_exp_ramp<float>(x, sigma); }
+inline double exp_ramp(double x, double sigma) { return detail::gen::tent_exp_ramp<double>(x, sigma); }
+inline float exp_ramp_sq(float x, float sigma) { return detail::gen::tent_exp_ramp_sq<float>(x, sigma); }
+inline double exp_ramp_sq(double x, double sigma) { return detail::gen::tent_exp_ramp_sq<double>(x, sigma); }
 inline float fract(float x, float sigma) { return detail::gen::tent_fract<float>(x, sigma); }
 inline double fract(double x, double sigma) { return detail::gen::tent_fract<double>(x, sigma); }
 inline float fract_sq(float x, float sigma) { return detail::gen::tent_fract_sq<float>(x, sigma); }
@@ -5483,6 +6599,10 @@ inline float square(float x, float sigma) { return detail::gen::tent_square<floa
 inline double square(double x, double sigma) { return detail::gen::tent_square<double>(x, sigma); }
 inline float square_sq(float x, float sigma) { return detail::gen::tent_square_sq<float>(x, sigma); }
 inline double square_sq(double x, double sigma) { return detail::gen::tent_square_sq<double>(x, sigma); }
+inline float pulse30(float x, float sigma) { return detail::gen::tent_pulse30<float>(x, sigma); }
+inline double pulse30(double x, double sigma) { return detail::gen::tent_pulse30<double>(x, sigma); }
+inline float pulse30_sq(float x, float sigma) { return detail::gen::tent_pulse30_sq<float>(x, sigma); }
+inline double pulse30_sq(double x, double sigma) { return detail::gen::tent_pulse30_sq<double>(x, sigma); }
 inline float floor(float x, float sigma) { return detail::gen::tent_floor<float>(x, sigma); }
 inline double floor(double x, double sigma) { return detail::gen::tent_floor<double>(x, sigma); }
 inline float floor_sq(float x, float sigma) { return detail::gen::tent_floor_sq<float>(x, sigma); }

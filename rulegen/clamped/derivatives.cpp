@@ -64,6 +64,18 @@ std::vector<Derivative> derive_derivatives(const sym::Catalog& cat, const std::v
           d.formula = sym::print(d.closed, sym::Lang::Text);
           break;
         case sym::AtomicClass::Piecewise:
+          if (sym::has_exp_pieces(a)) {
+            d.kind = Derivative::Kind::Chain;
+            for (const auto& p : a.pieces) {
+              d.chain.push_back({p.hi, p.f.diff(x, order).expand()});
+              d.formula += (d.formula.empty() ? "" : "; ") +
+                           sym::print(d.chain.back().second, sym::Lang::Text) + " below " +
+                           (p.hi.finite() ? sym::print(p.hi.value, sym::Lang::Text) : "inf");
+            }
+            d.formula += "; right piece at a break, jumps' delta functions dropped";
+            break;
+          }
+          [[fallthrough]];
         case sym::AtomicClass::Periodic:
           d.kind =
               a.cls == sym::AtomicClass::Piecewise ? Derivative::Kind::Pieces : Derivative::Kind::Periodic;

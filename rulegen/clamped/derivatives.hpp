@@ -20,11 +20,13 @@ struct DerivTerm {  // coeff * <atomic>_d<order>(arg_sign * x), for combinations
 struct Derivative {
   const sym::Atomic* atomic = nullptr;
   int order = 1;  // 1 or 2
-  enum class Kind { Closed, Pieces, Periodic, Combination } kind{};
+  enum class Kind { Closed, Pieces, Periodic, Combination, Chain } kind{};
   GiNaC::ex closed;                    // Closed: f^(order)(x); Combination: the polynomial part's
   std::vector<sym::PolyPiece> pieces;  // Pieces / Periodic (one period)
   GiNaC::ex period;
   std::vector<DerivTerm> terms;  // Combination
+  // Chain (exp-polynomial pieces): (hi, f^(order) on the piece), right-continuous at the breaks.
+  std::vector<std::pair<sym::Bound, GiNaC::ex>> chain;
   std::string formula;           // manifest text
 
   std::string impl() const;  // deriv_sin_d1

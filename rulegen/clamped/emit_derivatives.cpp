@@ -35,6 +35,11 @@ std::string body(const Derivative& d, Lang lang) {
              (cpp ? "detail::periodic_eval(x, " + sym::print(d.period, lang) + ", p)"
                   : "bl_periodic_eval(x, " + sym::print(d.period, lang) + ", " + n + ", p)") +
              ";\n";
+    case Derivative::Kind::Chain:
+      for (size_t i = 0; i + 1 < d.chain.size(); ++i)
+        out += "  if (x < " + sym::print(d.chain[i].first.value, lang) + ") return " +
+               sym::print(d.chain[i].second, lang) + ";\n";
+      return out + "  return " + sym::print(d.chain.back().second, lang) + ";\n";
     case Derivative::Kind::Combination: {
       std::string v = sym::print(d.closed, lang);
       for (const auto& t : d.terms) {

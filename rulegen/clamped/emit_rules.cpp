@@ -63,6 +63,7 @@ struct Ctx {
 void rule3(Ctx& x, const sym::Atomic& a) {
   const std::string impl = "rule3_" + a.name, cpp = "bl::rule3::" + a.name, glsl = "bl_rule3_" + a.name;
   const std::string lo = dom_d(a.domain_lo), hi = dom_d(a.domain_hi);
+  const bool bounded = a.range_lo.finite() || a.range_hi.finite();  // the Taylor rule is clamped to f's range
   x.out.impl +=
       "// Rule 3: second-order Taylor of " + a.name +
       " at the mean of N(mu, sigma^2) truncated to the domain.\n" + "template <class T>\nstat<T> " + impl +
@@ -72,13 +73,18 @@ void rule3(Ctx& x, const sym::Atomic& a) {
       "  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);\n" +
       "  const double c = m.mean;\n" + "  const stat<double> s = rule3::from_derivatives<double>(plain_" +
       a.name + "<double>(c), deriv_" + a.name + "_d1<double>(c), deriv_" + a.name + "_d2<double>(c), m);\n" +
-      "  return {T(s.mean), T(s.var)};\n}\n\n";
+      (bounded ? "  const stat<double> r = rule3::in_range<double>(s, " + dom_d(a.range_lo) + ", " +
+                     dom_d(a.range_hi) + ");  // f's range\n  return {T(r.mean), T(r.var)};\n}\n\n"
+               : "  return {T(s.mean), T(s.var)};\n}\n\n");
   x.out.glsl += "vec2 " + glsl +
                 "(float mu, float sigma) {\n  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());\n" +
                 "  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, " + dom(a.domain_lo, Lang::Glsl) +
                 ", " + dom(a.domain_hi, Lang::Glsl) +
-                ");\n  float c = m.mean;\n  return bl_rule3_from_derivatives(bl_clamped_plain_" + a.name +
-                "(c), bl_deriv_" + a.name + "_d1(c), bl_deriv_" + a.name + "_d2(c), m);\n}\n\n";
+                ");\n  float c = m.mean;\n  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_" + a.name +
+                "(c), bl_deriv_" + a.name + "_d1(c), bl_deriv_" + a.name + "_d2(c), m);\n" +
+                (bounded ? "  return bl_rule3_in_range(s, " + dom(a.range_lo, Lang::Glsl) + ", " +
+                               dom(a.range_hi, Lang::Glsl) + ");\n}\n\n"
+                         : "  return s;\n}\n\n");
   x.api(x.api_rule3, a.name, impl);
   x.add_reg(a, "rule3", "gaussian", "closed form (truncated-normal moments)", cpp, glsl, impl);
   x.out.manifest.push_back(

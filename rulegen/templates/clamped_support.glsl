@@ -142,6 +142,13 @@ vec2 bl_rule3_from_derivatives(float f0, float f1, float f2, BlTruncMoments m) {
   return vec2(mean, max(f1 * f1 * m.var + f1 * f2 * m.mu3 + 0.25 * f2 * f2 * (m.mu4 - m.var * m.var), 0.0));
 }
 
+// Rule 3 kept inside f's range [lo, hi] (mean) and Popoviciu's bound (variance); see clamped_support.hpp.
+vec2 bl_rule3_in_range(vec2 s, float lo, float hi) {
+  float mean = min(max(s.x, lo), hi);
+  float pop = 0.25 * (hi - lo) * (hi - lo);
+  return vec2(mean, min(s.y, pop));
+}
+
 // Variance of the density proportional to e^(k t) on [0, 1] with mean t (see clamped_support.hpp).
 float bl_exp_family_var(float t) {
   float lo = -1e4, hi = 1e4;

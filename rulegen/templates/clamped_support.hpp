@@ -222,6 +222,18 @@ stat<T> from_derivatives(T f0, T f1, T f2, const truncnorm::Moments<T>& m) {
   return {mean, var};
 }
 
+// The Taylor polynomial leaves f's range when sigma is large (exp(-|x|) at sigma = 1000: mean
+// 1 + sigma^2/2): the true mean lies in [lo, hi] and, when both are finite, the true variance is at
+// most (hi - lo)^2/4 (Popoviciu), so the rule is clamped to both (infinite ends clamp nothing).
+template <class T>
+stat<T> in_range(stat<T> s, T lo, T hi) {
+  if (s.mean < lo) s.mean = lo;
+  if (s.mean > hi) s.mean = hi;
+  const T pop = T(0.25) * (hi - lo) * (hi - lo);
+  if (s.var > pop) s.var = pop;
+  return s;
+}
+
 }  // namespace rule3
 
 namespace rule1 {

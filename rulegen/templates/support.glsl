@@ -359,6 +359,346 @@ float bl_tent_pw(float x, float sigma, int n, BlPiece p[4]) {
   return s;
 }
 
+// ---- exp-polynomial terms (see support.hpp: ExpTerm, erfcx, tail_laplace, exp_moments) ----
+// A term is e^{a s} sum_k c[k] s^k, s = t - ref, on [lo, hi); tables hold n <= 8 terms.
+struct BlExpTerm {
+  float lo;
+  float hi;
+  float a;
+  float ref;
+  float c[8];
+};
+
+// erfcx(t) = e^{t^2} erfc(t), t >= 0: the Chebyshev fit bl_erfc is built on (relative error
+// < 1.2e-7), without its e^{-t^2} factor, so it stays finite for every t.
+float bl_erfcx(float x) {
+  float z = abs(x);
+  float t = 1.0 / (1.0 + 0.5 * z);
+  return t * exp(-1.26551223 +
+                 t * (1.00002368 +
+                      t * (0.37409196 +
+                           t * (0.09678418 +
+                                t * (-0.18628806 +
+                                     t * (0.27886807 +
+                                          t * (-1.13520398 +
+                                               t * (1.48851587 + t * (-0.82215223 + t * 0.17087277)))))))));
+}
+
+// e^{lw} U_k(t), t >= 0 finite, lwt = lw - t^2/2 (upper_moments_scaled in support.hpp).
+void bl_upper_moments_scaled(float t, float lwt, int deg, out float U[8]) {
+  float e0 = exp(lwt);
+  float e = BL_INV_SQRT_2PI * e0;
+  U[0] = 0.5 * bl_erfcx(t * BL_INV_SQRT2) * e0;
+  U[1] = e;
+  for (int k = 2; k < 8; ++k) {
+    e *= t;
+    U[k] = (k <= deg) ? e + float(k - 1) * U[k - 2] : 0.0;
+  }
+}
+
+// V_k(al) = int_0^inf u^k e^{-al u - u^2/2} du (tail_laplace in support.hpp): upwards for al < 2,
+// Miller's backward ratios from K = 40 otherwise.
+void bl_tail_laplace(float al, int deg, out float V[8]) {
+  V[0] = 1.2533141373155003 * bl_erfcx(al * BL_INV_SQRT2);
+  for (int k = 1; k < 8; ++k) V[k] = 0.0;
+  if (deg == 0) return;
+  if (al < 2.0) {
+    V[1] = 1.0 - al * V[0];
+    for (int k = 1; k < 7; ++k) {
+      if (k >= deg) break;
+      V[k + 1] = float(k) * V[k - 1] - al * V[k];
+    }
+    return;
+  }
+  float ratio[8];
+  for (int k = 0; k < 8; ++k) ratio[k] = 1.0;
+  float r = al / 40.0;
+  for (int k = 39; k >= 1; --k) {
+    r = (1.0 / r + al) / float(k);
+    if (k <= deg) ratio[k] = r;
+  }
+  for (int k = 1; k < 8; ++k) {
+    if (k > deg) break;
+    V[k] = V[k - 1] / ratio[k];
+  }
+}
+
+// I_k = int_0^L v^k e^{-b v} dv, k <= deg (exp_moments in support.hpp).
+void bl_exp_moments(float L, float b, int deg, out float I[9]) {
+  float y = b * L;
+  float ey = exp(-y);
+  float Lk1 = L;
+  float kfact = 1.0;
+  float bk1 = b;
+  for (int k = 0; k < 9; ++k) {
+    I[k] = 0.0;
+    if (k > deg) continue;
+    if (y < float(2 * (k + 1))) {
+      float term = 1.0 / float(k + 1);
+      float sum = term;
+      for (int n = 1; n < 100; ++n) {
+        term *= y / float(k + 1 + n);
+        sum += term;
+        if (term <= 3.0e-8 * sum) break;
+      }
+      I[k] = Lk1 * ey * sum;
+    } else if (ey == 0.0) {
+      I[k] = kfact / bk1;
+    } else {
+      float term = 1.0;
+      float sum = 1.0;
+      for (int j = 1; j <= 8; ++j) {
+        if (j > k) break;
+        term *= y / float(j);
+        sum += term;
+      }
+      I[k] = kfact / bk1 * (1.0 - ey * sum);
+    }
+    Lk1 *= L;
+    kfact *= float(k + 1);
+    bk1 *= b;
+  }
+}
+
+float bl_exp_scaled(float pre, float s, float d) {
+  if (pre < 30.0) return exp(pre) * s / d;
+  return exp(pre - log(d)) * s;
+}
+
+// sum_k g_k dir^k int_0^len v^k (G + sw v) e^{-b v} dv, g the Taylor coefficients at s0.
+float bl_exp_side(float c[8], int deg, float s0, float dir, float len, float b, float G, float sw) {
+  float g[8];
+  bl_taylor_shift(c, deg, s0, g);
+  float I[9];
+  bl_exp_moments(len, b, sw != 0.0 ? deg + 1 : deg, I);
+  float sum = 0.0;
+  float dk = 1.0;
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
+    if (g[k] != 0.0) sum += g[k] * dk * (sw != 0.0 ? G * I[k] + sw * I[k + 1] : I[k]);
+    dk *= dir;
+  }
+  return sum;
+}
+
+float bl_ept_eval(float x, int n, BlExpTerm p[8]) {
+  float s = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    if (i >= n) break;
+    if ((bl_is_inf(p[i].lo) || p[i].lo <= x) && (bl_is_inf(p[i].hi) || x < p[i].hi)) {
+      float u = x - p[i].ref;
+      s += bl_poly(p[i].c, u) * exp(p[i].a * u);
+    }
+  }
+  return s;
+}
+
+// int from the end E of q(s) e^{a s} phi_sigma(t - x) over the side away from the shifted centre.
+float bl_gauss_exp_end(BlExpTerm p, int deg, float E, float e, float f, float sigma, bool right) {
+  float al = (right ? f : -f) / sigma;
+  float g[8];
+  float V[8];
+  bl_taylor_shift(p.c, deg, E - p.ref, g);
+  bl_tail_laplace(al, deg, V);
+  float s = 0.0;
+  float sk = 1.0;
+  float step = right ? sigma : -sigma;
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
+    if (g[k] != 0.0) s += g[k] * sk * V[k];
+    sk *= step;
+  }
+  float z = e / sigma;
+  return BL_INV_SQRT_2PI * exp(p.a * (E - p.ref) - 0.5 * z * z) * s;
+}
+
+float bl_exp_lw(BlExpTerm p, float E, float e, float sigma) {
+  float z = e / sigma;
+  return p.a * (E - p.ref) - 0.5 * z * z;
+}
+
+// Gaussian of one term (gauss_exp_term in support.hpp).
+float bl_gauss_exp_term(float x, float sigma, BlExpTerm p) {
+  if (!(p.hi > p.lo)) return 0.0;
+  bool loinf = bl_is_inf(p.lo);
+  bool hiinf = bl_is_inf(p.hi);
+  int deg = bl_degree(p.c);
+  float a = p.a;
+  float el = p.lo - x;
+  float eh = p.hi - x;
+  float as2 = a * sigma * sigma;
+  float fl = el - as2;
+  float fh = eh - as2;
+  float two_sigma = 2.0 * sigma;
+  if (!loinf && fl >= two_sigma) {
+    float r = bl_gauss_exp_end(p, deg, p.lo, el, fl, sigma, true);
+    if (!hiinf) r -= bl_gauss_exp_end(p, deg, p.hi, eh, fh, sigma, true);
+    return r;
+  }
+  if (!hiinf && fh <= -two_sigma) {
+    float r = bl_gauss_exp_end(p, deg, p.hi, eh, fh, sigma, false);
+    if (!loinf) r -= bl_gauss_exp_end(p, deg, p.lo, el, fl, sigma, false);
+    return r;
+  }
+  if (!loinf && !hiinf) {
+    float width = p.hi - p.lo;
+    float hw = width / two_sigma;
+    float cz = (fl + fh) / two_sigma;
+    if (hw <= 1.0 && abs(cz) * hw <= 10.0) {
+      float gx[10];
+      float gw[10];
+      gx[0] = 0.076526521133497338;
+      gx[1] = 0.22778585114164507;
+      gx[2] = 0.37370608871541955;
+      gx[3] = 0.51086700195082713;
+      gx[4] = 0.63605368072651502;
+      gx[5] = 0.7463319064601508;
+      gx[6] = 0.83911697182221878;
+      gx[7] = 0.91223442825132595;
+      gx[8] = 0.96397192727791381;
+      gx[9] = 0.99312859918509488;
+      gw[0] = 0.15275338713072584;
+      gw[1] = 0.14917298647260374;
+      gw[2] = 0.14209610931838204;
+      gw[3] = 0.13168863844917664;
+      gw[4] = 0.11819453196151841;
+      gw[5] = 0.10193011981724044;
+      gw[6] = 0.083276741576704755;
+      gw[7] = 0.062672048334109068;
+      gw[8] = 0.040601429800386939;
+      gw[9] = 0.017614007139152118;
+      float half_ = 0.5 * width;
+      float sm = 0.5 * ((p.lo - p.ref) + (p.hi - p.ref));
+      float em = 0.5 * (el + eh);
+      float s = 0.0;
+      for (int i = 0; i < 10; ++i) {
+        for (int j = 0; j < 2; ++j) {
+          float xi = j == 0 ? gx[i] : -gx[i];
+          float z = (em + half_ * xi) / sigma;
+          s += gw[i] * bl_poly(p.c, sm + half_ * xi) * exp(a * (sm + half_ * xi) - 0.5 * z * z);
+        }
+      }
+      return hw * BL_INV_SQRT_2PI * s;
+    }
+  }
+  float g[8];
+  bl_taylor_shift(p.c, deg, (x - p.ref) + as2, g);
+  float L = a * (x - p.ref) + 0.5 * a * as2;
+  float al = fl / sigma;
+  float be = fh / sigma;
+  float Ua[8];
+  float Ub[8];
+  for (int k = 0; k < 8; ++k) {
+    Ua[k] = 0.0;
+    Ub[k] = 0.0;
+  }
+  float sum = 0.0;
+  float sk = 1.0;
+  if ((loinf || al < 0.0) && (hiinf || be > 0.0)) {  // the shifted centre inside the piece
+    if (!loinf) bl_upper_moments_scaled(-al, bl_exp_lw(p, p.lo, el, sigma), deg, Ua);
+    if (!hiinf) bl_upper_moments_scaled(be, bl_exp_lw(p, p.hi, eh, sigma), deg, Ub);
+    float eL = exp(L);
+    float m[8];
+    for (int k = 0; k < 8; ++k) {
+      if (k > deg) break;
+      m[k] = (k == 0) ? 1.0 : ((k == 1) ? 0.0 : float(k - 1) * m[k - 2]);
+      float ik = eL * m[k] - (((k & 1) == 1) ? -Ua[k] : Ua[k]) - Ub[k];
+      if (g[k] != 0.0) sum += g[k] * sk * ik;
+      sk *= sigma;
+    }
+    return sum;
+  }
+  if (al >= 0.0) {
+    bl_upper_moments_scaled(al, bl_exp_lw(p, p.lo, el, sigma), deg, Ua);
+    if (!hiinf) bl_upper_moments_scaled(be, bl_exp_lw(p, p.hi, eh, sigma), deg, Ub);
+    for (int k = 0; k < 8; ++k) {
+      if (k > deg) break;
+      if (g[k] != 0.0) sum += g[k] * sk * (Ua[k] - Ub[k]);
+      sk *= sigma;
+    }
+    return sum;
+  }
+  bl_upper_moments_scaled(-be, bl_exp_lw(p, p.hi, eh, sigma), deg, Ub);
+  if (!loinf) bl_upper_moments_scaled(-al, bl_exp_lw(p, p.lo, el, sigma), deg, Ua);
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
+    float ik = Ub[k] - Ua[k];
+    if (g[k] != 0.0) sum += g[k] * sk * (((k & 1) == 1) ? -ik : ik);
+    sk *= sigma;
+  }
+  return sum;
+}
+
+// Box of one term (box_exp_term in support.hpp).
+float bl_box_exp_term(float x, float h, BlExpTerm p) {
+  float el = p.lo - x;
+  float eh = p.hi - x;
+  if (!(el < h) || !(eh > -h) || !(p.hi > p.lo)) return 0.0;
+  bool cl = el > -h && !bl_is_inf(p.lo);
+  bool cr = eh < h && !bl_is_inf(p.hi);
+  float len = cl ? (cr ? p.hi - p.lo : h - el) : (cr ? eh + h : 2.0 * h);
+  int deg = bl_degree(p.c);
+  bool left = !(p.a > 0.0);
+  float s0 = left ? (cl ? p.lo - p.ref : (x - p.ref) - h) : (cr ? p.hi - p.ref : (x - p.ref) + h);
+  float sum = bl_exp_side(p.c, deg, s0, left ? 1.0 : -1.0, len, abs(p.a), 1.0, 0.0);
+  return bl_exp_scaled(p.a * s0, sum, 2.0 * h);
+}
+
+// One half [o0, o1] (offsets from x) of the tent of one term; e0/e1: o0/o1 is an end of the piece.
+float bl_tent_exp_half(float x, float w, BlExpTerm p, int deg, float o0, bool e0, float o1, bool e1, bool right) {
+  float len = (e0 && e1) ? p.hi - p.lo : o1 - o0;
+  if (!(len > 0.0)) return 0.0;
+  bool left_anchor = !(p.a > 0.0);
+  float o = left_anchor ? o0 : o1;
+  bool e = left_anchor ? e0 : e1;
+  float s0 = e ? (left_anchor ? p.lo - p.ref : p.hi - p.ref) : (x - p.ref) + o;
+  float G = right ? w - o : w + o;
+  float sw = (right == left_anchor) ? -1.0 : 1.0;
+  float sum = bl_exp_side(p.c, deg, s0, left_anchor ? 1.0 : -1.0, len, abs(p.a), G, sw);
+  return bl_exp_scaled(p.a * s0, sum / w, w);
+}
+
+float bl_tent_exp_term(float x, float w, BlExpTerm p) {
+  float el = p.lo - x;
+  float eh = p.hi - x;
+  if (!(el < w) || !(eh > -w) || !(p.hi > p.lo)) return 0.0;
+  int deg = bl_degree(p.c);
+  float r = 0.0;
+  if (eh > 0.0) r += bl_tent_exp_half(x, w, p, deg, el > 0.0 ? el : 0.0, el > 0.0, eh < w ? eh : w, eh < w, true);
+  if (el < 0.0) r += bl_tent_exp_half(x, w, p, deg, el > -w ? el : -w, el > -w, eh < 0.0 ? eh : 0.0, eh < 0.0, false);
+  return r;
+}
+
+float bl_gauss_ept(float x, float sigma, int n, BlExpTerm p[8]) {
+  if (sigma == 0.0) return bl_ept_eval(x, n, p);
+  float s = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    if (i >= n) break;
+    s += bl_gauss_exp_term(x, sigma, p[i]);
+  }
+  return s;
+}
+float bl_box_ept(float x, float sigma, int n, BlExpTerm p[8]) {
+  if (sigma == 0.0) return bl_ept_eval(x, n, p);
+  float h = BL_SQRT3 * sigma;
+  float s = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    if (i >= n) break;
+    s += bl_box_exp_term(x, h, p[i]);
+  }
+  return s;
+}
+float bl_tent_ept(float x, float sigma, int n, BlExpTerm p[8]) {
+  if (sigma == 0.0) return bl_ept_eval(x, n, p);
+  float w = BL_SQRT6 * sigma;
+  float s = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    if (i >= n) break;
+    s += bl_tent_exp_term(x, w, p[i]);
+  }
+  return s;
+}
+
 // Periodic functions: pieces cover [0, period). Returns vec2(r, q), y = q period + r,
 // r in [0, period); q is adjusted with r so the pair stays consistent after rounding.
 vec2 bl_reduce_period(float y, float period) {

@@ -645,6 +645,324 @@ inline T tent_pw(T x, T sigma, const Piece<T> (&p)[N]) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Exp-polynomial terms (piecewise exp-polynomial atomics and x^n e^{ax} in the entire class).
+// A term is f(t) = e^{a s} sum_k c[k] s^k, s = t - ref, on [lo, hi); ref is a finite end of the
+// interval (0 for a whole-line term), so on a piece that decays towards an infinite end e^{a s} <= 1.
+// A piece of the catalog is a sum of such terms, one per rate a. Every routine below works on
+// offsets from the kernel centre, as the polynomial primitives above, and never forms e^{a s} and a
+// Gaussian or 1/h factor separately where one of them could overflow while the product is finite.
+template <class T>
+struct ExpTerm {
+  T lo;
+  T hi;
+  T a;
+  T ref;
+  T c[kMaxCoef];
+};
+
+// erfcx(t) = e^{t^2} erfc(t), t >= 0 (the scaled complementary error function; finite for all t,
+// ~ 1/(t sqrt(pi)) for large t). t < 3: the product (erfc has full relative accuracy, e^{t^2}
+// carries the rounding of t^2, < 9 eps); t >= 3: the continued fraction
+// 1/sqrt(pi) / (t + (1/2)/(t + 1/(t + (3/2)/(t + ...)))) cut after 30 levels (relative error < 1e-16
+// at t = 3, smaller beyond). Wider types: the product up to t = 1000 (no underflow in their exponent
+// range, and the fraction's 30 levels would not reach their precision below that), then the fraction.
+template <class T>
+inline T erfcx(T t) {
+  using std::erfc;
+  using std::exp;
+  if (t < T(0)) return T(2) * exp(t * t) - erfcx(-t);
+  if (t < T(3) || (kWide<T> && t < T(1000))) return exp(t * t) * erfc(t);
+  T f = t;
+  for (int k = 30; k >= 1; --k) f = t + T(k) * T(0.5) / f;
+  return T(0.5641895835477563) / f;  // 1/sqrt(pi)
+}
+
+// e^{lw} U_k(t), U_k(t) = int_t^inf z^k phi(z) dz (upper_moments), t >= 0, with the scale folded in:
+// e^{lw} U_0 = erfcx(t/sqrt2)/2 e^{lw - t^2/2} and e^{lw} phi(t) = e^{lw - t^2/2}/sqrt(2 pi). The
+// caller passes lwt = lw - t^2/2, formed without overflow (a huge e^{lw} times an underflowing tail).
+template <class T>
+inline void upper_moments_scaled(T t, T lwt, int deg, T* U) {
+  using std::exp;
+  if (t == inf<T>()) {
+    for (int k = 0; k <= deg; ++k) U[k] = T(0);
+    return;
+  }
+  const T e0 = exp(lwt);
+  T e = k_inv_sqrt_2pi<T>() * e0;
+  U[0] = T(0.5) * erfcx(t * k_inv_sqrt2<T>()) * e0;
+  if (deg >= 1) U[1] = e;
+  for (int k = 2; k <= deg; ++k) {
+    e *= t;
+    U[k] = e + T(k - 1) * U[k - 2];
+  }
+}
+
+// V_k(al) = int_0^inf u^k e^{-al u - u^2/2} du, al >= 0, k <= deg (the Gaussian tail seen from a
+// piece end). V_0 = sqrt(pi/2) erfcx(al/sqrt2); the recurrence V_{k+1} = k V_{k-1} - al V_k is
+// stable upwards only for small al (it loses a factor ~ al^2/k per step): al < 2 uses it (< 11x
+// lost in total for k <= 8); al >= 2 takes the ratios r_k = V_{k-1}/V_k from Miller's backward
+// recurrence r_k = (1/r_{k+1} + al)/k started at K (V dominates downwards; K = 150 leaves < 4e-16
+// at al = 2, K = 40 suffices from al = 5 and in float), then V_k = V_{k-1}/r_k.
+template <class T>
+inline void tail_laplace(T al, int deg, T* V) {
+  using std::sqrt;
+  V[0] = T(1.2533141373155003) * erfcx(al * k_inv_sqrt2<T>());  // sqrt(pi/2)
+  if (deg == 0) return;
+  if (al < T(2)) {
+    V[1] = T(1) - al * V[0];
+    for (int k = 1; k < deg; ++k) V[k + 1] = T(k) * V[k - 1] - al * V[k];
+    return;
+  }
+  const int K = (sizeof(T) < sizeof(double) || al >= T(5)) ? 40 : 150;
+  T r = al / T(K), ratio[kMaxCoef + 1];
+  for (int k = K - 1; k >= 1; --k) {
+    r = (T(1) / r + al) / T(k);
+    if (k <= deg) ratio[k] = r;
+  }
+  for (int k = 1; k <= deg; ++k) V[k] = V[k - 1] / ratio[k];
+}
+
+// I_k = int_0^L v^k e^{-b v} dv, k <= deg, b >= 0, L >= 0 (L = inf needs b > 0). With y = b L:
+// y < 2(k+1): the series L^{k+1} e^{-y} sum_n y^n / ((k+1)(k+2)...(k+1+n)) (positive terms; exact
+// as b -> 0, where it is L^{k+1}/(k+1)); otherwise k!/b^{k+1} (1 - e^{-y} sum_{j<=k} y^j/j!), whose
+// bracket is >= 1 - e^{-2} there (no cancellation).
+template <class T>
+inline void exp_moments(T L, T b, int deg, T* I) {
+  using std::exp;
+  const T y = b * L;
+  const T ey = exp(-y);
+  T Lk1 = L;  // L^{k+1}
+  T kfact = T(1), bk1 = b;
+  for (int k = 0; k <= deg; ++k) {
+    if (y < T(2 * (k + 1))) {
+      T term = T(1) / T(k + 1), sum = term;
+      for (int n = 1; n < 200; ++n) {
+        term *= y / T(k + 1 + n);
+        sum += term;
+        if (term <= std::numeric_limits<T>::epsilon() * T(0.25) * sum) break;
+      }
+      I[k] = Lk1 * ey * sum;
+    } else if (ey == T(0)) {  // y beyond exp's range (also y = inf): the bracket is 1
+      I[k] = kfact / bk1;
+    } else {
+      T term = T(1), sum = T(1);
+      for (int j = 1; j <= k; ++j) {
+        term *= y / T(j);
+        sum += term;
+      }
+      I[k] = kfact / bk1 * (T(1) - ey * sum);
+    }
+    Lk1 *= L;
+    kfact *= T(k + 1);
+    bk1 *= b;
+  }
+}
+
+// e^{pre} s / d without overflowing where the product is finite (pre large, d large).
+template <class T>
+inline T exp_scaled(T pre, T s, T d) {
+  using std::exp;
+  using std::log;
+  if (pre < T(30)) return exp(pre) * s / d;
+  return exp(pre - log(d)) * s;
+}
+
+// sum_k g_k dir^k int_0^len v^k (G + sw v) e^{-b v} dv (G = 1, sw = 0 for the box).
+template <class T>
+inline T exp_side(const T* c, int deg, T s0, T dir, T len, T b, T G, T sw) {
+  T g[kMaxCoef], I[kMaxCoef + 1];
+  taylor_shift(c, deg, s0, g);
+  exp_moments(len, b, sw != T(0) ? deg + 1 : deg, I);
+  T sum = T(0), dk = T(1);
+  for (int k = 0; k <= deg; ++k) {
+    if (g[k] != T(0)) sum += g[k] * dk * (sw != T(0) ? G * I[k] + sw * I[k + 1] : I[k]);
+    dk *= dir;
+  }
+  return sum;
+}
+
+// Value of the terms at x (sigma = 0): the terms whose [lo, hi) contains x.
+template <class T, int N>
+inline T ept_eval(T x, const ExpTerm<T> (&p)[N]) {
+  using std::exp;
+  T s = T(0);
+  for (int i = 0; i < N; ++i)
+    if (p[i].lo <= x && x < p[i].hi) {
+      const T u = x - p[i].ref;
+      s += poly(p[i].c, u) * exp(p[i].a * u);
+    }
+  return s;
+}
+
+// Gaussian of one term. Completing the square, e^{a s} phi_sigma(t - x) = e^{a (x - ref) + a^2
+// sigma^2/2} phi_sigma(t - mu), mu = x + a sigma^2: the polynomial's truncated-normal moments about
+// the shifted centre mu. Three regimes by alpha = (lo - mu)/sigma, beta = (hi - mu)/sigma:
+//  * narrow piece near mu (width <= 2 sigma): 20-point Gauss-Legendre on the integrand with its
+//    exponent a s - (t - x)^2/(2 sigma^2) formed as one number;
+//  * mu inside or within 2 sigma of the piece: Taylor of q about mu against the moments, full
+//    moments and tails scaled by e^{a (x - ref) + a^2 sigma^2/2} inside their exponentials
+//    (upper_moments_scaled), so nothing overflows when the true value is finite;
+//  * the piece >= 2 sigma beyond mu (large sigma, or far from the piece): Taylor of q about each
+//    finite end E against V_k(|E - mu|/sigma) (tail_laplace), with the factor e^{a (E - ref) - (E -
+//    x)^2/(2 sigma^2)}: the value of the integrand at E. Expanding about mu here would cancel by
+//    ~alpha^(2 deg) (the ramp x e^{-x} at sigma = 1e4 in float).
+template <class T>
+inline T gauss_exp_term(T x, T sigma, const ExpTerm<T>& p) {
+  using std::exp;
+  if (!(p.hi > p.lo)) return T(0);
+  const int deg = degree(p.c);
+  const T a = p.a;
+  const T el = p.lo - x, eh = p.hi - x;
+  const T as2 = a * sigma * sigma;
+  const T fl = el - as2, fh = eh - as2;  // ends relative to mu
+  auto lw_at = [&](T E, T e) {           // a (E - ref) - (E - x)^2 / (2 sigma^2)
+    const T z = e / sigma;
+    return a * (E - p.ref) - T(0.5) * z * z;
+  };
+  const T two_sigma = T(2) * sigma;
+  if (fl >= two_sigma || fh <= -two_sigma) {
+    const bool right = fl >= two_sigma;
+    auto end = [&](T E, T e, T f) {
+      const T al = (right ? f : -f) / sigma;
+      T g[kMaxCoef], V[kMaxCoef];
+      taylor_shift(p.c, deg, E - p.ref, g);
+      tail_laplace(al, deg, V);
+      T s = T(0), sk = T(1);
+      const T step = right ? sigma : -sigma;
+      for (int k = 0; k <= deg; ++k) {
+        if (g[k] != T(0)) s += g[k] * sk * V[k];
+        sk *= step;
+      }
+      return k_inv_sqrt_2pi<T>() * exp(lw_at(E, e)) * s;
+    };
+    if (right) return end(p.lo, el, fl) - (p.hi < inf<T>() ? end(p.hi, eh, fh) : T(0));
+    return end(p.hi, eh, fh) - (p.lo > -inf<T>() ? end(p.lo, el, fl) : T(0));
+  }
+  const T width = p.hi - p.lo;
+  if (width < inf<T>()) {
+    const T hw = width / two_sigma, cz = (fl + fh) / two_sigma;
+    if (hw <= T(1) && abs_of(cz) * hw <= T(10)) {
+      using GL = GaussLegendre<T>;
+      const T half = width / T(2);
+      const T sm = ((p.lo - p.ref) + (p.hi - p.ref)) / T(2), em = (el + eh) / T(2);
+      auto f = [&](T xi) {
+        const T z = (em + half * xi) / sigma;
+        return poly(p.c, sm + half * xi) * exp(a * (sm + half * xi) - T(0.5) * z * z);
+      };
+      T s = T(0);
+      for (int i = 0; i < GL::kHalf; ++i) s += GL::w(i) * (f(GL::x(i)) + f(-GL::x(i)));
+      return hw * k_inv_sqrt_2pi<T>() * s;
+    }
+  }
+  T g[kMaxCoef];
+  taylor_shift(p.c, deg, (x - p.ref) + as2, g);
+  const T L = a * (x - p.ref) + T(0.5) * a * as2;  // log of the completed-square factor
+  const T al = fl / sigma, be = fh / sigma;
+  T Ua[kMaxCoef], Ub[kMaxCoef];
+  T sum = T(0), sk = T(1);
+  if (al < T(0) && be > T(0)) {
+    upper_moments_scaled(-al, p.lo > -inf<T>() ? lw_at(p.lo, el) : T(0), deg, Ua);
+    upper_moments_scaled(be, p.hi < inf<T>() ? lw_at(p.hi, eh) : T(0), deg, Ub);
+    const T eL = exp(L);
+    T mk[kMaxCoef];  // full moments: m_0 = 1, m_1 = 0, m_k = (k-1) m_{k-2}
+    for (int k = 0; k <= deg; ++k) {
+      mk[k] = k == 0 ? T(1) : (k == 1 ? T(0) : T(k - 1) * mk[k - 2]);
+      const T Ik = eL * mk[k] - ((k & 1) ? -Ua[k] : Ua[k]) - Ub[k];
+      if (g[k] != T(0)) sum += g[k] * sk * Ik;
+      if (k < deg) sk *= sigma;
+    }
+    return sum;
+  }
+  if (al >= T(0)) {
+    upper_moments_scaled(al, lw_at(p.lo, el), deg, Ua);
+    upper_moments_scaled(be, p.hi < inf<T>() ? lw_at(p.hi, eh) : T(0), deg, Ub);
+    for (int k = 0; k <= deg; ++k) {
+      if (g[k] != T(0)) sum += g[k] * sk * (Ua[k] - Ub[k]);
+      if (k < deg) sk *= sigma;
+    }
+    return sum;
+  }
+  upper_moments_scaled(-be, lw_at(p.hi, eh), deg, Ub);
+  upper_moments_scaled(-al, p.lo > -inf<T>() ? lw_at(p.lo, el) : T(0), deg, Ua);
+  for (int k = 0; k <= deg; ++k) {
+    const T Ik = Ub[k] - Ua[k];
+    if (g[k] != T(0)) sum += g[k] * sk * ((k & 1) ? -Ik : Ik);
+    if (k < deg) sk *= sigma;
+  }
+  return sum;
+}
+
+// Box of one term: (1/2h) int over [lo, hi) cap [x - h, x + h] of f, expanded about the end of the
+// covered interval where e^{a s} is largest (a <= 0: the left end, else the right end), so the
+// exponential seen from there decays, e^{-|a| v}, and exp_moments integrates it without cancelling
+// (tiny h: its series is exact to rounding). The covered length comes from offsets, as in box_core.
+template <class T>
+inline T box_exp_term(T x, T h, const ExpTerm<T>& p) {
+  const T el = p.lo - x, eh = p.hi - x;
+  if (!(el < h) || !(eh > -h) || !(p.hi > p.lo)) return T(0);
+  const bool cl = el > -h, cr = eh < h;
+  const T len = cl ? (cr ? p.hi - p.lo : h - el) : (cr ? eh + h : T(2) * h);
+  const int deg = degree(p.c);
+  const bool left = !(p.a > T(0));
+  const T s0 = left ? (cl ? p.lo - p.ref : (x - p.ref) - h) : (cr ? p.hi - p.ref : (x - p.ref) + h);
+  const T sum = exp_side(p.c, deg, s0, left ? T(1) : T(-1), len, abs_of(p.a), T(1), T(0));
+  return exp_scaled(p.a * s0, sum, T(2) * h);
+}
+
+// Tent of one term: split at the kernel centre; each half is int of f times the linear weight
+// (w - |t - x|)/w^2, expanded about the end where e^{a s} is largest, as for the box; the weight
+// there is G + sw v with G >= 0 and, for sw = -1, G >= the length (the integrand stays >= 0 where f
+// does: G I_k - I_{k+1} loses at most a factor k + 2).
+template <class T>
+inline T tent_exp_term(T x, T w, const ExpTerm<T>& p) {
+  const T el = p.lo - x, eh = p.hi - x;
+  if (!(el < w) || !(eh > -w) || !(p.hi > p.lo)) return T(0);
+  const int deg = degree(p.c);
+  const bool left_anchor = !(p.a > T(0));
+  const T b = abs_of(p.a);
+  T r = T(0);
+  // One half [o0, o1] (offsets from x); e0/e1: whether o0/o1 is an end of the piece.
+  auto half = [&](T o0, bool e0, T o1, bool e1, bool right) {
+    const T len = (e0 && e1) ? p.hi - p.lo : o1 - o0;
+    if (!(len > T(0))) return T(0);
+    const T o = left_anchor ? o0 : o1;
+    const bool e = left_anchor ? e0 : e1;
+    const T s0 = e ? (left_anchor ? p.lo - p.ref : p.hi - p.ref) : (x - p.ref) + o;
+    const T G = right ? w - o : w + o;
+    const T sw = (right == left_anchor) ? T(-1) : T(1);
+    const T sum = exp_side(p.c, deg, s0, left_anchor ? T(1) : T(-1), len, b, G, sw);
+    return exp_scaled(p.a * s0, sum / w, w);
+  };
+  if (eh > T(0)) r += half(el > T(0) ? el : T(0), el > T(0), eh < w ? eh : w, eh < w, true);
+  if (el < T(0)) r += half(el > -w ? el : -w, el > -w, eh < T(0) ? eh : T(0), eh < T(0), false);
+  return r;
+}
+
+template <class T, int N>
+inline T gauss_ept(T x, T sigma, const ExpTerm<T> (&p)[N]) {
+  if (sigma == T(0)) return ept_eval(x, p);
+  T s = T(0);
+  for (int i = 0; i < N; ++i) s += gauss_exp_term(x, sigma, p[i]);
+  return s;
+}
+template <class T, int N>
+inline T box_ept(T x, T sigma, const ExpTerm<T> (&p)[N]) {
+  if (sigma == T(0)) return ept_eval(x, p);
+  const T h = k_sqrt3<T>() * sigma;
+  T s = T(0);
+  for (int i = 0; i < N; ++i) s += box_exp_term(x, h, p[i]);
+  return s;
+}
+template <class T, int N>
+inline T tent_ept(T x, T sigma, const ExpTerm<T> (&p)[N]) {
+  if (sigma == T(0)) return ept_eval(x, p);
+  const T w = k_sqrt6<T>() * sigma;
+  T s = T(0);
+  for (int i = 0; i < N; ++i) s += tent_exp_term(x, w, p[i]);
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Periodic functions given by one period: pieces cover [0, period).
 
 // r in [0, period) and the integer n (held in T) with y = n period + r. fmod is exact in IEEE

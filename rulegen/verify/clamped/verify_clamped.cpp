@@ -232,9 +232,13 @@ void verify_rule3(const bl::registry::RuleEntry<double>& e, const bl::registry::
       return f0 + f1 * d + 0.5 * f2 * d * d;
     };
     const double s0 = integrate(w, zl, zr, {zm});
-    const double mean = integrate([&](double z) { return T(z) * w(z); }, zl, zr, {zm}) / s0;
-    const double var =
+    double mean = integrate([&](double z) { return T(z) * w(z); }, zl, zr, {zm}) / s0;
+    double var =
         integrate([&](double z) { return (T(z) - mean) * (T(z) - mean) * w(z); }, zl, zr, {zm}) / s0;
+    // The rule is specified clamped to f's range: the mean into [lo, hi], the variance below
+    // Popoviciu's (hi - lo)^2/4 (rule3::in_range; infinite ends clamp nothing).
+    mean = std::min(std::max(mean, a.range_lo), a.range_hi);
+    var = std::min(var, 0.25 * (a.range_hi - a.range_lo) * (a.range_hi - a.range_lo));
     const auto got = e.fn(mu, sigma);
     r.upd_d(std::max({rel(got.mean, mean, 1), rel(got.var, var, 1)}), mu, sigma);
     const auto gf = ef.fn(float(mu), float(sigma));
