@@ -90,7 +90,7 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
     SCOPED_TRACE(name);
     scene::Scene s = scene::load_scene(std::string(BL_SOURCE_DIR "/scenes/glsl/suite/") + name + ".json");
     s.width = s.height = kImage;
-    const ir::Graph g = shaders::trace(shaders::find_shader(s.shader), s.effects());
+    const ir::Graph g = shaders::trace(s.shader_def(), s.effects());
     const std::string dir = out + "/" + name, csv = dir + "/front.csv";
     const std::vector<std::string> labels = front_labels(csv);
     ASSERT_FALSE(labels.empty()) << csv;
