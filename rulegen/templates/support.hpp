@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 namespace bl {
 namespace detail {
@@ -789,7 +790,8 @@ inline T ept_eval(T x, const ExpTerm<T> (&p)[N]) {
   for (int i = 0; i < N; ++i)
     if (p[i].lo <= x && x < p[i].hi) {
       const T u = x - p[i].ref;
-      s += poly(p[i].c, u) * exp(p[i].a * u);
+      const T e = exp(p[i].a * u);
+      if (e != T(0)) s += poly(p[i].c, u) * e;  // an underflowed e^{a u} at huge u: 0, not inf * 0
     }
   return s;
 }
@@ -938,8 +940,34 @@ inline T tent_exp_term(T x, T w, const ExpTerm<T>& p) {
   return r;
 }
 
+// Float at huge arguments: the terms' intermediates (u^7 for a tent of f^2 past |u| ~ 3.7e5, a
+// sigma^2 past sigma ~ 1e19, u^n times an underflowed e^{a u}) leave float's range where the value
+// does not, so beyond |x| or sigma = 1e4 a float call computes the same sums in double and rounds
+// once (the table's float coefficients are exact in double; tests/extreme_inputs_test.cpp).
+template <class T>
+inline bool ept_widen(T x, T sigma) {
+  return abs_of(x) > T(1e4) || sigma > T(1e4);
+}
+template <class T, int N>
+inline void ept_to_double(const ExpTerm<T> (&p)[N], ExpTerm<double> (&q)[N]) {
+  for (int i = 0; i < N; ++i) {
+    q[i].lo = p[i].lo;
+    q[i].hi = p[i].hi;
+    q[i].a = p[i].a;
+    q[i].ref = p[i].ref;
+    for (int k = 0; k < kMaxCoef; ++k) q[i].c[k] = p[i].c[k];
+  }
+}
+
 template <class T, int N>
 inline T gauss_ept(T x, T sigma, const ExpTerm<T> (&p)[N]) {
+  if constexpr (std::is_same<T, float>::value) {
+    if (ept_widen(x, sigma)) {
+      ExpTerm<double> q[N];
+      ept_to_double(p, q);
+      return static_cast<T>(gauss_ept(static_cast<double>(x), static_cast<double>(sigma), q));
+    }
+  }
   if (sigma == T(0)) return ept_eval(x, p);
   T s = T(0);
   for (int i = 0; i < N; ++i) s += gauss_exp_term(x, sigma, p[i]);
@@ -947,6 +975,13 @@ inline T gauss_ept(T x, T sigma, const ExpTerm<T> (&p)[N]) {
 }
 template <class T, int N>
 inline T box_ept(T x, T sigma, const ExpTerm<T> (&p)[N]) {
+  if constexpr (std::is_same<T, float>::value) {
+    if (ept_widen(x, sigma)) {
+      ExpTerm<double> q[N];
+      ept_to_double(p, q);
+      return static_cast<T>(box_ept(static_cast<double>(x), static_cast<double>(sigma), q));
+    }
+  }
   if (sigma == T(0)) return ept_eval(x, p);
   const T h = k_sqrt3<T>() * sigma;
   T s = T(0);
@@ -955,6 +990,13 @@ inline T box_ept(T x, T sigma, const ExpTerm<T> (&p)[N]) {
 }
 template <class T, int N>
 inline T tent_ept(T x, T sigma, const ExpTerm<T> (&p)[N]) {
+  if constexpr (std::is_same<T, float>::value) {
+    if (ept_widen(x, sigma)) {
+      ExpTerm<double> q[N];
+      ept_to_double(p, q);
+      return static_cast<T>(tent_ept(static_cast<double>(x), static_cast<double>(sigma), q));
+    }
+  }
   if (sigma == T(0)) return ept_eval(x, p);
   const T w = k_sqrt6<T>() * sigma;
   T s = T(0);
