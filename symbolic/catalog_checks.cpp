@@ -298,7 +298,8 @@ void check_sampled_piece_range(const Atomic& a, const Piece& p, size_t index) {
       if (const auto v = value_at(p.f, constant(b->value)))
         check_value(a, {0, *v, piece + "as x -> " + show(constant(b->value)) + ")"});
   for (const numeric& t : sign_changes(p.f.diff(var_x()), pts))
-    if (const auto v = value_at(p.f, t)) check_value(a, {0, *v, piece + "critical point x = " + show(t) + ")"});
+    if (const auto v = value_at(p.f, t))
+      check_value(a, {0, *v, piece + "critical point x = " + show(t) + ")"});
   for (const numeric& t : pts)
     if (const auto v = value_at(p.f, t)) check_value(a, {0, *v, piece + "at x = " + show(t) + ")"});
 }

@@ -17,7 +17,15 @@ struct ValueRange {
   std::array<float, Image::kChannels> lo{0, 0, 0}, hi{1, 1, 1};
   // [0, 1] widened per channel to the finite values of `images`.
   static ValueRange of(const std::vector<Image>& images);
-  bool contains(int channel, float v) const { return v >= lo[channel] && v <= hi[channel]; }
+  // Inside up to float rounding: 16 ulps of the bound (at least of 1), so 0.1f + 0.8f = 0.90000004
+  // is inside a declared [0.1, 0.9] (stored as 0.89999998f); a real overshoot is far larger.
+  bool contains(int channel, float v) const {
+    return v >= lo[channel] - slack(lo[channel]) && v <= hi[channel] + slack(hi[channel]);
+  }
+  static float slack(float bound) {
+    const float m = bound < 0 ? -bound : bound;
+    return 16 * 1.1920929e-7f * (m > 1 ? m : 1);
+  }
 };
 
 struct PixelCounts {

@@ -248,4 +248,15 @@ TEST(RuntimeImageMetrics, CountsNonFiniteAndOutOfRangePixels) {
   n = bl::check_pixels(img, r);
   EXPECT_EQ(n.nonfinite, 3u);
   EXPECT_EQ(n.out_of_range, 3u);
+  // Float rounding at a bound is inside (a plain circles pixel, 0.1f + 0.8f = 0.90000004, against
+  // the declared [0.1, 0.9] stored as 0.89999998f); an overshoot of 1e-4 is not.
+  bl::ValueRange circles;
+  circles.lo = {0.1f, 0.1f, 0.1f};
+  circles.hi = {0.9f, 0.9f, 0.9f};
+  const float top[3] = {0.1f + 0.8f, 0.1f + 0.8f, 0.1f + 0.8f};
+  EXPECT_GT(top[0], 0.9f);
+  EXPECT_EQ(bl::check_pixel(top, circles).out_of_range, 0u);
+  const float over[3] = {0.9f + 1e-4f, 0.5f, 0.5f}, under[3] = {0.5f, 0.1f - 1e-4f, 0.5f};
+  EXPECT_EQ(bl::check_pixel(over, circles).out_of_range, 1u);
+  EXPECT_EQ(bl::check_pixel(under, circles).out_of_range, 1u);
 }
