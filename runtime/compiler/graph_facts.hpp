@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "compiler/plain_eval.hpp"
 #include "ir/atomics.hpp"
 #include "ir/graph.hpp"
 
@@ -100,57 +101,12 @@ class GraphFacts {
   // ---- floors whose jumps the output does not show ----
   // The plain graph in double at surface point (u, v) (other inputs: time 0, view and light (0,0,1)).
   std::vector<double> plain_graph(double u, double v, std::vector<double>* all = nullptr) const {
-    std::vector<double> x(g.size());
-    for (int i = 0; i < g.size(); ++i) {
-      const ir::Node& n = g.node(i);
-      auto A = [&](int j) { return x[j]; };
-      switch (n.op) {
-        case ir::Op::Const:
-          x[i] = n.value;
-          break;
-        case ir::Op::Input: {
-          const std::string& nm = g.inputs()[static_cast<int>(n.value)].name;
-          x[i] = nm == "u" ? u : nm == "v" ? v : (nm == "view_z" || nm == "light_z") ? 1 : 0;
-          break;
-        }
-        case ir::Op::Add:
-          x[i] = A(n.a) + A(n.b);
-          break;
-        case ir::Op::Sub:
-          x[i] = A(n.a) - A(n.b);
-          break;
-        case ir::Op::Mul:
-          x[i] = A(n.a) * A(n.b);
-          break;
-        case ir::Op::Div:
-          x[i] = A(n.a) / A(n.b);
-          break;
-        case ir::Op::Neg:
-          x[i] = -A(n.a);
-          break;
-        case ir::Op::Min:
-          x[i] = std::min(A(n.a), A(n.b));
-          break;
-        case ir::Op::Max:
-          x[i] = std::max(A(n.a), A(n.b));
-          break;
-        case ir::Op::Less:
-          x[i] = A(n.a) < A(n.b) ? 1 : 0;
-          break;
-        case ir::Op::Select:
-          x[i] = A(n.a) * A(n.b) + (1 - A(n.a)) * A(n.c);
-          break;
-        case ir::Op::Mod:
-          x[i] = A(n.a) - n.value * std::floor(A(n.a) / n.value);
-          break;
-        case ir::Op::Call:
-          x[i] = ir::plain_atomic(n.atomic, A(n.a));
-          break;
-        default:
-          x[i] = std::nan("");
-          break;  // textures: no probe
-      }
+    std::vector<double> in(g.inputs().size());
+    for (std::size_t k = 0; k < in.size(); ++k) {
+      const std::string& nm = g.inputs()[k].name;
+      in[k] = nm == "u" ? u : nm == "v" ? v : (nm == "view_z" || nm == "light_z") ? 1 : 0;
     }
+    const std::vector<double> x = plain_values(g, in);  // textures: NaN (no probe)
     std::vector<double> out;
     for (int o : g.outputs()) out.push_back(x[o]);
     if (all) *all = x;

@@ -17,8 +17,4 @@ namespace bl::tuner {
 std::vector<double> estimate_rho(const ir::Graph& g, const scene::Scene& s, int pixels = 64, int samples = 32,
                                  std::uint64_t seed = 11);
 
-// The plain value of every node for the given input values (indexed by input slot).
-std::vector<double> eval_graph(const ir::Graph& g, const std::vector<double>& inputs,
-                               const std::vector<const texture::Texture*>* textures = nullptr);
-
 }  // namespace bl::tuner

@@ -1,0 +1,18 @@
+// The plain shader in double: the value of every node of a traced graph at given input values,
+// with the catalog's own f (ir::plain_atomic). The tuner's rho estimate and the lowering's
+// continuity probes read it.
+#pragma once
+
+#include <vector>
+
+#include "ir/graph.hpp"
+#include "texture/texture.hpp"
+
+namespace bl::compiler {
+
+// Per node, in node order. `inputs` is indexed by input slot. Texture nodes read the textures
+// (indexed by texture slot; an unbound slot throws, naming it); without textures they are NaN.
+std::vector<double> plain_values(const ir::Graph& g, const std::vector<double>& inputs,
+                                 const std::vector<const texture::Texture*>* textures = nullptr);
+
+}  // namespace bl::compiler
