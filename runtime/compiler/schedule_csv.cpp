@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "compiler/schedule_text.hpp"
@@ -92,6 +93,12 @@ LoadedSchedule load_schedule(const std::string& spec, const ir::Graph& g) {
   }
   throw std::invalid_argument(r.file + ": no row labelled '" + r.label +
                               "' (known labels: " + (known.empty() ? "none" : known) + ")");
+}
+
+ChosenSchedule choose_schedule(const ir::Graph& g, const std::string& rules_text, const std::string& spec) {
+  if (spec.empty()) return {uniform_schedule(g, rules::parse_rule(rules_text)), rules_text, rules_text};
+  LoadedSchedule l = load_schedule(spec, g);
+  return {std::move(l.schedule), l.label, l.file + ":" + l.label + ": " + l.text};
 }
 
 }  // namespace bl::compiler

@@ -22,4 +22,13 @@ struct LoadedSchedule {
 // parse_schedule) a bad entry.
 LoadedSchedule load_schedule(const std::string& spec, const ir::Graph& g);
 
+// What a tool was asked to compile: the tuned schedule `spec` (FILE:LABEL) when it is not empty,
+// else the rule `rules_text` on every node. label: the front point's label or the rule text (names
+// the method in reports and files); what: "FILE:LABEL: <schedule text>" or the rule text (banners).
+struct ChosenSchedule {
+  Schedule schedule;
+  std::string label, what;
+};
+ChosenSchedule choose_schedule(const ir::Graph& g, const std::string& rules_text, const std::string& spec);
+
 }  // namespace bl::compiler

@@ -67,17 +67,10 @@ int main(int argc, char** argv) {
   try {
     const scene::Scene s = scene::load_scene(scene_path);
     const ir::Graph g = shaders::trace(s.shader_def(), s.effects());
-    compiler::Schedule schedule;
-    std::string banner = s.name + " / " + rules_text;
-    if (!schedule_spec.empty()) {
-      const compiler::LoadedSchedule l = compiler::load_schedule(schedule_spec, g);
-      schedule = l.schedule;
-      rules_text = l.label;  // names the method in the report and the image files
-      banner = s.name + " / " + l.file + ":" + l.label + ": " + l.text;
-    } else {
-      schedule = compiler::uniform_schedule(g, rules::parse_rule(rules_text));
-    }
-    const compiler::Program prog = compiler::lower(g, schedule);
+    const compiler::ChosenSchedule chosen = compiler::choose_schedule(g, rules_text, schedule_spec);
+    rules_text = chosen.label;  // names the method in the report and the image files
+    const std::string banner = s.name + " / " + chosen.what;
+    const compiler::Program prog = compiler::lower(g, chosen.schedule);
     std::filesystem::create_directories(out_dir);
     std::ofstream(out_dir + "/shader.hpp") << compiler::emit_cpp(prog, "shade", banner);
     std::ofstream(out_dir + "/shader.glsl") << compiler::emit_glsl(prog, "shade", banner);

@@ -45,20 +45,6 @@ Source load(const std::string& input) {
   throw std::invalid_argument(input + ": expected a .glsl pattern or a .json scene");
 }
 
-// The schedule: one rule for every node (--rules), or a tuned front point (--schedule CSV:LABEL,
-// which must have been tuned on this graph: the scene file, not the bare pattern, when the scene adds
-// parallax, lighting or a fixed time). `what` names it in the banner.
-compiler::Schedule schedule(const ir::Graph& g, const std::string& rules_text, const std::string& spec,
-                            std::string* what) {
-  if (spec.empty()) {
-    *what = "rules " + rules_text;
-    return compiler::uniform_schedule(g, rules::parse_rule(rules_text));
-  }
-  const compiler::LoadedSchedule l = compiler::load_schedule(spec, g);
-  *what = "schedule " + l.file + ":" + l.label + ": " + l.text;
-  return l.schedule;
-}
-
 // Writes via a temporary file and a rename: an error leaves no half-written output.
 void write_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
@@ -100,10 +86,13 @@ int main(int argc, char** argv) {
     if (!to_glsl && !ends_with(out_path, ".hpp") && !ends_with(out_path, ".h"))
       throw std::invalid_argument(out_path + ": the output must end in .glsl, .hpp or .h");
     const Source src = load(input);
-    std::string what;
-    const compiler::Program prog =
-        compiler::lower(src.graph, schedule(src.graph, rules_text, schedule_spec, &what));
-    const std::string banner = src.label + " / " + what;
+    // One rule for every node (--rules), or a tuned front point (--schedule CSV:LABEL, which must
+    // have been tuned on this graph: the scene file, not the bare pattern, when the scene adds
+    // parallax, lighting or a fixed time).
+    const compiler::ChosenSchedule chosen = compiler::choose_schedule(src.graph, rules_text, schedule_spec);
+    const compiler::Program prog = compiler::lower(src.graph, chosen.schedule);
+    const std::string banner =
+        src.label + " / " + (schedule_spec.empty() ? "rules " : "schedule ") + chosen.what;
     write_atomically(
         out_path, to_glsl ? compiler::emit_glsl(prog, name, banner) : compiler::emit_cpp(prog, name, banner));
     std::string inputs, outputs;
