@@ -13,58 +13,14 @@
 #include "fixtures.hpp"
 #include "ir/atomics.hpp"
 #include "tests/runtime/fixture_list.hpp"
+#include "tests/runtime/random_pixels.hpp"
 
 namespace bl {
 namespace {
 
-// Random pixel inputs for a program: u, v in [-8, 8], footprint sd in [1e-3, 0.4], unit view with
-// z >= 0.3, unit light, time in [0, 3].
-struct Pixels {
-  int n;
-  std::vector<std::vector<float>> mean, sd, gx, gy;
-  Pixels(const compiler::Program& p, int count, unsigned seed) : n(count) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> U(-8, 8), S(1e-3f, 0.4f), G(-0.05f, 0.05f), T(0, 3), D(-1, 1);
-    const int k = p.input_count;
-    mean.assign(k, std::vector<float>(n));
-    sd = gx = gy = mean;
-    for (int i = 0; i < n; ++i) {
-      float vx = D(rng) * 0.7f, vy = D(rng) * 0.7f, vz = std::sqrt(std::max(0.09f, 1 - vx * vx - vy * vy));
-      const float norm = std::sqrt(vx * vx + vy * vy + vz * vz);
-      for (int j = 0; j < k; ++j) {
-        const std::string& name = p.input_names[j];
-        float m = 0, s = 0, a = 0, b = 0;
-        if (name == "u" || name == "v")
-          m = U(rng), s = S(rng), a = G(rng), b = G(rng);
-        else if (name == "time")
-          m = T(rng);
-        else if (name == "view_x")
-          m = vx / norm;
-        else if (name == "view_y")
-          m = vy / norm;
-        else if (name == "view_z")
-          m = vz / norm;
-        else if (name == "light_x")
-          m = 0.4f;
-        else if (name == "light_y")
-          m = 0.3f;
-        else if (name == "light_z")
-          m = 0.866f;
-        mean[j][i] = m, sd[j][i] = s, gx[j][i] = a, gy[j][i] = b;
-      }
-    }
-  }
-  compiler::Batch batch() const {
-    compiler::Batch b;
-    b.count = n;
-    for (std::size_t j = 0; j < mean.size(); ++j) {
-      b.mean.push_back(mean[j].data());
-      b.sd.push_back(sd[j].data());
-      b.grad_x.push_back(gx[j].data());
-      b.grad_y.push_back(gy[j].data());
-    }
-    return b;
-  }
+// Random pixel inputs: u, v in [-8, 8], footprint sd in [1e-3, 0.4] (tests/runtime/random_pixels.hpp).
+struct Pixels : testing::RandomPixels {
+  Pixels(const compiler::Program& p, int count, unsigned seed) : RandomPixels(p, count, seed, 8.0f, 0.4f) {}
 };
 
 std::vector<std::vector<float>> evaluate(const compiler::Program& p, const Pixels& px,

@@ -12,62 +12,18 @@
 #include "compiler/lower.hpp"
 #include "glsl/shader.hpp"
 #include "shaders/shader.hpp"
+#include "tests/runtime/random_pixels.hpp"
 
 namespace bl {
 namespace {
 
-// Inputs by name for `p`: u, v in [-6, 6] with sd in [1e-3, 0.5], time in [0, 3], a unit view with
-// z >= 0.3, the default light.
-struct Batch {
-  std::vector<std::vector<float>> mean, sd, gx, gy;
-  compiler::Batch b;
-  Batch(const compiler::Program& p, int n, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> U(-6, 6), S(1e-3f, 0.5f), G(-0.05f, 0.05f), T(0, 3), D(-0.7f, 0.7f);
-    const int k = p.input_count;
-    mean.assign(k, std::vector<float>(n));
-    sd = gx = gy = mean;
-    for (int i = 0; i < n; ++i) {
-      const float vx = D(rng), vy = D(rng), vz = std::sqrt(std::max(0.09f, 1 - vx * vx - vy * vy));
-      const float len = std::sqrt(vx * vx + vy * vy + vz * vz);
-      for (int j = 0; j < k; ++j) {
-        const std::string& name = p.input_names[j];
-        float m = 0, s = 0, a = 0, c = 0;
-        if (name == "u" || name == "v")
-          m = U(rng), s = S(rng), a = G(rng), c = G(rng);
-        else if (name == "time")
-          m = T(rng);
-        else if (name == "view_x")
-          m = vx / len;
-        else if (name == "view_y")
-          m = vy / len;
-        else if (name == "view_z")
-          m = vz / len;
-        else if (name == "light_x")
-          m = 0.4f;
-        else if (name == "light_y")
-          m = 0.3f;
-        else if (name == "light_z")
-          m = 0.866f;
-        mean[j][i] = m, sd[j][i] = s, gx[j][i] = a, gy[j][i] = c;
-      }
-    }
-    b.count = n;
-    for (int j = 0; j < k; ++j) {
-      b.mean.push_back(mean[j].data());
-      b.sd.push_back(sd[j].data());
-      b.grad_x.push_back(gx[j].data());
-      b.grad_y.push_back(gy[j].data());
-    }
-  }
-};
-
 std::vector<std::vector<float>> run(const compiler::Program& p, int n) {
-  Batch in(p, n, 7);  // same seed: both programs see the same pixels (their inputs are named alike)
+  const testing::RandomPixels in(
+      p, n, 7, 6.0f, 0.5f);  // same seed: both programs see the same pixels (their inputs are named alike)
   std::vector<std::vector<float>> out(p.outputs.size(), std::vector<float>(n));
   std::vector<float*> ptr;
   for (auto& o : out) ptr.push_back(o.data());
-  compiler::Evaluator(p).run(in.b, ptr);
+  compiler::Evaluator(p).run(in.batch(), ptr);
   return out;
 }
 
