@@ -50,65 +50,43 @@ std::vector<Function> build() {
     f.f2 = e[i].smoothed;
     add(f);
   }
-  {
-    const auto* b = bl::registry::binary_entries<float>(&n);
-    for (int i = 0; i < n; ++i) {
+  // Every other registry table: name, arity, whether it takes (mean, sd) statistics, and the
+  // pointer field its arity uses.
+  auto add_table = [&](const auto* t, int count, int arity, bool stat, auto set) {
+    for (int i = 0; i < count; ++i) {
       Function f;
-      f.cpp = b[i].cpp;
-      f.glsl = b[i].glsl;
-      f.arity = 5;
-      f.stat = true;
-      f.s5 = b[i].fn;
+      f.cpp = t[i].cpp;
+      f.glsl = t[i].glsl;
+      f.arity = arity;
+      f.stat = stat;
+      set(f, t[i].fn);
       add(f);
     }
-    const auto* r = bl::registry::rule2_entries<float>(&n);
-    for (int i = 0; i < n; ++i) {
-      Function f;
-      f.cpp = r[i].cpp;
-      f.glsl = r[i].glsl;
-      f.arity = 2;
-      f.stat = true;
-      f.s2 = r[i].fn;
-      add(f);
-    }
-    Function sel;
-    sel.cpp = "bl::bivariate::select";
-    sel.glsl = "bl_bivariate_select";
-    sel.arity = 6;
-    sel.stat = true;
-    sel.s6 = [](float mc, float sc, float ma, float sa, float mb, float sb) {
-      return bl::bivariate::select(mc, sc, ma, sa, mb, sb);
-    };
-    add(sel);
-    Function mod;
-    mod.cpp = "bl::bivariate::mod";
-    mod.glsl = "bl_bivariate_mod";
-    mod.arity = 3;
-    mod.stat = true;
-    mod.s3 = [](float ma, float sa, float c) { return bl::bivariate::mod(ma, sa, c); };
-    add(mod);
-  }
-  {
-    const auto* d = bl::registry::derivative_entries<float>(&n);
-    for (int i = 0; i < n; ++i) {
-      Function f;
-      f.cpp = d[i].cpp;
-      f.glsl = d[i].glsl;
-      f.arity = 1;
-      f.f1 = d[i].fn;
-      add(f);
-    }
-    const auto* r = bl::registry::clamped_rule_entries<float>(&n);
-    for (int i = 0; i < n; ++i) {
-      Function f;
-      f.cpp = r[i].cpp;
-      f.glsl = r[i].glsl;
-      f.arity = 2;
-      f.stat = true;
-      f.s2 = r[i].fn;
-      add(f);
-    }
-  }
+  };
+  const auto* b = bl::registry::binary_entries<float>(&n);
+  add_table(b, n, 5, true, [](Function& f, auto fn) { f.s5 = fn; });
+  const auto* r2 = bl::registry::rule2_entries<float>(&n);
+  add_table(r2, n, 2, true, [](Function& f, auto fn) { f.s2 = fn; });
+  Function sel;
+  sel.cpp = "bl::bivariate::select";
+  sel.glsl = "bl_bivariate_select";
+  sel.arity = 6;
+  sel.stat = true;
+  sel.s6 = [](float mc, float sc, float ma, float sa, float mb, float sb) {
+    return bl::bivariate::select(mc, sc, ma, sa, mb, sb);
+  };
+  add(sel);
+  Function mod;
+  mod.cpp = "bl::bivariate::mod";
+  mod.glsl = "bl_bivariate_mod";
+  mod.arity = 3;
+  mod.stat = true;
+  mod.s3 = [](float ma, float sa, float c) { return bl::bivariate::mod(ma, sa, c); };
+  add(mod);
+  const auto* d = bl::registry::derivative_entries<float>(&n);
+  add_table(d, n, 1, false, [](Function& f, auto fn) { f.f1 = fn; });
+  const auto* rc = bl::registry::clamped_rule_entries<float>(&n);
+  add_table(rc, n, 2, true, [](Function& f, auto fn) { f.s2 = fn; });
   return out;
 }
 
