@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "ir/atomics.hpp"
+#include "ir/plain_ops.hpp"
 
 namespace bl::glsl {
 
@@ -12,9 +13,10 @@ NativeProgram::NativeProgram(const ir::Graph& g) : slot_names_(g.textures()) {
   for (int id : g.depth_first_order()) {
     const ir::Node& n = g.node(id);
     Inst in{n.op, -1, -1, -1, 0.0f, nullptr};
-    in.a = n.a >= 0 ? reg[n.a] : -1;
-    in.b = n.b >= 0 ? reg[n.b] : -1;
-    in.c = n.c >= 0 ? reg[n.c] : -1;
+    // An absent argument reads register 0 (its value unused), so run() loads without a branch.
+    in.a = n.a >= 0 ? reg[n.a] : 0;
+    in.b = n.b >= 0 ? reg[n.b] : 0;
+    in.c = n.c >= 0 ? reg[n.c] : 0;
     in.k = static_cast<float>(n.value);
     if (n.op == ir::Op::Input) {
       const std::string& name = g.inputs()[static_cast<int>(n.value)].name;
@@ -42,42 +44,14 @@ void NativeProgram::run(float u, float v, float time, const texture::Bindings* t
   for (std::size_t i = 0; i < n; ++i) {
     const Inst& c = code_[i];
     float y = 0;
+    const float a = x[c.a], b = x[c.b], cc = x[c.c];
+    if (ir::plain_arith(c.op, a, b, cc, c.k, c.fn, &x[i])) continue;
     switch (c.op) {
       case ir::Op::Const:
         y = c.k;
         break;
       case ir::Op::Input:
         y = c.input >= 0 ? in[c.input] : 0.0f;
-        break;
-      case ir::Op::Add:
-        y = x[c.a] + x[c.b];
-        break;
-      case ir::Op::Sub:
-        y = x[c.a] - x[c.b];
-        break;
-      case ir::Op::Mul:
-        y = x[c.a] * x[c.b];
-        break;
-      case ir::Op::Div:
-        y = x[c.a] / x[c.b];
-        break;
-      case ir::Op::Neg:
-        y = -x[c.a];
-        break;
-      case ir::Op::Min:
-        y = x[c.a] < x[c.b] ? x[c.a] : x[c.b];
-        break;
-      case ir::Op::Max:
-        y = x[c.a] < x[c.b] ? x[c.b] : x[c.a];
-        break;
-      case ir::Op::Less:
-        y = x[c.a] < x[c.b] ? 1.0f : 0.0f;
-        break;
-      case ir::Op::Select:
-        y = x[c.a] * x[c.b] + (1 - x[c.a]) * x[c.c];
-        break;
-      case ir::Op::Mod:
-        y = x[c.a] - c.k * c.fn(x[c.a] / c.k);
         break;
       case ir::Op::Call:
         y = c.fn(x[c.a]);
@@ -90,6 +64,8 @@ void NativeProgram::run(float u, float v, float time, const texture::Bindings* t
         y = t->plain(x[c.a], x[c.b], c.channel);
         break;
       }
+      default:  // arithmetic: plain_arith above
+        break;
     }
     x[i] = y;
   }

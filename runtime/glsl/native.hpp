@@ -24,7 +24,7 @@ class NativeProgram {
  private:
   struct Inst {
     ir::Op op;
-    int a, b, c;  // register indices
+    int a, b, c;  // register indices (0 where absent)
     float k;      // Const value, Mod modulus
     float (*fn)(float);
     int input = -1;   // Input: 0 u, 1 v, 2 time, -1 other (reads 0)
