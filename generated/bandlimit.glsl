@@ -429,40 +429,44 @@ void bl_tail_laplace(float al, int deg, out float V[8]) {
   }
 }
 
-// I_k = int_0^L v^k e^{-b v} dv, k <= deg (exp_moments in support.hpp).
+// I_k = int_0^L v^k e^{-b v} dv, k <= deg (exp_moments in support.hpp): the top moment by its
+// series or closed form, the lower ones by I_{k-1} = (b I_k + L^k e^{-y})/k (non-negative terms).
 void bl_exp_moments(float L, float b, int deg, out float I[9]) {
   float y = b * L;
   float ey = exp(-y);
-  float Lk1 = L;
-  float kfact = 1.0;
-  float bk1 = b;
+  float Lk[9];
+  Lk[0] = 1.0;
   for (int k = 0; k < 9; ++k) {
     I[k] = 0.0;
-    if (k > deg) continue;
-    if (y < float(2 * (k + 1))) {
-      float term = 1.0 / float(k + 1);
-      float sum = term;
-      for (int n = 1; n < 100; ++n) {
-        term *= y / float(k + 1 + n);
-        sum += term;
-        if (term <= 3.0e-8 * sum) break;
-      }
-      I[k] = Lk1 * ey * sum;
-    } else if (ey == 0.0) {
-      I[k] = kfact / bk1;
-    } else {
-      float term = 1.0;
-      float sum = 1.0;
-      for (int j = 1; j <= 8; ++j) {
-        if (j > k) break;
-        term *= y / float(j);
-        sum += term;
-      }
-      I[k] = kfact / bk1 * (1.0 - ey * sum);
+    if (k > 0) Lk[k] = k <= deg ? Lk[k - 1] * L : 0.0;
+  }
+  float top;
+  if (y < float(2 * (deg + 1))) {
+    float term = 1.0 / float(deg + 1);
+    float sum = term;
+    for (int n = 1; n < 100; ++n) {
+      term *= y / float(deg + 1 + n);
+      sum += term;
+      if (term <= 3.0e-8 * sum) break;
     }
-    Lk1 *= L;
-    kfact *= float(k + 1);
-    bk1 *= b;
+    top = Lk[deg] * L * ey * sum;
+  } else {
+    float kfact = 1.0;
+    float bk1 = b;
+    float term = 1.0;
+    float sum = 1.0;
+    for (int j = 1; j <= 8; ++j) {
+      if (j > deg) break;
+      kfact *= float(j);
+      bk1 *= b;
+      term *= y / float(j);
+      sum += term;
+    }
+    top = ey == 0.0 ? kfact / bk1 : kfact / bk1 * (1.0 - ey * sum);
+  }
+  for (int k = 8; k >= 0; --k) {
+    if (k == deg) I[k] = top;
+    if (k < deg) I[k] = (b * I[k + 1] + (ey == 0.0 ? 0.0 : Lk[k + 1] * ey)) / float(k + 1);
   }
 }
 

@@ -76,7 +76,10 @@ std::string piece_table(const Syntax& s, const std::string& name, const std::vec
   if (ps.size() > 4) throw std::runtime_error("more than 4 pieces: the GLSL runtime takes at most 4");
   std::string out;
   if (s.cpp()) {
-    out = "  const detail::Piece<T> " + name + "[" + std::to_string(ps.size()) + "] = {\n";
+    // static: the table is a constant in the binary for float/double (built once, thread-safely,
+    // for wider types), not 10 T per piece zeroed and stored on the stack at every call (which GCC
+    // did with `rep stos` in double, a fixed start-up cost of tens of cycles per call).
+    out = "  static const detail::Piece<T> " + name + "[" + std::to_string(ps.size()) + "] = {\n";
     for (const auto& p : ps)
       out += "      {" + s.bound(p.lo) + ", " + s.bound(p.hi) + ", {" + coeffs(p) + "}},\n";
     return out + "  };\n";
@@ -109,7 +112,7 @@ std::string eterm_table(const Syntax& s, const std::string& name, const std::vec
   };
   std::string out;
   if (s.cpp()) {
-    out = "  const detail::ExpTerm<T> " + name + "[" + std::to_string(ts.size()) + "] = {\n";
+    out = "  static const detail::ExpTerm<T> " + name + "[" + std::to_string(ts.size()) + "] = {\n";
     for (const auto& t : ts) out += "      {" + fields(t) + ", {" + coeffs(t) + "}},\n";
     return out + "  };\n";
   }
@@ -439,12 +442,15 @@ std::string body_first_moment(const Derived& d, const Syntax& s) {
   const size_t n = d.pieces.size();
   std::string out = piece_table(s, "p", d.pieces) + s.decl("period", s.ex(d.period)) + guard_sigma(s);
   out += "  if (sigma == " + s.dbl(0) + ") return " + s.dbl(0) + ";\n";
-  if (d.kernel == Kernel::Box)
-    return out + "  return " + s.helper("box_periodic_u") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
-           ");\n";
-  if (d.kernel == Kernel::Tent)
-    return out + "  return " + s.helper("tent_periodic_u") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
-           ");\n";
+  if (d.kernel == Kernel::Box || d.kernel == Kernel::Tent) {
+    const std::string fn = d.kernel == Kernel::Box ? "box_periodic_u" : "tent_periodic_u";
+    if (!s.cpp())
+      return out + "  return " + s.helper(fn) + "(x, sigma, period, " + pieces_arg(s, "p", n) + ");\n";
+    // C++: the period data (mean removal, moments) once per entry, not per call.
+    return out + "  static const detail::UPeriodData<T, " + std::to_string(n) +
+           "> data = detail::u_period_data(period, p);\n  return " + s.helper(fn) +
+           "(x, sigma, period, data);\n";
+  }
   // Stein: sigma^2 E[g'(x+U)], g' from the termwise-differentiated series; +2 terms for its k factor.
   std::string terms;
   if (!d.bk.is_zero()) terms = s.ex(d.bk) + " * cos(th)";
@@ -604,9 +610,17 @@ std::string range_clamp(const Derived& d, Lang lang) {
     hi = h2;
   }
   if (!lo && !hi) return "";
+  // A bound that is not a number (-exp(-1) for x e^x) is a static constant in C++: compilers do
+  // not fold expf/exp of a constant here, and the call cost 15% of tent/xexp.
   std::string out;
-  if (lo) out += "  if (v < " + s.ex(*lo) + ") return " + s.ex(*lo) + ";\n";
-  if (hi) out += "  if (v > " + s.ex(*hi) + ") return " + s.ex(*hi) + ";\n";
+  auto bound = [&](const GiNaC::ex& e, const char* name) {
+    if (!s.cpp() || GiNaC::is_a<GiNaC::numeric>(e)) return s.ex(e);
+    out += std::string("  static const T ") + name + " = " + s.ex(e) + ";\n";
+    return std::string(name);
+  };
+  const std::string lo_s = lo ? bound(*lo, "lo") : "", hi_s = hi ? bound(*hi, "hi") : "";
+  if (lo) out += "  if (v < " + lo_s + ") return " + lo_s + ";\n";
+  if (hi) out += "  if (v > " + hi_s + ") return " + hi_s + ";\n";
   return out + "  return v;\n";
 }
 

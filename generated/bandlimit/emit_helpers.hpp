@@ -113,12 +113,35 @@ T li2_series(T y) {
   }
   return sum;
 }
+// Float and double on z in [-1, 1/2]: the Bernoulli series Li2(z) = sum_n B_n u^(n+1)/(n+1)!,
+// u = -log(1 - z) (|u| <= log 2), i.e. u (1 - u/4 + sum_k c_2k u^2k) with c_2k = B_2k/(2k+1)!,
+// |c_2k| ~ 2 (2 pi)^-2k: through c_18 the first neglected term is < 1e-20 relative, and u (1 - u/4
+// + ...) has no cancellation for |u| < 1. One log1p and 9 multiply-adds in place of up to 45
+// divisions of the power series (which made double tent/tanh 2.2x float's cost).
+template <class T>
+T li2_bernoulli(T z) {
+  using std::log1p;
+  const T u = -log1p(-z), u2 = u * u;
+  T s = T(4.518980029619918e-16);
+  s = s * u2 + T(-1.9939295860721074e-14);
+  s = s * u2 + T(8.921691020456452e-13);
+  s = s * u2 + T(-4.0647616451442256e-11);
+  s = s * u2 + T(1.8978869988971e-09);
+  s = s * u2 + T(-9.185773074661964e-08);
+  s = s * u2 + T(4.72411186696901e-06);
+  s = s * u2 + T(-0.0002777777777777778);
+  s = s * u2 + T(0.027777777777777776);
+  return u * (T(1) - T(0.25) * u + u2 * s);
+}
 template <class T>
 T li2(T z) {
   using std::log;
   if (z < T(-1)) {
     const T l = log(-z);
     return -pi<T>() * pi<T>() / T(6) - l * l / T(2) - li2(T(1) / z);
+  }
+  if constexpr (std::numeric_limits<T>::digits <= 53) {
+    if (z <= T(0.5)) return li2_bernoulli(z);
   }
   if (z >= T(-0.5)) return li2_series(z);
   const T l = log(T(1) - z);

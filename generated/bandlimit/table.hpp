@@ -696,7 +696,7 @@ T plain_xexp(T x) {
 template <class T>
 T plain_abs(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -706,7 +706,7 @@ T plain_abs(T x) {
 template <class T>
 T plain_sign(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -716,7 +716,7 @@ T plain_sign(T x) {
 template <class T>
 T plain_step(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -726,7 +726,7 @@ T plain_step(T x) {
 template <class T>
 T plain_saturate(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -737,7 +737,7 @@ T plain_saturate(T x) {
 template <class T>
 T plain_smoothstep(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -769,7 +769,7 @@ T plain_exp_ramp(T x) {
 template <class T>
 T plain_fract(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   return detail::periodic_eval(x, T(1), p);
@@ -778,7 +778,7 @@ T plain_fract(T x) {
 template <class T>
 T plain_triangle(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -788,7 +788,7 @@ T plain_triangle(T x) {
 template <class T>
 T plain_square(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -798,7 +798,7 @@ T plain_square(T x) {
 template <class T>
 T plain_pulse30(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -1971,7 +1971,7 @@ T tent_pow8_sq(T x, T sigma) {
 template <class T>
 T gaussian_xexp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -1983,7 +1983,8 @@ T gaussian_xexp_raw(T x, T sigma) {
 template <class T>
 T gaussian_xexp(T x, T sigma) {
   const T v = gaussian_xexp_raw<T>(x, sigma);
-  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  static const T lo = (-exp((T(-1))));
+  if (v < lo) return lo;
   return v;
 }
 
@@ -1994,7 +1995,7 @@ T gaussian_xexp(T x, T sigma) {
 template <class T>
 T gaussian_xexp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2016,7 +2017,7 @@ T gaussian_xexp_sq(T x, T sigma) {
 template <class T>
 T box_xexp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2028,7 +2029,8 @@ T box_xexp_raw(T x, T sigma) {
 template <class T>
 T box_xexp(T x, T sigma) {
   const T v = box_xexp_raw<T>(x, sigma);
-  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  static const T lo = (-exp((T(-1))));
+  if (v < lo) return lo;
   return v;
 }
 
@@ -2038,7 +2040,7 @@ T box_xexp(T x, T sigma) {
 template <class T>
 T box_xexp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2060,7 +2062,7 @@ T box_xexp_sq(T x, T sigma) {
 template <class T>
 T tent_xexp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2072,7 +2074,8 @@ T tent_xexp_raw(T x, T sigma) {
 template <class T>
 T tent_xexp(T x, T sigma) {
   const T v = tent_xexp_raw<T>(x, sigma);
-  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  static const T lo = (-exp((T(-1))));
+  if (v < lo) return lo;
   return v;
 }
 
@@ -2082,7 +2085,7 @@ T tent_xexp(T x, T sigma) {
 template <class T>
 T tent_xexp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2103,7 +2106,7 @@ T tent_xexp_sq(T x, T sigma) {
 template <class T>
 T gaussian_abs_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2141,7 +2144,7 @@ T gaussian_abs_sq(T x, T sigma) {
 template <class T>
 T box_abs_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2179,7 +2182,7 @@ T box_abs_sq(T x, T sigma) {
 template <class T>
 T tent_abs_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2216,7 +2219,7 @@ T tent_abs_sq(T x, T sigma) {
 template <class T>
 T gaussian_sign_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2255,7 +2258,7 @@ T gaussian_sign_sq(T x, T sigma) {
 template <class T>
 T box_sign_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2295,7 +2298,7 @@ T box_sign_sq(T x, T sigma) {
 template <class T>
 T tent_sign_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2334,7 +2337,7 @@ T tent_sign_sq(T x, T sigma) {
 template <class T>
 T gaussian_step_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2356,7 +2359,7 @@ T gaussian_step(T x, T sigma) {
 template <class T>
 T gaussian_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2378,7 +2381,7 @@ T gaussian_step_sq(T x, T sigma) {
 template <class T>
 T box_step_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2400,7 +2403,7 @@ T box_step(T x, T sigma) {
 template <class T>
 T box_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2423,7 +2426,7 @@ T box_step_sq(T x, T sigma) {
 template <class T>
 T tent_step_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2446,7 +2449,7 @@ T tent_step(T x, T sigma) {
 template <class T>
 T tent_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2470,7 +2473,7 @@ T tent_step_sq(T x, T sigma) {
 template <class T>
 T gaussian_saturate_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2497,7 +2500,7 @@ T gaussian_saturate(T x, T sigma) {
 template <class T>
 T gaussian_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2521,7 +2524,7 @@ T gaussian_saturate_sq(T x, T sigma) {
 template <class T>
 T box_saturate_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2545,7 +2548,7 @@ T box_saturate(T x, T sigma) {
 template <class T>
 T box_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2569,7 +2572,7 @@ T box_saturate_sq(T x, T sigma) {
 template <class T>
 T tent_saturate_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2593,7 +2596,7 @@ T tent_saturate(T x, T sigma) {
 template <class T>
 T tent_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2625,7 +2628,7 @@ T tent_saturate_sq(T x, T sigma) {
 template <class T>
 T gaussian_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2675,7 +2678,7 @@ T gaussian_smoothstep(T x, T sigma) {
 template <class T>
 T gaussian_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2699,7 +2702,7 @@ T gaussian_smoothstep_sq(T x, T sigma) {
 template <class T>
 T box_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2723,7 +2726,7 @@ T box_smoothstep(T x, T sigma) {
 template <class T>
 T box_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2748,7 +2751,7 @@ T box_smoothstep_sq(T x, T sigma) {
 template <class T>
 T tent_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2773,7 +2776,7 @@ T tent_smoothstep(T x, T sigma) {
 template <class T>
 T tent_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2800,7 +2803,7 @@ T tent_smoothstep_sq(T x, T sigma) {
 template <class T>
 T gaussian_laplace_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2826,7 +2829,7 @@ T gaussian_laplace(T x, T sigma) {
 template <class T>
 T gaussian_laplace_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2850,7 +2853,7 @@ T gaussian_laplace_sq(T x, T sigma) {
 template <class T>
 T box_laplace_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2874,7 +2877,7 @@ T box_laplace(T x, T sigma) {
 template <class T>
 T box_laplace_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2898,7 +2901,7 @@ T box_laplace_sq(T x, T sigma) {
 template <class T>
 T tent_laplace_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2922,7 +2925,7 @@ T tent_laplace(T x, T sigma) {
 template <class T>
 T tent_laplace_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2947,7 +2950,7 @@ T tent_laplace_sq(T x, T sigma) {
 template <class T>
 T gaussian_exp_decay_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2971,7 +2974,7 @@ T gaussian_exp_decay(T x, T sigma) {
 template <class T>
 T gaussian_exp_decay_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2994,7 +2997,7 @@ T gaussian_exp_decay_sq(T x, T sigma) {
 template <class T>
 T box_exp_decay_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3017,7 +3020,7 @@ T box_exp_decay(T x, T sigma) {
 template <class T>
 T box_exp_decay_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3040,7 +3043,7 @@ T box_exp_decay_sq(T x, T sigma) {
 template <class T>
 T tent_exp_decay_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3063,7 +3066,7 @@ T tent_exp_decay(T x, T sigma) {
 template <class T>
 T tent_exp_decay_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3087,7 +3090,7 @@ T tent_exp_decay_sq(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3099,8 +3102,9 @@ T gaussian_exp_ramp_raw(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp(T x, T sigma) {
   const T v = gaussian_exp_ramp_raw<T>(x, sigma);
+  static const T hi = exp((T(-1)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-1)))) return exp((T(-1)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3111,7 +3115,7 @@ T gaussian_exp_ramp(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3123,8 +3127,9 @@ T gaussian_exp_ramp_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp_sq(T x, T sigma) {
   const T v = gaussian_exp_ramp_sq_raw<T>(x, sigma);
+  static const T hi = exp((T(-2)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-2)))) return exp((T(-2)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3134,7 +3139,7 @@ T gaussian_exp_ramp_sq(T x, T sigma) {
 template <class T>
 T box_exp_ramp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3146,8 +3151,9 @@ T box_exp_ramp_raw(T x, T sigma) {
 template <class T>
 T box_exp_ramp(T x, T sigma) {
   const T v = box_exp_ramp_raw<T>(x, sigma);
+  static const T hi = exp((T(-1)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-1)))) return exp((T(-1)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3157,7 +3163,7 @@ T box_exp_ramp(T x, T sigma) {
 template <class T>
 T box_exp_ramp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3169,8 +3175,9 @@ T box_exp_ramp_sq_raw(T x, T sigma) {
 template <class T>
 T box_exp_ramp_sq(T x, T sigma) {
   const T v = box_exp_ramp_sq_raw<T>(x, sigma);
+  static const T hi = exp((T(-2)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-2)))) return exp((T(-2)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3180,7 +3187,7 @@ T box_exp_ramp_sq(T x, T sigma) {
 template <class T>
 T tent_exp_ramp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3192,8 +3199,9 @@ T tent_exp_ramp_raw(T x, T sigma) {
 template <class T>
 T tent_exp_ramp(T x, T sigma) {
   const T v = tent_exp_ramp_raw<T>(x, sigma);
+  static const T hi = exp((T(-1)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-1)))) return exp((T(-1)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3203,7 +3211,7 @@ T tent_exp_ramp(T x, T sigma) {
 template <class T>
 T tent_exp_ramp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3215,8 +3223,9 @@ T tent_exp_ramp_sq_raw(T x, T sigma) {
 template <class T>
 T tent_exp_ramp_sq(T x, T sigma) {
   const T v = tent_exp_ramp_sq_raw<T>(x, sigma);
+  static const T hi = exp((T(-2)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-2)))) return exp((T(-2)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3227,7 +3236,7 @@ T tent_exp_ramp_sq(T x, T sigma) {
 template <class T>
 T gaussian_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3274,7 +3283,7 @@ T gaussian_fract(T x, T sigma) {
 template <class T>
 T gaussian_fract_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3314,7 +3323,7 @@ T gaussian_fract_u(T x, T sigma) {
 template <class T>
 T gaussian_fract_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3334,7 +3343,7 @@ T gaussian_fract_right(T x, T sigma) {
 template <class T>
 T gaussian_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3383,10 +3392,10 @@ T gaussian_fract_sq(T x, T sigma) {
 template <class T>
 T box_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3408,13 +3417,14 @@ T box_fract(T x, T sigma) {
 template <class T>
 T box_fract_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::box_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 1> data = detail::u_period_data(period, p);
+  return detail::box_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3422,10 +3432,10 @@ T box_fract_u(T x, T sigma) {
 template <class T>
 T box_fract_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3443,10 +3453,10 @@ T box_fract_right(T x, T sigma) {
 template <class T>
 T box_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3470,13 +3480,13 @@ T box_fract_sq(T x, T sigma) {
 template <class T>
 T tent_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[1] = {
+  static const detail::Piece<T> p2[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3498,13 +3508,14 @@ T tent_fract(T x, T sigma) {
 template <class T>
 T tent_fract_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::tent_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 1> data = detail::u_period_data(period, p);
+  return detail::tent_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3512,13 +3523,13 @@ T tent_fract_u(T x, T sigma) {
 template <class T>
 T tent_fract_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[1] = {
+  static const detail::Piece<T> p2[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3536,13 +3547,13 @@ T tent_fract_right(T x, T sigma) {
 template <class T>
 T tent_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[1] = {
+  static const detail::Piece<T> p2[1] = {
       {T(0), T(1), {T(0), T(0), T(0), T(0), (T(1)/T(12)), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3567,7 +3578,7 @@ T tent_fract_sq(T x, T sigma) {
 template <class T>
 T gaussian_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3616,7 +3627,7 @@ T gaussian_triangle(T x, T sigma) {
 template <class T>
 T gaussian_triangle_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3658,7 +3669,7 @@ T gaussian_triangle_u(T x, T sigma) {
 template <class T>
 T gaussian_triangle_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3679,7 +3690,7 @@ T gaussian_triangle_right(T x, T sigma) {
 template <class T>
 T gaussian_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3731,11 +3742,11 @@ T gaussian_triangle_sq(T x, T sigma) {
 template <class T>
 T box_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3758,14 +3769,15 @@ T box_triangle(T x, T sigma) {
 template <class T>
 T box_triangle_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::box_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::box_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3773,11 +3785,11 @@ T box_triangle_u(T x, T sigma) {
 template <class T>
 T box_triangle_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3797,11 +3809,11 @@ T box_triangle_right(T x, T sigma) {
 template <class T>
 T box_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-2)), T(4), (T(-2)), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
@@ -3827,15 +3839,15 @@ T box_triangle_sq(T x, T sigma) {
 template <class T>
 T tent_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(1)/T(3)), (T(-1)), T(1), (T(-1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
@@ -3858,14 +3870,15 @@ T tent_triangle(T x, T sigma) {
 template <class T>
 T tent_triangle_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::tent_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::tent_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3873,15 +3886,15 @@ T tent_triangle_u(T x, T sigma) {
 template <class T>
 T tent_triangle_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(1)/T(3)), (T(-1)), T(1), (T(-1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
@@ -3901,15 +3914,15 @@ T tent_triangle_right(T x, T sigma) {
 template <class T>
 T tent_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-2)), T(4), (T(-2)), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), T(1), {T(0), T(0), T(0), T(0), (T(1)/T(12)), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(2)/T(3)), (T(-2)), T(2), (T(-2)/T(3)), (T(1)/T(12)), T(0), T(0), T(0)}},
   };
@@ -3935,7 +3948,7 @@ T tent_triangle_sq(T x, T sigma) {
 template <class T>
 T gaussian_square_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3984,7 +3997,7 @@ T gaussian_square(T x, T sigma) {
 template <class T>
 T gaussian_square_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4026,7 +4039,7 @@ T gaussian_square_u(T x, T sigma) {
 template <class T>
 T gaussian_square_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4047,7 +4060,7 @@ T gaussian_square_right(T x, T sigma) {
 template <class T>
 T gaussian_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4098,11 +4111,11 @@ T gaussian_square_sq(T x, T sigma) {
 template <class T>
 T box_square_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4125,14 +4138,15 @@ T box_square(T x, T sigma) {
 template <class T>
 T box_square_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::box_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::box_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4140,11 +4154,11 @@ T box_square_u(T x, T sigma) {
 template <class T>
 T box_square_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4163,11 +4177,11 @@ T box_square_right(T x, T sigma) {
 template <class T>
 T box_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4192,15 +4206,15 @@ T box_square_sq(T x, T sigma) {
 template <class T>
 T tent_square_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4223,14 +4237,15 @@ T tent_square(T x, T sigma) {
 template <class T>
 T tent_square_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::tent_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::tent_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4238,15 +4253,15 @@ T tent_square_u(T x, T sigma) {
 template <class T>
 T tent_square_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4265,15 +4280,15 @@ T tent_square_right(T x, T sigma) {
 template <class T>
 T tent_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4300,7 +4315,7 @@ T tent_square_sq(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4350,7 +4365,7 @@ T gaussian_pulse30(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4393,7 +4408,7 @@ T gaussian_pulse30_u(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4415,7 +4430,7 @@ T gaussian_pulse30_right(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4467,11 +4482,11 @@ T gaussian_pulse30_sq(T x, T sigma) {
 template <class T>
 T box_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4494,14 +4509,15 @@ T box_pulse30(T x, T sigma) {
 template <class T>
 T box_pulse30_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(10);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::box_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::box_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4509,11 +4525,11 @@ T box_pulse30_u(T x, T sigma) {
 template <class T>
 T box_pulse30_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4532,11 +4548,11 @@ T box_pulse30_right(T x, T sigma) {
 template <class T>
 T box_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4561,15 +4577,15 @@ T box_pulse30_sq(T x, T sigma) {
 template <class T>
 T tent_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4592,14 +4608,15 @@ T tent_pulse30(T x, T sigma) {
 template <class T>
 T tent_pulse30_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(10);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::tent_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::tent_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4607,15 +4624,15 @@ T tent_pulse30_u(T x, T sigma) {
 template <class T>
 T tent_pulse30_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4634,15 +4651,15 @@ T tent_pulse30_right(T x, T sigma) {
 template <class T>
 T tent_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4827,7 +4844,7 @@ T gaussian_trunc(T x, T sigma) {
 template <class T>
 T gaussian_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> pt6[2] = {
+  static const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4858,7 +4875,7 @@ T box_trunc(T x, T sigma) {
 template <class T>
 T box_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> pt6[2] = {
+  static const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4889,7 +4906,7 @@ T tent_trunc(T x, T sigma) {
 template <class T>
 T tent_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> pt6[2] = {
+  static const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };

@@ -126,6 +126,23 @@ inline T small_series_limit() {
   }
 }
 
+// 1/n for n < 256 as constants (float and double): a series or moment term then costs a multiply,
+// not a division (whose latency, on the term-to-term chains of the box/tent sums, dominated them).
+struct RecipTable {
+  double v[256];
+  constexpr RecipTable() : v() {
+    for (int n = 1; n < 256; ++n) v[n] = 1.0 / n;
+  }
+};
+inline constexpr RecipTable kRecip{};
+template <class T>
+inline T recip(int n) {
+  if constexpr (kWide<T>)
+    return T(1) / T(n);
+  else
+    return n < 256 ? T(kRecip.v[n]) : T(1) / T(n);
+}
+
 // Highest index with a nonzero coefficient (0 for the zero polynomial). Loops stop there so that
 // 0 * sigma^7 never turns into 0 * inf = NaN.
 template <class T>
@@ -136,10 +153,13 @@ inline int degree(const T* c) {
 }
 
 // g[k] = q^(k)(t0) / k! (Taylor coefficients about t0), by repeated synthetic division: O(deg^2)
-// multiply-adds, no powers of t0 formed separately.
+// multiply-adds, no powers of t0 formed separately. c and g hold kMaxCoef entries; all are copied
+// (g[k] = c[k] above deg): a fixed-size copy is a few vector moves, whereas a copy of deg + 1
+// entries became `rep movsq` in double with GCC -O3 (tens of cycles to start, and the loads
+// after it cannot be forwarded from its stores) and made double tent entries 2.5-3.5x float's.
 template <class T>
 inline void taylor_shift(const T* c, int deg, T t0, T* g) {
-  for (int k = 0; k <= deg; ++k) g[k] = c[k];
+  for (int k = 0; k < kMaxCoef; ++k) g[k] = c[k];
   if (t0 == T(0)) return;
   for (int i = 0; i < deg; ++i)
     for (int j = deg - 1; j >= i; --j) g[j] += t0 * g[j + 1];
@@ -451,7 +471,7 @@ inline T box_core(T xq, T h, T dl, T dh, T lo, T hi, const T* c) {
   for (int k = 1; k <= deg; ++k) {
     ak *= a;
     S = b * S + ak;
-    mean += c[k] * S / T(k + 1);
+    mean += c[k] * S * recip<T>(k + 1);
   }
   return len / (T(2) * h) * mean;
 }
@@ -469,7 +489,7 @@ inline T tent_side(const T* c, int deg, T t0, T G, T L, T w, bool left) {
   T sum = T(0), Lk = T(1);
   for (int k = 0; k <= deg; ++k) {
     if (g[k] != T(0)) {
-      T term = g[k] * Lk * (gam / T(k + 1) - ell / T(k + 2));
+      T term = g[k] * Lk * (gam * recip<T>(k + 1) - ell * recip<T>(k + 2));
       sum += (left && (k & 1)) ? -term : term;
     }
     if (k < deg) Lk *= L;
@@ -723,40 +743,58 @@ inline void tail_laplace(T al, int deg, T* V) {
   for (int k = 1; k <= deg; ++k) V[k] = V[k - 1] / ratio[k];
 }
 
-// I_k = int_0^L v^k e^{-b v} dv, k <= deg, b >= 0, L >= 0 (L = inf needs b > 0). With y = b L:
-// y < 2(k+1): the series L^{k+1} e^{-y} sum_n y^n / ((k+1)(k+2)...(k+1+n)) (positive terms; exact
-// as b -> 0, where it is L^{k+1}/(k+1)); otherwise k!/b^{k+1} (1 - e^{-y} sum_{j<=k} y^j/j!), whose
-// bracket is >= 1 - e^{-2} there (no cancellation).
+// I_k = int_0^L v^k e^{-b v} dv, k <= deg, b >= 0, L >= 0 (L = inf needs b > 0). With y = b L, the
+// top moment K = deg first: y < 2(K+1): the series L^{K+1} e^{-y} sum_n y^n / ((K+1)(K+2)...(K+1+n))
+// (positive terms; exact as b -> 0, where it is L^{K+1}/(K+1)); otherwise K!/b^{K+1} (1 - e^{-y}
+// sum_{j<=K} y^j/j!), whose bracket is >= 1 - e^{-2} there (no cancellation). The lower ones by
+// integration by parts run downwards, I_{k-1} = (b I_k + L^k e^{-y})/k: two non-negative terms, so
+// no cancellation either (a few eps in total), and one series per call instead of one per k.
+template <class T>
+inline void exp_moments(T L, T b, int deg, T* I, T ey) {  // ey = e^{-b L}
+  const T y = b * L;
+  const int K = deg;
+  if (y < T(2 * (K + 1))) {
+    T term = recip<T>(K + 1), sum = term;
+    for (int n = 1; n < 200; ++n) {
+      term *= y * recip<T>(K + 1 + n);
+      sum += term;
+      if (term <= std::numeric_limits<T>::epsilon() * T(0.25) * sum) break;
+    }
+    T LK1 = L;  // L^{K+1}
+    for (int k = 0; k < K; ++k) LK1 *= L;
+    I[K] = LK1 * ey * sum;
+  } else {
+    T kfact = T(1), bk1 = b;  // K!, b^{K+1}
+    for (int k = 1; k <= K; ++k) {
+      kfact *= T(k);
+      bk1 *= b;
+    }
+    if (ey == T(0)) {  // y beyond exp's range (also y = inf): the bracket is 1
+      I[K] = kfact / bk1;
+    } else {
+      T term = T(1), sum = T(1);
+      for (int j = 1; j <= K; ++j) {
+        term *= y * recip<T>(j);
+        sum += term;
+      }
+      I[K] = kfact / bk1 * (T(1) - ey * sum);
+    }
+  }
+  if (K == 0) return;
+  // L^k e^{-y} for k = K..1, from L^K down (ey = 0: the boundary term vanishes, also for L = inf).
+  T Lk[kMaxCoef + 1];
+  Lk[0] = T(1);
+  for (int k = 1; k <= K; ++k) Lk[k] = Lk[k - 1] * L;
+  for (int k = K; k >= 1; --k) {
+    const T boundary = ey == T(0) ? T(0) : Lk[k] * ey;
+    I[k - 1] = (b * I[k] + boundary) * recip<T>(k);
+  }
+}
+
 template <class T>
 inline void exp_moments(T L, T b, int deg, T* I) {
   using std::exp;
-  const T y = b * L;
-  const T ey = exp(-y);
-  T Lk1 = L;  // L^{k+1}
-  T kfact = T(1), bk1 = b;
-  for (int k = 0; k <= deg; ++k) {
-    if (y < T(2 * (k + 1))) {
-      T term = T(1) / T(k + 1), sum = term;
-      for (int n = 1; n < 200; ++n) {
-        term *= y / T(k + 1 + n);
-        sum += term;
-        if (term <= std::numeric_limits<T>::epsilon() * T(0.25) * sum) break;
-      }
-      I[k] = Lk1 * ey * sum;
-    } else if (ey == T(0)) {  // y beyond exp's range (also y = inf): the bracket is 1
-      I[k] = kfact / bk1;
-    } else {
-      T term = T(1), sum = T(1);
-      for (int j = 1; j <= k; ++j) {
-        term *= y / T(j);
-        sum += term;
-      }
-      I[k] = kfact / bk1 * (T(1) - ey * sum);
-    }
-    Lk1 *= L;
-    kfact *= T(k + 1);
-    bk1 *= b;
-  }
+  exp_moments(L, b, deg, I, exp(-(b * L)));
 }
 
 // e^{pre} s / d without overflowing where the product is finite (pre large, d large).
@@ -769,11 +807,12 @@ inline T exp_scaled(T pre, T s, T d) {
 }
 
 // sum_k g_k dir^k int_0^len v^k (G + sw v) e^{-b v} dv (G = 1, sw = 0 for the box).
+// ey = e^{-b len}.
 template <class T>
-inline T exp_side(const T* c, int deg, T s0, T dir, T len, T b, T G, T sw) {
+inline T exp_side(const T* c, int deg, T s0, T dir, T len, T b, T G, T sw, T ey) {
   T g[kMaxCoef], I[kMaxCoef + 1];
   taylor_shift(c, deg, s0, g);
-  exp_moments(len, b, sw != T(0) ? deg + 1 : deg, I);
+  exp_moments(len, b, sw != T(0) ? deg + 1 : deg, I, ey);
   T sum = T(0), dk = T(1);
   for (int k = 0; k <= deg; ++k) {
     if (g[k] != T(0)) sum += g[k] * dk * (sw != T(0) ? G * I[k] + sw * I[k + 1] : I[k]);
@@ -907,7 +946,8 @@ inline T box_exp_term(T x, T h, const ExpTerm<T>& p) {
   const int deg = degree(p.c);
   const bool left = !(p.a > T(0));
   const T s0 = left ? (cl ? p.lo - p.ref : (x - p.ref) - h) : (cr ? p.hi - p.ref : (x - p.ref) + h);
-  const T sum = exp_side(p.c, deg, s0, left ? T(1) : T(-1), len, abs_of(p.a), T(1), T(0));
+  const T b = abs_of(p.a);
+  const T sum = exp_side(p.c, deg, s0, left ? T(1) : T(-1), len, b, T(1), T(0), T(exp(-(b * len))));
   return exp_scaled(p.a * s0, sum, T(2) * h);
 }
 
@@ -917,26 +957,57 @@ inline T box_exp_term(T x, T h, const ExpTerm<T>& p) {
 // does: G I_k - I_{k+1} loses at most a factor k + 2).
 template <class T>
 inline T tent_exp_term(T x, T w, const ExpTerm<T>& p) {
+  using std::exp;
   const T el = p.lo - x, eh = p.hi - x;
   if (!(el < w) || !(eh > -w) || !(p.hi > p.lo)) return T(0);
   const int deg = degree(p.c);
   const bool left_anchor = !(p.a > T(0));
-  const T b = abs_of(p.a);
-  T r = T(0);
+  const T b = abs_of(p.a), dir = left_anchor ? T(1) : T(-1);
+  const T xr = x - p.ref;
   // One half [o0, o1] (offsets from x); e0/e1: whether o0/o1 is an end of the piece.
+  struct Half {
+    bool on;
+    T len, s0, G, sw;
+  };
   auto half = [&](T o0, bool e0, T o1, bool e1, bool right) {
-    const T len = (e0 && e1) ? p.hi - p.lo : o1 - o0;
-    if (!(len > T(0))) return T(0);
+    Half h{false, (e0 && e1) ? p.hi - p.lo : o1 - o0, T(0), T(0), T(0)};
+    if (!(h.len > T(0))) return h;
+    h.on = true;
     const T o = left_anchor ? o0 : o1;
     const bool e = left_anchor ? e0 : e1;
-    const T s0 = e ? (left_anchor ? p.lo - p.ref : p.hi - p.ref) : (x - p.ref) + o;
-    const T G = right ? w - o : w + o;
-    const T sw = (right == left_anchor) ? T(-1) : T(1);
-    const T sum = exp_side(p.c, deg, s0, left_anchor ? T(1) : T(-1), len, b, G, sw);
-    return exp_scaled(p.a * s0, sum / w, w);
+    h.s0 = e ? (left_anchor ? p.lo - p.ref : p.hi - p.ref) : xr + o;
+    h.G = right ? w - o : w + o;
+    h.sw = (right == left_anchor) ? T(-1) : T(1);
+    return h;
   };
-  if (eh > T(0)) r += half(el > T(0) ? el : T(0), el > T(0), eh < w ? eh : w, eh < w, true);
-  if (el < T(0)) r += half(el > -w ? el : -w, el > -w, eh < T(0) ? eh : T(0), eh < T(0), false);
+  Half hr{false, T(0), T(0), T(0), T(0)}, hl = hr;
+  const bool inner_r = !(el > T(0)) && !(eh < w), inner_l = !(el > -w) && !(eh < T(0));
+  if (eh > T(0)) hr = half(el > T(0) ? el : T(0), el > T(0), eh < w ? eh : w, eh < w, true);
+  if (el < T(0)) hl = half(el > -w ? el : -w, el > -w, eh < T(0) ? eh : T(0), eh < T(0), false);
+  if (inner_r && inner_l) {
+    // The kernel inside the piece (both halves of length w, anchored at x and at x -+ w): one
+    // e^{-b w} serves both moment sets, and e^{a s} at x is e^{a s} at the far anchor times it
+    // (2 exps instead of 4; the far anchor is where e^{a s} is largest, so nothing overflows that
+    // the direct form would not, and an underflowed product means the near half is < e^{-b w}
+    // relative to the far one).
+    const T ey = exp(-(b * w));
+    const T sr = exp_side(p.c, deg, hr.s0, dir, w, b, hr.G, hr.sw, ey);
+    const T sl = exp_side(p.c, deg, hl.s0, dir, w, b, hl.G, hl.sw, ey);
+    const T pre_far = p.a * (left_anchor ? hl.s0 : hr.s0);
+    if (pre_far < T(30)) {
+      const T e_far = exp(pre_far), e_near = e_far * ey;
+      const T iw = T(1) / w;
+      return (left_anchor ? e_far * sl + e_near * sr : e_far * sr + e_near * sl) * iw * iw;
+    }
+    return exp_scaled(p.a * hr.s0, sr / w, w) + exp_scaled(p.a * hl.s0, sl / w, w);
+  }
+  T r = T(0);
+  const Half* hs[2] = {&hr, &hl};
+  for (const Half* h : hs) {
+    if (!h->on) continue;
+    const T sum = exp_side(p.c, deg, h->s0, dir, h->len, b, h->G, h->sw, T(exp(-(b * h->len))));
+    r += exp_scaled(p.a * h->s0, sum / w, w);
+  }
   return r;
 }
 
@@ -1563,8 +1634,8 @@ inline T u_tent_centre(const T* c, int deg, T Lr, T Ll, T w) {
   T sum = T(0), Lrk = T(1), Llk = T(1);
   for (int k = 0; k <= deg; ++k) {
     if (c[k] != T(0)) {
-      const T ar = Lrk * lr * (T(1) / T(k + 1) - lr / T(k + 2));
-      const T al = Llk * ll * (T(1) / T(k + 1) - ll / T(k + 2));
+      const T ar = Lrk * lr * (recip<T>(k + 1) - lr * recip<T>(k + 2));
+      const T al = Llk * ll * (recip<T>(k + 1) - ll * recip<T>(k + 2));
       sum += c[k] * ((k & 1) ? ar - al : ar + al);
     }
     if (k < deg) {
@@ -1689,12 +1760,13 @@ inline T u_sqrt3_lo_times(T sigma, T hh) {
 // Conditioning: dM/dh = (g(x+h) - g(x-h))/2 = O(1), so the rounding of h = sqrt(3) sigma itself
 // (eps h) would cost eps h absolute (float, sigma = 1e4: 1e-3). Hence h is carried as hh + hl and
 // the ends as hh mod T (exact fmod) + x_r + hl: r1, r2 are right to eps T.
+// The period data depend only on the table: the emitted entry builds them once (a static) and
+// calls the overload taking them; the overload taking the pieces builds them per call.
 template <class T, int N>
-inline T box_periodic_u(T x, T sigma, T period, const Piece<T> (&p)[N]) {
+inline T box_periodic_u(T x, T sigma, T period, const UPeriodData<T, N>& g) {
   using std::floor;
   if (u_bad_args(x, sigma)) return std::numeric_limits<T>::quiet_NaN();
   if (sigma == T(0)) return T(0);
-  const UPeriodData<T, N> g = u_period_data(period, p);
   if (!g.ok) return std::numeric_limits<T>::quiet_NaN();
   const T h = k_sqrt3<T>() * sigma;
   if (h <= T(2) * period) {
@@ -1765,11 +1837,10 @@ inline T box_periodic_u(T x, T sigma, T period, const Piece<T> (&p)[N]) {
 // error ~ eps T max|g|. The tent's weight vanishes at the support edges, so dM/dw = O(T/w): the
 // rounding of w and of x_r +- w costs only eps T (no extra precision needed, unlike the box).
 template <class T, int N>
-inline T tent_periodic_u(T x, T sigma, T period, const Piece<T> (&p)[N]) {
+inline T tent_periodic_u(T x, T sigma, T period, const UPeriodData<T, N>& g) {
   using std::floor;
   if (u_bad_args(x, sigma)) return std::numeric_limits<T>::quiet_NaN();
   if (sigma == T(0)) return T(0);
-  const UPeriodData<T, N> g = u_period_data(period, p);
   if (!g.ok) return std::numeric_limits<T>::quiet_NaN();
   const T w = k_sqrt6<T>() * sigma;
   if (w <= T(2) * period) {
@@ -1794,6 +1865,15 @@ inline T tent_periodic_u(T x, T sigma, T period, const Piece<T> (&p)[N]) {
   const T full = g.I1 * (nr * (xr + r2) - nl * (xr + r1)) +
                  g.I0 * ((w * sd - sd2) - (w * se - se2)) + g.I2 * (nl - nr);
   return local + full / (w * w);
+}
+
+template <class T, int N>
+inline T box_periodic_u(T x, T sigma, T period, const Piece<T> (&p)[N]) {
+  return box_periodic_u(x, sigma, period, u_period_data(period, p));
+}
+template <class T, int N>
+inline T tent_periodic_u(T x, T sigma, T period, const Piece<T> (&p)[N]) {
+  return tent_periodic_u(x, sigma, period, u_period_data(period, p));
 }
 
 }  // namespace detail
