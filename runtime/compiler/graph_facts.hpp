@@ -275,6 +275,42 @@ class GraphFacts {
     return false;
   }
 
+  // ---- Bernoulli comparisons (selects of branches) ----
+  // A less node that some select reads as its condition: the select picks one of two lobes, which
+  // the mixture rule (lower.cpp, bernoulli_mixture) keeps apart instead of averaging them.
+  bool select_condition(int i) const {
+    if (g.node(i).op != ir::Op::Less) return false;
+    for (int c : consumers[i])
+      if (c >= 0 && g.node(c).op == ir::Op::Select && g.node(c).a == i) return true;
+    return false;
+  }
+
+  // Every node that reads node i, directly or not (i excluded); indices ascend (topological).
+  std::vector<bool> descendants(int i) const {
+    std::vector<bool> d(g.size(), false);
+    for (int j = i + 1; j < g.size(); ++j)
+      for (int a : {g.node(j).a, g.node(j).b, g.node(j).c})
+        if (a >= 0 && (a == i || d[a])) d[j] = true;
+    return d;
+  }
+
+  // Every node the values of the selects conditioned on c read (the branches' ancestors).
+  std::vector<bool> branch_ancestors(int c) const {
+    std::vector<bool> anc(g.size(), false);
+    std::vector<int> stack;
+    for (int s : consumers[c])
+      if (s >= 0 && g.node(s).op == ir::Op::Select && g.node(s).a == c)
+        for (int b : {g.node(s).b, g.node(s).c}) stack.push_back(b);
+    while (!stack.empty()) {
+      const int j = stack.back();
+      stack.pop_back();
+      if (j < 0 || anc[j]) continue;
+      anc[j] = true;
+      for (int a : {g.node(j).a, g.node(j).b, g.node(j).c}) stack.push_back(a);
+    }
+    return anc;
+  }
+
   const ir::Graph& g;
   // Per node: the nodes reading it (-1: a graph output).
   std::vector<std::vector<int>> consumers;

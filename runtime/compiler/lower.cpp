@@ -45,6 +45,7 @@ class Lowering {
     for (const auto& in : g_.inputs()) p_.input_names.push_back(in.name);
     p_.texture_names = g_.textures();
     for (int i = 0; i < g_.size(); ++i) vals_[i] = node(i);
+    bernoulli_mixtures();
     for (std::size_t k = 0; k < g_.outputs().size(); ++k) {
       p_.outputs.push_back(vals_[g_.outputs()[k]].mean);
       p_.output_names.push_back(g_.output_names()[k]);
@@ -127,6 +128,12 @@ class Lowering {
       }
       default:
         break;
+    }
+    if (!fixed_.empty()) {  // a branch of a Bernoulli mixture: the comparison is known
+      auto f = fixed_.find(i);
+      if (f != fixed_.end()) return Val{k(static_cast<float>(f->second)), -1};
+      if (n.op == Op::Select && (f = fixed_.find(n.a)) != fixed_.end())
+        return f->second ? vals_[n.b] : vals_[n.c];
     }
     std::vector<Val*> args;
     for (int a : {n.a, n.b, n.c})
@@ -710,6 +717,199 @@ class Lowering {
     return op(LOp::Min, op(LOp::Max, div(cov, den), k(-1)), k(1));
   }
 
+  // ---- Bernoulli mixtures: selects keep their two lobes apart ----
+  // A select whose condition c = less(a, b) is random mixes two branches; its (mean, variance) pair
+  // merges them into one lobe (bumps: the cap's normals and the flat (0,0,1) averaged into one mean
+  // normal before dot/reflect/pow8). Here c is a Bernoulli node with p = the smoothed less (its own
+  // rule's mean): every node downstream of c is lowered once with c = 1 and once with c = 0 (the
+  // selects then pass their branch on) and the outputs are mixed, p A + (1 - p) B (mean and second
+  // moment). Where c compares a random node x with a non-random one, the branch also conditions x on
+  // its side (truncated-normal moments) and re-lowers the nodes between x and the selects' values
+  // (a cap's height sqrt(saturate(R^2 - r2)) given r2 < R^2). Joint over the first kMaxJoint
+  // comparisons an output depends on (treated as independent): 2^kMaxJoint branches.
+  static constexpr int kMaxJoint = 2;
+
+  bool bernoulli(int i) const {
+    const Kind kd = s_.at(i).kind;
+    return kd != Kind::None && kd != Kind::MonteCarlo && vals_[i].var >= 0 && facts_.select_condition(i);
+  }
+
+  // x ~ N(m, s^2) (its lowered moments) conditioned on x < t (upper) or x >= t: the truncated
+  // normal's mean m -+ s lambda and variance s^2 (1 -+ alpha lambda - lambda^2), alpha = (t - m) / s,
+  // lambda = phi(alpha) / P(side). lambda is finite where P underflows (phi does too: lambda 0, and the
+  // branch has weight ~0 anyway).
+  Val truncated(Val& x, int t, bool upper) {
+    const int s = sd(x);
+    const int alpha = div(sub(t, x.mean), op(LOp::Max, s, k(1e-30f)));
+    const int phi = mul(k(0.3989422804f), call(plain_name("exp"), {mul(k(-0.5f), sq(alpha))}));
+    const std::string step = kernel_name("gaussian", "step", false);
+    const int side = upper ? call(step, {sub(t, x.mean), s}) : call(step, {sub(x.mean, t), s});
+    const int lambda = div(phi, op(LOp::Max, side, k(1e-30f)));
+    Val v;
+    v.mean = upper ? sub(x.mean, mul(s, lambda)) : add(x.mean, mul(s, lambda));
+    const int al = mul(alpha, lambda);
+    v.var = op(LOp::NonNeg, mul(x.var, sub(upper ? sub(k(1), al) : add(k(1), al), sq(lambda))));
+    return v;
+  }
+
+  // Node x takes the branch's moments v: its sources are conditioned back along sums (independent
+  // addends share a mean shift and a variance drop in proportion to their variances: the Gaussian
+  // regression), constant affine steps (inverted) and squares (y scaled about 0 so that E[y^2]
+  // matches: a disk r2 = fu^2 + fv^2 < R^2 narrows fu and fv, which linear regression on r2 cannot
+  // see at a mean of 0). held collects the nodes given moments this way (not re-lowered).
+  void condition(int x, Val v, std::set<int>& held, int depth = 0) {
+    Val old = vals_[x];
+    vals_[x] = v;
+    held.insert(x);
+    if (depth > 8 || old.var < 0) return;
+    const ir::Node& n = g_.node(x);
+    auto cst = [&](int j) { return j >= 0 && vals_[j].var < 0; };
+    const int dm = sub(v.mean, old.mean);
+    auto var_or0 = [&](const Val& a) { return a.var < 0 ? k(0) : a.var; };
+    switch (n.op) {
+      case Op::Add:
+      case Op::Sub:
+        if (n.a == n.b) return;
+        if (cst(n.a) || cst(n.b)) {
+          const int y = cst(n.a) ? n.b : n.a;
+          const bool neg = n.op == Op::Sub && y == n.b;
+          Val w;
+          w.mean = add(vals_[y].mean, neg ? op(LOp::Neg, dm) : dm);
+          w.var = v.var;
+          condition(y, w, held, depth + 1);
+          return;
+        }
+        {
+          const int va = var_or0(vals_[n.a]), vb = var_or0(vals_[n.b]);
+          const int tot = op(LOp::Max, add(va, vb), k(1e-30f));
+          const int drop = op(LOp::Max, sub(var_or0(old), var_or0(v)), k(0));
+          for (int j : {n.a, n.b}) {
+            const int f = div(j == n.a ? va : vb, tot);
+            const bool neg = n.op == Op::Sub && j == n.b;
+            Val w;
+            w.mean = add(vals_[j].mean, mul(neg ? op(LOp::Neg, f) : f, dm));
+            w.var = op(LOp::NonNeg, sub(var_or0(vals_[j]), mul(sq(f), drop)));
+            condition(j, w, held, depth + 1);
+          }
+        }
+        return;
+      case Op::Neg: {
+        Val w{op(LOp::Neg, v.mean), v.var};
+        condition(n.a, w, held, depth + 1);
+        return;
+      }
+      case Op::Mul:
+        if (n.a == n.b || (n.op == Op::Mul && facts_.monomial(x) == std::make_pair(n.a, 2))) break;
+        if (cst(n.a) || cst(n.b)) {
+          const int y = cst(n.a) ? n.b : n.a, c = vals_[cst(n.a) ? n.a : n.b].mean;
+          Val w{div(v.mean, c), div(var_or0(v), sq(c))};
+          condition(y, w, held, depth + 1);
+        }
+        return;
+      case Op::Call:
+        if (std::string(ir::atomic_name(n.atomic)) == "pow2") break;
+        return;
+      default:
+        return;
+    }
+    // x = y^2: y scaled about 0 by sqrt(E[x | branch] / E[x]).
+    const int y = n.a;
+    const int sc = op(LOp::Sqrt, div(op(LOp::NonNeg, v.mean), op(LOp::Max, old.mean, k(1e-30f))));
+    Val w{mul(vals_[y].mean, sc), mul(var_or0(vals_[y]), sq(sc))};
+    condition(y, w, held, depth + 1);
+  }
+
+  void bernoulli_mixtures() {
+    std::vector<int> bern;
+    for (int i = 0; i < g_.size(); ++i)
+      if (bernoulli(i)) bern.push_back(i);
+    if (bern.empty()) return;
+    std::vector<std::vector<bool>> desc;
+    for (int c : bern) desc.push_back(facts_.descendants(c));
+    // Outputs grouped by the comparisons they depend on.
+    std::map<std::vector<int>, std::vector<int>> groups;  // bern indices -> output nodes
+    for (int o : g_.outputs()) {
+      std::vector<int> set;
+      for (std::size_t b = 0; b < bern.size() && static_cast<int>(set.size()) < kMaxJoint; ++b)
+        if (desc[b][o]) set.push_back(static_cast<int>(b));
+      if (set.empty()) continue;
+      auto& outs = groups[set];
+      if (std::find(outs.begin(), outs.end(), o) == outs.end()) outs.push_back(o);  // r = g = b for grey
+    }
+    std::map<int, Val> mixed;
+    for (const auto& [set, outs] : groups) {
+      // The conditioned operand of each comparison (-1: none) and the nodes each branch re-lowers.
+      std::vector<int> operand(set.size(), -1);
+      std::vector<bool> redo(g_.size(), false);
+      for (std::size_t j = 0; j < set.size(); ++j) {
+        const int c = bern[set[j]];
+        const ir::Node& n = g_.node(c);
+        const bool ra = vals_[n.a].var >= 0, rb = vals_[n.b].var >= 0;
+        if (ra != rb) operand[j] = ra ? n.a : n.b;
+        for (int x = 0; x < g_.size(); ++x) redo[x] = redo[x] || desc[set[j]][x];
+        if (operand[j] >= 0) {
+          // Everything between the operand's sources and the selects' values.
+          const std::vector<bool> anc = facts_.branch_ancestors(c);
+          std::vector<bool> up(g_.size(), false);  // the operand and its ancestors
+          up[operand[j]] = true;
+          for (int x = operand[j]; x >= 0; --x)
+            if (up[x])
+              for (int a : {g_.node(x).a, g_.node(x).b, g_.node(x).c})
+                if (a >= 0) up[a] = true;
+          std::vector<bool> below(g_.size(), false);  // descendants of the operand's ancestors
+          for (int x = 0; x < g_.size(); ++x) {
+            below[x] = up[x];
+            for (int a : {g_.node(x).a, g_.node(x).b, g_.node(x).c})
+              if (a >= 0 && below[a]) below[x] = true;
+          }
+          for (int x = 0; x < g_.size(); ++x) redo[x] = redo[x] || (below[x] && anc[x]);
+        }
+      }
+      std::vector<int> p(set.size());
+      for (std::size_t j = 0; j < set.size(); ++j)
+        p[j] = call(plain_name("saturate"), {vals_[bern[set[j]]].mean});
+      std::map<int, int> sum_m, sum_m2;  // output node -> instruction
+      const std::vector<Val> base = vals_;
+      const std::vector<int> base_slope = slope_;
+      for (int mask = 0; mask < (1 << set.size()); ++mask) {
+        int w = -1;
+        std::set<int> held;
+        for (std::size_t j = 0; j < set.size(); ++j) {
+          const int c = bern[set[j]], bit = (mask >> j) & 1;
+          fixed_[c] = bit;
+          w = w < 0 ? (bit ? p[j] : sub(k(1), p[j])) : mul(w, bit ? p[j] : sub(k(1), p[j]));
+          if (operand[j] < 0) continue;
+          // c = less(a, b) = 1: a < b (a truncated above at b, or b below at a); c = 0: the other side.
+          const ir::Node& n = g_.node(c);
+          const bool is_a = operand[j] == n.a;
+          const int t = vals_[is_a ? n.b : n.a].mean;
+          condition(operand[j], truncated(vals_[operand[j]], t, is_a == (bit == 1)), held);
+        }
+        for (int x = 0; x < g_.size(); ++x)
+          if (redo[x] && !held.count(x)) {
+            slope_[x] = -1;
+            vals_[x] = node(x);
+          }
+        for (int o : outs) {
+          Val& v = vals_[o];
+          const int m2 = v.var < 0 ? sq(v.mean) : add(v.var, sq(v.mean));
+          sum_m[o] = sum_m.count(o) ? add(sum_m[o], mul(w, v.mean)) : mul(w, v.mean);
+          sum_m2[o] = sum_m2.count(o) ? add(sum_m2[o], mul(w, m2)) : mul(w, m2);
+        }
+        vals_ = base;
+        slope_ = base_slope;
+        fixed_.clear();
+      }
+      for (int o : outs) {
+        Val v;
+        v.mean = sum_m[o];
+        v.var = op(LOp::NonNeg, sub(sum_m2[o], sq(v.mean)));
+        mixed[o] = v;
+      }
+    }
+    for (const auto& [o, v] : mixed) vals_[o] = v;
+  }
+
   // A lattice node as the finite mixture over its sources' values (GraphFacts::Lattice): floor/ceil
   // of N(m, s^2) is K-1, K or K+1 with Gaussian interval probabilities; the plain sub-DAG per pair.
   Val lattice_mixture(int i, const Rule& r) {
@@ -787,6 +987,8 @@ class Lowering {
   GraphFacts facts_;
   // Per node: root_slope's instruction (-1: not yet).
   std::vector<int> slope_;
+  // While a Bernoulli mixture lowers one branch: comparison node -> its value (0 or 1).
+  std::map<int, int> fixed_;
 };
 
 }  // namespace
