@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -394,6 +395,113 @@ std::string fused_periodic(const Derived& d, const FusedTerms& f, const FusableP
   return out;
 }
 
+// Gaussian combinations whose piecewise terms (step, x step, A step) break only inside [bmin, bmax]
+// (trunc, trunc^2: at 0): for x - R >= bmax (x + R < bmin) each such term is the smoothing of its
+// outer polynomial piece, a polynomial in x and sigma, and A_right(x - b) is A~(x) (0), up to
+// sum |c| Phic(z) + sigma phi(z) terms, R = z sigma, z = image_z(sum |c|, tol): the entry is then
+// the periodic terms alone (fused when they are several). Returns the two guarded branches, or ""
+// when a term does not fit (a non-polynomial outer piece, degree > 2, another periodic atomic).
+std::string far_sides(const Derived& d, const Syntax& s, const std::vector<Derived>* ds,
+                      const FusedTerms& fz0, const FusablePair& pr) {
+  using Kind = sym::CombinationTerm::Kind;
+  if (d.kernel != Kernel::Gaussian || !ds) return "";
+  const GiNaC::ex x = sym::var_x(), sig = sym::var_sigma();
+  auto smooth_poly = [&](const std::vector<GiNaC::numeric>& c) -> std::optional<GiNaC::ex> {
+    if (c.size() > 3) return std::nullopt;  // E[(x+U)^k], k <= 2
+    const GiNaC::ex m[3] = {1, x, x * x + sig * sig};
+    GiNaC::ex r = 0;
+    for (size_t k = 0; k < c.size(); ++k) r += c[k] * m[k];
+    return r;
+  };
+  std::optional<double> bmin, bmax;
+  double csum = 0;
+  GiNaC::ex polyR = d.closed, polyL = d.closed;
+  FusedTerms fR = fz0, fL = fz0;
+  std::string periodic;                     // the atomic of the periodic terms
+  std::vector<std::string> otherR, otherL;  // periodic terms outside the fused group
+  auto note_break = [&](double b) {
+    bmin = bmin ? std::min(*bmin, b) : b;
+    bmax = bmax ? std::max(*bmax, b) : b;
+  };
+  for (size_t i = 0; i < d.terms.size(); ++i) {
+    const auto& t = d.terms[i];
+    const bool fused = std::find(fz0.idx.begin(), fz0.idx.end(), i) != fz0.idx.end();
+    const std::vector<PolyPiece>* ps = nullptr;
+    if (t.kind == Kind::Pieces) ps = &t.pieces;
+    if (t.kind == Kind::Smoothed && t.xpow == 0) {
+      for (const Derived& e : *ds)
+        if (e.kernel == Kernel::Gaussian && e.atomic_name == t.atomic && e.squared == t.squared &&
+            e.body == sym::Body::PiecewiseTable && e.rule != "moment")
+          ps = &e.pieces;
+    }
+    if (ps) {
+      if (ps->empty() || ps->front().lo.finite() || ps->back().hi.finite()) return "";
+      for (size_t j = 0; j + 1 < ps->size(); ++j) note_break((*ps)[j].hi.to_double());
+      const auto l = smooth_poly(ps->front().c), r = smooth_poly(ps->back().c);
+      if (!l || !r) return "";
+      polyL += t.coeff * *l;
+      polyR += t.coeff * *r;
+      csum += std::fabs(t.coeff.to_double());
+      continue;
+    }
+    if (fused) continue;
+    if (t.kind == Kind::HalfLines) {
+      // A (full + sum rc 1{x >= b}): right of every b all of it, left of them the full part.
+      if (!pr.a || t.atomic != fz0.atomic || t.arg_sign != 1) return "";
+      GiNaC::numeric all = t.full;
+      for (const auto& [rc, b] : t.right) {
+        if (!GiNaC::is_a<GiNaC::numeric>(b.evalf())) return "";
+        note_break(GiNaC::ex_to<GiNaC::numeric>(b.evalf()).to_double());
+        all += rc;
+        csum += std::fabs(rc.to_double());
+      }
+      fR.c0 += t.coeff * all;
+      fL.c0 += t.coeff * t.full;
+      continue;
+    }
+    // A periodic term outside the group (Smoothed of a periodic atomic): the same on both sides.
+    if (t.kind != Kind::Smoothed || t.xpow != 0) return "";
+    Derived other;
+    other.atomic_name = t.atomic;
+    other.kernel = d.kernel;
+    other.squared = t.squared;
+    const std::string A =
+        s.num(t.coeff) + " * " + s.fn(impl_name(other)) + "(" + (t.arg_sign < 0 ? "-x" : "x") + ", sigma)";
+    if (!pr.a || t.atomic != fz0.atomic || t.arg_sign != fz0.sgn || t.squared) {
+      otherR.push_back(A);
+      otherL.push_back(A);
+    } else {
+      fR.c0 += t.coeff;
+      fL.c0 += t.coeff;
+    }
+  }
+  if (!bmin || csum == 0) return "";
+  const std::string tol = s.cpp() ? "detail::series_tol<T>()" : "BL_SERIES_TOL";
+  std::string out = s.decl("Rf", s.helper("image_z") + "(" + s.dbl(csum) + ", " + tol + ") * sigma");
+  auto side = [&](const std::string& cond, const GiNaC::ex& poly, const FusedTerms& f,
+                  const std::vector<std::string>& others) {
+    std::string rest = s.ex(poly.expand());
+    for (const auto& o : others) rest += " + " + o;
+    std::string b = "  if (" + cond + ") {\n";
+    const bool one = f.c1.is_zero() && f.c2.is_zero();
+    if (!pr.a || (one && f.c0.is_zero())) {
+      b += "  return " + rest + ";\n";
+    } else if (one) {
+      Derived a;
+      a.atomic_name = f.atomic;
+      a.kernel = d.kernel;
+      b += "  return " + rest + " + " + s.num(f.c0) + " * " + s.fn(impl_name(a)) + "(" +
+           (f.sgn < 0 ? "-x" : "x") + ", sigma);\n";
+    } else {
+      b += s.decl("rest", rest) + fused_periodic(d, f, pr, s, "rest");
+    }
+    return b + "  }\n";
+  };
+  out += side("x - Rf >= " + s.dbl(*bmax), polyR, fR, otherR);
+  out += side("x + Rf < " + s.dbl(*bmin), polyL, fL, otherL);
+  return out;
+}
+
 std::string body_combination(const Derived& d, const Syntax& s, const std::vector<Derived>* ds) {
   using Kind = sym::CombinationTerm::Kind;
   // Gaussian: fuse the terms A(y), A(y)^2, x A(y) of one periodic atomic (see fused_periodic).
@@ -421,12 +529,57 @@ std::string body_combination(const Derived& d, const Syntax& s, const std::vecto
       fz.idx.push_back(i);
     }
     // Worth it when the fused terms would call more than one entry (floor, ceil call one).
-    if (fz.idx.size() < 2 && fz.c1.is_zero()) fz.idx.clear();
+    if (fz.idx.size() < 2 && fz.c1.is_zero()) fz = FusedTerms{};
+  }
+  // Gaussian: the piecewise terms (step, step^2, x step of trunc^2) with the same breaks are one
+  // table of summed pieces, smoothed by one gauss_pw call (one erfc and exp per break, not one per
+  // term).
+  std::vector<PolyPiece> merged;
+  std::vector<size_t> merged_idx;
+  if (d.kernel == Kernel::Gaussian && ds) {
+    for (size_t i = 0; i < d.terms.size(); ++i) {
+      const auto& t = d.terms[i];
+      const std::vector<PolyPiece>* ps = nullptr;
+      if (t.kind == Kind::Pieces) ps = &t.pieces;
+      if (t.kind == Kind::Smoothed && t.xpow == 0 && t.arg_sign == 1)
+        for (const Derived& e : *ds)
+          if (e.kernel == Kernel::Gaussian && e.atomic_name == t.atomic && e.squared == t.squared &&
+              e.body == sym::Body::PiecewiseTable && e.rule != "moment")
+            ps = &e.pieces;
+      if (!ps) continue;
+      auto same_breaks = [&] {
+        if (merged.size() != ps->size()) return false;
+        for (size_t j = 0; j + 1 < ps->size(); ++j)
+          if (!(merged[j].hi.value - (*ps)[j].hi.value).is_zero() || merged[j].hi.inf != (*ps)[j].hi.inf)
+            return false;
+        return true;
+      };
+      if (merged.empty()) {
+        merged = *ps;
+        for (auto& pc : merged)
+          for (auto& c : pc.c) c = c * t.coeff;
+      } else if (same_breaks()) {
+        for (size_t j = 0; j < ps->size(); ++j) {
+          auto& mc = merged[j].c;
+          if (mc.size() < (*ps)[j].c.size()) mc.resize((*ps)[j].c.size(), 0);
+          for (size_t k = 0; k < (*ps)[j].c.size(); ++k) mc[k] += t.coeff * (*ps)[j].c[k];
+        }
+      } else {
+        continue;
+      }
+      merged_idx.push_back(i);
+    }
+    if (merged_idx.size() < 2) merged_idx.clear();
   }
   std::string tables;
   std::string out = fz.idx.empty() ? "  return " + s.ex(d.closed) : s.ex(d.closed);
+  if (!merged_idx.empty()) {
+    tables += piece_table(s, "pm", merged);
+    out += " + " + s.helper("gauss_pw") + "(x, sigma, " + pieces_arg(s, "pm", merged.size()) + ")";
+  }
   for (size_t i = 0; i < d.terms.size(); ++i) {
     if (std::find(fz.idx.begin(), fz.idx.end(), i) != fz.idx.end()) continue;
+    if (std::find(merged_idx.begin(), merged_idx.end(), i) != merged_idx.end()) continue;
     const auto& t = d.terms[i];
     Derived other;
     other.atomic_name = t.atomic;
@@ -461,8 +614,9 @@ std::string body_combination(const Derived& d, const Syntax& s, const std::vecto
       out += A;
     }
   }
-  if (fz.idx.empty()) return tables + guard_sigma(s) + out + ";\n";
-  return tables + guard_sigma(s) + s.decl("rest", out) + fused_periodic(d, fz, pr, s, "rest");
+  const std::string near =
+      fz.idx.empty() ? out + ";\n" : s.decl("rest", out) + fused_periodic(d, fz, pr, s, "rest");
+  return tables + guard_sigma(s) + far_sides(d, s, ds, fz, pr) + near;
 }
 
 // Common subexpressions g(x) of the Taylor coefficients become locals u0, u1, ...

@@ -4909,6 +4909,13 @@ template <class T>
 T gaussian_trunc(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  const T Rf = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  if (x - Rf >= T(0.0)) {
+  return x + (T(-1)) * gaussian_fract<T>(x, sigma);
+  }
+  if (x + Rf < T(0.0)) {
+  return (T(1) + x) + (T(-1)) * gaussian_fract<T>(x, sigma);
+  }
   return (T(1) + x) + (T(-1)) * gaussian_fract<T>(x, sigma) + (T(-1)) * gaussian_step<T>(x, sigma);
 }
 
@@ -4920,12 +4927,97 @@ T gaussian_trunc(T x, T sigma) {
 template <class T>
 T gaussian_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> pt6[2] = {
+  const detail::Piece<T> pm[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), {(T(-1)), (T(-2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T rest = ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + T(2) * (T(1) * gaussian_fract_right<T>(x, sigma)) + (T(-2)) * gaussian_step<T>(x, sigma) + T(1) * gaussian_step_sq<T>(x, sigma) + (T(-2)) * detail::gauss_pw(x, sigma, pt6);
+  const T Rf = detail::image_z(T(6.0), detail::series_tol<T>()) * sigma;
+  if (x - Rf >= T(0.0)) {
+  const T rest = ((sigma*sigma) + (x*x));
+  const T y = x;
+  const T lam = ((T(-2))*y);
+  const T period = T(1);
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  const T s = sigma / period;
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
+    const T xr = y - period * floor(y / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
+    T acc = (((T(1)/T(2))*lam) + (T(1)/T(3)));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) + (T(4)*(sigma*sigma))) * ck + ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) + (-(T(1)/(detail::pi<T>()))*(T(1)/(kf))*lam)) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  const T yr = detail::reduce_signed(y, period);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  T th = T(0.0);
+  if (sigma > T(0.0)) {
+    for (T m = floor((yr - R) / period); m <= floor((yr + R) / period); m += T(1.0)) {
+      const T t = (yr - m * period) / sigma;
+      th += exp(T(-0.5) * t * t);
+    }
+  }
+  return rest + detail::gauss_periodic_image(y, sigma, period, p, T(3.0)) + (T(-2)) * sigma * sigma + T(2) * T(0.3989422804014327) * sigma * th;
+  }
+  if (x + Rf < T(0.0)) {
+  const T rest = ((T(2)*x) + (sigma*sigma) + (x*x) + T(1));
+  const T y = x;
+  const T lam = (((T(-2))*y) + (T(-2)));
+  const T period = T(1);
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  const T s = sigma / period;
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0906546478299144) : T(1.3366185552747945)) / s));
+    const T xr = y - period * floor(y / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
+    T acc = (((T(1)/T(2))*lam) + (T(1)/T(3)));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) + (T(4)*(sigma*sigma))) * ck + ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) + (-(T(1)/(detail::pi<T>()))*(T(1)/(kf))*lam)) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  const T yr = detail::reduce_signed(y, period);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  T th = T(0.0);
+  if (sigma > T(0.0)) {
+    for (T m = floor((yr - R) / period); m <= floor((yr + R) / period); m += T(1.0)) {
+      const T t = (yr - m * period) / sigma;
+      th += exp(T(-0.5) * t * t);
+    }
+  }
+  return rest + detail::gauss_periodic_image(y, sigma, period, p, T(5.0)) + (T(-2)) * sigma * sigma + T(2) * T(0.3989422804014327) * sigma * th;
+  }
+  const T rest = ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + detail::gauss_pw(x, sigma, pm) + T(2) * (T(1) * gaussian_fract_right<T>(x, sigma));
   const T y = x;
   const T lam = (((T(-2))*y) + (T(-2)));
   const T period = T(1);
