@@ -4262,16 +4262,21 @@ float bl_gaussian_pulse30_raw(float x, float sigma) {
     float ratio = q;
     float damp = q;
     float acc = (3.0/10.0);
+    float cr3_10 = (-0.30901699437494734);
+    float sr3_10 = (0.9510565162951536);
+    float cph3_10 = cr3_10;
+    float sph3_10 = sr3_10;
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
-      float cph3_10 = cos((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
-      float sph3_10 = sin((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
       acc += damp * (((1.0/(bl_pi()))*(1.0/(kf))*sph3_10) * ck + (-((-1.0) + cph3_10)*(1.0/(bl_pi()))*(1.0/(kf))) * sk);
       float cn = ck * c1 - sk * s1;
       sk = sk * c1 + ck * s1;
       ck = cn;
       ratio *= q2;
       damp *= ratio;
+      float cpn3_10 = cph3_10 * cr3_10 - sph3_10 * sr3_10;
+      sph3_10 = sph3_10 * cr3_10 + cph3_10 * sr3_10;
+      cph3_10 = cpn3_10;
     }
     return acc;
   }
@@ -4308,10 +4313,12 @@ float bl_gaussian_pulse30_u(float x, float sigma) {
     float ratio = q;
     float damp = q;
     float acc = (0.0);
+    float cr3_10 = (-0.30901699437494734);
+    float sr3_10 = (0.9510565162951536);
+    float cph3_10 = cr3_10;
+    float sph3_10 = sr3_10;
     for (int k = 1; k <= K + 2; ++k) {
       float kf = float(k);
-      float cph3_10 = cos((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
-      float sph3_10 = sin((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
       float w = w1 * kf;
       acc += damp * w * ((-((-1.0) + cph3_10)*(1.0/(bl_pi()))*(1.0/(kf))) * ck - ((1.0/(bl_pi()))*(1.0/(kf))*sph3_10) * sk);
       float cn = ck * c1 - sk * s1;
@@ -4319,6 +4326,9 @@ float bl_gaussian_pulse30_u(float x, float sigma) {
       ck = cn;
       ratio *= q2;
       damp *= ratio;
+      float cpn3_10 = cph3_10 * cr3_10 - sph3_10 * sr3_10;
+      sph3_10 = sph3_10 * cr3_10 + cph3_10 * sr3_10;
+      cph3_10 = cpn3_10;
     }
     return sigma * sigma * acc;
   }
@@ -4364,16 +4374,21 @@ float bl_gaussian_pulse30_sq_raw(float x, float sigma) {
     float ratio = q;
     float damp = q;
     float acc = (3.0/10.0);
+    float cr3_10 = (-0.30901699437494734);
+    float sr3_10 = (0.9510565162951536);
+    float cph3_10 = cr3_10;
+    float sph3_10 = sr3_10;
     for (int k = 1; k <= K; ++k) {
       float kf = float(k);
-      float cph3_10 = cos((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
-      float sph3_10 = sin((2.0) * bl_pi() * float(((k % 10) * 3) % 10) / (10.0));
       acc += damp * (((1.0/(bl_pi()))*(1.0/(kf))*sph3_10) * ck + (-((-1.0) + cph3_10)*(1.0/(bl_pi()))*(1.0/(kf))) * sk);
       float cn = ck * c1 - sk * s1;
       sk = sk * c1 + ck * s1;
       ck = cn;
       ratio *= q2;
       damp *= ratio;
+      float cpn3_10 = cph3_10 * cr3_10 - sph3_10 * sr3_10;
+      sph3_10 = sph3_10 * cr3_10 + cph3_10 * sr3_10;
+      cph3_10 = cpn3_10;
     }
     return acc;
   }
@@ -4569,7 +4584,46 @@ float bl_gaussian_floor(float x, float sigma) {
 
 float bl_gaussian_floor_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return ((sigma*sigma) + (x*x)) + 1.0 * bl_gaussian_fract_sq(x, sigma) + (-2.0) * (x * bl_gaussian_fract(x, sigma) + bl_gaussian_fract_u(x, sigma));
+  float rest = ((sigma*sigma) + (x*x));
+  float y = x;
+  float lam = ((-2.0)*y);
+  float period = 1.0;
+  BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float s = sigma / period;
+  if (s >= (0.08106660348620336)) {
+    int K = int(floor((1.084802204626763) / s));
+    float xr = y - period * floor(y / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
+    float acc = (((1.0/2.0)*lam) + (1.0/3.0));
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      acc += damp * ((((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) + (4.0*(sigma*sigma))) * ck + ((-(1.0/(bl_pi()))*(1.0/(kf))) + (-(1.0/(bl_pi()))*(1.0/(kf))*lam)) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  float yr = bl_reduce_signed(y, period);
+  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  float th = (0.0);
+  if (sigma > (0.0)) {
+    for (float m = floor((yr - R) / period); m <= floor((yr + R) / period); m += (1.0)) {
+      float t = (yr - m * period) / sigma;
+      th += exp((-0.5) * t * t);
+    }
+  }
+  return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (3.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
 }
 
 float bl_gaussian_floor_sq(float x, float sigma) {
@@ -4617,7 +4671,46 @@ float bl_gaussian_ceil(float x, float sigma) {
 
 float bl_gaussian_ceil_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return ((sigma*sigma) + (x*x)) + 1.0 * bl_gaussian_fract_sq(-x, sigma) + 2.0 * (x * bl_gaussian_fract(-x, sigma) - bl_gaussian_fract_u(-x, sigma));
+  float rest = ((sigma*sigma) + (x*x));
+  float y = -x;
+  float lam = ((-2.0)*y);
+  float period = 1.0;
+  BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float s = sigma / period;
+  if (s >= (0.08106660348620336)) {
+    int K = int(floor((1.084802204626763) / s));
+    float xr = y - period * floor(y / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
+    float acc = (((1.0/2.0)*lam) + (1.0/3.0));
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      acc += damp * ((((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) + (4.0*(sigma*sigma))) * ck + ((-(1.0/(bl_pi()))*(1.0/(kf))) + (-(1.0/(bl_pi()))*(1.0/(kf))*lam)) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  float yr = bl_reduce_signed(y, period);
+  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  float th = (0.0);
+  if (sigma > (0.0)) {
+    for (float m = floor((yr - R) / period); m <= floor((yr + R) / period); m += (1.0)) {
+      float t = (yr - m * period) / sigma;
+      th += exp((-0.5) * t * t);
+    }
+  }
+  return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (3.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
 }
 
 float bl_gaussian_ceil_sq(float x, float sigma) {
@@ -4660,17 +4753,148 @@ float bl_tent_ceil_sq(float x, float sigma) {
 
 float bl_gaussian_trunc(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  float Rf = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  if (x - Rf >= (0.0)) {
+  return x + (-1.0) * bl_gaussian_fract(x, sigma);
+  }
+  if (x + Rf < (0.0)) {
+  return (1.0 + x) + (-1.0) * bl_gaussian_fract(x, sigma);
+  }
   return (1.0 + x) + (-1.0) * bl_gaussian_fract(x, sigma) + (-1.0) * bl_gaussian_step(x, sigma);
 }
 
 float bl_gaussian_trunc_sq_raw(float x, float sigma) {
-  BlPiece pt6[4] = BlPiece[4](
+  BlPiece pm[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8]((-1.0), (-2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return ((2.0*x) + (sigma*sigma) + (x*x) + 1.0) + (-2.0) * bl_gaussian_fract(x, sigma) + 1.0 * bl_gaussian_fract_sq(x, sigma) + (-2.0) * (x * bl_gaussian_fract(x, sigma) + bl_gaussian_fract_u(x, sigma)) + 2.0 * (1.0 * bl_gaussian_fract_right(x, sigma)) + (-2.0) * bl_gaussian_step(x, sigma) + 1.0 * bl_gaussian_step_sq(x, sigma) + (-2.0) * bl_gauss_pw(x, sigma, 2, pt6);
+  float Rf = bl_image_z((6.0), BL_SERIES_TOL) * sigma;
+  if (x - Rf >= (0.0)) {
+  float rest = ((sigma*sigma) + (x*x));
+  float y = x;
+  float lam = ((-2.0)*y);
+  float period = 1.0;
+  BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float s = sigma / period;
+  if (s >= (0.08106660348620336)) {
+    int K = int(floor((1.084802204626763) / s));
+    float xr = y - period * floor(y / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
+    float acc = (((1.0/2.0)*lam) + (1.0/3.0));
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      acc += damp * ((((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) + (4.0*(sigma*sigma))) * ck + ((-(1.0/(bl_pi()))*(1.0/(kf))) + (-(1.0/(bl_pi()))*(1.0/(kf))*lam)) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  float yr = bl_reduce_signed(y, period);
+  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  float th = (0.0);
+  if (sigma > (0.0)) {
+    for (float m = floor((yr - R) / period); m <= floor((yr + R) / period); m += (1.0)) {
+      float t = (yr - m * period) / sigma;
+      th += exp((-0.5) * t * t);
+    }
+  }
+  return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (3.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
+  }
+  if (x + Rf < (0.0)) {
+  float rest = ((2.0*x) + (sigma*sigma) + (x*x) + 1.0);
+  float y = x;
+  float lam = (((-2.0)*y) + (-2.0));
+  float period = 1.0;
+  BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float s = sigma / period;
+  if (s >= (0.08106660348620336)) {
+    int K = int(floor((1.0906546478299144) / s));
+    float xr = y - period * floor(y / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
+    float acc = (((1.0/2.0)*lam) + (1.0/3.0));
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      acc += damp * ((((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) + (4.0*(sigma*sigma))) * ck + ((-(1.0/(bl_pi()))*(1.0/(kf))) + (-(1.0/(bl_pi()))*(1.0/(kf))*lam)) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  float yr = bl_reduce_signed(y, period);
+  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  float th = (0.0);
+  if (sigma > (0.0)) {
+    for (float m = floor((yr - R) / period); m <= floor((yr + R) / period); m += (1.0)) {
+      float t = (yr - m * period) / sigma;
+      th += exp((-0.5) * t * t);
+    }
+  }
+  return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (5.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
+  }
+  float rest = ((2.0*x) + (sigma*sigma) + (x*x) + 1.0) + bl_gauss_pw(x, sigma, 2, pm) + 2.0 * (1.0 * bl_gaussian_fract_right(x, sigma));
+  float y = x;
+  float lam = (((-2.0)*y) + (-2.0));
+  float period = 1.0;
+  BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  float s = sigma / period;
+  if (s >= (0.08106660348620336)) {
+    int K = int(floor((1.0906546478299144) / s));
+    float xr = y - period * floor(y / period);
+    float w1 = (2.0) * bl_pi() / period;
+    float c1 = cos(w1 * xr);
+    float s1 = sin(w1 * xr);
+    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
+    float q2 = q * q;
+    float ck = c1;
+    float sk = s1;
+    float ratio = q;
+    float damp = q;
+    float acc = (((1.0/2.0)*lam) + (1.0/3.0));
+    for (int k = 1; k <= K; ++k) {
+      float kf = float(k);
+      acc += damp * ((((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) + (4.0*(sigma*sigma))) * ck + ((-(1.0/(bl_pi()))*(1.0/(kf))) + (-(1.0/(bl_pi()))*(1.0/(kf))*lam)) * sk);
+      float cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  float yr = bl_reduce_signed(y, period);
+  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
+  float th = (0.0);
+  if (sigma > (0.0)) {
+    for (float m = floor((yr - R) / period); m <= floor((yr + R) / period); m += (1.0)) {
+      float t = (yr - m * period) / sigma;
+      th += exp((-0.5) * t * t);
+    }
+  }
+  return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (5.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
 }
 
 float bl_gaussian_trunc_sq(float x, float sigma) {

@@ -1,9 +1,11 @@
 #include "emit_common.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -213,7 +215,7 @@ FourierPlan plan_fourier(const Derived& d, double tol, int extra) {
 // `term` is added to acc (initially acc0) and `result` returned. extra: terms beyond the tolerance
 // count (for k-weighted series).
 std::string fourier_branch(const Derived& d, const Syntax& s, int extra, const std::string& acc0,
-                           const std::string& term, const std::string& result) {
+                           const std::string& term, const std::string& result, const std::string& arg = "x") {
   const FourierPlan pf = plan_fourier(d, 1e-8, extra), pd = plan_fourier(d, 1e-13, extra);
   auto pick = [&](double vf, double vd) {
     return s.cpp() ? "(sizeof(T) < sizeof(double) ? " + s.dbl(vf) + " : " + s.dbl(vd) + ")" : s.dbl(vf);
@@ -225,7 +227,7 @@ std::string fourier_branch(const Derived& d, const Syntax& s, int extra, const s
   out += "  if (s >= " + pick(pf.s_min, pd.s_min) + ") {\n";
   out +=
       std::string("    ") + (s.cpp() ? "const " : "") + "int K = int(floor(" + pick(pf.C, pd.C) + " / s));\n";
-  out += "  " + s.decl("xr", "x - period * floor(x / period)");
+  out += "  " + s.decl("xr", arg + " - period * floor(" + arg + " / period)");
   out += "  " + s.decl("w1", s.dbl(2) + " * " + s.pi() + " / period");
   out += "  " + s.decl("c1", "cos(w1 * xr)");
   out += "  " + s.decl("s1", "sin(w1 * xr)");
@@ -234,25 +236,36 @@ std::string fourier_branch(const Derived& d, const Syntax& s, int extra, const s
   out += "    " + s.T() + " ck = c1;\n    " + s.T() + " sk = s1;\n";
   out += "    " + s.T() + " ratio = q;\n    " + s.T() + " damp = q;\n";
   out += "    " + s.T() + " acc = " + acc0 + ";\n";
+  // Phases of boundaries at p/q of the period: (cph, sph) = (cos, sin)(2 pi k p/q), started at k = 1
+  // from emit-time constants and advanced by rotation like (ck, sk) (error ~k eps; no cos or sin
+  // inside the loop).
+  std::string phase_steps;
+  for (const auto& ph : d.phases) {
+    const std::string pq = std::to_string(ph.p) + "_" + std::to_string(ph.q);
+    const bool used_c =
+        d.ak.has(sym::var_phase(ph.p, ph.q, true)) || d.bk.has(sym::var_phase(ph.p, ph.q, true));
+    const bool used_s =
+        d.ak.has(sym::var_phase(ph.p, ph.q, false)) || d.bk.has(sym::var_phase(ph.p, ph.q, false));
+    if (!used_c && !used_s) continue;
+    const double ang = 2 * 3.14159265358979323846 * ph.p / ph.q;
+    out += "  " + s.decl("cr" + pq, s.dbl(std::cos(ang)));
+    out += "  " + s.decl("sr" + pq, s.dbl(std::sin(ang)));
+    out +=
+        "    " + s.T() + " cph" + pq + " = cr" + pq + ";\n    " + s.T() + " sph" + pq + " = sr" + pq + ";\n";
+    phase_steps += "    " + s.decl("cpn" + pq, "cph" + pq + " * cr" + pq + " - sph" + pq + " * sr" + pq);
+    phase_steps += "      sph" + pq + " = sph" + pq + " * cr" + pq + " + cph" + pq + " * sr" + pq +
+                   ";\n      cph" + pq + " = cpn" + pq + ";\n";
+  }
   out +=
       "    for (int k = 1; k <= K" + (extra ? " + " + std::to_string(extra) : std::string()) + "; ++k) {\n";
   out += "    " + s.decl("kf", s.cpp() ? "T(k)" : "float(k)");
   if (d.ak.has(sym::var_pk()) || d.bk.has(sym::var_pk()))
     out += "    " + s.decl("pk", std::string("(k % 2 == 1) ? ") + s.dbl(-1) + " : " + s.dbl(1));
-  // Phases of boundaries at p/q of the period, from the exact residue (k p) mod q.
-  for (const auto& ph : d.phases) {
-    const std::string pq = std::to_string(ph.p) + "_" + std::to_string(ph.q);
-    const std::string arg = s.dbl(2) + " * " + s.pi() + " * " + (s.cpp() ? "T(" : "float(") + "((k % " +
-                            std::to_string(ph.q) + ") * " + std::to_string(ph.p) + ") % " +
-                            std::to_string(ph.q) + ") / " + s.dbl(static_cast<double>(ph.q));
-    for (bool c : {true, false})
-      if (d.ak.has(sym::var_phase(ph.p, ph.q, c)) || d.bk.has(sym::var_phase(ph.p, ph.q, c)))
-        out += "    " + s.decl((c ? "cph" : "sph") + pq, std::string(c ? "cos(" : "sin(") + arg + ")");
-  }
   if (body.find("w") != std::string::npos) out += "    " + s.decl("w", "w1 * kf");
   out += "      acc += " + body + ";\n";
   out += "    " + s.decl("cn", "ck * c1 - sk * s1");
-  out += "      sk = sk * c1 + ck * s1;\n      ck = cn;\n      ratio *= q2;\n      damp *= ratio;\n";
+  out += "      sk = sk * c1 + ck * s1;\n      ck = cn;\n      ratio *= q2;\n      damp *= ratio;\n" +
+         phase_steps;
   out += "    }\n    return " + result + ";\n  }\n";
   return out;
 }
@@ -281,11 +294,295 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
          pieces_arg(s, "p", d.pieces.size()) + ", " + s.dbl(d.fmax) + ");\n";
 }
 
-std::string body_combination(const Derived& d, const Syntax& s) {
+// The Gaussian entries of a one-piece periodic atomic A (fract) and of A^2, when both were derived
+// with polynomial pieces of degree <= 1 (A) and <= 2 (A^2) and no interior break.
+struct FusablePair {
+  const Derived* a = nullptr;
+  const Derived* a2 = nullptr;
+};
+FusablePair fusable_pair(const std::string& atomic, const std::vector<Derived>* ds) {
+  FusablePair f;
+  if (!ds) return f;
+  for (const Derived& e : *ds) {
+    if (e.kernel != Kernel::Gaussian || e.atomic_name != atomic || e.body != sym::Body::PeriodicTable ||
+        e.rule == "moment")
+      continue;
+    (e.squared ? f.a2 : f.a) = &e;
+  }
+  auto ok = [](const Derived* e, size_t maxdeg) {
+    return e && e->pieces.size() == 1 && e->pieces[0].c.size() <= maxdeg + 1 && e->phases.empty();
+  };
+  if (!ok(f.a, 1) || !ok(f.a2, 2)) f = FusablePair{};
+  return f;
+}
+
+// Fused Gaussian form of the terms c0 A(y) + c2 A(y)^2 + c1 x A(y) of a combination, y = sgn x,
+// A periodic with one piece g(t) = g0 + g1 t on [0, T) (fract): one dual series instead of the
+// three entries A~, (A^2)~ and E[U A(y+U)] (floor^2 called fract three times). With x = sgn y,
+//   E[x' A(y')] = sgn E[y' A(y')] = sgn (y A~(y) + E[V A(y+V)]),  y' = y + V, V ~ N(0, sigma^2),
+// and Stein's identity E[V A(y+V)] = sigma^2 E[A'(y+V)] = sigma^2 (g1 + J theta(y)), where
+// J = g(0) - g(T) is the jump at the period boundary and theta(y) = sum_m phi_sigma(y - m T) the
+// periodised Gaussian. So the terms are E[h(y+V)] + c1 sgn sigma^2 (g1 + J theta(y)) with the
+// periodic polynomial h = lam A + c2 A^2, lam = c0 + c1 sgn y (a runtime coefficient). Fourier
+// regime: theta = (1/T)(1 + 2 sum_k damp_k cos(2 pi k y/T)) joins the loop of h; image regime:
+// gauss_periodic_image of h plus theta's image sum (exps within image_z sigma). lam multiplies
+// A~'s absolute error as in x A~(x); the theta coefficient sigma^2 = s^2 T^2 is bounded by 4 T^2
+// in the plan (s^2 e^{-2 pi^2 s^2 u^2} is below tol for s > 2 at any u >= 1).
+struct FusedTerms {
+  std::string atomic;
+  int sgn = 0;
+  GiNaC::numeric c0 = 0, c1 = 0, c2 = 0;
+  std::vector<size_t> idx;  // the terms it replaces
+};
+
+std::string fused_periodic(const Derived& d, const FusedTerms& f, const FusablePair& pr, const Syntax& s,
+                           const std::string& rest) {
+  using GiNaC::ex;
+  const Derived& A = *pr.a;
+  const Derived& A2 = *pr.a2;
+  const GiNaC::symbol lam("lam"), y("y");
+  const ex T = A.period;
+  const GiNaC::numeric Tn = GiNaC::ex_to<GiNaC::numeric>(T.evalf());
+  std::vector<GiNaC::numeric> g = A.pieces[0].c;
+  g.resize(2, 0);
+  const GiNaC::numeric J = g[0] - (g[0] + g[1] * GiNaC::ex_to<GiNaC::numeric>(T));
+  const ex sig = sym::var_sigma();
+  const GiNaC::numeric c1s = f.c1 * f.sgn;
+  Derived dd = A2;  // period, one piece: the plan's inputs
+  dd.ak = (lam * A.ak + f.c2 * A2.ak + c1s * sig * sig * 2 * J / T).expand();
+  dd.bk = (lam * A.bk + f.c2 * A2.bk).expand();
+  dd.a0 = (lam * A.a0 + f.c2 * A2.a0 + c1s * sig * sig * (g[1] + J / T)).expand();
+  const double lamb = std::fabs(f.c0.to_double()) + std::fabs(f.c1.to_double());
+  const double c2b = std::fabs(f.c2.to_double());
+  dd.coef_bound = lamb * A.coef_bound + c2b * A2.coef_bound +
+                  std::fabs(c1s.to_double()) * 2 * std::fabs(J.to_double()) * 4 * Tn.to_double();
+  dd.fmax = lamb * A.fmax + c2b * A2.fmax;
+  // h's piece: lam g + c2 g^2 (coefficients printed as runtime expressions).
+  std::vector<ex> hc(8, ex(0));
+  for (size_t k = 0; k < A.pieces[0].c.size(); ++k) hc[k] += lam * A.pieces[0].c[k];
+  for (size_t k = 0; k < A2.pieces[0].c.size(); ++k) hc[k] += f.c2 * A2.pieces[0].c[k];
+  std::string coeffs;
+  for (int k = 0; k < 8; ++k) coeffs += (k ? ", " : "") + s.ex(hc[k].expand());
+  std::string out;
+  out += s.decl("y", f.sgn < 0 ? "-x" : "x");
+  out += s.decl("lam", s.ex(f.c0 + c1s * y));
+  out += s.decl("period", s.ex(T));
+  if (s.cpp())
+    out += "  const detail::Piece<T> p[1] = {{" + s.bound(A.pieces[0].lo) + ", " + s.bound(A.pieces[0].hi) +
+           ", {" + coeffs + "}}};\n";
+  else
+    out += "  BlPiece p[4] = BlPiece[4](BlPiece(" + s.bound(A.pieces[0].lo) + ", " + s.bound(A.pieces[0].hi) +
+           ", float[8](" + coeffs +
+           ")), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), "
+           "BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, "
+           "float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));\n";
+  const std::string lead = rest.empty() ? "" : rest + " + ";
+  out += fourier_branch(dd, s, 0, s.ex(dd.a0),
+                        "damp * (" + s.ex(dd.ak) + " * cos(th) + " + s.ex(dd.bk) + " * sin(th))",
+                        lead + "acc", "y");
+  // Image regime: h's image sum plus theta's exps within R = z sigma (z = image_z(1, tol): the
+  // neglected exps sum to < tol/(sqrt(2 pi)) relative to theta's scale 1/sigma).
+  const std::string tol = s.cpp() ? "detail::series_tol<T>()" : "BL_SERIES_TOL";
+  out += s.decl("yr", s.helper("reduce_signed") + "(y, period)");
+  out += s.decl("R", s.helper("image_z") + "(" + s.dbl(1) + ", " + tol + ") * sigma");
+  out += "  " + s.T() + " th = " + s.dbl(0) + ";\n";
+  out += "  if (sigma > " + s.dbl(0) + ") {\n";
+  out += "    for (" + s.T() +
+         " m = floor((yr - R) / period); m <= floor((yr + R) / period); m += " + s.dbl(1) + ") {\n";
+  out += "    " + s.decl("t", "(yr - m * period) / sigma");
+  out += "      th += exp(" + s.dbl(-0.5) + " * t * t);\n    }\n  }\n";
+  const double inv_sqrt_2pi = 0.3989422804014327;
+  out += "  return " + lead + s.helper("gauss_periodic_image") + "(y, sigma, period, " +
+         pieces_arg(s, "p", 1) + ", " + s.dbl(dd.fmax) + ") + " + s.ex(c1s * g[1]) + " * sigma * sigma + " +
+         s.ex(c1s * J) + " * " + s.dbl(inv_sqrt_2pi) + " * sigma * th;\n";
+  return out;
+}
+
+// Gaussian combinations whose piecewise terms (step, x step, A step) break only inside [bmin, bmax]
+// (trunc, trunc^2: at 0): for x - R >= bmax (x + R < bmin) each such term is the smoothing of its
+// outer polynomial piece, a polynomial in x and sigma, and A_right(x - b) is A~(x) (0), up to
+// sum |c| Phic(z) + sigma phi(z) terms, R = z sigma, z = image_z(sum |c|, tol): the entry is then
+// the periodic terms alone (fused when they are several). Returns the two guarded branches, or ""
+// when a term does not fit (a non-polynomial outer piece, degree > 2, another periodic atomic).
+std::string far_sides(const Derived& d, const Syntax& s, const std::vector<Derived>* ds,
+                      const FusedTerms& fz0, const FusablePair& pr) {
   using Kind = sym::CombinationTerm::Kind;
-  std::string tables;
-  std::string out = "  return " + s.ex(d.closed);
+  if (d.kernel != Kernel::Gaussian || !ds) return "";
+  const GiNaC::ex x = sym::var_x(), sig = sym::var_sigma();
+  auto smooth_poly = [&](const std::vector<GiNaC::numeric>& c) -> std::optional<GiNaC::ex> {
+    if (c.size() > 3) return std::nullopt;  // E[(x+U)^k], k <= 2
+    const GiNaC::ex m[3] = {1, x, x * x + sig * sig};
+    GiNaC::ex r = 0;
+    for (size_t k = 0; k < c.size(); ++k) r += c[k] * m[k];
+    return r;
+  };
+  std::optional<double> bmin, bmax;
+  double csum = 0;
+  GiNaC::ex polyR = d.closed, polyL = d.closed;
+  FusedTerms fR = fz0, fL = fz0;
+  std::string periodic;                     // the atomic of the periodic terms
+  std::vector<std::string> otherR, otherL;  // periodic terms outside the fused group
+  auto note_break = [&](double b) {
+    bmin = bmin ? std::min(*bmin, b) : b;
+    bmax = bmax ? std::max(*bmax, b) : b;
+  };
   for (size_t i = 0; i < d.terms.size(); ++i) {
+    const auto& t = d.terms[i];
+    const bool fused = std::find(fz0.idx.begin(), fz0.idx.end(), i) != fz0.idx.end();
+    const std::vector<PolyPiece>* ps = nullptr;
+    if (t.kind == Kind::Pieces) ps = &t.pieces;
+    if (t.kind == Kind::Smoothed && t.xpow == 0) {
+      for (const Derived& e : *ds)
+        if (e.kernel == Kernel::Gaussian && e.atomic_name == t.atomic && e.squared == t.squared &&
+            e.body == sym::Body::PiecewiseTable && e.rule != "moment")
+          ps = &e.pieces;
+    }
+    if (ps) {
+      if (ps->empty() || ps->front().lo.finite() || ps->back().hi.finite()) return "";
+      for (size_t j = 0; j + 1 < ps->size(); ++j) note_break((*ps)[j].hi.to_double());
+      const auto l = smooth_poly(ps->front().c), r = smooth_poly(ps->back().c);
+      if (!l || !r) return "";
+      polyL += t.coeff * *l;
+      polyR += t.coeff * *r;
+      csum += std::fabs(t.coeff.to_double());
+      continue;
+    }
+    if (fused) continue;
+    if (t.kind == Kind::HalfLines) {
+      // A (full + sum rc 1{x >= b}): right of every b all of it, left of them the full part.
+      if (!pr.a || t.atomic != fz0.atomic || t.arg_sign != 1) return "";
+      GiNaC::numeric all = t.full;
+      for (const auto& [rc, b] : t.right) {
+        if (!GiNaC::is_a<GiNaC::numeric>(b.evalf())) return "";
+        note_break(GiNaC::ex_to<GiNaC::numeric>(b.evalf()).to_double());
+        all += rc;
+        csum += std::fabs(rc.to_double());
+      }
+      fR.c0 += t.coeff * all;
+      fL.c0 += t.coeff * t.full;
+      continue;
+    }
+    // A periodic term outside the group (Smoothed of a periodic atomic): the same on both sides.
+    if (t.kind != Kind::Smoothed || t.xpow != 0) return "";
+    Derived other;
+    other.atomic_name = t.atomic;
+    other.kernel = d.kernel;
+    other.squared = t.squared;
+    const std::string A =
+        s.num(t.coeff) + " * " + s.fn(impl_name(other)) + "(" + (t.arg_sign < 0 ? "-x" : "x") + ", sigma)";
+    if (!pr.a || t.atomic != fz0.atomic || t.arg_sign != fz0.sgn || t.squared) {
+      otherR.push_back(A);
+      otherL.push_back(A);
+    } else {
+      fR.c0 += t.coeff;
+      fL.c0 += t.coeff;
+    }
+  }
+  if (!bmin || csum == 0) return "";
+  const std::string tol = s.cpp() ? "detail::series_tol<T>()" : "BL_SERIES_TOL";
+  std::string out = s.decl("Rf", s.helper("image_z") + "(" + s.dbl(csum) + ", " + tol + ") * sigma");
+  auto side = [&](const std::string& cond, const GiNaC::ex& poly, const FusedTerms& f,
+                  const std::vector<std::string>& others) {
+    std::string rest = s.ex(poly.expand());
+    for (const auto& o : others) rest += " + " + o;
+    std::string b = "  if (" + cond + ") {\n";
+    const bool one = f.c1.is_zero() && f.c2.is_zero();
+    if (!pr.a || (one && f.c0.is_zero())) {
+      b += "  return " + rest + ";\n";
+    } else if (one) {
+      Derived a;
+      a.atomic_name = f.atomic;
+      a.kernel = d.kernel;
+      b += "  return " + rest + " + " + s.num(f.c0) + " * " + s.fn(impl_name(a)) + "(" +
+           (f.sgn < 0 ? "-x" : "x") + ", sigma);\n";
+    } else {
+      b += s.decl("rest", rest) + fused_periodic(d, f, pr, s, "rest");
+    }
+    return b + "  }\n";
+  };
+  out += side("x - Rf >= " + s.dbl(*bmax), polyR, fR, otherR);
+  out += side("x + Rf < " + s.dbl(*bmin), polyL, fL, otherL);
+  return out;
+}
+
+std::string body_combination(const Derived& d, const Syntax& s, const std::vector<Derived>* ds) {
+  using Kind = sym::CombinationTerm::Kind;
+  // Gaussian: fuse the terms A(y), A(y)^2, x A(y) of one periodic atomic (see fused_periodic).
+  FusedTerms fz;
+  FusablePair pr;
+  if (d.kernel == Kernel::Gaussian) {
+    for (size_t i = 0; i < d.terms.size(); ++i) {
+      const auto& t = d.terms[i];
+      const bool plain = t.kind == Kind::Smoothed && t.xpow == 0;
+      const bool first = t.kind == Kind::FirstMoment && t.xpow == 1 && !t.squared;
+      if (!plain && !first) continue;
+      if (fz.idx.empty()) {
+        pr = fusable_pair(t.atomic, ds);
+        if (!pr.a) continue;
+        fz.atomic = t.atomic;
+        fz.sgn = t.arg_sign;
+      }
+      if (t.atomic != fz.atomic || t.arg_sign != fz.sgn) continue;
+      if (first)
+        fz.c1 += t.coeff;
+      else if (t.squared)
+        fz.c2 += t.coeff;
+      else
+        fz.c0 += t.coeff;
+      fz.idx.push_back(i);
+    }
+    // Worth it when the fused terms would call more than one entry (floor, ceil call one).
+    if (fz.idx.size() < 2 && fz.c1.is_zero()) fz = FusedTerms{};
+  }
+  // Gaussian: the piecewise terms (step, step^2, x step of trunc^2) with the same breaks are one
+  // table of summed pieces, smoothed by one gauss_pw call (one erfc and exp per break, not one per
+  // term).
+  std::vector<PolyPiece> merged;
+  std::vector<size_t> merged_idx;
+  if (d.kernel == Kernel::Gaussian && ds) {
+    for (size_t i = 0; i < d.terms.size(); ++i) {
+      const auto& t = d.terms[i];
+      const std::vector<PolyPiece>* ps = nullptr;
+      if (t.kind == Kind::Pieces) ps = &t.pieces;
+      if (t.kind == Kind::Smoothed && t.xpow == 0 && t.arg_sign == 1)
+        for (const Derived& e : *ds)
+          if (e.kernel == Kernel::Gaussian && e.atomic_name == t.atomic && e.squared == t.squared &&
+              e.body == sym::Body::PiecewiseTable && e.rule != "moment")
+            ps = &e.pieces;
+      if (!ps) continue;
+      auto same_breaks = [&] {
+        if (merged.size() != ps->size()) return false;
+        for (size_t j = 0; j + 1 < ps->size(); ++j)
+          if (!(merged[j].hi.value - (*ps)[j].hi.value).is_zero() || merged[j].hi.inf != (*ps)[j].hi.inf)
+            return false;
+        return true;
+      };
+      if (merged.empty()) {
+        merged = *ps;
+        for (auto& pc : merged)
+          for (auto& c : pc.c) c = c * t.coeff;
+      } else if (same_breaks()) {
+        for (size_t j = 0; j < ps->size(); ++j) {
+          auto& mc = merged[j].c;
+          if (mc.size() < (*ps)[j].c.size()) mc.resize((*ps)[j].c.size(), 0);
+          for (size_t k = 0; k < (*ps)[j].c.size(); ++k) mc[k] += t.coeff * (*ps)[j].c[k];
+        }
+      } else {
+        continue;
+      }
+      merged_idx.push_back(i);
+    }
+    if (merged_idx.size() < 2) merged_idx.clear();
+  }
+  std::string tables;
+  std::string out = fz.idx.empty() ? "  return " + s.ex(d.closed) : s.ex(d.closed);
+  if (!merged_idx.empty()) {
+    tables += piece_table(s, "pm", merged);
+    out += " + " + s.helper("gauss_pw") + "(x, sigma, " + pieces_arg(s, "pm", merged.size()) + ")";
+  }
+  for (size_t i = 0; i < d.terms.size(); ++i) {
+    if (std::find(fz.idx.begin(), fz.idx.end(), i) != fz.idx.end()) continue;
+    if (std::find(merged_idx.begin(), merged_idx.end(), i) != merged_idx.end()) continue;
     const auto& t = d.terms[i];
     Derived other;
     other.atomic_name = t.atomic;
@@ -320,7 +617,9 @@ std::string body_combination(const Derived& d, const Syntax& s) {
       out += A;
     }
   }
-  return tables + guard_sigma(s) + out + ";\n";
+  const std::string near =
+      fz.idx.empty() ? out + ";\n" : s.decl("rest", out) + fused_periodic(d, fz, pr, s, "rest");
+  return tables + guard_sigma(s) + far_sides(d, s, ds, fz, pr) + near;
 }
 
 // Common subexpressions g(x) of the Taylor coefficients become locals u0, u1, ...
@@ -624,7 +923,7 @@ std::string range_clamp(const Derived& d, Lang lang) {
   return out + "  return v;\n";
 }
 
-std::string body(const Derived& d, Lang lang) {
+std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
   const Syntax s{lang};
   std::string b;
   switch (d.body) {
@@ -638,7 +937,7 @@ std::string body(const Derived& d, Lang lang) {
       b = body_periodic(d, s);
       break;
     case Body::Combination:
-      b = body_combination(d, s);
+      b = body_combination(d, s, ds);
       break;
     case Body::Antiderivative:
       b = body_antiderivative(d, s);

@@ -17,8 +17,9 @@ std::string impl_name(const Derived& d);
 std::string plain_impl_name(const std::string& atomic);
 
 // The statements of the function body, in C++ (template over T, with x and sigma in scope) or
-// GLSL (float).
-std::string body(const Derived& d, Lang lang);
+// GLSL (float). ds: all derived entries (a Gaussian combination fuses the entries of its periodic
+// atomic from them; null: no fusion).
+std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds = nullptr);
 
 // The statements of an entry's body that clamp its value `v` to the range the true value lies in
 // ([inf f, sup f] for E[f(x+U)], the range of f^2 for E[f^2]), or "" when the atomic's range is
@@ -32,9 +33,13 @@ std::string body_u(const Derived& d, Lang lang);
 std::string series_body(const Derived& d, Lang lang);
 // Antiderivative entries: the difference quotient of F (F2) at half-width hh, impl_name(d) + "_diff".
 std::string diff_body(const Derived& d, Lang lang);
-inline bool has_series(const Derived& d) { return d.body == sym::Body::Antiderivative; }
+inline bool has_series(const Derived& d) {
+  return d.body == sym::Body::Antiderivative;
+}
 // True for the entries that get such a first-moment companion.
-inline bool has_first_moment(const Derived& d) { return d.body == sym::Body::PeriodicTable && !d.squared; }
+inline bool has_first_moment(const Derived& d) {
+  return d.body == sym::Body::PeriodicTable && !d.squared;
+}
 // Body of E[f(x+U) 1{x+U >= 0}] for a periodic entry (not squared): impl_name(d) + "_right", used by
 // products of f with a piecewise-constant atomic (trunc^2's fract * step).
 std::string body_half_line(const Derived& d, Lang lang);

@@ -106,11 +106,11 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
     const std::string clamp = range_clamp(d, Lang::Cpp);
     if (clamp.empty()) {
       t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
-        << body(d, Lang::Cpp) << "}\n\n";
+        << body(d, Lang::Cpp, &ds) << "}\n\n";
     } else {
       t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d)
         << "_raw(T x, T sigma) {\n"
-        << body(d, Lang::Cpp) << "}\n\n"
+        << body(d, Lang::Cpp, &ds) << "}\n\n"
         << "// The entry above, kept inside the range of the true value (rounding can leave it).\n"
         << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n  const T v = " << impl_name(d)
         << "_raw<T>(x, sigma);\n"

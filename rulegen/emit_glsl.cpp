@@ -43,10 +43,10 @@ void emit_glsl(const sym::Catalog& cat, const std::vector<Derived>& ds, const st
         << diff_body(d, Lang::Glsl) << "}\n\n";
     const std::string clamp = range_clamp(d, Lang::Glsl);
     if (clamp.empty()) {
-      g << "float " << d.glsl_name() << "(float x, float sigma) {\n" << body(d, Lang::Glsl) << "}\n\n";
+      g << "float " << d.glsl_name() << "(float x, float sigma) {\n" << body(d, Lang::Glsl, &ds) << "}\n\n";
     } else {
       g << "float " << d.glsl_name() << "_raw(float x, float sigma) {\n"
-        << body(d, Lang::Glsl) << "}\n\n"
+        << body(d, Lang::Glsl, &ds) << "}\n\n"
         << "float " << d.glsl_name() << "(float x, float sigma) {\n  float v = " << d.glsl_name()
         << "_raw(x, sigma);\n"
         << clamp << "}\n\n";

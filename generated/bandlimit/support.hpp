@@ -1156,35 +1156,49 @@ inline T break_tail(const T* e, int dd, T t, T step) {
   return s;
 }
 
+// The window multiple z = image_z(4 fmax, series_tol) + 1 of gauss_periodic_breaks, formed by its
+// callers (small, inlined: a literal fmax folds the log and sqrt at compile time).
+template <class T>
+inline T breaks_z(T fmax) {
+  return image_z(T(4) * fmax, series_tol<T>()) + T(1);
+}
+
 // Break decomposition of a periodic f (one period of pieces on [0, period)), or with half = true
 // of f(y) 1{y >= 0}: the polynomial of the piece containing x plus one far-side tail per break
 // within z sigma of x (gauss_pw_breaks, repeated every period; the jump polynomial of each break
-// type is the same in every period). z = image_z(4 fmax, tol) + 1: dropping the breaks beyond it
+// type is the same in every period). z = breaks_z(fmax) (passed in): dropping the breaks beyond it
 // replaces f there by a polynomial continuation of degree <= 7 whose weight sigma^k z^k Phic(z)
 // stays below tol for sigma <= period. Valid for sigma at most the narrowest piece (/4 when the
 // degree exceeds 3), like gauss_pw_breaks; one erfc and one exp per break in the window instead
 // of a Gauss-Legendre rule per piece. x is the exact signed remainder (full period) or x itself
 // (half line, |x| a few sigma).
 template <class T, int N>
-inline T gauss_periodic_breaks(T x, T sigma, T period, const Piece<T> (&p)[N], T fmax, bool half) {
+inline T gauss_periodic_breaks(T x, T sigma, T period, const Piece<T> (&p)[N], T z, bool half) {
   using std::floor;
   // Jump polynomials, about the break, of each break type: i = 0 the period boundary (last piece
   // of the previous period to the first), i > 0 between pieces i-1 and i; e0: from 0 to p[0] at
-  // the half line's start.
+  // the half line's start. Formed on first use (at small sigma most calls meet no break) and only
+  // up to the degree of the two pieces.
   T e[N][kMaxCoef], e0[kMaxCoef];
-  int deg[N], deg0;
-  for (int i = 0; i < N; ++i) {
-    T a[kMaxCoef], b[kMaxCoef];
-    taylor_shift(p[i].c, kMaxCoef - 1, p[i].lo, a);
+  int deg[N], deg0 = -1;
+  for (int i = 0; i < N; ++i) deg[i] = -1;
+  auto jump = [&](int i) {
     const Piece<T>& prev = p[i == 0 ? N - 1 : i - 1];
-    taylor_shift(prev.c, kMaxCoef - 1, i == 0 ? period : p[i].lo, b);
-    for (int k = 0; k < kMaxCoef; ++k) e[i][k] = a[k] - b[k];
-    deg[i] = degree(e[i]);
+    const int da = degree(p[i].c), db = degree(prev.c), dm = da > db ? da : db;
+    T a[kMaxCoef], b[kMaxCoef];
+    taylor_shift(p[i].c, da, p[i].lo, a);
+    taylor_shift(prev.c, db, i == 0 ? period : p[i].lo, b);
+    for (int k = da + 1; k <= dm; ++k) a[k] = T(0);
+    for (int k = db + 1; k <= dm; ++k) b[k] = T(0);
+    for (int k = 0; k <= dm; ++k) e[i][k] = a[k] - b[k];
+    int d = dm;
+    while (d > 0 && e[i][d] == T(0)) --d;
+    deg[i] = d;
     if (i == 0) {
-      for (int k = 0; k < kMaxCoef; ++k) e0[k] = a[k];
-      deg0 = degree(e0);
+      for (int k = 0; k <= da; ++k) e0[k] = a[k];
+      deg0 = da;
     }
-  }
+  };
   // Base piece j of period m0 containing x (right-continuous; for x < 0 the piece is found on the
   // signed remainder as periodic_eval does), or none (0) left of a half line.
   T s = T(0);
@@ -1208,7 +1222,6 @@ inline T gauss_periodic_breaks(T x, T sigma, T period, const Piece<T> (&p)[N], T
       if (g[k] != T(0)) s += g[k] * s2k * mk;
     }
   }
-  const T z = image_z(T(4) * fmax, series_tol<T>()) + T(1);
   const T R = z * sigma;
   T m1 = floor((x - R) / period);
   if (half && m1 < T(0)) m1 = T(0);
@@ -1217,11 +1230,12 @@ inline T gauss_periodic_breaks(T x, T sigma, T period, const Piece<T> (&p)[N], T
     const T shift = m * period;
     for (int i = 0; i < N; ++i) {
       const bool start = half && m == T(0) && i == 0;
+      const T d = (p[i].lo + shift) - x;  // break minus x
+      if (!(d < R) || !(d > -R)) continue;
+      if (start ? deg0 < 0 : deg[i] < 0) jump(i);
       const T* ei = start ? e0 : e[i];
       const int di = start ? deg0 : deg[i];
       if (di == 0 && ei[0] == T(0)) continue;
-      const T d = (p[i].lo + shift) - x;  // break minus x
-      if (!(d < R) || !(d > -R)) continue;
       if (d > T(0)) {
         s += break_tail(ei, di, d / sigma, sigma);
       } else {
@@ -1255,7 +1269,7 @@ inline T gauss_periodic_image(T x, T sigma, T period, const Piece<T> (&p)[N], T 
   using std::floor;
   if (sigma == T(0)) return periodic_eval(x, period, p);
   const T xr = reduce_signed(x, period);
-  if (periodic_breaks_ok(sigma, p)) return gauss_periodic_breaks(xr, sigma, period, p, fmax, false);
+  if (periodic_breaks_ok(sigma, p)) return gauss_periodic_breaks(xr, sigma, period, p, breaks_z(fmax), false);
   const T R = image_z(fmax, series_tol<T>()) * sigma;
   const T m0 = floor((xr - R) / period), m1 = floor((xr + R) / period);
   T s = T(0);
@@ -1461,7 +1475,7 @@ inline T gauss_periodic_right(T x, T sigma, T period, const Piece<T> (&p)[N], T 
       return a0 * Phi(z) + rho * phi(z) * acc;
     }
   }
-  if (periodic_breaks_ok(sigma, p)) return gauss_periodic_breaks(x, sigma, period, p, fmax, true);
+  if (periodic_breaks_ok(sigma, p)) return gauss_periodic_breaks(x, sigma, period, p, breaks_z(fmax), true);
   const T R = image_z(fmax, tol) * sigma;
   T m0 = floor((x - R) / period);
   if (m0 < T(0)) m0 = T(0);
