@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "compiler/graph_facts.hpp"
+#include "compiler/square_product.hpp"
 #include "ir/atomics.hpp"
 #include "ir/ranges.hpp"
 
@@ -451,6 +452,56 @@ class Lowering {
     return op(LOp::Min, op(LOp::Max, div(dot, den), k(-1)), k(1));
   }
 
+  // (alpha_a + beta_a SA) (alpha_b + beta_b SB) with SA, SB square waves of affine functions of one
+  // root R whose frequencies have an integer ratio (zigzag's hue and band): exact mean and variance
+  // from E[SA SB] (compiler/square_product.hpp), E[SA] and E[SB] as smoothed. False: not that form.
+  bool square_pair_product(const ir::Node& n, const Rule& r, Val& out) {
+    const Affine &fa = facts_.aff[n.a], &fb = facts_.aff[n.b];
+    auto is_square = [&](int j) {
+      return j >= 0 && g_.node(j).op == Op::Call &&
+             std::string(ir::atomic_name(g_.node(j).atomic)) == "square";
+    };
+    if (!is_square(fa.base) || !is_square(fb.base) || fa.base == fb.base || fa.beta == 0 || fb.beta == 0)
+      return false;
+    const int sa = fa.base, sb = fb.base;
+    const Affine &xa = facts_.aff[g_.node(sa).a], &xb = facts_.aff[g_.node(sb).a];
+    if (xa.base < 0 || xa.base != xb.base || xa.beta == 0 || xb.beta == 0) return false;
+    Val& root = vals_[xa.base];
+    if (root.var < 0 || vals_[sa].var < 0 || vals_[sb].var < 0) return false;
+    // E[SA], E[SB] must be the same Gaussian expectations as E[SA SB], or the covariance is off.
+    if (s_.at(sa).kind != Kind::Gaussian || s_.at(sb).kind != Kind::Gaussian) return false;
+    // The slower wave's argument x = beta_s R + alpha_s; the faster one's is q x + d, q an integer.
+    const bool a_slow = std::fabs(xa.beta) <= std::fabs(xb.beta);
+    const Affine &slow = a_slow ? xa : xb, &fast = a_slow ? xb : xa;
+    const double ratio = fast.beta / slow.beta, q = std::round(ratio);
+    if (q == 0 || std::fabs(q) > 16 || std::fabs(ratio - q) > 1e-9 * std::fabs(ratio)) return false;
+    const auto pieces = square_product_intervals(static_cast<int>(q), fast.alpha - q * slow.alpha);
+    const int mx = add(mul(k(static_cast<float>(slow.beta)), root.mean), k(static_cast<float>(slow.alpha)));
+    const int sx = mul(k(static_cast<float>(std::fabs(slow.beta))), scaled_sd(root, r));
+    const std::string fr = kernel_name("gaussian", "fract", false);
+    double width = 0;
+    int both = -1;  // E[SA SB] - total width
+    for (const auto& [lo, hi] : pieces) {
+      width += hi - lo;
+      const int t = sub(call(fr, {sub(mx, k(static_cast<float>(hi))), sx}),
+                        call(fr, {sub(mx, k(static_cast<float>(lo))), sx}));
+      both = both < 0 ? t : add(both, t);
+    }
+    const int p = both < 0 ? k(0) : add(k(static_cast<float>(width)), both);
+    const int ea = vals_[sa].mean, eb = vals_[sb].mean;
+    // E[(al + be SA)(al' + be' SB)] for indicators SA, SB.
+    auto expect = [&](double al, double be, double al2, double be2) {
+      return add(add(k(static_cast<float>(al * al2)), mul(k(static_cast<float>(al * be2)), eb)),
+                 add(mul(k(static_cast<float>(be * al2)), ea), mul(k(static_cast<float>(be * be2)), p)));
+    };
+    out.mean = expect(fa.alpha, fa.beta, fb.alpha, fb.beta);
+    // Squares: (al + be S)^2 = al^2 + (2 al be + be^2) S.
+    const int m2 = expect(fa.alpha * fa.alpha, 2 * fa.alpha * fa.beta + fa.beta * fa.beta,
+                          fb.alpha * fb.alpha, 2 * fb.alpha * fb.beta + fb.beta * fb.beta);
+    out.var = op(LOp::NonNeg, sub(m2, sq(out.mean)));
+    return true;
+  }
+
   // rho = 0 known while lowering: the covariance terms are left out rather than multiplied by 0
   // (x * 0 is not folded: it is NaN for an infinite x), so optimize() can drop what feeds them.
   bool rho_zero(const Rule& r) const {
@@ -469,6 +520,10 @@ class Lowering {
         Val& x = vals_[pa.first];
         return convolve("gaussian", "pow" + std::to_string(deg), x.mean, scaled_sd(x, r), x.var);
       }
+    }
+    if (n.op == Op::Mul) {
+      Val sp;
+      if (square_pair_product(n, r, sp)) return sp;
     }
     // Identical operands (hash-consing gives them one node id) are perfectly correlated: x - x = 0,
     // x + x = 2x, x / x = 1 exactly, and x * x is pow2 with its exact Gaussian moments.
