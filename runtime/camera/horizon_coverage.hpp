@@ -9,15 +9,17 @@
 // positive on the plane's side. The shading point is the mean of the filter restricted to the plane:
 // c + s phi(z) / Phi(z) n, z = h / s, n the unit normal towards the plane (the inverse Mills ratio).
 // Without a horizon in the image (|grad d.z| = 0), with s = 0 or a finite max_distance the coverage
-// is the centre's hit (0 or 1). Coverage below kMinCoverage counts as a miss (it moves the pixel by
-// less than 1e-6 of the sky/plane difference); above 1 - kMinCoverage the centre is shaded as is.
+// is the centre's hit (0 or 1). Coverage below kMinCoverage counts as a miss and above 1 - kMinCoverage
+// as a full hit shaded at the centre: that moves a pixel by at most 1e-3 of the sky/plane difference
+// (below an 8-bit step) and keeps the far-field points, whose huge arguments float and double (GLSL and
+// C++) round differently, out of all but the pixels that really straddle the horizon.
 #pragma once
 
 #include "camera/plane_hit.hpp"
 
 namespace bl::camera {
 
-inline constexpr double kMinCoverage = 1e-6;
+inline constexpr double kMinCoverage = 1e-3;
 
 // The pixel filter N((px, py), s^2 I) against the horizon (no max_distance): the fraction whose rays
 // hit the plane, in [0, 1], and the mean image point of that part (the centre when the fraction is 0

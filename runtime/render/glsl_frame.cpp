@@ -62,10 +62,15 @@ void main() {
   if (glen > 0.0 && bl_pixel_sigma > 0.0) {
     float z = -d.z / (glen * bl_pixel_sigma);
     cover = bl_cover_Phi(z);
-    if (cover < 1e-6) cover = 0.0;
-    if (cover > 0.0 && cover < 1.0 - 1e-6) {
-      p -= (bl_pixel_sigma * 0.39894228 * exp(-0.5 * z * z) / cover / glen) * g;
+    if (cover < 1e-3) cover = 0.0;  // kMinCoverage
+    if (cover > 1.0 - 1e-3) cover = 1.0;
+    if (cover > 0.0 && cover < 1.0) {
+      float mills = 0.39894228 * exp(-0.5 * z * z) / cover;  // E[offset along n] / s
+      p -= (bl_pixel_sigma * mills / glen) * g;
       d = bl_ray(p);
+      // d.z there is -|g| s (z + mills) exactly; recomputed from p it would cancel (~1e-5 absolute in
+      // float near the horizon, where t = -E.z / d.z magnifies it).
+      d.z = -glen * bl_pixel_sigma * (z + mills);
     }
   }
   if (!(d.z < 0.0) || cover == 0.0) { bl_color = vec4(bl_background, 1.0); return; }
