@@ -3,14 +3,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "camera/horizon_coverage.hpp"
+
 namespace bl::camera {
 
 namespace {
 // Every float field, for loops that treat them alike.
 constexpr std::vector<float> PlaneBatch::*kFloatFields[] = {
-    &PlaneBatch::u,      &PlaneBatch::v,      &PlaneBatch::sigma_u, &PlaneBatch::sigma_v, &PlaneBatch::rho,
-    &PlaneBatch::du_dx,  &PlaneBatch::du_dy,  &PlaneBatch::dv_dx,   &PlaneBatch::dv_dy,   &PlaneBatch::view_x,
-    &PlaneBatch::view_y, &PlaneBatch::view_z, &PlaneBatch::distance};
+    &PlaneBatch::u,        &PlaneBatch::v,       &PlaneBatch::sigma_u, &PlaneBatch::sigma_v,
+    &PlaneBatch::rho,      &PlaneBatch::du_dx,   &PlaneBatch::du_dy,   &PlaneBatch::dv_dx,
+    &PlaneBatch::dv_dy,    &PlaneBatch::view_x,  &PlaneBatch::view_y,  &PlaneBatch::view_z,
+    &PlaneBatch::distance, &PlaneBatch::coverage};
 }  // namespace
 
 void PlaneBatch::resize(std::size_t n) {
@@ -49,7 +52,9 @@ void trace_plane(const Camera& cam, const FootprintOptions& opt, PlaneBatch& out
   for (int y = rect.y0; y < rect.y0 + rect.height; ++y) {
     for (int x = rect.x0; x < rect.x0 + rect.width; ++x, ++i) {
       const double ox = offsets ? offsets[2 * i] : 0.0, oy = offsets ? offsets[2 * i + 1] : 0.0;
-      const PlaneSample s = trace_pixel(cam, b, opt, x + 0.5 + ox, y + 0.5 + oy);
+      const PlaneSample s = offsets == nullptr && opt.horizon_coverage
+                                ? trace_footprint(cam, b, opt, x + 0.5, y + 0.5)
+                                : trace_pixel(cam, b, opt, x + 0.5 + ox, y + 0.5 + oy);
       if (!s.hit) continue;  // resize() left zeros
       out.hit[i] = 1;
       out.u[i] = float(s.u);
@@ -65,6 +70,7 @@ void trace_plane(const Camera& cam, const FootprintOptions& opt, PlaneBatch& out
       out.view_y[i] = float(s.view_y);
       out.view_z[i] = float(s.view_z);
       out.distance[i] = float(s.distance);
+      out.coverage[i] = float(s.coverage);
     }
   }
 }

@@ -23,6 +23,7 @@ struct PlaneBatch {
   std::vector<float> du_dx, du_dy, dv_dx, dv_dy;
   std::vector<float> view_x, view_y, view_z;
   std::vector<float> distance;
+  std::vector<float> coverage;  // the pixel's weight on the plane (PlaneSample::coverage); the rest is sky
 
   std::size_t size() const { return hit.size(); }
   void resize(std::size_t n);
@@ -33,7 +34,8 @@ struct PlaneBatch {
 // Fills `out` (reusing its storage) for every pixel of `rect`. `offsets`, when given, holds 2 floats
 // per pixel of the rect in the same order: the sample's offset from the pixel centre in pixels
 // (jittered samples); nullptr samples the centres. Throws std::invalid_argument for a rect outside
-// the image or an invalid camera.
+// the image or an invalid camera. Without offsets and with opt.horizon_coverage each pixel is traced by
+// trace_footprint (hit = coverage > 0); otherwise by trace_pixel (coverage = hit).
 void trace_plane(const Camera& cam, const FootprintOptions& opt, PlaneBatch& out, PixelRect rect = {},
                  const float* offsets = nullptr);
 

@@ -32,6 +32,7 @@ PlaneSample trace_pixel(const Camera& cam, const Basis& b, const FootprintOption
 
   const double k = opt.texture_scale;
   s.hit = true;
+  s.coverage = 1;
   s.u = k * hit.x;
   s.v = k * hit.y;
   s.distance = t * len;

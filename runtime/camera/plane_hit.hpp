@@ -28,6 +28,9 @@ struct FootprintOptions {
   double pixel_sigma = 0.5;    // s, in pixels
   FootprintBound bound = FootprintBound::kDornAxisAligned;
   double max_distance = std::numeric_limits<double>::infinity();  // farther hits count as misses
+  // trace_plane without offsets (one sample per pixel, a smoothed shader's trace): resolve the
+  // horizon by the pixel filter's coverage (camera/horizon_coverage.hpp) instead of the centre's hit.
+  bool horizon_coverage = false;
 };
 
 struct PlaneSample {
@@ -38,7 +41,8 @@ struct PlaneSample {
   double view_x = 0, view_y = 0, view_z = 0;          // unit vector hit -> eye in (T, B, N); view_z > 0
   double du_dx = 0, du_dy = 0, dv_dx = 0, dv_dy = 0;  // per pixel; y is the downward image axis
   double sigma_u = 0, sigma_v = 0;                    // per FootprintOptions::bound
-  double rho = 0;  // correlation of u and v under the linearized Gaussian pixel filter, in [-1, 1]
+  double rho = 0;       // correlation of u and v under the linearized Gaussian pixel filter, in [-1, 1]
+  double coverage = 0;  // the pixel's weight on the plane: 1 for a hit point, Phi(.) from trace_footprint
 };
 
 // Traces image point (px, py) (a pixel centre is (i + 0.5, j + 0.5); add a jitter offset for

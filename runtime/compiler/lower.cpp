@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "compiler/graph_facts.hpp"
+#include "compiler/square_product.hpp"
 #include "ir/atomics.hpp"
 #include "ir/ranges.hpp"
 
@@ -143,8 +144,12 @@ class Lowering {
     if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
     if (r.kind != Kind::MonteCarlo && facts_.lattice_boundary(i)) return lattice_mixture(i, r);
     if (r.kind == Kind::MonteCarlo) return monte_carlo(i, n, r, args);
-    if (n.op == Op::Call)
-      return r.kind == Kind::Dorn ? in_range(i, call_node(i, n, r, *args[0])) : call_node(i, n, r, *args[0]);
+    if (n.op == Op::Call) {
+      if (r.kind == Kind::Dorn) return in_range(i, call_node(i, n, r, *args[0]));
+      Val v = call_node(i, n, r, *args[0]);
+      if (r.kind == Kind::Gaussian) abs_of_sin(n, v);
+      return v;
+    }
     if (n.op == Op::Texture) return texture_node(n, r, *args[0], *args[1]);
     if (n.op == Op::Neg) return Val{op(LOp::Neg, args[0]->mean), args[0]->var, args[0]->sd};
     if (r.kind == Kind::Dorn) return in_range(i, dorn(n, r, args));
@@ -458,6 +463,92 @@ class Lowering {
     return op(LOp::Min, op(LOp::Max, div(dot, den), k(-1)), k(1));
   }
 
+  // abs(sin(X)), X ~ N(m, s^2), both nodes Gaussian: abs of a Gaussian with sin's moments is 0.564
+  // for wide kernels where E|sin X| -> 2/pi = 0.637 (fire's far field: its octaves are |sin|). For
+  // s >= 0.15 the Fourier series |sin x| = 2/pi - 4/pi sum cos(2kx) / (4k^2 - 1) gives
+  // E|sin X| = 2/pi - 4/pi sum cos(2km) e^{-2k^2 s^2} / (4k^2 - 1), 8 terms (truncation < 1e-4 at
+  // s = 0.15); below, the composed rule (error < 2e-4 at s <= 0.1). Var = E[sin^2] - mean^2.
+  void abs_of_sin(const ir::Node& n, Val& v) {
+    if (std::string(ir::atomic_name(n.atomic)) != "abs" || v.var < 0) return;
+    const ir::Node& sn = g_.node(n.a);
+    if (sn.op != Op::Call || std::string(ir::atomic_name(sn.atomic)) != "sin") return;
+    if (s_.at(n.a).kind != Kind::Gaussian) return;
+    Val& x = vals_[sn.a];
+    if (x.var < 0) return;
+    const int s = scaled_sd(x, s_.at(n.a));
+    const int c1 = call(plain_name("cos"), {mul(k(2), x.mean)});
+    const int q = call(plain_name("exp"), {mul(k(-2), sq(s))});
+    const int q2 = sq(q);
+    int c_prev = k(1), c_k = c1, d_k = q, qp = q, sum = -1;
+    for (int kk = 1; kk <= 8; ++kk) {
+      if (kk > 1) {
+        const int c_next = sub(mul(mul(k(2), c1), c_k), c_prev);
+        c_prev = c_k, c_k = c_next;
+        qp = mul(qp, q2);    // q^(2k - 1)
+        d_k = mul(d_k, qp);  // q^(k^2)
+      }
+      const int t = mul(mul(c_k, d_k), k(static_cast<float>(4.0 / M_PI / (4.0 * kk * kk - 1))));
+      sum = sum < 0 ? t : add(sum, t);
+    }
+    const int four = sub(k(static_cast<float>(2.0 / M_PI)), sum);
+    const int e2 = sub(k(0.5f), mul(k(0.5f), mul(c1, q)));
+    const int four_var = op(LOp::NonNeg, sub(e2, sq(four)));
+    const int w = op(LOp::Less, s, k(0.15f)), nw = sub(k(1), w);
+    v.mean = add(mul(w, v.mean), mul(nw, four));
+    v.var = add(mul(w, v.var), mul(nw, four_var));
+    v.sd = -1;
+  }
+
+  // (alpha_a + beta_a SA) (alpha_b + beta_b SB) with SA, SB square waves of affine functions of one
+  // root R whose frequencies have an integer ratio (zigzag's hue and band): exact mean and variance
+  // from E[SA SB] (compiler/square_product.hpp), E[SA] and E[SB] as smoothed. False: not that form.
+  bool square_pair_product(const ir::Node& n, const Rule& r, Val& out) {
+    const Affine &fa = facts_.aff[n.a], &fb = facts_.aff[n.b];
+    auto is_square = [&](int j) {
+      return j >= 0 && g_.node(j).op == Op::Call &&
+             std::string(ir::atomic_name(g_.node(j).atomic)) == "square";
+    };
+    if (!is_square(fa.base) || !is_square(fb.base) || fa.base == fb.base || fa.beta == 0 || fb.beta == 0)
+      return false;
+    const int sa = fa.base, sb = fb.base;
+    const Affine &xa = facts_.aff[g_.node(sa).a], &xb = facts_.aff[g_.node(sb).a];
+    if (xa.base < 0 || xa.base != xb.base || xa.beta == 0 || xb.beta == 0) return false;
+    Val& root = vals_[xa.base];
+    if (root.var < 0 || vals_[sa].var < 0 || vals_[sb].var < 0) return false;
+    // E[SA], E[SB] must be the same Gaussian expectations as E[SA SB], or the covariance is off.
+    if (s_.at(sa).kind != Kind::Gaussian || s_.at(sb).kind != Kind::Gaussian) return false;
+    // The slower wave's argument x = beta_s R + alpha_s; the faster one's is q x + d, q an integer.
+    const bool a_slow = std::fabs(xa.beta) <= std::fabs(xb.beta);
+    const Affine &slow = a_slow ? xa : xb, &fast = a_slow ? xb : xa;
+    const double ratio = fast.beta / slow.beta, q = std::round(ratio);
+    if (q == 0 || std::fabs(q) > 16 || std::fabs(ratio - q) > 1e-9 * std::fabs(ratio)) return false;
+    const auto pieces = square_product_intervals(static_cast<int>(q), fast.alpha - q * slow.alpha);
+    const int mx = add(mul(k(static_cast<float>(slow.beta)), root.mean), k(static_cast<float>(slow.alpha)));
+    const int sx = mul(k(static_cast<float>(std::fabs(slow.beta))), scaled_sd(root, r));
+    const std::string fr = kernel_name("gaussian", "fract", false);
+    double width = 0;
+    int both = -1;  // E[SA SB] - total width
+    for (const auto& [lo, hi] : pieces) {
+      width += hi - lo;
+      const int t = sub(call(fr, {sub(mx, k(static_cast<float>(hi))), sx}),
+                        call(fr, {sub(mx, k(static_cast<float>(lo))), sx}));
+      both = both < 0 ? t : add(both, t);
+    }
+    const int p = both < 0 ? k(0) : add(k(static_cast<float>(width)), both);
+    const int ea = vals_[sa].mean, eb = vals_[sb].mean;
+    // E[(al + be SA)(al' + be' SB)] for indicators SA, SB.
+    auto expect = [&](double al, double be, double al2, double be2) {
+      return add(add(k(static_cast<float>(al * al2)), mul(k(static_cast<float>(al * be2)), eb)),
+                 add(mul(k(static_cast<float>(be * al2)), ea), mul(k(static_cast<float>(be * be2)), p)));
+    };
+    out.mean = expect(fa.alpha, fa.beta, fb.alpha, fb.beta);
+    // Squares: (al + be S)^2 = al^2 + (2 al be + be^2) S.
+    const int m2 = expect(fa.alpha * fa.alpha, 2 * fa.alpha * fa.beta + fa.beta * fa.beta,
+                          fb.alpha * fb.alpha, 2 * fb.alpha * fb.beta + fb.beta * fb.beta);
+    out.var = op(LOp::NonNeg, sub(m2, sq(out.mean)));
+    return true;
+  }
+
   // rho = 0 known while lowering: the covariance terms are left out rather than multiplied by 0
   // (x * 0 is not folded: it is NaN for an infinite x), so optimize() can drop what feeds them.
   bool rho_zero(const Rule& r) const {
@@ -476,6 +567,10 @@ class Lowering {
         Val& x = vals_[pa.first];
         return convolve("gaussian", "pow" + std::to_string(deg), x.mean, scaled_sd(x, r), x.var);
       }
+    }
+    if (n.op == Op::Mul) {
+      Val sp;
+      if (square_pair_product(n, r, sp)) return sp;
     }
     // Identical operands (hash-consing gives them one node id) are perfectly correlated: x - x = 0,
     // x + x = 2x, x / x = 1 exactly, and x * x is pow2 with its exact Gaussian moments.

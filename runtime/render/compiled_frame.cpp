@@ -64,7 +64,7 @@ Image render_program(const scene::Scene& s, const Frame& f, const compiler::Prog
     bind_sample(s, f, p, samples > 0 ? k : -1, seed, in);
     run(in.batch, {out[0].data(), out[1].data(), out[2].data()});
     for (int i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c) acc[3 * i + c] += in.trace.hit[i] ? out[c][i] : s.background[c];
+      for (int c = 0; c < 3; ++c) acc[3 * i + c] += covered(in.trace, i, out[c][i], s.background[c]);
   }
   Image img(s.width, s.height);
   for (int i = 0; i < n; ++i)

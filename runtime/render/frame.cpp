@@ -25,6 +25,7 @@ camera::FootprintOptions footprint_options(const scene::Scene& s) {
   o.pixel_sigma = s.sigma_px;
   o.bound = s.footprint_bound == scene::FootprintBound::Marginal ? camera::FootprintBound::kGaussianMarginal
                                                                  : camera::FootprintBound::kDornAxisAligned;
+  o.horizon_coverage = true;  // one sample per pixel resolves the horizon by the filter's coverage
   return o;
 }
 

@@ -39,11 +39,41 @@ uniform vec3 bl_background;
 out vec4 bl_color;
 
 vec3 bl_plane_differential(float t, vec3 d, vec3 dd) { return t * (dd - d * (dd.z / d.z)); }
+vec3 bl_ray(vec2 p) {
+  return bl_focal * bl_cam_forward + (p.x - 0.5 * bl_size.x) * bl_cam_right - (p.y - 0.5 * bl_size.y) * bl_cam_up;
+}
+// Phi(z) through the erfc fit of generated/bandlimit.glsl (relative error < 1.2e-7).
+float bl_cover_Phi(float z) {
+  float x = -z * 0.70710678, a = min(abs(x), 10.0), t = 1.0 / (1.0 + 0.5 * a);
+  float r = t * exp(-a * a - 1.26551223 + t * (1.00002368 + t * (0.37409196 + t * (0.09678418 +
+            t * (-0.18628806 + t * (0.27886807 + t * (-1.13520398 + t * (1.48851587 +
+            t * (-0.82215223 + t * 0.17087277)))))))));
+  return 0.5 * (x >= 0.0 ? r : 2.0 - r);
+}
 
 void main() {
   vec2 p = gl_FragCoord.xy;
-  vec3 d = bl_focal * bl_cam_forward + (p.x - 0.5 * bl_size.x) * bl_cam_right - (p.y - 0.5 * bl_size.y) * bl_cam_up;
-  if (!(d.z < 0.0)) { bl_color = vec4(bl_background, 1.0); return; }
+  vec3 d = bl_ray(p);
+  // The horizon by the pixel filter's coverage (runtime/camera/horizon_coverage.hpp): d.z is affine
+  // in p; shade the covered part's mean, weight the shade by the covered fraction.
+  float cover = d.z < 0.0 ? 1.0 : 0.0;
+  vec2 g = vec2(bl_cam_right.z, -bl_cam_up.z);
+  float glen = length(g);
+  if (glen > 0.0 && bl_pixel_sigma > 0.0) {
+    float z = -d.z / (glen * bl_pixel_sigma);
+    cover = bl_cover_Phi(z);
+    if (cover < 1e-3) cover = 0.0;  // kMinCoverage
+    if (cover > 1.0 - 1e-3) cover = 1.0;
+    if (cover > 0.0 && cover < 1.0) {
+      float mills = 0.39894228 * exp(-0.5 * z * z) / cover;  // E[offset along n] / s
+      p -= (bl_pixel_sigma * mills / glen) * g;
+      d = bl_ray(p);
+      // d.z there is -|g| s (z + mills) exactly; recomputed from p it would cancel (~1e-5 absolute in
+      // float near the horizon, where t = -E.z / d.z magnifies it).
+      d.z = -glen * bl_pixel_sigma * (z + mills);
+    }
+  }
+  if (!(d.z < 0.0) || cover == 0.0) { bl_color = vec4(bl_background, 1.0); return; }
   float t = -bl_cam_pos.z / d.z;
   vec3 hit = bl_cam_pos + t * d;
   vec3 dpx = bl_plane_differential(t, d, bl_cam_right);
@@ -85,7 +115,7 @@ void main() {
        << "; gy[" << i << "] = " << gys << ";\n";
   }
   os << "  float o[" << p.outputs.size() << "];\n  " << function << "(m, s, gx, gy, o);\n"
-     << "  bl_color = vec4(o[0], o[1], o[2], 1.0);\n}\n";
+     << "  bl_color = vec4(mix(bl_background, vec3(o[0], o[1], o[2]), cover), 1.0);\n}\n";
   return os.str();
 }
 

@@ -134,8 +134,8 @@ Image render_smoothed(const scene::Scene& s, const Frame& f, const compiler::Pro
     compiler::Evaluator ev(program);
     ev.run(batch, {out[0].data(), out[1].data(), out[2].data()});
     for (int i = 0; i < n; ++i) {
-      double rgb[3] = {out[0][i], out[1][i], out[2][i]};
-      if (!b.hit[i]) rgb[0] = s.background[0], rgb[1] = s.background[1], rgb[2] = s.background[2];
+      double rgb[3];
+      for (int c = 0; c < 3; ++c) rgb[c] = covered(b, i, out[c][i], s.background[c]);
       set_pixel(img, i % s.width, y0 + i / s.width, rgb);
     }
   });

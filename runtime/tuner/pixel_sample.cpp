@@ -90,8 +90,11 @@ PixelSample::Score PixelSample::score(const compiler::Program& p) const {
     for (int i = 0; i < d.n; ++i) {
       const float rgb[3] = {out[0][i], out[1][i], out[2][i]};
       score.counts += check_pixel(rgb, range_);
+      float shown[3];  // the shade on the plane's share of the pixel (the horizon), as render_smoothed
+      for (int c = 0; c < 3; ++c)
+        shown[c] = static_cast<float>(render::covered(d.hits, i, rgb[c], scene_.background[c]));
       for (int c = 0; c < 3; ++c) {
-        const double e = display_error(rgb[c], d.truth[3 * i + c]);
+        const double e = display_error(shown[c], d.truth[3 * i + c]);
         sum += e * e;
       }
     }

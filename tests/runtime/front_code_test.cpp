@@ -125,7 +125,9 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
         // Unsmoothed nodes evaluate discontinuities and large sin arguments plainly: there a float
         // rounding flips a few values (runtime_glsl_exec_test allows 1/33 over 1e-3 for "none";
         // plain quadratic_sine's far view, where sin's argument reaches ~1e3 and llvmpipe's sin
-        // differs from libm's, measured 91 of 1728 = 5.3%: allowed 1/16 here); a schedule without
+        // differs from libm's, measured 91 of 1728 = 5.3%; the horizon's partly covered pixels,
+        // camera/horizon_coverage.hpp, shade one more row of such far-field points: 161 = 9.3%,
+        // allowed 1/8 here); a schedule without
         // plain computation nodes is held to 1e-3 everywhere, as in runtime_glsl_exec_test.
         bool plain_nodes = false;
         for (int n = 0; n < g.size(); ++n)
@@ -143,7 +145,7 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
             over += d > 1e-3;
           }
           if (plain_nodes)
-            EXPECT_LE(over, cpu.pixels.size() / 16)
+            EXPECT_LE(over, cpu.pixels.size() / 8)
                 << "view " << f.view << " time " << f.time << " worst " << worst;
           else
             EXPECT_LE(worst, 1e-3) << "view " << f.view << " time " << f.time;
