@@ -451,8 +451,9 @@ class Lowering {
     return op(LOp::Min, op(LOp::Max, div(dot, den), k(-1)), k(1));
   }
 
-  // rho = 0 known while lowering: the covariance terms are left out rather than multiplied by 0
-  // (x * 0 is not folded: it is NaN for an infinite x), so optimize() can drop what feeds them.
+  // rho = 0 known while lowering: the covariance terms are left out rather than multiplied by 0,
+  // so what feeds them is never written (optimize() also folds x * 0 to 0, e.g. zero derivative
+  // terms, but only after the operands were lowered).
   bool rho_zero(const Rule& r) const {
     return r.rho == Rho::Zero || (r.rho == Rho::Constant && r.rho_value == 0);
   }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <functional>
+#include <map>
 #include <random>
 #include <set>
 
@@ -238,6 +239,61 @@ TEST(Compiler, DeadCodeIsRemoved) {
   // floor(u), floor(u + 0.5): the inputs' sd is read, but no floor's variance (no consumer).
   EXPECT_GT(count(calls_only, compiler::LOp::InSd), 0);
   EXPECT_EQ(count(calls_only, compiler::LOp::NonNeg), 0);
+}
+
+// optimize() folds what the lowering writes naively: zero covariance and derivative terms (x * 0),
+// sqrt(k sd^2) of a scaled sd, constant chains, division by a power of two, a + b against b + a,
+// NonNeg of a sum of variances. The values are the closed form's (computed here in double).
+TEST(Compiler, FoldingKeepsValuesAndDropsWork) {
+  using compiler::LOp;
+  compiler::Program p;
+  p.input_count = 1;
+  p.input_names = {"u"};
+  auto put = [&](LOp op, int a = -1, int b = -1, float k = 0) {
+    compiler::Inst in;
+    in.op = op;
+    in.arg[0] = a;
+    in.arg[1] = b;
+    in.k = k;
+    p.insts.push_back(in);
+    return static_cast<int>(p.insts.size()) - 1;
+  };
+  const int m = put(LOp::InMean, 0), s = put(LOp::InSd, 0);
+  const int zero = put(LOp::Const, -1, -1, 0), four = put(LOp::Const, -1, -1, 4);
+  const int scale = put(LOp::Const, -1, -1, 0.774f), half = put(LOp::Const, -1, -1, 0.5f);
+  const int var = put(LOp::Mul, s, s);
+  const int sd = put(LOp::Mul, put(LOp::Sqrt, put(LOp::Mul, four, var)), scale);           // 2 s 0.774
+  const int dead = put(LOp::Mul, zero, put(LOp::Sqrt, put(LOp::Div, m, s)));               // 0 * sqrt(m / s)
+  const int sum = put(LOp::Add, put(LOp::Add, m, s), put(LOp::Neg, put(LOp::Add, s, m)));  // 0
+  const int nn = put(LOp::NonNeg, put(LOp::Add, put(LOp::NonNeg, var), put(LOp::Mul, var, half)));
+  const int quarter = put(LOp::Div, put(LOp::Mul, put(LOp::Mul, m, half), half), four);  // m / 16
+  const int out0 = put(LOp::Add, put(LOp::Add, sd, dead), sum);
+  p.outputs = {out0, nn, quarter};
+  p.output_names = {"a", "b", "c"};
+  const compiler::Program o = compiler::optimize(p);
+  std::map<LOp, int> count;
+  for (const auto& in : o.insts) ++count[in.op];
+  EXPECT_EQ(count[LOp::Sqrt], 0);
+  EXPECT_EQ(count[LOp::Div], 0);
+  EXPECT_EQ(count[LOp::NonNeg], 0);
+  EXPECT_EQ(count[LOp::Add], 4);  // m + s once, (m + s) - (m + s), the output's, var + var / 2
+  EXPECT_EQ(count[LOp::Mul], 4);  // s s, s 1.548, var 0.5, m 0.0625
+  EXPECT_EQ(count[LOp::Neg], 1);
+  const float us[] = {-3.5f, 0.0f, 1e-3f, 2.25f}, ss[] = {1e-3f, 0.2f, 0.4f, 1e-12f};
+  for (float u : us)
+    for (float sv : ss) {
+      float out[3];
+      std::vector<float*> ptr{&out[0], &out[1], &out[2]};
+      compiler::Batch b;
+      b.count = 1;
+      b.mean = {&u};
+      b.sd = {&sv};
+      compiler::Evaluator(o).run(b, ptr);
+      const double S = sv, U = u;
+      EXPECT_NEAR(out[0], 2 * S * 0.774, 1e-6 * (1 + 2 * S)) << u << " " << sv;
+      EXPECT_NEAR(out[1], 1.5 * S * S, 1e-6 * 1.5 * S * S) << u << " " << sv;
+      EXPECT_EQ(out[2], static_cast<float>(U / 16)) << u << " " << sv;
+    }
 }
 
 TEST(Compiler, BadScheduleAndNamesAreReported) {
