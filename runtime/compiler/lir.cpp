@@ -133,7 +133,7 @@ class Folder {
   //   x * 0, 0 * x -> 0 (for finite x, identical; an infinite or NaN x no longer makes it NaN:
   //     these are the zero covariance and zero derivative terms of the lowering)
   //   (x * k1) * k2 -> x * (k1 k2) (one rounding fewer);  x / k -> x * (1 / k) for k a power of 2
-  //   sqrt(x * x) -> x and sqrt((x * x) * k) -> x * sqrt(k) for x >= 0 (a scaled sd);
+  //   sqrt(x * x) -> x for x >= 0; sqrt(y * k) -> sqrt(y) * sqrt(k) (so sqrt(4 sd^2) is 2 sd);
   //   NonNeg(x) -> x for x known >= 0 and not NaN
   int simplify(Inst* in) {
     auto kv = [&](int j) { return code[in->arg[j]].k; };
@@ -223,14 +223,18 @@ class Folder {
         if (code[a].op == LOp::Neg) return code[a].arg[0];
         break;
       case LOp::Sqrt: {
-        const Inst x = code[a];  // copies: konst() may grow `code`
+        const Inst x = code[a];  // copies: put() and konst() may grow `code`
         if (x.op == LOp::Mul && x.arg[0] == x.arg[1] && nonneg(x.arg[0])) return x.arg[0];
+        // sqrt(y k) = sqrt(y) sqrt(k) for k > 0 and any y (NaN for y < 0 either way), so that
+        // sqrt(9 var) and sqrt(var) share one sqrt, and sqrt(4 sd^2) is 2 sd.
         if (x.op == LOp::Mul && is_k(x.arg[1]) && code[x.arg[1]].k > 0.0f) {
-          const Inst sq = code[x.arg[0]];
-          if (sq.op == LOp::Mul && sq.arg[0] == sq.arg[1] && nonneg(sq.arg[0])) {
-            const int k = konst(std::sqrt(code[x.arg[1]].k));
-            return become(LOp::Mul, sq.arg[0], k);
-          }
+          const float rk = std::sqrt(code[x.arg[1]].k);
+          Inst root;
+          root.op = LOp::Sqrt;
+          root.arg[0] = x.arg[0];
+          const int r = put(root);
+          const int k = konst(rk);
+          return become(LOp::Mul, r, k);
         }
         break;
       }

@@ -67,9 +67,9 @@ struct Program {
 // survives, so variances no later rule consumes are never computed). Folding: constants (in float),
 // identities, x * 0 -> 0 (so a zero covariance or derivative term drops what feeds it; an
 // infinite or NaN x no longer turns it into NaN), constant chains (x * k1) * k2 -> x * (k1 k2),
-// x / 2^n -> x * 2^-n, sqrt(k x^2) -> sqrt(k) x for a footprint sd x (a scaled sd), NonNeg of a
-// value known >= 0; a + b and b + a are one instruction. Values change by float rounding at most
-// (reassociated constant products, sqrt(k x^2)) for finite operands.
+// x / 2^n -> x * 2^-n, sqrt(k y) -> sqrt(k) sqrt(y) and sqrt(x^2) -> x for x >= 0 (a scaled
+// sd), NonNeg of a value known >= 0; a + b and b + a are one instruction. Values change by float rounding at most
+// (reassociated constant products, sqrt(k y)) for finite operands.
 Program optimize(const Program& p);
 
 }  // namespace bl::compiler
