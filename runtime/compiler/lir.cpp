@@ -60,6 +60,7 @@ using Key = std::tuple<int, int, int, int, std::uint32_t, int, int, int, int, in
 // rewrites below), then shared with an identical earlier one (common subexpressions).
 class Folder {
  public:
+  explicit Folder(bool fold_zero) : fold_zero_(fold_zero) {}
   std::vector<Inst> code;
 
   // The instruction `in` (arguments already renamed into `code`) reduces to.
@@ -75,6 +76,7 @@ class Folder {
 
  private:
   static constexpr int kStays = -1, kRewritten = -2;
+  bool fold_zero_;
   std::map<Key, int> seen_;
 
   int intern(const Inst& in) {
@@ -199,7 +201,7 @@ class Folder {
         break;
       case LOp::Mul:
         if (is_k(b, 1.0f)) return a;
-        if (is_k(b, 0.0f)) return konst(0.0f);
+        if (is_k(b, 0.0f) && fold_zero_) return konst(0.0f);
         if (is_k(b, -1.0f)) return become(LOp::Neg, a);
         if (is_k(b) && code[a].op == LOp::Mul && is_k(code[a].arg[1])) {
           const int x = code[a].arg[0];
@@ -250,11 +252,11 @@ class Folder {
 
 }  // namespace
 
-Program optimize(const Program& p) {
+Program optimize(const Program& p, const OptimizeOptions& opt) {
   // 1. Folding and common subexpressions, in program order.
   const int n = static_cast<int>(p.insts.size());
   std::vector<int> rename(n);
-  Folder f;
+  Folder f(opt.fold_zero_products);
   for (int i = 0; i < n; ++i) {
     Inst in = p.insts[i];
     for (int j = 0; j < lop_arity(in); ++j) in.arg[j] = rename[in.arg[j]];

@@ -40,7 +40,9 @@ class Lowering {
     slope_.assign(g.size(), -1);
   }
 
-  Program run() {
+  Program run() { return optimize(run_naive()); }
+
+  Program run_naive() {
     p_.input_count = static_cast<int>(g_.inputs().size());
     for (const auto& in : g_.inputs()) p_.input_names.push_back(in.name);
     p_.texture_names = g_.textures();
@@ -50,7 +52,7 @@ class Lowering {
       p_.output_names.push_back(g_.output_names()[k]);
     }
     for (const auto& n : notes_) p_.notes.push_back(n);
-    return optimize(p_);
+    return p_;
   }
 
  private:
@@ -792,14 +794,27 @@ class Lowering {
 
 }  // namespace
 
-Program lower(const ir::Graph& g, const Schedule& schedule) {
+namespace {
+
+void check_schedule(const ir::Graph& g, const Schedule& schedule) {
   if (static_cast<int>(schedule.size()) != g.size())
     throw std::invalid_argument("compiler: schedule has " + std::to_string(schedule.size()) +
                                 " rules for a graph of " + std::to_string(g.size()) + " nodes");
   for (const auto& n : g.nodes())
     if (n.op == ir::Op::Const && !std::isfinite(n.value))
       throw std::invalid_argument("compiler: the shader has a non-finite constant");
+}
+
+}  // namespace
+
+Program lower(const ir::Graph& g, const Schedule& schedule) {
+  check_schedule(g, schedule);
   return Lowering(g, schedule).run();
+}
+
+Program lower_naive(const ir::Graph& g, const Schedule& schedule) {
+  check_schedule(g, schedule);
+  return Lowering(g, schedule).run_naive();
 }
 
 Schedule uniform_schedule(const ir::Graph& g, const rules::Rule& r) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <map>
 #include <random>
@@ -159,6 +160,56 @@ TEST(Compiler, NoneScheduleIsTheNativeShader) {
       // Constants folded in double may round differently from float arithmetic right at a jump:
       // allow a handful of such samples, not more.
       EXPECT_LE(bad, 3) << def.name << " parallax " << p;
+    }
+}
+
+// optimize() keeps the naive lowering's values: every suite shader (flat and parallax) under the
+// main rules, the optimized program against the unoptimized one, both in the evaluator. Without
+// x * 0 -> 0, folding only reassociates constant products and splits sqrt(k y), so outputs agree
+// to float rounding (a pixel where the naive program is NaN or infinite is skipped). With it,
+// values differ only where the zeroed x was infinite or NaN (see OptimizeOptions): counted, and
+// the optimized program must then be finite there.
+TEST(Compiler, OptimizeKeepsTheNaiveValues) {
+  for (const auto& def : shaders::suite())
+    for (int p = 0; p < 2; ++p) {
+      shaders::Effects fx;
+      fx.parallax = static_cast<shaders::Parallax>(p);
+      fx.lighting = p ? shaders::Lighting::Phong : shaders::Lighting::None;
+      const ir::Graph g = shaders::trace(def, fx);
+      const texture::Bindings textures = synthetic_textures(def);
+      for (const char* rule : {"gaussian", "gaussian:rho=grad", "dorn", "box", "rule2", "tent"}) {
+        const compiler::Schedule sched = compiler::uniform_schedule(g, rules::parse_rule(rule));
+        const compiler::Program naive = compiler::lower_naive(g, sched), opt = compiler::lower(g, sched);
+        const compiler::Program strict = compiler::optimize(naive, {false});
+        EXPECT_LT(opt.insts.size(), naive.insts.size());
+        const Pixels px(naive, 300, 11);
+        const auto a = evaluate(naive, px, textures), b = evaluate(strict, px, textures);
+        const auto c = evaluate(opt, px, textures);
+        int differ = 0;
+        for (int k = 0; k < 3; ++k)
+          for (int i = 0; i < px.n; ++i)
+            if (c[k][i] != b[k][i]) {
+              ++differ;
+              EXPECT_TRUE(std::isfinite(c[k][i])) << def.name << " parallax " << p << " " << rule;
+            }
+        double sum2 = 0, worst = 0;
+        int n = 0, far = 0;
+        for (int k = 0; k < 3; ++k)
+          for (int i = 0; i < px.n; ++i) {
+            if (!std::isfinite(a[k][i])) continue;
+            const double d = std::fabs(static_cast<double>(a[k][i]) - b[k][i]);
+            sum2 += d * d, ++n, worst = std::max(worst, d);
+            far += !(d <= 1e-4 * std::max(1.0, std::fabs(static_cast<double>(a[k][i]))));
+          }
+        const double rms = n ? std::sqrt(sum2 / n) : 0;
+        EXPECT_LE(rms, 1e-5) << def.name << " parallax " << p << " " << rule;
+        EXPECT_LE(far, 3) << def.name << " parallax " << p << " " << rule << " worst " << worst;
+        std::printf(
+            "%-16s p%d %-18s insts %4zu -> %4zu (%4zu without x * 0 -> 0)  rms %.1e worst %.1e  "
+            "x * 0 changed %d of %d values\n",
+            def.name.c_str(), p, rule, naive.insts.size(), opt.insts.size(), strict.insts.size(), rms, worst,
+            differ, 3 * px.n);
+      }
     }
 }
 
