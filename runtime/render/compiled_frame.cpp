@@ -79,20 +79,31 @@ FrameTiming time_program(const scene::Scene& s, const Frame& f, const compiler::
   std::vector<std::vector<float>> store(p.outputs.size(), std::vector<float>(n));
   std::vector<float*> out;
   for (auto& o : store) out.push_back(o.data());
-  // Per sample: bind its inputs, warm up, keep the fastest of `trials`; the frame is their sum.
+  // Per sample: bind its inputs; per block of pixels, warm up and keep the fastest of `trials`;
+  // the frame is the sum over blocks and samples.
   double total_ms = 0;
   SampleInputs in;
   for (int k = 0; k < count; ++k) {
     bind_sample(s, f, p, samples > 0 ? k : -1, seed, in);
-    run(in.batch, out);
-    double best = std::numeric_limits<double>::infinity();
-    for (int t = 0; t < trials; ++t) {
-      const auto t0 = std::chrono::steady_clock::now();
-      run(in.batch, out);
-      best = std::min(
-          best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    for (int at = 0; at < n; at += kTimingBlock) {
+      const int len = std::min(kTimingBlock, n - at);
+      compiler::Batch b = in.batch;
+      b.count = len;
+      for (auto* v : {&b.mean, &b.sd, &b.grad_x, &b.grad_y})
+        for (const float*& ptr : *v)
+          if (ptr) ptr += at;
+      std::vector<float*> o = out;
+      for (float*& ptr : o) ptr += at;
+      run(b, o);
+      double best = std::numeric_limits<double>::infinity();
+      for (int t = 0; t < trials; ++t) {
+        const auto t0 = std::chrono::steady_clock::now();
+        run(b, o);
+        best = std::min(
+            best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      }
+      total_ms += best;
     }
-    total_ms += best;
   }
   FrameTiming r;
   r.trials = trials;
