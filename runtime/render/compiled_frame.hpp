@@ -31,12 +31,9 @@ struct FrameTiming {
   int trials = 0;
 };
 
-// Times `run` over the frame's inputs (as render_program feeds them; input tracing is not timed),
-// in blocks of kTimingBlock pixels: per block a warm-up, then `trials` runs, the minimum kept; the
-// frame is the sum of the blocks' minima. Short windows keep the minimum undisturbed by other load
-// for slow programs too (a whole-frame window of a 50 ms program is preempted in every trial on a
-// loaded machine, a 1 ms plain frame is not: that inflated smoothed programs against MSAA).
-constexpr int kTimingBlock = 2048;
+// Times `run` over the frame's inputs (as render_program feeds them; input tracing is not timed):
+// a warm-up, then `trials` runs, the minimum kept (least disturbed by other load), each timed in
+// the thread's CPU time (time spent descheduled does not count).
 FrameTiming time_program(const scene::Scene& s, const Frame& f, const compiler::Program& p,
                          const BatchRunner& run, int samples = 0, int trials = 5, std::uint64_t seed = 1);
 
