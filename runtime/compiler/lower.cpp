@@ -41,7 +41,9 @@ class Lowering {
     slope_.assign(g.size(), -1);
   }
 
-  Program run() {
+  Program run() { return optimize(run_naive()); }
+
+  Program run_naive() {
     p_.input_count = static_cast<int>(g_.inputs().size());
     for (const auto& in : g_.inputs()) p_.input_names.push_back(in.name);
     p_.texture_names = g_.textures();
@@ -52,7 +54,7 @@ class Lowering {
       p_.output_names.push_back(g_.output_names()[k]);
     }
     for (const auto& n : notes_) p_.notes.push_back(n);
-    return optimize(p_);
+    return p_;
   }
 
  private:
@@ -549,8 +551,9 @@ class Lowering {
     return true;
   }
 
-  // rho = 0 known while lowering: the covariance terms are left out rather than multiplied by 0
-  // (x * 0 is not folded: it is NaN for an infinite x), so optimize() can drop what feeds them.
+  // rho = 0 known while lowering: the covariance terms are left out rather than multiplied by 0,
+  // so what feeds them is never written (optimize() also folds x * 0 to 0, e.g. zero derivative
+  // terms, but only after the operands were lowered).
   bool rho_zero(const Rule& r) const {
     return r.rho == Rho::Zero || (r.rho == Rho::Constant && r.rho_value == 0);
   }
@@ -1088,14 +1091,27 @@ class Lowering {
 
 }  // namespace
 
-Program lower(const ir::Graph& g, const Schedule& schedule) {
+namespace {
+
+void check_schedule(const ir::Graph& g, const Schedule& schedule) {
   if (static_cast<int>(schedule.size()) != g.size())
     throw std::invalid_argument("compiler: schedule has " + std::to_string(schedule.size()) +
                                 " rules for a graph of " + std::to_string(g.size()) + " nodes");
   for (const auto& n : g.nodes())
     if (n.op == ir::Op::Const && !std::isfinite(n.value))
       throw std::invalid_argument("compiler: the shader has a non-finite constant");
+}
+
+}  // namespace
+
+Program lower(const ir::Graph& g, const Schedule& schedule) {
+  check_schedule(g, schedule);
   return Lowering(g, schedule).run();
+}
+
+Program lower_naive(const ir::Graph& g, const Schedule& schedule) {
+  check_schedule(g, schedule);
+  return Lowering(g, schedule).run_naive();
 }
 
 Schedule uniform_schedule(const ir::Graph& g, const rules::Rule& r) {

@@ -19,6 +19,9 @@ using Schedule = std::vector<rules::Rule>;  // one rule per graph node (indexed 
 // Throws std::invalid_argument when the schedule's size differs from the graph's.
 Program lower(const ir::Graph& g, const Schedule& schedule);
 
+// The lowering before optimize(): what tests compare the optimized program's values against.
+Program lower_naive(const ir::Graph& g, const Schedule& schedule);
+
 // Convenience: the same rule on every node.
 Schedule uniform_schedule(const ir::Graph& g, const rules::Rule& r);
 

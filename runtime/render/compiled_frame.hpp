@@ -32,7 +32,8 @@ struct FrameTiming {
 };
 
 // Times `run` over the frame's inputs (as render_program feeds them; input tracing is not timed):
-// a warm-up, then `trials` runs, the minimum kept (least disturbed by other load).
+// a warm-up, then `trials` runs, the minimum kept (least disturbed by other load), each timed in
+// the thread's CPU time (time spent descheduled does not count).
 FrameTiming time_program(const scene::Scene& s, const Frame& f, const compiler::Program& p,
                          const BatchRunner& run, int samples = 0, int trials = 5, std::uint64_t seed = 1);
 

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
+#include <map>
 #include <random>
 #include <set>
 
@@ -117,6 +119,56 @@ TEST(Compiler, NoneScheduleIsTheNativeShader) {
     }
 }
 
+// optimize() keeps the naive lowering's values: every suite shader (flat and parallax) under the
+// main rules, the optimized program against the unoptimized one, both in the evaluator. Without
+// x * 0 -> 0, folding only reassociates constant products and splits sqrt(k y), so outputs agree
+// to float rounding (a pixel where the naive program is NaN or infinite is skipped). With it,
+// values differ only where the zeroed x was infinite or NaN (see OptimizeOptions): counted, and
+// the optimized program must then be finite there.
+TEST(Compiler, OptimizeKeepsTheNaiveValues) {
+  for (const auto& def : shaders::suite())
+    for (int p = 0; p < 2; ++p) {
+      shaders::Effects fx;
+      fx.parallax = static_cast<shaders::Parallax>(p);
+      fx.lighting = p ? shaders::Lighting::Phong : shaders::Lighting::None;
+      const ir::Graph g = shaders::trace(def, fx);
+      const texture::Bindings textures = synthetic_textures(def);
+      for (const char* rule : {"gaussian", "gaussian:rho=grad", "dorn", "box", "rule2", "tent"}) {
+        const compiler::Schedule sched = compiler::uniform_schedule(g, rules::parse_rule(rule));
+        const compiler::Program naive = compiler::lower_naive(g, sched), opt = compiler::lower(g, sched);
+        const compiler::Program strict = compiler::optimize(naive, {false});
+        EXPECT_LT(opt.insts.size(), naive.insts.size());
+        const Pixels px(naive, 300, 11);
+        const auto a = evaluate(naive, px, textures), b = evaluate(strict, px, textures);
+        const auto c = evaluate(opt, px, textures);
+        int differ = 0;
+        for (int k = 0; k < 3; ++k)
+          for (int i = 0; i < px.n; ++i)
+            if (c[k][i] != b[k][i]) {
+              ++differ;
+              EXPECT_TRUE(std::isfinite(c[k][i])) << def.name << " parallax " << p << " " << rule;
+            }
+        double sum2 = 0, worst = 0;
+        int n = 0, far = 0;
+        for (int k = 0; k < 3; ++k)
+          for (int i = 0; i < px.n; ++i) {
+            if (!std::isfinite(a[k][i])) continue;
+            const double d = std::fabs(static_cast<double>(a[k][i]) - b[k][i]);
+            sum2 += d * d, ++n, worst = std::max(worst, d);
+            far += !(d <= 1e-4 * std::max(1.0, std::fabs(static_cast<double>(a[k][i]))));
+          }
+        const double rms = n ? std::sqrt(sum2 / n) : 0;
+        EXPECT_LE(rms, 1e-5) << def.name << " parallax " << p << " " << rule;
+        EXPECT_LE(far, 3) << def.name << " parallax " << p << " " << rule << " worst " << worst;
+        std::printf(
+            "%-16s p%d %-18s insts %4zu -> %4zu (%4zu without x * 0 -> 0)  rms %.1e worst %.1e  "
+            "x * 0 changed %d of %d values\n",
+            def.name.c_str(), p, rule, naive.insts.size(), opt.insts.size(), strict.insts.size(), rms, worst,
+            differ, 3 * px.n);
+      }
+    }
+}
+
 ir::Graph one_input(const std::function<dsl::Var(dsl::Var)>& f) {
   ir::Graph g;
   dsl::Tracer t(g);
@@ -194,6 +246,61 @@ TEST(Compiler, DeadCodeIsRemoved) {
   // floor(u), floor(u + 0.5): the inputs' sd is read, but no floor's variance (no consumer).
   EXPECT_GT(count(calls_only, compiler::LOp::InSd), 0);
   EXPECT_EQ(count(calls_only, compiler::LOp::NonNeg), 0);
+}
+
+// optimize() folds what the lowering writes naively: zero covariance and derivative terms (x * 0),
+// sqrt(k sd^2) of a scaled sd, constant chains, division by a power of two, a + b against b + a,
+// NonNeg of a sum of variances. The values are the closed form's (computed here in double).
+TEST(Compiler, FoldingKeepsValuesAndDropsWork) {
+  using compiler::LOp;
+  compiler::Program p;
+  p.input_count = 1;
+  p.input_names = {"u"};
+  auto put = [&](LOp op, int a = -1, int b = -1, float k = 0) {
+    compiler::Inst in;
+    in.op = op;
+    in.arg[0] = a;
+    in.arg[1] = b;
+    in.k = k;
+    p.insts.push_back(in);
+    return static_cast<int>(p.insts.size()) - 1;
+  };
+  const int m = put(LOp::InMean, 0), s = put(LOp::InSd, 0);
+  const int zero = put(LOp::Const, -1, -1, 0), four = put(LOp::Const, -1, -1, 4);
+  const int scale = put(LOp::Const, -1, -1, 0.774f), half = put(LOp::Const, -1, -1, 0.5f);
+  const int var = put(LOp::Mul, s, s);
+  const int sd = put(LOp::Mul, put(LOp::Sqrt, put(LOp::Mul, four, var)), scale);           // 2 s 0.774
+  const int dead = put(LOp::Mul, zero, put(LOp::Sqrt, put(LOp::Div, m, s)));               // 0 * sqrt(m / s)
+  const int sum = put(LOp::Add, put(LOp::Add, m, s), put(LOp::Neg, put(LOp::Add, s, m)));  // 0
+  const int nn = put(LOp::NonNeg, put(LOp::Add, put(LOp::NonNeg, var), put(LOp::Mul, var, half)));
+  const int quarter = put(LOp::Div, put(LOp::Mul, put(LOp::Mul, m, half), half), four);  // m / 16
+  const int out0 = put(LOp::Add, put(LOp::Add, sd, dead), sum);
+  p.outputs = {out0, nn, quarter};
+  p.output_names = {"a", "b", "c"};
+  const compiler::Program o = compiler::optimize(p);
+  std::map<LOp, int> count;
+  for (const auto& in : o.insts) ++count[in.op];
+  EXPECT_EQ(count[LOp::Sqrt], 0);
+  EXPECT_EQ(count[LOp::Div], 0);
+  EXPECT_EQ(count[LOp::NonNeg], 0);
+  EXPECT_EQ(count[LOp::Add], 4);  // m + s once, (m + s) - (m + s), the output's, var + var / 2
+  EXPECT_EQ(count[LOp::Mul], 4);  // s s, s 1.548, var 0.5, m 0.0625
+  EXPECT_EQ(count[LOp::Neg], 1);
+  const float us[] = {-3.5f, 0.0f, 1e-3f, 2.25f}, ss[] = {1e-3f, 0.2f, 0.4f, 1e-12f};
+  for (float u : us)
+    for (float sv : ss) {
+      float out[3];
+      std::vector<float*> ptr{&out[0], &out[1], &out[2]};
+      compiler::Batch b;
+      b.count = 1;
+      b.mean = {&u};
+      b.sd = {&sv};
+      compiler::Evaluator(o).run(b, ptr);
+      const double S = sv, U = u;
+      EXPECT_NEAR(out[0], 2 * S * 0.774, 1e-6 * (1 + 2 * S)) << u << " " << sv;
+      EXPECT_NEAR(out[1], 1.5 * S * S, 1e-6 * 1.5 * S * S) << u << " " << sv;
+      EXPECT_EQ(out[2], static_cast<float>(U / 16)) << u << " " << sv;
+    }
 }
 
 TEST(Compiler, BadScheduleAndNamesAreReported) {
