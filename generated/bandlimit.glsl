@@ -1472,11 +1472,26 @@ float bl_plain_square(float x) {
 
 float bl_plain_pulse30(float x) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 10.0, 2, p);
+  float period = 1.0;
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
 }
 
 float bl_plain_floor(float x) {
@@ -4237,13 +4252,29 @@ float bl_tent_square_sq(float x, float sigma) {
 
 float bl_gaussian_pulse30_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
     int K = int(floor((1.0725509182905828) / s));
@@ -4271,6 +4302,20 @@ float bl_gaussian_pulse30_raw(float x, float sigma) {
     }
     return acc;
   }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_gauss_periodic_image((r_o - bh0) - bl0, sigma, period, 2, o0, (1.0));
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_gauss_periodic_image((r_o - ch0) - cl0, sigma, period, 2, o0, (1.0));
+  }
   return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
@@ -4283,11 +4328,11 @@ float bl_gaussian_pulse30(float x, float sigma) {
 
 float bl_gaussian_pulse30_u(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   float s = sigma / period;
@@ -4323,11 +4368,11 @@ float bl_gaussian_pulse30_u(float x, float sigma) {
 
 float bl_gaussian_pulse30_right(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
   float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
@@ -4339,13 +4384,29 @@ float bl_gaussian_pulse30_right(float x, float sigma) {
 
 float bl_gaussian_pulse30_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
     int K = int(floor((1.0725509182905828) / s));
@@ -4373,6 +4434,20 @@ float bl_gaussian_pulse30_sq_raw(float x, float sigma) {
     }
     return acc;
   }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_gauss_periodic_image((r_o - bh0) - bl0, sigma, period, 2, o0, (1.0));
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_gauss_periodic_image((r_o - ch0) - cl0, sigma, period, 2, o0, (1.0));
+  }
   return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
@@ -4385,18 +4460,53 @@ float bl_gaussian_pulse30_sq(float x, float sigma) {
 
 float bl_box_pulse30_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_1[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_box_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_box_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1);
+  }
   return bl_box_periodic(x, sigma, period, 2, p, p1);
 }
 
@@ -4409,11 +4519,11 @@ float bl_box_pulse30(float x, float sigma) {
 
 float bl_box_pulse30_u(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   return bl_box_periodic_u(x, sigma, period, 2, p);
@@ -4421,16 +4531,16 @@ float bl_box_pulse30_u(float x, float sigma) {
 
 float bl_box_pulse30_right(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
   float hw = BL_SQRT3 * sigma;
@@ -4441,18 +4551,53 @@ float bl_box_pulse30_right(float x, float sigma) {
 
 float bl_box_pulse30_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_1[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_box_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_box_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1);
+  }
   return bl_box_periodic(x, sigma, period, 2, p, p1);
 }
 
@@ -4465,23 +4610,63 @@ float bl_box_pulse30_sq(float x, float sigma) {
 
 float bl_tent_pulse30_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((-9.0/200.0), (3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_1[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_2[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((49.0/200.0), (-7.0/10.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_tent_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1, o0_2);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_tent_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1, o0_2);
+  }
   return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
 }
 
@@ -4494,11 +4679,11 @@ float bl_tent_pulse30(float x, float sigma) {
 
 float bl_tent_pulse30_u(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   return bl_tent_periodic_u(x, sigma, period, 2, p);
@@ -4506,21 +4691,21 @@ float bl_tent_pulse30_u(float x, float sigma) {
 
 float bl_tent_pulse30_right(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((-9.0/200.0), (3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
   float hw = BL_SQRT6 * sigma;
@@ -4531,23 +4716,63 @@ float bl_tent_pulse30_right(float x, float sigma) {
 
 float bl_tent_pulse30_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((-9.0/200.0), (3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_1[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_2[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((49.0/200.0), (-7.0/10.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_tent_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1, o0_2);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_tent_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1, o0_2);
+  }
   return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
 }
 

@@ -799,10 +799,24 @@ template <class T>
 T plain_pulse30(T x) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  return detail::periodic_eval(x, T(10), p);
+  const T period = T(1);
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
 }
 
 template <class T>
@@ -4295,18 +4309,33 @@ T tent_square_sq(T x, T sigma) {
 //   (3/10) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)),
 //   a_k = ((kf)^((-1))*(pi)^((-1))*sph3_10), b_k = (-((-1) + cph3_10)*(kf)^((-1))*(pi)^((-1)))
 //   (pk = (-1)^k, cph3_10 = cos(2 pi ((k 3) mod 10)/10), sph3_10 = sin(2 pi ((k 3) mod 10)/10)),
-//   T = 10 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
-//   the pieces {1 on [0, 3); 0 on [3, 10)} [for small sigma/T]
+//   T = 1 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
+//   the pieces {1 on [0, (3/10)); 0 on [(3/10), 1)} [for small sigma/T]
 template <class T>
 T gaussian_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -4334,6 +4363,19 @@ T gaussian_pulse30_raw(T x, T sigma) {
     }
     return acc;
   }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::gauss_periodic_image((r_o - bh0) - bl0, sigma, period, o0, T(1.0));
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::gauss_periodic_image((r_o - ch0) - cl0, sigma, period, o0, T(1.0));
+  }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
@@ -4351,10 +4393,10 @@ template <class T>
 T gaussian_pulse30_u(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   const T s = sigma / period;
@@ -4394,10 +4436,10 @@ template <class T>
 T gaussian_pulse30_right(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
   const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
@@ -4410,18 +4452,33 @@ T gaussian_pulse30_right(T x, T sigma) {
 //   (3/10) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)),
 //   a_k = ((kf)^((-1))*(pi)^((-1))*sph3_10), b_k = (-((-1) + cph3_10)*(kf)^((-1))*(pi)^((-1)))
 //   (pk = (-1)^k, cph3_10 = cos(2 pi ((k 3) mod 10)/10), sph3_10 = sin(2 pi ((k 3) mod 10)/10)),
-//   T = 10 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
-//   the pieces {1 on [0, 3); 0 on [3, 10)} [for small sigma/T]
+//   T = 1 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
+//   the pieces {1 on [0, (3/10)); 0 on [(3/10), 1)} [for small sigma/T]
 template <class T>
 T gaussian_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -4449,6 +4506,19 @@ T gaussian_pulse30_sq_raw(T x, T sigma) {
     }
     return acc;
   }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::gauss_periodic_image((r_o - bh0) - bl0, sigma, period, o0, T(1.0));
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::gauss_periodic_image((r_o - ch0) - cl0, sigma, period, o0, T(1.0));
+  }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
@@ -4462,22 +4532,54 @@ T gaussian_pulse30_sq(T x, T sigma) {
 }
 
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
-//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3, 10)}, F_p2 =
-//   {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (3/10)); (3/10) on [(3/10),
+//   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (3/10)); (((3/10)*t) + (-9/200)) on [(3/10), 1)}
 template <class T>
 T box_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_1[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::box_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::box_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1);
+  }
   return detail::box_periodic(x, sigma, period, p, p1);
 }
 
@@ -4495,10 +4597,10 @@ template <class T>
 T box_pulse30_u(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   return detail::box_periodic_u(x, sigma, period, p);
@@ -4510,14 +4612,14 @@ template <class T>
 T box_pulse30_right(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
   const T hw = detail::k_sqrt3<T>() * sigma;
@@ -4527,22 +4629,54 @@ T box_pulse30_right(T x, T sigma) {
 }
 
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
-//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3, 10)}, F_p2 =
-//   {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (3/10)); (3/10) on [(3/10),
+//   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (3/10)); (((3/10)*t) + (-9/200)) on [(3/10), 1)}
 template <class T>
 T box_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_1[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::box_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::box_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1);
+  }
   return detail::box_periodic(x, sigma, period, p, p1);
 }
 
@@ -4556,26 +4690,63 @@ T box_pulse30_sq(T x, T sigma) {
 }
 
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
-//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3,
-//   10)}, F_p2 = {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (3/10)); (3/10)
+//   on [(3/10), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (3/10)); (((3/10)*t) + (-9/200)) on [(3/10),
+//   1)}
 template <class T>
 T tent_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const detail::Piece<T> p2[2] = {
-      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_1[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_2[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(49)/T(200)), (T(-7)/T(10)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::tent_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1, o0_2);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::tent_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1, o0_2);
+  }
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
 }
 
@@ -4593,10 +4764,10 @@ template <class T>
 T tent_pulse30_u(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   return detail::tent_periodic_u(x, sigma, period, p);
@@ -4608,18 +4779,18 @@ template <class T>
 T tent_pulse30_right(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const detail::Piece<T> p2[2] = {
-      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
   const T hw = detail::k_sqrt6<T>() * sigma;
@@ -4629,26 +4800,63 @@ T tent_pulse30_right(T x, T sigma) {
 }
 
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
-//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3,
-//   10)}, F_p2 = {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (3/10)); (3/10)
+//   on [(3/10), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (3/10)); (((3/10)*t) + (-9/200)) on [(3/10),
+//   1)}
 template <class T>
 T tent_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const detail::Piece<T> p2[2] = {
-      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_1[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_2[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(49)/T(200)), (T(-7)/T(10)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::tent_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1, o0_2);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::tent_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1, o0_2);
+  }
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
 }
 
