@@ -151,8 +151,6 @@ void break_arguments(const ex& e, std::vector<ex>& out) {
   for (size_t i = 0; i < e.nops(); ++i) break_arguments(e.op(i), out);
 }
 
-std::vector<numeric> real_roots(const ex& u);
-
 // Zeros of break arguments of e inside the domain and away from singular points: every real root
 // where the argument's numerator is a rational polynomial (isolated exactly, however close together
 // or far out), else the sign changes between the sample points.
@@ -219,6 +217,8 @@ std::vector<numeric> roots_in(const Poly& c, const numeric& lo, const numeric& h
   return out;
 }
 
+}  // namespace
+
 // The real roots of u's numerator when that is a polynomial in x with rational coefficients
 // (roots_in over the Cauchy bound), else none: the caller then samples.
 std::vector<numeric> real_roots(const ex& u) {
@@ -234,11 +234,15 @@ std::vector<numeric> real_roots(const ex& u) {
   for (size_t k = 0; k + 1 < c.size(); ++k)
     bound = std::max(bound, 1 + abs(c[k] / c.back()), [](const numeric& p, const numeric& q) { return p < q; });
   std::vector<numeric> out;
-  if (c[0].is_zero()) out.push_back(0);  // roots_in's interior test misses an exact root at a cut
-  for (const numeric& r : roots_in(c, -bound - 1, bound + 1))
-    if (!r.is_zero() || !c[0].is_zero()) out.push_back(r);
+  if (c[0].is_zero()) {  // x divides u: the root 0 exactly, then the rest (bisection would not land on 0)
+    out.push_back(0);
+    while (c.size() > 1 && c[0].is_zero()) c.erase(c.begin());
+  }
+  for (const numeric& r : roots_in(c, -bound - 1, bound + 1)) out.push_back(r);
   return out;
 }
+
+namespace {
 
 struct Extreme {
   int inf = 0;  // -1/+1: f tends to -inf/+inf

@@ -16,6 +16,8 @@ EXPECT = {  # snippet -> (entry, field, words of the reason)
     # zeros of a polynomial break argument are isolated exactly, not sampled (0.47 apart, |x| <= 4243)
     "tanh_close_jumps_F": ("tanh", "F", "jumps by -2 at x = 0.01"),
     "tanh_far_jump_F": ("tanh", "F", "at x = 10000"),
+    # monotone proved where f' = q e^{ax}: q's real roots, not samples
+    "cubic_not_monotone": ("cubic", "monotone", "f' = 0 at x = 0.6"),
 }
 
 rulegen = sys.argv[1]
