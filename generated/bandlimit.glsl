@@ -1476,11 +1476,26 @@ float bl_plain_square(float x) {
 
 float bl_plain_pulse30(float x) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 10.0, 2, p);
+  float period = 1.0;
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
 }
 
 float bl_plain_floor(float x) {
@@ -4241,13 +4256,29 @@ float bl_tent_square_sq(float x, float sigma) {
 
 float bl_gaussian_pulse30_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
     int K = int(floor((1.0725509182905828) / s));
@@ -4280,6 +4311,20 @@ float bl_gaussian_pulse30_raw(float x, float sigma) {
     }
     return acc;
   }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_gauss_periodic_image((r_o - bh0) - bl0, sigma, period, 2, o0, (1.0));
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_gauss_periodic_image((r_o - ch0) - cl0, sigma, period, 2, o0, (1.0));
+  }
   return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
@@ -4292,11 +4337,11 @@ float bl_gaussian_pulse30(float x, float sigma) {
 
 float bl_gaussian_pulse30_u(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   float s = sigma / period;
@@ -4337,11 +4382,11 @@ float bl_gaussian_pulse30_u(float x, float sigma) {
 
 float bl_gaussian_pulse30_right(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
   float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
@@ -4353,13 +4398,29 @@ float bl_gaussian_pulse30_right(float x, float sigma) {
 
 float bl_gaussian_pulse30_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
     int K = int(floor((1.0725509182905828) / s));
@@ -4392,6 +4453,20 @@ float bl_gaussian_pulse30_sq_raw(float x, float sigma) {
     }
     return acc;
   }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_gauss_periodic_image((r_o - bh0) - bl0, sigma, period, 2, o0, (1.0));
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_gauss_periodic_image((r_o - ch0) - cl0, sigma, period, 2, o0, (1.0));
+  }
   return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
@@ -4404,18 +4479,53 @@ float bl_gaussian_pulse30_sq(float x, float sigma) {
 
 float bl_box_pulse30_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_1[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_box_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_box_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1);
+  }
   return bl_box_periodic(x, sigma, period, 2, p, p1);
 }
 
@@ -4428,11 +4538,11 @@ float bl_box_pulse30(float x, float sigma) {
 
 float bl_box_pulse30_u(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   return bl_box_periodic_u(x, sigma, period, 2, p);
@@ -4440,16 +4550,16 @@ float bl_box_pulse30_u(float x, float sigma) {
 
 float bl_box_pulse30_right(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
   float hw = BL_SQRT3 * sigma;
@@ -4460,18 +4570,53 @@ float bl_box_pulse30_right(float x, float sigma) {
 
 float bl_box_pulse30_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_1[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_box_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_box_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1);
+  }
   return bl_box_periodic(x, sigma, period, 2, p, p1);
 }
 
@@ -4484,23 +4629,63 @@ float bl_box_pulse30_sq(float x, float sigma) {
 
 float bl_tent_pulse30_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((-9.0/200.0), (3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_1[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_2[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((49.0/200.0), (-7.0/10.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_tent_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1, o0_2);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_tent_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1, o0_2);
+  }
   return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
 }
 
@@ -4513,11 +4698,11 @@ float bl_tent_pulse30(float x, float sigma) {
 
 float bl_tent_pulse30_u(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return (0.0);
   return bl_tent_periodic_u(x, sigma, period, 2, p);
@@ -4525,21 +4710,21 @@ float bl_tent_pulse30_u(float x, float sigma) {
 
 float bl_tent_pulse30_right(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((-9.0/200.0), (3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return x < (0.0) ? (0.0) : bl_periodic_eval(x, period, 2, p);
   float hw = BL_SQRT6 * sigma;
@@ -4550,23 +4735,63 @@ float bl_tent_pulse30_right(float x, float sigma) {
 
 float bl_tent_pulse30_sq_raw(float x, float sigma) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8]((-9.0/2.0), 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8]((-9.0/200.0), (3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 10.0;
+  float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
+  if (sigma == (0.0)) {
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
+  }
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_1[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    BlPiece o0_2[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8]((49.0/200.0), (-7.0/10.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_tent_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1, o0_2);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_tent_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1, o0_2);
+  }
   return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
 }
 

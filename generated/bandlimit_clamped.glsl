@@ -536,20 +536,20 @@ float bl_deriv_square_d2(float x) {
 
 float bl_deriv_pulse30_d1(float x) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 10.0, 2, p);
+  return bl_periodic_eval(x, 1.0, 2, p);
 }
 
 float bl_deriv_pulse30_d2(float x) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 10.0, 2, p);
+  return bl_periodic_eval(x, 1.0, 2, p);
 }
 
 float bl_deriv_floor_d1(float x) {
@@ -769,11 +769,26 @@ float bl_clamped_plain_square(float x) {
 
 float bl_clamped_plain_pulse30(float x) {
   BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 3.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(3.0, 10.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 10.0, 2, p);
+  float period = 1.0;
+  float r_o = bl_reduce_signed(x, period);
+  {  // break at 3/10
+    BlPiece o0[4] = BlPiece[4](
+        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    float bh0 = (0.30000001192092896);
+    float bl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
+    float ch0 = (-0.699999988079071);
+    float cl0 = (-1.1920929132713809e-08);
+    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  }
+  return bl_periodic_eval(x, period, 2, p);
 }
 
 float bl_clamped_plain_floor(float x) {
@@ -1243,8 +1258,8 @@ vec2 bl_bimodal_pulse30(float mu, float sigma) {
   if (sigma == 0.0) return vec2(bl_box_pulse30(mu, 0.0), 0.0);
   float h = BL_SQRT3 * sigma, lo = mu - h, hi = mu + h, at = 0.0;
   int count = 0;
-  { float kh = floor((hi - (0.0)) / (10.0)), kl = floor((lo - (0.0)) / (10.0)); count += int(kh - kl); if (kh > kl) at = (0.0) + (10.0) * kh; }
-  { float kh = floor((hi - (3.0)) / (10.0)), kl = floor((lo - (3.0)) / (10.0)); count += int(kh - kl); if (kh > kl) at = (3.0) + (10.0) * kh; }
+  { float kh = floor((hi - (0.0)) / (1.0)), kl = floor((lo - (0.0)) / (1.0)); count += int(kh - kl); if (kh > kl) at = (0.0) + (1.0) * kh; }
+  { float kh = floor((hi - (0.3)) / (1.0)), kl = floor((lo - (0.3)) / (1.0)); count += int(kh - kl); if (kh > kl) at = (0.3) + (1.0) * kh; }
   vec2 cs = bl_bimodal_cut(mu, sigma, lo, hi, at, count);
   float m = bl_box_pulse30(cs.x, cs.y);
   return vec2(m, max(bl_box_pulse30_sq(cs.x, cs.y) - m * m, 0.0));

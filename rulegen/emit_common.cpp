@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -270,6 +271,60 @@ std::string fourier_branch(const Derived& d, const Syntax& s, int extra, const s
   return out;
 }
 
+// The exact rational value of a double.
+GiNaC::numeric exact_value(double v) {
+  int e = 0;
+  const double m = std::frexp(v, &e);  // v = m 2^e, |m| in [0.5, 1)
+  const GiNaC::numeric mi(static_cast<long>(std::ldexp(m, 53)));
+  return mi * GiNaC::pow(GiNaC::numeric(2), GiNaC::numeric(e - 53));
+}
+
+// The two-part split b = hi + lo in T (hi = b rounded, lo = the rest rounded): float's split in float,
+// double's in double and wider types.
+std::pair<std::string, std::string> split_text(const Syntax& s, const GiNaC::numeric& b) {
+  const double hd = b.to_double(), ld = (b - exact_value(hd)).to_double();
+  const double hf = static_cast<float>(hd), lf = static_cast<float>((b - exact_value(hf)).to_double());
+  if (!s.cpp()) return {s.dbl(hf), s.dbl(lf)};
+  auto pick = [&](double vf, double vd) {
+    return "(sizeof(T) < sizeof(double) ? " + s.dbl(vf) + " : " + s.dbl(vd) + ")";
+  };
+  return {pick(hf, hd), pick(lf, ld)};
+}
+
+// Near an inner break b of d.origins (within its gap of the exact signed remainder r, at b or b - T):
+// return call(y, o) with y = (r - bh) - bl the distance from b's exact position (r - bh is exact
+// there by Sterbenz, so only bl's small rounding remains) and o the name of the table re-origined
+// at b ("o<j>", its integrals "o<j>_1", "o<j>_2"). Everything else falls through to the caller's
+// original table. `integrals`: 0 pieces only, 1 with P1, 2 with P1 and P2.
+std::string origin_dispatch(const Derived& d, const Syntax& s, int integrals,
+                            const std::function<std::string(const std::string&, const std::string&)>& call) {
+  if (d.origins.empty()) return "";
+  std::string out = s.decl("r_o", s.helper("reduce_signed") + "(x, period)");
+  const GiNaC::numeric T = GiNaC::ex_to<GiNaC::numeric>(d.period);
+  for (size_t j = 0; j < d.origins.size(); ++j) {
+    const auto& o = d.origins[j];
+    const std::string nm = "o" + std::to_string(j);
+    std::ostringstream bt;
+    bt << o.b;
+    out += "  {  // break at " + bt.str() + "\n";
+    std::string tables = piece_table(s, nm, o.pieces);
+    if (integrals >= 1) tables += piece_table(s, nm + "_1", o.P1);
+    if (integrals >= 2) tables += piece_table(s, nm + "_2", o.P2);
+    for (size_t at = 0; (at = tables.find("\n  ", at)) != std::string::npos; at += 3) tables.insert(at + 1, "  ");
+    out += "  " + tables;
+    const std::string gap = s.dbl(o.gap.to_double());
+    for (int side = 0; side < 2; ++side) {
+      const auto [bh, bl] = split_text(s, side == 0 ? o.b : o.b - T);
+      const std::string v = (side == 0 ? "bh" : "ch") + std::to_string(j);
+      const std::string w = (side == 0 ? "bl" : "cl") + std::to_string(j);
+      out += "  " + s.decl(v, bh) + "  " + s.decl(w, bl);
+      out += "    if (abs(r_o - " + v + ") < " + gap + ") return " + call("(r_o - " + v + ") - " + w, nm) + ";\n";
+    }
+    out += "  }\n";
+  }
+  return out;
+}
+
 std::string body_periodic(const Derived& d, const Syntax& s) {
   const size_t n = d.pieces.size();
   std::string out = piece_table(s, "p", d.pieces);
@@ -277,21 +332,34 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
   if (d.kernel == Kernel::Tent) out += piece_table(s, "p2", d.P2);
   out += s.decl("period", s.ex(d.period));
   out += guard_sigma(s);
-  out += "  if (sigma == " + s.dbl(0) + ") return " + s.helper("periodic_eval") + "(x, period, " +
-         pieces_arg(s, "p", n) + ");\n";
-  if (d.kernel == Kernel::Box)
-    return out + "  return " + s.helper("box_periodic") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
-           ", p1);\n";
-  if (d.kernel == Kernel::Tent)
-    return out + "  return " + s.helper("tent_periodic") + "(x, sigma, period, " + pieces_arg(s, "p", n) +
-           ", p1, p2);\n";
+  auto plain = [&](const std::string& y, const std::string& t) {
+    return s.helper("periodic_eval") + "(" + y + ", period, " + pieces_arg(s, t, n) + ")";
+  };
+  if (!d.origins.empty()) {
+    out += "  if (sigma == " + s.dbl(0) + ") {\n" + origin_dispatch(d, s, 0, plain) + "  return " + plain("x", "p") +
+           ";\n  }\n";
+  } else {
+    out += "  if (sigma == " + s.dbl(0) + ") return " + plain("x", "p") + ";\n";
+  }
+  if (d.kernel != Kernel::Gaussian) {
+    const bool box = d.kernel == Kernel::Box;
+    auto call = [&](const std::string& y, const std::string& t) {
+      return s.helper(box ? "box_periodic" : "tent_periodic") + "(" + y + ", sigma, period, " +
+             pieces_arg(s, t, n) + ", " + (t == "p" ? "p1" : t + "_1") +
+             (box ? "" : std::string(", ") + (t == "p" ? "p2" : t + "_2")) + ")";
+    };
+    return out + origin_dispatch(d, s, box ? 1 : 2, call) + "  return " + call("x", "p") + ";\n";
+  }
   // Gaussian: the dual series, whichever needs fewer terms for the tolerance.
   std::string terms;
   if (!d.ak.is_zero()) terms = s.ex(d.ak) + " * cos(th)";
   if (!d.bk.is_zero()) terms += (terms.empty() ? "" : " + ") + s.ex(d.bk) + " * sin(th)";
   out += fourier_branch(d, s, 0, s.ex(d.a0), "damp * (" + (terms.empty() ? s.dbl(0) : terms) + ")", "acc");
-  return out + "  return " + s.helper("gauss_periodic_image") + "(x, sigma, period, " +
-         pieces_arg(s, "p", d.pieces.size()) + ", " + s.dbl(d.fmax) + ");\n";
+  auto call = [&](const std::string& y, const std::string& t) {
+    return s.helper("gauss_periodic_image") + "(" + y + ", sigma, period, " + pieces_arg(s, t, n) + ", " +
+           s.dbl(d.fmax) + ")";
+  };
+  return out + origin_dispatch(d, s, 0, call) + "  return " + call("x", "p") + ";\n";
 }
 
 // The Gaussian entries of a one-piece periodic atomic A (fract) and of A^2, when both were derived
@@ -969,8 +1037,20 @@ std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lan
     }
     case sym::AtomicClass::Periodic: {
       const std::vector<PolyPiece> ps = sym::polynomial_pieces(a, false);
-      return pre + piece_table(s, "p", ps) + "  return " + s.helper("periodic_eval") + "(x, " +
-             s.ex(*a.period) + ", " + pieces_arg(s, "p", ps.size()) + ");\n";
+      auto call = [&](const std::string& y, const std::string& t) {
+        return s.helper("periodic_eval") + "(" + y + ", period, " + pieces_arg(s, t, ps.size()) + ")";
+      };
+      std::string near;  // at a break float cannot hold: its exact side (see origin_dispatch)
+      for (const Derived& d : ds)
+        if (d.atomic == &a && !d.squared) {
+          near = origin_dispatch(d, s, 0, call);
+          break;
+        }
+      if (near.empty())
+        return pre + piece_table(s, "p", ps) + "  return " + s.helper("periodic_eval") + "(x, " +
+               s.ex(*a.period) + ", " + pieces_arg(s, "p", ps.size()) + ");\n";
+      return pre + piece_table(s, "p", ps) + s.decl("period", s.ex(*a.period)) + near + "  return " +
+             call("x", "p") + ";\n";
     }
     case sym::AtomicClass::Combination: {
       // Same identity as the smoothed form, with the plain atomics.

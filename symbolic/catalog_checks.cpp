@@ -151,7 +151,9 @@ void break_arguments(const ex& e, std::vector<ex>& out) {
   for (size_t i = 0; i < e.nops(); ++i) break_arguments(e.op(i), out);
 }
 
-// Zeros of break arguments of e inside the domain and away from singular points.
+// Zeros of break arguments of e inside the domain and away from singular points: every real root
+// where the argument's numerator is a rational polynomial (isolated exactly, however close together
+// or far out), else the sign changes between the sample points.
 std::vector<std::pair<numeric, ex>> break_points(const Atomic& a, const ex& e,
                                                  const std::vector<numeric>& pts) {
   std::vector<ex> args;
@@ -159,7 +161,9 @@ std::vector<std::pair<numeric, ex>> break_points(const Atomic& a, const ex& e,
   std::vector<std::pair<numeric, ex>> out;
   for (const ex& u : args) {
     if (!u.has(var_x())) continue;
-    for (const numeric& c : sign_changes(u, pts))
+    std::vector<numeric> zs = real_roots(u);
+    if (zs.empty()) zs = sign_changes(u, pts);
+    for (const numeric& c : zs)
       if (in_domain(a, c) && singular_distance(a, c) > pow10(-9) * (1 + abs(c))) out.push_back({c, u});
   }
   return out;
@@ -212,6 +216,33 @@ std::vector<numeric> roots_in(const Poly& c, const numeric& lo, const numeric& h
   }
   return out;
 }
+
+}  // namespace
+
+// The real roots of u's numerator when that is a polynomial in x with rational coefficients
+// (roots_in over the Cauchy bound), else none: the caller then samples.
+std::vector<numeric> real_roots(const ex& u) {
+  const ex num = u.normal().numer().expand();
+  if (!num.is_polynomial(var_x()) || num.degree(var_x()) < 1) return {};
+  Poly c;
+  for (int k = 0; k <= num.degree(var_x()); ++k) {
+    const ex ck = num.coeff(var_x(), k);
+    if (!is_a<numeric>(ck) || !ex_to<numeric>(ck).is_rational()) return {};
+    c.push_back(ex_to<numeric>(ck));
+  }
+  numeric bound = 1;
+  for (size_t k = 0; k + 1 < c.size(); ++k)
+    bound = std::max(bound, 1 + abs(c[k] / c.back()), [](const numeric& p, const numeric& q) { return p < q; });
+  std::vector<numeric> out;
+  if (c[0].is_zero()) {  // x divides u: the root 0 exactly, then the rest (bisection would not land on 0)
+    out.push_back(0);
+    while (c.size() > 1 && c[0].is_zero()) c.erase(c.begin());
+  }
+  for (const numeric& r : roots_in(c, -bound - 1, bound + 1)) out.push_back(r);
+  return out;
+}
+
+namespace {
 
 struct Extreme {
   int inf = 0;  // -1/+1: f tends to -inf/+inf

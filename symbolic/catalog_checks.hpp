@@ -13,6 +13,10 @@
 
 namespace bl::sym {
 
+// The real roots of u's numerator when that is a polynomial in x with rational coefficients (exact
+// isolation over the Cauchy bound, each to ~1e-40), else none.
+std::vector<GiNaC::numeric> real_roots(const GiNaC::ex& u);
+
 // Sample points in the open domain, away from singular points and their periodic images, sorted.
 std::vector<GiNaC::numeric> sample_points(const Atomic& a);
 

@@ -359,21 +359,68 @@ std::string phases_text(const Derived& d) {
   return out;
 }
 
+// First and second integrals over one period, 0 at t = 0 (smoothing paper, Appendix C).
+void period_integrals(const std::vector<PolyPiece>& ps, std::vector<PolyPiece>& P1, std::vector<PolyPiece>& P2) {
+  ex v1 = 0, v2 = 0;
+  for (const PolyPiece& p : ps) {
+    auto g1 = integrate(p.c, p.lo.value, v1);
+    auto g2 = integrate(g1, p.lo.value, v2);
+    P1.push_back({p.lo, p.hi, g1});
+    P2.push_back({p.lo, p.hi, g2});
+    v1 = from_coefficients(g1, p.hi.value).expand();
+    v2 = from_coefficients(g2, p.hi.value).expand();
+  }
+}
+
+// True when the rational v is exactly a float (24-bit significand, normal exponent range).
+bool float_exact(const numeric& v) {
+  if (v.is_zero()) return true;
+  numeric m = abs(v);
+  const numeric two(2);
+  int e = 0;
+  while (m < numeric(1 << 23) && e < 200) m *= two, ++e;
+  while (m >= numeric(1 << 24) && e > -200) m /= two, --e;
+  return m.is_integer();
+}
+
+// Break origins (Derived::origins): the period's pieces rotated so that inner break j sits at 0.
+void break_origins(Derived& d) {
+  const ex T = d.period;
+  if (!is_a<numeric>(T) || !ex_to<numeric>(T).is_rational()) return;
+  const numeric Tn = ex_to<numeric>(T);
+  const size_t n = d.pieces.size();
+  std::vector<numeric> br;
+  for (const PolyPiece& p : d.pieces) {
+    if (!is_a<numeric>(p.lo.value) || !ex_to<numeric>(p.lo.value).is_rational()) return;
+    br.push_back(ex_to<numeric>(p.lo.value));
+  }
+  for (size_t j = 1; j < n; ++j) {
+    if (float_exact(br[j])) continue;
+    Derived::BreakOrigin o;
+    o.b = br[j];
+    const numeric left = br[j] - br[j - 1], right = (j + 1 < n ? br[j + 1] : Tn) - br[j];
+    o.gap = (left < right ? left : right) / 2;
+    const symbol& x = var_x();
+    for (size_t i = 0; i < n; ++i) {
+      const size_t src = (j + i) % n;
+      const numeric shift = src >= j ? -br[j] : Tn - br[j];  // new coordinate = old + shift
+      const PolyPiece& p = d.pieces[src];
+      const numeric hi = src + 1 < n ? br[src + 1] : Tn;
+      o.pieces.push_back({Bound{0, br[src] + shift}, Bound{0, hi + shift},
+                          coefficients(from_coefficients(p.c, x - shift).expand())});
+    }
+    period_integrals(o.pieces, o.P1, o.P2);
+    d.origins.push_back(std::move(o));
+  }
+}
+
 void derive_periodic(const Atomic& a, Kernel k, bool sq, Derived& d) {
   d.body = Body::PeriodicTable;
   d.period = *a.period;
   d.pieces = polynomial_pieces(a, sq);
   const ex T = *a.period;
-  // First and second integrals over one period (smoothing paper, Appendix C).
-  ex v1 = 0, v2 = 0;
-  for (const PolyPiece& p : d.pieces) {
-    auto g1 = integrate(p.c, p.lo.value, v1);
-    auto g2 = integrate(g1, p.lo.value, v2);
-    d.P1.push_back({p.lo, p.hi, g1});
-    d.P2.push_back({p.lo, p.hi, g2});
-    v1 = from_coefficients(g1, p.hi.value).expand();
-    v2 = from_coefficients(g2, p.hi.value).expand();
-  }
+  period_integrals(d.pieces, d.P1, d.P2);
+  break_origins(d);
   const double rmax = std::max(std::abs(a.range_lo.to_double()), std::abs(a.range_hi.to_double()));
   if (!std::isfinite(rmax)) fail(a, "range", "a periodic atomic needs a finite range");
   d.fmax = sq ? rmax * rmax : rmax;

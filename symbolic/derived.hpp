@@ -92,6 +92,16 @@ struct Derived {
   double coef_bound = 0;                  // bound on |a_k| + |b_k|
   GiNaC::ex a0, ak, bk;                   // Fourier coefficients in k (and (-1)^k, the phases)
   std::vector<FourierPhase> phases;       // boundaries at p/q of the period, q > 2
+  // PeriodicTable: the period re-origined at each inner break b that float cannot hold (b/T
+  // rational, T rational): the pieces of f(t + b) on [0, T) and their integrals P1, P2. Near such a
+  // break the emitted code evaluates at x - b, formed from b's exact two-part split, so a kernel
+  // narrower than the break's rounding (float: 1.2e-8 at 0.3) still sees it where it is.
+  struct BreakOrigin {
+    GiNaC::numeric b;    // the break, in (0, T)
+    GiNaC::numeric gap;  // half the distance to the nearest other break (cyclic)
+    std::vector<PolyPiece> pieces, P1, P2;
+  };
+  std::vector<BreakOrigin> origins;
   // Periodic, not squared: the half-line companion's boundary series (Euler-Maclaurin at t = 0),
   // half_series[m] = (-1)^(m+1) S_{m+2}(0) with S_1 = f - a0 and S_{j+1} the periodic, mean-free
   // antiderivative of S_j (exact); see docs/derivations.md.

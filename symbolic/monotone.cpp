@@ -1,7 +1,11 @@
 #include "monotone.hpp"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
+
+#include "catalog_checks.hpp"
+#include "exp_poly.hpp"
 
 namespace bl::sym {
 using namespace GiNaC;
@@ -29,6 +33,24 @@ double eval30(const ex& e, const symbol& v, double at) {
   }
   Digits = saved;
   return r;
+}
+
+// f' = q(x) e^{a x} with q a rational polynomial and one real rate a (polynomials: a = 0; the
+// exp-polynomial pieces x^n e^{ax}): q, else nothing (then only the samples below check).
+std::optional<ex> single_rate_factor(const ex& fp) {
+  try {
+    const ExpPoly e = ExpPoly::from(fp.expand());
+    std::optional<numeric> rate;
+    ex q = 0;
+    for (const auto& [k, c] : e.terms()) {
+      if (!k.a.is_real() || !c.is_rational() || (rate && *rate != k.a)) return std::nullopt;
+      rate = k.a;
+      q += c * pow(var_x(), k.n);
+    }
+    return q;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
 }
 
 }  // namespace
@@ -66,6 +88,28 @@ void check_monotone(const Atomic& a) {
     const Monotone& m = a.monotone[i];
     const ex f = monotone_f(a, m);
     const ex fp = f.diff(x);
+    // Proof where f' = q e^{ax}: q has no real root strictly inside the piece (e^{ax} > 0).
+    if (const auto q = single_rate_factor(fp)) {
+      // (a root within 1e-30 of an end is that end: roots are isolated to ~1e-40)
+      auto end = [](const Bound& b) {
+        if (is_a<numeric>(b.value)) return ex_to<numeric>(b.value);
+        const int saved = Digits;
+        Digits = 50;
+        const numeric v = ex_to<numeric>(b.value.evalf());
+        Digits = saved;
+        return v;
+      };
+      const numeric tol("1e-30");
+      for (const numeric& r : real_roots(*q)) {
+        const bool above = !m.lo.finite() || r > end(m.lo) + tol * (1 + abs(end(m.lo)));
+        const bool below = !m.hi.finite() || r < end(m.hi) - tol * (1 + abs(end(m.hi)));
+        if (above && below) {
+          std::ostringstream o;
+          o << "piece " << i << ": f is not strictly monotone inside it (f' = 0 at x = " << r.to_double() << ")";
+          fail(a, o.str());
+        }
+      }
+    }
     int sign = 0;
     for (double xv : interior_points(m.lo, m.hi, 7)) {
       const double d = eval30(fp, x, xv);

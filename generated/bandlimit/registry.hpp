@@ -37,7 +37,7 @@ inline const AtomicInfo kAtomics[] = {
     {"fract", "periodic", 1, 1, {0}, 0, {}, -kInf, kInf, 0, 1},
     {"triangle", "periodic", 2, 2, {0, 1}, 0, {}, -kInf, kInf, 0, 1},
     {"square", "periodic", 1, 2, {0, 0.5}, 0, {}, -kInf, kInf, 0, 1},
-    {"pulse30", "periodic", 10, 2, {0, 3}, 0, {}, -kInf, kInf, 0, 1},
+    {"pulse30", "periodic", 1, 2, {0, 0.29999999999999999}, 0, {}, -kInf, kInf, 0, 1},
     {"floor", "quasiperiodic", 1, 1, {0}, 0, {}, -kInf, kInf, -kInf, kInf},
     {"ceil", "quasiperiodic", 1, 1, {0}, 0, {}, -kInf, kInf, -kInf, kInf},
     {"trunc", "quasiperiodic", 1, 1, {0}, 0, {}, -kInf, kInf, -kInf, kInf},

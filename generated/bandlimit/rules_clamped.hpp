@@ -560,26 +560,26 @@ T deriv_square_d2(T x) {
   return detail::periodic_eval(x, T(1), p);
 }
 
-// 0 on [0, 3); 0 on [3, 10) (period 10); right piece at a break, jumps' delta functions dropped
+// 0 on [0, (3/10)); 0 on [(3/10), 1) (period 1); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_pulse30_d1(T x) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  return detail::periodic_eval(x, T(10), p);
+  return detail::periodic_eval(x, T(1), p);
 }
 
-// 0 on [0, 3); 0 on [3, 10) (period 10); right piece at a break, jumps' delta functions dropped
+// 0 on [0, (3/10)); 0 on [(3/10), 1) (period 1); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_pulse30_d2(T x) {
   BL_MATH_USING
   const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), (T(3)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  return detail::periodic_eval(x, T(10), p);
+  return detail::periodic_eval(x, T(1), p);
 }
 
 // 1 + -1*fract_d1(x)
@@ -1252,9 +1252,9 @@ stat<T> bimodal_square(T mu, T sigma) {
 // Box footprint cut at the single jump it contains (Yang & Barnes 2018, 4.6).
 template <class T>
 stat<T> bimodal_pulse30(T mu, T sigma) {
-  static const double jumps[2] = {(0.0), (3.0)};
+  static const double jumps[2] = {(0.0), (0.3)};
   // In double also for float: the variance E[f^2] - E[f]^2 cancels where |f| is large (floor).
-  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (10.0), jumps, 2, [](double x, double s) { return box_pulse30<double>(x, s); }, [](double x, double s) { return box_pulse30_sq<double>(x, s); });
+  const stat<double> r = bimodal::truncated_box<double>(double(mu), double(sigma), (1.0), jumps, 2, [](double x, double s) { return box_pulse30<double>(x, s); }, [](double x, double s) { return box_pulse30_sq<double>(x, s); });
   return {T(r.mean), T(r.var)};
 }
 

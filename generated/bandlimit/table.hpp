@@ -696,7 +696,7 @@ T plain_xexp(T x) {
 template <class T>
 T plain_abs(T x) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -706,7 +706,7 @@ T plain_abs(T x) {
 template <class T>
 T plain_sign(T x) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -716,7 +716,7 @@ T plain_sign(T x) {
 template <class T>
 T plain_step(T x) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -726,7 +726,7 @@ T plain_step(T x) {
 template <class T>
 T plain_saturate(T x) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -737,7 +737,7 @@ T plain_saturate(T x) {
 template <class T>
 T plain_smoothstep(T x) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -769,7 +769,7 @@ T plain_exp_ramp(T x) {
 template <class T>
 T plain_fract(T x) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   return detail::periodic_eval(x, T(1), p);
@@ -778,7 +778,7 @@ T plain_fract(T x) {
 template <class T>
 T plain_triangle(T x) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -788,7 +788,7 @@ T plain_triangle(T x) {
 template <class T>
 T plain_square(T x) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -798,11 +798,25 @@ T plain_square(T x) {
 template <class T>
 T plain_pulse30(T x) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  return detail::periodic_eval(x, T(10), p);
+  const T period = T(1);
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
 }
 
 template <class T>
@@ -1971,7 +1985,7 @@ T tent_pow8_sq(T x, T sigma) {
 template <class T>
 T gaussian_xexp_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -1983,8 +1997,7 @@ T gaussian_xexp_raw(T x, T sigma) {
 template <class T>
 T gaussian_xexp(T x, T sigma) {
   const T v = gaussian_xexp_raw<T>(x, sigma);
-  static const T lo = (-exp((T(-1))));
-  if (v < lo) return lo;
+  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
   return v;
 }
 
@@ -1995,7 +2008,7 @@ T gaussian_xexp(T x, T sigma) {
 template <class T>
 T gaussian_xexp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2017,7 +2030,7 @@ T gaussian_xexp_sq(T x, T sigma) {
 template <class T>
 T box_xexp_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2029,8 +2042,7 @@ T box_xexp_raw(T x, T sigma) {
 template <class T>
 T box_xexp(T x, T sigma) {
   const T v = box_xexp_raw<T>(x, sigma);
-  static const T lo = (-exp((T(-1))));
-  if (v < lo) return lo;
+  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
   return v;
 }
 
@@ -2040,7 +2052,7 @@ T box_xexp(T x, T sigma) {
 template <class T>
 T box_xexp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2062,7 +2074,7 @@ T box_xexp_sq(T x, T sigma) {
 template <class T>
 T tent_xexp_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2074,8 +2086,7 @@ T tent_xexp_raw(T x, T sigma) {
 template <class T>
 T tent_xexp(T x, T sigma) {
   const T v = tent_xexp_raw<T>(x, sigma);
-  static const T lo = (-exp((T(-1))));
-  if (v < lo) return lo;
+  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
   return v;
 }
 
@@ -2085,7 +2096,7 @@ T tent_xexp(T x, T sigma) {
 template <class T>
 T tent_xexp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2106,7 +2117,7 @@ T tent_xexp_sq(T x, T sigma) {
 template <class T>
 T gaussian_abs_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2144,7 +2155,7 @@ T gaussian_abs_sq(T x, T sigma) {
 template <class T>
 T box_abs_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2182,7 +2193,7 @@ T box_abs_sq(T x, T sigma) {
 template <class T>
 T tent_abs_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2219,7 +2230,7 @@ T tent_abs_sq(T x, T sigma) {
 template <class T>
 T gaussian_sign_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2258,7 +2269,7 @@ T gaussian_sign_sq(T x, T sigma) {
 template <class T>
 T box_sign_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2298,7 +2309,7 @@ T box_sign_sq(T x, T sigma) {
 template <class T>
 T tent_sign_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2337,7 +2348,7 @@ T tent_sign_sq(T x, T sigma) {
 template <class T>
 T gaussian_step_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2359,7 +2370,7 @@ T gaussian_step(T x, T sigma) {
 template <class T>
 T gaussian_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2381,7 +2392,7 @@ T gaussian_step_sq(T x, T sigma) {
 template <class T>
 T box_step_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2403,7 +2414,7 @@ T box_step(T x, T sigma) {
 template <class T>
 T box_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2426,7 +2437,7 @@ T box_step_sq(T x, T sigma) {
 template <class T>
 T tent_step_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2449,7 +2460,7 @@ T tent_step(T x, T sigma) {
 template <class T>
 T tent_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2473,7 +2484,7 @@ T tent_step_sq(T x, T sigma) {
 template <class T>
 T gaussian_saturate_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2500,7 +2511,7 @@ T gaussian_saturate(T x, T sigma) {
 template <class T>
 T gaussian_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2524,7 +2535,7 @@ T gaussian_saturate_sq(T x, T sigma) {
 template <class T>
 T box_saturate_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2548,7 +2559,7 @@ T box_saturate(T x, T sigma) {
 template <class T>
 T box_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2572,7 +2583,7 @@ T box_saturate_sq(T x, T sigma) {
 template <class T>
 T tent_saturate_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2596,7 +2607,7 @@ T tent_saturate(T x, T sigma) {
 template <class T>
 T tent_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2628,7 +2639,7 @@ T tent_saturate_sq(T x, T sigma) {
 template <class T>
 T gaussian_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2678,7 +2689,7 @@ T gaussian_smoothstep(T x, T sigma) {
 template <class T>
 T gaussian_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2702,7 +2713,7 @@ T gaussian_smoothstep_sq(T x, T sigma) {
 template <class T>
 T box_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2726,7 +2737,7 @@ T box_smoothstep(T x, T sigma) {
 template <class T>
 T box_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2751,7 +2762,7 @@ T box_smoothstep_sq(T x, T sigma) {
 template <class T>
 T tent_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2776,7 +2787,7 @@ T tent_smoothstep(T x, T sigma) {
 template <class T>
 T tent_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[3] = {
+  const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2803,7 +2814,7 @@ T tent_smoothstep_sq(T x, T sigma) {
 template <class T>
 T gaussian_laplace_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[2] = {
+  const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2829,7 +2840,7 @@ T gaussian_laplace(T x, T sigma) {
 template <class T>
 T gaussian_laplace_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[2] = {
+  const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2853,7 +2864,7 @@ T gaussian_laplace_sq(T x, T sigma) {
 template <class T>
 T box_laplace_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[2] = {
+  const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2877,7 +2888,7 @@ T box_laplace(T x, T sigma) {
 template <class T>
 T box_laplace_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[2] = {
+  const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2901,7 +2912,7 @@ T box_laplace_sq(T x, T sigma) {
 template <class T>
 T tent_laplace_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[2] = {
+  const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2925,7 +2936,7 @@ T tent_laplace(T x, T sigma) {
 template <class T>
 T tent_laplace_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[2] = {
+  const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2950,7 +2961,7 @@ T tent_laplace_sq(T x, T sigma) {
 template <class T>
 T gaussian_exp_decay_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2974,7 +2985,7 @@ T gaussian_exp_decay(T x, T sigma) {
 template <class T>
 T gaussian_exp_decay_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2997,7 +3008,7 @@ T gaussian_exp_decay_sq(T x, T sigma) {
 template <class T>
 T box_exp_decay_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3020,7 +3031,7 @@ T box_exp_decay(T x, T sigma) {
 template <class T>
 T box_exp_decay_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3043,7 +3054,7 @@ T box_exp_decay_sq(T x, T sigma) {
 template <class T>
 T tent_exp_decay_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3066,7 +3077,7 @@ T tent_exp_decay(T x, T sigma) {
 template <class T>
 T tent_exp_decay_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3090,7 +3101,7 @@ T tent_exp_decay_sq(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3102,9 +3113,8 @@ T gaussian_exp_ramp_raw(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp(T x, T sigma) {
   const T v = gaussian_exp_ramp_raw<T>(x, sigma);
-  static const T hi = exp((T(-1)));
   if (v < T(0)) return T(0);
-  if (v > hi) return hi;
+  if (v > exp((T(-1)))) return exp((T(-1)));
   return v;
 }
 
@@ -3115,7 +3125,7 @@ T gaussian_exp_ramp(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3127,9 +3137,8 @@ T gaussian_exp_ramp_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp_sq(T x, T sigma) {
   const T v = gaussian_exp_ramp_sq_raw<T>(x, sigma);
-  static const T hi = exp((T(-2)));
   if (v < T(0)) return T(0);
-  if (v > hi) return hi;
+  if (v > exp((T(-2)))) return exp((T(-2)));
   return v;
 }
 
@@ -3139,7 +3148,7 @@ T gaussian_exp_ramp_sq(T x, T sigma) {
 template <class T>
 T box_exp_ramp_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3151,9 +3160,8 @@ T box_exp_ramp_raw(T x, T sigma) {
 template <class T>
 T box_exp_ramp(T x, T sigma) {
   const T v = box_exp_ramp_raw<T>(x, sigma);
-  static const T hi = exp((T(-1)));
   if (v < T(0)) return T(0);
-  if (v > hi) return hi;
+  if (v > exp((T(-1)))) return exp((T(-1)));
   return v;
 }
 
@@ -3163,7 +3171,7 @@ T box_exp_ramp(T x, T sigma) {
 template <class T>
 T box_exp_ramp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3175,9 +3183,8 @@ T box_exp_ramp_sq_raw(T x, T sigma) {
 template <class T>
 T box_exp_ramp_sq(T x, T sigma) {
   const T v = box_exp_ramp_sq_raw<T>(x, sigma);
-  static const T hi = exp((T(-2)));
   if (v < T(0)) return T(0);
-  if (v > hi) return hi;
+  if (v > exp((T(-2)))) return exp((T(-2)));
   return v;
 }
 
@@ -3187,7 +3194,7 @@ T box_exp_ramp_sq(T x, T sigma) {
 template <class T>
 T tent_exp_ramp_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3199,9 +3206,8 @@ T tent_exp_ramp_raw(T x, T sigma) {
 template <class T>
 T tent_exp_ramp(T x, T sigma) {
   const T v = tent_exp_ramp_raw<T>(x, sigma);
-  static const T hi = exp((T(-1)));
   if (v < T(0)) return T(0);
-  if (v > hi) return hi;
+  if (v > exp((T(-1)))) return exp((T(-1)));
   return v;
 }
 
@@ -3211,7 +3217,7 @@ T tent_exp_ramp(T x, T sigma) {
 template <class T>
 T tent_exp_ramp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::ExpTerm<T> p[1] = {
+  const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3223,9 +3229,8 @@ T tent_exp_ramp_sq_raw(T x, T sigma) {
 template <class T>
 T tent_exp_ramp_sq(T x, T sigma) {
   const T v = tent_exp_ramp_sq_raw<T>(x, sigma);
-  static const T hi = exp((T(-2)));
   if (v < T(0)) return T(0);
-  if (v > hi) return hi;
+  if (v > exp((T(-2)))) return exp((T(-2)));
   return v;
 }
 
@@ -3236,7 +3241,7 @@ T tent_exp_ramp_sq(T x, T sigma) {
 template <class T>
 T gaussian_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3283,7 +3288,7 @@ T gaussian_fract(T x, T sigma) {
 template <class T>
 T gaussian_fract_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3323,7 +3328,7 @@ T gaussian_fract_u(T x, T sigma) {
 template <class T>
 T gaussian_fract_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3343,7 +3348,7 @@ T gaussian_fract_right(T x, T sigma) {
 template <class T>
 T gaussian_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3392,10 +3397,10 @@ T gaussian_fract_sq(T x, T sigma) {
 template <class T>
 T box_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[1] = {
+  const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3417,14 +3422,13 @@ T box_fract(T x, T sigma) {
 template <class T>
 T box_fract_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  static const detail::UPeriodData<T, 1> data = detail::u_period_data(period, p);
-  return detail::box_periodic_u(x, sigma, period, data);
+  return detail::box_periodic_u(x, sigma, period, p);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3432,10 +3436,10 @@ T box_fract_u(T x, T sigma) {
 template <class T>
 T box_fract_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[1] = {
+  const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3453,10 +3457,10 @@ T box_fract_right(T x, T sigma) {
 template <class T>
 T box_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[1] = {
+  const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3480,13 +3484,13 @@ T box_fract_sq(T x, T sigma) {
 template <class T>
 T tent_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[1] = {
+  const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[1] = {
+  const detail::Piece<T> p2[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3508,14 +3512,13 @@ T tent_fract(T x, T sigma) {
 template <class T>
 T tent_fract_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  static const detail::UPeriodData<T, 1> data = detail::u_period_data(period, p);
-  return detail::tent_periodic_u(x, sigma, period, data);
+  return detail::tent_periodic_u(x, sigma, period, p);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3523,13 +3526,13 @@ T tent_fract_u(T x, T sigma) {
 template <class T>
 T tent_fract_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[1] = {
+  const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[1] = {
+  const detail::Piece<T> p2[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3547,13 +3550,13 @@ T tent_fract_right(T x, T sigma) {
 template <class T>
 T tent_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
+  const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[1] = {
+  const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[1] = {
+  const detail::Piece<T> p2[1] = {
       {T(0), T(1), {T(0), T(0), T(0), T(0), (T(1)/T(12)), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3578,7 +3581,7 @@ T tent_fract_sq(T x, T sigma) {
 template <class T>
 T gaussian_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3627,7 +3630,7 @@ T gaussian_triangle(T x, T sigma) {
 template <class T>
 T gaussian_triangle_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3669,7 +3672,7 @@ T gaussian_triangle_u(T x, T sigma) {
 template <class T>
 T gaussian_triangle_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3690,7 +3693,7 @@ T gaussian_triangle_right(T x, T sigma) {
 template <class T>
 T gaussian_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3742,11 +3745,11 @@ T gaussian_triangle_sq(T x, T sigma) {
 template <class T>
 T box_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3769,15 +3772,14 @@ T box_triangle(T x, T sigma) {
 template <class T>
 T box_triangle_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
-  return detail::box_periodic_u(x, sigma, period, data);
+  return detail::box_periodic_u(x, sigma, period, p);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3785,11 +3787,11 @@ T box_triangle_u(T x, T sigma) {
 template <class T>
 T box_triangle_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3809,11 +3811,11 @@ T box_triangle_right(T x, T sigma) {
 template <class T>
 T box_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-2)), T(4), (T(-2)), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
@@ -3839,15 +3841,15 @@ T box_triangle_sq(T x, T sigma) {
 template <class T>
 T tent_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[2] = {
+  const detail::Piece<T> p2[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(1)/T(3)), (T(-1)), T(1), (T(-1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
@@ -3870,15 +3872,14 @@ T tent_triangle(T x, T sigma) {
 template <class T>
 T tent_triangle_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
-  return detail::tent_periodic_u(x, sigma, period, data);
+  return detail::tent_periodic_u(x, sigma, period, p);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3886,15 +3887,15 @@ T tent_triangle_u(T x, T sigma) {
 template <class T>
 T tent_triangle_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[2] = {
+  const detail::Piece<T> p2[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(1)/T(3)), (T(-1)), T(1), (T(-1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
@@ -3914,15 +3915,15 @@ T tent_triangle_right(T x, T sigma) {
 template <class T>
 T tent_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-2)), T(4), (T(-2)), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[2] = {
+  const detail::Piece<T> p2[2] = {
       {T(0), T(1), {T(0), T(0), T(0), T(0), (T(1)/T(12)), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(2)/T(3)), (T(-2)), T(2), (T(-2)/T(3)), (T(1)/T(12)), T(0), T(0), T(0)}},
   };
@@ -3948,7 +3949,7 @@ T tent_triangle_sq(T x, T sigma) {
 template <class T>
 T gaussian_square_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3997,7 +3998,7 @@ T gaussian_square(T x, T sigma) {
 template <class T>
 T gaussian_square_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4039,7 +4040,7 @@ T gaussian_square_u(T x, T sigma) {
 template <class T>
 T gaussian_square_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4060,7 +4061,7 @@ T gaussian_square_right(T x, T sigma) {
 template <class T>
 T gaussian_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4111,11 +4112,11 @@ T gaussian_square_sq(T x, T sigma) {
 template <class T>
 T box_square_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4138,15 +4139,14 @@ T box_square(T x, T sigma) {
 template <class T>
 T box_square_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
-  return detail::box_periodic_u(x, sigma, period, data);
+  return detail::box_periodic_u(x, sigma, period, p);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4154,11 +4154,11 @@ T box_square_u(T x, T sigma) {
 template <class T>
 T box_square_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4177,11 +4177,11 @@ T box_square_right(T x, T sigma) {
 template <class T>
 T box_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4206,15 +4206,15 @@ T box_square_sq(T x, T sigma) {
 template <class T>
 T tent_square_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[2] = {
+  const detail::Piece<T> p2[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4237,15 +4237,14 @@ T tent_square(T x, T sigma) {
 template <class T>
 T tent_square_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
-  return detail::tent_periodic_u(x, sigma, period, data);
+  return detail::tent_periodic_u(x, sigma, period, p);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4253,15 +4252,15 @@ T tent_square_u(T x, T sigma) {
 template <class T>
 T tent_square_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[2] = {
+  const detail::Piece<T> p2[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4280,15 +4279,15 @@ T tent_square_right(T x, T sigma) {
 template <class T>
 T tent_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
+  const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
+  const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[2] = {
+  const detail::Piece<T> p2[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4310,18 +4309,33 @@ T tent_square_sq(T x, T sigma) {
 //   (3/10) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)),
 //   a_k = ((kf)^((-1))*(pi)^((-1))*sph3_10), b_k = (-((-1) + cph3_10)*(kf)^((-1))*(pi)^((-1)))
 //   (pk = (-1)^k, cph3_10 = cos(2 pi ((k 3) mod 10)/10), sph3_10 = sin(2 pi ((k 3) mod 10)/10)),
-//   T = 10 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
-//   the pieces {1 on [0, 3); 0 on [3, 10)} [for small sigma/T]
+//   T = 1 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
+//   the pieces {1 on [0, (3/10)); 0 on [(3/10), 1)} [for small sigma/T]
 template <class T>
 T gaussian_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -4349,6 +4363,19 @@ T gaussian_pulse30_raw(T x, T sigma) {
     }
     return acc;
   }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::gauss_periodic_image((r_o - bh0) - bl0, sigma, period, o0, T(1.0));
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::gauss_periodic_image((r_o - ch0) - cl0, sigma, period, o0, T(1.0));
+  }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
@@ -4365,11 +4392,11 @@ T gaussian_pulse30(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
   const T s = sigma / period;
@@ -4408,11 +4435,11 @@ T gaussian_pulse30_u(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
   const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
@@ -4425,18 +4452,33 @@ T gaussian_pulse30_right(T x, T sigma) {
 //   (3/10) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)),
 //   a_k = ((kf)^((-1))*(pi)^((-1))*sph3_10), b_k = (-((-1) + cph3_10)*(kf)^((-1))*(pi)^((-1)))
 //   (pk = (-1)^k, cph3_10 = cos(2 pi ((k 3) mod 10)/10), sph3_10 = sin(2 pi ((k 3) mod 10)/10)),
-//   T = 10 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
-//   the pieces {1 on [0, 3); 0 on [3, 10)} [for small sigma/T]
+//   T = 1 [Fourier form for large sigma/T]; image sum over periods of the Gaussian integral of
+//   the pieces {1 on [0, (3/10)); 0 on [(3/10), 1)} [for small sigma/T]
 template <class T>
 T gaussian_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -4464,6 +4506,19 @@ T gaussian_pulse30_sq_raw(T x, T sigma) {
     }
     return acc;
   }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::gauss_periodic_image((r_o - bh0) - bl0, sigma, period, o0, T(1.0));
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::gauss_periodic_image((r_o - ch0) - cl0, sigma, period, o0, T(1.0));
+  }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
@@ -4477,22 +4532,54 @@ T gaussian_pulse30_sq(T x, T sigma) {
 }
 
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
-//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3, 10)}, F_p2 =
-//   {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (3/10)); (3/10) on [(3/10),
+//   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (3/10)); (((3/10)*t) + (-9/200)) on [(3/10), 1)}
 template <class T>
 T box_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p1[2] = {
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_1[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::box_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::box_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1);
+  }
   return detail::box_periodic(x, sigma, period, p, p1);
 }
 
@@ -4509,15 +4596,14 @@ T box_pulse30(T x, T sigma) {
 template <class T>
 T box_pulse30_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
-  return detail::box_periodic_u(x, sigma, period, data);
+  return detail::box_periodic_u(x, sigma, period, p);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4525,15 +4611,15 @@ T box_pulse30_u(T x, T sigma) {
 template <class T>
 T box_pulse30_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p1[2] = {
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
   const T hw = detail::k_sqrt3<T>() * sigma;
@@ -4543,22 +4629,54 @@ T box_pulse30_right(T x, T sigma) {
 }
 
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
-//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3, 10)}, F_p2 =
-//   {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (3/10)); (3/10) on [(3/10),
+//   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (3/10)); (((3/10)*t) + (-9/200)) on [(3/10), 1)}
 template <class T>
 T box_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p1[2] = {
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_1[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::box_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::box_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1);
+  }
   return detail::box_periodic(x, sigma, period, p, p1);
 }
 
@@ -4572,26 +4690,63 @@ T box_pulse30_sq(T x, T sigma) {
 }
 
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
-//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3,
-//   10)}, F_p2 = {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (3/10)); (3/10)
+//   on [(3/10), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (3/10)); (((3/10)*t) + (-9/200)) on [(3/10),
+//   1)}
 template <class T>
 T tent_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p1[2] = {
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p2[2] = {
+      {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_1[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_2[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(49)/T(200)), (T(-7)/T(10)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::tent_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1, o0_2);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::tent_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1, o0_2);
+  }
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
 }
 
@@ -4608,15 +4763,14 @@ T tent_pulse30(T x, T sigma) {
 template <class T>
 T tent_pulse30_u(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
-  return detail::tent_periodic_u(x, sigma, period, data);
+  return detail::tent_periodic_u(x, sigma, period, p);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4624,19 +4778,19 @@ T tent_pulse30_u(T x, T sigma) {
 template <class T>
 T tent_pulse30_right(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p1[2] = {
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p2[2] = {
+      {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return x < T(0.0) ? T(0.0) : detail::periodic_eval(x, period, p);
   const T hw = detail::k_sqrt6<T>() * sigma;
@@ -4646,26 +4800,63 @@ T tent_pulse30_right(T x, T sigma) {
 }
 
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
-//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 10, F_p = {t on [0, 3); 3 on [3,
-//   10)}, F_p2 = {((1/2)*(t)^(2)) on [0, 3); ((-9/2) + (3*t)) on [3, 10)}
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (3/10)); (3/10)
+//   on [(3/10), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (3/10)); (((3/10)*t) + (-9/200)) on [(3/10),
+//   1)}
 template <class T>
 T tent_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(3), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p[2] = {
+      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(3), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {T(3), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p1[2] = {
+      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), T(3), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {T(3), T(10), {(T(-9)/T(2)), T(3), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  const detail::Piece<T> p2[2] = {
+      {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const T period = T(10);
+  const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  if (sigma == T(0.0)) {
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  }
+  return detail::periodic_eval(x, period, p);
+  }
+  const T r_o = detail::reduce_signed(x, period);
+  {  // break at 3/10
+    const detail::Piece<T> o0[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_1[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const detail::Piece<T> o0_2[2] = {
+        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+        {(T(7)/T(10)), T(1), {(T(49)/T(200)), (T(-7)/T(10)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
+    };
+    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
+    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
+    if (abs(r_o - bh0) < T(0.15)) return detail::tent_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1, o0_2);
+    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
+    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
+    if (abs(r_o - ch0) < T(0.15)) return detail::tent_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1, o0_2);
+  }
   return detail::tent_periodic(x, sigma, period, p, p1, p2);
 }
 
@@ -4844,7 +5035,7 @@ T gaussian_trunc(T x, T sigma) {
 template <class T>
 T gaussian_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> pt6[2] = {
+  const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4875,7 +5066,7 @@ T box_trunc(T x, T sigma) {
 template <class T>
 T box_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> pt6[2] = {
+  const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4906,7 +5097,7 @@ T tent_trunc(T x, T sigma) {
 template <class T>
 T tent_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> pt6[2] = {
+  const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };

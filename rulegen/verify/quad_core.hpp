@@ -102,8 +102,10 @@ bool make_pieces(const Spec& sp, const Real& x0, const Real& c, const std::vecto
   a -= pad;
   b += pad;
   if (count_breaks(sp, a, b) > static_cast<double>(cap)) return false;
-  auto add_break = [&](const Real& s) {
-    Real t = (s - x0) / c;
+  // t of the break s from kx = (k T - x0) + b (+ b's rest, break_rest): formed without rounding
+  // b + k T to |x|'s ulp, which at x = 1e6 + 0.3 moves a break b = 3/10 by up to 6e-11 onto x.
+  auto add_break = [&](const Real& s, const Real& kx) {
+    Real t = kx / c;
     if (t < tlo - 8 * std::numeric_limits<Real>::epsilon() * (abs(tlo) + 1) ||
         t > thi + 8 * std::numeric_limits<Real>::epsilon() * (abs(thi) + 1))
       return;
@@ -114,10 +116,12 @@ bool make_pieces(const Spec& sp, const Real& x0, const Real& c, const std::vecto
     if (b0.empty()) b0.push_back(0.0);
     for (double bb : b0) {
       double k0 = std::ceil((a - bb) / sp.period), k1 = std::floor((b - bb) / sp.period);
-      for (double k = k0; k <= k1; k += 1) add_break(Real(bb) + Real(k) * Real(sp.period));
+      for (double k = k0; k <= k1; k += 1)
+        add_break(Real(bb) + Real(k) * Real(sp.period),
+                  ((Real(k) * Real(sp.period) - x0) + Real(bb)) + Real(break_rest(bb)));
     }
   } else {
-    for (double bb : sp.breaks) add_break(Real(bb));
+    for (double bb : sp.breaks) add_break(Real(bb), (Real(bb) - x0) + Real(break_rest(bb)));
   }
   std::sort(pts.begin(), pts.end(), [](const Pt& p, const Pt& q) { return p.t < q.t; });
   // Merge points closer than a few ulps (a break on a window end or on the tent's kink).

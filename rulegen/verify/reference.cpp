@@ -355,7 +355,9 @@ struct RefEngine::Impl {
     }
     // the interval of x: between consecutive breaks around x
     long double sum = 0, l1 = 0;
-    auto jump = [this](double b) { return sp.g(b) - sp.g(std::nextafter(b, -kInf)); };
+    // Both neighbours of b: a break that is not a double (3/10) lies strictly between b and one of
+    // them, and g(b) itself is on the break's exact side.
+    auto jump = [this](double b) { return sp.g(std::nextafter(b, kInf)) - sp.g(std::nextafter(b, -kInf)); };
     double lo_b = -kInf, hi_b = kInf;
     const double kmax = std::ceil(reach / T) + 2;
     for (double dk = -kmax; dk <= kmax; dk += 1) {

@@ -34,6 +34,27 @@ inline double support_factor(Kernel k) {
   return k == Kernel::Box ? std::sqrt(3.0) : (k == Kernel::Tent ? std::sqrt(6.0) : 0.0);
 }
 
+// The rest b - bb of a break bb that is the double nearest a simple fraction b = p/q (q <= 1e6, as
+// catalog breaks are: 3/10 is 0.3 + 1.1e-17), else 0. The references place breaks at bb + rest, so a
+// kernel narrower than bb's rounding (sigma = 1e-12 at 0.3: 4e-6 of a jump) sees the break where the
+// catalog puts it. The first continued-fraction convergent within half an ulp of bb is the fraction.
+inline double break_rest(double bb) {
+  if (!std::isfinite(bb) || bb == std::floor(bb)) return 0;
+  const double half_ulp = 0.5 * (std::nextafter(std::fabs(bb), INFINITY) - std::fabs(bb));
+  double x = bb, p0 = 1, q0 = 0, p1 = std::floor(x), q1 = 1;
+  for (int n = 0; n < 40; ++n) {
+    const double frac = x - std::floor(x);
+    if (frac == 0) break;
+    x = 1 / frac;
+    const double a = std::floor(x), p2 = a * p1 + p0, q2 = a * q1 + q0;
+    if (!(q2 <= 1e6)) break;
+    const double r = std::fma(-q2, bb, p2);  // p - q bb, rounded once
+    if (std::fabs(r) / q2 <= half_ulp) return r / q2;
+    p0 = p1, q0 = q1, p1 = p2, q1 = q2;
+  }
+  return 0;
+}
+
 struct Spec {
   std::string name;                  // for messages (the entry's qualified C++ name)
   Kernel kernel = Kernel::Gaussian;

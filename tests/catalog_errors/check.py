@@ -13,6 +13,11 @@ EXPECT = {  # snippet -> (entry, field, words of the reason)
     "flat_not_number": ("tanh", "flat", "'beyond' must be a finite number"),
     "abs_in_antiderivative_f": ("absx", "f", "not smooth at x = 0"),
     "laplace_sgn_f": ("laplace", "f", "not smooth at x = 0"),
+    # zeros of a polynomial break argument are isolated exactly, not sampled (0.47 apart, |x| <= 4243)
+    "tanh_close_jumps_F": ("tanh", "F", "jumps by -2 at x = 0.01"),
+    "tanh_far_jump_F": ("tanh", "F", "at x = 10000"),
+    # monotone proved where f' = q e^{ax}: q's real roots, not samples
+    "cubic_not_monotone": ("cubic", "monotone", "f' = 0 at x = 0.6"),
 }
 
 rulegen = sys.argv[1]
