@@ -681,48 +681,30 @@ float bl_clamped_plain_xexp(float x) {
 }
 
 float bl_clamped_plain_abs(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_pw_eval(x, 2, p);
+  if (x < 0.0) return (-x);
+  return x;
 }
 
 float bl_clamped_plain_sign(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_pw_eval(x, 2, p);
+  if (x < 0.0) return (-1.0);
+  return 1.0;
 }
 
 float bl_clamped_plain_step(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_pw_eval(x, 2, p);
+  if (x < 0.0) return 0.0;
+  return 1.0;
 }
 
 float bl_clamped_plain_saturate(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_pw_eval(x, 3, p);
+  if (x < 0.0) return 0.0;
+  if (x < 1.0) return x;
+  return 1.0;
 }
 
 float bl_clamped_plain_smoothstep(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_pw_eval(x, 3, p);
+  if (x < 0.0) return 0.0;
+  if (x < 1.0) return (((-2.0)*(x*x*x)) + (3.0*(x*x)));
+  return 1.0;
 }
 
 float bl_clamped_plain_laplace(float x) {
@@ -741,30 +723,33 @@ float bl_clamped_plain_exp_ramp(float x) {
 }
 
 float bl_clamped_plain_fract(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 1.0, 1, p);
+  float r = bl_reduce_signed(x, 1.0);
+  if (!(r < (0.0))) {
+    return r;
+  }
+  float t = r + 1.0;
+  return t;
 }
 
 float bl_clamped_plain_triangle(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 2.0, 2, p);
+  float r = bl_reduce_signed(x, 2.0);
+  if (!(r < (0.0))) {
+    if (r < 1.0) return r;
+    return ((-r) + 2.0);
+  }
+  float t = r + 2.0;
+  if (r < (-1.0)) return t;
+  return ((-t) + 2.0);
 }
 
 float bl_clamped_plain_square(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 1.0, 2, p);
+  float r = bl_reduce_signed(x, 1.0);
+  if (!(r < (0.0))) {
+    if (r < (1.0/2.0)) return 1.0;
+    return 0.0;
+  }
+  if (r < (-1.0/2.0)) return 1.0;
+  return 0.0;
 }
 
 float bl_clamped_plain_pulse30(float x) {

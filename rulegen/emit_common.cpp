@@ -310,7 +310,8 @@ std::string origin_dispatch(const Derived& d, const Syntax& s, int integrals,
     std::string tables = piece_table(s, nm, o.pieces);
     if (integrals >= 1) tables += piece_table(s, nm + "_1", o.P1);
     if (integrals >= 2) tables += piece_table(s, nm + "_2", o.P2);
-    for (size_t at = 0; (at = tables.find("\n  ", at)) != std::string::npos; at += 3) tables.insert(at + 1, "  ");
+    for (size_t at = 0; (at = tables.find("\n  ", at)) != std::string::npos; at += 3)
+      tables.insert(at + 1, "  ");
     out += "  " + tables;
     const std::string gap = s.dbl(o.gap.to_double());
     for (int side = 0; side < 2; ++side) {
@@ -318,7 +319,8 @@ std::string origin_dispatch(const Derived& d, const Syntax& s, int integrals,
       const std::string v = (side == 0 ? "bh" : "ch") + std::to_string(j);
       const std::string w = (side == 0 ? "bl" : "cl") + std::to_string(j);
       out += "  " + s.decl(v, bh) + "  " + s.decl(w, bl);
-      out += "    if (abs(r_o - " + v + ") < " + gap + ") return " + call("(r_o - " + v + ") - " + w, nm) + ";\n";
+      out += "    if (abs(r_o - " + v + ") < " + gap + ") return " + call("(r_o - " + v + ") - " + w, nm) +
+             ";\n";
     }
     out += "  }\n";
   }
@@ -336,8 +338,8 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
     return s.helper("periodic_eval") + "(" + y + ", period, " + pieces_arg(s, t, n) + ")";
   };
   if (!d.origins.empty()) {
-    out += "  if (sigma == " + s.dbl(0) + ") {\n" + origin_dispatch(d, s, 0, plain) + "  return " + plain("x", "p") +
-           ";\n  }\n";
+    out += "  if (sigma == " + s.dbl(0) + ") {\n" + origin_dispatch(d, s, 0, plain) + "  return " +
+           plain("x", "p") + ";\n  }\n";
   } else {
     out += "  if (sigma == " + s.dbl(0) + ") return " + plain("x", "p") + ";\n";
   }
@@ -1017,6 +1019,36 @@ std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
   return (s.cpp() ? "  BL_MATH_USING\n" : "") + b;
 }
 
+// A periodic plain function as straight-line code: f(x - P floor(x/P)) piece by piece on the exact
+// signed remainder r (as periodic_eval: a negative r picks its piece against hi - P, so a jump just
+// below a period boundary stays on its side). C++ reduces without fmod when P is a power of two
+// (exact there). The plain function is the baseline every ratio and MSAA time divides by.
+std::string plain_periodic_straight(const sym::Atomic& a, const Syntax& s) {
+  const GiNaC::symbol r("r"), t("t");
+  const GiNaC::ex P = *a.period;
+  bool pow2 = false;
+  if (GiNaC::is_a<GiNaC::numeric>(P)) {
+    const double pd = GiNaC::ex_to<GiNaC::numeric>(P).to_double();
+    int e = 0;
+    pow2 = pd > 0 && std::frexp(pd, &e) == 0.5;
+  }
+  const std::string T = s.cpp() ? "const T" : "float";  // GLSL ES: const needs a constant
+  const std::string reduce = s.cpp() && pow2 ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
+  std::string out = "  " + T + " r = " + reduce + "(x, " + s.ex(P) + ");\n";
+  out += "  if (!(r < " + s.dbl(0) + ")) {\n";
+  for (size_t i = 0; i + 1 < a.pieces.size(); ++i)
+    out += "    if (r < " + s.ex(a.pieces[i].hi.value) + ") return " +
+           s.ex(a.pieces[i].f.subs(sym::var_x() == r)) + ";\n";
+  out += "    return " + s.ex(a.pieces.back().f.subs(sym::var_x() == r)) + ";\n  }\n";
+  bool uses_x = false;
+  for (const auto& pc : a.pieces) uses_x = uses_x || pc.f.has(sym::var_x());
+  if (uses_x) out += "  " + T + " t = r + " + s.ex(P) + ";\n";
+  for (size_t i = 0; i + 1 < a.pieces.size(); ++i)
+    out += "  if (r < " + s.ex(a.pieces[i].hi.value - P) + ") return " +
+           s.ex(a.pieces[i].f.subs(sym::var_x() == t)) + ";\n";
+  return out + "  return " + s.ex(a.pieces.back().f.subs(sym::var_x() == t)) + ";\n";
+}
+
 std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lang lang) {
   const Syntax s{lang};
   std::string pre = s.cpp() ? "  BL_MATH_USING\n" : "";
@@ -1025,15 +1057,13 @@ std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lan
     case sym::AtomicClass::Antiderivative:
       return pre + "  return " + s.ex(a.f) + ";\n";
     case sym::AtomicClass::Piecewise: {
-      if (sym::has_exp_pieces(a)) {  // the pieces' expressions, right-continuous at the breaks
-        std::string out = pre;
-        for (size_t i = 0; i + 1 < a.pieces.size(); ++i)
-          out += "  if (x < " + s.ex(a.pieces[i].hi.value) + ") return " + s.ex(a.pieces[i].f) + ";\n";
-        return out + "  return " + s.ex(a.pieces.back().f) + ";\n";
-      }
-      const std::vector<PolyPiece> ps = sym::polynomial_pieces(a, false);
-      return pre + piece_table(s, "p", ps) + "  return " + s.helper("pw_eval") + "(x, " +
-             pieces_arg(s, "p", ps.size()) + ");\n";
+      // Straight-line pieces at their own degree (right-continuous at the breaks, as pw_eval):
+      // the plain function is the baseline every ratio and MSAA time divides by, so it must cost
+      // what a hand-written shader's would, not a generic table walk.
+      std::string out = pre;
+      for (size_t i = 0; i + 1 < a.pieces.size(); ++i)
+        out += "  if (x < " + s.ex(a.pieces[i].hi.value) + ") return " + s.ex(a.pieces[i].f) + ";\n";
+      return out + "  return " + s.ex(a.pieces.back().f) + ";\n";
     }
     case sym::AtomicClass::Periodic: {
       const std::vector<PolyPiece> ps = sym::polynomial_pieces(a, false);
@@ -1046,9 +1076,7 @@ std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lan
           near = origin_dispatch(d, s, 0, call);
           break;
         }
-      if (near.empty())
-        return pre + piece_table(s, "p", ps) + "  return " + s.helper("periodic_eval") + "(x, " +
-               s.ex(*a.period) + ", " + pieces_arg(s, "p", ps.size()) + ");\n";
+      if (near.empty()) return pre + plain_periodic_straight(a, s);
       return pre + piece_table(s, "p", ps) + s.decl("period", s.ex(*a.period)) + near + "  return " +
              call("x", "p") + ";\n";
     }

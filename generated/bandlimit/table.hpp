@@ -696,53 +696,38 @@ T plain_xexp(T x) {
 template <class T>
 T plain_abs(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::pw_eval(x, p);
+  if (x < T(0)) return (-x);
+  return x;
 }
 
 template <class T>
 T plain_sign(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::pw_eval(x, p);
+  if (x < T(0)) return (T(-1));
+  return T(1);
 }
 
 template <class T>
 T plain_step(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::pw_eval(x, p);
+  if (x < T(0)) return T(0);
+  return T(1);
 }
 
 template <class T>
 T plain_saturate(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
-      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::pw_eval(x, p);
+  if (x < T(0)) return T(0);
+  if (x < T(1)) return x;
+  return T(1);
 }
 
 template <class T>
 T plain_smoothstep(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
-      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
-      {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::pw_eval(x, p);
+  if (x < T(0)) return T(0);
+  if (x < T(1)) return (((T(-2))*(x*x*x)) + (T(3)*(x*x)));
+  return T(1);
 }
 
 template <class T>
@@ -769,43 +754,50 @@ T plain_exp_ramp(T x) {
 template <class T>
 T plain_fract(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(1), p);
+  const T r = detail::reduce_signed_pow2(x, T(1));
+  if (!(r < T(0.0))) {
+    return r;
+  }
+  const T t = r + T(1);
+  return t;
 }
 
 template <class T>
 T plain_triangle(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(2), p);
+  const T r = detail::reduce_signed_pow2(x, T(2));
+  if (!(r < T(0.0))) {
+    if (r < T(1)) return r;
+    return ((-r) + T(2));
+  }
+  const T t = r + T(2);
+  if (r < (T(-1))) return t;
+  return ((-t) + T(2));
 }
 
 template <class T>
 T plain_square(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(1), p);
+  const T r = detail::reduce_signed_pow2(x, T(1));
+  if (!(r < T(0.0))) {
+    if (r < (T(1)/T(2))) return T(1);
+    return T(0);
+  }
+  if (r < (T(-1)/T(2))) return T(1);
+  return T(0);
 }
 
 template <class T>
 T plain_pulse30(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -1985,7 +1977,7 @@ T tent_pow8_sq(T x, T sigma) {
 template <class T>
 T gaussian_xexp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -1997,7 +1989,8 @@ T gaussian_xexp_raw(T x, T sigma) {
 template <class T>
 T gaussian_xexp(T x, T sigma) {
   const T v = gaussian_xexp_raw<T>(x, sigma);
-  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  static const T lo = (-exp((T(-1))));
+  if (v < lo) return lo;
   return v;
 }
 
@@ -2008,7 +2001,7 @@ T gaussian_xexp(T x, T sigma) {
 template <class T>
 T gaussian_xexp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2030,7 +2023,7 @@ T gaussian_xexp_sq(T x, T sigma) {
 template <class T>
 T box_xexp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2042,7 +2035,8 @@ T box_xexp_raw(T x, T sigma) {
 template <class T>
 T box_xexp(T x, T sigma) {
   const T v = box_xexp_raw<T>(x, sigma);
-  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  static const T lo = (-exp((T(-1))));
+  if (v < lo) return lo;
   return v;
 }
 
@@ -2052,7 +2046,7 @@ T box_xexp(T x, T sigma) {
 template <class T>
 T box_xexp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2074,7 +2068,7 @@ T box_xexp_sq(T x, T sigma) {
 template <class T>
 T tent_xexp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(1), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2086,7 +2080,8 @@ T tent_xexp_raw(T x, T sigma) {
 template <class T>
 T tent_xexp(T x, T sigma) {
   const T v = tent_xexp_raw<T>(x, sigma);
-  if (v < (-exp((T(-1))))) return (-exp((T(-1))));
+  static const T lo = (-exp((T(-1))));
+  if (v < lo) return lo;
   return v;
 }
 
@@ -2096,7 +2091,7 @@ T tent_xexp(T x, T sigma) {
 template <class T>
 T tent_xexp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {-detail::inf<T>(), detail::inf<T>(), T(2), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2117,7 +2112,7 @@ T tent_xexp_sq(T x, T sigma) {
 template <class T>
 T gaussian_abs_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2155,7 +2150,7 @@ T gaussian_abs_sq(T x, T sigma) {
 template <class T>
 T box_abs_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2193,7 +2188,7 @@ T box_abs_sq(T x, T sigma) {
 template <class T>
 T tent_abs_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2230,7 +2225,7 @@ T tent_abs_sq(T x, T sigma) {
 template <class T>
 T gaussian_sign_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2269,7 +2264,7 @@ T gaussian_sign_sq(T x, T sigma) {
 template <class T>
 T box_sign_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2309,7 +2304,7 @@ T box_sign_sq(T x, T sigma) {
 template <class T>
 T tent_sign_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2348,7 +2343,7 @@ T tent_sign_sq(T x, T sigma) {
 template <class T>
 T gaussian_step_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2370,7 +2365,7 @@ T gaussian_step(T x, T sigma) {
 template <class T>
 T gaussian_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2392,7 +2387,7 @@ T gaussian_step_sq(T x, T sigma) {
 template <class T>
 T box_step_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2414,7 +2409,7 @@ T box_step(T x, T sigma) {
 template <class T>
 T box_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2437,7 +2432,7 @@ T box_step_sq(T x, T sigma) {
 template <class T>
 T tent_step_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2460,7 +2455,7 @@ T tent_step(T x, T sigma) {
 template <class T>
 T tent_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2484,7 +2479,7 @@ T tent_step_sq(T x, T sigma) {
 template <class T>
 T gaussian_saturate_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2511,7 +2506,7 @@ T gaussian_saturate(T x, T sigma) {
 template <class T>
 T gaussian_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2535,7 +2530,7 @@ T gaussian_saturate_sq(T x, T sigma) {
 template <class T>
 T box_saturate_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2559,7 +2554,7 @@ T box_saturate(T x, T sigma) {
 template <class T>
 T box_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2583,7 +2578,7 @@ T box_saturate_sq(T x, T sigma) {
 template <class T>
 T tent_saturate_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2607,7 +2602,7 @@ T tent_saturate(T x, T sigma) {
 template <class T>
 T tent_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2639,7 +2634,7 @@ T tent_saturate_sq(T x, T sigma) {
 template <class T>
 T gaussian_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2689,7 +2684,7 @@ T gaussian_smoothstep(T x, T sigma) {
 template <class T>
 T gaussian_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2713,7 +2708,7 @@ T gaussian_smoothstep_sq(T x, T sigma) {
 template <class T>
 T box_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2737,7 +2732,7 @@ T box_smoothstep(T x, T sigma) {
 template <class T>
 T box_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2762,7 +2757,7 @@ T box_smoothstep_sq(T x, T sigma) {
 template <class T>
 T tent_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2787,7 +2782,7 @@ T tent_smoothstep(T x, T sigma) {
 template <class T>
 T tent_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[3] = {
+  static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
       {T(1), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2814,7 +2809,7 @@ T tent_smoothstep_sq(T x, T sigma) {
 template <class T>
 T gaussian_laplace_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2840,7 +2835,7 @@ T gaussian_laplace(T x, T sigma) {
 template <class T>
 T gaussian_laplace_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2864,7 +2859,7 @@ T gaussian_laplace_sq(T x, T sigma) {
 template <class T>
 T box_laplace_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2888,7 +2883,7 @@ T box_laplace(T x, T sigma) {
 template <class T>
 T box_laplace_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2912,7 +2907,7 @@ T box_laplace_sq(T x, T sigma) {
 template <class T>
 T tent_laplace_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(1), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2936,7 +2931,7 @@ T tent_laplace(T x, T sigma) {
 template <class T>
 T tent_laplace_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[2] = {
+  static const detail::ExpTerm<T> p[2] = {
       {-detail::inf<T>(), T(0), T(2), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -2961,7 +2956,7 @@ T tent_laplace_sq(T x, T sigma) {
 template <class T>
 T gaussian_exp_decay_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -2985,7 +2980,7 @@ T gaussian_exp_decay(T x, T sigma) {
 template <class T>
 T gaussian_exp_decay_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3008,7 +3003,7 @@ T gaussian_exp_decay_sq(T x, T sigma) {
 template <class T>
 T box_exp_decay_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3031,7 +3026,7 @@ T box_exp_decay(T x, T sigma) {
 template <class T>
 T box_exp_decay_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3054,7 +3049,7 @@ T box_exp_decay_sq(T x, T sigma) {
 template <class T>
 T tent_exp_decay_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3077,7 +3072,7 @@ T tent_exp_decay(T x, T sigma) {
 template <class T>
 T tent_exp_decay_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3101,7 +3096,7 @@ T tent_exp_decay_sq(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3113,8 +3108,9 @@ T gaussian_exp_ramp_raw(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp(T x, T sigma) {
   const T v = gaussian_exp_ramp_raw<T>(x, sigma);
+  static const T hi = exp((T(-1)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-1)))) return exp((T(-1)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3125,7 +3121,7 @@ T gaussian_exp_ramp(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3137,8 +3133,9 @@ T gaussian_exp_ramp_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_exp_ramp_sq(T x, T sigma) {
   const T v = gaussian_exp_ramp_sq_raw<T>(x, sigma);
+  static const T hi = exp((T(-2)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-2)))) return exp((T(-2)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3148,7 +3145,7 @@ T gaussian_exp_ramp_sq(T x, T sigma) {
 template <class T>
 T box_exp_ramp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3160,8 +3157,9 @@ T box_exp_ramp_raw(T x, T sigma) {
 template <class T>
 T box_exp_ramp(T x, T sigma) {
   const T v = box_exp_ramp_raw<T>(x, sigma);
+  static const T hi = exp((T(-1)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-1)))) return exp((T(-1)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3171,7 +3169,7 @@ T box_exp_ramp(T x, T sigma) {
 template <class T>
 T box_exp_ramp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3183,8 +3181,9 @@ T box_exp_ramp_sq_raw(T x, T sigma) {
 template <class T>
 T box_exp_ramp_sq(T x, T sigma) {
   const T v = box_exp_ramp_sq_raw<T>(x, sigma);
+  static const T hi = exp((T(-2)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-2)))) return exp((T(-2)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3194,7 +3193,7 @@ T box_exp_ramp_sq(T x, T sigma) {
 template <class T>
 T tent_exp_ramp_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-1)), T(0), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3206,8 +3205,9 @@ T tent_exp_ramp_raw(T x, T sigma) {
 template <class T>
 T tent_exp_ramp(T x, T sigma) {
   const T v = tent_exp_ramp_raw<T>(x, sigma);
+  static const T hi = exp((T(-1)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-1)))) return exp((T(-1)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3217,7 +3217,7 @@ T tent_exp_ramp(T x, T sigma) {
 template <class T>
 T tent_exp_ramp_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::ExpTerm<T> p[1] = {
+  static const detail::ExpTerm<T> p[1] = {
       {T(0), detail::inf<T>(), (T(-2)), T(0), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -3229,8 +3229,9 @@ T tent_exp_ramp_sq_raw(T x, T sigma) {
 template <class T>
 T tent_exp_ramp_sq(T x, T sigma) {
   const T v = tent_exp_ramp_sq_raw<T>(x, sigma);
+  static const T hi = exp((T(-2)));
   if (v < T(0)) return T(0);
-  if (v > exp((T(-2)))) return exp((T(-2)));
+  if (v > hi) return hi;
   return v;
 }
 
@@ -3241,7 +3242,7 @@ T tent_exp_ramp_sq(T x, T sigma) {
 template <class T>
 T gaussian_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3288,7 +3289,7 @@ T gaussian_fract(T x, T sigma) {
 template <class T>
 T gaussian_fract_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3328,7 +3329,7 @@ T gaussian_fract_u(T x, T sigma) {
 template <class T>
 T gaussian_fract_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3348,7 +3349,7 @@ T gaussian_fract_right(T x, T sigma) {
 template <class T>
 T gaussian_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3397,10 +3398,10 @@ T gaussian_fract_sq(T x, T sigma) {
 template <class T>
 T box_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3422,13 +3423,14 @@ T box_fract(T x, T sigma) {
 template <class T>
 T box_fract_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::box_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 1> data = detail::u_period_data(period, p);
+  return detail::box_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3436,10 +3438,10 @@ T box_fract_u(T x, T sigma) {
 template <class T>
 T box_fract_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3457,10 +3459,10 @@ T box_fract_right(T x, T sigma) {
 template <class T>
 T box_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3484,13 +3486,13 @@ T box_fract_sq(T x, T sigma) {
 template <class T>
 T tent_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[1] = {
+  static const detail::Piece<T> p2[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3512,13 +3514,14 @@ T tent_fract(T x, T sigma) {
 template <class T>
 T tent_fract_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::tent_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 1> data = detail::u_period_data(period, p);
+  return detail::tent_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3526,13 +3529,13 @@ T tent_fract_u(T x, T sigma) {
 template <class T>
 T tent_fract_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[1] = {
+  static const detail::Piece<T> p2[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3550,13 +3553,13 @@ T tent_fract_right(T x, T sigma) {
 template <class T>
 T tent_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
+  static const detail::Piece<T> p[1] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[1] = {
+  static const detail::Piece<T> p1[1] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[1] = {
+  static const detail::Piece<T> p2[1] = {
       {T(0), T(1), {T(0), T(0), T(0), T(0), (T(1)/T(12)), T(0), T(0), T(0)}},
   };
   const T period = T(1);
@@ -3581,7 +3584,7 @@ T tent_fract_sq(T x, T sigma) {
 template <class T>
 T gaussian_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3630,7 +3633,7 @@ T gaussian_triangle(T x, T sigma) {
 template <class T>
 T gaussian_triangle_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3672,7 +3675,7 @@ T gaussian_triangle_u(T x, T sigma) {
 template <class T>
 T gaussian_triangle_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3693,7 +3696,7 @@ T gaussian_triangle_right(T x, T sigma) {
 template <class T>
 T gaussian_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3745,11 +3748,11 @@ T gaussian_triangle_sq(T x, T sigma) {
 template <class T>
 T box_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3772,14 +3775,15 @@ T box_triangle(T x, T sigma) {
 template <class T>
 T box_triangle_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::box_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::box_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3787,11 +3791,11 @@ T box_triangle_u(T x, T sigma) {
 template <class T>
 T box_triangle_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3811,11 +3815,11 @@ T box_triangle_right(T x, T sigma) {
 template <class T>
 T box_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-2)), T(4), (T(-2)), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
@@ -3841,15 +3845,15 @@ T box_triangle_sq(T x, T sigma) {
 template <class T>
 T tent_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(1)/T(3)), (T(-1)), T(1), (T(-1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
@@ -3872,14 +3876,15 @@ T tent_triangle(T x, T sigma) {
 template <class T>
 T tent_triangle_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::tent_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::tent_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -3887,15 +3892,15 @@ T tent_triangle_u(T x, T sigma) {
 template <class T>
 T tent_triangle_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(1)/T(3)), (T(-1)), T(1), (T(-1)/T(6)), T(0), T(0), T(0), T(0)}},
   };
@@ -3915,15 +3920,15 @@ T tent_triangle_right(T x, T sigma) {
 template <class T>
 T tent_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(-2)), T(4), (T(-2)), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), T(1), {T(0), T(0), T(0), T(0), (T(1)/T(12)), T(0), T(0), T(0)}},
       {T(1), T(2), {(T(2)/T(3)), (T(-2)), T(2), (T(-2)/T(3)), (T(1)/T(12)), T(0), T(0), T(0)}},
   };
@@ -3949,7 +3954,7 @@ T tent_triangle_sq(T x, T sigma) {
 template <class T>
 T gaussian_square_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -3998,7 +4003,7 @@ T gaussian_square(T x, T sigma) {
 template <class T>
 T gaussian_square_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4040,7 +4045,7 @@ T gaussian_square_u(T x, T sigma) {
 template <class T>
 T gaussian_square_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4061,7 +4066,7 @@ T gaussian_square_right(T x, T sigma) {
 template <class T>
 T gaussian_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4112,11 +4117,11 @@ T gaussian_square_sq(T x, T sigma) {
 template <class T>
 T box_square_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4139,14 +4144,15 @@ T box_square(T x, T sigma) {
 template <class T>
 T box_square_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::box_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::box_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4154,11 +4160,11 @@ T box_square_u(T x, T sigma) {
 template <class T>
 T box_square_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4177,11 +4183,11 @@ T box_square_right(T x, T sigma) {
 template <class T>
 T box_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4206,15 +4212,15 @@ T box_square_sq(T x, T sigma) {
 template <class T>
 T tent_square_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4237,14 +4243,15 @@ T tent_square(T x, T sigma) {
 template <class T>
 T tent_square_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::tent_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::tent_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4252,15 +4259,15 @@ T tent_square_u(T x, T sigma) {
 template <class T>
 T tent_square_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4279,15 +4286,15 @@ T tent_square_right(T x, T sigma) {
 template <class T>
 T tent_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4314,7 +4321,7 @@ T tent_square_sq(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4323,7 +4330,7 @@ T gaussian_pulse30_raw(T x, T sigma) {
   if (sigma == T(0.0)) {
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4350,22 +4357,27 @@ T gaussian_pulse30_raw(T x, T sigma) {
     T ratio = q;
     T damp = q;
     T acc = (T(3)/T(10));
+    const T cr3_10 = T(-0.30901699437494734);
+    const T sr3_10 = T(0.9510565162951536);
+    T cph3_10 = cr3_10;
+    T sph3_10 = sr3_10;
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
-      const T cph3_10 = cos(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
-      const T sph3_10 = sin(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
       acc += damp * (((T(1)/(detail::pi<T>()))*(T(1)/(kf))*sph3_10) * ck + (((-cph3_10) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sk);
       const T cn = ck * c1 - sk * s1;
       sk = sk * c1 + ck * s1;
       ck = cn;
       ratio *= q2;
       damp *= ratio;
+      const T cpn3_10 = cph3_10 * cr3_10 - sph3_10 * sr3_10;
+      sph3_10 = sph3_10 * cr3_10 + cph3_10 * sr3_10;
+      cph3_10 = cpn3_10;
     }
     return acc;
   }
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4392,7 +4404,7 @@ T gaussian_pulse30(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4413,10 +4425,12 @@ T gaussian_pulse30_u(T x, T sigma) {
     T ratio = q;
     T damp = q;
     T acc = T(0.0);
+    const T cr3_10 = T(-0.30901699437494734);
+    const T sr3_10 = T(0.9510565162951536);
+    T cph3_10 = cr3_10;
+    T sph3_10 = sr3_10;
     for (int k = 1; k <= K + 2; ++k) {
       const T kf = T(k);
-      const T cph3_10 = cos(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
-      const T sph3_10 = sin(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
       const T w = w1 * kf;
       acc += damp * w * ((((-cph3_10) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * ck - ((T(1)/(detail::pi<T>()))*(T(1)/(kf))*sph3_10) * sk);
       const T cn = ck * c1 - sk * s1;
@@ -4424,6 +4438,9 @@ T gaussian_pulse30_u(T x, T sigma) {
       ck = cn;
       ratio *= q2;
       damp *= ratio;
+      const T cpn3_10 = cph3_10 * cr3_10 - sph3_10 * sr3_10;
+      sph3_10 = sph3_10 * cr3_10 + cph3_10 * sr3_10;
+      cph3_10 = cpn3_10;
     }
     return sigma * sigma * acc;
   }
@@ -4435,7 +4452,7 @@ T gaussian_pulse30_u(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4457,7 +4474,7 @@ T gaussian_pulse30_right(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4466,7 +4483,7 @@ T gaussian_pulse30_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) {
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4493,22 +4510,27 @@ T gaussian_pulse30_sq_raw(T x, T sigma) {
     T ratio = q;
     T damp = q;
     T acc = (T(3)/T(10));
+    const T cr3_10 = T(-0.30901699437494734);
+    const T sr3_10 = T(0.9510565162951536);
+    T cph3_10 = cr3_10;
+    T sph3_10 = sr3_10;
     for (int k = 1; k <= K; ++k) {
       const T kf = T(k);
-      const T cph3_10 = cos(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
-      const T sph3_10 = sin(T(2.0) * detail::pi<T>() * T(((k % 10) * 3) % 10) / T(10.0));
       acc += damp * (((T(1)/(detail::pi<T>()))*(T(1)/(kf))*sph3_10) * ck + (((-cph3_10) + T(1))*(T(1)/(detail::pi<T>()))*(T(1)/(kf))) * sk);
       const T cn = ck * c1 - sk * s1;
       sk = sk * c1 + ck * s1;
       ck = cn;
       ratio *= q2;
       damp *= ratio;
+      const T cpn3_10 = cph3_10 * cr3_10 - sph3_10 * sr3_10;
+      sph3_10 = sph3_10 * cr3_10 + cph3_10 * sr3_10;
+      cph3_10 = cpn3_10;
     }
     return acc;
   }
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4537,11 +4559,11 @@ T gaussian_pulse30_sq(T x, T sigma) {
 template <class T>
 T box_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4550,7 +4572,7 @@ T box_pulse30_raw(T x, T sigma) {
   if (sigma == T(0.0)) {
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4565,11 +4587,11 @@ T box_pulse30_raw(T x, T sigma) {
   }
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
-    const detail::Piece<T> o0_1[2] = {
+    static const detail::Piece<T> o0_1[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4596,14 +4618,15 @@ T box_pulse30(T x, T sigma) {
 template <class T>
 T box_pulse30_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::box_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::box_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4611,11 +4634,11 @@ T box_pulse30_u(T x, T sigma) {
 template <class T>
 T box_pulse30_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4634,11 +4657,11 @@ T box_pulse30_right(T x, T sigma) {
 template <class T>
 T box_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4647,7 +4670,7 @@ T box_pulse30_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) {
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4662,11 +4685,11 @@ T box_pulse30_sq_raw(T x, T sigma) {
   }
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
-    const detail::Piece<T> o0_1[2] = {
+    static const detail::Piece<T> o0_1[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4696,15 +4719,15 @@ T box_pulse30_sq(T x, T sigma) {
 template <class T>
 T tent_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4713,7 +4736,7 @@ T tent_pulse30_raw(T x, T sigma) {
   if (sigma == T(0.0)) {
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4728,15 +4751,15 @@ T tent_pulse30_raw(T x, T sigma) {
   }
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
-    const detail::Piece<T> o0_1[2] = {
+    static const detail::Piece<T> o0_1[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
-    const detail::Piece<T> o0_2[2] = {
+    static const detail::Piece<T> o0_2[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {(T(49)/T(200)), (T(-7)/T(10)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4763,14 +4786,15 @@ T tent_pulse30(T x, T sigma) {
 template <class T>
 T tent_pulse30_u(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return T(0.0);
-  return detail::tent_periodic_u(x, sigma, period, p);
+  static const detail::UPeriodData<T, 2> data = detail::u_period_data(period, p);
+  return detail::tent_periodic_u(x, sigma, period, data);
 }
 
 // E[f(x+U) 1{x+U >= 0}] (half-line companion), used by products with a piecewise-constant atomic
@@ -4778,15 +4802,15 @@ T tent_pulse30_u(T x, T sigma) {
 template <class T>
 T tent_pulse30_right(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4806,15 +4830,15 @@ T tent_pulse30_right(T x, T sigma) {
 template <class T>
 T tent_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
+  static const detail::Piece<T> p[2] = {
       {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p1[2] = {
+  static const detail::Piece<T> p1[2] = {
       {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
-  const detail::Piece<T> p2[2] = {
+  static const detail::Piece<T> p2[2] = {
       {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
       {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -4823,7 +4847,7 @@ T tent_pulse30_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) {
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4838,15 +4862,15 @@ T tent_pulse30_sq_raw(T x, T sigma) {
   }
   const T r_o = detail::reduce_signed(x, period);
   {  // break at 3/10
-    const detail::Piece<T> o0[2] = {
+    static const detail::Piece<T> o0[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
-    const detail::Piece<T> o0_1[2] = {
+    static const detail::Piece<T> o0_1[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
     };
-    const detail::Piece<T> o0_2[2] = {
+    static const detail::Piece<T> o0_2[2] = {
         {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
         {(T(7)/T(10)), T(1), {(T(49)/T(200)), (T(-7)/T(10)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
     };
@@ -4883,7 +4907,46 @@ template <class T>
 T gaussian_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return ((sigma*sigma) + (x*x)) + T(1) * gaussian_fract_sq<T>(x, sigma) + (T(-2)) * (x * gaussian_fract<T>(x, sigma) + gaussian_fract_u<T>(x, sigma));
+  const T rest = ((sigma*sigma) + (x*x));
+  const T y = x;
+  const T lam = ((T(-2))*y);
+  const T period = T(1);
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  const T s = sigma / period;
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
+    const T xr = y - period * floor(y / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
+    T acc = (((T(1)/T(2))*lam) + (T(1)/T(3)));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) + (T(4)*(sigma*sigma))) * ck + ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) + (-(T(1)/(detail::pi<T>()))*(T(1)/(kf))*lam)) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  const T yr = detail::reduce_signed(y, period);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  T th = T(0.0);
+  if (sigma > T(0.0)) {
+    for (T m = floor((yr - R) / period); m <= floor((yr + R) / period); m += T(1.0)) {
+      const T t = (yr - m * period) / sigma;
+      th += exp(T(-0.5) * t * t);
+    }
+  }
+  return rest + detail::gauss_periodic_image(y, sigma, period, p, T(3.0)) + (T(-2)) * sigma * sigma + T(2) * T(0.3989422804014327) * sigma * th;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4958,7 +5021,46 @@ template <class T>
 T gaussian_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return ((sigma*sigma) + (x*x)) + T(1) * gaussian_fract_sq<T>(-x, sigma) + T(2) * (x * gaussian_fract<T>(-x, sigma) - gaussian_fract_u<T>(-x, sigma));
+  const T rest = ((sigma*sigma) + (x*x));
+  const T y = -x;
+  const T lam = ((T(-2))*y);
+  const T period = T(1);
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  const T s = sigma / period;
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
+    const T xr = y - period * floor(y / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
+    T acc = (((T(1)/T(2))*lam) + (T(1)/T(3)));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) + (T(4)*(sigma*sigma))) * ck + ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) + (-(T(1)/(detail::pi<T>()))*(T(1)/(kf))*lam)) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  const T yr = detail::reduce_signed(y, period);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  T th = T(0.0);
+  if (sigma > T(0.0)) {
+    for (T m = floor((yr - R) / period); m <= floor((yr + R) / period); m += T(1.0)) {
+      const T t = (yr - m * period) / sigma;
+      th += exp(T(-0.5) * t * t);
+    }
+  }
+  return rest + detail::gauss_periodic_image(y, sigma, period, p, T(3.0)) + (T(-2)) * sigma * sigma + T(2) * T(0.3989422804014327) * sigma * th;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5024,6 +5126,13 @@ template <class T>
 T gaussian_trunc(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  const T Rf = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  if (x - Rf >= T(0.0)) {
+  return x + (T(-1)) * gaussian_fract<T>(x, sigma);
+  }
+  if (x + Rf < T(0.0)) {
+  return (T(1) + x) + (T(-1)) * gaussian_fract<T>(x, sigma);
+  }
   return (T(1) + x) + (T(-1)) * gaussian_fract<T>(x, sigma) + (T(-1)) * gaussian_step<T>(x, sigma);
 }
 
@@ -5035,12 +5144,136 @@ T gaussian_trunc(T x, T sigma) {
 template <class T>
 T gaussian_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> pt6[2] = {
+  static const detail::Piece<T> pm[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), {(T(-1)), (T(-2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + (T(-2)) * gaussian_fract<T>(x, sigma) + T(1) * gaussian_fract_sq<T>(x, sigma) + (T(-2)) * (x * gaussian_fract<T>(x, sigma) + gaussian_fract_u<T>(x, sigma)) + T(2) * (T(1) * gaussian_fract_right<T>(x, sigma)) + (T(-2)) * gaussian_step<T>(x, sigma) + T(1) * gaussian_step_sq<T>(x, sigma) + (T(-2)) * detail::gauss_pw(x, sigma, pt6);
+  const T Rf = detail::image_z(T(6.0), detail::series_tol<T>()) * sigma;
+  if (x - Rf >= T(0.0)) {
+  const T rest = ((sigma*sigma) + (x*x));
+  const T y = x;
+  const T lam = ((T(-2))*y);
+  const T period = T(1);
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  const T s = sigma / period;
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
+    const T xr = y - period * floor(y / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
+    T acc = (((T(1)/T(2))*lam) + (T(1)/T(3)));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) + (T(4)*(sigma*sigma))) * ck + ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) + (-(T(1)/(detail::pi<T>()))*(T(1)/(kf))*lam)) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  const T yr = detail::reduce_signed(y, period);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  T th = T(0.0);
+  if (sigma > T(0.0)) {
+    for (T m = floor((yr - R) / period); m <= floor((yr + R) / period); m += T(1.0)) {
+      const T t = (yr - m * period) / sigma;
+      th += exp(T(-0.5) * t * t);
+    }
+  }
+  return rest + detail::gauss_periodic_image(y, sigma, period, p, T(3.0)) + (T(-2)) * sigma * sigma + T(2) * T(0.3989422804014327) * sigma * th;
+  }
+  if (x + Rf < T(0.0)) {
+  const T rest = ((T(2)*x) + (sigma*sigma) + (x*x) + T(1));
+  const T y = x;
+  const T lam = (((T(-2))*y) + (T(-2)));
+  const T period = T(1);
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  const T s = sigma / period;
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0906546478299144) : T(1.3366185552747945)) / s));
+    const T xr = y - period * floor(y / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
+    T acc = (((T(1)/T(2))*lam) + (T(1)/T(3)));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) + (T(4)*(sigma*sigma))) * ck + ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) + (-(T(1)/(detail::pi<T>()))*(T(1)/(kf))*lam)) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  const T yr = detail::reduce_signed(y, period);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  T th = T(0.0);
+  if (sigma > T(0.0)) {
+    for (T m = floor((yr - R) / period); m <= floor((yr + R) / period); m += T(1.0)) {
+      const T t = (yr - m * period) / sigma;
+      th += exp(T(-0.5) * t * t);
+    }
+  }
+  return rest + detail::gauss_periodic_image(y, sigma, period, p, T(5.0)) + (T(-2)) * sigma * sigma + T(2) * T(0.3989422804014327) * sigma * th;
+  }
+  const T rest = ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + detail::gauss_pw(x, sigma, pm) + T(2) * (T(1) * gaussian_fract_right<T>(x, sigma));
+  const T y = x;
+  const T lam = (((T(-2))*y) + (T(-2)));
+  const T period = T(1);
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  const T s = sigma / period;
+  if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
+    const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0906546478299144) : T(1.3366185552747945)) / s));
+    const T xr = y - period * floor(y / period);
+    const T w1 = T(2.0) * detail::pi<T>() / period;
+    const T c1 = cos(w1 * xr);
+    const T s1 = sin(w1 * xr);
+    const T q = exp(T(-2.0) * detail::pi<T>() * detail::pi<T>() * s * s);
+    const T q2 = q * q;
+    T ck = c1;
+    T sk = s1;
+    T ratio = q;
+    T damp = q;
+    T acc = (((T(1)/T(2))*lam) + (T(1)/T(3)));
+    for (int k = 1; k <= K; ++k) {
+      const T kf = T(k);
+      acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>()))*(T(1)/(kf*kf))) + (T(4)*(sigma*sigma))) * ck + ((-(T(1)/(detail::pi<T>()))*(T(1)/(kf))) + (-(T(1)/(detail::pi<T>()))*(T(1)/(kf))*lam)) * sk);
+      const T cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+      ratio *= q2;
+      damp *= ratio;
+    }
+    return rest + acc;
+  }
+  const T yr = detail::reduce_signed(y, period);
+  const T R = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
+  T th = T(0.0);
+  if (sigma > T(0.0)) {
+    for (T m = floor((yr - R) / period); m <= floor((yr + R) / period); m += T(1.0)) {
+      const T t = (yr - m * period) / sigma;
+      th += exp(T(-0.5) * t * t);
+    }
+  }
+  return rest + detail::gauss_periodic_image(y, sigma, period, p, T(5.0)) + (T(-2)) * sigma * sigma + T(2) * T(0.3989422804014327) * sigma * th;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5066,7 +5299,7 @@ T box_trunc(T x, T sigma) {
 template <class T>
 T box_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> pt6[2] = {
+  static const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };
@@ -5097,7 +5330,7 @@ T tent_trunc(T x, T sigma) {
 template <class T>
 T tent_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  const detail::Piece<T> pt6[2] = {
+  static const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
   };

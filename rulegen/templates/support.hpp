@@ -1102,6 +1102,17 @@ inline T reduce_signed(T y, T period) {
   return fmod(y, period);
 }
 
+// fmod(y, period) for a power-of-two period, without the libm call: |y| - P floor(|y|/P) is exact
+// for |y| >= 0 there (every operand is a multiple of ulp(|y|) or of P), and the sign is y's.
+template <class T>
+inline T reduce_signed_pow2(T y, T period) {
+  using std::copysign;
+  using std::fabs;
+  using std::floor;
+  const T a = fabs(y);
+  return copysign(a - period * floor(a / period), y);
+}
+
 template <class T, int N>
 inline T periodic_piece_eval(T r, const Piece<T> (&p)[N]) {  // r in [0, period)
   for (int i = 0; i < N - 1; ++i)
