@@ -76,6 +76,11 @@ float bl_phi(float z) {
 // Both tails through erfc of the small side.
 float bl_Phi(float z) { return 0.5 * bl_erfc(-z * BL_INV_SQRT2); }
 float bl_Phic(float z) { return 0.5 * bl_erfc(z * BL_INV_SQRT2); }
+// phi(t) and Phic(t), t >= 0 (support.hpp: phi_Phic), one pair per break in the generated entries.
+void bl_phi_Phic(float t, out float ph, out float pc) {
+  ph = bl_phi(t);
+  pc = bl_Phic(t);
+}
 
 // sin(t)/t: series for |t| < 1 (GPU sin has an absolute, not relative, error bound), quotient
 // beyond.
@@ -412,8 +417,10 @@ void bl_tail_laplace(float al, int deg, out float V[8]) {
   }
   float ratio[8];
   for (int k = 0; k < 8; ++k) ratio[k] = 1.0;
-  float r = al / 40.0;
-  for (int k = 39; k >= 1; --k) {
+  // start level by al as in support.hpp (miller_start, float)
+  int K = al < 3.0 ? 40 : (al < 4.0 ? 29 : (al < 6.0 ? 22 : (al < 12.0 ? 17 : 12)));
+  float r = al / float(K);
+  for (int k = K - 1; k >= 1; --k) {
     r = (1.0 / r + al) / float(k);
     if (k <= deg) ratio[k] = r;
   }

@@ -576,6 +576,59 @@ TEST(SupportScalar, NormalCdfPdfTails) {
   W.print("NormalCdfPdfTails");
 }
 
+// The float erfcx/erfc (support.hpp: erfcx_f, stated bound 4e-7 relative; erfc_f 6e-7) against
+// long double erfc on a dense grid and at hard points (0, tiny, the fit's worst point, where erfc
+// underflows, up to 1e37 where the result is still normal, inf); phi_Phic against 50-digit Phic.
+TEST(SupportScalar, FastFloatErfcx) {
+  auto ref = [](long double t) {  // e^{t^2} erfc(t): product below 50, continued fraction beyond
+    if (t < 50) return std::exp(t * t) * std::erfc(t);
+    long double f = t;
+    for (int k = 200; k >= 1; --k) f = t + k * 0.5L / f;
+    return 0.564189583547756286948L / f;
+  };
+  Worst W;
+  double worst = 0, worst_c = 0;
+  std::vector<float> ts = {0.0f,  1e-30f,      1e-7f, 0.0294f, 1.0f,  2.0f, 9.5f,
+                           10.0f, 10.0546875f, 26.5f, 1e4f,    1e19f, 3e38f};
+  for (int i = 0; i <= 200000; ++i) ts.push_back(float(i * 1e-4));
+  for (int i = 0; i <= 4000; ++i) ts.push_back(float(std::pow(10.0, -8 + i * 0.01)));
+  for (float t : ts) {
+    const long double r = ref(t);
+    const double e = double(std::fabs((bd::erfcx_f(t) - r) / r));
+    worst = std::max(worst, e);
+    EXPECT_LE(e, 4e-7) << "erfcx_f(" << t << ")";
+    const long double rc = std::erfc((long double)t);
+    if (rc > 1e-37L) {  // normal float range
+      const double ec = double(std::fabs((bd::erfc_f(t) - rc) / rc));
+      const double en = double(std::fabs((bd::erfc_f(-t) - (2 - rc)) / (2 - rc)));
+      worst_c = std::max({worst_c, ec, en});
+      EXPECT_LE(ec, 6e-7) << "erfc_f(" << t << ")";
+      EXPECT_LE(en, 6e-7) << "erfc_f(" << -t << ")";
+    }
+  }
+  EXPECT_EQ(bd::erfcx_f(std::numeric_limits<float>::infinity()), 0.0f);
+  EXPECT_GE(bd::erfcx_f(3e38f), 0.0f);  // true value 1.9e-39 (subnormal): 2t + 1 overflows to inf
+  EXPECT_EQ(bd::erfc_f(std::numeric_limits<float>::infinity()), 0.0f);
+  EXPECT_EQ(bd::erfc_f(-std::numeric_limits<float>::infinity()), 2.0f);
+  EXPECT_TRUE(std::isnan(bd::erfcx_f(std::numeric_limits<float>::quiet_NaN())));
+  W.add("erfcx_f rel", worst, "grid");
+  W.add("erfc_f rel", worst_c, "grid");
+  for (double t = 0; t < 12; t += 0.12) {  // phi_Phic: float pair and the double pair
+    float ph, pc;
+    bd::phi_Phic(float(t), ph, pc);
+    const mp50 z = mp50(float(t));
+    const double rc = static_cast<double>(boost::math::erfc(z / sqrt(mp50(2))) / 2);
+    const double rp = static_cast<double>(exp(-z * z / 2) / sqrt(2 * boost::math::constants::pi<mp50>()));
+    EXPECT_LE(std::fabs(pc - rc) / rc, 1e-5) << t;  // t^2/2 rounding in phi: <= 72 ulp at t = 12
+    EXPECT_LE(std::fabs(ph - rp) / rp, 1e-5) << t;
+    double phd, pcd;
+    bd::phi_Phic(t, phd, pcd);
+    EXPECT_EQ(pcd, bd::Phic(t));
+    EXPECT_EQ(phd, bd::phi(t));
+  }
+  W.print("FastFloatErfcx");
+}
+
 // sinc, sinhc, logcosh against 50-digit evaluations of the definitions (relative errors).
 TEST(SupportScalar, SincSinhcLogcosh) {
   Worst W;
