@@ -589,7 +589,7 @@ TEST(SupportScalar, FastFloatErfcx) {
   Worst W;
   double worst = 0, worst_c = 0;
   std::vector<float> ts = {0.0f,  1e-30f,      1e-7f, 0.0294f, 1.0f,  2.0f, 9.5f,
-                           10.0f, 10.0546875f, 26.5f, 1e4f,    1e19f, 3e38f};
+                           10.0f, 10.0546875f, 26.5f, 1e4f,    1e19f, 1e37f};
   for (int i = 0; i <= 200000; ++i) ts.push_back(float(i * 1e-4));
   for (int i = 0; i <= 4000; ++i) ts.push_back(float(std::pow(10.0, -8 + i * 0.01)));
   for (float t : ts) {
