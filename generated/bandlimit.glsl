@@ -3115,10 +3115,12 @@ float bl_gaussian_laplace_raw(float x, float sigma) {
   {  // term 0
     float al = ((0.0) - x) / sigma;
     float be = al - 1.0 * sigma;
-    float gs = be >= (0.0) ? sigma : -sigma;
-    float V[8];
-    bl_tail_laplace(abs(be), 0, V);
-    float tg = exp(1.0 * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp(1.0 * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
     if (be < (0.0)) {
       acc += tg;
     } else {
@@ -3129,10 +3131,12 @@ float bl_gaussian_laplace_raw(float x, float sigma) {
   {  // term 1
     float al = ((0.0) - x) / sigma;
     float be = al - (-1.0) * sigma;
-    float gs = be >= (0.0) ? sigma : -sigma;
-    float V[8];
-    bl_tail_laplace(abs(be), 0, V);
-    float tg = exp((-1.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp((-1.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
     if (be >= (0.0)) {
       acc += tg;
     } else {
@@ -3167,10 +3171,12 @@ float bl_gaussian_laplace_sq_raw(float x, float sigma) {
   {  // term 0
     float al = ((0.0) - x) / sigma;
     float be = al - 2.0 * sigma;
-    float gs = be >= (0.0) ? sigma : -sigma;
-    float V[8];
-    bl_tail_laplace(abs(be), 0, V);
-    float tg = exp(2.0 * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp(2.0 * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
     if (be < (0.0)) {
       acc += tg;
     } else {
@@ -3181,10 +3187,12 @@ float bl_gaussian_laplace_sq_raw(float x, float sigma) {
   {  // term 1
     float al = ((0.0) - x) / sigma;
     float be = al - (-2.0) * sigma;
-    float gs = be >= (0.0) ? sigma : -sigma;
-    float V[8];
-    bl_tail_laplace(abs(be), 0, V);
-    float tg = exp((-2.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp((-2.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
     if (be >= (0.0)) {
       acc += tg;
     } else {
@@ -3307,10 +3315,12 @@ float bl_gaussian_exp_decay_raw(float x, float sigma) {
   {  // term 0
     float al = ((0.0) - x) / sigma;
     float be = al - (-1.0) * sigma;
-    float gs = be >= (0.0) ? sigma : -sigma;
-    float V[8];
-    bl_tail_laplace(abs(be), 0, V);
-    float tg = exp((-1.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp((-1.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
     if (be >= (0.0)) {
       acc += tg;
     } else {
@@ -3345,10 +3355,12 @@ float bl_gaussian_exp_decay_sq_raw(float x, float sigma) {
   {  // term 0
     float al = ((0.0) - x) / sigma;
     float be = al - (-2.0) * sigma;
-    float gs = be >= (0.0) ? sigma : -sigma;
-    float V[8];
-    bl_tail_laplace(abs(be), 0, V);
-    float tg = exp((-2.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp((-2.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
     if (be >= (0.0)) {
       acc += tg;
     } else {
@@ -3471,10 +3483,13 @@ float bl_gaussian_exp_ramp_raw(float x, float sigma) {
   {  // term 0
     float al = ((0.0) - x) / sigma;
     float be = al - (-1.0) * sigma;
-    float gs = be >= (0.0) ? sigma : -sigma;
-    float V[8];
-    bl_tail_laplace(abs(be), 1, V);
-    float tg = exp((-1.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * ((1.0 * V[1]) * gs);
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float gs = be >= (0.0) ? sigma : -sigma;
+      float V[8];
+      bl_tail_laplace(abs(be), 1, V);
+      tg = exp((-1.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * ((1.0 * V[1]) * gs);
+    }
     if (be >= (0.0)) {
       acc += tg;
     } else {
@@ -3510,10 +3525,13 @@ float bl_gaussian_exp_ramp_sq_raw(float x, float sigma) {
   {  // term 0
     float al = ((0.0) - x) / sigma;
     float be = al - (-2.0) * sigma;
-    float gs = be >= (0.0) ? sigma : -sigma;
-    float V[8];
-    bl_tail_laplace(abs(be), 2, V);
-    float tg = exp((-2.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (((1.0 * V[2]) * gs) * gs);
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float gs = be >= (0.0) ? sigma : -sigma;
+      float V[8];
+      bl_tail_laplace(abs(be), 2, V);
+      tg = exp((-2.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (((1.0 * V[2]) * gs) * gs);
+    }
     if (be >= (0.0)) {
       acc += tg;
     } else {

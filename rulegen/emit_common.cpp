@@ -331,12 +331,19 @@ std::string body_gauss_ept(const Derived& d, const Syntax& s) {
     }
     out += "  " + s.decl("al", "(" + E + " - x) / sigma");
     out += "  " + s.decl("be", "al - " + A + " * sigma");
-    out += "  " + s.decl("gs", "be >= " + s.dbl(0) + " ? sigma : -sigma");
-    out += "    " + s.T() + " V[8];\n";
-    out += "    " + s.helper("tail_laplace") + "(abs(be), " + std::to_string(deg) + ", V);\n";
-    out +=
-        "  " + s.decl("tg", "exp(" + A + " * (" + E + " - " + ref + ") - " + s.dbl(0.5) + " * al * al) * " +
-                                s.dbl(0.3989422804014327) + " * (" + horner(s, hs, "gs") + ")");
+    // Skipped when |alpha| >= tail_cut (ref = E, degree <= 2): T_g <= e^{-alpha^2/2} sum |h_k| sigma^k
+    // V_k(0) with sigma <= (1e4 + |E|)/tail_cut here, below 1e-11 (float) / 1e-25 (double).
+    const bool skip = deg <= 2 && (Eb.value - t.ref).is_zero();
+    const std::string in = skip ? "      " : "    ";
+    out += "    " + s.T() + " tg = " + s.dbl(0) + ";\n";
+    if (skip)
+      out += "    if (abs(al) < " + (s.cpp() ? std::string("detail::tail_cut<T>()") : s.dbl(9)) + ") {\n";
+    if (deg >= 1) out += in + s.decl("gs", "be >= " + s.dbl(0) + " ? sigma : -sigma").substr(2);
+    out += in + s.T() + " V[8];\n";
+    out += in + s.helper("tail_laplace") + "(abs(be), " + std::to_string(deg) + ", V);\n";
+    out += in + "tg = exp(" + A + " * (" + E + " - " + ref + ") - " + s.dbl(0.5) + " * al * al) * " +
+           s.dbl(0.3989422804014327) + " * (" + horner(s, hs, "gs") + ");\n";
+    if (skip) out += "    }\n";
     out += std::string("    if (be ") + (right ? ">=" : "<") + " " + s.dbl(0) +
            ") {\n      acc += tg;\n    } else {\n";
     out += "    " + s.decl("yv", y) + "      acc += " + F + " - tg;\n    }\n  }\n";

@@ -3020,10 +3020,12 @@ T gaussian_laplace_raw(T x, T sigma) {
   {  // term 0
     const T al = ((T(0)) - x) / sigma;
     const T be = al - T(1) * sigma;
-    const T gs = be >= T(0.0) ? sigma : -sigma;
-    T V[8];
-    detail::tail_laplace(abs(be), 0, V);
-    const T tg = exp(T(1) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp(T(1) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
     if (be < T(0.0)) {
       acc += tg;
     } else {
@@ -3034,10 +3036,12 @@ T gaussian_laplace_raw(T x, T sigma) {
   {  // term 1
     const T al = ((T(0)) - x) / sigma;
     const T be = al - (T(-1)) * sigma;
-    const T gs = be >= T(0.0) ? sigma : -sigma;
-    T V[8];
-    detail::tail_laplace(abs(be), 0, V);
-    const T tg = exp((T(-1)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp((T(-1)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
     if (be >= T(0.0)) {
       acc += tg;
     } else {
@@ -3076,10 +3080,12 @@ T gaussian_laplace_sq_raw(T x, T sigma) {
   {  // term 0
     const T al = ((T(0)) - x) / sigma;
     const T be = al - T(2) * sigma;
-    const T gs = be >= T(0.0) ? sigma : -sigma;
-    T V[8];
-    detail::tail_laplace(abs(be), 0, V);
-    const T tg = exp(T(2) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp(T(2) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
     if (be < T(0.0)) {
       acc += tg;
     } else {
@@ -3090,10 +3096,12 @@ T gaussian_laplace_sq_raw(T x, T sigma) {
   {  // term 1
     const T al = ((T(0)) - x) / sigma;
     const T be = al - (T(-2)) * sigma;
-    const T gs = be >= T(0.0) ? sigma : -sigma;
-    T V[8];
-    detail::tail_laplace(abs(be), 0, V);
-    const T tg = exp((T(-2)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp((T(-2)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
     if (be >= T(0.0)) {
       acc += tg;
     } else {
@@ -3226,10 +3234,12 @@ T gaussian_exp_decay_raw(T x, T sigma) {
   {  // term 0
     const T al = ((T(0)) - x) / sigma;
     const T be = al - (T(-1)) * sigma;
-    const T gs = be >= T(0.0) ? sigma : -sigma;
-    T V[8];
-    detail::tail_laplace(abs(be), 0, V);
-    const T tg = exp((T(-1)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp((T(-1)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
     if (be >= T(0.0)) {
       acc += tg;
     } else {
@@ -3266,10 +3276,12 @@ T gaussian_exp_decay_sq_raw(T x, T sigma) {
   {  // term 0
     const T al = ((T(0)) - x) / sigma;
     const T be = al - (T(-2)) * sigma;
-    const T gs = be >= T(0.0) ? sigma : -sigma;
-    T V[8];
-    detail::tail_laplace(abs(be), 0, V);
-    const T tg = exp((T(-2)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp((T(-2)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
     if (be >= T(0.0)) {
       acc += tg;
     } else {
@@ -3398,10 +3410,13 @@ T gaussian_exp_ramp_raw(T x, T sigma) {
   {  // term 0
     const T al = ((T(0)) - x) / sigma;
     const T be = al - (T(-1)) * sigma;
-    const T gs = be >= T(0.0) ? sigma : -sigma;
-    T V[8];
-    detail::tail_laplace(abs(be), 1, V);
-    const T tg = exp((T(-1)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * ((T(1) * V[1]) * gs);
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      const T gs = be >= T(0.0) ? sigma : -sigma;
+      T V[8];
+      detail::tail_laplace(abs(be), 1, V);
+      tg = exp((T(-1)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * ((T(1) * V[1]) * gs);
+    }
     if (be >= T(0.0)) {
       acc += tg;
     } else {
@@ -3439,10 +3454,13 @@ T gaussian_exp_ramp_sq_raw(T x, T sigma) {
   {  // term 0
     const T al = ((T(0)) - x) / sigma;
     const T be = al - (T(-2)) * sigma;
-    const T gs = be >= T(0.0) ? sigma : -sigma;
-    T V[8];
-    detail::tail_laplace(abs(be), 2, V);
-    const T tg = exp((T(-2)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (((T(1) * V[2]) * gs) * gs);
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      const T gs = be >= T(0.0) ? sigma : -sigma;
+      T V[8];
+      detail::tail_laplace(abs(be), 2, V);
+      tg = exp((T(-2)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (((T(1) * V[2]) * gs) * gs);
+    }
     if (be >= T(0.0)) {
       acc += tg;
     } else {
