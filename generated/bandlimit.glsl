@@ -82,6 +82,11 @@ float bl_phi(float z) {
 // Both tails through erfc of the small side.
 float bl_Phi(float z) { return 0.5 * bl_erfc(-z * BL_INV_SQRT2); }
 float bl_Phic(float z) { return 0.5 * bl_erfc(z * BL_INV_SQRT2); }
+// phi(t) and Phic(t), t >= 0 (support.hpp: phi_Phic), one pair per break in the generated entries.
+void bl_phi_Phic(float t, out float ph, out float pc) {
+  ph = bl_phi(t);
+  pc = bl_Phic(t);
+}
 
 // sin(t)/t: series for |t| < 1 (GPU sin has an absolute, not relative, error bound), quotient
 // beyond.
@@ -416,16 +421,22 @@ void bl_tail_laplace(float al, int deg, out float V[8]) {
     }
     return;
   }
-  float ratio[8];
-  for (int k = 0; k < 8; ++k) ratio[k] = 1.0;
-  float r = al / 40.0;
-  for (int k = 39; k >= 1; --k) {
-    r = (1.0 / r + al) / float(k);
-    if (k <= deg) ratio[k] = r;
+  // s_k = V_k/V_{k-1} = k/(s_{k+1} + al) from K = deg + n(al), started at the fixed point
+  // (support.hpp: miller_start, tail_laplace, float levels)
+  float inv[8];
+  for (int k = 0; k < 8; ++k) inv[k] = 1.0;
+  int n = al < 3.0 ? 24 : (al < 4.0 ? 16 : (al < 5.0 ? 12 : (al < 6.0 ? 10 : 8)));
+  if (al >= 8.0) n = al < 12.0 ? 7 : (al < 20.0 ? 5 : (al < 30.0 ? 4 : 3));
+  int K = deg + n;
+  float ac = min(al, 1e15);  // ac^2 stays finite; the start is irrelevant that far out
+  float sk = 2.0 * float(K) / (ac + sqrt(ac * ac + 4.0 * float(K)));
+  for (int k = K - 1; k >= 1; --k) {
+    sk = float(k) / (sk + al);
+    if (k <= deg) inv[k] = sk;
   }
   for (int k = 1; k < 8; ++k) {
     if (k > deg) break;
-    V[k] = V[k - 1] / ratio[k];
+    V[k] = V[k - 1] * inv[k];
   }
 }
 
@@ -2274,7 +2285,13 @@ float bl_gaussian_xexp_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_gauss_ept(x, sigma, 1, p);
+  if (abs(x) > (10000.0) || sigma > (10000.0)) return bl_gauss_ept(x, sigma, 1, p);
+  float acc = (0.0);
+  {  // term 0
+    float yv = (x - (0.0) + 1.0 * sigma * sigma);
+    acc += exp(1.0 * (x - (0.0)) + (0.5) * 1.0 * 1.0 * sigma * sigma) * (((1.0)) * yv);
+  }
+  return acc;
 }
 
 float bl_gaussian_xexp(float x, float sigma) {
@@ -2295,7 +2312,14 @@ float bl_gaussian_xexp_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_gauss_ept(x, sigma, 1, p);
+  if (abs(x) > (10000.0) || sigma > (10000.0)) return bl_gauss_ept(x, sigma, 1, p);
+  float s2 = sigma * sigma;
+  float acc = (0.0);
+  {  // term 0
+    float yv = (x - (0.0) + 2.0 * sigma * sigma);
+    acc += exp(2.0 * (x - (0.0)) + (0.5) * 2.0 * 2.0 * sigma * sigma) * ((((1.0)) * yv) * yv + ((1.0) * s2));
+  }
+  return acc;
 }
 
 float bl_gaussian_xexp_sq(float x, float sigma) {
@@ -2396,7 +2420,22 @@ float bl_gaussian_abs_raw(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_gauss_pw(x, sigma, 2, p);
+  float acc = (0.0);
+  if (x < 0.0) acc = (((-1.0))) * x;
+  else acc = ((1.0)) * x;
+  {  // break at 0.0
+    float db = (0.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float j1 = ph - t * j0;
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((2.0 * j1) * st);
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_abs(float x, float sigma) {
@@ -2480,7 +2519,21 @@ float bl_gaussian_sign_raw(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_gauss_pw(x, sigma, 2, p);
+  float acc = (0.0);
+  if (x < 0.0) acc = ((-1.0));
+  else acc = (1.0);
+  {  // break at 0.0
+    float db = (0.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * (2.0 * j0);
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_sign(float x, float sigma) {
@@ -2570,7 +2623,21 @@ float bl_gaussian_step_raw(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_gauss_pw(x, sigma, 2, p);
+  float acc = (0.0);
+  if (x < 0.0) acc = (0.0);
+  else acc = (1.0);
+  {  // break at 0.0
+    float db = (0.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * (1.0 * j0);
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_step(float x, float sigma) {
@@ -2588,7 +2655,21 @@ float bl_gaussian_step_sq_raw(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_gauss_pw(x, sigma, 2, p);
+  float acc = (0.0);
+  if (x < 0.0) acc = (0.0);
+  else acc = (1.0);
+  {  // break at 0.0
+    float db = (0.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * (1.0 * j0);
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_step_sq(float x, float sigma) {
@@ -2678,7 +2759,36 @@ float bl_gaussian_saturate_raw(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_gauss_pw(x, sigma, 3, p);
+  if (!(sigma <= (1.0))) return bl_gauss_pw(x, sigma, 3, p);
+  float acc = (0.0);
+  if (x < 0.0) acc = (0.0);
+  else if (x < 1.0) acc = ((1.0)) * x;
+  else acc = (1.0);
+  {  // break at 0.0
+    float db = (0.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float j1 = ph - t * j0;
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((1.0 * j1) * st);
+    }
+  }
+  {  // break at 1.0
+    float db = (1.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float j1 = ph - t * j0;
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((-1.0) * j1) * st);
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_saturate(float x, float sigma) {
@@ -2696,7 +2806,39 @@ float bl_gaussian_saturate_sq_raw(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_gauss_pw(x, sigma, 3, p);
+  if (!(sigma <= (1.0))) return bl_gauss_pw(x, sigma, 3, p);
+  float s2 = sigma * sigma;
+  float acc = (0.0);
+  if (x < 0.0) acc = (0.0);
+  else if (x < 1.0) acc = (((1.0)) * x) * x + ((1.0) * s2);
+  else acc = (1.0);
+  {  // break at 0.0
+    float db = (0.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float j1 = ph - t * j0;
+      float j2 = j0 - t * j1;
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((1.0 * j2) * st) * st);
+    }
+  }
+  {  // break at 1.0
+    float db = (1.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float j1 = ph - t * j0;
+      float j2 = j0 - t * j1;
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((((-1.0) * j2) * st + (-2.0) * j1) * st);
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_saturate_sq(float x, float sigma) {
@@ -2786,7 +2928,41 @@ float bl_gaussian_smoothstep_raw(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_gauss_pw(x, sigma, 3, p);
+  if (!(sigma <= (1.0))) return bl_gauss_pw(x, sigma, 3, p);
+  float s2 = sigma * sigma;
+  float acc = (0.0);
+  if (x < 0.0) acc = (0.0);
+  else if (x < 1.0) acc = (((((-2.0))) * x + (3.0)) * x + (((-6.0)) * s2)) * x + ((3.0) * s2);
+  else acc = (1.0);
+  {  // break at 0.0
+    float db = (0.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float j1 = ph - t * j0;
+      float j2 = j0 - t * j1;
+      float j3 = (2.0) * j1 - t * j2;
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((((-2.0) * j3) * st + 3.0 * j2) * st) * st);
+    }
+  }
+  {  // break at 1.0
+    float db = (1.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float j1 = ph - t * j0;
+      float j2 = j0 - t * j1;
+      float j3 = (2.0) * j1 - t * j2;
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((((2.0 * j3) * st + 3.0 * j2) * st) * st);
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_smoothstep(float x, float sigma) {
@@ -2804,7 +2980,47 @@ float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_gauss_pw(x, sigma, 3, p);
+  if (!(sigma <= (0.5))) return bl_gauss_pw(x, sigma, 3, p);
+  float s2 = sigma * sigma;
+  float acc = (0.0);
+  if (x < 0.0) acc = (0.0);
+  else if (x < 1.0) acc = (((((((4.0)) * x + ((-12.0))) * x + ((60.0) * s2 + 9.0)) * x + (((-120.0)) * s2)) * x + (((180.0) * s2 + 54.0) * s2)) * x + ((((-180.0)) * s2) * s2)) * x + ((((60.0) * s2 + 27.0) * s2) * s2);
+  else acc = (1.0);
+  {  // break at 0.0
+    float db = (0.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float j1 = ph - t * j0;
+      float j2 = j0 - t * j1;
+      float j3 = (2.0) * j1 - t * j2;
+      float j4 = (3.0) * j2 - t * j3;
+      float j5 = (4.0) * j3 - t * j4;
+      float j6 = (5.0) * j4 - t * j5;
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((((((4.0 * j6) * st + (-12.0) * j5) * st + 9.0 * j4) * st) * st) * st) * st);
+    }
+  }
+  {  // break at 1.0
+    float db = (1.0 - x) / sigma;
+    float t = abs(db);
+    if (t < (9.0)) {
+      float j0;
+      float ph;
+      bl_phi_Phic(t, ph, j0);
+      float j1 = ph - t * j0;
+      float j2 = j0 - t * j1;
+      float j3 = (2.0) * j1 - t * j2;
+      float j4 = (3.0) * j2 - t * j3;
+      float j5 = (4.0) * j3 - t * j4;
+      float j6 = (5.0) * j4 - t * j5;
+      float st = db > (0.0) ? sigma : -sigma;
+      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((((((((-4.0) * j6) * st + (-12.0) * j5) * st + (-9.0) * j4) * st + 4.0 * j3) * st + 6.0 * j2) * st) * st);
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_smoothstep_sq(float x, float sigma) {
@@ -2898,7 +3114,41 @@ float bl_gaussian_laplace_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
-  return bl_gauss_ept(x, sigma, 2, p);
+  if (abs(x) > (10000.0) || sigma > (10000.0)) return bl_gauss_ept(x, sigma, 2, p);
+  float acc = (0.0);
+  {  // term 0
+    float al = ((0.0) - x) / sigma;
+    float be = al - 1.0 * sigma;
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp(1.0 * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
+    if (be < (0.0)) {
+      acc += tg;
+    } else {
+      float yv = (x - (0.0) + 1.0 * sigma * sigma);
+      acc += exp(1.0 * (x - (0.0)) + (0.5) * 1.0 * 1.0 * sigma * sigma) * ((1.0)) - tg;
+    }
+  }
+  {  // term 1
+    float al = ((0.0) - x) / sigma;
+    float be = al - (-1.0) * sigma;
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp((-1.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
+    if (be >= (0.0)) {
+      acc += tg;
+    } else {
+      float yv = (x - (0.0) + (-1.0) * sigma * sigma);
+      acc += exp((-1.0) * (x - (0.0)) + (0.5) * (-1.0) * (-1.0) * sigma * sigma) * ((1.0)) - tg;
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_laplace(float x, float sigma) {
@@ -2920,7 +3170,41 @@ float bl_gaussian_laplace_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
-  return bl_gauss_ept(x, sigma, 2, p);
+  if (abs(x) > (10000.0) || sigma > (10000.0)) return bl_gauss_ept(x, sigma, 2, p);
+  float acc = (0.0);
+  {  // term 0
+    float al = ((0.0) - x) / sigma;
+    float be = al - 2.0 * sigma;
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp(2.0 * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
+    if (be < (0.0)) {
+      acc += tg;
+    } else {
+      float yv = (x - (0.0) + 2.0 * sigma * sigma);
+      acc += exp(2.0 * (x - (0.0)) + (0.5) * 2.0 * 2.0 * sigma * sigma) * ((1.0)) - tg;
+    }
+  }
+  {  // term 1
+    float al = ((0.0) - x) / sigma;
+    float be = al - (-2.0) * sigma;
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp((-2.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
+    if (be >= (0.0)) {
+      acc += tg;
+    } else {
+      float yv = (x - (0.0) + (-2.0) * sigma * sigma);
+      acc += exp((-2.0) * (x - (0.0)) + (0.5) * (-2.0) * (-2.0) * sigma * sigma) * ((1.0)) - tg;
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_laplace_sq(float x, float sigma) {
@@ -3030,7 +3314,25 @@ float bl_gaussian_exp_decay_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_gauss_ept(x, sigma, 1, p);
+  if (abs(x) > (10000.0) || sigma > (10000.0)) return bl_gauss_ept(x, sigma, 1, p);
+  float acc = (0.0);
+  {  // term 0
+    float al = ((0.0) - x) / sigma;
+    float be = al - (-1.0) * sigma;
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp((-1.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
+    if (be >= (0.0)) {
+      acc += tg;
+    } else {
+      float yv = (x - (0.0) + (-1.0) * sigma * sigma);
+      acc += exp((-1.0) * (x - (0.0)) + (0.5) * (-1.0) * (-1.0) * sigma * sigma) * ((1.0)) - tg;
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_exp_decay(float x, float sigma) {
@@ -3052,7 +3354,25 @@ float bl_gaussian_exp_decay_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_gauss_ept(x, sigma, 1, p);
+  if (abs(x) > (10000.0) || sigma > (10000.0)) return bl_gauss_ept(x, sigma, 1, p);
+  float acc = (0.0);
+  {  // term 0
+    float al = ((0.0) - x) / sigma;
+    float be = al - (-2.0) * sigma;
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float V[8];
+      bl_tail_laplace(abs(be), 0, V);
+      tg = exp((-2.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (1.0 * V[0]);
+    }
+    if (be >= (0.0)) {
+      acc += tg;
+    } else {
+      float yv = (x - (0.0) + (-2.0) * sigma * sigma);
+      acc += exp((-2.0) * (x - (0.0)) + (0.5) * (-2.0) * (-2.0) * sigma * sigma) * ((1.0)) - tg;
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_exp_decay_sq(float x, float sigma) {
@@ -3162,7 +3482,26 @@ float bl_gaussian_exp_ramp_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_gauss_ept(x, sigma, 1, p);
+  if (abs(x) > (10000.0) || sigma > (10000.0)) return bl_gauss_ept(x, sigma, 1, p);
+  float acc = (0.0);
+  {  // term 0
+    float al = ((0.0) - x) / sigma;
+    float be = al - (-1.0) * sigma;
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float gs = be >= (0.0) ? sigma : -sigma;
+      float V[8];
+      bl_tail_laplace(abs(be), 1, V);
+      tg = exp((-1.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * ((1.0 * V[1]) * gs);
+    }
+    if (be >= (0.0)) {
+      acc += tg;
+    } else {
+      float yv = (x - (0.0) + (-1.0) * sigma * sigma);
+      acc += exp((-1.0) * (x - (0.0)) + (0.5) * (-1.0) * (-1.0) * sigma * sigma) * (((1.0)) * yv) - tg;
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_exp_ramp(float x, float sigma) {
@@ -3184,7 +3523,27 @@ float bl_gaussian_exp_ramp_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_gauss_ept(x, sigma, 1, p);
+  if (abs(x) > (10000.0) || sigma > (10000.0)) return bl_gauss_ept(x, sigma, 1, p);
+  float s2 = sigma * sigma;
+  float acc = (0.0);
+  {  // term 0
+    float al = ((0.0) - x) / sigma;
+    float be = al - (-2.0) * sigma;
+    float tg = (0.0);
+    if (abs(al) < (9.0)) {
+      float gs = be >= (0.0) ? sigma : -sigma;
+      float V[8];
+      bl_tail_laplace(abs(be), 2, V);
+      tg = exp((-2.0) * ((0.0) - (0.0)) - (0.5) * al * al) * (0.3989422804014327) * (((1.0 * V[2]) * gs) * gs);
+    }
+    if (be >= (0.0)) {
+      acc += tg;
+    } else {
+      float yv = (x - (0.0) + (-2.0) * sigma * sigma);
+      acc += exp((-2.0) * (x - (0.0)) + (0.5) * (-2.0) * (-2.0) * sigma * sigma) * ((((1.0)) * yv) * yv + ((1.0) * s2)) - tg;
+    }
+  }
+  return acc;
 }
 
 float bl_gaussian_exp_ramp_sq(float x, float sigma) {

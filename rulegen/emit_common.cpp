@@ -149,7 +149,132 @@ std::string body_closed(const Derived& d, const Syntax& s) {
   return out + "  return " + s.ex(d.closed) + ";\n";
 }
 
+// Horner form of sum_k c[k] v^k; an empty c[k] is a zero coefficient.
+std::string horner(const Syntax& s, const std::vector<std::string>& c, const std::string& v) {
+  int top = static_cast<int>(c.size()) - 1;
+  while (top >= 0 && c[top].empty()) --top;
+  if (top < 0) return s.dbl(0);
+  std::string r = c[top];
+  for (int k = top - 1; k >= 0; --k) r = "(" + r + ") * " + v + (c[k].empty() ? "" : " + " + c[k]);
+  return r;
+}
+
+std::string coef(const Syntax& s, const GiNaC::ex& v) {
+  if (v.is_zero()) return "";
+  if (!is_a<numeric>(v)) {
+    const GiNaC::ex f = v.evalf();
+    if (!is_a<numeric>(f)) throw std::runtime_error("a non-numeric piecewise coefficient: " + s.ex(v));
+    return s.num(f);
+  }
+  return s.num(v);
+}
+
+// E q(v + sigma Z), q = sum c[k] t^k: sum_n v^n sum_m (2m-1)!! C(n+2m, 2m) c_{n+2m} s2^m, Horner in
+// v and s2 = sigma^2 (a local the caller declares when q has degree >= 2).
+std::string normal_mean(const Syntax& s, const std::vector<GiNaC::ex>& c, const std::string& v) {
+  std::vector<std::string> cx;
+  for (size_t m = 0; m < c.size(); ++m) {
+    std::vector<std::string> cs;
+    GiNaC::numeric df = 1;  // (2j-1)!!
+    for (size_t j = 0; m + 2 * j < c.size(); ++j) {
+      if (j > 0) df *= GiNaC::numeric(static_cast<long>(2 * j - 1));
+      cs.push_back(coef(s, (df *
+                            GiNaC::binomial(GiNaC::numeric(static_cast<long>(m + 2 * j)),
+                                            GiNaC::numeric(static_cast<long>(2 * j))) *
+                            c[m + 2 * j])
+                               .expand()));
+    }
+    const std::string h = horner(s, cs, "s2");
+    cx.push_back(h == s.dbl(0) ? "" : "(" + h + ")");
+  }
+  return horner(s, cx, v);
+}
+
+// Gaussian of a piecewise polynomial, specialised at emit time (the form of gauss_pw_breaks in
+// support.hpp): with j the piece containing x,
+//   E f(x+U) = E q_j(x+U) + sum over breaks b of s sum_k e_k (s sigma)^k J_k(|b - x|/sigma),
+// s = +1 for b > x, -1 otherwise, e_k the Taylor coefficients about b of the jump q_right - q_left
+// (exact here), J_k(t) = int_t^inf (z - t)^k phi(z) dz by J_1 = phi - t J_0, J_{k+1} = k J_{k-1} - t J_k
+// from J_0 = Phic(t): one phi_Phic (one exp; float: a polynomial erfcx) per break within tail_cut sd.
+// E q_j(x+U) = sum_n x^n sum_m (2m-1)!! C(n+2m, 2m) c_{n+2m} sigma^{2m}, Horner in x and sigma^2.
+// Kernels wider than the narrowest bounded piece (the terms would cancel) go to the generic
+// per-piece gauss_pw.
+std::string body_gauss_pw(const Derived& d, const Syntax& s) {
+  const auto& ps = d.pieces;
+  const size_t n = ps.size();
+  const std::string P = pieces_arg(s, "p", n);
+  int maxdeg = 0;
+  double wmin = HUGE_VAL;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = 0; k < ps[i].c.size(); ++k)
+      if (!ps[i].c[k].is_zero()) maxdeg = std::max(maxdeg, static_cast<int>(k));
+    if (i > 0 && i + 1 < n) wmin = std::min(wmin, ps[i].hi.to_double() - ps[i].lo.to_double());
+  }
+  std::string out = piece_table(s, "p", ps) + guard_sigma(s) + "  if (sigma == " + s.dbl(0) + ") return " +
+                    s.helper("pw_eval") + "(x, " + P + ");\n";
+  // Past degree 3 the terms reach ~400 max|f| at sigma = wmin (smoothstep^2): float keeps the form
+  // up to wmin/2 and takes it in double up to wmin (GLSL: the generic gauss_pw there).
+  if (n > 2) {
+    const double thr_d = wmin, thr_f = maxdeg <= 3 ? wmin : 0.5 * wmin;
+    out += "  if (!(sigma <= " + s.dbl(s.cpp() ? thr_d : thr_f) + ")) return " + s.helper("gauss_pw") +
+           "(x, sigma, " + P + ");\n";
+    if (s.cpp() && thr_f < thr_d)
+      out += "  if constexpr (std::is_same<T, float>::value) {\n    if (sigma > " + s.dbl(thr_f) +
+             ")\n      return T(" + impl_name(d) + (range_clamp(d, Lang::Cpp).empty() ? "" : "_raw") +
+             "<double>(double(x), double(sigma)));\n  }\n";
+  }
+  if (maxdeg >= 2) out += s.decl("s2", "sigma * sigma");
+  out += "  " + s.T() + " acc = " + s.dbl(0) + ";\n";
+  for (size_t i = 0; i < n; ++i) {
+    const std::vector<GiNaC::ex> c(ps[i].c.begin(), ps[i].c.end());
+    const std::string e = "acc = " + normal_mean(s, c, "x") + ";\n";
+    if (i + 1 < n)
+      out += std::string(i ? "  else if" : "  if") + " (x < " + s.bound(ps[i].hi) + ") " + e;
+    else
+      out += std::string(n > 1 ? "  else " : "  ") + e;
+  }
+  const GiNaC::symbol u("u");
+  for (size_t i = 0; i + 1 < n; ++i) {
+    const GiNaC::ex b = ps[i].hi.value;
+    GiNaC::ex jump = 0;
+    const size_t nc = std::max(ps[i].c.size(), ps[i + 1].c.size());
+    for (size_t k = 0; k < nc; ++k) {
+      const GiNaC::numeric cl = k < ps[i].c.size() ? ps[i].c[k] : GiNaC::numeric(0);
+      const GiNaC::numeric cr = k < ps[i + 1].c.size() ? ps[i + 1].c[k] : GiNaC::numeric(0);
+      jump += (cr - cl) * GiNaC::pow(b + u, static_cast<int>(k));
+    }
+    jump = jump.expand();
+    std::vector<std::string> terms;
+    int dd = -1;
+    for (size_t k = 0; k < nc; ++k) {
+      terms.push_back(coef(s, jump.coeff(u, static_cast<int>(k))));
+      if (!terms.back().empty()) {
+        terms.back() += " * j" + std::to_string(k);
+        dd = static_cast<int>(k);
+      }
+    }
+    if (dd < 0) continue;  // f smooth there
+    out += "  {  // break at " + s.bound(ps[i].hi) + "\n";
+    out += "  " + s.decl("db", "(" + s.bound(ps[i].hi) + " - x) / sigma");
+    out += "  " + s.decl("t", "abs(db)");
+    out += "    if (t < " + (s.cpp() ? std::string("detail::tail_cut<T>()") : s.dbl(9)) + ") {\n";
+    out += "      " + s.T() + " j0;\n      " + s.T() + " ph;\n";
+    out += "      " + s.helper("phi_Phic") + "(t, ph, j0);\n";
+    for (int k = 1; k <= dd; ++k) {
+      const std::string prev =
+          k == 1 ? "ph" : (k == 2 ? "j0" : s.dbl(k - 1) + " * j" + std::to_string(k - 2));
+      out += "    " + s.decl("j" + std::to_string(k), prev + " - t * j" + std::to_string(k - 1));
+    }
+    out += "    " + s.decl("st", "db > " + s.dbl(0) + " ? sigma : -sigma");
+    out += "      acc += (db > " + s.dbl(0) + " ? " + s.dbl(1) + " : " + s.dbl(-1) + ") * (" +
+           horner(s, terms, "st") + ");\n";
+    out += "    }\n  }\n";
+  }
+  return out + "  return acc;\n";
+}
+
 std::string body_piecewise(const Derived& d, const Syntax& s) {
+  if (d.kernel == Kernel::Gaussian) return body_gauss_pw(d, s);
   const std::string P = pieces_arg(s, "p", d.pieces.size());
   std::string call = d.kernel == Kernel::Gaussian ? "gauss_pw"
                      : d.kernel == Kernel::Box    ? "box_pw"
@@ -158,7 +283,85 @@ std::string body_piecewise(const Derived& d, const Syntax& s) {
          s.helper("pw_eval") + "(x, " + P + ");\n  return " + s.helper(call) + "(x, sigma, " + P + ");\n";
 }
 
+// Gaussian of exp-polynomial terms e^{a s} q(s), s = t - ref, each on a half-line [E, inf) /
+// (-inf, E) or the whole line, specialised at emit time (support.hpp: gauss_exp_term). With
+// alpha = (E - x)/sigma, beta = alpha - a sigma = (E - mu)/sigma (mu = x + a sigma^2, the completed
+// square) and g = +1 for beta >= 0, else -1, the tail from E towards g is
+//   T_g = e^{a (E - ref) - alpha^2/2}/sqrt(2 pi) sum_k h_k (g sigma)^k V_k(|beta|)
+// (h: q about E - ref, exact here; V: tail_laplace, no cancellation for |beta| >= 0), and the term
+// is T_g when g points into its half-line, else F - T_g with F = e^{a (x - ref) + a^2 sigma^2/2}
+// E q(x - ref + a sigma^2 + sigma Z) the whole-line value (then mu lies inside, so F <= max|q|
+// scale). One exp and one erfcx per term (two where F is taken). |x| or sigma beyond 1e4: the
+// generic gauss_ept (in double for float).
+std::string body_gauss_ept(const Derived& d, const Syntax& s) {
+  const size_t n = d.eterms.size();
+  const std::string P = pieces_arg(s, "p", n);
+  std::string out = eterm_table(s, "p", d.eterms) + guard_sigma(s) + "  if (sigma == " + s.dbl(0) +
+                    ") return " + s.helper("ept_eval") + "(x, " + P + ");\n";
+  out += "  if (abs(x) > " + s.dbl(1e4) + " || sigma > " + s.dbl(1e4) + ") return " + s.helper("gauss_ept") +
+         "(x, sigma, " + P + ");\n";
+  bool need_s2 = false;
+  for (const auto& t : d.eterms) need_s2 = need_s2 || t.c.size() >= 3;
+  if (need_s2) out += s.decl("s2", "sigma * sigma");
+  out += "  " + s.T() + " acc = " + s.dbl(0) + ";\n";
+  const GiNaC::symbol u("u");
+  for (size_t i = 0; i < n; ++i) {
+    const auto& t = d.eterms[i];
+    int deg = -1;
+    for (size_t k = 0; k < t.c.size(); ++k)
+      if (!t.c[k].is_zero()) deg = static_cast<int>(k);
+    if (deg < 0) continue;
+    const std::string A = s.num(t.a), ref = "(" + s.ex(t.ref) + ")";
+    // F: the whole-line value.
+    const std::string y = "(x - " + ref + " + " + A + " * sigma * sigma)";
+    const std::string F = "exp(" + A + " * (x - " + ref + ") + " + s.dbl(0.5) + " * " + A + " * " + A +
+                          " * sigma * sigma) * (" + normal_mean(s, t.c, "yv") + ")";
+    out += "  {  // term " + std::to_string(i) + "\n";
+    if (!t.lo.finite() && !t.hi.finite()) {
+      out += "  " + s.decl("yv", y) + "    acc += " + F + ";\n  }\n";
+      continue;
+    }
+    if (t.lo.finite() && t.hi.finite()) throw std::runtime_error("body_gauss_ept: a bounded term");
+    const bool right = t.lo.finite();
+    const Bound& Eb = right ? t.lo : t.hi;
+    const std::string E = "(" + s.ex(Eb.value) + ")";
+    GiNaC::ex qe = 0;
+    for (size_t k = 0; k < t.c.size(); ++k)
+      qe += t.c[k] * GiNaC::pow(Eb.value - t.ref + u, static_cast<int>(k));
+    qe = qe.expand();
+    std::vector<std::string> hs;
+    for (int k = 0; k <= deg; ++k) {
+      hs.push_back(coef(s, qe.coeff(u, k)));
+      if (!hs.back().empty()) hs.back() += " * V[" + std::to_string(k) + "]";
+    }
+    out += "  " + s.decl("al", "(" + E + " - x) / sigma");
+    out += "  " + s.decl("be", "al - " + A + " * sigma");
+    // Skipped when |alpha| >= tail_cut (ref = E, degree <= 2): T_g <= e^{-alpha^2/2} sum |h_k| sigma^k
+    // V_k(0) with sigma <= (1e4 + |E|)/tail_cut here, below 1e-11 (float) / 1e-25 (double).
+    const bool skip = deg <= 2 && (Eb.value - t.ref).is_zero();
+    const std::string in = skip ? "      " : "    ";
+    out += "    " + s.T() + " tg = " + s.dbl(0) + ";\n";
+    if (skip)
+      out += "    if (abs(al) < " + (s.cpp() ? std::string("detail::tail_cut<T>()") : s.dbl(9)) + ") {\n";
+    if (deg >= 1) out += in + s.decl("gs", "be >= " + s.dbl(0) + " ? sigma : -sigma").substr(2);
+    out += in + s.T() + " V[8];\n";
+    out += in + s.helper("tail_laplace") + "(abs(be), " + std::to_string(deg) + ", V);\n";
+    out += in + "tg = exp(" + A + " * (" + E + " - " + ref + ") - " + s.dbl(0.5) + " * al * al) * " +
+           s.dbl(0.3989422804014327) + " * (" + horner(s, hs, "gs") + ");\n";
+    if (skip) out += "    }\n";
+    out += std::string("    if (be ") + (right ? ">=" : "<") + " " + s.dbl(0) +
+           ") {\n      acc += tg;\n    } else {\n";
+    out += "    " + s.decl("yv", y) + "      acc += " + F + " - tg;\n    }\n  }\n";
+  }
+  return out + "  return acc;\n";
+}
+
 std::string body_exp_table(const Derived& d, const Syntax& s) {
+  if (d.kernel == Kernel::Gaussian) {
+    bool half_lines = true;
+    for (const auto& t : d.eterms) half_lines = half_lines && !(t.lo.finite() && t.hi.finite());
+    if (half_lines) return body_gauss_ept(d, s);
+  }
   const std::string P = pieces_arg(s, "p", d.eterms.size());
   const std::string call = d.kernel == Kernel::Gaussian ? "gauss_ept"
                            : d.kernel == Kernel::Box    ? "box_ept"

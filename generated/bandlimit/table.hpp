@@ -1982,7 +1982,13 @@ T gaussian_xexp_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::gauss_ept(x, sigma, p);
+  if (abs(x) > T(10000.0) || sigma > T(10000.0)) return detail::gauss_ept(x, sigma, p);
+  T acc = T(0.0);
+  {  // term 0
+    const T yv = (x - (T(0)) + T(1) * sigma * sigma);
+    acc += exp(T(1) * (x - (T(0))) + T(0.5) * T(1) * T(1) * sigma * sigma) * (((T(1))) * yv);
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2006,7 +2012,14 @@ T gaussian_xexp_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::gauss_ept(x, sigma, p);
+  if (abs(x) > T(10000.0) || sigma > T(10000.0)) return detail::gauss_ept(x, sigma, p);
+  const T s2 = sigma * sigma;
+  T acc = T(0.0);
+  {  // term 0
+    const T yv = (x - (T(0)) + T(2) * sigma * sigma);
+    acc += exp(T(2) * (x - (T(0))) + T(0.5) * T(2) * T(2) * sigma * sigma) * ((((T(1))) * yv) * yv + ((T(1)) * s2));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2118,7 +2131,22 @@ T gaussian_abs_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  T acc = T(0.0);
+  if (x < T(0)) acc = (((T(-1)))) * x;
+  else acc = ((T(1))) * x;
+  {  // break at T(0)
+    const T db = (T(0) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((T(2) * j1) * st);
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2231,7 +2259,21 @@ T gaussian_sign_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  T acc = T(0.0);
+  if (x < T(0)) acc = ((T(-1)));
+  else acc = (T(1));
+  {  // break at T(0)
+    const T db = (T(0) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (T(2) * j0);
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2349,7 +2391,21 @@ T gaussian_step_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  T acc = T(0.0);
+  if (x < T(0)) acc = T(0.0);
+  else acc = (T(1));
+  {  // break at T(0)
+    const T db = (T(0) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2371,7 +2427,21 @@ T gaussian_step_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  T acc = T(0.0);
+  if (x < T(0)) acc = T(0.0);
+  else acc = (T(1));
+  {  // break at T(0)
+    const T db = (T(0) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2486,7 +2556,36 @@ T gaussian_saturate_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  if (!(sigma <= T(1.0))) return detail::gauss_pw(x, sigma, p);
+  T acc = T(0.0);
+  if (x < T(0)) acc = T(0.0);
+  else if (x < T(1)) acc = ((T(1))) * x;
+  else acc = (T(1));
+  {  // break at T(0)
+    const T db = (T(0) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((T(1) * j1) * st);
+    }
+  }
+  {  // break at T(1)
+    const T db = (T(1) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((T(-1)) * j1) * st);
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2513,7 +2612,39 @@ T gaussian_saturate_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  if (!(sigma <= T(1.0))) return detail::gauss_pw(x, sigma, p);
+  const T s2 = sigma * sigma;
+  T acc = T(0.0);
+  if (x < T(0)) acc = T(0.0);
+  else if (x < T(1)) acc = (((T(1))) * x) * x + ((T(1)) * s2);
+  else acc = (T(1));
+  {  // break at T(0)
+    const T db = (T(0) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T j2 = j0 - t * j1;
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((T(1) * j2) * st) * st);
+    }
+  }
+  {  // break at T(1)
+    const T db = (T(1) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T j2 = j0 - t * j1;
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((((T(-1)) * j2) * st + (T(-2)) * j1) * st);
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2641,7 +2772,41 @@ T gaussian_smoothstep_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  if (!(sigma <= T(1.0))) return detail::gauss_pw(x, sigma, p);
+  const T s2 = sigma * sigma;
+  T acc = T(0.0);
+  if (x < T(0)) acc = T(0.0);
+  else if (x < T(1)) acc = (((((T(-2)))) * x + (T(3))) * x + (((T(-6))) * s2)) * x + ((T(3)) * s2);
+  else acc = (T(1));
+  {  // break at T(0)
+    const T db = (T(0) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T j2 = j0 - t * j1;
+      const T j3 = T(2.0) * j1 - t * j2;
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((((T(-2)) * j3) * st + T(3) * j2) * st) * st);
+    }
+  }
+  {  // break at T(1)
+    const T db = (T(1) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T j2 = j0 - t * j1;
+      const T j3 = T(2.0) * j1 - t * j2;
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((((T(2) * j3) * st + T(3) * j2) * st) * st);
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2691,7 +2856,51 @@ T gaussian_smoothstep_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::pw_eval(x, p);
-  return detail::gauss_pw(x, sigma, p);
+  if (!(sigma <= T(1.0))) return detail::gauss_pw(x, sigma, p);
+  if constexpr (std::is_same<T, float>::value) {
+    if (sigma > T(0.5))
+      return T(gaussian_smoothstep_sq_raw<double>(double(x), double(sigma)));
+  }
+  const T s2 = sigma * sigma;
+  T acc = T(0.0);
+  if (x < T(0)) acc = T(0.0);
+  else if (x < T(1)) acc = (((((((T(4))) * x + ((T(-12)))) * x + ((T(60)) * s2 + T(9))) * x + (((T(-120))) * s2)) * x + (((T(180)) * s2 + T(54)) * s2)) * x + ((((T(-180))) * s2) * s2)) * x + ((((T(60)) * s2 + T(27)) * s2) * s2);
+  else acc = (T(1));
+  {  // break at T(0)
+    const T db = (T(0) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T j2 = j0 - t * j1;
+      const T j3 = T(2.0) * j1 - t * j2;
+      const T j4 = T(3.0) * j2 - t * j3;
+      const T j5 = T(4.0) * j3 - t * j4;
+      const T j6 = T(5.0) * j4 - t * j5;
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((((((T(4) * j6) * st + (T(-12)) * j5) * st + T(9) * j4) * st) * st) * st) * st);
+    }
+  }
+  {  // break at T(1)
+    const T db = (T(1) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T j2 = j0 - t * j1;
+      const T j3 = T(2.0) * j1 - t * j2;
+      const T j4 = T(3.0) * j2 - t * j3;
+      const T j5 = T(4.0) * j3 - t * j4;
+      const T j6 = T(5.0) * j4 - t * j5;
+      const T st = db > T(0.0) ? sigma : -sigma;
+      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((((((((T(-4)) * j6) * st + (T(-12)) * j5) * st + (T(-9)) * j4) * st + T(4) * j3) * st + T(6) * j2) * st) * st);
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2815,7 +3024,41 @@ T gaussian_laplace_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::gauss_ept(x, sigma, p);
+  if (abs(x) > T(10000.0) || sigma > T(10000.0)) return detail::gauss_ept(x, sigma, p);
+  T acc = T(0.0);
+  {  // term 0
+    const T al = ((T(0)) - x) / sigma;
+    const T be = al - T(1) * sigma;
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp(T(1) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
+    if (be < T(0.0)) {
+      acc += tg;
+    } else {
+      const T yv = (x - (T(0)) + T(1) * sigma * sigma);
+      acc += exp(T(1) * (x - (T(0))) + T(0.5) * T(1) * T(1) * sigma * sigma) * ((T(1))) - tg;
+    }
+  }
+  {  // term 1
+    const T al = ((T(0)) - x) / sigma;
+    const T be = al - (T(-1)) * sigma;
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp((T(-1)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
+    if (be >= T(0.0)) {
+      acc += tg;
+    } else {
+      const T yv = (x - (T(0)) + (T(-1)) * sigma * sigma);
+      acc += exp((T(-1)) * (x - (T(0))) + T(0.5) * (T(-1)) * (T(-1)) * sigma * sigma) * ((T(1))) - tg;
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2841,7 +3084,41 @@ T gaussian_laplace_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::gauss_ept(x, sigma, p);
+  if (abs(x) > T(10000.0) || sigma > T(10000.0)) return detail::gauss_ept(x, sigma, p);
+  T acc = T(0.0);
+  {  // term 0
+    const T al = ((T(0)) - x) / sigma;
+    const T be = al - T(2) * sigma;
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp(T(2) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
+    if (be < T(0.0)) {
+      acc += tg;
+    } else {
+      const T yv = (x - (T(0)) + T(2) * sigma * sigma);
+      acc += exp(T(2) * (x - (T(0))) + T(0.5) * T(2) * T(2) * sigma * sigma) * ((T(1))) - tg;
+    }
+  }
+  {  // term 1
+    const T al = ((T(0)) - x) / sigma;
+    const T be = al - (T(-2)) * sigma;
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp((T(-2)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
+    if (be >= T(0.0)) {
+      acc += tg;
+    } else {
+      const T yv = (x - (T(0)) + (T(-2)) * sigma * sigma);
+      acc += exp((T(-2)) * (x - (T(0))) + T(0.5) * (T(-2)) * (T(-2)) * sigma * sigma) * ((T(1))) - tg;
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2961,7 +3238,25 @@ T gaussian_exp_decay_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::gauss_ept(x, sigma, p);
+  if (abs(x) > T(10000.0) || sigma > T(10000.0)) return detail::gauss_ept(x, sigma, p);
+  T acc = T(0.0);
+  {  // term 0
+    const T al = ((T(0)) - x) / sigma;
+    const T be = al - (T(-1)) * sigma;
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp((T(-1)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
+    if (be >= T(0.0)) {
+      acc += tg;
+    } else {
+      const T yv = (x - (T(0)) + (T(-1)) * sigma * sigma);
+      acc += exp((T(-1)) * (x - (T(0))) + T(0.5) * (T(-1)) * (T(-1)) * sigma * sigma) * ((T(1))) - tg;
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2985,7 +3280,25 @@ T gaussian_exp_decay_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::gauss_ept(x, sigma, p);
+  if (abs(x) > T(10000.0) || sigma > T(10000.0)) return detail::gauss_ept(x, sigma, p);
+  T acc = T(0.0);
+  {  // term 0
+    const T al = ((T(0)) - x) / sigma;
+    const T be = al - (T(-2)) * sigma;
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      T V[8];
+      detail::tail_laplace(abs(be), 0, V);
+      tg = exp((T(-2)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (T(1) * V[0]);
+    }
+    if (be >= T(0.0)) {
+      acc += tg;
+    } else {
+      const T yv = (x - (T(0)) + (T(-2)) * sigma * sigma);
+      acc += exp((T(-2)) * (x - (T(0))) + T(0.5) * (T(-2)) * (T(-2)) * sigma * sigma) * ((T(1))) - tg;
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3101,7 +3414,26 @@ T gaussian_exp_ramp_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::gauss_ept(x, sigma, p);
+  if (abs(x) > T(10000.0) || sigma > T(10000.0)) return detail::gauss_ept(x, sigma, p);
+  T acc = T(0.0);
+  {  // term 0
+    const T al = ((T(0)) - x) / sigma;
+    const T be = al - (T(-1)) * sigma;
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      const T gs = be >= T(0.0) ? sigma : -sigma;
+      T V[8];
+      detail::tail_laplace(abs(be), 1, V);
+      tg = exp((T(-1)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * ((T(1) * V[1]) * gs);
+    }
+    if (be >= T(0.0)) {
+      acc += tg;
+    } else {
+      const T yv = (x - (T(0)) + (T(-1)) * sigma * sigma);
+      acc += exp((T(-1)) * (x - (T(0))) + T(0.5) * (T(-1)) * (T(-1)) * sigma * sigma) * (((T(1))) * yv) - tg;
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3126,7 +3458,27 @@ T gaussian_exp_ramp_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::gauss_ept(x, sigma, p);
+  if (abs(x) > T(10000.0) || sigma > T(10000.0)) return detail::gauss_ept(x, sigma, p);
+  const T s2 = sigma * sigma;
+  T acc = T(0.0);
+  {  // term 0
+    const T al = ((T(0)) - x) / sigma;
+    const T be = al - (T(-2)) * sigma;
+    T tg = T(0.0);
+    if (abs(al) < detail::tail_cut<T>()) {
+      const T gs = be >= T(0.0) ? sigma : -sigma;
+      T V[8];
+      detail::tail_laplace(abs(be), 2, V);
+      tg = exp((T(-2)) * ((T(0)) - (T(0))) - T(0.5) * al * al) * T(0.3989422804014327) * (((T(1) * V[2]) * gs) * gs);
+    }
+    if (be >= T(0.0)) {
+      acc += tg;
+    } else {
+      const T yv = (x - (T(0)) + (T(-2)) * sigma * sigma);
+      acc += exp((T(-2)) * (x - (T(0))) + T(0.5) * (T(-2)) * (T(-2)) * sigma * sigma) * ((((T(1))) * yv) * yv + ((T(1)) * s2)) - tg;
+    }
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).

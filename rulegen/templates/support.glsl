@@ -76,6 +76,11 @@ float bl_phi(float z) {
 // Both tails through erfc of the small side.
 float bl_Phi(float z) { return 0.5 * bl_erfc(-z * BL_INV_SQRT2); }
 float bl_Phic(float z) { return 0.5 * bl_erfc(z * BL_INV_SQRT2); }
+// phi(t) and Phic(t), t >= 0 (support.hpp: phi_Phic), one pair per break in the generated entries.
+void bl_phi_Phic(float t, out float ph, out float pc) {
+  ph = bl_phi(t);
+  pc = bl_Phic(t);
+}
 
 // sin(t)/t: series for |t| < 1 (GPU sin has an absolute, not relative, error bound), quotient
 // beyond.
@@ -410,16 +415,22 @@ void bl_tail_laplace(float al, int deg, out float V[8]) {
     }
     return;
   }
-  float ratio[8];
-  for (int k = 0; k < 8; ++k) ratio[k] = 1.0;
-  float r = al / 40.0;
-  for (int k = 39; k >= 1; --k) {
-    r = (1.0 / r + al) / float(k);
-    if (k <= deg) ratio[k] = r;
+  // s_k = V_k/V_{k-1} = k/(s_{k+1} + al) from K = deg + n(al), started at the fixed point
+  // (support.hpp: miller_start, tail_laplace, float levels)
+  float inv[8];
+  for (int k = 0; k < 8; ++k) inv[k] = 1.0;
+  int n = al < 3.0 ? 24 : (al < 4.0 ? 16 : (al < 5.0 ? 12 : (al < 6.0 ? 10 : 8)));
+  if (al >= 8.0) n = al < 12.0 ? 7 : (al < 20.0 ? 5 : (al < 30.0 ? 4 : 3));
+  int K = deg + n;
+  float ac = min(al, 1e15);  // ac^2 stays finite; the start is irrelevant that far out
+  float sk = 2.0 * float(K) / (ac + sqrt(ac * ac + 4.0 * float(K)));
+  for (int k = K - 1; k >= 1; --k) {
+    sk = float(k) / (sk + al);
+    if (k <= deg) inv[k] = sk;
   }
   for (int k = 1; k < 8; ++k) {
     if (k > deg) break;
-    V[k] = V[k - 1] / ratio[k];
+    V[k] = V[k - 1] * inv[k];
   }
 }
 

@@ -71,6 +71,17 @@ TEST(GlslInclude, ChangedEntriesMatchTheCppTable) {
         [](double x, double s) { return bl::tent::tan_sq(x, s); },
         [](double x, double s) { return bl::gaussian::trunc(x, s); },
         [](double x, double s) { return bl::gaussian::square(x, s); }}},
+      // The emitted straight-line Gaussian piecewise and exp-polynomial entries (emit_common.cpp).
+      {{"bl_gaussian_smoothstep_sq", "bl_gaussian_abs", "bl_gaussian_laplace", "bl_gaussian_exp_ramp_sq"},
+       {[](double x, double s) { return bl::gaussian::smoothstep_sq(x, s); },
+        [](double x, double s) { return bl::gaussian::abs(x, s); },
+        [](double x, double s) { return bl::gaussian::laplace(x, s); },
+        [](double x, double s) { return bl::gaussian::exp_ramp_sq(x, s); }}},
+      {{"bl_gaussian_saturate", "bl_gaussian_step", "bl_gaussian_exp_decay", "bl_gaussian_smoothstep"},
+       {[](double x, double s) { return bl::gaussian::saturate(x, s); },
+        [](double x, double s) { return bl::gaussian::step(x, s); },
+        [](double x, double s) { return bl::gaussian::exp_decay(x, s); },
+        [](double x, double s) { return bl::gaussian::smoothstep(x, s); }}},
   };
   const std::string lib = read_file(BL_GENERATED_GLSL);
   for (const Quad& q : quads) {
