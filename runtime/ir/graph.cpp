@@ -8,6 +8,7 @@
 
 #include "ir/atomics.hpp"
 #include "ir/hash.hpp"
+#include "ir/plain_ops.hpp"
 
 namespace bl::ir {
 
@@ -81,43 +82,12 @@ bool Graph::fold(const Node& n, double* out) const {
   if (!is_const(n.a) || !is_const(n.b) || !is_const(n.c)) return false;
   auto v = [&](int i) { return i < 0 ? 0.0 : nodes_[i].value; };
   const double a = v(n.a), b = v(n.b), c = v(n.c);
-  switch (n.op) {
-    case Op::Add:
-      *out = a + b;
-      return true;
-    case Op::Sub:
-      *out = a - b;
-      return true;
-    case Op::Mul:
-      *out = a * b;
-      return true;
-    case Op::Div:
-      *out = a / b;
-      return true;
-    case Op::Neg:
-      *out = -a;
-      return true;
-    case Op::Min:
-      *out = std::fmin(a, b);
-      return true;
-    case Op::Max:
-      *out = std::fmax(a, b);
-      return true;
-    case Op::Less:
-      *out = a < b ? 1.0 : 0.0;
-      return true;
-    case Op::Select:  // a is the condition, b and c the values
-      *out = a * b + (1 - a) * c;
-      return true;
-    case Op::Mod:
-      *out = a - n.value * std::floor(a / n.value);
-      return true;
-    case Op::Call:
-      *out = plain_atomic(n.atomic, a);
-      return true;
-    default:
-      return false;
-  }
+  if (plain_arith(
+          n.op, a, b, c, n.value, [](double x) { return std::floor(x); }, out))
+    return true;
+  if (n.op != Op::Call) return false;
+  *out = plain_atomic(n.atomic, a);
+  return true;
 }
 
 int Graph::add(Node n) {

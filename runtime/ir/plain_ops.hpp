@@ -1,6 +1,7 @@
 // The plain (unsmoothed) meaning of the graph's arithmetic ops, one definition for every
-// interpreter: the double evaluator of compiler/plain_eval and the float NativeProgram of glsl/.
-// Const, Input, Call and Texture read state the interpreters hold and stay with them.
+// interpreter: the double evaluator of compiler/plain_eval, the float NativeProgram of glsl/ and
+// ir::Graph's constant folding. Const, Input, Call and Texture read state the interpreters hold
+// and stay with them.
 #pragma once
 
 #include "ir/graph.hpp"
