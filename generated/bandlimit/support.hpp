@@ -608,6 +608,28 @@ inline T pw_eval(T x, const Piece<T> (&p)[N]) {
   return poly(p[N - 1].c, x);
 }
 
+// J-weighted tail sum of one break: sum_k e_k step^k J_k(t), J_k(t) = int_t^inf (z - t)^k phi(z) dz
+// (see gauss_pw_breaks below), e the jump polynomial about the break, step = +-sigma.
+template <class T>
+inline T break_tail(const T* e, int dd, T t, T step) {
+  T U[kMaxCoef];
+  upper_moments(t, dd, U);
+  T s = T(0), sk = T(1);
+  for (int k = 0; k <= dd; ++k) {
+    if (e[k] != T(0)) {
+      T J = T(0), binom = T(1), tp = T(1);
+      for (int m = k; m >= 0; --m) {
+        J += binom * tp * U[m];
+        binom = binom * T(m) / T(k - m + 1);
+        tp *= -t;
+      }
+      s += e[k] * sk * J;
+    }
+    if (k < dd) sk *= step;
+  }
+  return s;
+}
+
 // Break decomposition. With j the piece containing x,
 //   f = q_j + sum_{i >= j} (q_{i+1} - q_i) 1{y >= b_i} + sum_{i < j} (q_i - q_{i+1}) 1{y < b_i},
 // so E f(x+U) = E q_j(x+U) (the exact polynomial moment sum_k g_k sigma^k m_k, m_k = (k-1)!!) plus
@@ -646,23 +668,9 @@ inline T gauss_pw_breaks(T x, T sigma, const Piece<T> (&p)[N]) {
     for (int k = 0; k < kMaxCoef; ++k) dc[k] = right ? p[i + 1].c[k] - p[i].c[k] : p[i].c[k] - p[i + 1].c[k];
     const int dd = degree(dc);
     if (dd == 0 && dc[0] == T(0)) continue;  // f continuous and smooth there
-    T e[kMaxCoef], U[kMaxCoef];
+    T e[kMaxCoef];
     taylor_shift(dc, dd, b, e);
-    upper_moments(t, dd, U);
-    const T step = right ? sigma : -sigma;
-    T sk = T(1);
-    for (int k = 0; k <= dd; ++k) {
-      if (e[k] != T(0)) {
-        T J = T(0), binom = T(1), tp = T(1);
-        for (int m = k; m >= 0; --m) {
-          J += binom * tp * U[m];
-          binom = binom * T(m) / T(k - m + 1);
-          tp *= -t;
-        }
-        s += e[k] * sk * J;
-      }
-      if (k < dd) sk *= step;
-    }
+    s += break_tail(e, dd, t, right ? sigma : -sigma);
   }
   return s;
 }
@@ -1239,28 +1247,6 @@ inline T image_z(T fmax, T tol) {
   const T arg = T(0.7978845608028654) * fmax / tol;
   if (!(arg > T(1.6487212707001282))) return T(1);  // e^{1/2}: z would be < 1
   return sqrt(T(2) * log(arg));
-}
-
-// J-weighted tail sum of one break: sum_k e_k step^k J_k(t), J_k(t) = int_t^inf (z - t)^k phi(z) dz
-// (see gauss_pw_breaks), e the jump polynomial about the break, step = +-sigma.
-template <class T>
-inline T break_tail(const T* e, int dd, T t, T step) {
-  T U[kMaxCoef];
-  upper_moments(t, dd, U);
-  T s = T(0), sk = T(1);
-  for (int k = 0; k <= dd; ++k) {
-    if (e[k] != T(0)) {
-      T J = T(0), binom = T(1), tp = T(1);
-      for (int m = k; m >= 0; --m) {
-        J += binom * tp * U[m];
-        binom = binom * T(m) / T(k - m + 1);
-        tp *= -t;
-      }
-      s += e[k] * sk * J;
-    }
-    if (k < dd) sk *= step;
-  }
-  return s;
 }
 
 // The window multiple z = image_z(4 fmax, series_tol) + 1 of gauss_periodic_breaks, formed by its
