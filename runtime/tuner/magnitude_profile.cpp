@@ -7,6 +7,24 @@
 
 namespace bl::tuner {
 
+namespace {
+
+// Counts per band -> shares per band; atomics never seen (all counts 0) are dropped.
+void normalize(std::map<std::string, std::vector<double>>& counts) {
+  for (auto it = counts.begin(); it != counts.end();) {
+    double total = 0;
+    for (double c : it->second) total += c;
+    if (total == 0) {
+      it = counts.erase(it);
+      continue;
+    }
+    for (double& c : it->second) c /= total;
+    ++it;
+  }
+}
+
+}  // namespace
+
 std::map<std::string, std::vector<double>> magnitude_profile(const compiler::Program& plain,
                                                              const PixelSample& sample) {
   // A copy of the program whose outputs are the calls' first arguments.
@@ -31,16 +49,7 @@ std::map<std::string, std::vector<double>> magnitude_profile(const compiler::Pro
     for (float v : values[k])
       if (std::isfinite(v)) c[CostModel::band_of(std::fabs(v))] += 1;
   }
-  for (auto it = counts.begin(); it != counts.end();) {
-    double total = 0;
-    for (double c : it->second) total += c;
-    if (total == 0) {
-      it = counts.erase(it);
-      continue;
-    }
-    for (double& c : it->second) c /= total;
-    ++it;
-  }
+  normalize(counts);
   return counts;
 }
 
@@ -72,16 +81,7 @@ std::map<std::string, std::vector<double>> joint_profile(const compiler::Program
       if (std::isfinite(x[i]) && std::isfinite(s[i]))
         c[CostModel::band_of(std::fabs(x[i])) * CostModel::kSigmaBands + CostModel::sigma_band_of(s[i])] += 1;
   }
-  for (auto it = counts.begin(); it != counts.end();) {
-    double total = 0;
-    for (double c : it->second) total += c;
-    if (total == 0) {
-      it = counts.erase(it);
-      continue;
-    }
-    for (double& c : it->second) c /= total;
-    ++it;
-  }
+  normalize(counts);
   return counts;
 }
 
