@@ -13,6 +13,7 @@
 #include "compiler/lower.hpp"
 #include "dsl/math.hpp"
 #include "shaders/effects.hpp"
+#include "tests/runtime/one_pixel.hpp"
 
 namespace bl {
 namespace {
@@ -49,18 +50,7 @@ ir::Graph bumps_graph() {
 // One pixel, u ~ N(mu, s^2), v ~ N(mv, s^2), orthogonal screen gradients (independent).
 float run(const ir::Graph& g, const std::string& rule, float mu, float mv, float s) {
   const compiler::Program p = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule(rule)));
-  const float m[2] = {mu, mv}, sd[2] = {s, s}, gx[2] = {s / 0.5f, 0}, gy[2] = {0, s / 0.5f};
-  compiler::Batch b;
-  b.count = 1;
-  for (int j = 0; j < 2; ++j) {
-    b.mean.push_back(&m[j]);
-    b.sd.push_back(&sd[j]);
-    b.grad_x.push_back(&gx[j]);
-    b.grad_y.push_back(&gy[j]);
-  }
-  float out;
-  compiler::Evaluator(p).run(b, {&out});
-  return out;
+  return testing::run_one_pixel(p, {mu, mv}, {s, s}, {s / 0.5f, 0}, {0, s / 0.5f});
 }
 
 // E[shade(U, V)] by the midpoint rule on +-6 s in each axis (n^2 points).
@@ -87,16 +77,7 @@ ir::Graph one_input(const std::function<dsl::Var(dsl::Var)>& f) {
 float run1(const ir::Graph& g, float mu, float s) {
   const compiler::Program p =
       compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
-  float out;
-  const float zero = 0, gx = s / 0.5f;
-  compiler::Batch b;
-  b.count = 1;
-  b.mean = {&mu};
-  b.sd = {&s};
-  b.grad_x = {&gx};
-  b.grad_y = {&zero};
-  compiler::Evaluator(p).run(b, {&out});
-  return out;
+  return testing::run_one_pixel(p, {mu}, {s}, {s / 0.5f}, {0});
 }
 
 double Phi(double x) {

@@ -15,6 +15,7 @@
 #include "fixtures.hpp"
 #include "ir/atomics.hpp"
 #include "tests/runtime/fixture_list.hpp"
+#include "tests/runtime/one_pixel.hpp"
 #include "tests/runtime/random_pixels.hpp"
 
 namespace bl {
@@ -180,16 +181,7 @@ ir::Graph one_input(const std::function<dsl::Var(dsl::Var)>& f) {
 
 float run1(const ir::Graph& g, const std::string& rule, float mu, float sigma) {
   const compiler::Program p = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule(rule)));
-  float out;
-  const float zero = 0;
-  compiler::Batch b;
-  b.count = 1;
-  b.mean = {&mu};
-  b.sd = {&sigma};
-  b.grad_x = {&zero};
-  b.grad_y = {&zero};
-  compiler::Evaluator(p).run(b, {&out});
-  return out;
+  return testing::run_one_pixel(p, {mu}, {sigma}, {0}, {0});
 }
 
 TEST(Compiler, SingleNodeRulesAgreeWithClosedForms) {

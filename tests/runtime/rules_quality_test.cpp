@@ -12,6 +12,7 @@
 #include "compiler/square_product.hpp"
 #include "dsl/math.hpp"
 #include "shaders/shader.hpp"
+#include "tests/runtime/one_pixel.hpp"
 
 namespace bl {
 namespace {
@@ -27,16 +28,7 @@ ir::Graph one_input(const std::function<dsl::Var(dsl::Var)>& f) {
 // One pixel; the screen gradient of u is (s / 0.5, 0), i.e. a footprint of sd 0.5 px.
 float run1(const ir::Graph& g, const std::string& rule, float mu, float sigma) {
   const compiler::Program p = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule(rule)));
-  float out;
-  const float zero = 0, gx = sigma / 0.5f;
-  compiler::Batch b;
-  b.count = 1;
-  b.mean = {&mu};
-  b.sd = {&sigma};
-  b.grad_x = {&gx};
-  b.grad_y = {&zero};
-  compiler::Evaluator(p).run(b, {&out});
-  return out;
+  return testing::run_one_pixel(p, {mu}, {sigma}, {sigma / 0.5f}, {0});
 }
 
 // E[f(X)], X ~ N(mu, s^2), by the midpoint rule on +-10 s (f piecewise smooth: 2e5 points put the
@@ -174,18 +166,7 @@ TEST(Rules, SurfaceCoordinatesAreCorrelatedByTheirScreenGradients) {
   const compiler::Program p =
       compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
   auto run = [&](float gvx, float gvy) {
-    const float m[2] = {0.5f, 0.5f}, s[2] = {0.01f, 0.01f}, gx[2] = {0.02f, gvx}, gy[2] = {0, gvy};
-    compiler::Batch b;
-    b.count = 1;
-    for (int j = 0; j < 2; ++j) {
-      b.mean.push_back(&m[j]);
-      b.sd.push_back(&s[j]);
-      b.grad_x.push_back(&gx[j]);
-      b.grad_y.push_back(&gy[j]);
-    }
-    float out;
-    compiler::Evaluator(p).run(b, {&out});
-    return out;
+    return testing::run_one_pixel(p, {0.5f, 0.5f}, {0.01f, 0.01f}, {0.02f, gvx}, {0, gvy});
   };
   EXPECT_NEAR(run(0.02f, 0), 1.0, 1e-4);
   EXPECT_NEAR(run(0, 0.02f), 0.5 * std::erfc(-0.3 / std::sqrt(2.0) / std::sqrt(2.0)), 1e-4);
