@@ -16,6 +16,20 @@ using compiler::Inst;
 using compiler::LOp;
 using compiler::Program;
 
+std::vector<int> calibration_args(int arity, bool spread_is_var) {
+  const int spread0 = spread_is_var ? 5 : 1;
+  std::vector<int> a;
+  for (int j = 0; j < arity; ++j) {
+    if (j == arity - 1 && arity % 2 == 1 && arity > 1)
+      a.push_back(4);
+    else if (j % 2 == 0)
+      a.push_back(j % 4 == 0 ? 0 : 2);
+    else
+      a.push_back(j % 4 == 1 ? spread0 : 3);
+  }
+  return a;
+}
+
 namespace {
 
 // Inputs: slot 0 and 1 hold values in [0.05, 3] (positive so log, sqrt and 1/x stay finite) with
@@ -89,21 +103,6 @@ Program base_program() {
   return p;
 }
 
-// Arguments for an instruction of `arity` operands: (mean, spread) pairs, then a small value.
-std::vector<int> args_for(int arity, bool spread_is_var) {
-  const int spread0 = spread_is_var ? 5 : 1;
-  std::vector<int> a;
-  for (int j = 0; j < arity; ++j) {
-    if (j == arity - 1 && arity % 2 == 1 && arity > 1)
-      a.push_back(4);
-    else if (j % 2 == 0)
-      a.push_back(j % 4 == 0 ? 0 : 2);
-    else
-      a.push_back(j % 4 == 1 ? spread0 : 3);
-  }
-  return a;
-}
-
 double time_program(const Program& p, Inputs& in, const CalibrationOptions& opt) {
   compiler::Evaluator ev(p);
   std::vector<float> out(in.batch.count);
@@ -129,7 +128,7 @@ double time_inst(Program p, const Inst& inst, int prefix_stat, Inputs& in, const
     Inst st;
     st.op = LOp::CallStat;
     st.fn = prefix_stat;
-    const auto a = args_for(compiler::functions()[prefix_stat].arity, true);
+    const auto a = calibration_args(compiler::functions()[prefix_stat].arity, true);
     for (std::size_t j = 0; j < a.size(); ++j) st.arg[j] = a[j];
     p.insts.push_back(st);
   }
@@ -202,7 +201,7 @@ CostModel calibrate_evaluator(const CalibrationOptions& opt,
     inst.op = fns[f].stat ? LOp::CallStat : LOp::Call;
     inst.fn = static_cast<int>(f);
     // Stat rules take (mean, variance) pairs; kernel functions take (x, sd).
-    const auto a = args_for(fns[f].arity, fns[f].stat);
+    const auto a = calibration_args(fns[f].arity, fns[f].stat);
     for (std::size_t j = 0; j < a.size(); ++j) inst.arg[j] = a[j];
     const double ns = time_inst(base, inst, -1, in, opt);
     m.fn_ns[fns[f].cpp] = ns;

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "jit/jit.hpp"
 #include "tuner/cost_model.hpp"
@@ -21,6 +22,10 @@ struct CalibrationOptions {
   enum class Method { Compiled, Evaluator } method = Method::Compiled;
   jit::Options jit;  // compiler and object cache of the compiled calibration
 };
+
+// The input arrays an instruction of `arity` operands reads in both calibrations: (mean, spread)
+// pairs (arrays 0/2 means, 1/3 sds, 5 a variance when spread_is_var), then a small value (4).
+std::vector<int> calibration_args(int arity, bool spread_is_var);
 
 // Measures a fresh model for this machine (cpu_model()). `progress` (optional) gets each name.
 // Method::Compiled falls back to the evaluator (and says so on stderr) when the compiler is missing.

@@ -22,20 +22,6 @@ using Kernel = void (*)(int, const float* const*, float*);
 // 3 sd1, 4 small value in [0, 0.3], 5 var0 = sd0^2.
 constexpr int kArrays = 6;
 
-std::vector<int> args_of(int arity, bool stat) {  // calibrate.cpp's args_for
-  const int spread0 = stat ? 5 : 1;
-  std::vector<int> a;
-  for (int j = 0; j < arity; ++j) {
-    if (j == arity - 1 && arity % 2 == 1 && arity > 1)
-      a.push_back(4);
-    else if (j % 2 == 0)
-      a.push_back(j % 4 == 0 ? 0 : 2);
-    else
-      a.push_back(j % 4 == 1 ? spread0 : 3);
-  }
-  return a;
-}
-
 std::string arg_list(const std::vector<int>& a) {
   std::string s;
   for (std::size_t j = 0; j < a.size(); ++j)
@@ -66,7 +52,7 @@ std::string source(const std::vector<int>& fns) {
   for (int k = 1; k <= 6; ++k) {
     os << "extern \"C\" void bl_base" << k << "(int n, const float* const* a, float* out) {\n"
        << "  for (int j = 0; j < n; ++j) out[j] = ";
-    const auto args = args_of(k, false);
+    const auto args = calibration_args(k, false);
     for (int i = 0; i < k; ++i) os << (i ? " + " : "") << "a[" << args[i] << "][j]";
     os << ";\n}\n";
   }
@@ -112,12 +98,13 @@ std::string source(const std::vector<int>& fns) {
        << "\n"
        << "  for (int j = 0; j < n; ++j) {\n";
     if (F.stat)
-      os << "    const bl::stat<float> r = " << F.cpp << "(" << arg_list(args_of(F.arity, true)) << ");\n"
+      os << "    const bl::stat<float> r = " << F.cpp << "(" << arg_list(calibration_args(F.arity, true))
+         << ");\n"
          << "    out[j] = r.mean + r.var;\n";
     else
-      os << "    out[j] = " << F.cpp << "(" << arg_list(args_of(F.arity, false)) << ");\n";
+      os << "    out[j] = " << F.cpp << "(" << arg_list(calibration_args(F.arity, false)) << ");\n";
     os << "  }\n}\n";
-    std::vector<int> args = args_of(F.arity, F.stat);
+    std::vector<int> args = calibration_args(F.arity, F.stat);
     std::string chained = "a[" + std::to_string(args[0]) + "][j] + t * 0.0f";
     std::string rest;
     for (std::size_t k = 1; k < args.size(); ++k) rest += ", a[" + std::to_string(args[k]) + "][j]";
