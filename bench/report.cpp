@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "entry_view.hpp"
+#include "targets.hpp"
 
 namespace blb {
 namespace {
@@ -56,8 +57,8 @@ void write_intro(std::ostream& o, const std::vector<Row>& rows, const RunInfo& i
     << "Reproduce with `cmake -S . -B build -DBL_BUILD_BENCH=ON && cmake --build build --target "
     << "bench_table && ./build/bin/bench_table --summary " << info.prefix
     << "` (Release build; one process writes `" << info.prefix << ".md`, `.csv` and `.png`, in "
-    << fmt("%.0f", info.wall_s) << " s here). For every entry of the generated registry ("
-    << rows.size() << " entries: convolutions of f and of f^2 with the Gaussian, box and tent "
+    << fmt("%.0f", info.wall_s) << " s here). For every entry of the generated registry (" << rows.size()
+    << " entries: convolutions of f and of f^2 with the Gaussian, box and tent "
     << "kernels, and the raw moments E[(x+U)^n]) it times five ways of obtaining the smoothed "
     << "value E[g(x+U)] (g = f, f^2 or x^n) on the same " << info.inputs
     << " (x, sigma) pairs (x uniform in [-4, 4] clipped to the domain, sigma log-uniform in "
@@ -76,9 +77,9 @@ void write_intro(std::ostream& o, const std::vector<Row>& rows, const RunInfo& i
     << "- command: `" << info.command << "`\n"
     << "- machine: " << info.machine.nproc << " cores (`nproc`), " << info.machine.cpu << "\n"
     << "- compiler: " << info.machine.compiler << "\n"
-    << "- " << info.repetitions << " repetitions per benchmark, min time "
-    << fmt("%g", info.min_time_s * 1e3) << " ms, " << info.inputs << " inputs per call batch, "
-    << info.error_seeds << " seeds for the Monte Carlo errors\n\n";
+    << "- " << info.repetitions << " repetitions per benchmark, min time " << fmt("%g", info.min_time_s * 1e3)
+    << " ms, " << info.inputs << " inputs per call batch, " << info.error_seeds
+    << " seeds for the Monte Carlo errors\n\n";
   o << "## How it is measured\n\n"
     << "- Every call goes through the registry's function pointers (`smoothed`, `plain`), so "
     << "each costs an indirect call (about 1 ns) that inlined shader code would not pay: for the "
@@ -112,8 +113,8 @@ void write_headline(std::ostream& o, const std::vector<Row>& rows) {
   o << "## Headline (this run)\n\n"
     << "Over all " << rows.size() << " entries, the smoothed function costs a median "
     << fmt("%.2g", quantile(sp, 0.5)) << "x the plain function (10th-90th percentile "
-    << fmt("%.2g", quantile(sp, 0.1)) << "-" << fmt("%.2g", quantile(sp, 0.9))
-    << "x); MC-16 costs a median " << fmt("%.2g", quantile(m16, 0.5))
+    << fmt("%.2g", quantile(sp, 0.1)) << "-" << fmt("%.2g", quantile(sp, 0.9)) << "x); MC-16 costs a median "
+    << fmt("%.2g", quantile(m16, 0.5))
     << "x the smoothed function and still has a median relative RMS error of "
     << fmt("%.2g", quantile(e16, 0.5)) << " (MC-64: " << fmt("%.2g", quantile(e64, 0.5))
     << ", plain f: " << fmt("%.2g", quantile(ep, 0.5))
@@ -136,12 +137,10 @@ void write_family_table(std::ostream& o, const std::vector<Row>& rows) {
     auto med_err = [&](Method m) {
       return fmt("%.2e", quantile(collect(fr, [&](const Row& r) { return rel(r, m); }), 0.5));
     };
-    o << "| " << fam << " | " << fr.size() << " | " << med_ratio(Method::Smoothed, Method::Plain)
-      << " | " << med_ratio(Method::MC4, Method::Smoothed) << " | "
-      << med_ratio(Method::MC16, Method::Smoothed) << " | "
-      << med_ratio(Method::MC64, Method::Smoothed) << " | " << med_err(Method::Plain) << " | "
-      << med_err(Method::MC4) << " | " << med_err(Method::MC16) << " | " << med_err(Method::MC64)
-      << " |\n";
+    o << "| " << fam << " | " << fr.size() << " | " << med_ratio(Method::Smoothed, Method::Plain) << " | "
+      << med_ratio(Method::MC4, Method::Smoothed) << " | " << med_ratio(Method::MC16, Method::Smoothed)
+      << " | " << med_ratio(Method::MC64, Method::Smoothed) << " | " << med_err(Method::Plain) << " | "
+      << med_err(Method::MC4) << " | " << med_err(Method::MC16) << " | " << med_err(Method::MC64) << " |\n";
   }
   o << "\nFamilies: trig (sin, cos), exp-like (exp, sinh, cosh), powers (pow2..pow8 and the raw "
     << "moments), piecewise (abs, sign, step, saturate, smoothstep), periodic (fract, triangle, "
@@ -185,11 +184,12 @@ void write_csv(const std::string& path, const std::vector<Row>& rows) {
   }
 }
 
-void write_markdown(const std::string& path, const std::string& png_name,
-                    const std::vector<Row>& rows, const RunInfo& info) {
+void write_markdown(const std::string& path, const std::string& png_name, const std::vector<Row>& rows,
+                    const RunInfo& info) {
   std::ofstream o = open_out(path);
   write_intro(o, rows, info);
   write_headline(o, rows);
+  write_targets(o, rows);
   write_family_table(o, rows);
   o << "## Plot\n\n![RMS error against time per call, one panel per family](" << png_name
     << ")\n\nx: ns per call (log); y: RMS error (log). Errors of exactly 0 (the double smoothed "

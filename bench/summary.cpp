@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 
 #include "accuracy.hpp"
@@ -14,6 +15,7 @@
 #include "machine.hpp"
 #include "plot.hpp"
 #include "report.hpp"
+#include "targets.hpp"
 #include "timing.hpp"
 
 namespace blb {
@@ -119,8 +121,11 @@ int run_summary(const std::string& prefix, const std::string& command) {
     std::cerr << e.what() << "\n";
     return 1;
   }
-  std::cerr << "bench_table --summary: wrote " << prefix << ".{md,csv,png} (" << rows.size()
-            << " entries, " << static_cast<int>(info.wall_s) << " s)\n";
+  std::ostringstream targets;
+  const int missed = write_targets(targets, rows);
+  std::cerr << targets.str() << "bench_table --summary: " << missed << " speed target(s) missed\n";
+  std::cerr << "bench_table --summary: wrote " << prefix << ".{md,csv,png} (" << rows.size() << " entries, "
+            << static_cast<int>(info.wall_s) << " s)\n";
   return 0;
 }
 
