@@ -241,6 +241,8 @@ CostModel load_or_calibrate(const std::string& path, bool verbose, CalibrationOp
       throw std::runtime_error("cost model " + path + " was calibrated on compiled code");
     if (m.method == "compiled" && (m.fn_lat_ns.empty() || !(m.window_ns > 0)))
       throw std::runtime_error("cost model " + path + " has no latencies");
+    if (m.method == "compiled" && m.kernels != CostModel::kKernels)
+      throw std::runtime_error("cost model " + path + " was timed with older calibration kernels");
     for (const auto& [name, bands] : m.fn_band_ns)
       if (bands.size() != std::size_t(CostModel::kBands) &&
           bands.size() != std::size_t(CostModel::kBands * CostModel::kSigmaBands))

@@ -1,11 +1,16 @@
 // The compiled-code calibration: one translation unit of loop kernels, compiled with -O3 by bl::jit.
-// A kernel runs one operation over n pixels' inputs (struct of arrays, the calibration inputs of
-// calibrate.cpp); an op's or a function's cost is its kernel's time per pixel minus that of a kernel
-// reading the same inputs and doing nothing else (for ops, 16 chained copies per pixel, / 16).
+// Every kernel has the shape of a real program's pixel loop (jit::batch_source's bl_run): one pixel
+// per iteration, scalar, its inputs read from struct-of-arrays slots and its results stored to
+// output arrays. The pixel-loop kernels give the per-pixel overhead, the cost per input read and per
+// output stored; an op's cost is its kernel's time (16 chained copies per pixel) minus that loop,
+// / 16; a function's is its kernel's time (one call per pixel) minus the loop and its extra inputs.
 #include <algorithm>
-#include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include "compiler/functions.hpp"
@@ -16,17 +21,28 @@ namespace bl::tuner {
 
 namespace {
 
-using Kernel = void (*)(int, const float* const*, float*);
+using Kernel = void (*)(int, const float* const*, float* const*);
 
 // Input arrays, as calibrate.cpp's base program: 0 mean0 (x, scaled per band), 1 sd0, 2 mean1,
 // 3 sd1, 4 small value in [0, 0.3], 5 var0 = sd0^2.
 constexpr int kArrays = 6;
+constexpr int kOutputs = 6;
+constexpr int kScanline =
+    64;  // pixels per run of ordered inputs (make_arrays)  // output arrays of the pixel-loop kernels
+
+// (inputs read, outputs written) of the pixel-loop kernels: (1, 1) is the bare loop, (1, 6) adds 5
+// stores, (6, 6) adds 5 loads to that.
+constexpr int kIoKernels[][2] = {{1, 1}, {1, kOutputs}, {kArrays, kOutputs}};
 
 std::string arg_list(const std::vector<int>& a) {
   std::string s;
   for (std::size_t j = 0; j < a.size(); ++j)
     s += (j ? ", " : "") + std::string("a[") + std::to_string(a[j]) + "][j]";
   return s;
+}
+
+int distinct(const std::vector<int>& a) {
+  return static_cast<int>(std::set<int>(a.begin(), a.end()).size());
 }
 
 const char* kOps[][2] = {{"add", "t = t + b"},
@@ -39,83 +55,81 @@ const char* kOps[][2] = {{"add", "t = t + b"},
                          {"sqrt", "t = std::sqrt(t)"},
                          {"nonneg", "t = t > 0.0f ? t : 0.0f"}};
 
+// A kernel: `body` runs once per pixel j inside the scalar pixel loop.
+void kernel_def(std::ostringstream& os, const std::string& name, const std::string& body) {
+  os << "extern \"C\" void " << name << "(int n, const float* const* a, float* const* out) {\n"
+     << "  for (int j = 0; j < n; ++j) {\n    BL_SCALAR;\n"
+     << body << "  }\n}\n";
+}
+
+// A latency kernel: each pixel's result feeds the next pixel's first argument (x + t * 0, which keeps
+// x and cannot be folded: t may be NaN or inf), so the pixels run one after another.
+void latency_def(std::ostringstream& os, const std::string& name, const std::string& body) {
+  os << "extern \"C\" void " << name << "(int n, const float* const* a, float* const* out) {\n"
+     << "  float t = 0.0f;\n  for (int j = 0; j < n; ++j) {\n"
+     << body << "  }\n  out[0][0] = t;\n}\n";
+}
+
 std::string source(const std::vector<int>& fns) {
   std::ostringstream os;
   os << "// bandlimit cost-model calibration kernels (runtime/tuner/calibrate_compiled.cpp)\n"
      << "#include <cmath>\n#include <bandlimit/table.hpp>\n#include <bandlimit/rules_bivariate.hpp>\n"
      << "#include <bandlimit/rules_mode.hpp>\n#include <bandlimit/rules_clamped.hpp>\n"
      << "#include <texture/sample.hpp>\n\n"
+     // A real program's pixel loop stays scalar: its calls and branches stop the vectorizer. A
+     // kernel of one add or one straight-line plain function would run 4 pixels per instruction and
+     // cost a quarter of what it costs in a program; this empty statement keeps every loop scalar.
+     << "#define BL_SCALAR __asm__ volatile(\"\")\n"
      << "static const bl::texture::Texture* g_tex = nullptr;\n"
      << "extern \"C\" void bl_set_texture(const void* t) { g_tex = static_cast<const "
         "bl::texture::Texture*>(t); }\n";
-  // Base kernels: read k inputs, write their sum.
-  for (int k = 1; k <= 6; ++k) {
-    os << "extern \"C\" void bl_base" << k << "(int n, const float* const* a, float* out) {\n"
-       << "  for (int j = 0; j < n; ++j) out[j] = ";
-    const auto args = calibration_args(k, false);
-    for (int i = 0; i < k; ++i) os << (i ? " + " : "") << "a[" << args[i] << "][j]";
-    os << ";\n}\n";
+  for (const auto& io : kIoKernels) {
+    std::string body;
+    for (int k = 0; k < io[1]; ++k)
+      body += "    out[" + std::to_string(k) + "][j] = a[" + std::to_string(k % io[0]) + "][j];\n";
+    kernel_def(os, "bl_io" + std::to_string(io[0]) + "_" + std::to_string(io[1]), body);
   }
   for (const auto& op : kOps) {
-    os << "extern \"C\" void bl_op_" << op[0] << "(int n, const float* const* a, float* out) {\n"
-       << "  for (int j = 0; j < n; ++j) {\n    float t = a[0][j];\n    const float b = a[2][j];\n    "
-          "(void)b;\n";
-    for (int c = 0; c < 16; ++c) os << "    " << op[1] << ";\n";
-    os << "    out[j] = t;\n  }\n}\n";
+    std::string body = "    float t = a[0][j];\n    const float b = a[2][j];\n    (void)b;\n";
+    for (int c = 0; c < 16; ++c) body += "    " + std::string(op[1]) + ";\n";
+    kernel_def(os, std::string("bl_op_") + op[0], body + "    out[0][j] = t;\n");
   }
-  // Latency kernels: the result feeds the next pixel's first argument (x + t * 0, which keeps x
-  // and cannot be folded: t may be NaN or inf), so the pixels run one after another.
-  os << "extern \"C\" void bl_latbase(int n, const float* const* a, float* out) {\n"
-     << "  float t = 0.0f;\n  for (int j = 0; j < n; ++j) t = a[0][j] + t * 0.0f;\n  out[0] = t;\n}\n";
+  latency_def(os, "bl_latbase", "    t = a[0][j] + t * 0.0f;\n");
   for (const auto& op : kOps) {
-    os << "extern \"C\" void bl_lat_" << op[0] << "(int n, const float* const* a, float* out) {\n"
-       << "  float t = 0.0f;\n  for (int j = 0; j < n; ++j) {\n    t = a[0][j] + t * 0.0f;\n"
-       << "    const float b = a[2][j];\n    (void)b;\n";
-    for (int c = 0; c < 16; ++c) os << "    " << op[1] << ";\n";
-    os << "  }\n  out[0] = t;\n}\n";
+    std::string body = "    t = a[0][j] + t * 0.0f;\n    const float b = a[2][j];\n    (void)b;\n";
+    for (int c = 0; c < 16; ++c) body += "    " + std::string(op[1]) + ";\n";
+    latency_def(os, std::string("bl_lat_") + op[0], body);
   }
   // The out-of-order window: 8 dependent sin calls per pixel, pixels independent, against the
   // same calls fully independent (throughput) and fully chained (latency).
-  os << "extern \"C\" void bl_win_thr(int n, const float* const* a, float* out) {\n"
-     << "  for (int j = 0; j < n; ++j) out[j] = bl::plain::sin(a[0][j]);\n}\n"
-     << "extern \"C\" void bl_win_lat(int n, const float* const* a, float* out) {\n"
-     << "  float t = 0.0f;\n  for (int j = 0; j < n; ++j) t = bl::plain::sin(a[0][j] + t * 0.0f);\n  out[0] "
-        "= t;\n}\n"
-     << "extern \"C\" void bl_win_chain(int n, const float* const* a, float* out) {\n"
-     << "  for (int j = 0; j < n; ++j) {\n    float t = a[0][j];\n"
-     << "    for (int c = 0; c < 8; ++c) t = bl::plain::sin(t + a[2][j]);\n    out[j] = t;\n  }\n}\n";
-  os << "extern \"C\" void bl_op_tex_plain(int n, const float* const* a, float* out) {\n"
-     << "  for (int j = 0; j < n; ++j) out[j] = bl::texture::sample_plain(*g_tex, a[0][j], a[2][j], 0);\n}\n"
-     << "extern \"C\" void bl_op_tex_stat(int n, const float* const* a, float* out) {\n"
-     << "  for (int j = 0; j < n; ++j) {\n"
-     << "    const bl::stat<float> s = bl::texture::sample_stat(*g_tex, a[0][j], a[2][j], a[1][j], a[3][j], "
-        "0);\n"
-     << "    out[j] = s.mean + s.var;\n  }\n}\n";
+  kernel_def(os, "bl_win_thr", "    out[0][j] = bl::plain::sin(a[0][j]);\n");
+  latency_def(os, "bl_win_lat", "    t = bl::plain::sin(a[0][j] + t * 0.0f);\n");
+  kernel_def(os, "bl_win_chain",
+             "    float t = a[0][j];\n    for (int c = 0; c < 8; ++c) t = bl::plain::sin(t + a[2][j]);\n"
+             "    out[0][j] = t;\n");
+  kernel_def(os, "bl_op_tex_plain",
+             "    out[0][j] = bl::texture::sample_plain(*g_tex, a[0][j], a[2][j], 0);\n");
+  kernel_def(os, "bl_op_tex_stat",
+             "    const bl::stat<float> s = bl::texture::sample_stat(*g_tex, a[0][j], a[2][j], a[1][j], "
+             "a[3][j], 0);\n    out[0][j] = s.mean + s.var;\n");
   const auto& all = compiler::functions();
   for (int f : fns) {
     const compiler::Function& F = all[f];
-    os << "extern \"C\" void bl_fn" << f << "(int n, const float* const* a, float* out) {  // " << F.cpp
-       << "\n"
-       << "  for (int j = 0; j < n; ++j) {\n";
+    const std::vector<int> args = calibration_args(F.arity, F.stat);
+    os << "// " << F.cpp << "\n";
     if (F.stat)
-      os << "    const bl::stat<float> r = " << F.cpp << "(" << arg_list(calibration_args(F.arity, true))
-         << ");\n"
-         << "    out[j] = r.mean + r.var;\n";
+      kernel_def(os, "bl_fn" + std::to_string(f),
+                 "    const bl::stat<float> r = " + F.cpp + "(" + arg_list(args) +
+                     ");\n    out[0][j] = r.mean + r.var;\n");
     else
-      os << "    out[j] = " << F.cpp << "(" << arg_list(calibration_args(F.arity, false)) << ");\n";
-    os << "  }\n}\n";
-    std::vector<int> args = calibration_args(F.arity, F.stat);
+      kernel_def(os, "bl_fn" + std::to_string(f), "    out[0][j] = " + F.cpp + "(" + arg_list(args) + ");\n");
     std::string chained = "a[" + std::to_string(args[0]) + "][j] + t * 0.0f";
-    std::string rest;
-    for (std::size_t k = 1; k < args.size(); ++k) rest += ", a[" + std::to_string(args[k]) + "][j]";
-    os << "extern \"C\" void bl_lat" << f << "(int n, const float* const* a, float* out) {\n"
-       << "  float t = 0.0f;\n  for (int j = 0; j < n; ++j) {\n";
+    for (std::size_t k = 1; k < args.size(); ++k) chained += ", a[" + std::to_string(args[k]) + "][j]";
     if (F.stat)
-      os << "    const bl::stat<float> r = " << F.cpp << "(" << chained << rest
-         << ");\n    t = r.mean + r.var;\n";
+      latency_def(os, "bl_lat" + std::to_string(f),
+                  "    const bl::stat<float> r = " + F.cpp + "(" + chained + ");\n    t = r.mean + r.var;\n");
     else
-      os << "    t = " << F.cpp << "(" << chained << rest << ");\n";
-    os << "  }\n  out[0] = t;\n}\n";
+      latency_def(os, "bl_lat" + std::to_string(f), "    t = " + F.cpp + "(" + chained + ");\n");
   }
   return os.str();
 }
@@ -153,27 +167,52 @@ Arrays make_arrays(int n, double magnitude, double sigma_scale = 0) {
     in.v[2][i] = x(rng);
     in.v[3][i] = sd();
     in.v[4][i] = small(rng);
-    in.v[5][i] = in.v[1][i] * in.v[1][i];
   }
+  // Scanlines: a program's neighbouring pixels have neighbouring inputs, so its branches (regimes,
+  // pieces, signs) mostly repeat from one pixel to the next. Each run of kScanline values is sorted
+  // (the same distribution, ordered as along an image row): i.i.d. inputs would mispredict every
+  // data-dependent branch half the time, which a rendered frame does not.
+  if (!std::getenv("BL_CAL_RANDOM"))
+    for (int a = 0; a < 5; ++a)
+      for (int i = 0; i < n; i += kScanline)
+        std::sort(in.v[a].begin() + i, in.v[a].begin() + std::min(n, i + kScanline));
+  for (int i = 0; i < n; ++i) in.v[5][i] = in.v[1][i] * in.v[1][i];
   for (auto& a : in.v) in.ptr.push_back(a.data());
   return in;
 }
 
-double time_kernel(Kernel k, const Arrays& in, std::vector<float>& out, const CalibrationOptions& opt) {
-  const int n = static_cast<int>(out.size());
-  k(n, in.ptr.data(), out.data());  // warm-up
-  double best = 1e300;
-  for (int t = 0; t < opt.trials; ++t) {
-    int reps = 0;
-    double ms = 0;
-    const auto t0 = std::chrono::steady_clock::now();
-    do {
-      k(n, in.ptr.data(), out.data());
-      ++reps;
-      ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    } while (ms < opt.min_ms);
-    best = std::min(best, ms * 1e6 / (static_cast<double>(reps) * n));
+// The output arrays a kernel writes (kOutputs of n floats).
+struct Outputs {
+  std::vector<std::vector<float>> v;
+  std::vector<float*> ptr;
+  explicit Outputs(int n) : v(kOutputs, std::vector<float>(n)) {
+    for (auto& o : v) ptr.push_back(o.data());
   }
+  int size() const { return static_cast<int>(v[0].size()); }
+};
+
+// CPU time of the calling thread in ms, as render::time_program measures programs: time the thread
+// was descheduled (other jobs on a shared machine) does not count.
+double thread_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+double time_kernel(Kernel k, const Arrays& in, Outputs& out, const CalibrationOptions& opt) {
+  const int n = out.size();
+  auto run = [&](int reps) {
+    const double t0 = thread_ms();
+    for (int r = 0; r < reps; ++r) k(n, in.ptr.data(), out.ptr.data());
+    return thread_ms() - t0;
+  };
+  // Warm-up, which also sizes a window: the clock is read once per window, not once per call (a
+  // read costs about as much as a call of a cheap kernel).
+  const double once = std::max(1e-6, run(1));
+  const int reps = std::max(1, static_cast<int>(std::ceil(opt.min_ms / once)));
+  double best = 1e300;
+  for (int t = 0; t < opt.trials; ++t)
+    best = std::min(best, run(reps) * 1e6 / (static_cast<double>(reps) * n));
   return best;
 }
 
@@ -194,7 +233,7 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
   const auto lib = jit::compile(source(fns), opt.jit);
   reinterpret_cast<void (*)(const void*)>(lib->symbol("bl_set_texture"))(&kernel_texture());
   auto kernel = [&](const std::string& sym) { return reinterpret_cast<Kernel>(lib->symbol(sym)); };
-  std::vector<float> out(opt.pixels);
+  Outputs out(opt.pixels);
   std::vector<Arrays> bands, joint;
   for (int b = 0; b < CostModel::kBands; ++b) {
     bands.push_back(make_arrays(opt.pixels, CostModel::band_magnitude(b)));
@@ -208,61 +247,64 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
   main_opt.min_ms = band_opt.min_ms = opt.min_ms / 16;
   main_opt.trials = opt.trials * 5;
   band_opt.trials = opt.trials * 3;
-  double base[7] = {0};
-  for (int k = 1; k <= 6; ++k)
-    base[k] = time_kernel(kernel("bl_base" + std::to_string(k)), in, out, main_opt);
+  auto time = [&](const std::string& sym, const Arrays& a, const CalibrationOptions& o) {
+    return time_kernel(kernel(sym), a, out, o);
+  };
+  // The pixel loop: the bare loop (one input read, one output stored), then per store, per load.
+  const double loop = time("bl_io1_1", in, main_opt);
+  const double stores = time("bl_io1_" + std::to_string(kOutputs), in, main_opt);
+  const double loads = time("bl_io" + std::to_string(kArrays) + "_" + std::to_string(kOutputs), in, main_opt);
+  const double output_ns = std::max(0.01, (stores - loop) / (kOutputs - 1));
+  const double input_ns = std::max(0.01, (loads - stores) / (kArrays - 1));
+  // A kernel reading `inputs` arrays and storing one result, less the loop and its inputs.
+  auto net = [&](double ns, int inputs) { return std::max(0.01, ns - loop - (inputs - 1) * input_ns); };
   auto record = [&](const std::string& name, double ns, bool fn) {
     ns = std::max(0.01, ns);
     (fn ? m.fn_ns : m.op_ns)[name] = ns;
     if (progress) progress(name, ns);
   };
-  // Per-pixel overhead (the loop, one input read, one output written) and the inputs.
-  if (wanted("pixel")) record("pixel", base[1], false);
-  const double input_ns = (base[6] - base[1]) / 5;
+  // The per-pixel overhead: the loop with one input and one output; the program's inputs beyond the
+  // first and outputs beyond the first are in_* and "output" costs (CostModel::throughput).
+  if (wanted("pixel")) record("pixel", loop - input_ns - output_ns, false);
+  if (wanted("output")) record("output", output_ns, false);
   for (const char* name : {"in_mean", "in_sd", "in_grad_x", "in_grad_y"})
     if (wanted(name)) record(name, input_ns, false);
   // Constants and pair fields are registers in compiled code.
   for (const char* name : {"const", "mean", "var"})
     if (wanted(name)) record(name, 0.01, false);
   for (const auto& op : kOps)
-    if (wanted(op[0]))
-      record(op[0], (time_kernel(kernel(std::string("bl_op_") + op[0]), in, out, main_opt) - base[1]) / 16,
-             false);
-  const double lat_base = time_kernel(kernel("bl_latbase"), in, out, main_opt);
+    if (wanted(op[0])) record(op[0], net(time(std::string("bl_op_") + op[0], in, main_opt), 2) / 16, false);
+  const double lat_base = time("bl_latbase", in, main_opt);
   {
     // Pixels in flight = window / (throughput cost per pixel): from time = L x T / window when the
     // chain binds (T = 8 thr, L = 8 lat per pixel).
-    const double thr = std::max(0.01, time_kernel(kernel("bl_win_thr"), in, out, main_opt) - base[1]);
-    const double lat = std::max(0.01, time_kernel(kernel("bl_win_lat"), in, out, main_opt) - lat_base);
-    const double chain = time_kernel(kernel("bl_win_chain"), in, out, main_opt) - base[2];
+    const double thr = net(time("bl_win_thr", in, main_opt), 1);
+    const double lat = std::max(0.01, time("bl_win_lat", in, main_opt) - lat_base);
+    const double chain = net(time("bl_win_chain", in, main_opt), 2);
     m.window_ns = chain > 8 * thr * 1.05 ? (8 * lat) * (8 * thr) / chain : 1e9;
     if (progress) progress("window", m.window_ns);
   }
   for (const auto& op : kOps)
     if (wanted(op[0]))
-      m.op_lat_ns[op[0]] = std::max(
-          0.01, (time_kernel(kernel(std::string("bl_lat_") + op[0]), in, out, main_opt) - lat_base) / 16);
+      m.op_lat_ns[op[0]] =
+          std::max(0.01, (time(std::string("bl_lat_") + op[0], in, main_opt) - lat_base) / 16);
   // Negation folds into its user (a - b for -b + a) in compiled code: costed as a subtraction.
   if (wanted("neg") && m.op_ns.count("sub")) record("neg", m.op_ns["sub"], false);
-  if (wanted("tex_plain"))
-    record("tex_plain", time_kernel(kernel("bl_op_tex_plain"), in, out, main_opt) - base[2], false);
-  if (wanted("tex_stat"))
-    record("tex_stat", time_kernel(kernel("bl_op_tex_stat"), in, out, main_opt) - base[4], false);
+  if (wanted("tex_plain")) record("tex_plain", net(time("bl_op_tex_plain", in, main_opt), 2), false);
+  if (wanted("tex_stat")) record("tex_stat", net(time("bl_op_tex_stat", in, main_opt), 4), false);
   for (int f : fns) {
     const compiler::Function& F = all[f];
-    const Kernel k = kernel("bl_fn" + std::to_string(f));
-    const double b0 = base[F.arity];
-    record(F.cpp, time_kernel(k, in, out, main_opt) - b0, true);
-    m.fn_lat_ns[F.cpp] =
-        std::max(0.01, time_kernel(kernel("bl_lat" + std::to_string(f)), in, out, main_opt) - lat_base);
+    const std::string sym = "bl_fn" + std::to_string(f);
+    const int inputs = distinct(calibration_args(F.arity, F.stat));
+    record(F.cpp, net(time(sym, in, main_opt), inputs), true);
+    m.fn_lat_ns[F.cpp] = std::max(0.01, time("bl_lat" + std::to_string(f), in, main_opt) - lat_base);
     if (CostModel::atomic_of(F.cpp).empty()) continue;
     std::vector<double> per;
     if (F.arity == 2 && !F.stat) {  // kernel entry f(x, sigma): every (|x|, sigma) band pair
-      for (const Arrays& a : joint) per.push_back(std::max(0.01, time_kernel(k, a, out, band_opt) - b0));
+      for (const Arrays& a : joint) per.push_back(net(time(sym, a, band_opt), inputs));
     } else {
       per.push_back(m.fn_ns[F.cpp]);
-      for (int b = 1; b < CostModel::kBands; ++b)
-        per.push_back(std::max(0.01, time_kernel(k, bands[b], out, band_opt) - b0));
+      for (int b = 1; b < CostModel::kBands; ++b) per.push_back(net(time(sym, bands[b], band_opt), inputs));
     }
     m.fn_band_ns[F.cpp] = per;
   }

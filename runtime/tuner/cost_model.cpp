@@ -164,6 +164,7 @@ double CostModel::critical_path(const compiler::Program& p) const {
 double CostModel::throughput(const compiler::Program& p) const {
   double ns = 0;
   if (const auto px = op_ns.find("pixel"); px != op_ns.end()) ns += px->second;
+  if (const auto o = op_ns.find("output"); o != op_ns.end()) ns += o->second * p.outputs.size();
   for (const compiler::Inst& in : p.insts) {
     if (in.op == LOp::Call || in.op == LOp::CallStat) {
       ns += function_cost(in.fn);
@@ -185,6 +186,9 @@ std::string CostModel::missing() const {
     if (op != LOp::Call && op != LOp::CallStat && !op_ns.count(lop_name(op)))
       out += std::string(" ") + lop_name(op);
   }
+  if (method == "compiled")
+    for (const char* name : {"pixel", "output"})
+      if (!op_ns.count(name)) out += std::string(" ") + name;
   for (const compiler::Function& f : compiler::functions())
     if (!fn_ns.count(f.cpp)) out += " " + f.cpp;
   return out;
@@ -228,6 +232,7 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
   cm.op_ns = m.at("ops").get<std::map<std::string, double>>();
   cm.fn_ns = m.at("functions").get<std::map<std::string, double>>();
   cm.window_ns = m.value("window_ns", 0.0);
+  cm.kernels = m.value("kernels", 0);
   if (m.contains("op_latency")) cm.op_lat_ns = m.at("op_latency").get<std::map<std::string, double>>();
   if (m.contains("function_latency"))
     cm.fn_lat_ns = m.at("function_latency").get<std::map<std::string, double>>();
@@ -248,7 +253,7 @@ void save_cost_model(const std::string& path, const CostModel& m) {
   j["machines"][m.machine] = {{"method", m.method},        {"ops", m.op_ns},
                               {"functions", m.fn_ns},      {"function_bands", m.fn_band_ns},
                               {"op_latency", m.op_lat_ns}, {"function_latency", m.fn_lat_ns},
-                              {"window_ns", m.window_ns}};
+                              {"window_ns", m.window_ns},  {"kernels", m.kernels}};
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
   const std::string tmp = path + ".tmp";

@@ -32,9 +32,15 @@ struct CostModel {
   // bl::gaussian::fract and bl::box::fract_sq), "" for rule functions (their arguments are moments).
   static std::string atomic_of(const std::string& cpp_name);
 
-  std::string machine;                  // CPU model string the numbers were measured on
-  std::string method = "compiled";      // "compiled" (-O3 via bl::jit) or "evaluator" (fallback)
-  std::map<std::string, double> op_ns;  // LOp name -> ns per pixel; "pixel": per-pixel overhead
+  std::string machine;              // CPU model string the numbers were measured on
+  std::string method = "compiled";  // "compiled" (-O3 via bl::jit) or "evaluator" (fallback)
+  // Version of the compiled calibration's kernels; a file measured with other kernels is
+  // recalibrated (1: vectorized loops, which made straight-line entries 4x too cheap; 2: scalar
+  // loops shaped like a program's, with the per-output cost).
+  static constexpr int kKernels = 2;
+  int kernels = kKernels;
+  // LOp name -> ns per pixel; "pixel": per-pixel overhead (the loop), "output": per output stored.
+  std::map<std::string, double> op_ns;
   std::map<std::string, double> fn_ns;  // Function::cpp -> ns per pixel at |x| ~ 1 (band 0)
   // Function::cpp -> ns per band: kBands values (plain f(x)), or kBands x kSigmaBands values
   // (kernel entries f(x, sigma), index x_band * kSigmaBands + sigma_band).
@@ -56,8 +62,8 @@ struct CostModel {
   double function_cost(int fn) const;
 
   // ns per pixel of p: max(T, L x min(1, T / window_ns)) with T the sum of per-instruction costs
-  // (plus the per-pixel overhead) and L the critical path of latencies. Throws std::out_of_range naming an op
-  // or function the model lacks.
+  // (plus the per-pixel overhead and the output stores) and L the critical path of latencies. Throws
+  // std::out_of_range naming an op or function the model lacks.
   double cost(const compiler::Program& p) const;
   double throughput(const compiler::Program& p) const;     // the sum alone (+ overhead)
   double critical_path(const compiler::Program& p) const;  // the latency path alone (0 without latencies)
