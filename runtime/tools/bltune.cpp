@@ -316,10 +316,12 @@ int main(int argc, char** argv) {
         CalibrationOptions co;
         co.method = calibration == "evaluator" ? CalibrationOptions::Method::Evaluator
                                                : CalibrationOptions::Method::Compiled;
+        const auto t0 = std::chrono::steady_clock::now();
         const CostModel m = calibrate(
             co, [](const std::string& n, double ns) { std::printf("%-44s %9.2f ns/px\n", n.c_str(), ns); });
         save_cost_model(c.cost_model, m);
-        std::printf("saved %s (machine '%s')\n", c.cost_model.c_str(), m.machine.c_str());
+        std::printf("saved %s (machine '%s', %.0f s wall)\n", c.cost_model.c_str(), m.machine.c_str(),
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       }
     } else {
       c.fin.glsl = glsl && !no_glsl;

@@ -19,6 +19,9 @@ struct CalibrationOptions {
   double min_ms = 4;  // each timing repeats the batch until it took at least this long
   int trials = 3;     // the minimum over trials is kept (least disturbed by other load)
   std::string only;   // when non-empty: calibrate only entries whose name contains this
+  // Compiled calibration: inputs ordered in 64-pixel runs as along an image row (false: i.i.d., which
+  // mispredicts regime branches a frame predicts; kept for comparison).
+  bool scanlines = true;
   enum class Method { Compiled, Evaluator } method = Method::Compiled;
   jit::Options jit;  // compiler and object cache of the compiled calibration
 };

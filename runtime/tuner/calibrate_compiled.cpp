@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <ctime>
 #include <random>
 #include <set>
@@ -26,12 +25,11 @@ using Kernel = void (*)(int, const float* const*, float* const*);
 // Input arrays, as calibrate.cpp's base program: 0 mean0 (x, scaled per band), 1 sd0, 2 mean1,
 // 3 sd1, 4 small value in [0, 0.3], 5 var0 = sd0^2.
 constexpr int kArrays = 6;
-constexpr int kOutputs = 6;
-constexpr int kScanline =
-    64;  // pixels per run of ordered inputs (make_arrays)  // output arrays of the pixel-loop kernels
+constexpr int kOutputs = 6;    // output arrays of the pixel-loop kernels
+constexpr int kScanline = 64;  // pixels per run of ordered inputs (make_arrays)
 
 // (inputs read, outputs written) of the pixel-loop kernels: (1, 1) is the bare loop, (1, 6) adds 5
-// stores, (6, 6) adds 5 loads to that.
+// stores, (6, 6) adds 5 loads to that; each alone (bl_io) and next to a sin call (bl_busy).
 constexpr int kIoKernels[][2] = {{1, 1}, {1, kOutputs}, {kArrays, kOutputs}};
 
 std::string arg_list(const std::vector<int>& a) {
@@ -88,6 +86,11 @@ std::string source(const std::vector<int>& fns) {
     for (int k = 0; k < io[1]; ++k)
       body += "    out[" + std::to_string(k) + "][j] = a[" + std::to_string(k % io[0]) + "][j];\n";
     kernel_def(os, "bl_io" + std::to_string(io[0]) + "_" + std::to_string(io[1]), body);
+    // The same loads and stores next to a sin call (a program's work), where they overlap with it.
+    std::string busy = "    out[0][j] = bl::plain::sin(a[0][j]);\n";
+    for (int k = 1; k < io[1]; ++k)
+      busy += "    out[" + std::to_string(k) + "][j] = a[" + std::to_string(k % io[0]) + "][j];\n";
+    kernel_def(os, "bl_busy" + std::to_string(io[0]) + "_" + std::to_string(io[1]), busy);
   }
   for (const auto& op : kOps) {
     std::string body = "    float t = a[0][j];\n    const float b = a[2][j];\n    (void)b;\n";
@@ -123,13 +126,20 @@ std::string source(const std::vector<int>& fns) {
                      ");\n    out[0][j] = r.mean + r.var;\n");
     else
       kernel_def(os, "bl_fn" + std::to_string(f), "    out[0][j] = " + F.cpp + "(" + arg_list(args) + ");\n");
-    std::string chained = "a[" + std::to_string(args[0]) + "][j] + t * 0.0f";
-    for (std::size_t k = 1; k < args.size(); ++k) chained += ", a[" + std::to_string(args[k]) + "][j]";
-    if (F.stat)
-      latency_def(os, "bl_lat" + std::to_string(f),
-                  "    const bl::stat<float> r = " + F.cpp + "(" + chained + ");\n    t = r.mean + r.var;\n");
-    else
-      latency_def(os, "bl_lat" + std::to_string(f), "    t = " + F.cpp + "(" + chained + ");\n");
+    // Latency through x and, for two or more arguments, through the second one (a kernel entry's
+    // sigma: in a program the sd of a nested node depends on the node before it).
+    for (std::size_t via = 0; via < std::min<std::size_t>(2, args.size()); ++via) {
+      std::string chained;
+      for (std::size_t k = 0; k < args.size(); ++k)
+        chained += (k ? ", a[" : "a[") + std::to_string(args[k]) + "][j]" + (k == via ? " + t * 0.0f" : "");
+      const std::string name = "bl_lat" + std::to_string(f) + (via ? "_1" : "");
+      if (F.stat)
+        latency_def(
+            os, name,
+            "    const bl::stat<float> r = " + F.cpp + "(" + chained + ");\n    t = r.mean + r.var;\n");
+      else
+        latency_def(os, name, "    t = " + F.cpp + "(" + chained + ");\n");
+    }
   }
   return os.str();
 }
@@ -153,8 +163,9 @@ struct Arrays {
   std::vector<const float*> ptr;
 };
 
-// sigma_scale > 0: the sds (arrays 1, 3) are sigma_scale x U[0.5, 1.5] instead of U[0.01, 0.5].
-Arrays make_arrays(int n, double magnitude, double sigma_scale = 0) {
+// scanlines: see below. sigma_scale > 0: the sds (arrays 1, 3) are sigma_scale x U[0.5, 1.5] instead of
+// U[0.01, 0.5].
+Arrays make_arrays(int n, double magnitude, double sigma_scale, bool scanlines) {
   Arrays in;
   std::mt19937_64 rng(12345);
   std::uniform_real_distribution<float> x(0.05f, 3.0f), s(0.01f, 0.5f), small(0.0f, 0.3f), half(0.5f, 1.5f),
@@ -172,7 +183,7 @@ Arrays make_arrays(int n, double magnitude, double sigma_scale = 0) {
   // pieces, signs) mostly repeat from one pixel to the next. Each run of kScanline values is sorted
   // (the same distribution, ordered as along an image row): i.i.d. inputs would mispredict every
   // data-dependent branch half the time, which a rendered frame does not.
-  if (!std::getenv("BL_CAL_RANDOM"))
+  if (scanlines)
     for (int a = 0; a < 5; ++a)
       for (int i = 0; i < n; i += kScanline)
         std::sort(in.v[a].begin() + i, in.v[a].begin() + std::min(n, i + kScanline));
@@ -236,9 +247,10 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
   Outputs out(opt.pixels);
   std::vector<Arrays> bands, joint;
   for (int b = 0; b < CostModel::kBands; ++b) {
-    bands.push_back(make_arrays(opt.pixels, CostModel::band_magnitude(b)));
+    bands.push_back(make_arrays(opt.pixels, CostModel::band_magnitude(b), 0, opt.scanlines));
     for (int sb = 0; sb < CostModel::kSigmaBands; ++sb)
-      joint.push_back(make_arrays(opt.pixels, CostModel::band_magnitude(b), CostModel::sigma_band_scale(sb)));
+      joint.push_back(make_arrays(opt.pixels, CostModel::band_magnitude(b), CostModel::sigma_band_scale(sb),
+                                  opt.scanlines));
   }
   const Arrays& in = bands[0];
   // Many short windows, the fastest kept: on a loaded machine a 0.25 ms window often runs
@@ -250,11 +262,15 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
   auto time = [&](const std::string& sym, const Arrays& a, const CalibrationOptions& o) {
     return time_kernel(kernel(sym), a, out, o);
   };
-  // The pixel loop: the bare loop (one input read, one output stored), then per store, per load.
+  // The pixel loop. Alone, a load or a store is what the loop waits for (~0.36 ns a store); next to
+  // a program's work it overlaps with it (~0.04 ns): the extra loads and stores are timed next to a
+  // sin call, the bare loop (one load, one store) alone.
   const double loop = time("bl_io1_1", in, main_opt);
-  const double stores = time("bl_io1_" + std::to_string(kOutputs), in, main_opt);
-  const double loads = time("bl_io" + std::to_string(kArrays) + "_" + std::to_string(kOutputs), in, main_opt);
-  const double output_ns = std::max(0.01, (stores - loop) / (kOutputs - 1));
+  const double busy = time("bl_busy1_1", in, main_opt);
+  const double stores = time("bl_busy1_" + std::to_string(kOutputs), in, main_opt);
+  const double loads =
+      time("bl_busy" + std::to_string(kArrays) + "_" + std::to_string(kOutputs), in, main_opt);
+  const double output_ns = std::max(0.01, (stores - busy) / (kOutputs - 1));
   const double input_ns = std::max(0.01, (loads - stores) / (kArrays - 1));
   // A kernel reading `inputs` arrays and storing one result, less the loop and its inputs.
   auto net = [&](double ns, int inputs) { return std::max(0.01, ns - loop - (inputs - 1) * input_ns); };
@@ -297,7 +313,10 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
     const std::string sym = "bl_fn" + std::to_string(f);
     const int inputs = distinct(calibration_args(F.arity, F.stat));
     record(F.cpp, net(time(sym, in, main_opt), inputs), true);
-    m.fn_lat_ns[F.cpp] = std::max(0.01, time("bl_lat" + std::to_string(f), in, main_opt) - lat_base);
+    double lat = time("bl_lat" + std::to_string(f), in, main_opt);
+    if (calibration_args(F.arity, F.stat).size() >= 2)
+      lat = std::max(lat, time("bl_lat" + std::to_string(f) + "_1", in, main_opt));
+    m.fn_lat_ns[F.cpp] = std::max(0.01, lat - lat_base);
     if (CostModel::atomic_of(F.cpp).empty()) continue;
     std::vector<double> per;
     if (F.arity == 2 && !F.stat) {  // kernel entry f(x, sigma): every (|x|, sigma) band pair

@@ -37,6 +37,12 @@ bool run_gnuplot(const std::string& script) {
   return pclose(p) == 0;
 }
 
+std::string join_labels(const std::vector<std::string>& v) {
+  std::string out;
+  for (const std::string& x : v) out += (out.empty() ? "" : ", ") + x;
+  return out;
+}
+
 }  // namespace
 
 double measured_ms(const Measured& m) {
@@ -45,10 +51,14 @@ double measured_ms(const Measured& m) {
 
 ModelAccuracy model_accuracy(const SceneResult& r) {
   std::vector<double> e;
+  ModelAccuracy a;
   for (const auto* list : {&r.front, &r.baselines})
     for (const Measured& m : *list)
-      if (m.compiled_ns > 0 && m.model_ns > 0) e.push_back(std::fabs(m.model_ns / m.compiled_ns - 1));
-  ModelAccuracy a;
+      if (m.compiled_ns > 0 && m.model_ns > 0) {
+        const double ratio = m.model_ns / m.compiled_ns;
+        e.push_back(std::fabs(ratio - 1));
+        if (e.back() > kModelTolerance) a.outside.push_back(m.label + " (" + fmt("%.2f", ratio) + ")");
+      }
   a.points = static_cast<int>(e.size());
   if (e.empty()) return a;
   std::sort(e.begin(), e.end());
@@ -186,7 +196,9 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
   if (acc.points > 0)
     md << "\nCost model vs compiled code over " << acc.points
        << " measured points: median |model/compiled - 1| " << fmt("%.0f%%", 100 * acc.median) << ", worst "
-       << fmt("%.0f%%", 100 * acc.worst) << ".\n";
+       << fmt("%.0f%%", 100 * acc.worst) << "; model / compiled outside 1 +- "
+       << fmt("%.0f%%", 100 * kModelTolerance) << ": "
+       << (acc.outside.empty() ? std::string("none") : join_labels(acc.outside)) << ".\n";
   md << "\nImages: `front*_vs_truth_msaa.png` (frame 0: ground truth | variant | MSAA of the nearest model "
         "time). Full schedules (node:rule) are in front.csv.\n";
 }

@@ -28,11 +28,14 @@ std::vector<Speedup> speedups(const SceneResult& r);
 // Markdown, when gnuplot is missing).
 void write_scene_report(const SceneResult& r, const std::string& dir);
 
-// The cost model against compiled code over a scene's measured points: median and largest
-// |model / compiled - 1| (NaN when no compiled time exists).
+// The cost model against compiled code over a scene's measured points (front and baselines):
+// median and largest |model / compiled - 1| (NaN when no compiled time exists), and the points
+// outside issue 14's tolerance (|model / compiled - 1| > kModelTolerance) as "label (ratio)".
+constexpr double kModelTolerance = 0.25;
 struct ModelAccuracy {
   int points = 0;
   double median = NAN, worst = NAN;
+  std::vector<std::string> outside;
 };
 ModelAccuracy model_accuracy(const SceneResult& r);
 

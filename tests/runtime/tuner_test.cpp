@@ -15,6 +15,7 @@
 #include "tuner/magnitude_profile.hpp"
 #include "tuner/pareto.hpp"
 #include "tuner/pixel_sample.hpp"
+#include "tuner/report.hpp"
 #include "tuner/scene_tuner.hpp"
 
 using namespace bl;
@@ -178,6 +179,81 @@ TEST(CostModel, OrdersAllMc32AboveAllNoneAndRoundTrips) {
   CostModel partial = m;
   partial.fn_ns.erase(partial.fn_ns.begin());
   EXPECT_FALSE(partial.covers_all());
+}
+
+// The cost formula on a hand-built model with round numbers: T = per-pixel overhead + outputs x
+// store cost + every instruction's cost (a function's weighted over the scene's |x| bands), L = the
+// longest chain of latencies, cost = max(T, L x min(1, T / window)). Expected values by hand.
+TEST(CostModel, FormulaOnAHandBuiltModel) {
+  using compiler::Inst;
+  using compiler::LOp;
+  CostModel m;
+  m.method = "compiled";
+  m.op_ns = {{"pixel", 1}, {"output", 0.5}, {"in_mean", 0.25}, {"add", 2}, {"mul", 3}};
+  m.op_lat_ns = {{"add", 4}, {"mul", 5}};
+  const int fract = compiler::find_function("bl::plain::fract");
+  ASSERT_GE(fract, 0);
+  m.fn_ns = {{"bl::plain::fract", 10}};
+  m.fn_lat_ns = {{"bl::plain::fract", 20}};  // latency / throughput = 2 in every band
+  m.fn_band_ns = {{"bl::plain::fract", {10, 30, 50, 70, 90, 110, 130}}};
+  compiler::Program p;
+  p.input_count = 2;
+  auto inst = [&](LOp op, int a = -1, int b = -1) {
+    Inst in;
+    in.op = op;
+    in.arg[0] = a, in.arg[1] = b;
+    p.insts.push_back(in);
+    return static_cast<int>(p.insts.size()) - 1;
+  };
+  const int u = inst(LOp::InMean, 0), v = inst(LOp::InMean, 1);
+  const int sum = inst(LOp::Add, u, v), sq = inst(LOp::Mul, sum, sum);
+  p.outputs = {sq, sum, sq};
+  // T = 1 + 3 x 0.5 + 2 x 0.25 + 2 + 3 = 8; L = add 4 + mul 5 = 9 (inputs have no latency).
+  EXPECT_DOUBLE_EQ(m.throughput(p), 8);
+  EXPECT_DOUBLE_EQ(m.critical_path(p), 9);
+  m.window_ns = 16;  // two pixels in flight: the chain costs 9 x 8 / 16 = 4.5 < T
+  EXPECT_DOUBLE_EQ(m.cost(p), 8);
+  m.window_ns = 4;  // one pixel at a time: the chain binds
+  EXPECT_DOUBLE_EQ(m.cost(p), 9);
+  // A fract of the square: 10 ns at |x| ~ 1 without a profile; with a quarter of the calls at
+  // |x| ~ 1e2 and the rest at ~1e6, 0.25 x 50 + 0.75 x 130 = 110.
+  Inst call;
+  call.op = LOp::Call;
+  call.fn = fract;
+  call.arg[0] = sq;
+  p.insts.push_back(call);
+  p.outputs = {4, sum, sq};
+  EXPECT_DOUBLE_EQ(m.throughput(p), 18);
+  EXPECT_DOUBLE_EQ(m.critical_path(p), 29);  // add 4 + mul 5 + fract 20
+  m.band_share["fract"] = {0, 0, 0.25, 0, 0, 0, 0.75};
+  EXPECT_DOUBLE_EQ(m.throughput(p), 8 + 110);
+  EXPECT_DOUBLE_EQ(m.critical_path(p), 9 + 2 * 110);
+  m.window_ns = 1e9;  // an unbounded window: throughput
+  EXPECT_DOUBLE_EQ(m.cost(p), 118);
+  // MSAA n is n plain evaluations per pixel (finalize): the loop overhead is per sample too.
+  m.op_ns.erase("output");
+  EXPECT_DOUBLE_EQ(m.throughput(p), 118 - 1.5);
+  EXPECT_NE(m.missing().find("output"), std::string::npos);  // a compiled model needs it
+}
+
+// The report's model-vs-compiled line: median and worst over front and baselines, and the points
+// outside 1 +- 25% named with their ratio; points without a compiled time are left out.
+TEST(Report, ModelAccuracyNamesThePointsOutsideTheTolerance) {
+  SceneResult r;
+  auto point = [](const std::string& label, double model, double compiled) {
+    Measured m;
+    m.label = label;
+    m.model_ns = model;
+    m.compiled_ns = compiled;
+    return m;
+  };
+  r.front = {point("front00", 10, 10), point("front01", 60, 100), point("front02", 5, -1)};
+  r.baselines = {point("plain", 11, 10), point("msaa4", 130, 100)};
+  const ModelAccuracy a = model_accuracy(r);
+  EXPECT_EQ(a.points, 4);
+  EXPECT_NEAR(a.median, (0.1 + 0.3) / 2, 1e-12);  // sorted: 0, 0.1, 0.3, 0.4
+  EXPECT_NEAR(a.worst, 0.4, 1e-12);
+  EXPECT_EQ(a.outside, (std::vector<std::string>{"front01 (0.60)", "msaa4 (1.30)"}));
 }
 
 // Compiled calibration of a few entries: every x function gets a cost per magnitude band, and the
