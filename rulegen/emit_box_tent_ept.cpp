@@ -16,12 +16,12 @@
 // K!/y^{K+1} (1 - e^{-y} sum_{j<=K} y^j/j!) above, whose bracket P(K+1, y) >= p_min there: it
 // loses at most (K+2) eps/p_min relative; y0 and the series length are chosen here per precision
 // (float: p_min = 1/4, error < 4 (K+2) eps ~ 1.5e-6 relative; double: p_min = 1e-3, < 2e-12; series
-// truncation below 3e-8 / 1e-16 relative). Lower j by j_{k-1} = (y j_k + e^{-y})/k: positive terms,
-// a few eps per step. The tent's gam j_k - lam j_{k+1} (gam >= lam) loses at most a factor k + 2.
-// Errors are relative to the L1 scale int e^{a s} sum_k |g_k| v^k of the term; the exponent a s0
-// carries the rounding of s0 (eps |a s0|, as the plain e^{a x} does). Cost: one exp per piece of
-// the support cut by the break, two for a kernel wholly on one side (the tent's right half reuses
-// e^{-b w}). |x| or sigma beyond 1e4, NaN/inf x and multiprecision T: the generic runtime
+// truncation below 3e-8 / 1e-16 relative; C++ takes a lone j_0 as -expm1(-y)/y, a few eps). Lower j by
+// j_{k-1} = (y j_k + e^{-y})/k: positive terms, a few eps per step. The tent's gam j_k - lam j_{k+1} (gam >=
+// lam) loses at most a factor k + 2. Errors are relative to the L1 scale int e^{a s} sum_k |g_k| v^k of the
+// term; the exponent a s0 carries the rounding of s0 (eps |a s0|, as the plain e^{a x} does). Cost: one exp
+// per piece of the support cut by the break, two for a kernel wholly on one side (the tent's right half
+// reuses e^{-b w}). |x| or sigma beyond 1e4, NaN/inf x and multiprecision T: the generic runtime
 // (box_ept/tent_ept, which widens float to double there).
 #include "emit_box_tent_ept.hpp"
 
@@ -166,6 +166,9 @@ std::string jset(const std::string& p, int K, const std::string& y, const std::s
   }
   std::string yk = y;
   for (int k = 0; k < K; ++k) yk += " * " + y;
+  if (K == 0 && s.cpp())
+    // One moment: expm1 has no cancellation at any y (GLSL has no expm1: the series and 1 - e^{-y}).
+    return in + "const T " + p + "j0 = " + y + " > T(0) ? -expm1(-" + y + ") / " + y + " : T(1);\n";
   const std::string top = p + "j" + std::to_string(K);
   std::string out = in + s.T() + " " + top + ";\n";
   const std::string closed = top + " = " + s.dbl(fact) + " * (" + s.dbl(1) + " - " + ey + " * (" +
@@ -229,7 +232,7 @@ std::string whole_kernel(const Term& t, bool tent, const Syntax& s, const std::s
     out += in + s.decl("s0", "u" + ref + " - h").substr(2);
     out += in + s.decl("len", s.dbl(2) + " * h").substr(2);
     out += in + s.decl("y", B + " * len").substr(2);
-    out += in + s.decl("ey", "exp(-y)").substr(2);
+    if (t.deg > 0 || !s.cpp()) out += in + s.decl("ey", "exp(-y)").substr(2);
     out += jset("", t.deg, "y", "ey", s, in);
     out += in + s.decl("sum", side_sum(t, jn, "len", nullptr, "s0", s)).substr(2);
     return out + add_scaled(A + " * s0", "sum", large, s, in);
@@ -266,7 +269,7 @@ std::string half_term(const Term& t, bool tent, const Syntax& s) {
     const std::string in2 = "      ";
     out += in2 + s.decl("len", "h - el").substr(2);
     out += in2 + s.decl("y", B + " * len").substr(2);
-    out += in2 + s.decl("ey", "exp(-y)").substr(2);
+    if (t.deg > 0 || !s.cpp()) out += in2 + s.decl("ey", "exp(-y)").substr(2);
     out += jset("", t.deg, "y", "ey", s, in2);
     out += in2 + "acc += " + ce + "(len / (" + s.dbl(2) + " * h)) * " + side_sum(t, jn, "len", &Eoff, "", s) +
            ";\n";
@@ -337,7 +340,8 @@ std::string body_box_tent_ept(const sym::Derived& d, const Syntax& s, const std:
   std::string out = table;
   out += "  if (!(sigma >= " + s.dbl(0) + ")) return " + s.nan() + ";  // sigma < 0 or NaN\n";
   out += "  if (sigma == " + s.dbl(0) + ") return " + s.helper("ept_eval") + "(x, " + pieces_arg + ");\n";
-  if (s.cpp()) out += "  if constexpr (detail::kWide<T>) return " + generic + ";\n";
+  // Multiprecision T: the generic runtime, and the straight-line code not even instantiated.
+  if (s.cpp()) out += "  if constexpr (detail::kWide<T>) {\n    return " + generic + ";\n  } else {\n";
   out += "  if (!(abs(x) <= " + s.dbl(1e4) + ") || sigma > " + s.dbl(1e4) + ") return " + generic + ";\n";
   const std::string k = tent ? (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")
                              : (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3");
@@ -351,7 +355,7 @@ std::string body_box_tent_ept(const sym::Derived& d, const Syntax& s, const std:
     out += "  {  // term " + std::to_string(i) + (t.reflect ? " (reflected: u = -x)" : "") + "\n  " + code +
            "  }\n";
   }
-  return out + "  return acc;\n";
+  return out + "  return acc;\n" + (s.cpp() ? "  }\n" : "");
 }
 
 }  // namespace bl::rulegen

@@ -2041,7 +2041,9 @@ T box_xexp_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
   const T h = detail::k_sqrt3<T>() * sigma;
   T acc = T(0.0);
@@ -2070,6 +2072,7 @@ T box_xexp_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2092,7 +2095,9 @@ T box_xexp_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
   const T h = detail::k_sqrt3<T>() * sigma;
   T acc = T(0.0);
@@ -2122,6 +2127,7 @@ T box_xexp_sq_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2143,7 +2149,9 @@ T tent_xexp_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
   const T w = detail::k_sqrt6<T>() * sigma;
   T acc = T(0.0);
@@ -2173,6 +2181,7 @@ T tent_xexp_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2195,7 +2204,9 @@ T tent_xexp_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
   const T w = detail::k_sqrt6<T>() * sigma;
   T acc = T(0.0);
@@ -2226,6 +2237,7 @@ T tent_xexp_sq_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3258,7 +3270,9 @@ T box_laplace_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
   const T h = detail::k_sqrt3<T>() * sigma;
   T acc = T(0.0);
@@ -3269,31 +3283,13 @@ T box_laplace_raw(T x, T sigma) {
       if (el > -h) {
         const T len = h - el;
         const T y = T(1) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         acc += (len / (T(2.0) * h)) * (j0);
       } else {
         const T s0 = u - h;
         const T len = T(2.0) * h;
         const T y = T(1) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         const T sum = ((T(1)) * j0);
         acc += exp((T(-1)) * s0) * sum;
       }
@@ -3306,37 +3302,20 @@ T box_laplace_raw(T x, T sigma) {
       if (el > -h) {
         const T len = h - el;
         const T y = T(1) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         acc += (len / (T(2.0) * h)) * (j0);
       } else {
         const T s0 = u - h;
         const T len = T(2.0) * h;
         const T y = T(1) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         const T sum = ((T(1)) * j0);
         acc += exp((T(-1)) * s0) * sum;
       }
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3360,7 +3339,9 @@ T box_laplace_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
   const T h = detail::k_sqrt3<T>() * sigma;
   T acc = T(0.0);
@@ -3371,31 +3352,13 @@ T box_laplace_sq_raw(T x, T sigma) {
       if (el > -h) {
         const T len = h - el;
         const T y = T(2) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         acc += (len / (T(2.0) * h)) * (j0);
       } else {
         const T s0 = u - h;
         const T len = T(2.0) * h;
         const T y = T(2) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         const T sum = ((T(1)) * j0);
         acc += exp((T(-2)) * s0) * sum;
       }
@@ -3408,37 +3371,20 @@ T box_laplace_sq_raw(T x, T sigma) {
       if (el > -h) {
         const T len = h - el;
         const T y = T(2) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         acc += (len / (T(2.0) * h)) * (j0);
       } else {
         const T s0 = u - h;
         const T len = T(2.0) * h;
         const T y = T(2) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         const T sum = ((T(1)) * j0);
         acc += exp((T(-2)) * s0) * sum;
       }
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3462,7 +3408,9 @@ T tent_laplace_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
   const T w = detail::k_sqrt6<T>() * sigma;
   T acc = T(0.0);
@@ -3603,6 +3551,7 @@ T tent_laplace_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3626,7 +3575,9 @@ T tent_laplace_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
   const T w = detail::k_sqrt6<T>() * sigma;
   T acc = T(0.0);
@@ -3767,6 +3718,7 @@ T tent_laplace_sq_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3873,7 +3825,9 @@ T box_exp_decay_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
   const T h = detail::k_sqrt3<T>() * sigma;
   T acc = T(0.0);
@@ -3884,37 +3838,20 @@ T box_exp_decay_raw(T x, T sigma) {
       if (el > -h) {
         const T len = h - el;
         const T y = T(1) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         acc += (len / (T(2.0) * h)) * (j0);
       } else {
         const T s0 = u - h;
         const T len = T(2.0) * h;
         const T y = T(1) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         const T sum = ((T(1)) * j0);
         acc += exp((T(-1)) * s0) * sum;
       }
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3937,7 +3874,9 @@ T box_exp_decay_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
   const T h = detail::k_sqrt3<T>() * sigma;
   T acc = T(0.0);
@@ -3948,37 +3887,20 @@ T box_exp_decay_sq_raw(T x, T sigma) {
       if (el > -h) {
         const T len = h - el;
         const T y = T(2) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         acc += (len / (T(2.0) * h)) * (j0);
       } else {
         const T s0 = u - h;
         const T len = T(2.0) * h;
         const T y = T(2) * len;
-        const T ey = exp(-y);
-        T j0;
-        if (y < (sizeof(T) < sizeof(double) ? T(0.2893479434156535) : T(0.0010059090549340696))) {
-          if constexpr (sizeof(T) < sizeof(double))
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984))))))));
-          else
-            j0 = ey * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333))))));
-        } else {
-          j0 = T(1.0) * (T(1.0) - ey * (T(1.0))) / (y);
-        }
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
         const T sum = ((T(1)) * j0);
         acc += exp((T(-2)) * s0) * sum;
       }
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4001,7 +3923,9 @@ T tent_exp_decay_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
   const T w = detail::k_sqrt6<T>() * sigma;
   T acc = T(0.0);
@@ -4074,6 +3998,7 @@ T tent_exp_decay_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4096,7 +4021,9 @@ T tent_exp_decay_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
   const T w = detail::k_sqrt6<T>() * sigma;
   T acc = T(0.0);
@@ -4169,6 +4096,7 @@ T tent_exp_decay_sq_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4280,7 +4208,9 @@ T box_exp_ramp_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
   const T h = detail::k_sqrt3<T>() * sigma;
   T acc = T(0.0);
@@ -4324,6 +4254,7 @@ T box_exp_ramp_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4347,7 +4278,9 @@ T box_exp_ramp_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
   const T h = detail::k_sqrt3<T>() * sigma;
   T acc = T(0.0);
@@ -4393,6 +4326,7 @@ T box_exp_ramp_sq_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4416,7 +4350,9 @@ T tent_exp_ramp_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
   const T w = detail::k_sqrt6<T>() * sigma;
   T acc = T(0.0);
@@ -4495,6 +4431,7 @@ T tent_exp_ramp_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4518,7 +4455,9 @@ T tent_exp_ramp_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  if constexpr (detail::kWide<T>) return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
   if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
   const T w = detail::k_sqrt6<T>() * sigma;
   T acc = T(0.0);
@@ -4601,6 +4540,7 @@ T tent_exp_ramp_sq_raw(T x, T sigma) {
     }
   }
   return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -7116,7 +7056,9 @@ template <class T>
 T box_log(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_log<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_log<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -7152,7 +7094,9 @@ template <class T>
 T box_log_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_log_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_log_sq<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -7196,7 +7140,9 @@ template <class T>
 T tent_log(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_log<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_log<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -7235,7 +7181,9 @@ template <class T>
 T tent_log_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_log_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_log_sq<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -7280,7 +7228,9 @@ template <class T>
 T box_sqrt_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_sqrt<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_sqrt<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -7322,7 +7272,9 @@ template <class T>
 T box_sqrt_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_sqrt_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_sqrt_sq<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -7364,7 +7316,9 @@ template <class T>
 T tent_sqrt_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_sqrt<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_sqrt<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -7409,7 +7363,9 @@ template <class T>
 T tent_sqrt_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_sqrt_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_sqrt_sq<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -7454,7 +7410,9 @@ template <class T>
 T box_inv(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_inv<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_inv<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -7487,7 +7445,9 @@ template <class T>
 T box_inv_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_inv_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_inv_sq<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -7528,7 +7488,9 @@ template <class T>
 T tent_inv(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_inv<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -7564,7 +7526,9 @@ template <class T>
 T tent_inv_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_inv_sq<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -7608,7 +7572,9 @@ template <class T>
 T box_inv2_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_inv2<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_inv2<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -7690,7 +7656,9 @@ template <class T>
 T tent_inv2_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv2<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_inv2<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
