@@ -2340,7 +2340,31 @@ float bl_box_xexp_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_box_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_box_ept(x, sigma, 1, p);
+  float h = BL_SQRT3 * sigma;
+  float acc = (0.0);
+  {  // term 0 (reflected: u = -x)
+      float u = -x;
+    float s0 = u - h;
+    float len = (2.0) * h;
+    float y = 1.0 * len;
+    float ey = exp(-y);
+    float j1;
+    if (y < (0.9645097620250751)) {
+      j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+    } else {
+      j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+    }
+    float j0 = (y * j1 + ey);
+    float sum = ((((-1.0)) * s0) * j0 + len * (((-1.0)) * j1));
+    if ((-1.0) * s0 < (30.0)) {
+      acc += exp((-1.0) * s0) * sum;
+    } else {
+      float eh = exp((0.5) * (-1.0) * s0);
+      acc += eh * (eh * sum);
+    }
+  }
+  return acc;
 }
 
 float bl_box_xexp(float x, float sigma) {
@@ -2361,7 +2385,32 @@ float bl_box_xexp_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_box_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_box_ept(x, sigma, 1, p);
+  float h = BL_SQRT3 * sigma;
+  float acc = (0.0);
+  {  // term 0 (reflected: u = -x)
+      float u = -x;
+    float s0 = u - h;
+    float len = (2.0) * h;
+    float y = 2.0 * len;
+    float ey = exp(-y);
+    float j2;
+    if (y < (1.7348729706968233)) {
+      j2 = ey * ((0.3333333333333333) + y * ((0.08333333333333333) + y * ((0.016666666666666666) + y * ((0.002777777777777778) + y * ((0.0003968253968253968) + y * ((4.96031746031746e-05) + y * ((5.5114638447971785e-06) + y * ((5.511463844797178e-07) + y * ((5.010421677088344e-08) + y * ((4.17535139757362e-09) + y * ((3.2118087673643227e-10) + y * ((2.294149119545945e-11)))))))))))));
+    } else {
+      j2 = (2.0) * ((1.0) - ey * ((1.0) + y * ((1.0) + y * ((0.5))))) / (y * y * y);
+    }
+    float j1 = (y * j2 + ey) * (0.5);
+    float j0 = (y * j1 + ey);
+    float sum = ((((1.0) * s0) * s0) * j0 + len * (((2.0) * s0) * j1 + len * ((1.0) * j2)));
+    if ((-2.0) * s0 < (30.0)) {
+      acc += exp((-2.0) * s0) * sum;
+    } else {
+      float eh = exp((0.5) * (-2.0) * s0);
+      acc += eh * (eh * sum);
+    }
+  }
+  return acc;
 }
 
 float bl_box_xexp_sq(float x, float sigma) {
@@ -2382,7 +2431,32 @@ float bl_tent_xexp_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_tent_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_tent_ept(x, sigma, 1, p);
+  float w = BL_SQRT6 * sigma;
+  float acc = (0.0);
+  {  // term 0 (reflected: u = -x)
+      float u = -x;
+    float sl = u - w;
+    float sr = u;
+    float y = 1.0 * w;
+    float ey = exp(-y);
+    float j2;
+    if (y < (1.7348729706968233)) {
+      j2 = ey * ((0.3333333333333333) + y * ((0.08333333333333333) + y * ((0.016666666666666666) + y * ((0.002777777777777778) + y * ((0.0003968253968253968) + y * ((4.96031746031746e-05) + y * ((5.5114638447971785e-06) + y * ((5.511463844797178e-07) + y * ((5.010421677088344e-08) + y * ((4.17535139757362e-09) + y * ((3.2118087673643227e-10) + y * ((2.294149119545945e-11)))))))))))));
+    } else {
+      j2 = (2.0) * ((1.0) - ey * ((1.0) + y * ((1.0) + y * ((0.5))))) / (y * y * y);
+    }
+    float j1 = (y * j2 + ey) * (0.5);
+    float j0 = (y * j1 + ey);
+    float sum = ((((-1.0)) * sl) * j1 + w * (((-1.0)) * j2)) + ey * ((((-1.0)) * sr) * (j0 - j1) + w * (((-1.0)) * (j1 - j2)));
+    if ((-1.0) * sl < (30.0)) {
+      acc += exp((-1.0) * sl) * sum;
+    } else {
+      float eh = exp((0.5) * (-1.0) * sl);
+      acc += eh * (eh * sum);
+    }
+  }
+  return acc;
 }
 
 float bl_tent_xexp(float x, float sigma) {
@@ -2403,7 +2477,33 @@ float bl_tent_xexp_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_tent_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_tent_ept(x, sigma, 1, p);
+  float w = BL_SQRT6 * sigma;
+  float acc = (0.0);
+  {  // term 0 (reflected: u = -x)
+      float u = -x;
+    float sl = u - w;
+    float sr = u;
+    float y = 2.0 * w;
+    float ey = exp(-y);
+    float j3;
+    if (y < (2.557415295497982)) {
+      j3 = ey * ((0.25) + y * ((0.05) + y * ((0.008333333333333333) + y * ((0.0011904761904761906) + y * ((0.00014880952380952382) + y * ((1.6534391534391536e-05) + y * ((1.6534391534391535e-06) + y * ((1.5031265031265032e-07) + y * ((1.252605419272086e-08) + y * ((9.635426302092969e-10) + y * ((6.882447358637835e-11) + y * ((4.58829823909189e-12) + y * ((2.867686399432431e-13))))))))))))));
+    } else {
+      j3 = (6.0) * ((1.0) - ey * ((1.0) + y * ((1.0) + y * ((0.5) + y * ((0.16666666666666666)))))) / (y * y * y * y);
+    }
+    float j2 = (y * j3 + ey) * (0.3333333333333333);
+    float j1 = (y * j2 + ey) * (0.5);
+    float j0 = (y * j1 + ey);
+    float sum = ((((1.0) * sl) * sl) * j1 + w * (((2.0) * sl) * j2 + w * ((1.0) * j3))) + ey * ((((1.0) * sr) * sr) * (j0 - j1) + w * (((2.0) * sr) * (j1 - j2) + w * ((1.0) * (j2 - j3))));
+    if ((-2.0) * sl < (30.0)) {
+      acc += exp((-2.0) * sl) * sum;
+    } else {
+      float eh = exp((0.5) * (-2.0) * sl);
+      acc += eh * (eh * sum);
+    }
+  }
+  return acc;
 }
 
 float bl_tent_xexp_sq(float x, float sigma) {
@@ -3226,7 +3326,72 @@ float bl_box_laplace_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
-  return bl_box_ept(x, sigma, 2, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_box_ept(x, sigma, 2, p);
+  float h = BL_SQRT3 * sigma;
+  float acc = (0.0);
+  {  // term 0 (reflected: u = -x)
+      float u = -x;
+      float el = (0.0) - u;
+    if (el < h) {
+      if (el > -h) {
+        float len = h - el;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        acc += (len / ((2.0) * h)) * (j0);
+      } else {
+        float s0 = u - h;
+        float len = (2.0) * h;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        float sum = ((1.0) * j0);
+        acc += exp((-1.0) * s0) * sum;
+      }
+    }
+  }
+  {  // term 1
+      float u = x;
+      float el = (0.0) - u;
+    if (el < h) {
+      if (el > -h) {
+        float len = h - el;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        acc += (len / ((2.0) * h)) * (j0);
+      } else {
+        float s0 = u - h;
+        float len = (2.0) * h;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        float sum = ((1.0) * j0);
+        acc += exp((-1.0) * s0) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_box_laplace(float x, float sigma) {
@@ -3248,7 +3413,72 @@ float bl_box_laplace_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
-  return bl_box_ept(x, sigma, 2, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_box_ept(x, sigma, 2, p);
+  float h = BL_SQRT3 * sigma;
+  float acc = (0.0);
+  {  // term 0 (reflected: u = -x)
+      float u = -x;
+      float el = (0.0) - u;
+    if (el < h) {
+      if (el > -h) {
+        float len = h - el;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        acc += (len / ((2.0) * h)) * (j0);
+      } else {
+        float s0 = u - h;
+        float len = (2.0) * h;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        float sum = ((1.0) * j0);
+        acc += exp((-2.0) * s0) * sum;
+      }
+    }
+  }
+  {  // term 1
+      float u = x;
+      float el = (0.0) - u;
+    if (el < h) {
+      if (el > -h) {
+        float len = h - el;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        acc += (len / ((2.0) * h)) * (j0);
+      } else {
+        float s0 = u - h;
+        float len = (2.0) * h;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        float sum = ((1.0) * j0);
+        acc += exp((-2.0) * s0) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_box_laplace_sq(float x, float sigma) {
@@ -3270,7 +3500,122 @@ float bl_tent_laplace_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
-  return bl_tent_ept(x, sigma, 2, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_tent_ept(x, sigma, 2, p);
+  float w = BL_SQRT6 * sigma;
+  float acc = (0.0);
+  {  // term 0 (reflected: u = -x)
+      float u = -x;
+      float el = (0.0) - u;
+    if (el < w) {
+      if (el > (0.0)) {
+        float len = w - el;
+        float lam = len / w;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        float lenl = -el;
+        float laml = lenl / w;
+        float yl = 1.0 * lenl;
+        float eyl = exp(-yl);
+        float lj1;
+        if (yl < (0.9645097620250751)) {
+          lj1 = eyl * ((0.5) + yl * ((0.16666666666666666) + yl * ((0.041666666666666664) + yl * ((0.008333333333333333) + yl * ((0.001388888888888889) + yl * ((0.0001984126984126984) + yl * ((2.48015873015873e-05) + yl * ((2.7557319223985893e-06) + yl * ((2.755731922398589e-07) + yl * ((2.505210838544172e-08)))))))))));
+        } else {
+          lj1 = (1.0) * ((1.0) - eyl * ((1.0) + yl * ((1.0)))) / (yl * yl);
+        }
+        float lj0 = (yl * lj1 + eyl);
+        float yr = 1.0 * w;
+        float eyr = exp(-yr);
+        float rj1;
+        if (yr < (0.9645097620250751)) {
+          rj1 = eyr * ((0.5) + yr * ((0.16666666666666666) + yr * ((0.041666666666666664) + yr * ((0.008333333333333333) + yr * ((0.001388888888888889) + yr * ((0.0001984126984126984) + yr * ((2.48015873015873e-05) + yr * ((2.7557319223985893e-06) + yr * ((2.755731922398589e-07) + yr * ((2.505210838544172e-08)))))))))));
+        } else {
+          rj1 = (1.0) * ((1.0) - eyr * ((1.0) + yr * ((1.0)))) / (yr * yr);
+        }
+        float rj0 = (yr * rj1 + eyr);
+        float gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((1.0) * (rj0 - rj1)));
+      } else {
+        float sl = u - w;
+        float y = 1.0 * w;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        float sum = ((1.0) * j1) + ey * ((1.0) * (j0 - j1));
+        acc += exp((-1.0) * sl) * sum;
+      }
+    }
+  }
+  {  // term 1
+      float u = x;
+      float el = (0.0) - u;
+    if (el < w) {
+      if (el > (0.0)) {
+        float len = w - el;
+        float lam = len / w;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        float lenl = -el;
+        float laml = lenl / w;
+        float yl = 1.0 * lenl;
+        float eyl = exp(-yl);
+        float lj1;
+        if (yl < (0.9645097620250751)) {
+          lj1 = eyl * ((0.5) + yl * ((0.16666666666666666) + yl * ((0.041666666666666664) + yl * ((0.008333333333333333) + yl * ((0.001388888888888889) + yl * ((0.0001984126984126984) + yl * ((2.48015873015873e-05) + yl * ((2.7557319223985893e-06) + yl * ((2.755731922398589e-07) + yl * ((2.505210838544172e-08)))))))))));
+        } else {
+          lj1 = (1.0) * ((1.0) - eyl * ((1.0) + yl * ((1.0)))) / (yl * yl);
+        }
+        float lj0 = (yl * lj1 + eyl);
+        float yr = 1.0 * w;
+        float eyr = exp(-yr);
+        float rj1;
+        if (yr < (0.9645097620250751)) {
+          rj1 = eyr * ((0.5) + yr * ((0.16666666666666666) + yr * ((0.041666666666666664) + yr * ((0.008333333333333333) + yr * ((0.001388888888888889) + yr * ((0.0001984126984126984) + yr * ((2.48015873015873e-05) + yr * ((2.7557319223985893e-06) + yr * ((2.755731922398589e-07) + yr * ((2.505210838544172e-08)))))))))));
+        } else {
+          rj1 = (1.0) * ((1.0) - eyr * ((1.0) + yr * ((1.0)))) / (yr * yr);
+        }
+        float rj0 = (yr * rj1 + eyr);
+        float gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((1.0) * (rj0 - rj1)));
+      } else {
+        float sl = u - w;
+        float y = 1.0 * w;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        float sum = ((1.0) * j1) + ey * ((1.0) * (j0 - j1));
+        acc += exp((-1.0) * sl) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_tent_laplace(float x, float sigma) {
@@ -3292,7 +3637,122 @@ float bl_tent_laplace_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 2, p);
-  return bl_tent_ept(x, sigma, 2, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_tent_ept(x, sigma, 2, p);
+  float w = BL_SQRT6 * sigma;
+  float acc = (0.0);
+  {  // term 0 (reflected: u = -x)
+      float u = -x;
+      float el = (0.0) - u;
+    if (el < w) {
+      if (el > (0.0)) {
+        float len = w - el;
+        float lam = len / w;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        float lenl = -el;
+        float laml = lenl / w;
+        float yl = 2.0 * lenl;
+        float eyl = exp(-yl);
+        float lj1;
+        if (yl < (0.9645097620250751)) {
+          lj1 = eyl * ((0.5) + yl * ((0.16666666666666666) + yl * ((0.041666666666666664) + yl * ((0.008333333333333333) + yl * ((0.001388888888888889) + yl * ((0.0001984126984126984) + yl * ((2.48015873015873e-05) + yl * ((2.7557319223985893e-06) + yl * ((2.755731922398589e-07) + yl * ((2.505210838544172e-08)))))))))));
+        } else {
+          lj1 = (1.0) * ((1.0) - eyl * ((1.0) + yl * ((1.0)))) / (yl * yl);
+        }
+        float lj0 = (yl * lj1 + eyl);
+        float yr = 2.0 * w;
+        float eyr = exp(-yr);
+        float rj1;
+        if (yr < (0.9645097620250751)) {
+          rj1 = eyr * ((0.5) + yr * ((0.16666666666666666) + yr * ((0.041666666666666664) + yr * ((0.008333333333333333) + yr * ((0.001388888888888889) + yr * ((0.0001984126984126984) + yr * ((2.48015873015873e-05) + yr * ((2.7557319223985893e-06) + yr * ((2.755731922398589e-07) + yr * ((2.505210838544172e-08)))))))))));
+        } else {
+          rj1 = (1.0) * ((1.0) - eyr * ((1.0) + yr * ((1.0)))) / (yr * yr);
+        }
+        float rj0 = (yr * rj1 + eyr);
+        float gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((1.0) * (rj0 - rj1)));
+      } else {
+        float sl = u - w;
+        float y = 2.0 * w;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        float sum = ((1.0) * j1) + ey * ((1.0) * (j0 - j1));
+        acc += exp((-2.0) * sl) * sum;
+      }
+    }
+  }
+  {  // term 1
+      float u = x;
+      float el = (0.0) - u;
+    if (el < w) {
+      if (el > (0.0)) {
+        float len = w - el;
+        float lam = len / w;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        float lenl = -el;
+        float laml = lenl / w;
+        float yl = 2.0 * lenl;
+        float eyl = exp(-yl);
+        float lj1;
+        if (yl < (0.9645097620250751)) {
+          lj1 = eyl * ((0.5) + yl * ((0.16666666666666666) + yl * ((0.041666666666666664) + yl * ((0.008333333333333333) + yl * ((0.001388888888888889) + yl * ((0.0001984126984126984) + yl * ((2.48015873015873e-05) + yl * ((2.7557319223985893e-06) + yl * ((2.755731922398589e-07) + yl * ((2.505210838544172e-08)))))))))));
+        } else {
+          lj1 = (1.0) * ((1.0) - eyl * ((1.0) + yl * ((1.0)))) / (yl * yl);
+        }
+        float lj0 = (yl * lj1 + eyl);
+        float yr = 2.0 * w;
+        float eyr = exp(-yr);
+        float rj1;
+        if (yr < (0.9645097620250751)) {
+          rj1 = eyr * ((0.5) + yr * ((0.16666666666666666) + yr * ((0.041666666666666664) + yr * ((0.008333333333333333) + yr * ((0.001388888888888889) + yr * ((0.0001984126984126984) + yr * ((2.48015873015873e-05) + yr * ((2.7557319223985893e-06) + yr * ((2.755731922398589e-07) + yr * ((2.505210838544172e-08)))))))))));
+        } else {
+          rj1 = (1.0) * ((1.0) - eyr * ((1.0) + yr * ((1.0)))) / (yr * yr);
+        }
+        float rj0 = (yr * rj1 + eyr);
+        float gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((1.0) * (rj0 - rj1)));
+      } else {
+        float sl = u - w;
+        float y = 2.0 * w;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        float sum = ((1.0) * j1) + ey * ((1.0) * (j0 - j1));
+        acc += exp((-2.0) * sl) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_tent_laplace_sq(float x, float sigma) {
@@ -3394,7 +3854,41 @@ float bl_box_exp_decay_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_box_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_box_ept(x, sigma, 1, p);
+  float h = BL_SQRT3 * sigma;
+  float acc = (0.0);
+  {  // term 0
+      float u = x;
+      float el = (0.0) - u;
+    if (el < h) {
+      if (el > -h) {
+        float len = h - el;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        acc += (len / ((2.0) * h)) * (j0);
+      } else {
+        float s0 = u - h;
+        float len = (2.0) * h;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        float sum = ((1.0) * j0);
+        acc += exp((-1.0) * s0) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_box_exp_decay(float x, float sigma) {
@@ -3416,7 +3910,41 @@ float bl_box_exp_decay_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_box_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_box_ept(x, sigma, 1, p);
+  float h = BL_SQRT3 * sigma;
+  float acc = (0.0);
+  {  // term 0
+      float u = x;
+      float el = (0.0) - u;
+    if (el < h) {
+      if (el > -h) {
+        float len = h - el;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        acc += (len / ((2.0) * h)) * (j0);
+      } else {
+        float s0 = u - h;
+        float len = (2.0) * h;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j0;
+        if (y < (0.2893479434156535)) {
+          j0 = ey * ((1.0) + y * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984))))))));
+        } else {
+          j0 = (1.0) * ((1.0) - ey * ((1.0))) / (y);
+        }
+        float sum = ((1.0) * j0);
+        acc += exp((-2.0) * s0) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_box_exp_decay_sq(float x, float sigma) {
@@ -3438,7 +3966,66 @@ float bl_tent_exp_decay_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_tent_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_tent_ept(x, sigma, 1, p);
+  float w = BL_SQRT6 * sigma;
+  float acc = (0.0);
+  {  // term 0
+      float u = x;
+      float el = (0.0) - u;
+    if (el < w) {
+      if (el > (0.0)) {
+        float len = w - el;
+        float lam = len / w;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        float lenl = -el;
+        float laml = lenl / w;
+        float yl = 1.0 * lenl;
+        float eyl = exp(-yl);
+        float lj1;
+        if (yl < (0.9645097620250751)) {
+          lj1 = eyl * ((0.5) + yl * ((0.16666666666666666) + yl * ((0.041666666666666664) + yl * ((0.008333333333333333) + yl * ((0.001388888888888889) + yl * ((0.0001984126984126984) + yl * ((2.48015873015873e-05) + yl * ((2.7557319223985893e-06) + yl * ((2.755731922398589e-07) + yl * ((2.505210838544172e-08)))))))))));
+        } else {
+          lj1 = (1.0) * ((1.0) - eyl * ((1.0) + yl * ((1.0)))) / (yl * yl);
+        }
+        float lj0 = (yl * lj1 + eyl);
+        float yr = 1.0 * w;
+        float eyr = exp(-yr);
+        float rj1;
+        if (yr < (0.9645097620250751)) {
+          rj1 = eyr * ((0.5) + yr * ((0.16666666666666666) + yr * ((0.041666666666666664) + yr * ((0.008333333333333333) + yr * ((0.001388888888888889) + yr * ((0.0001984126984126984) + yr * ((2.48015873015873e-05) + yr * ((2.7557319223985893e-06) + yr * ((2.755731922398589e-07) + yr * ((2.505210838544172e-08)))))))))));
+        } else {
+          rj1 = (1.0) * ((1.0) - eyr * ((1.0) + yr * ((1.0)))) / (yr * yr);
+        }
+        float rj0 = (yr * rj1 + eyr);
+        float gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((1.0) * (rj0 - rj1)));
+      } else {
+        float sl = u - w;
+        float y = 1.0 * w;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        float sum = ((1.0) * j1) + ey * ((1.0) * (j0 - j1));
+        acc += exp((-1.0) * sl) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_tent_exp_decay(float x, float sigma) {
@@ -3460,7 +4047,66 @@ float bl_tent_exp_decay_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_tent_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_tent_ept(x, sigma, 1, p);
+  float w = BL_SQRT6 * sigma;
+  float acc = (0.0);
+  {  // term 0
+      float u = x;
+      float el = (0.0) - u;
+    if (el < w) {
+      if (el > (0.0)) {
+        float len = w - el;
+        float lam = len / w;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        float lenl = -el;
+        float laml = lenl / w;
+        float yl = 2.0 * lenl;
+        float eyl = exp(-yl);
+        float lj1;
+        if (yl < (0.9645097620250751)) {
+          lj1 = eyl * ((0.5) + yl * ((0.16666666666666666) + yl * ((0.041666666666666664) + yl * ((0.008333333333333333) + yl * ((0.001388888888888889) + yl * ((0.0001984126984126984) + yl * ((2.48015873015873e-05) + yl * ((2.7557319223985893e-06) + yl * ((2.755731922398589e-07) + yl * ((2.505210838544172e-08)))))))))));
+        } else {
+          lj1 = (1.0) * ((1.0) - eyl * ((1.0) + yl * ((1.0)))) / (yl * yl);
+        }
+        float lj0 = (yl * lj1 + eyl);
+        float yr = 2.0 * w;
+        float eyr = exp(-yr);
+        float rj1;
+        if (yr < (0.9645097620250751)) {
+          rj1 = eyr * ((0.5) + yr * ((0.16666666666666666) + yr * ((0.041666666666666664) + yr * ((0.008333333333333333) + yr * ((0.001388888888888889) + yr * ((0.0001984126984126984) + yr * ((2.48015873015873e-05) + yr * ((2.7557319223985893e-06) + yr * ((2.755731922398589e-07) + yr * ((2.505210838544172e-08)))))))))));
+        } else {
+          rj1 = (1.0) * ((1.0) - eyr * ((1.0) + yr * ((1.0)))) / (yr * yr);
+        }
+        float rj0 = (yr * rj1 + eyr);
+        float gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((1.0) * (rj0 - rj1)));
+      } else {
+        float sl = u - w;
+        float y = 2.0 * w;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        float sum = ((1.0) * j1) + ey * ((1.0) * (j0 - j1));
+        acc += exp((-2.0) * sl) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_tent_exp_decay_sq(float x, float sigma) {
@@ -3565,7 +4211,43 @@ float bl_box_exp_ramp_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_box_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_box_ept(x, sigma, 1, p);
+  float h = BL_SQRT3 * sigma;
+  float acc = (0.0);
+  {  // term 0
+      float u = x;
+      float el = (0.0) - u;
+    if (el < h) {
+      if (el > -h) {
+        float len = h - el;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        acc += (len / ((2.0) * h)) * ((j1) * len);
+      } else {
+        float s0 = u - h;
+        float len = (2.0) * h;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j1;
+        if (y < (0.9645097620250751)) {
+          j1 = ey * ((0.5) + y * ((0.16666666666666666) + y * ((0.041666666666666664) + y * ((0.008333333333333333) + y * ((0.001388888888888889) + y * ((0.0001984126984126984) + y * ((2.48015873015873e-05) + y * ((2.7557319223985893e-06) + y * ((2.755731922398589e-07) + y * ((2.505210838544172e-08)))))))))));
+        } else {
+          j1 = (1.0) * ((1.0) - ey * ((1.0) + y * ((1.0)))) / (y * y);
+        }
+        float j0 = (y * j1 + ey);
+        float sum = (((1.0) * s0) * j0 + len * ((1.0) * j1));
+        acc += exp((-1.0) * s0) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_box_exp_ramp(float x, float sigma) {
@@ -3587,7 +4269,45 @@ float bl_box_exp_ramp_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_box_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_box_ept(x, sigma, 1, p);
+  float h = BL_SQRT3 * sigma;
+  float acc = (0.0);
+  {  // term 0
+      float u = x;
+      float el = (0.0) - u;
+    if (el < h) {
+      if (el > -h) {
+        float len = h - el;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j2;
+        if (y < (1.7348729706968233)) {
+          j2 = ey * ((0.3333333333333333) + y * ((0.08333333333333333) + y * ((0.016666666666666666) + y * ((0.002777777777777778) + y * ((0.0003968253968253968) + y * ((4.96031746031746e-05) + y * ((5.5114638447971785e-06) + y * ((5.511463844797178e-07) + y * ((5.010421677088344e-08) + y * ((4.17535139757362e-09) + y * ((3.2118087673643227e-10) + y * ((2.294149119545945e-11)))))))))))));
+        } else {
+          j2 = (2.0) * ((1.0) - ey * ((1.0) + y * ((1.0) + y * ((0.5))))) / (y * y * y);
+        }
+        float j1 = (y * j2 + ey) * (0.5);
+        float j0 = (y * j1 + ey);
+        acc += (len / ((2.0) * h)) * (((j2) * len) * len);
+      } else {
+        float s0 = u - h;
+        float len = (2.0) * h;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j2;
+        if (y < (1.7348729706968233)) {
+          j2 = ey * ((0.3333333333333333) + y * ((0.08333333333333333) + y * ((0.016666666666666666) + y * ((0.002777777777777778) + y * ((0.0003968253968253968) + y * ((4.96031746031746e-05) + y * ((5.5114638447971785e-06) + y * ((5.511463844797178e-07) + y * ((5.010421677088344e-08) + y * ((4.17535139757362e-09) + y * ((3.2118087673643227e-10) + y * ((2.294149119545945e-11)))))))))))));
+        } else {
+          j2 = (2.0) * ((1.0) - ey * ((1.0) + y * ((1.0) + y * ((0.5))))) / (y * y * y);
+        }
+        float j1 = (y * j2 + ey) * (0.5);
+        float j0 = (y * j1 + ey);
+        float sum = ((((1.0) * s0) * s0) * j0 + len * (((2.0) * s0) * j1 + len * ((1.0) * j2)));
+        acc += exp((-2.0) * s0) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_box_exp_ramp_sq(float x, float sigma) {
@@ -3609,7 +4329,72 @@ float bl_tent_exp_ramp_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_tent_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_tent_ept(x, sigma, 1, p);
+  float w = BL_SQRT6 * sigma;
+  float acc = (0.0);
+  {  // term 0
+      float u = x;
+      float el = (0.0) - u;
+    if (el < w) {
+      if (el > (0.0)) {
+        float len = w - el;
+        float lam = len / w;
+        float y = 1.0 * len;
+        float ey = exp(-y);
+        float j2;
+        if (y < (1.7348729706968233)) {
+          j2 = ey * ((0.3333333333333333) + y * ((0.08333333333333333) + y * ((0.016666666666666666) + y * ((0.002777777777777778) + y * ((0.0003968253968253968) + y * ((4.96031746031746e-05) + y * ((5.5114638447971785e-06) + y * ((5.511463844797178e-07) + y * ((5.010421677088344e-08) + y * ((4.17535139757362e-09) + y * ((3.2118087673643227e-10) + y * ((2.294149119545945e-11)))))))))))));
+        } else {
+          j2 = (2.0) * ((1.0) - ey * ((1.0) + y * ((1.0) + y * ((0.5))))) / (y * y * y);
+        }
+        float j1 = (y * j2 + ey) * (0.5);
+        float j0 = (y * j1 + ey);
+        acc += lam * lam * (((j1 - j2)) * len);
+      } else if (el > -w) {
+        float lenl = -el;
+        float laml = lenl / w;
+        float yl = 1.0 * lenl;
+        float eyl = exp(-yl);
+        float lj2;
+        if (yl < (1.7348729706968233)) {
+          lj2 = eyl * ((0.3333333333333333) + yl * ((0.08333333333333333) + yl * ((0.016666666666666666) + yl * ((0.002777777777777778) + yl * ((0.0003968253968253968) + yl * ((4.96031746031746e-05) + yl * ((5.5114638447971785e-06) + yl * ((5.511463844797178e-07) + yl * ((5.010421677088344e-08) + yl * ((4.17535139757362e-09) + yl * ((3.2118087673643227e-10) + yl * ((2.294149119545945e-11)))))))))))));
+        } else {
+          lj2 = (2.0) * ((1.0) - eyl * ((1.0) + yl * ((1.0) + yl * ((0.5))))) / (yl * yl * yl);
+        }
+        float lj1 = (yl * lj2 + eyl) * (0.5);
+        float lj0 = (yl * lj1 + eyl);
+        float yr = 1.0 * w;
+        float eyr = exp(-yr);
+        float rj2;
+        if (yr < (1.7348729706968233)) {
+          rj2 = eyr * ((0.3333333333333333) + yr * ((0.08333333333333333) + yr * ((0.016666666666666666) + yr * ((0.002777777777777778) + yr * ((0.0003968253968253968) + yr * ((4.96031746031746e-05) + yr * ((5.5114638447971785e-06) + yr * ((5.511463844797178e-07) + yr * ((5.010421677088344e-08) + yr * ((4.17535139757362e-09) + yr * ((3.2118087673643227e-10) + yr * ((2.294149119545945e-11)))))))))))));
+        } else {
+          rj2 = (2.0) * ((1.0) - eyr * ((1.0) + yr * ((1.0) + yr * ((0.5))))) / (yr * yr * yr);
+        }
+        float rj1 = (yr * rj2 + eyr) * (0.5);
+        float rj0 = (yr * rj1 + eyr);
+        float gaml = (w + el) / w;
+        float sr = u;
+        acc += (laml * (((gaml * lj1 + laml * lj2)) * lenl) + eyl * (((1.0) * sr) * (rj0 - rj1) + w * ((1.0) * (rj1 - rj2))));
+      } else {
+        float sl = u - w;
+        float sr = u;
+        float y = 1.0 * w;
+        float ey = exp(-y);
+        float j2;
+        if (y < (1.7348729706968233)) {
+          j2 = ey * ((0.3333333333333333) + y * ((0.08333333333333333) + y * ((0.016666666666666666) + y * ((0.002777777777777778) + y * ((0.0003968253968253968) + y * ((4.96031746031746e-05) + y * ((5.5114638447971785e-06) + y * ((5.511463844797178e-07) + y * ((5.010421677088344e-08) + y * ((4.17535139757362e-09) + y * ((3.2118087673643227e-10) + y * ((2.294149119545945e-11)))))))))))));
+        } else {
+          j2 = (2.0) * ((1.0) - ey * ((1.0) + y * ((1.0) + y * ((0.5))))) / (y * y * y);
+        }
+        float j1 = (y * j2 + ey) * (0.5);
+        float j0 = (y * j1 + ey);
+        float sum = (((1.0) * sl) * j1 + w * ((1.0) * j2)) + ey * (((1.0) * sr) * (j0 - j1) + w * ((1.0) * (j1 - j2)));
+        acc += exp((-1.0) * sl) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_tent_exp_ramp(float x, float sigma) {
@@ -3631,7 +4416,76 @@ float bl_tent_exp_ramp_sq_raw(float x, float sigma) {
       BlExpTerm(0.0, 0.0, 0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_ept_eval(x, 1, p);
-  return bl_tent_ept(x, sigma, 1, p);
+  if (!(abs(x) <= (10000.0)) || sigma > (10000.0)) return bl_tent_ept(x, sigma, 1, p);
+  float w = BL_SQRT6 * sigma;
+  float acc = (0.0);
+  {  // term 0
+      float u = x;
+      float el = (0.0) - u;
+    if (el < w) {
+      if (el > (0.0)) {
+        float len = w - el;
+        float lam = len / w;
+        float y = 2.0 * len;
+        float ey = exp(-y);
+        float j3;
+        if (y < (2.557415295497982)) {
+          j3 = ey * ((0.25) + y * ((0.05) + y * ((0.008333333333333333) + y * ((0.0011904761904761906) + y * ((0.00014880952380952382) + y * ((1.6534391534391536e-05) + y * ((1.6534391534391535e-06) + y * ((1.5031265031265032e-07) + y * ((1.252605419272086e-08) + y * ((9.635426302092969e-10) + y * ((6.882447358637835e-11) + y * ((4.58829823909189e-12) + y * ((2.867686399432431e-13))))))))))))));
+        } else {
+          j3 = (6.0) * ((1.0) - ey * ((1.0) + y * ((1.0) + y * ((0.5) + y * ((0.16666666666666666)))))) / (y * y * y * y);
+        }
+        float j2 = (y * j3 + ey) * (0.3333333333333333);
+        float j1 = (y * j2 + ey) * (0.5);
+        float j0 = (y * j1 + ey);
+        acc += lam * lam * ((((j2 - j3)) * len) * len);
+      } else if (el > -w) {
+        float lenl = -el;
+        float laml = lenl / w;
+        float yl = 2.0 * lenl;
+        float eyl = exp(-yl);
+        float lj3;
+        if (yl < (2.557415295497982)) {
+          lj3 = eyl * ((0.25) + yl * ((0.05) + yl * ((0.008333333333333333) + yl * ((0.0011904761904761906) + yl * ((0.00014880952380952382) + yl * ((1.6534391534391536e-05) + yl * ((1.6534391534391535e-06) + yl * ((1.5031265031265032e-07) + yl * ((1.252605419272086e-08) + yl * ((9.635426302092969e-10) + yl * ((6.882447358637835e-11) + yl * ((4.58829823909189e-12) + yl * ((2.867686399432431e-13))))))))))))));
+        } else {
+          lj3 = (6.0) * ((1.0) - eyl * ((1.0) + yl * ((1.0) + yl * ((0.5) + yl * ((0.16666666666666666)))))) / (yl * yl * yl * yl);
+        }
+        float lj2 = (yl * lj3 + eyl) * (0.3333333333333333);
+        float lj1 = (yl * lj2 + eyl) * (0.5);
+        float lj0 = (yl * lj1 + eyl);
+        float yr = 2.0 * w;
+        float eyr = exp(-yr);
+        float rj3;
+        if (yr < (2.557415295497982)) {
+          rj3 = eyr * ((0.25) + yr * ((0.05) + yr * ((0.008333333333333333) + yr * ((0.0011904761904761906) + yr * ((0.00014880952380952382) + yr * ((1.6534391534391536e-05) + yr * ((1.6534391534391535e-06) + yr * ((1.5031265031265032e-07) + yr * ((1.252605419272086e-08) + yr * ((9.635426302092969e-10) + yr * ((6.882447358637835e-11) + yr * ((4.58829823909189e-12) + yr * ((2.867686399432431e-13))))))))))))));
+        } else {
+          rj3 = (6.0) * ((1.0) - eyr * ((1.0) + yr * ((1.0) + yr * ((0.5) + yr * ((0.16666666666666666)))))) / (yr * yr * yr * yr);
+        }
+        float rj2 = (yr * rj3 + eyr) * (0.3333333333333333);
+        float rj1 = (yr * rj2 + eyr) * (0.5);
+        float rj0 = (yr * rj1 + eyr);
+        float gaml = (w + el) / w;
+        float sr = u;
+        acc += (laml * ((((gaml * lj2 + laml * lj3)) * lenl) * lenl) + eyl * ((((1.0) * sr) * sr) * (rj0 - rj1) + w * (((2.0) * sr) * (rj1 - rj2) + w * ((1.0) * (rj2 - rj3)))));
+      } else {
+        float sl = u - w;
+        float sr = u;
+        float y = 2.0 * w;
+        float ey = exp(-y);
+        float j3;
+        if (y < (2.557415295497982)) {
+          j3 = ey * ((0.25) + y * ((0.05) + y * ((0.008333333333333333) + y * ((0.0011904761904761906) + y * ((0.00014880952380952382) + y * ((1.6534391534391536e-05) + y * ((1.6534391534391535e-06) + y * ((1.5031265031265032e-07) + y * ((1.252605419272086e-08) + y * ((9.635426302092969e-10) + y * ((6.882447358637835e-11) + y * ((4.58829823909189e-12) + y * ((2.867686399432431e-13))))))))))))));
+        } else {
+          j3 = (6.0) * ((1.0) - ey * ((1.0) + y * ((1.0) + y * ((0.5) + y * ((0.16666666666666666)))))) / (y * y * y * y);
+        }
+        float j2 = (y * j3 + ey) * (0.3333333333333333);
+        float j1 = (y * j2 + ey) * (0.5);
+        float j0 = (y * j1 + ey);
+        float sum = ((((1.0) * sl) * sl) * j1 + w * (((2.0) * sl) * j2 + w * ((1.0) * j3))) + ey * ((((1.0) * sr) * sr) * (j0 - j1) + w * (((2.0) * sr) * (j1 - j2) + w * ((1.0) * (j2 - j3))));
+        acc += exp((-2.0) * sl) * sum;
+      }
+    }
+  }
+  return acc;
 }
 
 float bl_tent_exp_ramp_sq(float x, float sigma) {

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "emit_box_tent_ept.hpp"
+#include "emit_syntax.hpp"
 #include "exp_poly.hpp"
 #include "functions.hpp"
 
@@ -29,43 +31,6 @@ std::string plain_impl_name(const std::string& atomic) {
 }
 
 namespace {
-
-// Language-specific spelling of the few constructs the bodies use.
-struct Syntax {
-  Lang lang;
-  bool cpp() const { return lang == Lang::Cpp; }
-  std::string T() const { return cpp() ? "T" : "float"; }
-  std::string ex(const GiNaC::ex& e) const { return sym::print(e, lang); }
-  std::string num(const GiNaC::ex& e) const { return sym::print(e, lang); }
-  std::string dbl(double v) const {
-    // Shortest text that reads back as v.
-    std::string t;
-    for (int prec = 6; prec <= 17; ++prec) {
-      std::ostringstream s;
-      s.precision(prec);
-      s << v;
-      t = s.str();
-      if (std::stod(t) == v) break;
-    }
-    if (t.find_first_of(".e") == std::string::npos) t += ".0";
-    return cpp() ? "T(" + t + ")" : "(" + t + ")";
-  }
-  std::string helper(const std::string& n) const { return cpp() ? "detail::" + n : "bl_" + n; }
-  std::string nan() const { return cpp() ? "detail::nan<T>()" : "bl_nan()"; }
-  std::string pi() const { return cpp() ? "detail::pi<T>()" : "bl_pi()"; }
-  std::string min(const std::string& a, const std::string& b) const {
-    return cpp() ? "detail::min2(" + a + ", " + b + ")" : "min(" + a + ", " + b + ")";
-  }
-  std::string bound(const Bound& b) const {
-    if (b.inf) return std::string(b.inf < 0 ? "-" : "") + (cpp() ? "detail::inf<T>()" : "1e30");
-    return ex(b.value);
-  }
-  std::string fn(const std::string& impl) const { return cpp() ? impl + "<T>" : "bl_" + impl; }
-  std::string decl(const std::string& name, const std::string& value) const {
-    // GLSL ES only allows constant expressions after const: plain locals there.
-    return std::string("  ") + (cpp() ? "const " : "") + T() + " " + name + " = " + value + ";\n";
-  }
-};
 
 std::string piece_table(const Syntax& s, const std::string& name, const std::vector<PolyPiece>& ps) {
   auto coeffs = [&](const PolyPiece& p) {
@@ -362,6 +327,8 @@ std::string body_exp_table(const Derived& d, const Syntax& s) {
     for (const auto& t : d.eterms) half_lines = half_lines && !(t.lo.finite() && t.hi.finite());
     if (half_lines) return body_gauss_ept(d, s);
   }
+  if (box_tent_ept_straight(d))
+    return body_box_tent_ept(d, s, eterm_table(s, "p", d.eterms), pieces_arg(s, "p", d.eterms.size()));
   const std::string P = pieces_arg(s, "p", d.eterms.size());
   const std::string call = d.kernel == Kernel::Gaussian ? "gauss_ept"
                            : d.kernel == Kernel::Box    ? "box_ept"
@@ -919,12 +886,37 @@ bool singular_only_at_zero(const sym::Atomic& a) {
   return !a.period && a.singular.size() == 1 && a.singular[0].is_zero();
 }
 
+// The first neglected order of the scaled series (series_body) at float's reach t = hh/x = 0.35,
+// relative to its leading term, is about t^2 = 0.12 times the last kept term (at x = 2, where
+// log x != 0): where that term is below 5e-6 the float path may take the series to float's reach
+// (inv2^2's x^-4 has growing coefficients, 1.2e-4 and 1.7e-5 for box and tent: those keep running
+// in double).
+bool float_series_reach_ok(const Derived& d) {
+  if (d.series.size() < 2) return false;
+  const GiNaC::symbol& x = sym::var_x();
+  const int n = static_cast<int>(d.series.size()) - 1;
+  const GiNaC::ex first = (d.series[0]).subs(x == 2).evalf();
+  const GiNaC::ex last = (d.series[n] * GiNaC::pow(x, 2 * n)).subs(x == 2).evalf();
+  if (!is_a<numeric>(first) || !is_a<numeric>(last) || ex_to<numeric>(first).is_zero()) return false;
+  const double ratio = std::fabs(ex_to<numeric>(last).to_double() / ex_to<numeric>(first).to_double());
+  return ratio * std::pow(0.35, 2 * n) < 5e-6;
+}
+
 std::string body_antiderivative(const Derived& d, const Syntax& s) {
   const sym::Atomic& a = *d.atomic;
   const symbol& x = sym::var_x();
   const GiNaC::ex hh = sym::var_hh();
   std::string out = guard_sigma(s);
-  if (s.cpp() && !a.singular.empty())
+  if (s.cpp() && singular_only_at_zero(a) && float_series_reach_ok(d))
+    // Singular at 0 only: r = |x| is exact in float, and the difference quotient of F's
+    // non-polynomial part (x^k log|x| terms, differenced at hh >= 0.35 |x|) loses about
+    // 3 |log|x|| (|x|/hh)^2 <= 3 * 4.2 * 8 roundings for 1/64 <= |x| <= 64: float stays in float
+    // there (< 3e-6 relative, measured by blverify), and runs in double outside.
+    out +=
+        "  if constexpr (sizeof(T) < sizeof(double)) {\n    if (!(abs(x) >= T(0.015625) && abs(x) <= "
+        "T(64))) return T(" +
+        impl_name(d) + "<double>(double(x), double(sigma)));\n  }\n";
+  else if (s.cpp() && !a.singular.empty())
     // Next to a singularity the distance r (and x +- hh) needs more digits than a float has: a float
     // input 4e-8 from pi/2 is 0 from the float pi/2. Float entries of compact rules run in double
     // (GLSL stays in float: see docs/derivations.md).

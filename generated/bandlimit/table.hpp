@@ -2041,7 +2041,38 @@ T box_xexp_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
+  const T h = detail::k_sqrt3<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0 (reflected: u = -x)
+      const T u = -x;
+    const T s0 = u - h;
+    const T len = T(2.0) * h;
+    const T y = T(1) * len;
+    const T ey = exp(-y);
+    T j1;
+    if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+      if constexpr (sizeof(T) < sizeof(double))
+        j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+      else
+        j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+    } else {
+      j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+    }
+    const T j0 = (y * j1 + ey);
+    const T sum = ((((T(-1))) * s0) * j0 + len * (((T(-1))) * j1));
+    if ((T(-1)) * s0 < T(30.0)) {
+      acc += exp((T(-1)) * s0) * sum;
+    } else {
+      const T eh = exp(T(0.5) * (T(-1)) * s0);
+      acc += eh * (eh * sum);
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2064,7 +2095,39 @@ T box_xexp_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
+  const T h = detail::k_sqrt3<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0 (reflected: u = -x)
+      const T u = -x;
+    const T s0 = u - h;
+    const T len = T(2.0) * h;
+    const T y = T(2) * len;
+    const T ey = exp(-y);
+    T j2;
+    if (y < (sizeof(T) < sizeof(double) ? T(1.7348729706968233) : T(0.19241728160191696))) {
+      if constexpr (sizeof(T) < sizeof(double))
+        j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09) + y * (T(3.2118087673643227e-10) + y * (T(2.294149119545945e-11)))))))))))));
+      else
+        j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09)))))))))));
+    } else {
+      j2 = T(2.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0) + y * (T(0.5))))) / (y * y * y);
+    }
+    const T j1 = (y * j2 + ey) * T(0.5);
+    const T j0 = (y * j1 + ey);
+    const T sum = ((((T(1)) * s0) * s0) * j0 + len * (((T(2)) * s0) * j1 + len * ((T(1)) * j2)));
+    if ((T(-2)) * s0 < T(30.0)) {
+      acc += exp((T(-2)) * s0) * sum;
+    } else {
+      const T eh = exp(T(0.5) * (T(-2)) * s0);
+      acc += eh * (eh * sum);
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2086,7 +2149,39 @@ T tent_xexp_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
+  const T w = detail::k_sqrt6<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0 (reflected: u = -x)
+      const T u = -x;
+    const T sl = u - w;
+    const T sr = u;
+    const T y = T(1) * w;
+    const T ey = exp(-y);
+    T j2;
+    if (y < (sizeof(T) < sizeof(double) ? T(1.7348729706968233) : T(0.19241728160191696))) {
+      if constexpr (sizeof(T) < sizeof(double))
+        j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09) + y * (T(3.2118087673643227e-10) + y * (T(2.294149119545945e-11)))))))))))));
+      else
+        j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09)))))))))));
+    } else {
+      j2 = T(2.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0) + y * (T(0.5))))) / (y * y * y);
+    }
+    const T j1 = (y * j2 + ey) * T(0.5);
+    const T j0 = (y * j1 + ey);
+    const T sum = ((((T(-1))) * sl) * j1 + w * (((T(-1))) * j2)) + ey * ((((T(-1))) * sr) * (j0 - j1) + w * (((T(-1))) * (j1 - j2)));
+    if ((T(-1)) * sl < T(30.0)) {
+      acc += exp((T(-1)) * sl) * sum;
+    } else {
+      const T eh = exp(T(0.5) * (T(-1)) * sl);
+      acc += eh * (eh * sum);
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -2109,7 +2204,40 @@ T tent_xexp_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
+  const T w = detail::k_sqrt6<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0 (reflected: u = -x)
+      const T u = -x;
+    const T sl = u - w;
+    const T sr = u;
+    const T y = T(2) * w;
+    const T ey = exp(-y);
+    T j3;
+    if (y < (sizeof(T) < sizeof(double) ? T(2.557415295497982) : T(0.43079965933990344))) {
+      if constexpr (sizeof(T) < sizeof(double))
+        j3 = ey * (T(0.25) + y * (T(0.05) + y * (T(0.008333333333333333) + y * (T(0.0011904761904761906) + y * (T(0.00014880952380952382) + y * (T(1.6534391534391536e-05) + y * (T(1.6534391534391535e-06) + y * (T(1.5031265031265032e-07) + y * (T(1.252605419272086e-08) + y * (T(9.635426302092969e-10) + y * (T(6.882447358637835e-11) + y * (T(4.58829823909189e-12) + y * (T(2.867686399432431e-13))))))))))))));
+      else
+        j3 = ey * (T(0.25) + y * (T(0.05) + y * (T(0.008333333333333333) + y * (T(0.0011904761904761906) + y * (T(0.00014880952380952382) + y * (T(1.6534391534391536e-05) + y * (T(1.6534391534391535e-06) + y * (T(1.5031265031265032e-07) + y * (T(1.252605419272086e-08) + y * (T(9.635426302092969e-10) + y * (T(6.882447358637835e-11) + y * (T(4.58829823909189e-12)))))))))))));
+    } else {
+      j3 = T(6.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666)))))) / (y * y * y * y);
+    }
+    const T j2 = (y * j3 + ey) * T(0.3333333333333333);
+    const T j1 = (y * j2 + ey) * T(0.5);
+    const T j0 = (y * j1 + ey);
+    const T sum = ((((T(1)) * sl) * sl) * j1 + w * (((T(2)) * sl) * j2 + w * ((T(1)) * j3))) + ey * ((((T(1)) * sr) * sr) * (j0 - j1) + w * (((T(2)) * sr) * (j1 - j2) + w * ((T(1)) * (j2 - j3))));
+    if ((T(-2)) * sl < T(30.0)) {
+      acc += exp((T(-2)) * sl) * sum;
+    } else {
+      const T eh = exp(T(0.5) * (T(-2)) * sl);
+      acc += eh * (eh * sum);
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3142,7 +3270,52 @@ T box_laplace_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
+  const T h = detail::k_sqrt3<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0 (reflected: u = -x)
+      const T u = -x;
+      const T el = (T(0)) - u;
+    if (el < h) {
+      if (el > -h) {
+        const T len = h - el;
+        const T y = T(1) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        acc += (len / (T(2.0) * h)) * (j0);
+      } else {
+        const T s0 = u - h;
+        const T len = T(2.0) * h;
+        const T y = T(1) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        const T sum = ((T(1)) * j0);
+        acc += exp((T(-1)) * s0) * sum;
+      }
+    }
+  }
+  {  // term 1
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < h) {
+      if (el > -h) {
+        const T len = h - el;
+        const T y = T(1) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        acc += (len / (T(2.0) * h)) * (j0);
+      } else {
+        const T s0 = u - h;
+        const T len = T(2.0) * h;
+        const T y = T(1) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        const T sum = ((T(1)) * j0);
+        acc += exp((T(-1)) * s0) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3166,7 +3339,52 @@ T box_laplace_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
+  const T h = detail::k_sqrt3<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0 (reflected: u = -x)
+      const T u = -x;
+      const T el = (T(0)) - u;
+    if (el < h) {
+      if (el > -h) {
+        const T len = h - el;
+        const T y = T(2) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        acc += (len / (T(2.0) * h)) * (j0);
+      } else {
+        const T s0 = u - h;
+        const T len = T(2.0) * h;
+        const T y = T(2) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        const T sum = ((T(1)) * j0);
+        acc += exp((T(-2)) * s0) * sum;
+      }
+    }
+  }
+  {  // term 1
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < h) {
+      if (el > -h) {
+        const T len = h - el;
+        const T y = T(2) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        acc += (len / (T(2.0) * h)) * (j0);
+      } else {
+        const T s0 = u - h;
+        const T len = T(2.0) * h;
+        const T y = T(2) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        const T sum = ((T(1)) * j0);
+        acc += exp((T(-2)) * s0) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3190,7 +3408,150 @@ T tent_laplace_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
+  const T w = detail::k_sqrt6<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0 (reflected: u = -x)
+      const T u = -x;
+      const T el = (T(0)) - u;
+    if (el < w) {
+      if (el > T(0.0)) {
+        const T len = w - el;
+        const T lam = len / w;
+        const T y = T(1) * len;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        const T lenl = -el;
+        const T laml = lenl / w;
+        const T yl = T(1) * lenl;
+        const T eyl = exp(-yl);
+        T lj1;
+        if (yl < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06) + yl * (T(2.755731922398589e-07) + yl * (T(2.505210838544172e-08)))))))))));
+          else
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06)))))))));
+        } else {
+          lj1 = T(1.0) * (T(1.0) - eyl * (T(1.0) + yl * (T(1.0)))) / (yl * yl);
+        }
+        const T lj0 = (yl * lj1 + eyl);
+        const T yr = T(1) * w;
+        const T eyr = exp(-yr);
+        T rj1;
+        if (yr < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06) + yr * (T(2.755731922398589e-07) + yr * (T(2.505210838544172e-08)))))))))));
+          else
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06)))))))));
+        } else {
+          rj1 = T(1.0) * (T(1.0) - eyr * (T(1.0) + yr * (T(1.0)))) / (yr * yr);
+        }
+        const T rj0 = (yr * rj1 + eyr);
+        const T gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((T(1)) * (rj0 - rj1)));
+      } else {
+        const T sl = u - w;
+        const T y = T(1) * w;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        const T sum = ((T(1)) * j1) + ey * ((T(1)) * (j0 - j1));
+        acc += exp((T(-1)) * sl) * sum;
+      }
+    }
+  }
+  {  // term 1
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < w) {
+      if (el > T(0.0)) {
+        const T len = w - el;
+        const T lam = len / w;
+        const T y = T(1) * len;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        const T lenl = -el;
+        const T laml = lenl / w;
+        const T yl = T(1) * lenl;
+        const T eyl = exp(-yl);
+        T lj1;
+        if (yl < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06) + yl * (T(2.755731922398589e-07) + yl * (T(2.505210838544172e-08)))))))))));
+          else
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06)))))))));
+        } else {
+          lj1 = T(1.0) * (T(1.0) - eyl * (T(1.0) + yl * (T(1.0)))) / (yl * yl);
+        }
+        const T lj0 = (yl * lj1 + eyl);
+        const T yr = T(1) * w;
+        const T eyr = exp(-yr);
+        T rj1;
+        if (yr < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06) + yr * (T(2.755731922398589e-07) + yr * (T(2.505210838544172e-08)))))))))));
+          else
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06)))))))));
+        } else {
+          rj1 = T(1.0) * (T(1.0) - eyr * (T(1.0) + yr * (T(1.0)))) / (yr * yr);
+        }
+        const T rj0 = (yr * rj1 + eyr);
+        const T gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((T(1)) * (rj0 - rj1)));
+      } else {
+        const T sl = u - w;
+        const T y = T(1) * w;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        const T sum = ((T(1)) * j1) + ey * ((T(1)) * (j0 - j1));
+        acc += exp((T(-1)) * sl) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3214,7 +3575,150 @@ T tent_laplace_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
+  const T w = detail::k_sqrt6<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0 (reflected: u = -x)
+      const T u = -x;
+      const T el = (T(0)) - u;
+    if (el < w) {
+      if (el > T(0.0)) {
+        const T len = w - el;
+        const T lam = len / w;
+        const T y = T(2) * len;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        const T lenl = -el;
+        const T laml = lenl / w;
+        const T yl = T(2) * lenl;
+        const T eyl = exp(-yl);
+        T lj1;
+        if (yl < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06) + yl * (T(2.755731922398589e-07) + yl * (T(2.505210838544172e-08)))))))))));
+          else
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06)))))))));
+        } else {
+          lj1 = T(1.0) * (T(1.0) - eyl * (T(1.0) + yl * (T(1.0)))) / (yl * yl);
+        }
+        const T lj0 = (yl * lj1 + eyl);
+        const T yr = T(2) * w;
+        const T eyr = exp(-yr);
+        T rj1;
+        if (yr < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06) + yr * (T(2.755731922398589e-07) + yr * (T(2.505210838544172e-08)))))))))));
+          else
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06)))))))));
+        } else {
+          rj1 = T(1.0) * (T(1.0) - eyr * (T(1.0) + yr * (T(1.0)))) / (yr * yr);
+        }
+        const T rj0 = (yr * rj1 + eyr);
+        const T gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((T(1)) * (rj0 - rj1)));
+      } else {
+        const T sl = u - w;
+        const T y = T(2) * w;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        const T sum = ((T(1)) * j1) + ey * ((T(1)) * (j0 - j1));
+        acc += exp((T(-2)) * sl) * sum;
+      }
+    }
+  }
+  {  // term 1
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < w) {
+      if (el > T(0.0)) {
+        const T len = w - el;
+        const T lam = len / w;
+        const T y = T(2) * len;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        const T lenl = -el;
+        const T laml = lenl / w;
+        const T yl = T(2) * lenl;
+        const T eyl = exp(-yl);
+        T lj1;
+        if (yl < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06) + yl * (T(2.755731922398589e-07) + yl * (T(2.505210838544172e-08)))))))))));
+          else
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06)))))))));
+        } else {
+          lj1 = T(1.0) * (T(1.0) - eyl * (T(1.0) + yl * (T(1.0)))) / (yl * yl);
+        }
+        const T lj0 = (yl * lj1 + eyl);
+        const T yr = T(2) * w;
+        const T eyr = exp(-yr);
+        T rj1;
+        if (yr < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06) + yr * (T(2.755731922398589e-07) + yr * (T(2.505210838544172e-08)))))))))));
+          else
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06)))))))));
+        } else {
+          rj1 = T(1.0) * (T(1.0) - eyr * (T(1.0) + yr * (T(1.0)))) / (yr * yr);
+        }
+        const T rj0 = (yr * rj1 + eyr);
+        const T gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((T(1)) * (rj0 - rj1)));
+      } else {
+        const T sl = u - w;
+        const T y = T(2) * w;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        const T sum = ((T(1)) * j1) + ey * ((T(1)) * (j0 - j1));
+        acc += exp((T(-2)) * sl) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3321,7 +3825,33 @@ T box_exp_decay_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
+  const T h = detail::k_sqrt3<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < h) {
+      if (el > -h) {
+        const T len = h - el;
+        const T y = T(1) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        acc += (len / (T(2.0) * h)) * (j0);
+      } else {
+        const T s0 = u - h;
+        const T len = T(2.0) * h;
+        const T y = T(1) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        const T sum = ((T(1)) * j0);
+        acc += exp((T(-1)) * s0) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3344,7 +3874,33 @@ T box_exp_decay_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
+  const T h = detail::k_sqrt3<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < h) {
+      if (el > -h) {
+        const T len = h - el;
+        const T y = T(2) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        acc += (len / (T(2.0) * h)) * (j0);
+      } else {
+        const T s0 = u - h;
+        const T len = T(2.0) * h;
+        const T y = T(2) * len;
+        const T j0 = y > T(0) ? -expm1(-y) / y : T(1);
+        const T sum = ((T(1)) * j0);
+        acc += exp((T(-2)) * s0) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3367,7 +3923,82 @@ T tent_exp_decay_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
+  const T w = detail::k_sqrt6<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < w) {
+      if (el > T(0.0)) {
+        const T len = w - el;
+        const T lam = len / w;
+        const T y = T(1) * len;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        const T lenl = -el;
+        const T laml = lenl / w;
+        const T yl = T(1) * lenl;
+        const T eyl = exp(-yl);
+        T lj1;
+        if (yl < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06) + yl * (T(2.755731922398589e-07) + yl * (T(2.505210838544172e-08)))))))))));
+          else
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06)))))))));
+        } else {
+          lj1 = T(1.0) * (T(1.0) - eyl * (T(1.0) + yl * (T(1.0)))) / (yl * yl);
+        }
+        const T lj0 = (yl * lj1 + eyl);
+        const T yr = T(1) * w;
+        const T eyr = exp(-yr);
+        T rj1;
+        if (yr < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06) + yr * (T(2.755731922398589e-07) + yr * (T(2.505210838544172e-08)))))))))));
+          else
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06)))))))));
+        } else {
+          rj1 = T(1.0) * (T(1.0) - eyr * (T(1.0) + yr * (T(1.0)))) / (yr * yr);
+        }
+        const T rj0 = (yr * rj1 + eyr);
+        const T gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((T(1)) * (rj0 - rj1)));
+      } else {
+        const T sl = u - w;
+        const T y = T(1) * w;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        const T sum = ((T(1)) * j1) + ey * ((T(1)) * (j0 - j1));
+        acc += exp((T(-1)) * sl) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3390,7 +4021,82 @@ T tent_exp_decay_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
+  const T w = detail::k_sqrt6<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < w) {
+      if (el > T(0.0)) {
+        const T len = w - el;
+        const T lam = len / w;
+        const T y = T(2) * len;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        acc += lam * lam * ((j0 - j1));
+      } else if (el > -w) {
+        const T lenl = -el;
+        const T laml = lenl / w;
+        const T yl = T(2) * lenl;
+        const T eyl = exp(-yl);
+        T lj1;
+        if (yl < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06) + yl * (T(2.755731922398589e-07) + yl * (T(2.505210838544172e-08)))))))))));
+          else
+            lj1 = eyl * (T(0.5) + yl * (T(0.16666666666666666) + yl * (T(0.041666666666666664) + yl * (T(0.008333333333333333) + yl * (T(0.001388888888888889) + yl * (T(0.0001984126984126984) + yl * (T(2.48015873015873e-05) + yl * (T(2.7557319223985893e-06)))))))));
+        } else {
+          lj1 = T(1.0) * (T(1.0) - eyl * (T(1.0) + yl * (T(1.0)))) / (yl * yl);
+        }
+        const T lj0 = (yl * lj1 + eyl);
+        const T yr = T(2) * w;
+        const T eyr = exp(-yr);
+        T rj1;
+        if (yr < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06) + yr * (T(2.755731922398589e-07) + yr * (T(2.505210838544172e-08)))))))))));
+          else
+            rj1 = eyr * (T(0.5) + yr * (T(0.16666666666666666) + yr * (T(0.041666666666666664) + yr * (T(0.008333333333333333) + yr * (T(0.001388888888888889) + yr * (T(0.0001984126984126984) + yr * (T(2.48015873015873e-05) + yr * (T(2.7557319223985893e-06)))))))));
+        } else {
+          rj1 = T(1.0) * (T(1.0) - eyr * (T(1.0) + yr * (T(1.0)))) / (yr * yr);
+        }
+        const T rj0 = (yr * rj1 + eyr);
+        const T gaml = (w + el) / w;
+        acc += (laml * ((gaml * lj0 + laml * lj1)) + eyl * ((T(1)) * (rj0 - rj1)));
+      } else {
+        const T sl = u - w;
+        const T y = T(2) * w;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        const T sum = ((T(1)) * j1) + ey * ((T(1)) * (j0 - j1));
+        acc += exp((T(-2)) * sl) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3502,7 +4208,53 @@ T box_exp_ramp_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
+  const T h = detail::k_sqrt3<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < h) {
+      if (el > -h) {
+        const T len = h - el;
+        const T y = T(1) * len;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        acc += (len / (T(2.0) * h)) * ((j1) * len);
+      } else {
+        const T s0 = u - h;
+        const T len = T(2.0) * h;
+        const T y = T(1) * len;
+        const T ey = exp(-y);
+        T j1;
+        if (y < (sizeof(T) < sizeof(double) ? T(0.9645097620250751) : T(0.0454616167354539))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06) + y * (T(2.755731922398589e-07) + y * (T(2.505210838544172e-08)))))))))));
+          else
+            j1 = ey * (T(0.5) + y * (T(0.16666666666666666) + y * (T(0.041666666666666664) + y * (T(0.008333333333333333) + y * (T(0.001388888888888889) + y * (T(0.0001984126984126984) + y * (T(2.48015873015873e-05) + y * (T(2.7557319223985893e-06)))))))));
+        } else {
+          j1 = T(1.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0)))) / (y * y);
+        }
+        const T j0 = (y * j1 + ey);
+        const T sum = (((T(1)) * s0) * j0 + len * ((T(1)) * j1));
+        acc += exp((T(-1)) * s0) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3526,7 +4278,55 @@ T box_exp_ramp_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::box_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::box_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::box_ept(x, sigma, p);
+  const T h = detail::k_sqrt3<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < h) {
+      if (el > -h) {
+        const T len = h - el;
+        const T y = T(2) * len;
+        const T ey = exp(-y);
+        T j2;
+        if (y < (sizeof(T) < sizeof(double) ? T(1.7348729706968233) : T(0.19241728160191696))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09) + y * (T(3.2118087673643227e-10) + y * (T(2.294149119545945e-11)))))))))))));
+          else
+            j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09)))))))))));
+        } else {
+          j2 = T(2.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0) + y * (T(0.5))))) / (y * y * y);
+        }
+        const T j1 = (y * j2 + ey) * T(0.5);
+        const T j0 = (y * j1 + ey);
+        acc += (len / (T(2.0) * h)) * (((j2) * len) * len);
+      } else {
+        const T s0 = u - h;
+        const T len = T(2.0) * h;
+        const T y = T(2) * len;
+        const T ey = exp(-y);
+        T j2;
+        if (y < (sizeof(T) < sizeof(double) ? T(1.7348729706968233) : T(0.19241728160191696))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09) + y * (T(3.2118087673643227e-10) + y * (T(2.294149119545945e-11)))))))))))));
+          else
+            j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09)))))))))));
+        } else {
+          j2 = T(2.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0) + y * (T(0.5))))) / (y * y * y);
+        }
+        const T j1 = (y * j2 + ey) * T(0.5);
+        const T j0 = (y * j1 + ey);
+        const T sum = ((((T(1)) * s0) * s0) * j0 + len * (((T(2)) * s0) * j1 + len * ((T(1)) * j2)));
+        acc += exp((T(-2)) * s0) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3550,7 +4350,88 @@ T tent_exp_ramp_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
+  const T w = detail::k_sqrt6<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < w) {
+      if (el > T(0.0)) {
+        const T len = w - el;
+        const T lam = len / w;
+        const T y = T(1) * len;
+        const T ey = exp(-y);
+        T j2;
+        if (y < (sizeof(T) < sizeof(double) ? T(1.7348729706968233) : T(0.19241728160191696))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09) + y * (T(3.2118087673643227e-10) + y * (T(2.294149119545945e-11)))))))))))));
+          else
+            j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09)))))))))));
+        } else {
+          j2 = T(2.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0) + y * (T(0.5))))) / (y * y * y);
+        }
+        const T j1 = (y * j2 + ey) * T(0.5);
+        const T j0 = (y * j1 + ey);
+        acc += lam * lam * (((j1 - j2)) * len);
+      } else if (el > -w) {
+        const T lenl = -el;
+        const T laml = lenl / w;
+        const T yl = T(1) * lenl;
+        const T eyl = exp(-yl);
+        T lj2;
+        if (yl < (sizeof(T) < sizeof(double) ? T(1.7348729706968233) : T(0.19241728160191696))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            lj2 = eyl * (T(0.3333333333333333) + yl * (T(0.08333333333333333) + yl * (T(0.016666666666666666) + yl * (T(0.002777777777777778) + yl * (T(0.0003968253968253968) + yl * (T(4.96031746031746e-05) + yl * (T(5.5114638447971785e-06) + yl * (T(5.511463844797178e-07) + yl * (T(5.010421677088344e-08) + yl * (T(4.17535139757362e-09) + yl * (T(3.2118087673643227e-10) + yl * (T(2.294149119545945e-11)))))))))))));
+          else
+            lj2 = eyl * (T(0.3333333333333333) + yl * (T(0.08333333333333333) + yl * (T(0.016666666666666666) + yl * (T(0.002777777777777778) + yl * (T(0.0003968253968253968) + yl * (T(4.96031746031746e-05) + yl * (T(5.5114638447971785e-06) + yl * (T(5.511463844797178e-07) + yl * (T(5.010421677088344e-08) + yl * (T(4.17535139757362e-09)))))))))));
+        } else {
+          lj2 = T(2.0) * (T(1.0) - eyl * (T(1.0) + yl * (T(1.0) + yl * (T(0.5))))) / (yl * yl * yl);
+        }
+        const T lj1 = (yl * lj2 + eyl) * T(0.5);
+        const T lj0 = (yl * lj1 + eyl);
+        const T yr = T(1) * w;
+        const T eyr = exp(-yr);
+        T rj2;
+        if (yr < (sizeof(T) < sizeof(double) ? T(1.7348729706968233) : T(0.19241728160191696))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            rj2 = eyr * (T(0.3333333333333333) + yr * (T(0.08333333333333333) + yr * (T(0.016666666666666666) + yr * (T(0.002777777777777778) + yr * (T(0.0003968253968253968) + yr * (T(4.96031746031746e-05) + yr * (T(5.5114638447971785e-06) + yr * (T(5.511463844797178e-07) + yr * (T(5.010421677088344e-08) + yr * (T(4.17535139757362e-09) + yr * (T(3.2118087673643227e-10) + yr * (T(2.294149119545945e-11)))))))))))));
+          else
+            rj2 = eyr * (T(0.3333333333333333) + yr * (T(0.08333333333333333) + yr * (T(0.016666666666666666) + yr * (T(0.002777777777777778) + yr * (T(0.0003968253968253968) + yr * (T(4.96031746031746e-05) + yr * (T(5.5114638447971785e-06) + yr * (T(5.511463844797178e-07) + yr * (T(5.010421677088344e-08) + yr * (T(4.17535139757362e-09)))))))))));
+        } else {
+          rj2 = T(2.0) * (T(1.0) - eyr * (T(1.0) + yr * (T(1.0) + yr * (T(0.5))))) / (yr * yr * yr);
+        }
+        const T rj1 = (yr * rj2 + eyr) * T(0.5);
+        const T rj0 = (yr * rj1 + eyr);
+        const T gaml = (w + el) / w;
+        const T sr = u;
+        acc += (laml * (((gaml * lj1 + laml * lj2)) * lenl) + eyl * (((T(1)) * sr) * (rj0 - rj1) + w * ((T(1)) * (rj1 - rj2))));
+      } else {
+        const T sl = u - w;
+        const T sr = u;
+        const T y = T(1) * w;
+        const T ey = exp(-y);
+        T j2;
+        if (y < (sizeof(T) < sizeof(double) ? T(1.7348729706968233) : T(0.19241728160191696))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09) + y * (T(3.2118087673643227e-10) + y * (T(2.294149119545945e-11)))))))))))));
+          else
+            j2 = ey * (T(0.3333333333333333) + y * (T(0.08333333333333333) + y * (T(0.016666666666666666) + y * (T(0.002777777777777778) + y * (T(0.0003968253968253968) + y * (T(4.96031746031746e-05) + y * (T(5.5114638447971785e-06) + y * (T(5.511463844797178e-07) + y * (T(5.010421677088344e-08) + y * (T(4.17535139757362e-09)))))))))));
+        } else {
+          j2 = T(2.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0) + y * (T(0.5))))) / (y * y * y);
+        }
+        const T j1 = (y * j2 + ey) * T(0.5);
+        const T j0 = (y * j1 + ey);
+        const T sum = (((T(1)) * sl) * j1 + w * ((T(1)) * j2)) + ey * (((T(1)) * sr) * (j0 - j1) + w * ((T(1)) * (j1 - j2)));
+        acc += exp((T(-1)) * sl) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3574,7 +4455,92 @@ T tent_exp_ramp_sq_raw(T x, T sigma) {
   };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::ept_eval(x, p);
-  return detail::tent_ept(x, sigma, p);
+  if constexpr (detail::kWide<T>) {
+    return detail::tent_ept(x, sigma, p);
+  } else {
+  if (!(abs(x) <= T(10000.0)) || sigma > T(10000.0)) return detail::tent_ept(x, sigma, p);
+  const T w = detail::k_sqrt6<T>() * sigma;
+  T acc = T(0.0);
+  {  // term 0
+      const T u = x;
+      const T el = (T(0)) - u;
+    if (el < w) {
+      if (el > T(0.0)) {
+        const T len = w - el;
+        const T lam = len / w;
+        const T y = T(2) * len;
+        const T ey = exp(-y);
+        T j3;
+        if (y < (sizeof(T) < sizeof(double) ? T(2.557415295497982) : T(0.43079965933990344))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j3 = ey * (T(0.25) + y * (T(0.05) + y * (T(0.008333333333333333) + y * (T(0.0011904761904761906) + y * (T(0.00014880952380952382) + y * (T(1.6534391534391536e-05) + y * (T(1.6534391534391535e-06) + y * (T(1.5031265031265032e-07) + y * (T(1.252605419272086e-08) + y * (T(9.635426302092969e-10) + y * (T(6.882447358637835e-11) + y * (T(4.58829823909189e-12) + y * (T(2.867686399432431e-13))))))))))))));
+          else
+            j3 = ey * (T(0.25) + y * (T(0.05) + y * (T(0.008333333333333333) + y * (T(0.0011904761904761906) + y * (T(0.00014880952380952382) + y * (T(1.6534391534391536e-05) + y * (T(1.6534391534391535e-06) + y * (T(1.5031265031265032e-07) + y * (T(1.252605419272086e-08) + y * (T(9.635426302092969e-10) + y * (T(6.882447358637835e-11) + y * (T(4.58829823909189e-12)))))))))))));
+        } else {
+          j3 = T(6.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666)))))) / (y * y * y * y);
+        }
+        const T j2 = (y * j3 + ey) * T(0.3333333333333333);
+        const T j1 = (y * j2 + ey) * T(0.5);
+        const T j0 = (y * j1 + ey);
+        acc += lam * lam * ((((j2 - j3)) * len) * len);
+      } else if (el > -w) {
+        const T lenl = -el;
+        const T laml = lenl / w;
+        const T yl = T(2) * lenl;
+        const T eyl = exp(-yl);
+        T lj3;
+        if (yl < (sizeof(T) < sizeof(double) ? T(2.557415295497982) : T(0.43079965933990344))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            lj3 = eyl * (T(0.25) + yl * (T(0.05) + yl * (T(0.008333333333333333) + yl * (T(0.0011904761904761906) + yl * (T(0.00014880952380952382) + yl * (T(1.6534391534391536e-05) + yl * (T(1.6534391534391535e-06) + yl * (T(1.5031265031265032e-07) + yl * (T(1.252605419272086e-08) + yl * (T(9.635426302092969e-10) + yl * (T(6.882447358637835e-11) + yl * (T(4.58829823909189e-12) + yl * (T(2.867686399432431e-13))))))))))))));
+          else
+            lj3 = eyl * (T(0.25) + yl * (T(0.05) + yl * (T(0.008333333333333333) + yl * (T(0.0011904761904761906) + yl * (T(0.00014880952380952382) + yl * (T(1.6534391534391536e-05) + yl * (T(1.6534391534391535e-06) + yl * (T(1.5031265031265032e-07) + yl * (T(1.252605419272086e-08) + yl * (T(9.635426302092969e-10) + yl * (T(6.882447358637835e-11) + yl * (T(4.58829823909189e-12)))))))))))));
+        } else {
+          lj3 = T(6.0) * (T(1.0) - eyl * (T(1.0) + yl * (T(1.0) + yl * (T(0.5) + yl * (T(0.16666666666666666)))))) / (yl * yl * yl * yl);
+        }
+        const T lj2 = (yl * lj3 + eyl) * T(0.3333333333333333);
+        const T lj1 = (yl * lj2 + eyl) * T(0.5);
+        const T lj0 = (yl * lj1 + eyl);
+        const T yr = T(2) * w;
+        const T eyr = exp(-yr);
+        T rj3;
+        if (yr < (sizeof(T) < sizeof(double) ? T(2.557415295497982) : T(0.43079965933990344))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            rj3 = eyr * (T(0.25) + yr * (T(0.05) + yr * (T(0.008333333333333333) + yr * (T(0.0011904761904761906) + yr * (T(0.00014880952380952382) + yr * (T(1.6534391534391536e-05) + yr * (T(1.6534391534391535e-06) + yr * (T(1.5031265031265032e-07) + yr * (T(1.252605419272086e-08) + yr * (T(9.635426302092969e-10) + yr * (T(6.882447358637835e-11) + yr * (T(4.58829823909189e-12) + yr * (T(2.867686399432431e-13))))))))))))));
+          else
+            rj3 = eyr * (T(0.25) + yr * (T(0.05) + yr * (T(0.008333333333333333) + yr * (T(0.0011904761904761906) + yr * (T(0.00014880952380952382) + yr * (T(1.6534391534391536e-05) + yr * (T(1.6534391534391535e-06) + yr * (T(1.5031265031265032e-07) + yr * (T(1.252605419272086e-08) + yr * (T(9.635426302092969e-10) + yr * (T(6.882447358637835e-11) + yr * (T(4.58829823909189e-12)))))))))))));
+        } else {
+          rj3 = T(6.0) * (T(1.0) - eyr * (T(1.0) + yr * (T(1.0) + yr * (T(0.5) + yr * (T(0.16666666666666666)))))) / (yr * yr * yr * yr);
+        }
+        const T rj2 = (yr * rj3 + eyr) * T(0.3333333333333333);
+        const T rj1 = (yr * rj2 + eyr) * T(0.5);
+        const T rj0 = (yr * rj1 + eyr);
+        const T gaml = (w + el) / w;
+        const T sr = u;
+        acc += (laml * ((((gaml * lj2 + laml * lj3)) * lenl) * lenl) + eyl * ((((T(1)) * sr) * sr) * (rj0 - rj1) + w * (((T(2)) * sr) * (rj1 - rj2) + w * ((T(1)) * (rj2 - rj3)))));
+      } else {
+        const T sl = u - w;
+        const T sr = u;
+        const T y = T(2) * w;
+        const T ey = exp(-y);
+        T j3;
+        if (y < (sizeof(T) < sizeof(double) ? T(2.557415295497982) : T(0.43079965933990344))) {
+          if constexpr (sizeof(T) < sizeof(double))
+            j3 = ey * (T(0.25) + y * (T(0.05) + y * (T(0.008333333333333333) + y * (T(0.0011904761904761906) + y * (T(0.00014880952380952382) + y * (T(1.6534391534391536e-05) + y * (T(1.6534391534391535e-06) + y * (T(1.5031265031265032e-07) + y * (T(1.252605419272086e-08) + y * (T(9.635426302092969e-10) + y * (T(6.882447358637835e-11) + y * (T(4.58829823909189e-12) + y * (T(2.867686399432431e-13))))))))))))));
+          else
+            j3 = ey * (T(0.25) + y * (T(0.05) + y * (T(0.008333333333333333) + y * (T(0.0011904761904761906) + y * (T(0.00014880952380952382) + y * (T(1.6534391534391536e-05) + y * (T(1.6534391534391535e-06) + y * (T(1.5031265031265032e-07) + y * (T(1.252605419272086e-08) + y * (T(9.635426302092969e-10) + y * (T(6.882447358637835e-11) + y * (T(4.58829823909189e-12)))))))))))));
+        } else {
+          j3 = T(6.0) * (T(1.0) - ey * (T(1.0) + y * (T(1.0) + y * (T(0.5) + y * (T(0.16666666666666666)))))) / (y * y * y * y);
+        }
+        const T j2 = (y * j3 + ey) * T(0.3333333333333333);
+        const T j1 = (y * j2 + ey) * T(0.5);
+        const T j0 = (y * j1 + ey);
+        const T sum = ((((T(1)) * sl) * sl) * j1 + w * (((T(2)) * sl) * j2 + w * ((T(1)) * j3))) + ey * ((((T(1)) * sr) * sr) * (j0 - j1) + w * (((T(2)) * sr) * (j1 - j2) + w * ((T(1)) * (j2 - j3))));
+        acc += exp((T(-2)) * sl) * sum;
+      }
+    }
+  }
+  return acc;
+  }
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -6090,7 +7056,9 @@ template <class T>
 T box_log(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_log<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_log<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -6126,7 +7094,9 @@ template <class T>
 T box_log_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_log_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_log_sq<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -6170,7 +7140,9 @@ template <class T>
 T tent_log(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_log<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_log<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -6209,7 +7181,9 @@ template <class T>
 T tent_log_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_log_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_log_sq<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -6254,7 +7228,9 @@ template <class T>
 T box_sqrt_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_sqrt<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_sqrt<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -6296,7 +7272,9 @@ template <class T>
 T box_sqrt_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_sqrt_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_sqrt_sq<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
@@ -6338,7 +7316,9 @@ template <class T>
 T tent_sqrt_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_sqrt<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_sqrt<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -6383,7 +7363,9 @@ template <class T>
 T tent_sqrt_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_sqrt_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_sqrt_sq<double>(double(x), double(sigma)));
+  }
   if (x < T(0)) return detail::nan<T>();  // outside the domain
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
@@ -6428,7 +7410,9 @@ template <class T>
 T box_inv(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_inv<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_inv<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -6461,7 +7445,9 @@ template <class T>
 T box_inv_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_inv_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_inv_sq<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -6502,7 +7488,9 @@ template <class T>
 T tent_inv(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_inv<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -6538,7 +7526,9 @@ template <class T>
 T tent_inv_sq_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv_sq<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_inv_sq<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -6582,7 +7572,9 @@ template <class T>
 T box_inv2_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(box_inv2<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(box_inv2<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(3))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
@@ -6664,7 +7656,9 @@ template <class T>
 T tent_inv2_raw(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if constexpr (sizeof(T) < sizeof(double)) return T(tent_inv2<double>(double(x), double(sigma)));
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (!(abs(x) >= T(0.015625) && abs(x) <= T(64))) return T(tent_inv2<double>(double(x), double(sigma)));
+  }
   const T r = abs(x - T(0));
   const T hh = detail::min2((sigma*sqrt(T(6))), T(0.5) * r);
   if (hh <= detail::series_reach<T>() * r) {
