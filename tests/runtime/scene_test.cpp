@@ -1,13 +1,14 @@
 // Scene files: every suite scene loads; bad files are rejected naming the culprit; a scene compiles
 // and renders only the effects it names.
+#include "scene/scene.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "compiler/lower.hpp"
-#include "render/render.hpp"
 #include "image/metrics.hpp"
-#include "scene/scene.hpp"
+#include "render/render.hpp"
 
 namespace bl {
 namespace {
@@ -26,13 +27,15 @@ TEST(Scene, RejectsBadInputNamingIt) {
   EXPECT_NE(error_of(R"({"shader": "fire", "colour": 1})").find("'colour'"), std::string::npos);
   EXPECT_NE(error_of(R"({"shader": "fire", "parallax": "waves"})").find("'waves'"), std::string::npos);
   EXPECT_NE(error_of(R"({"shader": "fire", "image": {"width": -3}})").find("image.width"), std::string::npos);
-  EXPECT_NE(error_of(R"({"shader": "fire", "camera": {"views": [{"yaw": "x"}]}})").find("camera.views[0].yaw"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(R"({"shader": "fire", "camera": {"views": [{"yaw": "x"}]}})").find("camera.views[0].yaw"),
+      std::string::npos);
   EXPECT_NE(error_of(R"({"shader": "fire", "camera": {"position": [0, 0, -1]}})").find("camera.position"),
             std::string::npos);
   EXPECT_NE(error_of(R"({"shader": "fire", )").find("malformed JSON"), std::string::npos);
   EXPECT_NE(error_of(R"({"parallax": "none"})").find("'shader'"), std::string::npos);
-  EXPECT_NE(error_of(R"({"shader": "fire", "geometry": {"type": "sphere"}})").find("sphere"), std::string::npos);
+  EXPECT_NE(error_of(R"({"shader": "fire", "geometry": {"type": "sphere"}})").find("sphere"),
+            std::string::npos);
   EXPECT_NE(error_of(R"({"shader": "fire", "footprint": {"bound": "box"}})").find("footprint.bound"),
             std::string::npos);
   EXPECT_EQ(error_of(R"({"shader": "fire"})"), "");
@@ -90,6 +93,22 @@ TEST(Scene, SmoothedRenderBeatsPlainAgainstTruth) {
   const double smooth = rms_display(render::render_smoothed(s, f, prog), truth);
   const double plain = rms_display(render::render_native(s, f, 0), truth);
   EXPECT_LT(smooth, 0.5 * plain);
+}
+
+// The footprint bound only sets a smoothed shader's input widths: the plain shader's jittered
+// samples (the truth) are bit-identical under both bounds, so they share one truth cache key; the
+// pixel filter's width (sigma_px) does change the truth and the key.
+TEST(SceneTruthCache, TheFootprintBoundSharesTheTruthAndSigmaDoesNot) {
+  const std::string common = R"({"shader": "zigzag", "image": {"width": 12, "height": 10}, "footprint": {)";
+  const scene::Scene d = scene::parse_scene(common + R"("bound": "dorn"}})");
+  const scene::Scene m = scene::parse_scene(common + R"("bound": "marginal"}})");
+  const scene::Scene w = scene::parse_scene(common + R"("bound": "marginal", "sigma_px": 0.7}})");
+  const render::Frame f = render::frames(d)[0];
+  EXPECT_EQ(render::truth_cache_path(d, f, "c"), render::truth_cache_path(m, f, "c"));
+  EXPECT_NE(render::truth_cache_path(w, f, "c"), render::truth_cache_path(m, f, "c"));
+  const Image a = render::render_native(d, f, 8), b = render::render_native(m, f, 8);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) ASSERT_EQ(a.pixels[i], b.pixels[i]) << i;
 }
 
 }  // namespace
