@@ -42,7 +42,7 @@ struct Scene {
   int width = 256, height = 256;
   double sigma_px = 0.5;  // footprint sd in pixels (the kernel the smoothing targets)
   // The exact marginal by default: the smoothed rules target the Gaussian pixel filter the truth
-  // integrates, and Dorn's wider bound lost on 18 of 21 suite scenes all-Gaussian (docs/tuning.md).
+  // integrates; all-Gaussian, Dorn's wider bound lost on 19 of 21 suite scenes (docs/tuning.md).
   FootprintBound footprint_bound = FootprintBound::Marginal;
   int truth_samples = 1024;  // ground truth: Gaussian-jittered samples per pixel
   std::array<double, 3> background{0, 0, 0};
