@@ -144,9 +144,14 @@ Image render_smoothed(const scene::Scene& s, const Frame& f, const compiler::Pro
 
 std::string truth_cache_path(const scene::Scene& s, const Frame& f, const std::string& cache_dir) {
   const std::uint64_t shader_hash = shaders::trace(s.shader_def(), s.effects()).hash();
+  // The footprint bound sets only a smoothed shader's input widths; the truth (jittered samples of
+  // the plain shader) never reads it, so both bounds share one truth, keyed as Dorn's (the default
+  // until 419a771) so that existing cache files keep their names.
+  scene::Scene key = s;
+  key.footprint_bound = scene::FootprintBound::Dorn;
   char name[160];
   std::snprintf(name, sizeof name, "truth_cb_%016llx_%016llx_v%d_t%.6f.exr",
-                static_cast<unsigned long long>(s.hash()), static_cast<unsigned long long>(shader_hash),
+                static_cast<unsigned long long>(key.hash()), static_cast<unsigned long long>(shader_hash),
                 f.view, f.time);
   return (std::filesystem::path(cache_dir) / name).string();
 }

@@ -92,5 +92,23 @@ TEST(Scene, SmoothedRenderBeatsPlainAgainstTruth) {
   EXPECT_LT(smooth, 0.5 * plain);
 }
 
+// The footprint bound only sets a smoothed shader's input widths: the plain shader's jittered
+// samples (the truth) are bit-identical under both bounds, so they share one truth cache key; the
+// pixel filter's width (sigma_px) does change the truth and the key.
+TEST(SceneTruthCache, TheFootprintBoundSharesTheTruthAndSigmaDoesNot) {
+  const std::string common = R"({"shader": "zigzag", "image": {"width": 12, "height": 10}, "footprint": {)";
+  const scene::Scene d = scene::parse_scene(common + R"("bound": "dorn"}})");
+  const scene::Scene m = scene::parse_scene(common + R"("bound": "marginal"}})");
+  const scene::Scene w = scene::parse_scene(common + R"("bound": "marginal", "sigma_px": 0.7}})");
+  const render::Frame f = render::frames(d)[0];
+  EXPECT_EQ(render::truth_cache_path(d, f, "c"), render::truth_cache_path(m, f, "c"));
+  EXPECT_NE(render::truth_cache_path(w, f, "c"), render::truth_cache_path(m, f, "c"));
+  const Image a = render::render_native(d, f, 8), b = render::render_native(m, f, 8);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) ASSERT_EQ(a.pixels[i], b.pixels[i]) << i;
+  // The default is the exact marginal (docs/tuning.md: it won on 19 of 21 suite scenes).
+  EXPECT_EQ(scene::parse_scene(R"({"shader": "zigzag"})").footprint_bound, scene::FootprintBound::Marginal);
+}
+
 }  // namespace
 }  // namespace bl
