@@ -3600,6 +3600,145 @@ T gaussian_fract_raw(T x, T sigma) {
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.1739: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.751 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1739).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.17388222158237718)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      T acc;
+      {
+        acc = ((T(1.0))) * rp;
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc -= T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc += T(-1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = T(0.5);
+    const T s_1 = s1;
+    acc += damp * (T(-0.3183098861837907) * s_1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.15915494309189535) * s_2);
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.1061032953945969) * s_3);
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.07957747154594767) * s_4);
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.06366197723675814) * s_5);
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.13398475271138335)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      T acc;
+      {
+        acc = ((T(1.0))) * rp;
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc -= T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc += T(-1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = T(0.5);
+    const T s_1 = s1;
+    acc += damp * (T(-0.3183098861837907) * s_1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.15915494309189535) * s_2);
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.1061032953945969) * s_3);
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.07957747154594767) * s_4);
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.06366197723675814) * s_5);
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.05305164769729845) * s_6);
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.04547284088339867) * s_7);
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.039788735772973836) * s_8);
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.035367765131532294) * s_9);
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08357381802701377) : T(0.06752621123868706))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0370742988786399) : T(1.2953937915302423)) / s));
@@ -3707,6 +3846,165 @@ T gaussian_fract_sq_raw(T x, T sigma) {
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.1739: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.751 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1739).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.17388222158237718)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + T(-1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = T(0.3333333333333333);
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5);
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.13398475271138335)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + T(-1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = T(0.3333333333333333);
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.0028144773233982714) * c_6 + T(-0.05305164769729845) * s_6);
+    const T c_7 = c2 * c_6 - c_5;
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.0020677792580068933) * c_7 + T(-0.04547284088339867) * s_7);
+    const T c_8 = c2 * c_7 - c_6;
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.0015831434944115277) * c_8 + T(-0.039788735772973836) * s_8);
+    const T c_9 = c2 * c_8 - c_7;
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.0012508788103992319) * c_9 + T(-0.035367765131532294) * s_9);
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08357381802701377) : T(0.06752621123868706))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0370742988786399) : T(1.2953937915302423)) / s));
@@ -3943,6 +4241,223 @@ T gaussian_triangle_raw(T x, T sigma) {
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.1896: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.274 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09481).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.18961729470818975)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      T acc;
+      if (r < T(1.0) + base) {
+        acc = ((T(1.0))) * rp;
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(2.0) * j1) * (-sigma);
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma;
+        }
+      }
+      else {
+        acc = ((T(-1.0))) * rp + (T(2.0));
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma);
+        }
+        {  // break at 2
+          const T d = (T(2.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(2.0) * j1) * sigma;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = T(0.5);
+    const T c_1 = c1;
+    acc += damp * (T(-0.4052847345693511) * c_1);
+    const T c_2 = c2 * c_1 - T(1);
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T c_3 = c2 * c_2 - c_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.04503163717437234) * c_3);
+    const T c_4 = c2 * c_3 - c_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T c_5 = c2 * c_4 - c_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.016211389382774045) * c_5);
+    const T c_6 = c2 * c_5 - c_4;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T c_7 = c2 * c_6 - c_5;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.008271117032027573) * c_7);
+    const T c_8 = c2 * c_7 - c_6;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T c_9 = c2 * c_8 - c_7;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.005003515241596927) * c_9);
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1425: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.018 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07125).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.1424930061042748)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      T acc;
+      if (r < T(1.0) + base) {
+        acc = ((T(1.0))) * rp;
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(2.0) * j1) * (-sigma);
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma;
+        }
+      }
+      else {
+        acc = ((T(-1.0))) * rp + (T(2.0));
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma);
+        }
+        {  // break at 2
+          const T d = (T(2.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(2.0) * j1) * sigma;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = T(0.5);
+    const T c_1 = c1;
+    acc += damp * (T(-0.4052847345693511) * c_1);
+    const T c_2 = c2 * c_1 - T(1);
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T c_3 = c2 * c_2 - c_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.04503163717437234) * c_3);
+    const T c_4 = c2 * c_3 - c_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T c_5 = c2 * c_4 - c_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.016211389382774045) * c_5);
+    const T c_6 = c2 * c_5 - c_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T c_7 = c2 * c_6 - c_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.008271117032027573) * c_7);
+    const T c_8 = c2 * c_7 - c_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T c_9 = c2 * c_8 - c_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.005003515241596927) * c_9);
+    const T c_10 = c2 * c_9 - c_8;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T c_11 = c2 * c_10 - c_9;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.003349460616275629) * c_11);
+    const T c_12 = c2 * c_11 - c_10;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T c_13 = c2 * c_12 - c_11;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.0023981345240790004) * c_13);
+    const T c_14 = c2 * c_13 - c_12;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T c_15 = c2 * c_14 - c_13;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.0018012654869748938) * c_15);
+    const T c_16 = c2 * c_15 - c_14;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T c_17 = c2 * c_16 - c_15;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.001402369323769381) * c_17);
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -4055,6 +4570,209 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.1849: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.408 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09246).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.18492403023450515)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (r < T(1.0) + base) {
+        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-4.0) * j1) * sigma;
+        }
+      }
+      else {
+        acc = (((T(1.0))) * rp + (T(-4.0))) * rp + ((T(1.0)) * s2 + T(4.0));
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-4.0) * j1) * (-sigma);
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = T(0.3333333333333333);
+    const T c_1 = c1;
+    acc += damp * (T(-0.4052847345693511) * c_1);
+    const T c_2 = c2 * c_1 - T(1);
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.10132118364233778) * c_2);
+    const T c_3 = c2 * c_2 - c_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.04503163717437234) * c_3);
+    const T c_4 = c2 * c_3 - c_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.025330295910584444) * c_4);
+    const T c_5 = c2 * c_4 - c_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.016211389382774045) * c_5);
+    const T c_6 = c2 * c_5 - c_4;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.011257909293593086) * c_6);
+    const T c_7 = c2 * c_6 - c_5;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.008271117032027573) * c_7);
+    const T c_8 = c2 * c_7 - c_6;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.006332573977646111) * c_8);
+    const T c_9 = c2 * c_8 - c_7;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(-0.005003515241596927) * c_9);
+    const T c_10 = c2 * c_9 - c_8;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.004052847345693511) * c_10);
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1404: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.124 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07018).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.1403662801765427)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (r < T(1.0) + base) {
+        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-4.0) * j1) * sigma;
+        }
+      }
+      else {
+        acc = (((T(1.0))) * rp + (T(-4.0))) * rp + ((T(1.0)) * s2 + T(4.0));
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-4.0) * j1) * (-sigma);
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = T(0.3333333333333333);
+    const T c_1 = c1;
+    acc += damp * (T(-0.4052847345693511) * c_1);
+    const T c_2 = c2 * c_1 - T(1);
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.10132118364233778) * c_2);
+    const T c_3 = c2 * c_2 - c_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.04503163717437234) * c_3);
+    const T c_4 = c2 * c_3 - c_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.025330295910584444) * c_4);
+    const T c_5 = c2 * c_4 - c_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.016211389382774045) * c_5);
+    const T c_6 = c2 * c_5 - c_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.011257909293593086) * c_6);
+    const T c_7 = c2 * c_6 - c_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.008271117032027573) * c_7);
+    const T c_8 = c2 * c_7 - c_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.006332573977646111) * c_8);
+    const T c_9 = c2 * c_8 - c_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.005003515241596927) * c_9);
+    const T c_10 = c2 * c_9 - c_8;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.004052847345693511) * c_10);
+    const T c_11 = c2 * c_10 - c_9;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.003349460616275629) * c_11);
+    const T c_12 = c2 * c_11 - c_10;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.0028144773233982714) * c_12);
+    const T c_13 = c2 * c_12 - c_11;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.0023981345240790004) * c_13);
+    const T c_14 = c2 * c_13 - c_12;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.0020677792580068933) * c_14);
+    const T c_15 = c2 * c_14 - c_13;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.0018012654869748938) * c_15);
+    const T c_16 = c2 * c_15 - c_14;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.0015831434944115277) * c_16);
+    const T c_17 = c2 * c_16 - c_15;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(-0.001402369323769381) * c_17);
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -4313,6 +5031,220 @@ T gaussian_square_raw(T x, T sigma) {
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.08706: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.743 sd: their tails sum to <= tol); else 11 Fourier terms (tail <= tol for sigma/T >= 0.08706).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.08706434220766679)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T inv = T(1) / sigma;
+      T acc;
+      if (r < T(0.5) + base) {
+        acc = (T(1.0));
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc -= T(1.0) * j0;
+        }
+        {  // break at (1/2)
+          const T d = (T(0.5) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc += T(-1.0) * j0;
+        }
+      }
+      else {
+        acc = T(0);
+        {  // break at (1/2)
+          const T d = (T(0.5) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc -= T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc += T(1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = T(0.5);
+    const T s_1 = s1;
+    acc += damp * (T(0.6366197723675814) * s_1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.2122065907891938) * s_3);
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.12732395447351627) * s_5);
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.09094568176679733) * s_7);
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.07073553026306459) * s_9);
+    const T s_10 = c2 * s_9 - s_8;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T s_11 = c2 * s_10 - s_9;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.05787452476068921) * s_11);
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.06708733218678724)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T inv = T(1) / sigma;
+      T acc;
+      if (r < T(0.5) + base) {
+        acc = (T(1.0));
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc -= T(1.0) * j0;
+        }
+        {  // break at (1/2)
+          const T d = (T(0.5) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc += T(-1.0) * j0;
+        }
+      }
+      else {
+        acc = T(0);
+        {  // break at (1/2)
+          const T d = (T(0.5) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc -= T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc += T(1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = T(0.5);
+    const T s_1 = s1;
+    acc += damp * (T(0.6366197723675814) * s_1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.2122065907891938) * s_3);
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.12732395447351627) * s_5);
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.09094568176679733) * s_7);
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.07073553026306459) * s_9);
+    const T s_10 = c2 * s_9 - s_8;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_11 = c2 * s_10 - s_9;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.05787452476068921) * s_11);
+    const T s_12 = c2 * s_11 - s_10;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_13 = c2 * s_12 - s_11;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.04897075172058318) * s_13);
+    const T s_14 = c2 * s_13 - s_12;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_15 = c2 * s_14 - s_13;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.042441318157838755) * s_15);
+    const T s_16 = c2 * s_15 - s_14;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_17 = c2 * s_16 - s_15;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.03744822190397537) * s_17);
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -4425,6 +5357,220 @@ T gaussian_square_sq_raw(T x, T sigma) {
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.08706: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.743 sd: their tails sum to <= tol); else 11 Fourier terms (tail <= tol for sigma/T >= 0.08706).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.08706434220766679)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T inv = T(1) / sigma;
+      T acc;
+      if (r < T(0.5) + base) {
+        acc = (T(1.0));
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc -= T(1.0) * j0;
+        }
+        {  // break at (1/2)
+          const T d = (T(0.5) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc += T(-1.0) * j0;
+        }
+      }
+      else {
+        acc = T(0);
+        {  // break at (1/2)
+          const T d = (T(0.5) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc -= T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc += T(1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = T(0.5);
+    const T s_1 = s1;
+    acc += damp * (T(0.6366197723675814) * s_1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.2122065907891938) * s_3);
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.12732395447351627) * s_5);
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.09094568176679733) * s_7);
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.07073553026306459) * s_9);
+    const T s_10 = c2 * s_9 - s_8;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    const T s_11 = c2 * s_10 - s_9;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (T(0.05787452476068921) * s_11);
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.06708733218678724)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T inv = T(1) / sigma;
+      T acc;
+      if (r < T(0.5) + base) {
+        acc = (T(1.0));
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc -= T(1.0) * j0;
+        }
+        {  // break at (1/2)
+          const T d = (T(0.5) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc += T(-1.0) * j0;
+        }
+      }
+      else {
+        acc = T(0);
+        {  // break at (1/2)
+          const T d = (T(0.5) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc -= T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          acc += T(1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = T(0.5);
+    const T s_1 = s1;
+    acc += damp * (T(0.6366197723675814) * s_1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.2122065907891938) * s_3);
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.12732395447351627) * s_5);
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.09094568176679733) * s_7);
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.07073553026306459) * s_9);
+    const T s_10 = c2 * s_9 - s_8;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_11 = c2 * s_10 - s_9;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.05787452476068921) * s_11);
+    const T s_12 = c2 * s_11 - s_10;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_13 = c2 * s_12 - s_11;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.04897075172058318) * s_13);
+    const T s_14 = c2 * s_13 - s_12;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_15 = c2 * s_14 - s_13;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.042441318157838755) * s_15);
+    const T s_16 = c2 * s_15 - s_14;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    const T s_17 = c2 * s_16 - s_15;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (T(0.03744822190397537) * s_17);
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -5264,6 +6410,174 @@ T gaussian_floor_sq_raw(T x, T sigma) {
   const T lam = ((T(-2))*y);
   const T period = T(1);
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.16704744067563246)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    return rest + acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.13066846301911936)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    const T c_7 = c2 * c_6 - c_5;
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7);
+    const T c_8 = c2 * c_7 - c_6;
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8);
+    const T c_9 = c2 * c_8 - c_7;
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9);
+    return rest + acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
@@ -5378,6 +6692,174 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
   const T lam = ((T(-2))*y);
   const T period = T(1);
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.16704744067563246)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    return rest + acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.13066846301911936)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    const T c_7 = c2 * c_6 - c_5;
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7);
+    const T c_8 = c2 * c_7 - c_6;
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8);
+    const T c_9 = c2 * c_8 - c_7;
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9);
+    return rest + acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
@@ -5508,6 +6990,174 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const T lam = ((T(-2))*y);
   const T period = T(1);
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.16704744067563246)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    return rest + acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.13066846301911936)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    const T c_7 = c2 * c_6 - c_5;
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7);
+    const T c_8 = c2 * c_7 - c_6;
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8);
+    const T c_9 = c2 * c_8 - c_7;
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9);
+    return rest + acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
@@ -5550,6 +7200,174 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const T lam = (((T(-2))*y) + (T(-2)));
   const T period = T(1);
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.16704744067563246)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    return rest + acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.13066846301911936)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    const T c_7 = c2 * c_6 - c_5;
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7);
+    const T c_8 = c2 * c_7 - c_6;
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8);
+    const T c_9 = c2 * c_8 - c_7;
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9);
+    return rest + acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0906546478299144) : T(1.3366185552747945)) / s));
@@ -5591,6 +7409,174 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const T lam = (((T(-2))*y) + (T(-2)));
   const T period = T(1);
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
+  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.16704744067563246)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    T damp = q, ratio = q;
+    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
+    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
+    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    return rest + acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.13066846301911936)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
+    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    T damp = q, ratio = q;
+    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T c_1 = c1;
+    const T s_1 = s1;
+    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
+    const T c_2 = c2 * c_1 - T(1);
+    const T s_2 = c2 * s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
+    const T c_3 = c2 * c_2 - c_1;
+    const T s_3 = c2 * s_2 - s_1;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
+    const T c_4 = c2 * c_3 - c_2;
+    const T s_4 = c2 * s_3 - s_2;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
+    const T c_5 = c2 * c_4 - c_3;
+    const T s_5 = c2 * s_4 - s_3;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
+    const T c_6 = c2 * c_5 - c_4;
+    const T s_6 = c2 * s_5 - s_4;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    const T c_7 = c2 * c_6 - c_5;
+    const T s_7 = c2 * s_6 - s_5;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7);
+    const T c_8 = c2 * c_7 - c_6;
+    const T s_8 = c2 * s_7 - s_6;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8);
+    const T c_9 = c2 * c_8 - c_7;
+    const T s_9 = c2 * s_8 - s_7;
+    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
+    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
+    acc += damp * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9);
+    return rest + acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0906546478299144) : T(1.3366185552747945)) / s));

@@ -250,6 +250,13 @@ inline T tail_cut() {
   return kWide<T> ? T(40) : sizeof(T) < sizeof(double) ? T(9) : T(12);
 }
 
+// max(x, lo) as a select the compiler keeps branch-free (maxss / maxsd): the generated Fourier
+// regimes floor their damping factors at lo so that no product turns subnormal.
+template <class T>
+inline T at_least(T x, T lo) {
+  return x < lo ? lo : x;
+}
+
 // sin(t)/t: Taylor series near 0 (exactly 1 at 0, no 0/0), the quotient elsewhere.
 template <class T>
 inline T sinc(T t) {
