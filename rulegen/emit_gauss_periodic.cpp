@@ -178,17 +178,23 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
     p.K = fourier_K(sig / Pd, tol);
     return p;
   };
-  // Cost (unit: ~8 ns, one float phi_Phic; measured on fract): a break candidate 1.1 (+10% per jump
-  // degree), the nearest-only form 1.6 in all (its selects); the Fourier regime 1.1 (polynomial
-  // sincos, one exp) + 0.18 per term (the recurrences are serial: mul + add per step, no FMA in the
-  // x86-64 baseline). The plan minimises the dearer of the two regimes.
+  // Cost in float ns, measured on fract (x86-64 baseline: the FP ports bound it, ~0.3 ns per
+  // operation): a pair of break candidates 17 (+10% per jump degree; one phi_Phic each), the
+  // nearest-only form 12.8; the Fourier regime 7 (sincos polynomial, one exp) + 1.6 per nonzero term.
+  // The plan minimises the dearer of the two regimes.
   auto choose = [&](double tol) {
     Plan best{};
     double best_cost = HUGE_VAL;
     for (int n = 0; n <= 3 && n <= int(2 * N); ++n) {
       if (n == 0 && N > 1 && !sp.delta.is_zero()) continue;  // nearest_block: one break type only
       const Plan p = plan_for(tol, n);
-      const double cb = (n ? 2.2 * n : 1.6) * (1 + 0.1 * maxdd), cf = 1.1 + 0.18 * p.K;
+      int nnz = 0;  // nonzero Fourier terms
+      for (int k = 1; k <= p.K; ++k) {
+        const ex sg = (k % 2) ? -1 : 1;
+        nnz += !(sp.ak.subs(lst{sym::var_k() == k, sym::var_pk() == sg}).expand().is_zero() &&
+                 sp.bk.subs(lst{sym::var_k() == k, sym::var_pk() == sg}).expand().is_zero());
+      }
+      const double cb = (n ? 17.0 * n : 12.8) * (1 + 0.1 * maxdd), cf = 7.0 + 1.6 * nnz;
       const double c = std::max(cb, cf);
       if (c < best_cost) best = p, best_cost = c;
     }
@@ -244,12 +250,110 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
     }
     return o;
   };
+  // E q_j(rp + U) = sum_m rp^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}: the coefficient texts
+  // of rp^m (Horner in s2 = sigma^2).
+  auto mean_coefs = [&](size_t j) {
+    const auto& c = sp.c[j];
+    std::vector<std::string> cx;
+    for (size_t m = 0; m < c.size(); ++m) {
+      std::vector<std::string> cs;
+      numeric df = 1;
+      for (size_t i = 0; m + 2 * i < c.size(); ++i) {
+        if (i > 0) df *= numeric(long(2 * i - 1));
+        cs.push_back(coef_text(df * binomial(numeric(long(m + 2 * i)), numeric(long(2 * i))) * c[m + 2 * i]));
+      }
+      const std::string h = horner(cs, "s2");
+      cx.push_back(h == "T(0)" ? "" : "(" + h + ")");
+    }
+    return cx;
+  };
+  // The candidate break of piece j in slot (side, n): its type and its position relative to the period.
+  auto slot = [&](size_t j, int side, int n) {
+    long idx = side < 0 ? long(j) - n : long(j) + 1 + n;
+    numeric shift = 0;
+    while (idx < 0) idx += long(N), shift -= T;
+    while (idx >= long(N)) idx -= long(N), shift += T;
+    return std::make_pair(size_t(idx), br[idx].pos + shift);
+  };
+  // Two or three pieces: no branch on the piece of x (random x mispredicts it half the time). The
+  // piece indicators w_j in {0, 1} (from exact sign tests r - (lo_i + base)) blend the emit-time
+  // constants of each piece: the blend of exact constants with weights 0 and 1 is exact.
+  auto blended_block = [&](const Plan& p) {
+    std::string o;
+    for (size_t i = 1; i < N; ++i)
+      o += "      const T h" + std::to_string(i) + " = T(0.5) * (T(1) + std::copysign(T(1), r - (" +
+           lit(sp.lo[i].to_double()) + " + base)));\n";
+    for (size_t j = 0; j < N; ++j) {
+      const std::string a = j == 0 ? "T(1)" : "h" + std::to_string(j);
+      o += "      const T w" + std::to_string(j) + " = " + a +
+           (j + 1 < N ? " - h" + std::to_string(j + 1) : "") + ";\n";
+    }
+    auto blend = [&](const std::vector<std::string>& v) {
+      bool same = true;
+      for (const auto& x : v) same &= x == v[0];
+      if (same) return v[0];
+      std::string r;
+      for (size_t j = 0; j < v.size(); ++j)
+        if (!v[j].empty())
+          r += (r.empty() ? "" : " + ") + std::string("w") + std::to_string(j) + " * " + v[j];
+      return r.empty() ? r : "(" + r + ")";
+    };
+    std::vector<std::vector<std::string>> cxs(N);
+    size_t nm = 0;
+    for (size_t j = 0; j < N; ++j) cxs[j] = mean_coefs(j), nm = std::max(nm, cxs[j].size());
+    std::vector<std::string> cx(nm);
+    for (size_t m = 0; m < nm; ++m) {
+      std::vector<std::string> v(N);
+      for (size_t j = 0; j < N; ++j) v[j] = m < cxs[j].size() ? cxs[j][m] : "";
+      cx[m] = blend(v);
+    }
+    o += "      acc = " + horner(cx, "rp") + ";\n";
+    for (int side = -1; side <= 1; side += 2)
+      for (int n = 0; n < p.nside; ++n) {
+        std::vector<std::string> pos(N), del(N);
+        size_t ne = 0;
+        for (size_t j = 0; j < N; ++j) {
+          const auto [idx, P] = slot(j, side, n);
+          pos[j] = lit(P.to_double());
+          del[j] = br[idx].delta ? coef_text(sp.delta) : "";
+          ne = std::max(ne, br[idx].e.size());
+        }
+        std::vector<std::string> et(ne);
+        for (size_t k = 0; k < ne; ++k) {
+          std::vector<std::string> v(N);
+          for (size_t j = 0; j < N; ++j) {
+            const Break& b = br[slot(j, side, n).first];
+            v[j] = k < b.e.size() ? coef_text(b.e[k]) : "";
+          }
+          const std::string c = blend(v);
+          et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
+        }
+        const std::string dl = blend(del);
+        o += "      {\n        const T d = (" + blend(pos) + " + base) - r;  // exact near the break\n";
+        o += std::string("        const T t = detail::min2(") + (side > 0 ? "d" : "-d") +
+             " * inv, detail::tail_cut<T>());\n";
+        o += "        T ph, j0;\n        detail::phi_Phic(t, ph, j0);\n";
+        for (size_t k = 1; k < ne; ++k) {
+          const std::string prev =
+              k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
+          o += "        const T j" + std::to_string(k) + " = " + prev + " - t * j" + std::to_string(k - 1) +
+               ";\n";
+        }
+        const std::string term = horner(et, side > 0 ? "sigma" : "(-sigma)");
+        if (term != "T(0)") o += std::string("        acc ") + (side > 0 ? "+" : "-") + "= " + term + ";\n";
+        if (!dl.empty()) o += "        acc += " + dl + " * ph;\n";
+        o += "      }\n";
+      }
+    return o;
+  };
   auto regimes = [&](const Plan& p, bool is_float) {
     std::string o;
     o += "    const T r = detail::reduce_signed_pow2(" + sp.y + ", period);  // exact, in (-T, T)\n";
     o += "    if (sigma < " + lit(p.sigma_b) + ") {\n";
     std::string pcs;  // the per-piece blocks
-    for (size_t j = 0; j < N; ++j) {
+    const bool blended = p.nside >= 1 && N >= 2 && N <= 3;
+    if (blended) pcs = blended_block(p);
+    for (size_t j = 0; j < N && !blended; ++j) {
       std::string blk;
       // E q_j(rp + U) = sum_m rp^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}.
       const auto& c = sp.c[j];
@@ -347,49 +451,68 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
       o += "    const T sp = ph * (" + horner(cs, "p2") + ");\n";
       o += "    const T cp = " + horner(cc, "p2") + ";\n";
     }
-    o += "    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;\n";
+    o += "    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;\n";
     const double tiny = is_float ? std::ldexp(1.0, -60) : std::ldexp(1.0, -500);
     const std::string TN = lit(tiny);
     o += "    const T q0 = exp(" + lit(-2 * kPi * kPi / (Pd * Pd)) + " * sigma * sigma);\n";
-    o += "    const T q = detail::at_least(q0, " + TN + "), q2 = detail::at_least(q * q, " + TN + ");\n";
-    o += "    T damp = q, ratio = q;\n";
-    o += "    T acc = " + (coef_text(sp.a0).empty() ? std::string("T(0)") : coef_text(sp.a0)) + ";\n";
-    bool need_c = false, need_s = false;
     std::vector<std::pair<std::string, std::string>> ab(p.K + 1);
+    int lastC = 0, lastS = 0;
     for (int k = 1; k <= p.K; ++k) {
       const ex sgn = (k % 2) ? -1 : 1;
       ab[k].first = coef_text(sp.ak.subs(lst{kk == k, pk == sgn}));
       ab[k].second = coef_text(sp.bk.subs(lst{kk == k, pk == sgn}));
-      need_c |= !ab[k].first.empty();
-      need_s |= !ab[k].second.empty();
-    }
-    int lastC = 0, lastS = 0, last = 0;
-    for (int k = 1; k <= p.K; ++k) {
       if (!ab[k].first.empty()) lastC = k;
       if (!ab[k].second.empty()) lastS = k;
     }
-    last = std::max(lastC, lastS);
+    const int last = std::max(lastC, lastS);
+    // Two interleaved chains (odd and even k) halve the serial latency: with C2 = 2 cos(2 theta),
+    // f_k = C2 f_{k-2} - f_{k-4} for f = cos(k theta), sin(k theta) (from f_{-1}, f_1 and f_0, f_2),
+    // and damp_k = q^(k^2) = damp_{k-2} r_{k-2}, r_k = q^(4k+4) = r_{k-2} q^8.
+    o += "    const T q = detail::at_least(q0, " + TN + "), q2 = detail::at_least(q * q, " + TN +
+         "), q4 = detail::at_least(q2 * q2, " + TN + "), q8 = detail::at_least(q4 * q4, " + TN + ");\n";
+    if (last >= 2) o += "    const T C2 = T(2) - T(4) * s1 * s1;\n";
+    std::string acc[2];
     for (int k = 1; k <= last; ++k) {
-      need_c = k <= lastC;
-      need_s = k <= lastS;
-      const std::string K = std::to_string(k), Km = std::to_string(k - 1), Kmm = std::to_string(k - 2);
+      const std::string K = std::to_string(k), K2 = std::to_string(k - 2), K4 = std::to_string(k - 4);
+      const bool nc = k <= lastC, ns = k <= lastS;
       if (k == 1) {
-        if (need_c) o += "    const T c_1 = c1;\n";
-        if (need_s) o += "    const T s_1 = s1;\n";
+        if (nc) o += "    const T c_1 = c1;\n";
+        if (ns) o += "    const T s_1 = s1;\n";
+        o += "    const T d_1 = q;\n";
+      } else if (k == 2) {
+        if (nc) o += "    const T c_2 = T(0.5) * C2;\n";
+        if (ns) o += "    const T s_2 = T(2) * s1 * c1;\n";
+        o += "    const T d_2 = q4;\n";
       } else {
-        if (need_c)
-          o += "    const T c_" + K + " = c2 * c_" + Km + " - " +
-               (k == 2 ? std::string("T(1)") : "c_" + Kmm) + ";\n";
-        if (need_s)
-          o += "    const T s_" + K + " = c2 * s_" + Km + (k == 2 ? std::string("") : " - s_" + Kmm) + ";\n";
-        o += "    ratio = detail::at_least(ratio * q2, " + TN + ");\n";
-        o += "    damp = detail::at_least(damp * ratio, " + TN + ");\n";
+        if (nc)
+          o += "    const T c_" + K + " = C2 * c_" + K2 + " - " +
+               (k == 3   ? std::string("c1")
+                : k == 4 ? std::string("T(1)")
+                         : "c_" + K4) +
+               ";\n";
+        if (ns)
+          o += "    const T s_" + K + " = C2 * s_" + K2 +
+               (k == 3   ? std::string(" + s1")
+                : k == 4 ? std::string("")
+                         : " - s_" + K4) +
+               ";\n";
+        const std::string rprev = k == 3 ? "q8" : k == 4 ? "r_2" : "r_" + K2;
+        if (k == 4) o += "    const T r_2 = detail::at_least(q4 * q8, " + TN + ");\n";
+        if (k >= 5)
+          o += "    const T r_" + K2 + " = detail::at_least(" + (k == 5 ? std::string("q8") : "r_" + K4) +
+               " * q8, " + TN + ");\n";
+        o += "    const T d_" + K + " = detail::at_least(d_" + K2 + " * " + rprev + ", " + TN + ");\n";
       }
       std::string t;
       if (!ab[k].first.empty()) t = ab[k].first + " * c_" + K;
       if (!ab[k].second.empty()) t += (t.empty() ? "" : " + ") + ab[k].second + " * s_" + K;
-      if (!t.empty()) o += "    acc += damp * (" + t + ");\n";
+      if (!t.empty()) acc[k % 2] += (acc[k % 2].empty() ? "d_" : " + d_") + K + " * (" + t + ")";
     }
+    const std::string a0 = coef_text(sp.a0);
+    o += "    const T acc = " + (a0.empty() ? std::string("T(0)") : a0);
+    for (int par : {1, 0})
+      if (!acc[par].empty()) o += " + (" + acc[par] + ")";
+    o += ";\n";
     o += "    return " + sp.lead + "acc;\n";
     return o;
   };

@@ -3640,29 +3640,23 @@ T gaussian_fract_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = T(0.5);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
-    acc += damp * (T(-0.3183098861837907) * s_1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.15915494309189535) * s_2);
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.1061032953945969) * s_3);
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.07957747154594767) * s_4);
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.06366197723675814) * s_5);
+    const T d_1 = q;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1) + d_3 * (T(-0.1061032953945969) * s_3) + d_5 * (T(-0.06366197723675814) * s_5)) + (d_2 * (T(-0.15915494309189535) * s_2) + d_4 * (T(-0.07957747154594767) * s_4));
     return acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
@@ -3696,45 +3690,35 @@ T gaussian_fract_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = T(0.5);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
-    acc += damp * (T(-0.3183098861837907) * s_1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.15915494309189535) * s_2);
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.1061032953945969) * s_3);
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.07957747154594767) * s_4);
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.06366197723675814) * s_5);
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.05305164769729845) * s_6);
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.04547284088339867) * s_7);
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.039788735772973836) * s_8);
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.035367765131532294) * s_9);
+    const T d_1 = q;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1) + d_3 * (T(-0.1061032953945969) * s_3) + d_5 * (T(-0.06366197723675814) * s_5) + d_7 * (T(-0.04547284088339867) * s_7) + d_9 * (T(-0.035367765131532294) * s_9)) + (d_2 * (T(-0.15915494309189535) * s_2) + d_4 * (T(-0.07957747154594767) * s_4) + d_6 * (T(-0.05305164769729845) * s_6) + d_8 * (T(-0.039788735772973836) * s_8));
     return acc;
     }
    }
@@ -3889,34 +3873,28 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = T(0.3333333333333333);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1) + d_3 * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3) + d_5 * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2) + d_4 * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4));
     return acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
@@ -3953,54 +3931,44 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = T(0.3333333333333333);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.0028144773233982714) * c_6 + T(-0.05305164769729845) * s_6);
-    const T c_7 = c2 * c_6 - c_5;
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.0020677792580068933) * c_7 + T(-0.04547284088339867) * s_7);
-    const T c_8 = c2 * c_7 - c_6;
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.0015831434944115277) * c_8 + T(-0.039788735772973836) * s_8);
-    const T c_9 = c2 * c_8 - c_7;
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.0012508788103992319) * c_9 + T(-0.035367765131532294) * s_9);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1) + d_3 * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3) + d_5 * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5) + d_7 * (T(0.0020677792580068933) * c_7 + T(-0.04547284088339867) * s_7) + d_9 * (T(0.0012508788103992319) * c_9 + T(-0.035367765131532294) * s_9)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2) + d_4 * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4) + d_6 * (T(0.0028144773233982714) * c_6 + T(-0.05305164769729845) * s_6) + d_8 * (T(0.0015831434944115277) * c_8 + T(-0.039788735772973836) * s_8));
     return acc;
     }
    }
@@ -4257,43 +4225,25 @@ T gaussian_triangle_raw(T x, T sigma) {
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       T acc;
-      if (r < T(1.0) + base) {
-        acc = ((T(1.0))) * rp;
-        {  // break at 0
-          const T d = (T(0.0) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc -= (T(2.0) * j1) * (-sigma);
-        }
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc += (T(-2.0) * j1) * sigma;
-        }
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(1.0) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = ((w0 * (T(1.0)) + w1 * (T(-1.0)))) * rp + (w1 * (T(2.0)));
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc -= ((w0 * T(2.0) + w1 * T(-2.0)) * j1) * (-sigma);
       }
-      else {
-        acc = ((T(-1.0))) * rp + (T(2.0));
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc -= (T(-2.0) * j1) * (-sigma);
-        }
-        {  // break at 2
-          const T d = (T(2.0) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc += (T(2.0) * j1) * sigma;
-        }
+      {
+        const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += ((w0 * T(-2.0) + w1 * T(2.0)) * j1) * sigma;
       }
       return acc;
     }
@@ -4302,41 +4252,35 @@ T gaussian_triangle_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = T(0.5);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
-    acc += damp * (T(-0.4052847345693511) * c_1);
-    const T c_2 = c2 * c_1 - T(1);
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T c_3 = c2 * c_2 - c_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.04503163717437234) * c_3);
-    const T c_4 = c2 * c_3 - c_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T c_5 = c2 * c_4 - c_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.016211389382774045) * c_5);
-    const T c_6 = c2 * c_5 - c_4;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T c_7 = c2 * c_6 - c_5;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.008271117032027573) * c_7);
-    const T c_8 = c2 * c_7 - c_6;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T c_9 = c2 * c_8 - c_7;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.005003515241596927) * c_9);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T c_7 = C2 * c_5 - c_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+    const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+    const T c_8 = C2 * c_6 - c_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(8.673617379884035e-19));
+    const T d_8 = detail::at_least(d_6 * r_6, T(8.673617379884035e-19));
+    const T c_9 = C2 * c_7 - c_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
+    const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
+    const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9));
     return acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1425: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.018 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07125).
@@ -4346,43 +4290,25 @@ T gaussian_triangle_raw(T x, T sigma) {
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       T acc;
-      if (r < T(1.0) + base) {
-        acc = ((T(1.0))) * rp;
-        {  // break at 0
-          const T d = (T(0.0) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc -= (T(2.0) * j1) * (-sigma);
-        }
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc += (T(-2.0) * j1) * sigma;
-        }
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(1.0) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = ((w0 * (T(1.0)) + w1 * (T(-1.0)))) * rp + (w1 * (T(2.0)));
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc -= ((w0 * T(2.0) + w1 * T(-2.0)) * j1) * (-sigma);
       }
-      else {
-        acc = ((T(-1.0))) * rp + (T(2.0));
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc -= (T(-2.0) * j1) * (-sigma);
-        }
-        {  // break at 2
-          const T d = (T(2.0) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc += (T(2.0) * j1) * sigma;
-        }
+      {
+        const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += ((w0 * T(-2.0) + w1 * T(2.0)) * j1) * sigma;
       }
       return acc;
     }
@@ -4391,69 +4317,59 @@ T gaussian_triangle_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = T(0.5);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
-    acc += damp * (T(-0.4052847345693511) * c_1);
-    const T c_2 = c2 * c_1 - T(1);
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T c_3 = c2 * c_2 - c_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.04503163717437234) * c_3);
-    const T c_4 = c2 * c_3 - c_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T c_5 = c2 * c_4 - c_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.016211389382774045) * c_5);
-    const T c_6 = c2 * c_5 - c_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T c_7 = c2 * c_6 - c_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.008271117032027573) * c_7);
-    const T c_8 = c2 * c_7 - c_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T c_9 = c2 * c_8 - c_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.005003515241596927) * c_9);
-    const T c_10 = c2 * c_9 - c_8;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T c_11 = c2 * c_10 - c_9;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.003349460616275629) * c_11);
-    const T c_12 = c2 * c_11 - c_10;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T c_13 = c2 * c_12 - c_11;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.0023981345240790004) * c_13);
-    const T c_14 = c2 * c_13 - c_12;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T c_15 = c2 * c_14 - c_13;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.0018012654869748938) * c_15);
-    const T c_16 = c2 * c_15 - c_14;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T c_17 = c2 * c_16 - c_15;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.001402369323769381) * c_17);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T c_10 = C2 * c_8 - c_6;
+    const T r_8 = detail::at_least(r_6 * q8, T(3.054936363499605e-151));
+    const T d_10 = detail::at_least(d_8 * r_8, T(3.054936363499605e-151));
+    const T c_11 = C2 * c_9 - c_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
+    const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
+    const T c_12 = C2 * c_10 - c_8;
+    const T r_10 = detail::at_least(r_8 * q8, T(3.054936363499605e-151));
+    const T d_12 = detail::at_least(d_10 * r_10, T(3.054936363499605e-151));
+    const T c_13 = C2 * c_11 - c_9;
+    const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
+    const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
+    const T c_14 = C2 * c_12 - c_10;
+    const T r_12 = detail::at_least(r_10 * q8, T(3.054936363499605e-151));
+    const T d_14 = detail::at_least(d_12 * r_12, T(3.054936363499605e-151));
+    const T c_15 = C2 * c_13 - c_11;
+    const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
+    const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
+    const T c_16 = C2 * c_14 - c_12;
+    const T r_14 = detail::at_least(r_12 * q8, T(3.054936363499605e-151));
+    const T d_16 = detail::at_least(d_14 * r_14, T(3.054936363499605e-151));
+    const T c_17 = C2 * c_15 - c_13;
+    const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
+    const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
+    const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9) + d_11 * (T(-0.003349460616275629) * c_11) + d_13 * (T(-0.0023981345240790004) * c_13) + d_15 * (T(-0.0018012654869748938) * c_15) + d_17 * (T(-0.001402369323769381) * c_17));
     return acc;
     }
    }
@@ -4587,27 +4503,25 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
-      if (r < T(1.0) + base) {
-        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc += (T(-4.0) * j1) * sigma;
-        }
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(1.0) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (((T(1.0))) * rp + (w1 * (T(-4.0)))) * rp + (w0 * ((T(1.0)) * s2) + w1 * ((T(1.0)) * s2 + T(4.0)));
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc -= ((w1 * T(-4.0)) * j1) * (-sigma);
       }
-      else {
-        acc = (((T(1.0))) * rp + (T(-4.0))) * rp + ((T(1.0)) * s2 + T(4.0));
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc -= (T(-4.0) * j1) * (-sigma);
-        }
+      {
+        const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += ((w0 * T(-4.0)) * j1) * sigma;
       }
       return acc;
     }
@@ -4616,49 +4530,38 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = T(0.3333333333333333);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
-    acc += damp * (T(-0.4052847345693511) * c_1);
-    const T c_2 = c2 * c_1 - T(1);
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.10132118364233778) * c_2);
-    const T c_3 = c2 * c_2 - c_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.04503163717437234) * c_3);
-    const T c_4 = c2 * c_3 - c_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.025330295910584444) * c_4);
-    const T c_5 = c2 * c_4 - c_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.016211389382774045) * c_5);
-    const T c_6 = c2 * c_5 - c_4;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.011257909293593086) * c_6);
-    const T c_7 = c2 * c_6 - c_5;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.008271117032027573) * c_7);
-    const T c_8 = c2 * c_7 - c_6;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.006332573977646111) * c_8);
-    const T c_9 = c2 * c_8 - c_7;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(-0.005003515241596927) * c_9);
-    const T c_10 = c2 * c_9 - c_8;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.004052847345693511) * c_10);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T c_7 = C2 * c_5 - c_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+    const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+    const T c_8 = C2 * c_6 - c_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(8.673617379884035e-19));
+    const T d_8 = detail::at_least(d_6 * r_6, T(8.673617379884035e-19));
+    const T c_9 = C2 * c_7 - c_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
+    const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
+    const T c_10 = C2 * c_8 - c_6;
+    const T r_8 = detail::at_least(r_6 * q8, T(8.673617379884035e-19));
+    const T d_10 = detail::at_least(d_8 * r_8, T(8.673617379884035e-19));
+    const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4) + d_6 * (T(0.011257909293593086) * c_6) + d_8 * (T(0.006332573977646111) * c_8) + d_10 * (T(0.004052847345693511) * c_10));
     return acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1404: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.124 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07018).
@@ -4669,27 +4572,25 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
-      if (r < T(1.0) + base) {
-        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc += (T(-4.0) * j1) * sigma;
-        }
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(1.0) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (((T(1.0))) * rp + (w1 * (T(-4.0)))) * rp + (w0 * ((T(1.0)) * s2) + w1 * ((T(1.0)) * s2 + T(4.0)));
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc -= ((w1 * T(-4.0)) * j1) * (-sigma);
       }
-      else {
-        acc = (((T(1.0))) * rp + (T(-4.0))) * rp + ((T(1.0)) * s2 + T(4.0));
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          const T j1 = ph - t * j0;
-          acc -= (T(-4.0) * j1) * (-sigma);
-        }
+      {
+        const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += ((w0 * T(-4.0)) * j1) * sigma;
       }
       return acc;
     }
@@ -4698,77 +4599,59 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = T(0.3333333333333333);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
-    acc += damp * (T(-0.4052847345693511) * c_1);
-    const T c_2 = c2 * c_1 - T(1);
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.10132118364233778) * c_2);
-    const T c_3 = c2 * c_2 - c_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.04503163717437234) * c_3);
-    const T c_4 = c2 * c_3 - c_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.025330295910584444) * c_4);
-    const T c_5 = c2 * c_4 - c_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.016211389382774045) * c_5);
-    const T c_6 = c2 * c_5 - c_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.011257909293593086) * c_6);
-    const T c_7 = c2 * c_6 - c_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.008271117032027573) * c_7);
-    const T c_8 = c2 * c_7 - c_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.006332573977646111) * c_8);
-    const T c_9 = c2 * c_8 - c_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.005003515241596927) * c_9);
-    const T c_10 = c2 * c_9 - c_8;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.004052847345693511) * c_10);
-    const T c_11 = c2 * c_10 - c_9;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.003349460616275629) * c_11);
-    const T c_12 = c2 * c_11 - c_10;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.0028144773233982714) * c_12);
-    const T c_13 = c2 * c_12 - c_11;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.0023981345240790004) * c_13);
-    const T c_14 = c2 * c_13 - c_12;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.0020677792580068933) * c_14);
-    const T c_15 = c2 * c_14 - c_13;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.0018012654869748938) * c_15);
-    const T c_16 = c2 * c_15 - c_14;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.0015831434944115277) * c_16);
-    const T c_17 = c2 * c_16 - c_15;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(-0.001402369323769381) * c_17);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T c_10 = C2 * c_8 - c_6;
+    const T r_8 = detail::at_least(r_6 * q8, T(3.054936363499605e-151));
+    const T d_10 = detail::at_least(d_8 * r_8, T(3.054936363499605e-151));
+    const T c_11 = C2 * c_9 - c_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
+    const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
+    const T c_12 = C2 * c_10 - c_8;
+    const T r_10 = detail::at_least(r_8 * q8, T(3.054936363499605e-151));
+    const T d_12 = detail::at_least(d_10 * r_10, T(3.054936363499605e-151));
+    const T c_13 = C2 * c_11 - c_9;
+    const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
+    const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
+    const T c_14 = C2 * c_12 - c_10;
+    const T r_12 = detail::at_least(r_10 * q8, T(3.054936363499605e-151));
+    const T d_14 = detail::at_least(d_12 * r_12, T(3.054936363499605e-151));
+    const T c_15 = C2 * c_13 - c_11;
+    const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
+    const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
+    const T c_16 = C2 * c_14 - c_12;
+    const T r_14 = detail::at_least(r_12 * q8, T(3.054936363499605e-151));
+    const T d_16 = detail::at_least(d_14 * r_14, T(3.054936363499605e-151));
+    const T c_17 = C2 * c_15 - c_13;
+    const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
+    const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
+    const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9) + d_11 * (T(-0.003349460616275629) * c_11) + d_13 * (T(-0.0023981345240790004) * c_13) + d_15 * (T(-0.0018012654869748938) * c_15) + d_17 * (T(-0.001402369323769381) * c_17)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4) + d_6 * (T(0.011257909293593086) * c_6) + d_8 * (T(0.006332573977646111) * c_8) + d_10 * (T(0.004052847345693511) * c_10) + d_12 * (T(0.0028144773233982714) * c_12) + d_14 * (T(0.0020677792580068933) * c_14) + d_16 * (T(0.0015831434944115277) * c_16));
     return acc;
     }
    }
@@ -5046,39 +4929,23 @@ T gaussian_square_raw(T x, T sigma) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T inv = T(1) / sigma;
       T acc;
-      if (r < T(0.5) + base) {
-        acc = (T(1.0));
-        {  // break at 0
-          const T d = (T(0.0) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc -= T(1.0) * j0;
-        }
-        {  // break at (1/2)
-          const T d = (T(0.5) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc += T(-1.0) * j0;
-        }
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(0.5) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (w0 * (T(1.0)));
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
-      else {
-        acc = T(0);
-        {  // break at (1/2)
-          const T d = (T(0.5) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc -= T(-1.0) * j0;
-        }
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc += T(1.0) * j0;
-        }
+      {
+        const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
     }
@@ -5087,48 +4954,41 @@ T gaussian_square_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = T(0.5);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
-    acc += damp * (T(0.6366197723675814) * s_1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.2122065907891938) * s_3);
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.12732395447351627) * s_5);
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.09094568176679733) * s_7);
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.07073553026306459) * s_9);
-    const T s_10 = c2 * s_9 - s_8;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T s_11 = c2 * s_10 - s_9;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.05787452476068921) * s_11);
+    const T d_1 = q;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+    const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(8.673617379884035e-19));
+    const T d_8 = detail::at_least(d_6 * r_6, T(8.673617379884035e-19));
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
+    const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
+    const T s_10 = C2 * s_8 - s_6;
+    const T r_8 = detail::at_least(r_6 * q8, T(8.673617379884035e-19));
+    const T d_10 = detail::at_least(d_8 * r_8, T(8.673617379884035e-19));
+    const T s_11 = C2 * s_9 - s_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(8.673617379884035e-19));
+    const T d_11 = detail::at_least(d_9 * r_9, T(8.673617379884035e-19));
+    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11));
     return acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
@@ -5137,39 +4997,23 @@ T gaussian_square_raw(T x, T sigma) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T inv = T(1) / sigma;
       T acc;
-      if (r < T(0.5) + base) {
-        acc = (T(1.0));
-        {  // break at 0
-          const T d = (T(0.0) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc -= T(1.0) * j0;
-        }
-        {  // break at (1/2)
-          const T d = (T(0.5) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc += T(-1.0) * j0;
-        }
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(0.5) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (w0 * (T(1.0)));
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
-      else {
-        acc = T(0);
-        {  // break at (1/2)
-          const T d = (T(0.5) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc -= T(-1.0) * j0;
-        }
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc += T(1.0) * j0;
-        }
+      {
+        const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
     }
@@ -5178,69 +5022,59 @@ T gaussian_square_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = T(0.5);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
-    acc += damp * (T(0.6366197723675814) * s_1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.2122065907891938) * s_3);
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.12732395447351627) * s_5);
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.09094568176679733) * s_7);
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.07073553026306459) * s_9);
-    const T s_10 = c2 * s_9 - s_8;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_11 = c2 * s_10 - s_9;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.05787452476068921) * s_11);
-    const T s_12 = c2 * s_11 - s_10;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_13 = c2 * s_12 - s_11;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.04897075172058318) * s_13);
-    const T s_14 = c2 * s_13 - s_12;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_15 = c2 * s_14 - s_13;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.042441318157838755) * s_15);
-    const T s_16 = c2 * s_15 - s_14;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_17 = c2 * s_16 - s_15;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.03744822190397537) * s_17);
+    const T d_1 = q;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T s_10 = C2 * s_8 - s_6;
+    const T r_8 = detail::at_least(r_6 * q8, T(3.054936363499605e-151));
+    const T d_10 = detail::at_least(d_8 * r_8, T(3.054936363499605e-151));
+    const T s_11 = C2 * s_9 - s_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
+    const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
+    const T s_12 = C2 * s_10 - s_8;
+    const T r_10 = detail::at_least(r_8 * q8, T(3.054936363499605e-151));
+    const T d_12 = detail::at_least(d_10 * r_10, T(3.054936363499605e-151));
+    const T s_13 = C2 * s_11 - s_9;
+    const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
+    const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
+    const T s_14 = C2 * s_12 - s_10;
+    const T r_12 = detail::at_least(r_10 * q8, T(3.054936363499605e-151));
+    const T d_14 = detail::at_least(d_12 * r_12, T(3.054936363499605e-151));
+    const T s_15 = C2 * s_13 - s_11;
+    const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
+    const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
+    const T s_16 = C2 * s_14 - s_12;
+    const T r_14 = detail::at_least(r_12 * q8, T(3.054936363499605e-151));
+    const T d_16 = detail::at_least(d_14 * r_14, T(3.054936363499605e-151));
+    const T s_17 = C2 * s_15 - s_13;
+    const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
+    const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
+    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11) + d_13 * (T(0.04897075172058318) * s_13) + d_15 * (T(0.042441318157838755) * s_15) + d_17 * (T(0.03744822190397537) * s_17));
     return acc;
     }
    }
@@ -5372,39 +5206,23 @@ T gaussian_square_sq_raw(T x, T sigma) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T inv = T(1) / sigma;
       T acc;
-      if (r < T(0.5) + base) {
-        acc = (T(1.0));
-        {  // break at 0
-          const T d = (T(0.0) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc -= T(1.0) * j0;
-        }
-        {  // break at (1/2)
-          const T d = (T(0.5) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc += T(-1.0) * j0;
-        }
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(0.5) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (w0 * (T(1.0)));
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
-      else {
-        acc = T(0);
-        {  // break at (1/2)
-          const T d = (T(0.5) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc -= T(-1.0) * j0;
-        }
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc += T(1.0) * j0;
-        }
+      {
+        const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
     }
@@ -5413,48 +5231,41 @@ T gaussian_square_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = T(0.5);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
-    acc += damp * (T(0.6366197723675814) * s_1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.2122065907891938) * s_3);
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.12732395447351627) * s_5);
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.09094568176679733) * s_7);
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.07073553026306459) * s_9);
-    const T s_10 = c2 * s_9 - s_8;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    const T s_11 = c2 * s_10 - s_9;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (T(0.05787452476068921) * s_11);
+    const T d_1 = q;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+    const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(8.673617379884035e-19));
+    const T d_8 = detail::at_least(d_6 * r_6, T(8.673617379884035e-19));
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
+    const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
+    const T s_10 = C2 * s_8 - s_6;
+    const T r_8 = detail::at_least(r_6 * q8, T(8.673617379884035e-19));
+    const T d_10 = detail::at_least(d_8 * r_8, T(8.673617379884035e-19));
+    const T s_11 = C2 * s_9 - s_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(8.673617379884035e-19));
+    const T d_11 = detail::at_least(d_9 * r_9, T(8.673617379884035e-19));
+    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11));
     return acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
@@ -5463,39 +5274,23 @@ T gaussian_square_sq_raw(T x, T sigma) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T inv = T(1) / sigma;
       T acc;
-      if (r < T(0.5) + base) {
-        acc = (T(1.0));
-        {  // break at 0
-          const T d = (T(0.0) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc -= T(1.0) * j0;
-        }
-        {  // break at (1/2)
-          const T d = (T(0.5) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc += T(-1.0) * j0;
-        }
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(0.5) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (w0 * (T(1.0)));
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
-      else {
-        acc = T(0);
-        {  // break at (1/2)
-          const T d = (T(0.5) + base) - r;  // exact near the break
-          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc -= T(-1.0) * j0;
-        }
-        {  // break at 1
-          const T d = (T(1.0) + base) - r;  // exact near the break
-          const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
-          acc += T(1.0) * j0;
-        }
+      {
+        const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
     }
@@ -5504,69 +5299,59 @@ T gaussian_square_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = T(0.5);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
-    acc += damp * (T(0.6366197723675814) * s_1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.2122065907891938) * s_3);
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.12732395447351627) * s_5);
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.09094568176679733) * s_7);
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.07073553026306459) * s_9);
-    const T s_10 = c2 * s_9 - s_8;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_11 = c2 * s_10 - s_9;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.05787452476068921) * s_11);
-    const T s_12 = c2 * s_11 - s_10;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_13 = c2 * s_12 - s_11;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.04897075172058318) * s_13);
-    const T s_14 = c2 * s_13 - s_12;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_15 = c2 * s_14 - s_13;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.042441318157838755) * s_15);
-    const T s_16 = c2 * s_15 - s_14;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    const T s_17 = c2 * s_16 - s_15;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (T(0.03744822190397537) * s_17);
+    const T d_1 = q;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T s_10 = C2 * s_8 - s_6;
+    const T r_8 = detail::at_least(r_6 * q8, T(3.054936363499605e-151));
+    const T d_10 = detail::at_least(d_8 * r_8, T(3.054936363499605e-151));
+    const T s_11 = C2 * s_9 - s_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
+    const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
+    const T s_12 = C2 * s_10 - s_8;
+    const T r_10 = detail::at_least(r_8 * q8, T(3.054936363499605e-151));
+    const T d_12 = detail::at_least(d_10 * r_10, T(3.054936363499605e-151));
+    const T s_13 = C2 * s_11 - s_9;
+    const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
+    const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
+    const T s_14 = C2 * s_12 - s_10;
+    const T r_12 = detail::at_least(r_10 * q8, T(3.054936363499605e-151));
+    const T d_14 = detail::at_least(d_12 * r_12, T(3.054936363499605e-151));
+    const T s_15 = C2 * s_13 - s_11;
+    const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
+    const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
+    const T s_16 = C2 * s_14 - s_12;
+    const T r_14 = detail::at_least(r_12 * q8, T(3.054936363499605e-151));
+    const T d_16 = detail::at_least(d_14 * r_14, T(3.054936363499605e-151));
+    const T s_17 = C2 * s_15 - s_13;
+    const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
+    const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
+    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11) + d_13 * (T(0.04897075172058318) * s_13) + d_15 * (T(0.042441318157838755) * s_15) + d_17 * (T(0.03744822190397537) * s_17));
     return acc;
     }
    }
@@ -6455,39 +6240,32 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
     return rest + acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
@@ -6526,54 +6304,44 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
-    const T c_7 = c2 * c_6 - c_5;
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7);
-    const T c_8 = c2 * c_7 - c_6;
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8);
-    const T c_9 = c2 * c_8 - c_7;
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7) + d_9 * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
     return rest + acc;
     }
    }
@@ -6737,39 +6505,32 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
     return rest + acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
@@ -6808,54 +6569,44 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
-    const T c_7 = c2 * c_6 - c_5;
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7);
-    const T c_8 = c2 * c_7 - c_6;
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8);
-    const T c_9 = c2 * c_8 - c_7;
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7) + d_9 * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
     return rest + acc;
     }
    }
@@ -7035,39 +6786,32 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
     return rest + acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
@@ -7106,54 +6850,44 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
-    const T c_7 = c2 * c_6 - c_5;
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7);
-    const T c_8 = c2 * c_7 - c_6;
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8);
-    const T c_9 = c2 * c_8 - c_7;
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7) + d_9 * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
     return rest + acc;
     }
    }
@@ -7245,39 +6979,32 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
     return rest + acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
@@ -7316,54 +7043,44 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
-    const T c_7 = c2 * c_6 - c_5;
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7);
-    const T c_8 = c2 * c_7 - c_6;
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8);
-    const T c_9 = c2 * c_8 - c_7;
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7) + d_9 * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
     return rest + acc;
     }
    }
@@ -7454,39 +7171,32 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19));
-    T damp = q, ratio = q;
-    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(8.673617379884035e-19));
-    damp = detail::at_least(damp * ratio, T(8.673617379884035e-19));
-    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
     return rest + acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
@@ -7525,54 +7235,44 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T ph = detail::pi<T>() * uf, p2 = ph * ph;
     const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp, c2 = c1 + c1;
+    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151));
-    T damp = q, ratio = q;
-    T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3))));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
-    acc += damp * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1);
-    const T c_2 = c2 * c_1 - T(1);
-    const T s_2 = c2 * s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2);
-    const T c_3 = c2 * c_2 - c_1;
-    const T s_3 = c2 * s_2 - s_1;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3);
-    const T c_4 = c2 * c_3 - c_2;
-    const T s_4 = c2 * s_3 - s_2;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4);
-    const T c_5 = c2 * c_4 - c_3;
-    const T s_5 = c2 * s_4 - s_3;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5);
-    const T c_6 = c2 * c_5 - c_4;
-    const T s_6 = c2 * s_5 - s_4;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6);
-    const T c_7 = c2 * c_6 - c_5;
-    const T s_7 = c2 * s_6 - s_5;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7);
-    const T c_8 = c2 * c_7 - c_6;
-    const T s_8 = c2 * s_7 - s_6;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8);
-    const T c_9 = c2 * c_8 - c_7;
-    const T s_9 = c2 * s_8 - s_7;
-    ratio = detail::at_least(ratio * q2, T(3.054936363499605e-151));
-    damp = detail::at_least(damp * ratio, T(3.054936363499605e-151));
-    acc += damp * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9);
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7) + d_9 * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
     return rest + acc;
     }
    }
