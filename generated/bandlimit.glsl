@@ -2431,8 +2431,8 @@ float bl_gaussian_abs_raw(float x, float sigma) {
       float ph;
       bl_phi_Phic(t, ph, j0);
       float j1 = ph - t * j0;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((2.0 * j1) * st);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * ((2.0 * j1) * st);
     }
   }
   return acc;
@@ -2529,8 +2529,8 @@ float bl_gaussian_sign_raw(float x, float sigma) {
       float j0;
       float ph;
       bl_phi_Phic(t, ph, j0);
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (2.0 * j0);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (2.0 * j0);
     }
   }
   return acc;
@@ -2633,8 +2633,8 @@ float bl_gaussian_step_raw(float x, float sigma) {
       float j0;
       float ph;
       bl_phi_Phic(t, ph, j0);
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (1.0 * j0);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (1.0 * j0);
     }
   }
   return acc;
@@ -2665,8 +2665,8 @@ float bl_gaussian_step_sq_raw(float x, float sigma) {
       float j0;
       float ph;
       bl_phi_Phic(t, ph, j0);
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (1.0 * j0);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (1.0 * j0);
     }
   }
   return acc;
@@ -2772,8 +2772,8 @@ float bl_gaussian_saturate_raw(float x, float sigma) {
       float ph;
       bl_phi_Phic(t, ph, j0);
       float j1 = ph - t * j0;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((1.0 * j1) * st);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * ((1.0 * j1) * st);
     }
   }
   {  // break at 1.0
@@ -2784,8 +2784,8 @@ float bl_gaussian_saturate_raw(float x, float sigma) {
       float ph;
       bl_phi_Phic(t, ph, j0);
       float j1 = ph - t * j0;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((-1.0) * j1) * st);
+      float st = x < 1.0 ? sigma : -sigma;
+      acc += (x < 1.0 ? (1.0) : (-1.0)) * (((-1.0) * j1) * st);
     }
   }
   return acc;
@@ -2821,8 +2821,8 @@ float bl_gaussian_saturate_sq_raw(float x, float sigma) {
       bl_phi_Phic(t, ph, j0);
       float j1 = ph - t * j0;
       float j2 = j0 - t * j1;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((1.0 * j2) * st) * st);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (((1.0 * j2) * st) * st);
     }
   }
   {  // break at 1.0
@@ -2834,8 +2834,8 @@ float bl_gaussian_saturate_sq_raw(float x, float sigma) {
       bl_phi_Phic(t, ph, j0);
       float j1 = ph - t * j0;
       float j2 = j0 - t * j1;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((((-1.0) * j2) * st + (-2.0) * j1) * st);
+      float st = x < 1.0 ? sigma : -sigma;
+      acc += (x < 1.0 ? (1.0) : (-1.0)) * ((((-1.0) * j2) * st + (-2.0) * j1) * st);
     }
   }
   return acc;
@@ -2944,8 +2944,8 @@ float bl_gaussian_smoothstep_raw(float x, float sigma) {
       float j1 = ph - t * j0;
       float j2 = j0 - t * j1;
       float j3 = (2.0) * j1 - t * j2;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((((-2.0) * j3) * st + 3.0 * j2) * st) * st);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (((((-2.0) * j3) * st + 3.0 * j2) * st) * st);
     }
   }
   {  // break at 1.0
@@ -2958,8 +2958,8 @@ float bl_gaussian_smoothstep_raw(float x, float sigma) {
       float j1 = ph - t * j0;
       float j2 = j0 - t * j1;
       float j3 = (2.0) * j1 - t * j2;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((((2.0 * j3) * st + 3.0 * j2) * st) * st);
+      float st = x < 1.0 ? sigma : -sigma;
+      acc += (x < 1.0 ? (1.0) : (-1.0)) * ((((2.0 * j3) * st + 3.0 * j2) * st) * st);
     }
   }
   return acc;
@@ -2999,8 +2999,8 @@ float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
       float j4 = (3.0) * j2 - t * j3;
       float j5 = (4.0) * j3 - t * j4;
       float j6 = (5.0) * j4 - t * j5;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((((((4.0 * j6) * st + (-12.0) * j5) * st + 9.0 * j4) * st) * st) * st) * st);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (((((((4.0 * j6) * st + (-12.0) * j5) * st + 9.0 * j4) * st) * st) * st) * st);
     }
   }
   {  // break at 1.0
@@ -3016,8 +3016,8 @@ float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
       float j4 = (3.0) * j2 - t * j3;
       float j5 = (4.0) * j3 - t * j4;
       float j6 = (5.0) * j4 - t * j5;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((((((((-4.0) * j6) * st + (-12.0) * j5) * st + (-9.0) * j4) * st + 4.0 * j3) * st + 6.0 * j2) * st) * st);
+      float st = x < 1.0 ? sigma : -sigma;
+      acc += (x < 1.0 ? (1.0) : (-1.0)) * ((((((((-4.0) * j6) * st + (-12.0) * j5) * st + (-9.0) * j4) * st + 4.0 * j3) * st + 6.0 * j2) * st) * st);
     }
   }
   return acc;

@@ -266,8 +266,10 @@ std::string body_gauss_pw(const Derived& d, const Syntax& s) {
           k == 1 ? "ph" : (k == 2 ? "j0" : s.dbl(k - 1) + " * j" + std::to_string(k - 2));
       out += "    " + s.decl("j" + std::to_string(k), prev + " - t * j" + std::to_string(k - 1));
     }
-    out += "    " + s.decl("st", "db > " + s.dbl(0) + " ? sigma : -sigma");
-    out += "      acc += (db > " + s.dbl(0) + " ? " + s.dbl(1) + " : " + s.dbl(-1) + ") * (" +
+    // The side from x < b, not from db > 0: (b - x)/sigma underflows to 0 for x a subnormal step
+    // below b and a wide kernel (step(-5e-324, 3) was 0 instead of 0.5).
+    out += "    " + s.decl("st", "x < " + s.bound(ps[i].hi) + " ? sigma : -sigma");
+    out += "      acc += (x < " + s.bound(ps[i].hi) + " ? " + s.dbl(1) + " : " + s.dbl(-1) + ") * (" +
            horner(s, terms, "st") + ");\n";
     out += "    }\n  }\n";
   }

@@ -2142,8 +2142,8 @@ T gaussian_abs_raw(T x, T sigma) {
       T ph;
       detail::phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((T(2) * j1) * st);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * ((T(2) * j1) * st);
     }
   }
   return acc;
@@ -2269,8 +2269,8 @@ T gaussian_sign_raw(T x, T sigma) {
       T j0;
       T ph;
       detail::phi_Phic(t, ph, j0);
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (T(2) * j0);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (T(2) * j0);
     }
   }
   return acc;
@@ -2401,8 +2401,8 @@ T gaussian_step_raw(T x, T sigma) {
       T j0;
       T ph;
       detail::phi_Phic(t, ph, j0);
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
     }
   }
   return acc;
@@ -2437,8 +2437,8 @@ T gaussian_step_sq_raw(T x, T sigma) {
       T j0;
       T ph;
       detail::phi_Phic(t, ph, j0);
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
     }
   }
   return acc;
@@ -2569,8 +2569,8 @@ T gaussian_saturate_raw(T x, T sigma) {
       T ph;
       detail::phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((T(1) * j1) * st);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * ((T(1) * j1) * st);
     }
   }
   {  // break at T(1)
@@ -2581,8 +2581,8 @@ T gaussian_saturate_raw(T x, T sigma) {
       T ph;
       detail::phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((T(-1)) * j1) * st);
+      const T st = x < T(1) ? sigma : -sigma;
+      acc += (x < T(1) ? T(1.0) : T(-1.0)) * (((T(-1)) * j1) * st);
     }
   }
   return acc;
@@ -2627,8 +2627,8 @@ T gaussian_saturate_sq_raw(T x, T sigma) {
       detail::phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((T(1) * j2) * st) * st);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (((T(1) * j2) * st) * st);
     }
   }
   {  // break at T(1)
@@ -2640,8 +2640,8 @@ T gaussian_saturate_sq_raw(T x, T sigma) {
       detail::phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((((T(-1)) * j2) * st + (T(-2)) * j1) * st);
+      const T st = x < T(1) ? sigma : -sigma;
+      acc += (x < T(1) ? T(1.0) : T(-1.0)) * ((((T(-1)) * j2) * st + (T(-2)) * j1) * st);
     }
   }
   return acc;
@@ -2788,8 +2788,8 @@ T gaussian_smoothstep_raw(T x, T sigma) {
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
       const T j3 = T(2.0) * j1 - t * j2;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((((T(-2)) * j3) * st + T(3) * j2) * st) * st);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (((((T(-2)) * j3) * st + T(3) * j2) * st) * st);
     }
   }
   {  // break at T(1)
@@ -2802,8 +2802,8 @@ T gaussian_smoothstep_raw(T x, T sigma) {
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
       const T j3 = T(2.0) * j1 - t * j2;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((((T(2) * j3) * st + T(3) * j2) * st) * st);
+      const T st = x < T(1) ? sigma : -sigma;
+      acc += (x < T(1) ? T(1.0) : T(-1.0)) * ((((T(2) * j3) * st + T(3) * j2) * st) * st);
     }
   }
   return acc;
@@ -2879,8 +2879,8 @@ T gaussian_smoothstep_sq_raw(T x, T sigma) {
       const T j4 = T(3.0) * j2 - t * j3;
       const T j5 = T(4.0) * j3 - t * j4;
       const T j6 = T(5.0) * j4 - t * j5;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((((((T(4) * j6) * st + (T(-12)) * j5) * st + T(9) * j4) * st) * st) * st) * st);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (((((((T(4) * j6) * st + (T(-12)) * j5) * st + T(9) * j4) * st) * st) * st) * st);
     }
   }
   {  // break at T(1)
@@ -2896,8 +2896,8 @@ T gaussian_smoothstep_sq_raw(T x, T sigma) {
       const T j4 = T(3.0) * j2 - t * j3;
       const T j5 = T(4.0) * j3 - t * j4;
       const T j6 = T(5.0) * j4 - t * j5;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((((((((T(-4)) * j6) * st + (T(-12)) * j5) * st + (T(-9)) * j4) * st + T(4) * j3) * st + T(6) * j2) * st) * st);
+      const T st = x < T(1) ? sigma : -sigma;
+      acc += (x < T(1) ? T(1.0) : T(-1.0)) * ((((((((T(-4)) * j6) * st + (T(-12)) * j5) * st + (T(-9)) * j4) * st + T(4) * j3) * st + T(6) * j2) * st) * st);
     }
   }
   return acc;
