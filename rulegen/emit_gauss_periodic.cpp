@@ -332,7 +332,10 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
         o += "      {\n        const T d = (" + blend(pos) + " + base) - r;  // exact near the break\n";
         o += std::string("        const T t = detail::min2(") + (side > 0 ? "d" : "-d") +
              " * inv, detail::tail_cut<T>());\n";
-        o += "        T ph, j0;\n        detail::phi_Phic(t, ph, j0);\n";
+        if (ne <= 1 && dl.empty())
+          o += "        const T j0 = detail::Phic_tail(t);\n";
+        else
+          o += "        T ph, j0;\n        detail::phi_Phic(t, ph, j0);\n";
         for (size_t k = 1; k < ne; ++k) {
           const std::string prev =
               k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
@@ -391,7 +394,10 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
           blk += "          const T d = (" + lit(P.to_double()) + " + base) - r;  // exact near the break\n";
           blk += std::string("          const T t = detail::min2(") + (side > 0 ? "d" : "-d") +
                  " * inv, detail::tail_cut<T>());\n";
-          blk += "          T ph, j0;\n          detail::phi_Phic(t, ph, j0);\n";
+          if (b.e.size() <= 1 && !b.delta)
+            blk += "          const T j0 = detail::Phic_tail(t);\n";
+          else
+            blk += "          T ph, j0;\n          detail::phi_Phic(t, ph, j0);\n";
           for (size_t k = 1; k < b.e.size(); ++k) {
             const std::string prev =
                 k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
@@ -436,9 +442,11 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
     const std::string M = is_float ? "T(12582912.0)" : "T(6755399441055744.0)";  // 1.5 * 2^(p-1)
     o += "    const T v = r / period;  // exact (T a power of two), in (-1, 1)\n";
     o += "    const T uf = v - ((v + " + M + ") - " + M + ");  // v - round(v), in [-1/2, 1/2]\n";
-    o += "    const T ph = detail::pi<T>() * uf, p2 = ph * ph;\n";
-    // sin and cos of ph in [-pi/2, pi/2] by Taylor polynomials (remainders below).
-    const int ds = is_float ? 13 : 21, dc = is_float ? 14 : 20;
+    // sin and cos of ph = pi uf / 2 in [-pi/4, pi/4] by Taylor polynomials, then two doublings.
+    // Remainders: float through ph^9 / ph^10: < 1.8e-9, 1.2e-10; double through ph^15 / ph^16:
+    // < 4.5e-17, 2e-18 (each doubling at most doubles the error, plus rounding).
+    o += "    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;\n";
+    const int ds = is_float ? 9 : 15, dc = is_float ? 10 : 16;
     {
       std::vector<std::string> cs, cc;
       double f = 1;
@@ -448,9 +456,10 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
         if (n % 2 == 1 && n <= ds) cs.push_back(lit(sg / f));
         if (n % 2 == 0 && n <= dc) cc.push_back(lit(sg / f));
       }
-      o += "    const T sp = ph * (" + horner(cs, "p2") + ");\n";
-      o += "    const T cp = " + horner(cc, "p2") + ";\n";
+      o += "    const T sh = ph * (" + horner(cs, "p2") + ");\n";
+      o += "    const T ch = " + horner(cc, "p2") + ";\n";
     }
+    o += "    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf\n";
     o += "    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;\n";
     const double tiny = is_float ? std::ldexp(1.0, -60) : std::ldexp(1.0, -500);
     const std::string TN = lit(tiny);
@@ -529,8 +538,8 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
   out += "  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate\n";
   out +=
       "  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from\n";
-  out += "  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through\n";
-  out += "  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60\n";
+  out += "  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float\n";
+  out += "  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60\n";
   out += "  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A\n";
   out +=
       "  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).\n";

@@ -3602,8 +3602,8 @@ T gaussian_fract_raw(T x, T sigma) {
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -3621,15 +3621,13 @@ T gaussian_fract_raw(T x, T sigma) {
         {  // break at 0
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          const T j0 = detail::Phic_tail(t);
           acc -= T(-1.0) * j0;
         }
         {  // break at 1
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          const T j0 = detail::Phic_tail(t);
           acc += T(-1.0) * j0;
         }
       }
@@ -3637,9 +3635,10 @@ T gaussian_fract_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -3671,15 +3670,13 @@ T gaussian_fract_raw(T x, T sigma) {
         {  // break at 0
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          const T j0 = detail::Phic_tail(t);
           acc -= T(-1.0) * j0;
         }
         {  // break at 1
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          const T j0 = detail::Phic_tail(t);
           acc += T(-1.0) * j0;
         }
       }
@@ -3687,9 +3684,10 @@ T gaussian_fract_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
@@ -3832,8 +3830,8 @@ T gaussian_fract_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -3870,9 +3868,10 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -3928,9 +3927,10 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
@@ -4211,8 +4211,8 @@ T gaussian_triangle_raw(T x, T sigma) {
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -4249,9 +4249,10 @@ T gaussian_triangle_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -4314,9 +4315,10 @@ T gaussian_triangle_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
@@ -4488,8 +4490,8 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -4527,9 +4529,10 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -4596,9 +4599,10 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
@@ -4916,8 +4920,8 @@ T gaussian_square_raw(T x, T sigma) {
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -4936,24 +4940,23 @@ T gaussian_square_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        const T j0 = detail::Phic_tail(t);
         acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
       {
         const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        const T j0 = detail::Phic_tail(t);
         acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -5004,24 +5007,23 @@ T gaussian_square_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        const T j0 = detail::Phic_tail(t);
         acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
       {
         const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        const T j0 = detail::Phic_tail(t);
         acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
@@ -5193,8 +5195,8 @@ T gaussian_square_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -5213,24 +5215,23 @@ T gaussian_square_sq_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        const T j0 = detail::Phic_tail(t);
         acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
       {
         const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        const T j0 = detail::Phic_tail(t);
         acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -5281,24 +5282,23 @@ T gaussian_square_sq_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        const T j0 = detail::Phic_tail(t);
         acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
       {
         const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        const T j0 = detail::Phic_tail(t);
         acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
@@ -6197,8 +6197,8 @@ T gaussian_floor_sq_raw(T x, T sigma) {
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -6237,9 +6237,10 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -6301,9 +6302,10 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
@@ -6462,8 +6464,8 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -6502,9 +6504,10 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -6566,9 +6569,10 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
@@ -6743,8 +6747,8 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -6783,9 +6787,10 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -6847,9 +6852,10 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
@@ -6936,8 +6942,8 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -6976,9 +6982,10 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -7040,9 +7047,10 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
@@ -7128,8 +7136,8 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
-  // Taylor sin/cos of pi v (v = x_r/T - round, |pi v| <= pi/2: float remainder < 7e-10 through
-  // v^13 / v^14, double < 2e-17 through v^21 / v^20); q, damp and ratio are floored at 2^-60
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
   // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
   // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
@@ -7168,9 +7176,10 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = (((((((T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
@@ -7232,9 +7241,10 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
     const T v = r / period;  // exact (T a power of two), in (-1, 1)
     const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
-    const T ph = detail::pi<T>() * uf, p2 = ph * ph;
-    const T sp = ph * (((((((((((T(1.9572941063391263e-20)) * p2 + T(-8.22063524662433e-18)) * p2 + T(2.8114572543455206e-15)) * p2 + T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
-    const T cp = ((((((((((T(4.110317623312165e-19)) * p2 + T(-1.5619206968586225e-16)) * p2 + T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));

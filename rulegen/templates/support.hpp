@@ -242,6 +242,20 @@ inline void phi_Phic(T t, T& ph, T& pc) {
     pc = Phic(t);
 }
 
+// Phic(t), t >= 0, alone (a break whose jump is a constant needs no phi): float through phi_Phic
+// (one exp and a polynomial erfcx: cheaper than erfc_f, whose fma is a call without FMA hardware),
+// double one erfc and no exp.
+template <class T>
+inline T Phic_tail(T t) {
+  if constexpr (std::is_same<T, float>::value) {
+    T ph, pc;
+    phi_Phic(t, ph, pc);
+    return pc;
+  } else {
+    return Phic(t);
+  }
+}
+
 // Breaks farther than this many sd from x are skipped by the generated Gaussian piecewise entries:
 // their term is below |e_k| sigma^k k! phi(t)/t^(k+1), phi(9) = 1e-18 (float), phi(12) = 2e-32
 // (double); wider types keep 40.
