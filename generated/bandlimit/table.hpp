@@ -3609,13 +3609,22 @@ T gaussian_fract_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.1739: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.751 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1739).
+    // float (tolerance 1e-08): sigma < 0.1739: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.751 sd; below 0.08706 the nearest one alone, the others beyond 5.743 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1739).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.17388222158237718)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       T acc;
+      if (sigma < T(0.08706434220766679)) {  // the nearest break alone
+        acc = ((T(1.0))) * rp;
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc += sd * (T(-1.0) * j0);
+        return acc;
+      }
       {
         acc = ((T(1.0))) * rp;
         {  // break at 0
@@ -3658,13 +3667,22 @@ T gaussian_fract_raw(T x, T sigma) {
     const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1) + d_3 * (T(-0.1061032953945969) * s_3) + d_5 * (T(-0.06366197723675814) * s_5)) + (d_2 * (T(-0.15915494309189535) * s_2) + d_4 * (T(-0.07957747154594767) * s_4));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
+    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd; below 0.06709 the nearest one alone, the others beyond 7.453 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.13398475271138335)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       T acc;
+      if (sigma < T(0.06708733218678724)) {  // the nearest break alone
+        acc = ((T(1.0))) * rp;
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc += sd * (T(-1.0) * j0);
+        return acc;
+      }
       {
         acc = ((T(1.0))) * rp;
         {  // break at 0
@@ -3837,7 +3855,7 @@ T gaussian_fract_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.1739: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.751 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1739).
+    // float (tolerance 1e-08): sigma < 0.1739: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.751 sd; below 0.08706 the nearest one alone, the others beyond 5.743 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1739).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.17388222158237718)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -3845,6 +3863,17 @@ T gaussian_fract_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.08706434220766679)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + T(-1.0) * j0);
+        return acc;
+      }
       {
         acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -3896,7 +3925,7 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1) + d_3 * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3) + d_5 * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2) + d_4 * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
+    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd; below 0.06709 the nearest one alone, the others beyond 7.453 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.13398475271138335)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -3904,6 +3933,17 @@ T gaussian_fract_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.06708733218678724)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + T(-1.0) * j0);
+        return acc;
+      }
       {
         acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -6204,7 +6244,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.16704744067563246)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6212,6 +6252,18 @@ T gaussian_floor_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
       {
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -6269,7 +6321,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
     return rest + acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.13066846301911936)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6277,6 +6329,18 @@ T gaussian_floor_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.06575561514114299)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
       {
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -6471,7 +6535,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.16704744067563246)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6479,6 +6543,18 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
       {
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -6536,7 +6612,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
     return rest + acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.13066846301911936)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6544,6 +6620,18 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.06575561514114299)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
       {
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -6754,7 +6842,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.16704744067563246)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6762,6 +6850,18 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
       {
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -6819,7 +6919,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
     return rest + acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.13066846301911936)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6827,6 +6927,18 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.06575561514114299)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
       {
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -6949,7 +7061,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.16704744067563246)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6957,6 +7069,18 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
       {
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -7014,7 +7138,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
     return rest + acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.13066846301911936)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -7022,6 +7146,18 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.06575561514114299)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
       {
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -7143,7 +7279,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.16704744067563246)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -7151,6 +7287,18 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
       {
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         {  // break at 0
@@ -7208,7 +7356,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
     return rest + acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.13066846301911936)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -7216,6 +7364,18 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
+      if (sigma < T(0.06575561514114299)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
       {
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         {  // break at 0
