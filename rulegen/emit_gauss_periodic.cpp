@@ -200,9 +200,9 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
       const double c = std::max(cb, cf);
       if (c < best_cost) best = p, best_cost = c;
     }
-    // One piece: below the nearest-only sigma_b a third regime takes one phi_Phic instead of two
-    // (fract: 47% of log-uniform sigma in [0.01, 1]; the extra branch costs less than it saves).
-    if (best.nside == 1 && N == 1) {
+    // Below the nearest-only sigma_b a third regime takes one phi_Phic instead of two (fract: 47% of
+    // log-uniform sigma in [0.01, 1]; the extra branch costs less than it saves).
+    if (best.nside == 1 && (N == 1 || (N <= 3 && sp.delta.is_zero()))) {
       const Plan p0 = plan_for(tol, 0);
       best.sigma_0 = p0.sigma_b, best.z0 = p0.z;
     }
@@ -289,7 +289,7 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
   // Two or three pieces: no branch on the piece of x (random x mispredicts it half the time). The
   // piece indicators w_j in {0, 1} (from exact sign tests r - (lo_i + base)) blend the emit-time
   // constants of each piece: the blend of exact constants with weights 0 and 1 is exact.
-  auto blended_block = [&](const Plan& p) {
+  auto blended_block = [&](const Plan& p, const std::string& ret) {
     std::string o;
     for (size_t i = 1; i < N; ++i)
       o += "      const T h" + std::to_string(i) + " = T(0.5) * (T(1) + std::copysign(T(1), r - (" +
@@ -319,6 +319,52 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
       cx[m] = blend(v);
     }
     o += "      acc = " + horner(cx, "rp") + ";\n";
+    if (p.sigma_0 > 0) {  // the nearest break alone (nearest_block, blended over the pieces)
+      std::vector<std::string> Ls(N), Rs(N);
+      size_t ne = 0;
+      for (size_t j = 0; j < N; ++j) {
+        Ls[j] = lit(br[j].pos.to_double());
+        Rs[j] = lit((j + 1 < N ? br[j + 1].pos : T).to_double());
+        ne = std::max(ne, br[j].e.size());
+      }
+      o += "      if (sigma < " + lit(p.sigma_0) + ") {  // the nearest break alone\n";
+      o += "        const T dl = r - (" + blend(Ls) + " + base), dr = (" + blend(Rs) +
+           " + base) - r;  // exact near the breaks\n";
+      o += "        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer\n";
+      o += "        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());\n";
+      if (ne <= 1)
+        o += "        const T j0 = detail::Phic_tail(t);\n";
+      else
+        o += "        T ph, j0;\n        detail::phi_Phic(t, ph, j0);\n";
+      for (size_t k = 1; k < ne; ++k) {
+        const std::string prev =
+            k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
+        o += "        const T j" + std::to_string(k) + " = " + prev + " - t * j" + std::to_string(k - 1) +
+             ";\n";
+      }
+      bool two = false;
+      std::vector<std::string> et(ne);
+      for (size_t k = 0; k < ne; ++k) {
+        std::vector<std::string> lv(N), rv(N);
+        for (size_t j = 0; j < N; ++j) {
+          const Break &bl = br[j], &bR = br[(j + 1) % N];
+          lv[j] = k < bl.e.size() ? coef_text(bl.e[k]) : "";
+          rv[j] = k < bR.e.size() ? coef_text(bR.e[k]) : "";
+        }
+        const std::string L = blend(lv), R = blend(rv);
+        std::string c = L;
+        if (L != R) {
+          two = true;
+          c = "(hr * " + (R.empty() ? std::string("T(0)") : R) + " + hl * " +
+              (L.empty() ? std::string("T(0)") : L) + ")";
+        }
+        et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
+      }
+      if (two) o += "        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;\n";
+      const std::string term = horner(et, "(sd * sigma)");
+      if (term != "T(0)") o += "        acc += sd * (" + term + ");\n";
+      o += "  " + ret + "      }\n";
+    }
     for (int side = -1; side <= 1; side += 2)
       for (int n = 0; n < p.nside; ++n) {
         std::vector<std::string> pos(N), del(N);
@@ -366,10 +412,10 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
     o += "    if (sigma < " + lit(p.sigma_b) + ") {\n";
     std::string pcs;  // the per-piece blocks
     const bool blended = p.nside >= 1 && N >= 2 && N <= 3;
-    if (blended) pcs = blended_block(p);
     const std::string extra = coef_text(sp.break_extra);
     const std::string ret = "      return " + sp.lead + "acc" + (extra.empty() ? "" : " + " + extra) + ";\n";
-    if (p.sigma_0 > 0) {
+    if (blended) pcs = blended_block(p, ret);
+    if (p.sigma_0 > 0 && N == 1) {
       const std::vector<std::string> cx = mean_coefs(0);
       pcs += "      if (sigma < " + lit(p.sigma_0) + ") {  // the nearest break alone\n";
       pcs += "        acc = " + horner(cx, "rp") + ";\n" + nearest_block(0) + "  " + ret + "      }\n";

@@ -4258,7 +4258,7 @@ T gaussian_triangle_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.1896: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.274 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09481).
+    // float (tolerance 1e-08): sigma < 0.1896: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.274 sd; below 0.09687 the nearest one alone, the others beyond 5.162 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09481).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.18961729470818975)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -4269,6 +4269,17 @@ T gaussian_triangle_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = ((w0 * (T(1.0)) + w1 * (T(-1.0)))) * rp + (w1 * (T(2.0)));
+      if (sigma < T(0.09686586613025365)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * (((hr * (w0 * T(-2.0) + w1 * T(2.0)) + hl * (w0 * T(2.0) + w1 * T(-2.0))) * j1) * (sd * sigma));
+        return acc;
+      }
       {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
@@ -4324,7 +4335,7 @@ T gaussian_triangle_raw(T x, T sigma) {
     const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1425: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.018 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07125).
+    // double (tolerance 1e-13): sigma < 0.1425: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.018 sd; below 0.07207 the nearest one alone, the others beyond 6.938 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07125).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.1424930061042748)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -4335,6 +4346,17 @@ T gaussian_triangle_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = ((w0 * (T(1.0)) + w1 * (T(-1.0)))) * rp + (w1 * (T(2.0)));
+      if (sigma < T(0.07206635058261547)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * (((hr * (w0 * T(-2.0) + w1 * T(2.0)) + hl * (w0 * T(2.0) + w1 * T(-2.0))) * j1) * (sd * sigma));
+        return acc;
+      }
       {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
@@ -4537,7 +4559,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.1849: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.408 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09246).
+    // float (tolerance 1e-08): sigma < 0.1849: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.408 sd; below 0.09447 the nearest one alone, the others beyond 5.293 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09246).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.18492403023450515)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -4549,6 +4571,17 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = (((T(1.0))) * rp + (w1 * (T(-4.0)))) * rp + (w0 * ((T(1.0)) * s2) + w1 * ((T(1.0)) * s2 + T(4.0)));
+      if (sigma < T(0.09446831516360035)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * (((hr * (w0 * T(-4.0)) + hl * (w1 * T(-4.0))) * j1) * (sd * sigma));
+        return acc;
+      }
       {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
@@ -4607,7 +4640,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4) + d_6 * (T(0.011257909293593086) * c_6) + d_8 * (T(0.006332573977646111) * c_8) + d_10 * (T(0.004052847345693511) * c_10));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1404: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.124 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07018).
+    // double (tolerance 1e-13): sigma < 0.1404: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.124 sd; below 0.07099 the nearest one alone, the others beyond 7.043 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07018).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.1403662801765427)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -4619,6 +4652,17 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = (((T(1.0))) * rp + (w1 * (T(-4.0)))) * rp + (w0 * ((T(1.0)) * s2) + w1 * ((T(1.0)) * s2 + T(4.0)));
+      if (sigma < T(0.0709907512918761)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * (((hr * (w0 * T(-4.0)) + hl * (w1 * T(-4.0))) * j1) * (sd * sigma));
+        return acc;
+      }
       {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
@@ -4967,7 +5011,7 @@ T gaussian_square_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.08706: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.743 sd: their tails sum to <= tol); else 11 Fourier terms (tail <= tol for sigma/T >= 0.08706).
+    // float (tolerance 1e-08): sigma < 0.08706: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.743 sd; below 0.04338 the nearest one alone, the others beyond 5.764 sd: their tails sum to <= tol); else 11 Fourier terms (tail <= tol for sigma/T >= 0.08706).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.08706434220766679)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -4977,6 +5021,15 @@ T gaussian_square_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = (w0 * (T(1.0)));
+      if (sigma < T(0.043375904776212296)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
+        return acc;
+      }
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
@@ -5034,7 +5087,7 @@ T gaussian_square_raw(T x, T sigma) {
     const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
+    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd; below 0.03342 the nearest one alone, the others beyond 7.48 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.06708733218678724)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -5044,6 +5097,15 @@ T gaussian_square_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = (w0 * (T(1.0)));
+      if (sigma < T(0.033423255248208356)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
+        return acc;
+      }
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
@@ -5242,7 +5304,7 @@ T gaussian_square_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.08706: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.743 sd: their tails sum to <= tol); else 11 Fourier terms (tail <= tol for sigma/T >= 0.08706).
+    // float (tolerance 1e-08): sigma < 0.08706: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.743 sd; below 0.04338 the nearest one alone, the others beyond 5.764 sd: their tails sum to <= tol); else 11 Fourier terms (tail <= tol for sigma/T >= 0.08706).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.08706434220766679)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -5252,6 +5314,15 @@ T gaussian_square_sq_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = (w0 * (T(1.0)));
+      if (sigma < T(0.043375904776212296)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
+        return acc;
+      }
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
@@ -5309,7 +5380,7 @@ T gaussian_square_sq_raw(T x, T sigma) {
     const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
+    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd; below 0.03342 the nearest one alone, the others beyond 7.48 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.06708733218678724)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -5319,6 +5390,15 @@ T gaussian_square_sq_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = (w0 * (T(1.0)));
+      if (sigma < T(0.033423255248208356)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
+        return acc;
+      }
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
