@@ -880,8 +880,17 @@ std::string body_combination(const Derived& d, const Syntax& s, const std::vecto
   std::string tables;
   std::string out = fz.idx.empty() ? "  return " + s.ex(d.closed) : s.ex(d.closed);
   if (!merged_idx.empty()) {
-    tables += piece_table(s, "pm", merged);
-    out += " + " + s.helper("gauss_pw") + "(x, sigma, " + pieces_arg(s, "pm", merged.size()) + ")";
+    if (!(s.cpp() && merged.size() == 2)) tables += piece_table(s, "pm", merged);
+    if (s.cpp() && merged.size() == 2) {
+      // One break: body_gauss_pw's straight-line form as an immediately invoked lambda (the generic
+      // gauss_pw loops cost trunc^2 ~20 ns per call near 0).
+      Derived dm;
+      dm.kernel = Kernel::Gaussian;
+      dm.pieces = merged;
+      out += " + [&]() -> T {\n" + body_gauss_pw(dm, s) + "  }()";
+    } else {
+      out += " + " + s.helper("gauss_pw") + "(x, sigma, " + pieces_arg(s, "pm", merged.size()) + ")";
+    }
   }
   for (size_t i = 0; i < d.terms.size(); ++i) {
     if (std::find(fz.idx.begin(), fz.idx.end(), i) != fz.idx.end()) continue;

@@ -68,6 +68,52 @@ std::string horner(const std::vector<std::string>& c, const std::string& v) {
   return r;
 }
 
+// Whether `name` occurs in `text` as a whole identifier.
+bool mentions(const std::string& text, const std::string& name) {
+  auto id = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
+    const bool before = at > 0 && id(text[at - 1]);
+    const bool after = at + name.size() < text.size() && id(text[at + name.size()]);
+    if (!before && !after) return true;
+  }
+  return false;
+}
+
+// Drops the one-declaration lines "const T name = ...;" whose name nothing else uses (the last
+// links of the Chebyshev and damping chains when a parity has no further term), repeatedly.
+std::string drop_unused(std::string code) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    size_t start = 0;
+    while (start < code.size()) {
+      const size_t end = code.find('\n', start);
+      const std::string line = code.substr(start, end == std::string::npos ? std::string::npos : end - start);
+      const size_t k = line.find("const T ");
+      const size_t eq = line.find(" = ");
+      int depth = 0;
+      bool top_comma = false;  // "const T a = ..., b = ...;" declares two
+      for (char c : line) {
+        depth += c == '(' ? 1 : c == ')' ? -1 : 0;
+        top_comma |= c == ',' && depth == 0;
+      }
+      if (k != std::string::npos && eq != std::string::npos && !top_comma &&
+          line.find_first_not_of(' ') == k) {
+        const std::string name = line.substr(k + 8, eq - k - 8);
+        std::string rest = code;
+        rest.erase(start, end == std::string::npos ? std::string::npos : end - start + 1);
+        if (!mentions(rest, name)) {
+          code = rest;
+          changed = true;
+          continue;
+        }
+      }
+      if (end == std::string::npos) break;
+      start = end + 1;
+    }
+  }
+  return code;
+}
+
 bool dyadic(const numeric& v) {
   const numeric s = v * numeric(1 << 20);
   return s.is_integer() && std::fabs(v.to_double()) < 1e6;
@@ -502,6 +548,7 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
     o += "      T acc;\n" + pcs;
     o += ret + "    }\n";
     // Fourier regime.
+    const size_t fourier_at = o.size();
     const std::string M = is_float ? "T(12582912.0)" : "T(6755399441055744.0)";  // 1.5 * 2^(p-1)
     o += "    const T v = r / period;  // exact (T a power of two), in (-1, 1)\n";
     o += "    const T uf = v - ((v + " + M + ") - " + M + ");  // v - round(v), in [-1/2, 1/2]\n";
@@ -523,7 +570,7 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
       o += "    const T ch = " + horner(cc, "p2") + ";\n";
     }
     o += "    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf\n";
-    o += "    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;\n";
+    o += "    const T c1 = T(1) - T(2) * sp * sp;\n    const T s1 = T(2) * sp * cp;\n";
     const double tiny = is_float ? std::ldexp(1.0, -60) : std::ldexp(1.0, -500);
     const std::string TN = lit(tiny);
     o += "    const T q0 = exp(" + lit(-2 * kPi * kPi / (Pd * Pd)) + " * sigma * sigma);\n";
@@ -586,6 +633,7 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
       if (!acc[par].empty()) o += " + (" + acc[par] + ")";
     o += ";\n";
     o += "    return " + sp.lead + "acc;\n";
+    o = o.substr(0, fourier_at) + drop_unused(o.substr(fourier_at));
     return o;
   };
   auto header = [&](const Plan& p, const char* name, double tol) {

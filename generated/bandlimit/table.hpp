@@ -3648,7 +3648,8 @@ T gaussian_fract_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -3706,7 +3707,8 @@ T gaussian_fract_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -3901,7 +3903,8 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -3971,7 +3974,8 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -4304,31 +4308,21 @@ T gaussian_triangle_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T d_1 = q;
-    const T c_2 = T(0.5) * C2;
-    const T d_2 = q4;
     const T c_3 = C2 * c_1 - c1;
     const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
-    const T c_4 = C2 * c_2 - T(1);
-    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
-    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
     const T c_5 = C2 * c_3 - c_1;
     const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
     const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
-    const T c_6 = C2 * c_4 - c_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
-    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
     const T c_7 = C2 * c_5 - c_3;
     const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
     const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
-    const T c_8 = C2 * c_6 - c_4;
-    const T r_6 = detail::at_least(r_4 * q8, T(8.673617379884035e-19));
-    const T d_8 = detail::at_least(d_6 * r_6, T(8.673617379884035e-19));
     const T c_9 = C2 * c_7 - c_5;
     const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
     const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
@@ -4381,55 +4375,33 @@ T gaussian_triangle_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T d_1 = q;
-    const T c_2 = T(0.5) * C2;
-    const T d_2 = q4;
     const T c_3 = C2 * c_1 - c1;
     const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
-    const T c_4 = C2 * c_2 - T(1);
-    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
-    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
     const T c_5 = C2 * c_3 - c_1;
     const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
     const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
-    const T c_6 = C2 * c_4 - c_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
-    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
     const T c_7 = C2 * c_5 - c_3;
     const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
     const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
-    const T c_8 = C2 * c_6 - c_4;
-    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
-    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
     const T c_9 = C2 * c_7 - c_5;
     const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
     const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
-    const T c_10 = C2 * c_8 - c_6;
-    const T r_8 = detail::at_least(r_6 * q8, T(3.054936363499605e-151));
-    const T d_10 = detail::at_least(d_8 * r_8, T(3.054936363499605e-151));
     const T c_11 = C2 * c_9 - c_7;
     const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
     const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
-    const T c_12 = C2 * c_10 - c_8;
-    const T r_10 = detail::at_least(r_8 * q8, T(3.054936363499605e-151));
-    const T d_12 = detail::at_least(d_10 * r_10, T(3.054936363499605e-151));
     const T c_13 = C2 * c_11 - c_9;
     const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
     const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
-    const T c_14 = C2 * c_12 - c_10;
-    const T r_12 = detail::at_least(r_10 * q8, T(3.054936363499605e-151));
-    const T d_14 = detail::at_least(d_12 * r_12, T(3.054936363499605e-151));
     const T c_15 = C2 * c_13 - c_11;
     const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
     const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
-    const T c_16 = C2 * c_14 - c_12;
-    const T r_14 = detail::at_least(r_12 * q8, T(3.054936363499605e-151));
-    const T d_16 = detail::at_least(d_14 * r_14, T(3.054936363499605e-151));
     const T c_17 = C2 * c_15 - c_13;
     const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
     const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
@@ -4606,7 +4578,8 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -4687,7 +4660,8 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -5050,37 +5024,23 @@ T gaussian_square_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
     const T d_1 = q;
-    const T s_2 = T(2) * s1 * c1;
-    const T d_2 = q4;
     const T s_3 = C2 * s_1 + s1;
     const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
-    const T s_4 = C2 * s_2;
-    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
-    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
     const T s_5 = C2 * s_3 - s_1;
     const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
     const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
-    const T s_6 = C2 * s_4 - s_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
-    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
     const T s_7 = C2 * s_5 - s_3;
     const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
     const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
-    const T s_8 = C2 * s_6 - s_4;
-    const T r_6 = detail::at_least(r_4 * q8, T(8.673617379884035e-19));
-    const T d_8 = detail::at_least(d_6 * r_6, T(8.673617379884035e-19));
     const T s_9 = C2 * s_7 - s_5;
     const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
     const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
-    const T s_10 = C2 * s_8 - s_6;
-    const T r_8 = detail::at_least(r_6 * q8, T(8.673617379884035e-19));
-    const T d_10 = detail::at_least(d_8 * r_8, T(8.673617379884035e-19));
     const T s_11 = C2 * s_9 - s_7;
     const T r_9 = detail::at_least(r_7 * q8, T(8.673617379884035e-19));
     const T d_11 = detail::at_least(d_9 * r_9, T(8.673617379884035e-19));
@@ -5126,55 +5086,32 @@ T gaussian_square_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
     const T d_1 = q;
-    const T s_2 = T(2) * s1 * c1;
-    const T d_2 = q4;
     const T s_3 = C2 * s_1 + s1;
     const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
-    const T s_4 = C2 * s_2;
-    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
-    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
     const T s_5 = C2 * s_3 - s_1;
     const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
     const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
-    const T s_6 = C2 * s_4 - s_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
-    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
     const T s_7 = C2 * s_5 - s_3;
     const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
     const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
-    const T s_8 = C2 * s_6 - s_4;
-    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
-    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
     const T s_9 = C2 * s_7 - s_5;
     const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
     const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
-    const T s_10 = C2 * s_8 - s_6;
-    const T r_8 = detail::at_least(r_6 * q8, T(3.054936363499605e-151));
-    const T d_10 = detail::at_least(d_8 * r_8, T(3.054936363499605e-151));
     const T s_11 = C2 * s_9 - s_7;
     const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
     const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
-    const T s_12 = C2 * s_10 - s_8;
-    const T r_10 = detail::at_least(r_8 * q8, T(3.054936363499605e-151));
-    const T d_12 = detail::at_least(d_10 * r_10, T(3.054936363499605e-151));
     const T s_13 = C2 * s_11 - s_9;
     const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
     const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
-    const T s_14 = C2 * s_12 - s_10;
-    const T r_12 = detail::at_least(r_10 * q8, T(3.054936363499605e-151));
-    const T d_14 = detail::at_least(d_12 * r_12, T(3.054936363499605e-151));
     const T s_15 = C2 * s_13 - s_11;
     const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
     const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
-    const T s_16 = C2 * s_14 - s_12;
-    const T r_14 = detail::at_least(r_12 * q8, T(3.054936363499605e-151));
-    const T d_16 = detail::at_least(d_14 * r_14, T(3.054936363499605e-151));
     const T s_17 = C2 * s_15 - s_13;
     const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
     const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
@@ -5343,37 +5280,23 @@ T gaussian_square_sq_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
     const T d_1 = q;
-    const T s_2 = T(2) * s1 * c1;
-    const T d_2 = q4;
     const T s_3 = C2 * s_1 + s1;
     const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
-    const T s_4 = C2 * s_2;
-    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
-    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
     const T s_5 = C2 * s_3 - s_1;
     const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
     const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
-    const T s_6 = C2 * s_4 - s_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
-    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
     const T s_7 = C2 * s_5 - s_3;
     const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
     const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
-    const T s_8 = C2 * s_6 - s_4;
-    const T r_6 = detail::at_least(r_4 * q8, T(8.673617379884035e-19));
-    const T d_8 = detail::at_least(d_6 * r_6, T(8.673617379884035e-19));
     const T s_9 = C2 * s_7 - s_5;
     const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
     const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
-    const T s_10 = C2 * s_8 - s_6;
-    const T r_8 = detail::at_least(r_6 * q8, T(8.673617379884035e-19));
-    const T d_10 = detail::at_least(d_8 * r_8, T(8.673617379884035e-19));
     const T s_11 = C2 * s_9 - s_7;
     const T r_9 = detail::at_least(r_7 * q8, T(8.673617379884035e-19));
     const T d_11 = detail::at_least(d_9 * r_9, T(8.673617379884035e-19));
@@ -5419,55 +5342,32 @@ T gaussian_square_sq_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
     const T d_1 = q;
-    const T s_2 = T(2) * s1 * c1;
-    const T d_2 = q4;
     const T s_3 = C2 * s_1 + s1;
     const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
-    const T s_4 = C2 * s_2;
-    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
-    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
     const T s_5 = C2 * s_3 - s_1;
     const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
     const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
-    const T s_6 = C2 * s_4 - s_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
-    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
     const T s_7 = C2 * s_5 - s_3;
     const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
     const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
-    const T s_8 = C2 * s_6 - s_4;
-    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
-    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
     const T s_9 = C2 * s_7 - s_5;
     const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
     const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
-    const T s_10 = C2 * s_8 - s_6;
-    const T r_8 = detail::at_least(r_6 * q8, T(3.054936363499605e-151));
-    const T d_10 = detail::at_least(d_8 * r_8, T(3.054936363499605e-151));
     const T s_11 = C2 * s_9 - s_7;
     const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
     const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
-    const T s_12 = C2 * s_10 - s_8;
-    const T r_10 = detail::at_least(r_8 * q8, T(3.054936363499605e-151));
-    const T d_12 = detail::at_least(d_10 * r_10, T(3.054936363499605e-151));
     const T s_13 = C2 * s_11 - s_9;
     const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
     const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
-    const T s_14 = C2 * s_12 - s_10;
-    const T r_12 = detail::at_least(r_10 * q8, T(3.054936363499605e-151));
-    const T d_14 = detail::at_least(d_12 * r_12, T(3.054936363499605e-151));
     const T s_15 = C2 * s_13 - s_11;
     const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
     const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
-    const T s_16 = C2 * s_14 - s_12;
-    const T r_14 = detail::at_least(r_12 * q8, T(3.054936363499605e-151));
-    const T d_16 = detail::at_least(d_14 * r_14, T(3.054936363499605e-151));
     const T s_17 = C2 * s_15 - s_13;
     const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
     const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
@@ -6373,7 +6273,8 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -6450,7 +6351,8 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -6664,7 +6566,8 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -6741,7 +6644,8 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -6901,10 +6805,6 @@ T gaussian_trunc(T x, T sigma) {
 template <class T>
 T gaussian_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> pm[2] = {
-      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {(T(-1)), (T(-2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   const T Rf = detail::image_z(T(6.0), detail::series_tol<T>()) * sigma;
   if (x - Rf >= T(0.0)) {
@@ -6971,7 +6871,8 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -7048,7 +6949,8 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -7190,7 +7092,8 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -7267,7 +7170,8 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -7345,7 +7249,30 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   }
   return rest + detail::gauss_periodic_image(y, sigma, period, p, T(5.0)) + (T(-2)) * sigma * sigma + T(2) * T(0.3989422804014327) * sigma * th;
   }
-  const T rest = ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + detail::gauss_pw(x, sigma, pm) + T(2) * (T(1) * gaussian_fract_right<T>(x, sigma));
+  const T rest = ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + [&]() -> T {
+  static const detail::Piece<T> p[2] = {
+      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), {(T(-1)), (T(-2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::pw_eval(x, p);
+  T acc = T(0.0);
+  if (x < T(0)) acc = T(0.0);
+  else acc = (((T(-2)))) * x + ((T(-1)));
+  {  // break at T(0)
+    const T db = (T(0) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (((T(-2)) * j1) * st + (T(-1)) * j0);
+    }
+  }
+  return acc;
+  }() + T(2) * (T(1) * gaussian_fract_right<T>(x, sigma));
   const T y = x;
   const T lam = (((T(-2))*y) + (T(-2)));
   const T period = T(1);
@@ -7408,7 +7335,8 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
@@ -7485,7 +7413,8 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
     const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
-    const T c1 = T(1) - T(2) * sp * sp, s1 = T(2) * sp * cp;
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
     const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
