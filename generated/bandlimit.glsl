@@ -2531,8 +2531,8 @@ float bl_gaussian_abs_raw(float x, float sigma) {
       float ph;
       bl_phi_Phic(t, ph, j0);
       float j1 = ph - t * j0;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((2.0 * j1) * st);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * ((2.0 * j1) * st);
     }
   }
   return acc;
@@ -2629,8 +2629,8 @@ float bl_gaussian_sign_raw(float x, float sigma) {
       float j0;
       float ph;
       bl_phi_Phic(t, ph, j0);
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (2.0 * j0);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (2.0 * j0);
     }
   }
   return acc;
@@ -2733,8 +2733,8 @@ float bl_gaussian_step_raw(float x, float sigma) {
       float j0;
       float ph;
       bl_phi_Phic(t, ph, j0);
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (1.0 * j0);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (1.0 * j0);
     }
   }
   return acc;
@@ -2765,8 +2765,8 @@ float bl_gaussian_step_sq_raw(float x, float sigma) {
       float j0;
       float ph;
       bl_phi_Phic(t, ph, j0);
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (1.0 * j0);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (1.0 * j0);
     }
   }
   return acc;
@@ -2872,8 +2872,8 @@ float bl_gaussian_saturate_raw(float x, float sigma) {
       float ph;
       bl_phi_Phic(t, ph, j0);
       float j1 = ph - t * j0;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((1.0 * j1) * st);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * ((1.0 * j1) * st);
     }
   }
   {  // break at 1.0
@@ -2884,8 +2884,8 @@ float bl_gaussian_saturate_raw(float x, float sigma) {
       float ph;
       bl_phi_Phic(t, ph, j0);
       float j1 = ph - t * j0;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((-1.0) * j1) * st);
+      float st = x < 1.0 ? sigma : -sigma;
+      acc += (x < 1.0 ? (1.0) : (-1.0)) * (((-1.0) * j1) * st);
     }
   }
   return acc;
@@ -2921,8 +2921,8 @@ float bl_gaussian_saturate_sq_raw(float x, float sigma) {
       bl_phi_Phic(t, ph, j0);
       float j1 = ph - t * j0;
       float j2 = j0 - t * j1;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((1.0 * j2) * st) * st);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (((1.0 * j2) * st) * st);
     }
   }
   {  // break at 1.0
@@ -2934,8 +2934,8 @@ float bl_gaussian_saturate_sq_raw(float x, float sigma) {
       bl_phi_Phic(t, ph, j0);
       float j1 = ph - t * j0;
       float j2 = j0 - t * j1;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((((-1.0) * j2) * st + (-2.0) * j1) * st);
+      float st = x < 1.0 ? sigma : -sigma;
+      acc += (x < 1.0 ? (1.0) : (-1.0)) * ((((-1.0) * j2) * st + (-2.0) * j1) * st);
     }
   }
   return acc;
@@ -3044,8 +3044,8 @@ float bl_gaussian_smoothstep_raw(float x, float sigma) {
       float j1 = ph - t * j0;
       float j2 = j0 - t * j1;
       float j3 = (2.0) * j1 - t * j2;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((((-2.0) * j3) * st + 3.0 * j2) * st) * st);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (((((-2.0) * j3) * st + 3.0 * j2) * st) * st);
     }
   }
   {  // break at 1.0
@@ -3058,8 +3058,8 @@ float bl_gaussian_smoothstep_raw(float x, float sigma) {
       float j1 = ph - t * j0;
       float j2 = j0 - t * j1;
       float j3 = (2.0) * j1 - t * j2;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((((2.0 * j3) * st + 3.0 * j2) * st) * st);
+      float st = x < 1.0 ? sigma : -sigma;
+      acc += (x < 1.0 ? (1.0) : (-1.0)) * ((((2.0 * j3) * st + 3.0 * j2) * st) * st);
     }
   }
   return acc;
@@ -3099,8 +3099,8 @@ float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
       float j4 = (3.0) * j2 - t * j3;
       float j5 = (4.0) * j3 - t * j4;
       float j6 = (5.0) * j4 - t * j5;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * (((((((4.0 * j6) * st + (-12.0) * j5) * st + 9.0 * j4) * st) * st) * st) * st);
+      float st = x < 0.0 ? sigma : -sigma;
+      acc += (x < 0.0 ? (1.0) : (-1.0)) * (((((((4.0 * j6) * st + (-12.0) * j5) * st + 9.0 * j4) * st) * st) * st) * st);
     }
   }
   {  // break at 1.0
@@ -3116,8 +3116,8 @@ float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
       float j4 = (3.0) * j2 - t * j3;
       float j5 = (4.0) * j3 - t * j4;
       float j6 = (5.0) * j4 - t * j5;
-      float st = db > (0.0) ? sigma : -sigma;
-      acc += (db > (0.0) ? (1.0) : (-1.0)) * ((((((((-4.0) * j6) * st + (-12.0) * j5) * st + (-9.0) * j4) * st + 4.0 * j3) * st + 6.0 * j2) * st) * st);
+      float st = x < 1.0 ? sigma : -sigma;
+      acc += (x < 1.0 ? (1.0) : (-1.0)) * ((((((((-4.0) * j6) * st + (-12.0) * j5) * st + (-9.0) * j4) * st + 4.0 * j3) * st + 6.0 * j2) * st) * st);
     }
   }
   return acc;

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "emit_box_tent_ept.hpp"
+#include "emit_gauss_periodic.hpp"
 #include "emit_syntax.hpp"
 #include "exp_poly.hpp"
 #include "functions.hpp"
@@ -230,8 +231,10 @@ std::string body_gauss_pw(const Derived& d, const Syntax& s) {
           k == 1 ? "ph" : (k == 2 ? "j0" : s.dbl(k - 1) + " * j" + std::to_string(k - 2));
       out += "    " + s.decl("j" + std::to_string(k), prev + " - t * j" + std::to_string(k - 1));
     }
-    out += "    " + s.decl("st", "db > " + s.dbl(0) + " ? sigma : -sigma");
-    out += "      acc += (db > " + s.dbl(0) + " ? " + s.dbl(1) + " : " + s.dbl(-1) + ") * (" +
+    // The side from x < b, not from db > 0: (b - x)/sigma underflows to 0 for x a subnormal step
+    // below b and a wide kernel (step(-5e-324, 3) was 0 instead of 0.5).
+    out += "    " + s.decl("st", "x < " + s.bound(ps[i].hi) + " ? sigma : -sigma");
+    out += "      acc += (x < " + s.bound(ps[i].hi) + " ? " + s.dbl(1) + " : " + s.dbl(-1) + ") * (" +
            horner(s, terms, "st") + ");\n";
     out += "    }\n  }\n";
   }
@@ -497,6 +500,20 @@ std::string origin_dispatch(const Derived& d, const Syntax& s, int integrals,
   return out;
 }
 
+// The straight-line plan's input (emit_gauss_periodic.hpp) of a Gaussian periodic entry.
+GaussPeriodicSpec periodic_spec(const Derived& d) {
+  GaussPeriodicSpec sp;
+  if (!GiNaC::is_a<GiNaC::numeric>(d.period)) return sp;
+  sp.period = GiNaC::ex_to<GiNaC::numeric>(d.period);
+  for (const PolyPiece& pc : d.pieces) {
+    if (!pc.lo.finite() || !GiNaC::is_a<GiNaC::numeric>(pc.lo.value)) return GaussPeriodicSpec{};
+    sp.lo.push_back(GiNaC::ex_to<GiNaC::numeric>(pc.lo.value));
+    sp.c.emplace_back(pc.c.begin(), pc.c.end());
+  }
+  sp.a0 = d.a0, sp.ak = d.ak, sp.bk = d.bk, sp.coef_bound = d.coef_bound;
+  return sp;
+}
+
 std::string body_periodic(const Derived& d, const Syntax& s) {
   const size_t n = d.pieces.size();
   std::string out = piece_table(s, "p", d.pieces);
@@ -526,6 +543,7 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
   std::string terms;
   if (!d.ak.is_zero()) terms = s.ex(d.ak) + " * cos(th)";
   if (!d.bk.is_zero()) terms += (terms.empty() ? "" : " + ") + s.ex(d.bk) + " * sin(th)";
+  if (s.cpp() && d.phases.empty() && d.origins.empty()) out += gauss_periodic_fast_cpp(periodic_spec(d));
   out += fourier_branch(d, s, 0, s.ex(d.a0), "damp * (" + (terms.empty() ? s.dbl(0) : terms) + ")", "acc");
   auto call = [&](const std::string& y, const std::string& t) {
     return s.helper("gauss_periodic_image") + "(" + y + ", sigma, period, " + pieces_arg(s, t, n) + ", " +
@@ -617,6 +635,18 @@ std::string fused_periodic(const Derived& d, const FusedTerms& f, const FusableP
            "BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, "
            "float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));\n";
   const std::string lead = rest.empty() ? "" : rest + " + ";
+  if (s.cpp() && GiNaC::is_a<GiNaC::numeric>(T) && GiNaC::is_a<GiNaC::numeric>(A.pieces[0].lo.value)) {
+    GaussPeriodicSpec sp;
+    sp.period = GiNaC::ex_to<GiNaC::numeric>(T);
+    sp.lo = {GiNaC::ex_to<GiNaC::numeric>(A.pieces[0].lo.value)};
+    sp.c = {hc};
+    sp.a0 = dd.a0, sp.ak = dd.ak, sp.bk = dd.bk, sp.coef_bound = dd.coef_bound;
+    sp.delta = c1s * J * sig;  // theta's sum of phi_sigma at the breaks, times c1s J sigma^2
+    sp.break_extra = c1s * g[1] * sig * sig;
+    sp.y = "y";
+    sp.lead = lead;
+    out += gauss_periodic_fast_cpp(sp);
+  }
   out += fourier_branch(dd, s, 0, s.ex(dd.a0),
                         "damp * (" + s.ex(dd.ak) + " * cos(th) + " + s.ex(dd.bk) + " * sin(th))",
                         lead + "acc", "y");
@@ -817,8 +847,17 @@ std::string body_combination(const Derived& d, const Syntax& s, const std::vecto
   std::string tables;
   std::string out = fz.idx.empty() ? "  return " + s.ex(d.closed) : s.ex(d.closed);
   if (!merged_idx.empty()) {
-    tables += piece_table(s, "pm", merged);
-    out += " + " + s.helper("gauss_pw") + "(x, sigma, " + pieces_arg(s, "pm", merged.size()) + ")";
+    if (!(s.cpp() && merged.size() == 2)) tables += piece_table(s, "pm", merged);
+    if (s.cpp() && merged.size() == 2) {
+      // One break: body_gauss_pw's straight-line form as an immediately invoked lambda (the generic
+      // gauss_pw loops cost trunc^2 ~20 ns per call near 0).
+      Derived dm;
+      dm.kernel = Kernel::Gaussian;
+      dm.pieces = merged;
+      out += " + [&]() -> T {\n" + body_gauss_pw(dm, s) + "  }()";
+    } else {
+      out += " + " + s.helper("gauss_pw") + "(x, sigma, " + pieces_arg(s, "pm", merged.size()) + ")";
+    }
   }
   for (size_t i = 0; i < d.terms.size(); ++i) {
     if (std::find(fz.idx.begin(), fz.idx.end(), i) != fz.idx.end()) continue;

@@ -2270,8 +2270,8 @@ T gaussian_abs_raw(T x, T sigma) {
       T ph;
       detail::phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((T(2) * j1) * st);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * ((T(2) * j1) * st);
     }
   }
   return acc;
@@ -2397,8 +2397,8 @@ T gaussian_sign_raw(T x, T sigma) {
       T j0;
       T ph;
       detail::phi_Phic(t, ph, j0);
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (T(2) * j0);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (T(2) * j0);
     }
   }
   return acc;
@@ -2529,8 +2529,8 @@ T gaussian_step_raw(T x, T sigma) {
       T j0;
       T ph;
       detail::phi_Phic(t, ph, j0);
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
     }
   }
   return acc;
@@ -2565,8 +2565,8 @@ T gaussian_step_sq_raw(T x, T sigma) {
       T j0;
       T ph;
       detail::phi_Phic(t, ph, j0);
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
     }
   }
   return acc;
@@ -2697,8 +2697,8 @@ T gaussian_saturate_raw(T x, T sigma) {
       T ph;
       detail::phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((T(1) * j1) * st);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * ((T(1) * j1) * st);
     }
   }
   {  // break at T(1)
@@ -2709,8 +2709,8 @@ T gaussian_saturate_raw(T x, T sigma) {
       T ph;
       detail::phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((T(-1)) * j1) * st);
+      const T st = x < T(1) ? sigma : -sigma;
+      acc += (x < T(1) ? T(1.0) : T(-1.0)) * (((T(-1)) * j1) * st);
     }
   }
   return acc;
@@ -2755,8 +2755,8 @@ T gaussian_saturate_sq_raw(T x, T sigma) {
       detail::phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((T(1) * j2) * st) * st);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (((T(1) * j2) * st) * st);
     }
   }
   {  // break at T(1)
@@ -2768,8 +2768,8 @@ T gaussian_saturate_sq_raw(T x, T sigma) {
       detail::phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((((T(-1)) * j2) * st + (T(-2)) * j1) * st);
+      const T st = x < T(1) ? sigma : -sigma;
+      acc += (x < T(1) ? T(1.0) : T(-1.0)) * ((((T(-1)) * j2) * st + (T(-2)) * j1) * st);
     }
   }
   return acc;
@@ -2916,8 +2916,8 @@ T gaussian_smoothstep_raw(T x, T sigma) {
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
       const T j3 = T(2.0) * j1 - t * j2;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((((T(-2)) * j3) * st + T(3) * j2) * st) * st);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (((((T(-2)) * j3) * st + T(3) * j2) * st) * st);
     }
   }
   {  // break at T(1)
@@ -2930,8 +2930,8 @@ T gaussian_smoothstep_raw(T x, T sigma) {
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
       const T j3 = T(2.0) * j1 - t * j2;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((((T(2) * j3) * st + T(3) * j2) * st) * st);
+      const T st = x < T(1) ? sigma : -sigma;
+      acc += (x < T(1) ? T(1.0) : T(-1.0)) * ((((T(2) * j3) * st + T(3) * j2) * st) * st);
     }
   }
   return acc;
@@ -3007,8 +3007,8 @@ T gaussian_smoothstep_sq_raw(T x, T sigma) {
       const T j4 = T(3.0) * j2 - t * j3;
       const T j5 = T(4.0) * j3 - t * j4;
       const T j6 = T(5.0) * j4 - t * j5;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * (((((((T(4) * j6) * st + (T(-12)) * j5) * st + T(9) * j4) * st) * st) * st) * st);
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (((((((T(4) * j6) * st + (T(-12)) * j5) * st + T(9) * j4) * st) * st) * st) * st);
     }
   }
   {  // break at T(1)
@@ -3024,8 +3024,8 @@ T gaussian_smoothstep_sq_raw(T x, T sigma) {
       const T j4 = T(3.0) * j2 - t * j3;
       const T j5 = T(4.0) * j3 - t * j4;
       const T j6 = T(5.0) * j4 - t * j5;
-      const T st = db > T(0.0) ? sigma : -sigma;
-      acc += (db > T(0.0) ? T(1.0) : T(-1.0)) * ((((((((T(-4)) * j6) * st + (T(-12)) * j5) * st + (T(-9)) * j4) * st + T(4) * j3) * st + T(6) * j2) * st) * st);
+      const T st = x < T(1) ? sigma : -sigma;
+      acc += (x < T(1) ? T(1.0) : T(-1.0)) * ((((((((T(-4)) * j6) * st + (T(-12)) * j5) * st + (T(-9)) * j4) * st + T(4) * j3) * st + T(6) * j2) * st) * st);
     }
   }
   return acc;
@@ -4566,6 +4566,147 @@ T gaussian_fract_raw(T x, T sigma) {
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.1739: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.751 sd; below 0.08706 the nearest one alone, the others beyond 5.743 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1739).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.17388222158237718)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      T acc;
+      if (sigma < T(0.08706434220766679)) {  // the nearest break alone
+        acc = ((T(1.0))) * rp;
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc += sd * (T(-1.0) * j0);
+        return acc;
+      }
+      {
+        acc = ((T(1.0))) * rp;
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          const T j0 = detail::Phic_tail(t);
+          acc -= T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          const T j0 = detail::Phic_tail(t);
+          acc += T(-1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1) + d_3 * (T(-0.1061032953945969) * s_3) + d_5 * (T(-0.06366197723675814) * s_5)) + (d_2 * (T(-0.15915494309189535) * s_2) + d_4 * (T(-0.07957747154594767) * s_4));
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd; below 0.06709 the nearest one alone, the others beyond 7.453 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.13398475271138335)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      T acc;
+      if (sigma < T(0.06708733218678724)) {  // the nearest break alone
+        acc = ((T(1.0))) * rp;
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc += sd * (T(-1.0) * j0);
+        return acc;
+      }
+      {
+        acc = ((T(1.0))) * rp;
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          const T j0 = detail::Phic_tail(t);
+          acc -= T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          const T j0 = detail::Phic_tail(t);
+          acc += T(-1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1) + d_3 * (T(-0.1061032953945969) * s_3) + d_5 * (T(-0.06366197723675814) * s_5) + d_7 * (T(-0.04547284088339867) * s_7) + d_9 * (T(-0.035367765131532294) * s_9)) + (d_2 * (T(-0.15915494309189535) * s_2) + d_4 * (T(-0.07957747154594767) * s_4) + d_6 * (T(-0.05305164769729845) * s_6) + d_8 * (T(-0.039788735772973836) * s_8));
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08357381802701377) : T(0.06752621123868706))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0370742988786399) : T(1.2953937915302423)) / s));
@@ -4673,6 +4814,175 @@ T gaussian_fract_sq_raw(T x, T sigma) {
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.1739: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.751 sd; below 0.08706 the nearest one alone, the others beyond 5.743 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1739).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.17388222158237718)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.08706434220766679)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + T(-1.0) * j0);
+        return acc;
+      }
+      {
+        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + T(-1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1) + d_3 * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3) + d_5 * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2) + d_4 * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4));
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd; below 0.06709 the nearest one alone, the others beyond 7.453 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.13398475271138335)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.06708733218678724)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + T(-1.0) * j0);
+        return acc;
+      }
+      {
+        acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + T(-1.0) * j0;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + T(-1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1) + d_3 * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3) + d_5 * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5) + d_7 * (T(0.0020677792580068933) * c_7 + T(-0.04547284088339867) * s_7) + d_9 * (T(0.0012508788103992319) * c_9 + T(-0.035367765131532294) * s_9)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2) + d_4 * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4) + d_6 * (T(0.0028144773233982714) * c_6 + T(-0.05305164769729845) * s_6) + d_8 * (T(0.0015831434944115277) * c_8 + T(-0.039788735772973836) * s_8));
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08357381802701377) : T(0.06752621123868706))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0370742988786399) : T(1.2953937915302423)) / s));
@@ -4909,6 +5219,163 @@ T gaussian_triangle_raw(T x, T sigma) {
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.1896: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.274 sd; below 0.09687 the nearest one alone, the others beyond 5.162 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09481).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.18961729470818975)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      T acc;
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(1.0) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = ((w0 * (T(1.0)) + w1 * (T(-1.0)))) * rp + (w1 * (T(2.0)));
+      if (sigma < T(0.09686586613025365)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * (((hr * (w0 * T(-2.0) + w1 * T(2.0)) + hl * (w0 * T(2.0) + w1 * T(-2.0))) * j1) * (sd * sigma));
+        return acc;
+      }
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc -= ((w0 * T(2.0) + w1 * T(-2.0)) * j1) * (-sigma);
+      }
+      {
+        const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += ((w0 * T(-2.0) + w1 * T(2.0)) * j1) * sigma;
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T d_1 = q;
+    const T c_3 = C2 * c_1 - c1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_7 = C2 * c_5 - c_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+    const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+    const T c_9 = C2 * c_7 - c_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
+    const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
+    const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9));
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1425: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.018 sd; below 0.07207 the nearest one alone, the others beyond 6.938 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07125).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.1424930061042748)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      T acc;
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(1.0) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = ((w0 * (T(1.0)) + w1 * (T(-1.0)))) * rp + (w1 * (T(2.0)));
+      if (sigma < T(0.07206635058261547)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * (((hr * (w0 * T(-2.0) + w1 * T(2.0)) + hl * (w0 * T(2.0) + w1 * T(-2.0))) * j1) * (sd * sigma));
+        return acc;
+      }
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc -= ((w0 * T(2.0) + w1 * T(-2.0)) * j1) * (-sigma);
+      }
+      {
+        const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += ((w0 * T(-2.0) + w1 * T(2.0)) * j1) * sigma;
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T d_1 = q;
+    const T c_3 = C2 * c_1 - c1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T c_11 = C2 * c_9 - c_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
+    const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
+    const T c_13 = C2 * c_11 - c_9;
+    const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
+    const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
+    const T c_15 = C2 * c_13 - c_11;
+    const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
+    const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
+    const T c_17 = C2 * c_15 - c_13;
+    const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
+    const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
+    const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9) + d_11 * (T(-0.003349460616275629) * c_11) + d_13 * (T(-0.0023981345240790004) * c_13) + d_15 * (T(-0.0018012654869748938) * c_15) + d_17 * (T(-0.001402369323769381) * c_17));
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -5021,6 +5488,202 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.1849: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.408 sd; below 0.09447 the nearest one alone, the others beyond 5.293 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09246).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.18492403023450515)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(1.0) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (((T(1.0))) * rp + (w1 * (T(-4.0)))) * rp + (w0 * ((T(1.0)) * s2) + w1 * ((T(1.0)) * s2 + T(4.0)));
+      if (sigma < T(0.09446831516360035)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * (((hr * (w0 * T(-4.0)) + hl * (w1 * T(-4.0))) * j1) * (sd * sigma));
+        return acc;
+      }
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc -= ((w1 * T(-4.0)) * j1) * (-sigma);
+      }
+      {
+        const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += ((w0 * T(-4.0)) * j1) * sigma;
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T c_7 = C2 * c_5 - c_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+    const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+    const T c_8 = C2 * c_6 - c_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(8.673617379884035e-19));
+    const T d_8 = detail::at_least(d_6 * r_6, T(8.673617379884035e-19));
+    const T c_9 = C2 * c_7 - c_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
+    const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
+    const T c_10 = C2 * c_8 - c_6;
+    const T r_8 = detail::at_least(r_6 * q8, T(8.673617379884035e-19));
+    const T d_10 = detail::at_least(d_8 * r_8, T(8.673617379884035e-19));
+    const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4) + d_6 * (T(0.011257909293593086) * c_6) + d_8 * (T(0.006332573977646111) * c_8) + d_10 * (T(0.004052847345693511) * c_10));
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1404: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.124 sd; below 0.07099 the nearest one alone, the others beyond 7.043 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07018).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.1403662801765427)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(1.0) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (((T(1.0))) * rp + (w1 * (T(-4.0)))) * rp + (w0 * ((T(1.0)) * s2) + w1 * ((T(1.0)) * s2 + T(4.0)));
+      if (sigma < T(0.0709907512918761)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * (((hr * (w0 * T(-4.0)) + hl * (w1 * T(-4.0))) * j1) * (sd * sigma));
+        return acc;
+      }
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc -= ((w1 * T(-4.0)) * j1) * (-sigma);
+      }
+      {
+        const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += ((w0 * T(-4.0)) * j1) * sigma;
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T c_10 = C2 * c_8 - c_6;
+    const T r_8 = detail::at_least(r_6 * q8, T(3.054936363499605e-151));
+    const T d_10 = detail::at_least(d_8 * r_8, T(3.054936363499605e-151));
+    const T c_11 = C2 * c_9 - c_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
+    const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
+    const T c_12 = C2 * c_10 - c_8;
+    const T r_10 = detail::at_least(r_8 * q8, T(3.054936363499605e-151));
+    const T d_12 = detail::at_least(d_10 * r_10, T(3.054936363499605e-151));
+    const T c_13 = C2 * c_11 - c_9;
+    const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
+    const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
+    const T c_14 = C2 * c_12 - c_10;
+    const T r_12 = detail::at_least(r_10 * q8, T(3.054936363499605e-151));
+    const T d_14 = detail::at_least(d_12 * r_12, T(3.054936363499605e-151));
+    const T c_15 = C2 * c_13 - c_11;
+    const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
+    const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
+    const T c_16 = C2 * c_14 - c_12;
+    const T r_14 = detail::at_least(r_12 * q8, T(3.054936363499605e-151));
+    const T d_16 = detail::at_least(d_14 * r_14, T(3.054936363499605e-151));
+    const T c_17 = C2 * c_15 - c_13;
+    const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
+    const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
+    const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9) + d_11 * (T(-0.003349460616275629) * c_11) + d_13 * (T(-0.0023981345240790004) * c_13) + d_15 * (T(-0.0018012654869748938) * c_15) + d_17 * (T(-0.001402369323769381) * c_17)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4) + d_6 * (T(0.011257909293593086) * c_6) + d_8 * (T(0.006332573977646111) * c_8) + d_10 * (T(0.004052847345693511) * c_10) + d_12 * (T(0.0028144773233982714) * c_12) + d_14 * (T(0.0020677792580068933) * c_14) + d_16 * (T(0.0015831434944115277) * c_16));
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -5279,6 +5942,150 @@ T gaussian_square_raw(T x, T sigma) {
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.08706: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.743 sd; below 0.04338 the nearest one alone, the others beyond 5.764 sd: their tails sum to <= tol); else 11 Fourier terms (tail <= tol for sigma/T >= 0.08706).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.08706434220766679)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T inv = T(1) / sigma;
+      T acc;
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(0.5) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (w0 * (T(1.0)));
+      if (sigma < T(0.043375904776212296)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
+        return acc;
+      }
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
+      }
+      {
+        const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+    const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
+    const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
+    const T s_11 = C2 * s_9 - s_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(8.673617379884035e-19));
+    const T d_11 = detail::at_least(d_9 * r_9, T(8.673617379884035e-19));
+    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11));
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd; below 0.03342 the nearest one alone, the others beyond 7.48 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.06708733218678724)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T inv = T(1) / sigma;
+      T acc;
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(0.5) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (w0 * (T(1.0)));
+      if (sigma < T(0.033423255248208356)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
+        return acc;
+      }
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
+      }
+      {
+        const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T s_11 = C2 * s_9 - s_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
+    const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
+    const T s_13 = C2 * s_11 - s_9;
+    const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
+    const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
+    const T s_15 = C2 * s_13 - s_11;
+    const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
+    const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
+    const T s_17 = C2 * s_15 - s_13;
+    const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
+    const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
+    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11) + d_13 * (T(0.04897075172058318) * s_13) + d_15 * (T(0.042441318157838755) * s_15) + d_17 * (T(0.03744822190397537) * s_17));
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -5391,6 +6198,150 @@ T gaussian_square_sq_raw(T x, T sigma) {
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.08706: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.743 sd; below 0.04338 the nearest one alone, the others beyond 5.764 sd: their tails sum to <= tol); else 11 Fourier terms (tail <= tol for sigma/T >= 0.08706).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.08706434220766679)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T inv = T(1) / sigma;
+      T acc;
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(0.5) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (w0 * (T(1.0)));
+      if (sigma < T(0.043375904776212296)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
+        return acc;
+      }
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
+      }
+      {
+        const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+    const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
+    const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
+    const T s_11 = C2 * s_9 - s_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(8.673617379884035e-19));
+    const T d_11 = detail::at_least(d_9 * r_9, T(8.673617379884035e-19));
+    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11));
+    return acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd; below 0.03342 the nearest one alone, the others beyond 7.48 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
+    const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < T(0.06708733218678724)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T inv = T(1) / sigma;
+      T acc;
+      const T h1 = T(0.5) * (T(1) + std::copysign(T(1), r - (T(0.5) + base)));
+      const T w0 = T(1) - h1;
+      const T w1 = h1;
+      acc = (w0 * (T(1.0)));
+      if (sigma < T(0.033423255248208356)) {  // the nearest break alone
+        const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
+        acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
+        return acc;
+      }
+      {
+        const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
+        const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
+      }
+      {
+        const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
+        const T t = detail::min2(d * inv, detail::tail_cut<T>());
+        const T j0 = detail::Phic_tail(t);
+        acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
+      }
+      return acc;
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T s_11 = C2 * s_9 - s_7;
+    const T r_9 = detail::at_least(r_7 * q8, T(3.054936363499605e-151));
+    const T d_11 = detail::at_least(d_9 * r_9, T(3.054936363499605e-151));
+    const T s_13 = C2 * s_11 - s_9;
+    const T r_11 = detail::at_least(r_9 * q8, T(3.054936363499605e-151));
+    const T d_13 = detail::at_least(d_11 * r_11, T(3.054936363499605e-151));
+    const T s_15 = C2 * s_13 - s_11;
+    const T r_13 = detail::at_least(r_11 * q8, T(3.054936363499605e-151));
+    const T d_15 = detail::at_least(d_13 * r_13, T(3.054936363499605e-151));
+    const T s_17 = C2 * s_15 - s_13;
+    const T r_15 = detail::at_least(r_13 * q8, T(3.054936363499605e-151));
+    const T d_17 = detail::at_least(d_15 * r_15, T(3.054936363499605e-151));
+    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11) + d_13 * (T(0.04897075172058318) * s_13) + d_15 * (T(0.042441318157838755) * s_15) + d_17 * (T(0.03744822190397537) * s_17));
+    return acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -6230,6 +7181,185 @@ T gaussian_floor_sq_raw(T x, T sigma) {
   const T lam = ((T(-2))*y);
   const T period = T(1);
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.16704744067563246)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
+    return rest + acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.13066846301911936)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.06575561514114299)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7) + d_9 * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
+    return rest + acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
@@ -6344,6 +7474,185 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
   const T lam = ((T(-2))*y);
   const T period = T(1);
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.16704744067563246)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
+    return rest + acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.13066846301911936)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.06575561514114299)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7) + d_9 * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
+    return rest + acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
@@ -6462,10 +7771,6 @@ T gaussian_trunc(T x, T sigma) {
 template <class T>
 T gaussian_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> pm[2] = {
-      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(0), detail::inf<T>(), {(T(-1)), (T(-2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   const T Rf = detail::image_z(T(6.0), detail::series_tol<T>()) * sigma;
   if (x - Rf >= T(0.0)) {
@@ -6474,6 +7779,185 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const T lam = ((T(-2))*y);
   const T period = T(1);
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.16704744067563246)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
+    return rest + acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.13066846301911936)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.06575561514114299)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7) + d_9 * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
+    return rest + acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
@@ -6516,6 +8000,185 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const T lam = (((T(-2))*y) + (T(-2)));
   const T period = T(1);
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.16704744067563246)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
+    return rest + acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.13066846301911936)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.06575561514114299)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7) + d_9 * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
+    return rest + acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0906546478299144) : T(1.3366185552747945)) / s));
@@ -6552,11 +8215,213 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   }
   return rest + detail::gauss_periodic_image(y, sigma, period, p, T(5.0)) + (T(-2)) * sigma * sigma + T(2) * T(0.3989422804014327) * sigma * th;
   }
-  const T rest = ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + detail::gauss_pw(x, sigma, pm) + T(2) * (T(1) * gaussian_fract_right<T>(x, sigma));
+  const T rest = ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + [&]() -> T {
+  static const detail::Piece<T> p[2] = {
+      {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(0), detail::inf<T>(), {(T(-1)), (T(-2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (sigma == T(0.0)) return detail::pw_eval(x, p);
+  T acc = T(0.0);
+  if (x < T(0)) acc = T(0.0);
+  else acc = (((T(-2)))) * x + ((T(-1)));
+  {  // break at T(0)
+    const T db = (T(0) - x) / sigma;
+    const T t = abs(db);
+    if (t < detail::tail_cut<T>()) {
+      T j0;
+      T ph;
+      detail::phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T st = x < T(0) ? sigma : -sigma;
+      acc += (x < T(0) ? T(1.0) : T(-1.0)) * (((T(-2)) * j1) * st + (T(-1)) * j0);
+    }
+  }
+  return acc;
+  }() + T(2) * (T(1) * gaussian_fract_right<T>(x, sigma));
   const T y = x;
   const T lam = (((T(-2))*y) + (T(-2)));
   const T period = T(1);
   const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
+  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
+  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
+  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
+  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60
+  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A
+  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
+    if constexpr (sizeof(T) < sizeof(double)) {
+    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.16704744067563246)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(12582912.0)) - T(12582912.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * (((((T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = (((((T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+    const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+    const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
+    return rest + acc;
+    } else {
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < T(0.13066846301911936)) {
+      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
+      const T rp = r - base;  // in [0, T]; distances below use the exact r
+      const T inv = T(1) / sigma;
+      const T s2 = sigma * sigma;
+      T acc;
+      if (sigma < T(0.06575561514114299)) {  // the nearest break alone
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        T ph, j0;
+        detail::phi_Phic(t, ph, j0);
+        const T j1 = ph - t * j0;
+        acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
+        acc += ((T(2)*sigma)) * ph;
+        return rest + acc + (((T(-2))*(sigma*sigma)));
+      }
+      {
+        acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
+        {  // break at 0
+          const T d = (T(0.0) + base) - r;  // exact near the break
+          const T t = detail::min2(-d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+        {  // break at 1
+          const T d = (T(1.0) + base) - r;  // exact near the break
+          const T t = detail::min2(d * inv, detail::tail_cut<T>());
+          T ph, j0;
+          detail::phi_Phic(t, ph, j0);
+          const T j1 = ph - t * j0;
+          acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
+          acc += ((T(2)*sigma)) * ph;
+        }
+      }
+      return rest + acc + (((T(-2))*(sigma*sigma)));
+    }
+    const T v = r / period;  // exact (T a power of two), in (-1, 1)
+    const T uf = v - ((v + T(6755399441055744.0)) - T(6755399441055744.0));  // v - round(v), in [-1/2, 1/2]
+    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;
+    const T sh = ph * ((((((((T(-7.647163731819816e-13)) * p2 + T(1.6059043836821613e-10)) * p2 + T(-2.505210838544172e-08)) * p2 + T(2.7557319223985893e-06)) * p2 + T(-0.0001984126984126984)) * p2 + T(0.008333333333333333)) * p2 + T(-0.16666666666666666)) * p2 + T(1.0));
+    const T ch = ((((((((T(4.779477332387385e-14)) * p2 + T(-1.1470745597729725e-11)) * p2 + T(2.08767569878681e-09)) * p2 + T(-2.755731922398589e-07)) * p2 + T(2.48015873015873e-05)) * p2 + T(-0.001388888888888889)) * p2 + T(0.041666666666666664)) * p2 + T(-0.5)) * p2 + T(1.0);
+    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
+    const T c1 = T(1) - T(2) * sp * sp;
+    const T s1 = T(2) * sp * cp;
+    const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
+    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T C2 = T(2) - T(4) * s1 * s1;
+    const T c_1 = c1;
+    const T s_1 = s1;
+    const T d_1 = q;
+    const T c_2 = T(0.5) * C2;
+    const T s_2 = T(2) * s1 * c1;
+    const T d_2 = q4;
+    const T c_3 = C2 * c_1 - c1;
+    const T s_3 = C2 * s_1 + s1;
+    const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+    const T c_4 = C2 * c_2 - T(1);
+    const T s_4 = C2 * s_2;
+    const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+    const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+    const T c_5 = C2 * c_3 - c_1;
+    const T s_5 = C2 * s_3 - s_1;
+    const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+    const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+    const T c_6 = C2 * c_4 - c_2;
+    const T s_6 = C2 * s_4 - s_2;
+    const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+    const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+    const T c_7 = C2 * c_5 - c_3;
+    const T s_7 = C2 * s_5 - s_3;
+    const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+    const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+    const T c_8 = C2 * c_6 - c_4;
+    const T s_8 = C2 * s_6 - s_4;
+    const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+    const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+    const T c_9 = C2 * c_7 - c_5;
+    const T s_9 = C2 * s_7 - s_5;
+    const T r_7 = detail::at_least(r_5 * q8, T(3.054936363499605e-151));
+    const T d_9 = detail::at_least(d_7 * r_7, T(3.054936363499605e-151));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7) + d_9 * (((((T(1)/T(81))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_9 + ((((T(-1)/T(9))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(9))*(T(1)/(detail::pi<T>()))*lam))) * s_9)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
+    return rest + acc;
+    }
+   }
+  }
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0906546478299144) : T(1.3366185552747945)) / s));

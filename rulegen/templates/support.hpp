@@ -203,14 +203,15 @@ inline float erfcx_f(float t) {
   return p / (2.0f * t + 1.0f);
 }
 
-// Float erfc(y) = erfcx(|y|) e^{-y^2}; y^2 = h + l split exactly (fma), e^{-y^2} = e^{-h} (1 - l), so
+// Float erfc(y) = erfcx(|y|) e^{-y^2}; y^2 = h + l split exactly, e^{-y^2} = e^{-h} (1 - l), so
 // the rounding of y^2 (up to 100 ulp of e^{-y^2} near y = 10) does not enter. Relative error < 6e-7
-// for y >= 0 (absolute < 3e-7 for y < 0).
+// for y >= 0 (absolute < 3e-7 for y < 0). l is formed in double: a^2 is exact there (48 bits) and so
+// is a^2 - h, so l is fma(a, a, -h) to the bit, without the libm call fmaf is on hardware without
+// FMA (the x86-64 baseline: it made float gauss_pw ~2x slower).
 inline float erfc_f(float y) {
   using std::exp;
-  using std::fma;
   const float a = abs_of(y);
-  const float h = a * a, l = fma(a, a, -h);
+  const float h = a * a, l = static_cast<float>(double(a) * double(a) - double(h));
   float r = erfcx_f(a) * exp(-h) * (1.0f - l);
   if (a > 10.1f) r = 0.0f;  // erfc(10.1) < 1e-45 (and a^2 may be inf, l NaN)
   return y < 0.0f ? 2.0f - r : r;
@@ -242,12 +243,33 @@ inline void phi_Phic(T t, T& ph, T& pc) {
     pc = Phic(t);
 }
 
+// Phic(t), t >= 0, alone (a break whose jump is a constant needs no phi): float through phi_Phic
+// (one exp and a polynomial erfcx: cheaper than erfc_f, whose fma is a call without FMA hardware),
+// double one erfc and no exp.
+template <class T>
+inline T Phic_tail(T t) {
+  if constexpr (std::is_same<T, float>::value) {
+    T ph, pc;
+    phi_Phic(t, ph, pc);
+    return pc;
+  } else {
+    return Phic(t);
+  }
+}
+
 // Breaks farther than this many sd from x are skipped by the generated Gaussian piecewise entries:
 // their term is below |e_k| sigma^k k! phi(t)/t^(k+1), phi(9) = 1e-18 (float), phi(12) = 2e-32
 // (double); wider types keep 40.
 template <class T>
 inline T tail_cut() {
   return kWide<T> ? T(40) : sizeof(T) < sizeof(double) ? T(9) : T(12);
+}
+
+// max(x, lo) as a select the compiler keeps branch-free (maxss / maxsd): the generated Fourier
+// regimes floor their damping factors at lo so that no product turns subnormal.
+template <class T>
+inline T at_least(T x, T lo) {
+  return x < lo ? lo : x;
 }
 
 // sin(t)/t: Taylor series near 0 (exactly 1 at 0, no 0/0), the quotient elsewhere.

@@ -1,0 +1,667 @@
+// See emit_gauss_periodic.hpp.
+#include "emit_gauss_periodic.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "derived.hpp"
+#include "kernels.hpp"
+#include "printer.hpp"
+
+namespace bl::rulegen {
+namespace {
+using namespace GiNaC;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Shortest double text that reads back as v, as T(...).
+std::string lit(double v) {
+  std::string t;
+  for (int prec = 6; prec <= 17; ++prec) {
+    std::ostringstream s;
+    s.precision(prec);
+    s << v;
+    t = s.str();
+    if (std::stod(t) == v) break;
+  }
+  if (t.find_first_of(".e") == std::string::npos) t += ".0";
+  return "T(" + t + ")";
+}
+
+// A coefficient as text: a literal when numeric, else the printed expression; "" when zero.
+std::string coef_text(const ex& e) {
+  const ex v = e.expand();
+  if (v.is_zero()) return "";
+  const ex f = v.evalf();
+  if (is_a<numeric>(f)) return lit(ex_to<numeric>(f).to_double());
+  return "(" + sym::print(v, sym::Lang::Cpp) + ")";
+}
+
+// Upper bound on |e| with sigma = sig and every other symbol (lam) of magnitude at most 1.
+double abs_bound(const ex& e, double sig) {
+  const ex v = e.subs(sym::var_sigma() == sig).expand();
+  auto mono = [](const ex& m) {
+    exmap ones;
+    for (const_preorder_iterator it = m.preorder_begin(); it != m.preorder_end(); ++it)
+      if (is_a<symbol>(*it)) ones[*it] = 1;
+    const ex f = m.subs(ones).evalf();
+    return is_a<numeric>(f) ? std::fabs(ex_to<numeric>(f).to_double()) : HUGE_VAL;
+  };
+  if (is_a<add>(v)) {
+    double s = 0;
+    for (size_t i = 0; i < v.nops(); ++i) s += mono(v.op(i));
+    return s;
+  }
+  return mono(v);
+}
+
+// Horner text of sum_k c[k] v^k ("" entries are zero).
+std::string horner(const std::vector<std::string>& c, const std::string& v) {
+  int top = static_cast<int>(c.size()) - 1;
+  while (top >= 0 && c[top].empty()) --top;
+  if (top < 0) return "T(0)";
+  std::string r = c[top];
+  for (int k = top - 1; k >= 0; --k) r = "(" + r + ") * " + v + (c[k].empty() ? "" : " + " + c[k]);
+  return r;
+}
+
+// Whether `name` occurs in `text` as a whole identifier.
+bool mentions(const std::string& text, const std::string& name) {
+  auto id = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
+    const bool before = at > 0 && id(text[at - 1]);
+    const bool after = at + name.size() < text.size() && id(text[at + name.size()]);
+    if (!before && !after) return true;
+  }
+  return false;
+}
+
+// Drops the one-declaration lines "const T name = ...;" whose name nothing else uses (the last
+// links of the Chebyshev and damping chains when a parity has no further term), repeatedly.
+std::string drop_unused(std::string code) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    size_t start = 0;
+    while (start < code.size()) {
+      const size_t end = code.find('\n', start);
+      const std::string line = code.substr(start, end == std::string::npos ? std::string::npos : end - start);
+      const size_t k = line.find("const T ");
+      const size_t eq = line.find(" = ");
+      int depth = 0;
+      bool top_comma = false;  // "const T a = ..., b = ...;" declares two
+      for (char c : line) {
+        depth += c == '(' ? 1 : c == ')' ? -1 : 0;
+        top_comma |= c == ',' && depth == 0;
+      }
+      if (k != std::string::npos && eq != std::string::npos && !top_comma &&
+          line.find_first_not_of(' ') == k) {
+        const std::string name = line.substr(k + 8, eq - k - 8);
+        std::string rest = code;
+        rest.erase(start, end == std::string::npos ? std::string::npos : end - start + 1);
+        if (!mentions(rest, name)) {
+          code = rest;
+          changed = true;
+          continue;
+        }
+      }
+      if (end == std::string::npos) break;
+      start = end + 1;
+    }
+  }
+  return code;
+}
+
+bool dyadic(const numeric& v) {
+  const numeric s = v * numeric(1 << 20);
+  return s.is_integer() && std::fabs(v.to_double()) < 1e6;
+}
+
+struct Break {
+  numeric pos;         // in [0, T)
+  std::vector<ex> e;   // jump q_right - q_left about the break, coefficients of u^k
+  bool delta = false;  // the spec's delta sits here (lo[0])
+};
+
+struct Plan {
+  int nside = 1;       // break candidates on each side of x
+  double sigma_b;      // break regime below, Fourier regime from here
+  int K;               // Fourier terms
+  double z;            // dropped breaks lie beyond z sigma
+  double sigma_0 = 0;  // one piece, nside 1: below this the nearest break alone (0: none)
+  double z0 = 0;
+};
+
+// Tail bound of one dropped break at t sd: sum_k |e_k| sigma^k k! phi(t)/t^(k+1) (J_k(t) <=
+// k! phi(t)/t^(k+1), phi(t + v) <= phi(t) e^{-t v}) plus |delta| phi(t).
+double break_bound(const Break& b, const ex& delta, double sig, double t) {
+  const double ph = std::exp(-0.5 * t * t) / std::sqrt(2 * kPi);
+  double s = 0, fact = 1, sk = 1;
+  for (size_t k = 0; k < b.e.size(); ++k) {
+    if (k > 0) fact *= double(k), sk *= sig;
+    s += abs_bound(b.e[k], sig) * sk * fact * ph / std::pow(t, double(k + 1));
+  }
+  if (b.delta) s += abs_bound(delta, sig) * ph;
+  return s;
+}
+
+}  // namespace
+
+std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
+  const size_t N = sp.lo.size();
+  if (N == 0 || N != sp.c.size() || !dyadic(sp.period) || sp.lo[0] != 0) return "";
+  double Pd = sp.period.to_double();
+  {
+    int e2 = 0;
+    if (!(Pd > 0) || std::frexp(Pd, &e2) != 0.5) return "";  // power of two: exact reduction
+  }
+  for (const auto& l : sp.lo)
+    if (!dyadic(l)) return "";
+  const numeric T = sp.period;
+  auto hi_of = [&](size_t i) { return i + 1 < N ? sp.lo[i + 1] : T; };
+  double wmin = HUGE_VAL;
+  for (size_t i = 0; i < N; ++i) wmin = std::min(wmin, (hi_of(i) - sp.lo[i]).to_double());
+  // Break types: i at lo[i], jump q_i(lo_i + u) - q_{i-1}(lo_i + u) (q_{-1}(T + u) at i = 0).
+  const symbol u("u");
+  std::vector<Break> br(N);
+  int maxdd = 0;
+  for (size_t i = 0; i < N; ++i) {
+    const size_t pi = i == 0 ? N - 1 : i - 1;
+    const ex at_prev = i == 0 ? ex(T) + u : ex(sp.lo[i]) + u;
+    ex jump = 0;
+    for (size_t k = 0; k < sp.c[i].size(); ++k) jump += sp.c[i][k] * pow(sp.lo[i] + u, int(k));
+    for (size_t k = 0; k < sp.c[pi].size(); ++k) jump -= sp.c[pi][k] * pow(at_prev, int(k));
+    jump = jump.expand();
+    br[i].pos = sp.lo[i];
+    br[i].delta = i == 0 && !sp.delta.is_zero();
+    const int deg = jump.is_zero() ? -1 : jump.degree(u);
+    for (int k = 0; k <= deg; ++k) br[i].e.push_back(jump.coeff(u, k));
+    maxdd = std::max(maxdd, deg);
+  }
+  // Distance beyond the nside nearest breaks on a side: the narrowest run of nside pieces.
+  auto run_min = [&](int n) {
+    if (n == 0) return 0.5 * wmin;  // nearest break only: the other one is at least wmin/2 away
+    double m = HUGE_VAL;
+    for (size_t j = 0; j < N; ++j) {
+      numeric w = 0;
+      for (int k = 0; k < n; ++k) {
+        const size_t i = (j + k) % N;
+        w += hi_of(i) - sp.lo[i];
+      }
+      m = std::min(m, w.to_double());
+    }
+    return m;
+  };
+  // The dropped breaks on one side sit at D, D + wmin, D + 2 wmin, ... or farther; both sides
+  // together are bounded by twice that sum, with the largest bound over the break types.
+  auto dropped = [&](double sig, int n) {
+    const double D = run_min(n);
+    double s = 0;
+    for (int m = 0; m < 200; ++m) {
+      const double t = (D + m * wmin) / sig;
+      double b = 0;
+      for (const Break& x : br) b = std::max(b, break_bound(x, sp.delta, sig, t));
+      s += b;
+      if (b < 1e-30) break;
+    }
+    return 2 * s;
+  };
+  auto fourier_K = [&](double s, double tol) {
+    const double a = 2 * kPi * kPi * s * s;
+    for (int K = 0; K < 1000; ++K) {
+      const double uu = K + 1.0;
+      if (sp.coef_bound * std::exp(-a * uu * uu) / (-std::expm1(-2 * a * uu)) <= tol) return K;
+    }
+    return 1000;
+  };
+  auto plan_for = [&](double tol, int nside) {
+    Plan p;
+    p.nside = nside;
+    double sig = Pd;
+    while (sig > 1e-4 * Pd && !(dropped(sig, nside) <= tol)) sig *= 0.995;
+    p.sigma_b = sig;
+    p.z = run_min(nside) / sig;
+    p.K = fourier_K(sig / Pd, tol);
+    return p;
+  };
+  // Cost in float ns, measured on fract (x86-64 baseline: the FP ports bound it, ~0.3 ns per
+  // operation): a pair of break candidates 17 (+10% per jump degree; one phi_Phic each), the
+  // nearest-only form 12.8; the Fourier regime 7 (sincos polynomial, one exp) + 1.6 per nonzero term.
+  // The plan minimises the dearer of the two regimes.
+  auto choose = [&](double tol) {
+    Plan best{};
+    double best_cost = HUGE_VAL;
+    for (int n = 0; n <= 3 && n <= int(2 * N); ++n) {
+      if (n == 0 && N > 1 && !sp.delta.is_zero()) continue;  // nearest_block: one break type only
+      const Plan p = plan_for(tol, n);
+      int nnz = 0;  // nonzero Fourier terms
+      for (int k = 1; k <= p.K; ++k) {
+        const ex sg = (k % 2) ? -1 : 1;
+        nnz += !(sp.ak.subs(lst{sym::var_k() == k, sym::var_pk() == sg}).expand().is_zero() &&
+                 sp.bk.subs(lst{sym::var_k() == k, sym::var_pk() == sg}).expand().is_zero());
+      }
+      const double cb = (n ? 17.0 * n : 12.8) * (1 + 0.1 * maxdd), cf = 7.0 + 1.6 * nnz;
+      const double c = std::max(cb, cf);
+      if (c < best_cost) best = p, best_cost = c;
+    }
+    // Below the nearest-only sigma_b a third regime takes one phi_Phic instead of two (fract: 47% of
+    // log-uniform sigma in [0.01, 1]; the extra branch costs less than it saves).
+    if (best.nside == 1 && (N == 1 || (N <= 3 && sp.delta.is_zero()))) {
+      const Plan p0 = plan_for(tol, 0);
+      best.sigma_0 = p0.sigma_b, best.z0 = p0.z;
+    }
+    return best;
+  };
+  const Plan pf = choose(1e-8), pd = choose(1e-13);
+  if (pf.K >= 1000 || pd.K >= 1000) return "";
+
+  const ex kk = sym::var_k(), pk = sym::var_pk();
+  // Nearest break only (nside 0): the left break lo_j or the right one hi_j, whichever is nearer,
+  // chosen without a branch: sd = +1 (right) or -1 (left); the term is sd sum_k e_k (sd sigma)^k J_k
+  // with e the chosen break's jump, blended as h e_right + (1 - h) e_left, h = (sd + 1)/2 in {0, 1}.
+  auto nearest_block = [&](size_t j) {
+    const Break& bl = br[j];
+    const Break& bR = br[(j + 1) % N];
+    const numeric L = bl.pos, R = j + 1 < N ? br[j + 1].pos : T;
+    std::string o;
+    o += "        const T dl = r - (" + lit(L.to_double()) + " + base), dr = (" + lit(R.to_double()) +
+         " + base) - r;  // exact near the breaks\n";
+    o += "        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer\n";
+    o += "        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());\n";
+    const size_t ne = std::max(bl.e.size(), bR.e.size());
+    if (ne <= 1 && !bl.delta && !bR.delta)
+      o += "        const T j0 = detail::Phic_tail(t);\n";
+    else
+      o += "        T ph, j0;\n        detail::phi_Phic(t, ph, j0);\n";
+    for (size_t k = 1; k < ne; ++k) {
+      const std::string prev =
+          k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
+      o +=
+          "        const T j" + std::to_string(k) + " = " + prev + " - t * j" + std::to_string(k - 1) + ";\n";
+    }
+    bool blend = false;
+    std::vector<std::string> et;
+    for (size_t k = 0; k < ne; ++k) {
+      const ex el = k < bl.e.size() ? bl.e[k] : ex(0), er = k < bR.e.size() ? bR.e[k] : ex(0);
+      std::string c;
+      if ((el - er).expand().is_zero()) {
+        c = coef_text(el);
+      } else {
+        blend = true;
+        const std::string a = coef_text(er), b = coef_text(el);
+        c = "(hr * " + (a.empty() ? "T(0)" : a) + " + hl * " + (b.empty() ? "T(0)" : b) + ")";
+      }
+      et.push_back(c.empty() ? "" : c + " * j" + std::to_string(k));
+    }
+    if (blend) o += "        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;\n";
+    const std::string term = horner(et, "(sd * sigma)");
+    if (term != "T(0)") o += "        acc += sd * (" + term + ");\n";
+    if (bl.delta || bR.delta) {
+      // theta's phi_sigma sum: the delta sits at lo[0]; for N = 1 both neighbours are such breaks.
+      if (N == 1)
+        o += "        acc += " + coef_text(sp.delta) + " * ph;\n";
+      else
+        return std::string();  // not planned: a delta with several break types
+    }
+    return o;
+  };
+  // E q_j(rp + U) = sum_m rp^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}: the coefficient texts
+  // of rp^m (Horner in s2 = sigma^2).
+  auto mean_coefs = [&](size_t j) {
+    const auto& c = sp.c[j];
+    std::vector<std::string> cx;
+    for (size_t m = 0; m < c.size(); ++m) {
+      std::vector<std::string> cs;
+      numeric df = 1;
+      for (size_t i = 0; m + 2 * i < c.size(); ++i) {
+        if (i > 0) df *= numeric(long(2 * i - 1));
+        cs.push_back(coef_text(df * binomial(numeric(long(m + 2 * i)), numeric(long(2 * i))) * c[m + 2 * i]));
+      }
+      const std::string h = horner(cs, "s2");
+      cx.push_back(h == "T(0)" ? "" : "(" + h + ")");
+    }
+    return cx;
+  };
+  // The candidate break of piece j in slot (side, n): its type and its position relative to the period.
+  auto slot = [&](size_t j, int side, int n) {
+    long idx = side < 0 ? long(j) - n : long(j) + 1 + n;
+    numeric shift = 0;
+    while (idx < 0) idx += long(N), shift -= T;
+    while (idx >= long(N)) idx -= long(N), shift += T;
+    return std::make_pair(size_t(idx), br[idx].pos + shift);
+  };
+  // Two or three pieces: no branch on the piece of x (random x mispredicts it half the time). The
+  // piece indicators w_j in {0, 1} (from exact sign tests r - (lo_i + base)) blend the emit-time
+  // constants of each piece: the blend of exact constants with weights 0 and 1 is exact.
+  auto blended_block = [&](const Plan& p, const std::string& ret) {
+    std::string o;
+    for (size_t i = 1; i < N; ++i)
+      o += "      const T h" + std::to_string(i) + " = T(0.5) * (T(1) + std::copysign(T(1), r - (" +
+           lit(sp.lo[i].to_double()) + " + base)));\n";
+    for (size_t j = 0; j < N; ++j) {
+      const std::string a = j == 0 ? "T(1)" : "h" + std::to_string(j);
+      o += "      const T w" + std::to_string(j) + " = " + a +
+           (j + 1 < N ? " - h" + std::to_string(j + 1) : "") + ";\n";
+    }
+    auto blend = [&](const std::vector<std::string>& v) {
+      bool same = true;
+      for (const auto& x : v) same &= x == v[0];
+      if (same) return v[0];
+      std::string r;
+      for (size_t j = 0; j < v.size(); ++j)
+        if (!v[j].empty())
+          r += (r.empty() ? "" : " + ") + std::string("w") + std::to_string(j) + " * " + v[j];
+      return r.empty() ? r : "(" + r + ")";
+    };
+    std::vector<std::vector<std::string>> cxs(N);
+    size_t nm = 0;
+    for (size_t j = 0; j < N; ++j) cxs[j] = mean_coefs(j), nm = std::max(nm, cxs[j].size());
+    std::vector<std::string> cx(nm);
+    for (size_t m = 0; m < nm; ++m) {
+      std::vector<std::string> v(N);
+      for (size_t j = 0; j < N; ++j) v[j] = m < cxs[j].size() ? cxs[j][m] : "";
+      cx[m] = blend(v);
+    }
+    o += "      acc = " + horner(cx, "rp") + ";\n";
+    if (p.sigma_0 > 0) {  // the nearest break alone (nearest_block, blended over the pieces)
+      std::vector<std::string> Ls(N), Rs(N);
+      size_t ne = 0;
+      for (size_t j = 0; j < N; ++j) {
+        Ls[j] = lit(br[j].pos.to_double());
+        Rs[j] = lit((j + 1 < N ? br[j + 1].pos : T).to_double());
+        ne = std::max(ne, br[j].e.size());
+      }
+      o += "      if (sigma < " + lit(p.sigma_0) + ") {  // the nearest break alone\n";
+      o += "        const T dl = r - (" + blend(Ls) + " + base), dr = (" + blend(Rs) +
+           " + base) - r;  // exact near the breaks\n";
+      o += "        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer\n";
+      o += "        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());\n";
+      if (ne <= 1)
+        o += "        const T j0 = detail::Phic_tail(t);\n";
+      else
+        o += "        T ph, j0;\n        detail::phi_Phic(t, ph, j0);\n";
+      for (size_t k = 1; k < ne; ++k) {
+        const std::string prev =
+            k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
+        o += "        const T j" + std::to_string(k) + " = " + prev + " - t * j" + std::to_string(k - 1) +
+             ";\n";
+      }
+      bool two = false;
+      std::vector<std::string> et(ne);
+      for (size_t k = 0; k < ne; ++k) {
+        std::vector<std::string> lv(N), rv(N);
+        for (size_t j = 0; j < N; ++j) {
+          const Break &bl = br[j], &bR = br[(j + 1) % N];
+          lv[j] = k < bl.e.size() ? coef_text(bl.e[k]) : "";
+          rv[j] = k < bR.e.size() ? coef_text(bR.e[k]) : "";
+        }
+        const std::string L = blend(lv), R = blend(rv);
+        std::string c = L;
+        if (L != R) {
+          two = true;
+          c = "(hr * " + (R.empty() ? std::string("T(0)") : R) + " + hl * " +
+              (L.empty() ? std::string("T(0)") : L) + ")";
+        }
+        et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
+      }
+      if (two) o += "        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;\n";
+      const std::string term = horner(et, "(sd * sigma)");
+      if (term != "T(0)") o += "        acc += sd * (" + term + ");\n";
+      o += "  " + ret + "      }\n";
+    }
+    for (int side = -1; side <= 1; side += 2)
+      for (int n = 0; n < p.nside; ++n) {
+        std::vector<std::string> pos(N), del(N);
+        size_t ne = 0;
+        for (size_t j = 0; j < N; ++j) {
+          const auto [idx, P] = slot(j, side, n);
+          pos[j] = lit(P.to_double());
+          del[j] = br[idx].delta ? coef_text(sp.delta) : "";
+          ne = std::max(ne, br[idx].e.size());
+        }
+        std::vector<std::string> et(ne);
+        for (size_t k = 0; k < ne; ++k) {
+          std::vector<std::string> v(N);
+          for (size_t j = 0; j < N; ++j) {
+            const Break& b = br[slot(j, side, n).first];
+            v[j] = k < b.e.size() ? coef_text(b.e[k]) : "";
+          }
+          const std::string c = blend(v);
+          et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
+        }
+        const std::string dl = blend(del);
+        o += "      {\n        const T d = (" + blend(pos) + " + base) - r;  // exact near the break\n";
+        o += std::string("        const T t = detail::min2(") + (side > 0 ? "d" : "-d") +
+             " * inv, detail::tail_cut<T>());\n";
+        if (ne <= 1 && dl.empty())
+          o += "        const T j0 = detail::Phic_tail(t);\n";
+        else
+          o += "        T ph, j0;\n        detail::phi_Phic(t, ph, j0);\n";
+        for (size_t k = 1; k < ne; ++k) {
+          const std::string prev =
+              k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
+          o += "        const T j" + std::to_string(k) + " = " + prev + " - t * j" + std::to_string(k - 1) +
+               ";\n";
+        }
+        const std::string term = horner(et, side > 0 ? "sigma" : "(-sigma)");
+        if (term != "T(0)") o += std::string("        acc ") + (side > 0 ? "+" : "-") + "= " + term + ";\n";
+        if (!dl.empty()) o += "        acc += " + dl + " * ph;\n";
+        o += "      }\n";
+      }
+    return o;
+  };
+  auto regimes = [&](const Plan& p, bool is_float) {
+    std::string o;
+    o += "    const T r = detail::reduce_signed_pow2(" + sp.y + ", period);  // exact, in (-T, T)\n";
+    o += "    if (sigma < " + lit(p.sigma_b) + ") {\n";
+    std::string pcs;  // the per-piece blocks
+    const bool blended = p.nside >= 1 && N >= 2 && N <= 3;
+    const std::string extra = coef_text(sp.break_extra);
+    const std::string ret = "      return " + sp.lead + "acc" + (extra.empty() ? "" : " + " + extra) + ";\n";
+    if (blended) pcs = blended_block(p, ret);
+    if (p.sigma_0 > 0 && N == 1) {
+      const std::vector<std::string> cx = mean_coefs(0);
+      pcs += "      if (sigma < " + lit(p.sigma_0) + ") {  // the nearest break alone\n";
+      pcs += "        acc = " + horner(cx, "rp") + ";\n" + nearest_block(0) + "  " + ret + "      }\n";
+    }
+    for (size_t j = 0; j < N && !blended; ++j) {
+      std::string blk;
+      // E q_j(rp + U) = sum_m rp^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}.
+      const auto& c = sp.c[j];
+      std::vector<std::string> cx;
+      for (size_t m = 0; m < c.size(); ++m) {
+        std::vector<std::string> cs;
+        numeric df = 1;
+        for (size_t i = 0; m + 2 * i < c.size(); ++i) {
+          if (i > 0) df *= numeric(long(2 * i - 1));
+          cs.push_back(
+              coef_text(df * binomial(numeric(long(m + 2 * i)), numeric(long(2 * i))) * c[m + 2 * i]));
+        }
+        const std::string h = horner(cs, "s2");
+        cx.push_back(h == "T(0)" ? "" : "(" + h + ")");
+      }
+      blk += "        acc = " + horner(cx, "rp") + ";\n";
+      if (p.nside == 0) blk += nearest_block(j);
+      // Candidates: left breaks lo_j, lo_{j-1}, ...; right breaks hi_j, ...
+      for (int side = -1; side <= 1 && p.nside > 0; side += 2) {
+        for (int n = 0; n < p.nside; ++n) {
+          // break index and its position relative to this period
+          long idx = side < 0 ? long(j) - n : long(j) + 1 + n;
+          numeric shift = 0;
+          while (idx < 0) idx += long(N), shift -= T;
+          while (idx >= long(N)) idx -= long(N), shift += T;
+          const Break& b = br[idx];
+          if (b.e.empty() && !b.delta) continue;
+          const numeric P = b.pos + shift;
+          std::vector<std::string> et;
+          for (size_t k = 0; k < b.e.size(); ++k) {
+            const std::string t = coef_text(b.e[k]);
+            et.push_back(t.empty() ? "" : t + " * j" + std::to_string(k));
+          }
+          blk += "        {  // break at " + sym::print(P, sym::Lang::Text) + "\n";
+          blk += "          const T d = (" + lit(P.to_double()) + " + base) - r;  // exact near the break\n";
+          blk += std::string("          const T t = detail::min2(") + (side > 0 ? "d" : "-d") +
+                 " * inv, detail::tail_cut<T>());\n";
+          if (b.e.size() <= 1 && !b.delta)
+            blk += "          const T j0 = detail::Phic_tail(t);\n";
+          else
+            blk += "          T ph, j0;\n          detail::phi_Phic(t, ph, j0);\n";
+          for (size_t k = 1; k < b.e.size(); ++k) {
+            const std::string prev =
+                k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
+            blk += "          const T j" + std::to_string(k) + " = " + prev + " - t * j" +
+                   std::to_string(k - 1) + ";\n";
+          }
+          std::string term = horner(et, side > 0 ? "sigma" : "(-sigma)");
+          if (term != "T(0)")
+            blk += std::string("          acc ") + (side > 0 ? "+" : "-") + "= " + term + ";\n";
+          if (b.delta) blk += "          acc += " + coef_text(sp.delta) + " * ph;\n";
+          blk += "        }\n";
+        }
+      }
+      if (N == 1) {
+        pcs += "      {\n" + blk + "      }\n";
+      } else if (j + 1 < N) {
+        pcs += std::string(j ? "      else if" : "      if") + " (r < " + lit(hi_of(j).to_double()) +
+               " + base) {\n" + blk + "      }\n";
+      } else {
+        pcs += "      else {\n" + blk + "      }\n";
+      }
+    }
+    auto uses = [&](const std::string& name) {
+      for (size_t at = pcs.find(name); at != std::string::npos; at = pcs.find(name, at + 1)) {
+        const char a = at ? pcs[at - 1] : ' ',
+                   b = at + name.size() < pcs.size() ? pcs[at + name.size()] : ' ';
+        if (!std::isalnum(static_cast<unsigned char>(a)) && a != '_' &&
+            !std::isalnum(static_cast<unsigned char>(b)) && b != '_')
+          return true;
+      }
+      return false;
+    };
+    o += "      const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else "
+         "0\n";
+    if (uses("rp")) o += "      const T rp = r - base;  // in [0, T]; distances below use the exact r\n";
+    if (uses("inv")) o += "      const T inv = T(1) / sigma;\n";
+    if (uses("s2")) o += "      const T s2 = sigma * sigma;\n";
+    o += "      T acc;\n" + pcs;
+    o += ret + "    }\n";
+    // Fourier regime.
+    const size_t fourier_at = o.size();
+    const std::string M = is_float ? "T(12582912.0)" : "T(6755399441055744.0)";  // 1.5 * 2^(p-1)
+    o += "    const T v = r / period;  // exact (T a power of two), in (-1, 1)\n";
+    o += "    const T uf = v - ((v + " + M + ") - " + M + ");  // v - round(v), in [-1/2, 1/2]\n";
+    // sin and cos of ph = pi uf / 2 in [-pi/4, pi/4] by Taylor polynomials, then two doublings.
+    // Remainders: float through ph^9 / ph^10: < 1.8e-9, 1.2e-10; double through ph^15 / ph^16:
+    // < 4.5e-17, 2e-18 (each doubling at most doubles the error, plus rounding).
+    o += "    const T ph = T(0.5) * detail::pi<T>() * uf, p2 = ph * ph;\n";
+    const int ds = is_float ? 9 : 15, dc = is_float ? 10 : 16;
+    {
+      std::vector<std::string> cs, cc;
+      double f = 1;
+      for (int n = 0; n <= dc || n <= ds; ++n) {
+        if (n > 0) f *= n;
+        const double sg = ((n / 2) % 2) ? -1 : 1;
+        if (n % 2 == 1 && n <= ds) cs.push_back(lit(sg / f));
+        if (n % 2 == 0 && n <= dc) cc.push_back(lit(sg / f));
+      }
+      o += "    const T sh = ph * (" + horner(cs, "p2") + ");\n";
+      o += "    const T ch = " + horner(cc, "p2") + ";\n";
+    }
+    o += "    const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf\n";
+    o += "    const T c1 = T(1) - T(2) * sp * sp;\n    const T s1 = T(2) * sp * cp;\n";
+    const double tiny = is_float ? std::ldexp(1.0, -60) : std::ldexp(1.0, -500);
+    const std::string TN = lit(tiny);
+    o += "    const T q0 = exp(" + lit(-2 * kPi * kPi / (Pd * Pd)) + " * sigma * sigma);\n";
+    std::vector<std::pair<std::string, std::string>> ab(p.K + 1);
+    int lastC = 0, lastS = 0;
+    for (int k = 1; k <= p.K; ++k) {
+      const ex sgn = (k % 2) ? -1 : 1;
+      ab[k].first = coef_text(sp.ak.subs(lst{kk == k, pk == sgn}));
+      ab[k].second = coef_text(sp.bk.subs(lst{kk == k, pk == sgn}));
+      if (!ab[k].first.empty()) lastC = k;
+      if (!ab[k].second.empty()) lastS = k;
+    }
+    const int last = std::max(lastC, lastS);
+    // Two interleaved chains (odd and even k) halve the serial latency: with C2 = 2 cos(2 theta),
+    // f_k = C2 f_{k-2} - f_{k-4} for f = cos(k theta), sin(k theta) (from f_{-1}, f_1 and f_0, f_2),
+    // and damp_k = q^(k^2) = damp_{k-2} r_{k-2}, r_k = q^(4k+4) = r_{k-2} q^8.
+    o += "    const T q = detail::at_least(q0, " + TN + "), q2 = detail::at_least(q * q, " + TN +
+         "), q4 = detail::at_least(q2 * q2, " + TN + "), q8 = detail::at_least(q4 * q4, " + TN + ");\n";
+    if (last >= 2) o += "    const T C2 = T(2) - T(4) * s1 * s1;\n";
+    std::string acc[2];
+    for (int k = 1; k <= last; ++k) {
+      const std::string K = std::to_string(k), K2 = std::to_string(k - 2), K4 = std::to_string(k - 4);
+      const bool nc = k <= lastC, ns = k <= lastS;
+      if (k == 1) {
+        if (nc) o += "    const T c_1 = c1;\n";
+        if (ns) o += "    const T s_1 = s1;\n";
+        o += "    const T d_1 = q;\n";
+      } else if (k == 2) {
+        if (nc) o += "    const T c_2 = T(0.5) * C2;\n";
+        if (ns) o += "    const T s_2 = T(2) * s1 * c1;\n";
+        o += "    const T d_2 = q4;\n";
+      } else {
+        if (nc)
+          o += "    const T c_" + K + " = C2 * c_" + K2 + " - " +
+               (k == 3   ? std::string("c1")
+                : k == 4 ? std::string("T(1)")
+                         : "c_" + K4) +
+               ";\n";
+        if (ns)
+          o += "    const T s_" + K + " = C2 * s_" + K2 +
+               (k == 3   ? std::string(" + s1")
+                : k == 4 ? std::string("")
+                         : " - s_" + K4) +
+               ";\n";
+        const std::string rprev = k == 3 ? "q8" : k == 4 ? "r_2" : "r_" + K2;
+        if (k == 4) o += "    const T r_2 = detail::at_least(q4 * q8, " + TN + ");\n";
+        if (k >= 5)
+          o += "    const T r_" + K2 + " = detail::at_least(" + (k == 5 ? std::string("q8") : "r_" + K4) +
+               " * q8, " + TN + ");\n";
+        o += "    const T d_" + K + " = detail::at_least(d_" + K2 + " * " + rprev + ", " + TN + ");\n";
+      }
+      std::string t;
+      if (!ab[k].first.empty()) t = ab[k].first + " * c_" + K;
+      if (!ab[k].second.empty()) t += (t.empty() ? "" : " + ") + ab[k].second + " * s_" + K;
+      if (!t.empty()) acc[k % 2] += (acc[k % 2].empty() ? "d_" : " + d_") + K + " * (" + t + ")";
+    }
+    const std::string a0 = coef_text(sp.a0);
+    o += "    const T acc = " + (a0.empty() ? std::string("T(0)") : a0);
+    for (int par : {1, 0})
+      if (!acc[par].empty()) o += " + (" + acc[par] + ")";
+    o += ";\n";
+    o += "    return " + sp.lead + "acc;\n";
+    o = o.substr(0, fourier_at) + drop_unused(o.substr(fourier_at));
+    return o;
+  };
+  auto header = [&](const Plan& p, const char* name, double tol) {
+    std::ostringstream h;
+    h.precision(4);
+    h << "    // " << name << " (tolerance " << tol << "): sigma < " << p.sigma_b << ": the " << p.nside
+      << " nearest break(s) on each side (the dropped ones lie beyond " << p.z << " sd";
+    if (p.sigma_0 > 0)
+      h << "; below " << p.sigma_0 << " the nearest one alone, the others beyond " << p.z0 << " sd";
+    h << ": their tails sum to <= tol); else " << p.K
+      << " Fourier terms (tail <= tol for sigma/T >= " << p.sigma_b / Pd << ").\n";
+    return h.str();
+  };
+  std::string out;
+  out += "  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate\n";
+  out +=
+      "  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from\n";
+  out += "  // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float\n";
+  out += "  // < 2e-9, double < 5e-17) and two angle doublings; q, damp and ratio are floored at 2^-60\n";
+  out += "  // (float) or 2^-500 (double): no subnormal arithmetic, and K B 2^-60 is far below tol. A\n";
+  out +=
+      "  // break beyond tail_cut sd is taken at tail_cut (its tail there is < 1e-18: no subnormal exp).\n";
+  out += "  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {\n";
+  out += "   if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {\n";
+  out += "    if constexpr (sizeof(T) < sizeof(double)) {\n" + header(pf, "float", 1e-8) + regimes(pf, true) +
+         "    } else {\n" + header(pd, "double", 1e-13) + regimes(pd, false) + "    }\n";
+  out += "   }\n  }\n";
+  return out;
+}
+
+}  // namespace bl::rulegen

@@ -1,0 +1,30 @@
+// Straight-line C++ for the Gaussian smoothing of a periodic piecewise polynomial (fract, square,
+// triangle, their squares, and the fused fract terms of floor^2 / ceil^2 / trunc^2): a break regime
+// for small sigma/T and an unrolled Fourier regime above it, both planned at emit time.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <string>
+#include <vector>
+
+namespace bl::rulegen {
+
+struct GaussPeriodicSpec {
+  GiNaC::numeric period;                  // T
+  std::vector<GiNaC::numeric> lo;         // piece starts in [0, T), lo[0] = 0, increasing
+  std::vector<std::vector<GiNaC::ex>> c;  // piece polynomials in t (coefficients may hold lam)
+  GiNaC::ex a0, ak, bk;                   // Fourier coefficients in var_k, var_pk (and lam, sigma)
+  double coef_bound = 0;                  // bound on |a_k| + |b_k| (lam counted as 1)
+  GiNaC::ex delta;                        // weight / sigma of a Dirac delta at the break lo[0]
+  GiNaC::ex break_extra;                  // added in the break regime only (Fourier: inside a0)
+  std::string y = "x";                    // argument
+  std::string lead;                       // "rest + " or ""
+};
+
+// Statements that return the entry for float and double when the spec fits (dyadic period and
+// breaks), guarded by `if constexpr`; other types fall through to the caller's generic code. ""
+// when the spec does not fit.
+std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp);
+
+}  // namespace bl::rulegen

@@ -1,0 +1,153 @@
+// The straight-line Gaussian periodic entries (rulegen/emit_gauss_periodic.cpp: a break regime
+// below sigma_b, unrolled Fourier terms above) at hard inputs, float and double, against an
+// independent reference: the sum over periods of the truncated-normal moments of each polynomial
+// piece (degree <= 2) in long double, E[Z^j 1{a <= Z < b}] for Z ~ N(mu, sigma^2) from Phi and phi.
+// Hard inputs: x at and next to breaks, |x| = 1e6, sigma from 1e-30 to 10 and next to each
+// entry's regime boundary sigma_b (the emitted comments state them).
+#include <gtest/gtest.h>
+
+#include <bandlimit/table.hpp>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace {
+
+using LD = long double;
+
+struct Pc {
+  LD lo, hi, c0, c1, c2;  // c0 + c1 t + c2 t^2 on [lo, hi), t = y - m T
+};
+// The pieces of period m.
+using Pieces = std::function<std::vector<Pc>(long m)>;
+
+LD Phic(LD z) {
+  return 0.5L * std::erfc(z / std::sqrt(2.0L));
+}
+LD phi(LD z) {
+  return std::isinf(z) ? 0.0L : std::exp(-0.5L * z * z) / std::sqrt(2.0L * 3.14159265358979323846264338L);
+}
+
+// E f(x + sigma Z) by the sum over the periods within 40 sigma (+1) of x.
+LD reference(const Pieces& f, LD T, LD x, LD sigma) {
+  const long m0 = static_cast<long>(std::floor((x - 40 * sigma) / T)) - 1;
+  const long m1 = static_cast<long>(std::floor((x + 40 * sigma) / T)) + 1;
+  LD s = 0;
+  for (long m = m0; m <= m1; ++m)
+    for (const Pc& p : f(m)) {
+      const LD mu = x - m * T;  // exact for the x used here
+      // The ends as (end + m T) - x: exact near x (x - m T would round a tiny x away).
+      const LD a = ((p.lo + m * T) - x) / sigma, b = ((p.hi + m * T) - x) / sigma;
+      const LD M0 = a > 0 ? Phic(a) - Phic(b) : Phic(-b) - Phic(-a);
+      const LD dphi = phi(a) - phi(b);
+      const LD M1 = mu * M0 + sigma * dphi;
+      const LD M2 = mu * mu * M0 + 2 * mu * sigma * dphi + sigma * sigma * (M0 + a * phi(a) - b * phi(b));
+      s += p.c0 * M0 + p.c1 * M1 + p.c2 * M2;
+    }
+  return s;
+}
+
+struct Entry {
+  std::string name;
+  LD T;
+  Pieces f;
+  float (*ef)(float, float);
+  double (*ed)(double, double);
+  bool huge_x;  // values stay O(1) (periodic): |x| = 1e6 is tested
+};
+
+std::vector<Entry> entries() {
+  namespace g = bl::gaussian;
+  auto one = [](LD c0, LD c1, LD c2) { return std::vector<Pc>{{0, 1, c0, c1, c2}}; };
+  auto tr = [](long m) { return LD(m >= 0 ? m : m + 1); };  // trunc on [m, m+1) (a.e.)
+  return {
+      {"fract", 1, [=](long) { return one(0, 1, 0); }, g::fract, g::fract, true},
+      {"fract_sq", 1, [=](long) { return one(0, 0, 1); }, g::fract_sq, g::fract_sq, true},
+      {"square", 1,
+       [](long) {
+         return std::vector<Pc>{{0, 0.5L, 1, 0, 0}, {0.5L, 1, 0, 0, 0}};
+       },
+       g::square, g::square, true},
+      {"square_sq", 1,
+       [](long) {
+         return std::vector<Pc>{{0, 0.5L, 1, 0, 0}, {0.5L, 1, 0, 0, 0}};
+       },
+       g::square_sq, g::square_sq, true},
+      {"triangle", 2,
+       [](long) {
+         return std::vector<Pc>{{0, 1, 0, 1, 0}, {1, 2, 2, -1, 0}};
+       },
+       g::triangle, g::triangle, true},
+      {"triangle_sq", 2,
+       [](long) {
+         return std::vector<Pc>{{0, 1, 0, 0, 1}, {1, 2, 4, -4, 1}};
+       },
+       g::triangle_sq, g::triangle_sq, true},
+      {"floor", 1, [=](long m) { return one(m, 0, 0); }, g::floor, g::floor, true},
+      {"floor_sq", 1, [=](long m) { return one(LD(m) * m, 0, 0); }, g::floor_sq, g::floor_sq, false},
+      {"ceil", 1, [=](long m) { return one(m + 1, 0, 0); }, g::ceil, g::ceil, true},
+      {"ceil_sq", 1, [=](long m) { return one(LD(m + 1) * (m + 1), 0, 0); }, g::ceil_sq, g::ceil_sq, false},
+      {"trunc", 1, [=](long m) { return one(tr(m), 0, 0); }, g::trunc, g::trunc, true},
+      {"trunc_sq", 1, [=](long m) { return one(tr(m) * tr(m), 0, 0); }, g::trunc_sq, g::trunc_sq, false},
+  };
+}
+
+template <class R>
+std::vector<R> xs(bool huge) {
+  std::vector<R> v = {R(0),  R(1e-30), R(-1e-30), R(0.25), R(0.5), R(1),
+                      R(-1), R(-0.5),  R(1.75),   R(-3.3), R(2)};
+  for (R b : {R(0), R(0.5), R(1), R(-1), R(2)}) {
+    v.push_back(std::nextafter(b, R(10)));
+    v.push_back(std::nextafter(b, R(-10)));
+  }
+  if (huge)
+    for (R b : {R(1e6), R(-1e6), R(1e6 + 0.5), R(-1e6 + 0.25)}) {
+      v.push_back(b);
+      v.push_back(std::nextafter(b, R(2e6)));
+      v.push_back(std::nextafter(b, R(-2e6)));
+    }
+  return v;
+}
+
+template <class R>
+std::vector<R> sigmas() {
+  // 1e-30 and 1e-12 (narrow kernels), the regime boundaries sigma_b of the emitted plans and their
+  // neighbours (float 0.0871, 0.1667-0.1896; double 0.0671, 0.1307-0.1425), wide kernels.
+  std::vector<R> v = {R(1e-30), R(1e-12), R(1e-6), R(1e-3), R(0.01), R(0.05),
+                      R(0.3),   R(0.5),   R(1),    R(3),    R(10)};
+  for (double b : {0.08706434220766679, 0.17388222158237718, 0.167, 0.1849, 0.1896, 0.06709, 0.134, 0.1307,
+                   0.1404, 0.1425}) {
+    v.push_back(R(b));
+    v.push_back(std::nextafter(R(b), R(1)));
+    v.push_back(std::nextafter(R(b), R(0)));
+  }
+  return v;
+}
+
+template <class R>
+void check(const Entry& e, R (*fn)(R, R), double tol) {
+  int bad = 0;
+  for (R x : xs<R>(e.huge_x))
+    for (R s : sigmas<R>()) {
+      const R v = fn(x, s);
+      const LD ref = reference(e.f, e.T, LD(x), LD(s));
+      const double err = std::fabs(double(LD(v) - ref)) / std::max(1.0, std::fabs(double(ref)));
+      if (!(err <= tol) && bad++ < 5)
+        ADD_FAILURE() << e.name << (sizeof(R) == 4 ? " float" : " double") << " x=" << double(x)
+                      << " sigma=" << double(s) << ": " << double(v) << " vs " << double(ref) << " (err "
+                      << err << ")";
+    }
+  EXPECT_EQ(bad, 0) << e.name;
+}
+
+TEST(GaussPeriodicFast, DoubleWithin1e9OfTheReference) {
+  for (const Entry& e : entries()) check<double>(e, e.ed, 1e-9);
+}
+
+TEST(GaussPeriodicFast, FloatWithin2e5OfTheReference) {
+  for (const Entry& e : entries()) check<float>(e, e.ef, 2e-5);
+}
+
+}  // namespace
