@@ -3784,20 +3784,54 @@ float bl_gaussian_fract_sq(float x, float sigma) {
 }
 
 float bl_box_fract_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
-  return bl_box_periodic(x, sigma, period, 1, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (1.0/2.0) + ((((1.0/2.0)) * r2) * r2 - (((1.0/2.0)) * r1) * r1)) / ((2.0) * hw);
+  }
+  float acc = ((1.0)) * t;
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  return acc;
 }
 
 float bl_box_fract(float x, float sigma) {
@@ -3840,20 +3874,55 @@ float bl_box_fract_right(float x, float sigma) {
 }
 
 float bl_box_fract_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
-  return bl_box_periodic(x, sigma, period, 1, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (1.0/3.0) + (((((1.0/3.0)) * r2) * r2) * r2 - ((((1.0/3.0)) * r1) * r1) * r1)) / ((2.0) * hw);
+  }
+  float s2 = sigma * sigma;
+  float acc = (((1.0)) * t) * t + ((1.0) * s2);
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (((-1.0)) * u + (-1.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (((-1.0)) * u + (-1.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (((-1.0)) * u + (-1.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (((-1.0)) * u + (-1.0));
+  }
+  return acc;
 }
 
 float bl_box_fract_sq(float x, float sigma) {
@@ -3864,25 +3933,59 @@ float bl_box_fract_sq(float x, float sigma) {
 }
 
 float bl_tent_fract_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/6.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
-  return bl_tent_periodic(x, sigma, period, 1, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (1.0/6.0) * iw * (s2w + s1) + ((((((1.0/6.0)) * r2) * r2) * r2 + ((((1.0/6.0)) * r1) * r1) * r1) - (2.0) * ((((1.0/6.0)) * t) * t) * t) * iw * iw;
+  }
+  float acc = ((1.0)) * t;
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  return acc;
 }
 
 float bl_tent_fract(float x, float sigma) {
@@ -3930,25 +4033,60 @@ float bl_tent_fract_right(float x, float sigma) {
 }
 
 float bl_tent_fract_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, (1.0/12.0), 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
-  return bl_tent_periodic(x, sigma, period, 1, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (1.0/3.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (1.0/12.0) * iw * (s2w + s1) + (((((((1.0/12.0)) * r2) * r2) * r2) * r2 + (((((1.0/12.0)) * r1) * r1) * r1) * r1) - (2.0) * (((((1.0/12.0)) * t) * t) * t) * t) * iw * iw;
+  }
+  float s2 = sigma * sigma;
+  float acc = (((1.0)) * t) * t + ((1.0) * s2);
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u + (-1.0/2.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u + (-1.0/2.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u + (-1.0/2.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u + (-1.0/2.0));
+  }
+  return acc;
 }
 
 float bl_tent_fract_sq(float x, float sigma) {
@@ -4104,20 +4242,90 @@ float bl_gaussian_triangle_sq(float x, float sigma) {
 }
 
 float bl_box_triangle_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((-1.0), 2.0, (-1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 2.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (4.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * 1.0 + ((r2 < 1.0 ? (((1.0/2.0)) * r2) * r2 : (((-1.0/2.0)) * r2 + 2.0) * r2 + (-1.0)) - (r1 < 1.0 ? (((1.0/2.0)) * r1) * r1 : (((-1.0/2.0)) * r1 + 2.0) * r1 + (-1.0)))) / ((2.0) * hw);
+  }
+  float db1 = (neg ? (-1.0) : (1.0)) - r;
+  float acc = (db1 > (0.0) ? ((1.0)) * t : (((-1.0))) * t + (2.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -3 (r >= 0)
+    float d = (neg ? (-5.0) : (-3.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (((-1.0)) * u);
+  }
+  {  // break at -2 (r >= 0)
+    float d = (neg ? (-4.0) : (-2.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((1.0) * u);
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-3.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (((-1.0)) * u);
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-2.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((1.0) * u);
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * (((-1.0)) * u);
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (0.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((1.0) * u);
+  }
+  {  // break at 3 (r >= 0)
+    float d = (neg ? (1.0) : (3.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (((-1.0)) * u);
+  }
+  {  // break at 4 (r >= 0)
+    float d = (neg ? (2.0) : (4.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((1.0) * u);
+  }
+  {  // break at 5 (r >= 0)
+    float d = (neg ? (3.0) : (5.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (((-1.0)) * u);
+  }
+  return acc;
 }
 
 float bl_box_triangle(float x, float sigma) {
@@ -4160,20 +4368,63 @@ float bl_box_triangle_right(float x, float sigma) {
 }
 
 float bl_box_triangle_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](4.0, (-4.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((-2.0), 4.0, (-2.0), (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 2.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (4.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (2.0/3.0) + ((r2 < 1.0 ? ((((1.0/3.0)) * r2) * r2) * r2 : ((((1.0/3.0)) * r2 + (-2.0)) * r2 + 4.0) * r2 + (-2.0)) - (r1 < 1.0 ? ((((1.0/3.0)) * r1) * r1) * r1 : ((((1.0/3.0)) * r1 + (-2.0)) * r1 + 4.0) * r1 + (-2.0)))) / ((2.0) * hw);
+  }
+  float s2 = sigma * sigma;
+  float db1 = (neg ? (-1.0) : (1.0)) - r;
+  float acc = (db1 > (0.0) ? (((1.0)) * t) * t + ((1.0) * s2) : (((1.0)) * t + ((-4.0))) * t + ((1.0) * s2 + 4.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -3 (r >= 0)
+    float d = (neg ? (-5.0) : (-3.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (((-2.0)) * u);
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-3.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (((-2.0)) * u);
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * (((-2.0)) * u);
+  }
+  {  // break at 3 (r >= 0)
+    float d = (neg ? (1.0) : (3.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (((-2.0)) * u);
+  }
+  {  // break at 5 (r >= 0)
+    float d = (neg ? (3.0) : (5.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (((-2.0)) * u);
+  }
+  return acc;
 }
 
 float bl_box_triangle_sq(float x, float sigma) {
@@ -4184,25 +4435,95 @@ float bl_box_triangle_sq(float x, float sigma) {
 }
 
 float bl_tent_triangle_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((-1.0), 2.0, (-1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/6.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((1.0/3.0), (-1.0), 1.0, (-1.0/6.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 2.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (4.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return 1.0 * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + 1.0 * iw * (s2w + s1) + (((r2 < 1.0 ? ((((1.0/6.0)) * r2) * r2) * r2 : ((((-1.0/6.0)) * r2 + 1.0) * r2 + (-1.0)) * r2 + (1.0/3.0)) + (r1 < 1.0 ? ((((1.0/6.0)) * r1) * r1) * r1 : ((((-1.0/6.0)) * r1 + 1.0) * r1 + (-1.0)) * r1 + (1.0/3.0))) - (2.0) * (t < 1.0 ? ((((1.0/6.0)) * t) * t) * t : ((((-1.0/6.0)) * t + 1.0) * t + (-1.0)) * t + (1.0/3.0))) * iw * iw;
+  }
+  float db1 = (neg ? (-1.0) : (1.0)) - r;
+  float acc = (db1 > (0.0) ? ((1.0)) * t : (((-1.0))) * t + (2.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -3 (r >= 0)
+    float d = (neg ? (-5.0) : (-3.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u);
+  }
+  {  // break at -2 (r >= 0)
+    float d = (neg ? (-4.0) : (-2.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/3.0)) * u);
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-3.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u);
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-2.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/3.0)) * u);
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u);
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (0.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/3.0)) * u);
+  }
+  {  // break at 3 (r >= 0)
+    float d = (neg ? (1.0) : (3.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u);
+  }
+  {  // break at 4 (r >= 0)
+    float d = (neg ? (2.0) : (4.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/3.0)) * u);
+  }
+  {  // break at 5 (r >= 0)
+    float d = (neg ? (3.0) : (5.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u);
+  }
+  return acc;
 }
 
 float bl_tent_triangle(float x, float sigma) {
@@ -4250,25 +4571,68 @@ float bl_tent_triangle_right(float x, float sigma) {
 }
 
 float bl_tent_triangle_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](4.0, (-4.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((-2.0), 4.0, (-2.0), (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, (1.0/12.0), 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((2.0/3.0), (-2.0), 2.0, (-2.0/3.0), (1.0/12.0), 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 2.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (4.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (2.0/3.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (2.0/3.0) * iw * (s2w + s1) + (((r2 < 1.0 ? (((((1.0/12.0)) * r2) * r2) * r2) * r2 : (((((1.0/12.0)) * r2 + (-2.0/3.0)) * r2 + 2.0) * r2 + (-2.0)) * r2 + (2.0/3.0)) + (r1 < 1.0 ? (((((1.0/12.0)) * r1) * r1) * r1) * r1 : (((((1.0/12.0)) * r1 + (-2.0/3.0)) * r1 + 2.0) * r1 + (-2.0)) * r1 + (2.0/3.0))) - (2.0) * (t < 1.0 ? (((((1.0/12.0)) * t) * t) * t) * t : (((((1.0/12.0)) * t + (-2.0/3.0)) * t + 2.0) * t + (-2.0)) * t + (2.0/3.0))) * iw * iw;
+  }
+  float s2 = sigma * sigma;
+  float db1 = (neg ? (-1.0) : (1.0)) - r;
+  float acc = (db1 > (0.0) ? (((1.0)) * t) * t + ((1.0) * s2) : (((1.0)) * t + ((-4.0))) * t + ((1.0) * s2 + 4.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -3 (r >= 0)
+    float d = (neg ? (-5.0) : (-3.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-2.0/3.0)) * u);
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-3.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-2.0/3.0)) * u);
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * (((-2.0/3.0)) * u);
+  }
+  {  // break at 3 (r >= 0)
+    float d = (neg ? (1.0) : (3.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-2.0/3.0)) * u);
+  }
+  {  // break at 5 (r >= 0)
+    float d = (neg ? (3.0) : (5.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((-2.0/3.0)) * u);
+  }
+  return acc;
 }
 
 float bl_tent_triangle_sq(float x, float sigma) {
@@ -4424,20 +4788,90 @@ float bl_gaussian_square_sq(float x, float sigma) {
 }
 
 float bl_box_square_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (1.0/2.0) + ((r2 < (1.0/2.0) ? (1.0) * r2 : (1.0/2.0)) - (r1 < (1.0/2.0) ? (1.0) * r1 : (1.0/2.0)))) / ((2.0) * hw);
+  }
+  float db1 = (neg ? (-0.5) : (0.5)) - r;
+  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -3/2 (r >= 0)
+    float d = (neg ? (-2.5) : (-1.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at -1/2 (r >= 0)
+    float d = (neg ? (-1.5) : (-0.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 3/2 (r >= 0)
+    float d = (neg ? (0.5) : (1.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 5/2 (r >= 0)
+    float d = (neg ? (1.5) : (2.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  return acc;
 }
 
 float bl_box_square(float x, float sigma) {
@@ -4480,20 +4914,90 @@ float bl_box_square_right(float x, float sigma) {
 }
 
 float bl_box_square_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (1.0/2.0) + ((r2 < (1.0/2.0) ? (1.0) * r2 : (1.0/2.0)) - (r1 < (1.0/2.0) ? (1.0) * r1 : (1.0/2.0)))) / ((2.0) * hw);
+  }
+  float db1 = (neg ? (-0.5) : (0.5)) - r;
+  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -3/2 (r >= 0)
+    float d = (neg ? (-2.5) : (-1.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at -1/2 (r >= 0)
+    float d = (neg ? (-1.5) : (-0.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 3/2 (r >= 0)
+    float d = (neg ? (0.5) : (1.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 5/2 (r >= 0)
+    float d = (neg ? (1.5) : (2.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  return acc;
 }
 
 float bl_box_square_sq(float x, float sigma) {
@@ -4504,25 +5008,95 @@ float bl_box_square_sq(float x, float sigma) {
 }
 
 float bl_tent_square_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((-1.0/8.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (3.0/8.0) * iw * (s2w + s1) + (((r2 < (1.0/2.0) ? (((1.0/2.0)) * r2) * r2 : ((1.0/2.0)) * r2 + (-1.0/8.0)) + (r1 < (1.0/2.0) ? (((1.0/2.0)) * r1) * r1 : ((1.0/2.0)) * r1 + (-1.0/8.0))) - (2.0) * (t < (1.0/2.0) ? (((1.0/2.0)) * t) * t : ((1.0/2.0)) * t + (-1.0/8.0))) * iw * iw;
+  }
+  float db1 = (neg ? (-0.5) : (0.5)) - r;
+  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -3/2 (r >= 0)
+    float d = (neg ? (-2.5) : (-1.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at -1/2 (r >= 0)
+    float d = (neg ? (-1.5) : (-0.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 3/2 (r >= 0)
+    float d = (neg ? (0.5) : (1.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 5/2 (r >= 0)
+    float d = (neg ? (1.5) : (2.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  return acc;
 }
 
 float bl_tent_square(float x, float sigma) {
@@ -4570,25 +5144,95 @@ float bl_tent_square_right(float x, float sigma) {
 }
 
 float bl_tent_square_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((-1.0/8.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (3.0/8.0) * iw * (s2w + s1) + (((r2 < (1.0/2.0) ? (((1.0/2.0)) * r2) * r2 : ((1.0/2.0)) * r2 + (-1.0/8.0)) + (r1 < (1.0/2.0) ? (((1.0/2.0)) * r1) * r1 : ((1.0/2.0)) * r1 + (-1.0/8.0))) - (2.0) * (t < (1.0/2.0) ? (((1.0/2.0)) * t) * t : ((1.0/2.0)) * t + (-1.0/8.0))) * iw * iw;
+  }
+  float db1 = (neg ? (-0.5) : (0.5)) - r;
+  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -3/2 (r >= 0)
+    float d = (neg ? (-2.5) : (-1.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at -1/2 (r >= 0)
+    float d = (neg ? (-1.5) : (-0.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 3/2 (r >= 0)
+    float d = (neg ? (0.5) : (1.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 5/2 (r >= 0)
+    float d = (neg ? (1.5) : (2.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  return acc;
 }
 
 float bl_tent_square_sq(float x, float sigma) {
@@ -4822,55 +5466,90 @@ float bl_gaussian_pulse30_sq(float x, float sigma) {
 }
 
 float bl_box_pulse30_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) {
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (3.0/10.0) + ((r2 < (3.0/10.0) ? (1.0) * r2 : (3.0/10.0)) - (r1 < (3.0/10.0) ? (1.0) * r1 : (3.0/10.0)))) / ((2.0) * hw);
   }
-  return bl_periodic_eval(x, period, 2, p);
+  float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -17/10 (r >= 0)
+    float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((-1.0));
   }
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_1[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_box_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_box_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (1.0);
   }
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  {  // break at -7/10 (r >= 0)
+    float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 23/10 (r >= 0)
+    float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  return acc;
 }
 
 float bl_box_pulse30(float x, float sigma) {
@@ -4913,55 +5592,90 @@ float bl_box_pulse30_right(float x, float sigma) {
 }
 
 float bl_box_pulse30_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) {
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (3.0/10.0) + ((r2 < (3.0/10.0) ? (1.0) * r2 : (3.0/10.0)) - (r1 < (3.0/10.0) ? (1.0) * r1 : (3.0/10.0)))) / ((2.0) * hw);
   }
-  return bl_periodic_eval(x, period, 2, p);
+  float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -17/10 (r >= 0)
+    float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((-1.0));
   }
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_1[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_box_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_box_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (1.0);
   }
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  {  // break at -7/10 (r >= 0)
+    float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (1.0);
+  }
+  {  // break at 23/10 (r >= 0)
+    float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * ((-1.0));
+  }
+  return acc;
 }
 
 float bl_box_pulse30_sq(float x, float sigma) {
@@ -4972,65 +5686,95 @@ float bl_box_pulse30_sq(float x, float sigma) {
 }
 
 float bl_tent_pulse30_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((-9.0/200.0), (3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) {
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (3.0/10.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (51.0/200.0) * iw * (s2w + s1) + (((r2 < (3.0/10.0) ? (((1.0/2.0)) * r2) * r2 : ((3.0/10.0)) * r2 + (-9.0/200.0)) + (r1 < (3.0/10.0) ? (((1.0/2.0)) * r1) * r1 : ((3.0/10.0)) * r1 + (-9.0/200.0))) - (2.0) * (t < (3.0/10.0) ? (((1.0/2.0)) * t) * t : ((3.0/10.0)) * t + (-9.0/200.0))) * iw * iw;
   }
-  return bl_periodic_eval(x, period, 2, p);
+  float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -17/10 (r >= 0)
+    float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
   }
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_1[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_2[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((49.0/200.0), (-7.0/10.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_tent_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1, o0_2);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_tent_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1, o0_2);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
   }
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  {  // break at -7/10 (r >= 0)
+    float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 23/10 (r >= 0)
+    float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  return acc;
 }
 
 float bl_tent_pulse30(float x, float sigma) {
@@ -5078,65 +5822,95 @@ float bl_tent_pulse30_right(float x, float sigma) {
 }
 
 float bl_tent_pulse30_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((-9.0/200.0), (3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) {
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (3.0/10.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (51.0/200.0) * iw * (s2w + s1) + (((r2 < (3.0/10.0) ? (((1.0/2.0)) * r2) * r2 : ((3.0/10.0)) * r2 + (-9.0/200.0)) + (r1 < (3.0/10.0) ? (((1.0/2.0)) * r1) * r1 : ((3.0/10.0)) * r1 + (-9.0/200.0))) - (2.0) * (t < (3.0/10.0) ? (((1.0/2.0)) * t) * t : ((3.0/10.0)) * t + (-9.0/200.0))) * iw * iw;
   }
-  return bl_periodic_eval(x, period, 2, p);
+  float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -17/10 (r >= 0)
+    float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
   }
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_1[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_2[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((49.0/200.0), (-7.0/10.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_tent_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1, o0_2);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_tent_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1, o0_2);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
   }
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  {  // break at -7/10 (r >= 0)
+    float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+  }
+  {  // break at 23/10 (r >= 0)
+    float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+  }
+  return acc;
 }
 
 float bl_tent_pulse30_sq(float x, float sigma) {

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "emit_box_tent_breaks.hpp"
+#include "emit_syntax.hpp"
 #include "exp_poly.hpp"
 #include "functions.hpp"
 
@@ -29,43 +31,6 @@ std::string plain_impl_name(const std::string& atomic) {
 }
 
 namespace {
-
-// Language-specific spelling of the few constructs the bodies use.
-struct Syntax {
-  Lang lang;
-  bool cpp() const { return lang == Lang::Cpp; }
-  std::string T() const { return cpp() ? "T" : "float"; }
-  std::string ex(const GiNaC::ex& e) const { return sym::print(e, lang); }
-  std::string num(const GiNaC::ex& e) const { return sym::print(e, lang); }
-  std::string dbl(double v) const {
-    // Shortest text that reads back as v.
-    std::string t;
-    for (int prec = 6; prec <= 17; ++prec) {
-      std::ostringstream s;
-      s.precision(prec);
-      s << v;
-      t = s.str();
-      if (std::stod(t) == v) break;
-    }
-    if (t.find_first_of(".e") == std::string::npos) t += ".0";
-    return cpp() ? "T(" + t + ")" : "(" + t + ")";
-  }
-  std::string helper(const std::string& n) const { return cpp() ? "detail::" + n : "bl_" + n; }
-  std::string nan() const { return cpp() ? "detail::nan<T>()" : "bl_nan()"; }
-  std::string pi() const { return cpp() ? "detail::pi<T>()" : "bl_pi()"; }
-  std::string min(const std::string& a, const std::string& b) const {
-    return cpp() ? "detail::min2(" + a + ", " + b + ")" : "min(" + a + ", " + b + ")";
-  }
-  std::string bound(const Bound& b) const {
-    if (b.inf) return std::string(b.inf < 0 ? "-" : "") + (cpp() ? "detail::inf<T>()" : "1e30");
-    return ex(b.value);
-  }
-  std::string fn(const std::string& impl) const { return cpp() ? impl + "<T>" : "bl_" + impl; }
-  std::string decl(const std::string& name, const std::string& value) const {
-    // GLSL ES only allows constant expressions after const: plain locals there.
-    return std::string("  ") + (cpp() ? "const " : "") + T() + " " + name + " = " + value + ";\n";
-  }
-};
 
 std::string piece_table(const Syntax& s, const std::string& name, const std::vector<PolyPiece>& ps) {
   auto coeffs = [&](const PolyPiece& p) {
@@ -1207,7 +1172,8 @@ std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
       b = body_piecewise(d, s);
       break;
     case Body::PeriodicTable:
-      b = body_periodic(d, s);
+      b = box_tent_periodic_body(d, lang);  // "" where the break form does not apply
+      if (b.empty()) b = body_periodic(d, s);
       break;
     case Body::Combination:
       b = body_combination(d, s, ds);

@@ -3750,16 +3750,52 @@ T gaussian_fract_sq(T x, T sigma) {
 template <class T>
 T box_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[1] = {
-      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    return ((n2 - n1) * (T(1)/T(2)) + ((((T(1)/T(2))) * r2) * r2 - (((T(1)/T(2))) * r1) * r1)) / (T(2.0) * hw);
+  }
+  T acc = ((T(1))) * t;
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3811,16 +3847,53 @@ T box_fract_right(T x, T sigma) {
 template <class T>
 T box_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[1] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    return ((n2 - n1) * (T(1)/T(3)) + (((((T(1)/T(3))) * r2) * r2) * r2 - ((((T(1)/T(3))) * r1) * r1) * r1)) / (T(2.0) * hw);
+  }
+  const T s2 = sigma * sigma;
+  T acc = (((T(1))) * t) * t + ((T(1)) * s2);
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (((T(-1))) * u + (T(-1)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (((T(-1))) * u + (T(-1)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (((T(-1))) * u + (T(-1)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (((T(-1))) * u + (T(-1)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3838,19 +3911,57 @@ T box_fract_sq(T x, T sigma) {
 template <class T>
 T tent_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[1] = {
-      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[1] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(1)/T(6)) * iw * (s2w + s1) + ((((((T(1)/T(6))) * r2) * r2) * r2 + ((((T(1)/T(6))) * r1) * r1) * r1) - T(2.0) * ((((T(1)/T(6))) * t) * t) * t) * iw * iw;
+  }
+  T acc = ((T(1))) * t;
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -3905,19 +4016,58 @@ T tent_fract_right(T x, T sigma) {
 template <class T>
 T tent_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[1] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[1] = {
-      {T(0), T(1), {T(0), T(0), T(0), T(0), (T(1)/T(12)), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(1)/T(12)) * iw * (s2w + s1) + (((((((T(1)/T(12))) * r2) * r2) * r2) * r2 + (((((T(1)/T(12))) * r1) * r1) * r1) * r1) - T(2.0) * (((((T(1)/T(12))) * t) * t) * t) * t) * iw * iw;
+  }
+  const T s2 = sigma * sigma;
+  T acc = (((T(1))) * t) * t + ((T(1)) * s2);
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u + (T(-1)/T(2)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u + (T(-1)/T(2)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u + (T(-1)/T(2)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u + (T(-1)/T(2)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4100,18 +4250,88 @@ T gaussian_triangle_sq(T x, T sigma) {
 template <class T>
 T box_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    return ((n2 - n1) * T(1) + ((r2 < T(1) ? (((T(1)/T(2))) * r2) * r2 : (((T(-1)/T(2))) * r2 + T(2)) * r2 + (T(-1))) - (r1 < T(1) ? (((T(1)/T(2))) * r1) * r1 : (((T(-1)/T(2))) * r1 + T(2)) * r1 + (T(-1))))) / (T(2.0) * hw);
+  }
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
+  T acc = (db1 > T(0.0) ? ((T(1))) * t : (((T(-1)))) * t + (T(2)));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -3 (r >= 0)
+    const T d = (neg ? T(-5.0) : T(-3.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (((T(-1))) * u);
+  }
+  {  // break at -2 (r >= 0)
+    const T d = (neg ? T(-4.0) : T(-2.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(1)) * u);
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (((T(-1))) * u);
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(1)) * u);
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * (((T(-1))) * u);
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(0.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(1)) * u);
+  }
+  {  // break at 3 (r >= 0)
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (((T(-1))) * u);
+  }
+  {  // break at 4 (r >= 0)
+    const T d = (neg ? T(2.0) : T(4.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(1)) * u);
+  }
+  {  // break at 5 (r >= 0)
+    const T d = (neg ? T(3.0) : T(5.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (((T(-1))) * u);
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4167,18 +4387,61 @@ T box_triangle_right(T x, T sigma) {
 template <class T>
 T box_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(-2)), T(4), (T(-2)), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    return ((n2 - n1) * (T(2)/T(3)) + ((r2 < T(1) ? ((((T(1)/T(3))) * r2) * r2) * r2 : ((((T(1)/T(3))) * r2 + (T(-2))) * r2 + T(4)) * r2 + (T(-2))) - (r1 < T(1) ? ((((T(1)/T(3))) * r1) * r1) * r1 : ((((T(1)/T(3))) * r1 + (T(-2))) * r1 + T(4)) * r1 + (T(-2))))) / (T(2.0) * hw);
+  }
+  const T s2 = sigma * sigma;
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
+  T acc = (db1 > T(0.0) ? (((T(1))) * t) * t + ((T(1)) * s2) : (((T(1))) * t + ((T(-4)))) * t + ((T(1)) * s2 + T(4)));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -3 (r >= 0)
+    const T d = (neg ? T(-5.0) : T(-3.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (((T(-2))) * u);
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (((T(-2))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * (((T(-2))) * u);
+  }
+  {  // break at 3 (r >= 0)
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (((T(-2))) * u);
+  }
+  {  // break at 5 (r >= 0)
+    const T d = (neg ? T(3.0) : T(5.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (((T(-2))) * u);
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4197,22 +4460,93 @@ T box_triangle_sq(T x, T sigma) {
 template <class T>
 T tent_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(1)/T(3)), (T(-1)), T(1), (T(-1)/T(6)), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return T(1) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + T(1) * iw * (s2w + s1) + (((r2 < T(1) ? ((((T(1)/T(6))) * r2) * r2) * r2 : ((((T(-1)/T(6))) * r2 + T(1)) * r2 + (T(-1))) * r2 + (T(1)/T(3))) + (r1 < T(1) ? ((((T(1)/T(6))) * r1) * r1) * r1 : ((((T(-1)/T(6))) * r1 + T(1)) * r1 + (T(-1))) * r1 + (T(1)/T(3)))) - T(2.0) * (t < T(1) ? ((((T(1)/T(6))) * t) * t) * t : ((((T(-1)/T(6))) * t + T(1)) * t + (T(-1))) * t + (T(1)/T(3)))) * iw * iw;
+  }
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
+  T acc = (db1 > T(0.0) ? ((T(1))) * t : (((T(-1)))) * t + (T(2)));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -3 (r >= 0)
+    const T d = (neg ? T(-5.0) : T(-3.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u);
+  }
+  {  // break at -2 (r >= 0)
+    const T d = (neg ? T(-4.0) : T(-2.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(3))) * u);
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u);
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(3))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u);
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(0.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(3))) * u);
+  }
+  {  // break at 3 (r >= 0)
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u);
+  }
+  {  // break at 4 (r >= 0)
+    const T d = (neg ? T(2.0) : T(4.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(3))) * u);
+  }
+  {  // break at 5 (r >= 0)
+    const T d = (neg ? T(3.0) : T(5.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u);
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4272,22 +4606,66 @@ T tent_triangle_right(T x, T sigma) {
 template <class T>
 T tent_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(-2)), T(4), (T(-2)), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), T(1), {T(0), T(0), T(0), T(0), (T(1)/T(12)), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(2)/T(3)), (T(-2)), T(2), (T(-2)/T(3)), (T(1)/T(12)), T(0), T(0), T(0)}},
-  };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(2)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(2)/T(3)) * iw * (s2w + s1) + (((r2 < T(1) ? (((((T(1)/T(12))) * r2) * r2) * r2) * r2 : (((((T(1)/T(12))) * r2 + (T(-2)/T(3))) * r2 + T(2)) * r2 + (T(-2))) * r2 + (T(2)/T(3))) + (r1 < T(1) ? (((((T(1)/T(12))) * r1) * r1) * r1) * r1 : (((((T(1)/T(12))) * r1 + (T(-2)/T(3))) * r1 + T(2)) * r1 + (T(-2))) * r1 + (T(2)/T(3)))) - T(2.0) * (t < T(1) ? (((((T(1)/T(12))) * t) * t) * t) * t : (((((T(1)/T(12))) * t + (T(-2)/T(3))) * t + T(2)) * t + (T(-2))) * t + (T(2)/T(3)))) * iw * iw;
+  }
+  const T s2 = sigma * sigma;
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
+  T acc = (db1 > T(0.0) ? (((T(1))) * t) * t + ((T(1)) * s2) : (((T(1))) * t + ((T(-4)))) * t + ((T(1)) * s2 + T(4)));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -3 (r >= 0)
+    const T d = (neg ? T(-5.0) : T(-3.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-2)/T(3))) * u);
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-2)/T(3))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-2)/T(3))) * u);
+  }
+  {  // break at 3 (r >= 0)
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-2)/T(3))) * u);
+  }
+  {  // break at 5 (r >= 0)
+    const T d = (neg ? T(3.0) : T(5.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-2)/T(3))) * u);
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4469,18 +4847,88 @@ T gaussian_square_sq(T x, T sigma) {
 template <class T>
 T box_square_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? (T(1)) * r2 : (T(1)/T(2))) - (r1 < (T(1)/T(2)) ? (T(1)) * r1 : (T(1)/T(2))))) / (T(2.0) * hw);
+  }
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
+  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -3/2 (r >= 0)
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at -1/2 (r >= 0)
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 3/2 (r >= 0)
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 5/2 (r >= 0)
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4535,18 +4983,88 @@ T box_square_right(T x, T sigma) {
 template <class T>
 T box_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? (T(1)) * r2 : (T(1)/T(2))) - (r1 < (T(1)/T(2)) ? (T(1)) * r1 : (T(1)/T(2))))) / (T(2.0) * hw);
+  }
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
+  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -3/2 (r >= 0)
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at -1/2 (r >= 0)
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 3/2 (r >= 0)
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 5/2 (r >= 0)
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4564,22 +5082,93 @@ T box_square_sq(T x, T sigma) {
 template <class T>
 T tent_square_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? (((T(1)/T(2))) * r2) * r2 : ((T(1)/T(2))) * r2 + (T(-1)/T(8))) + (r1 < (T(1)/T(2)) ? (((T(1)/T(2))) * r1) * r1 : ((T(1)/T(2))) * r1 + (T(-1)/T(8)))) - T(2.0) * (t < (T(1)/T(2)) ? (((T(1)/T(2))) * t) * t : ((T(1)/T(2))) * t + (T(-1)/T(8)))) * iw * iw;
+  }
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
+  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -3/2 (r >= 0)
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at -1/2 (r >= 0)
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 3/2 (r >= 0)
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 5/2 (r >= 0)
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4638,22 +5227,93 @@ T tent_square_right(T x, T sigma) {
 template <class T>
 T tent_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? (((T(1)/T(2))) * r2) * r2 : ((T(1)/T(2))) * r2 + (T(-1)/T(8))) + (r1 < (T(1)/T(2)) ? (((T(1)/T(2))) * r1) * r1 : ((T(1)/T(2))) * r1 + (T(-1)/T(8)))) - T(2.0) * (t < (T(1)/T(2)) ? (((T(1)/T(2))) * t) * t : ((T(1)/T(2))) * t + (T(-1)/T(8)))) * iw * iw;
+  }
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
+  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -3/2 (r >= 0)
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at -1/2 (r >= 0)
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 3/2 (r >= 0)
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 5/2 (r >= 0)
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -4911,50 +5571,88 @@ T gaussian_pulse30_sq(T x, T sigma) {
 template <class T>
 T box_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) {
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? (T(1)) * r2 : (T(3)/T(10))) - (r1 < (T(3)/T(10)) ? (T(1)) * r1 : (T(3)/T(10))))) / (T(2.0) * hw);
   }
-  return detail::periodic_eval(x, period, p);
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -17/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(-1)));
   }
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_1[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::box_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::box_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (T(1));
   }
-  return detail::box_periodic(x, sigma, period, p, p1);
+  {  // break at -7/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 23/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5009,50 +5707,88 @@ T box_pulse30_right(T x, T sigma) {
 template <class T>
 T box_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) {
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? (T(1)) * r2 : (T(3)/T(10))) - (r1 < (T(3)/T(10)) ? (T(1)) * r1 : (T(3)/T(10))))) / (T(2.0) * hw);
   }
-  return detail::periodic_eval(x, period, p);
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -17/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(-1)));
   }
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_1[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::box_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::box_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (T(1));
   }
-  return detail::box_periodic(x, sigma, period, p, p1);
+  {  // break at -7/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (T(1));
+  }
+  {  // break at 23/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * ((T(-1)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5071,58 +5807,93 @@ T box_pulse30_sq(T x, T sigma) {
 template <class T>
 T tent_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) {
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? (((T(1)/T(2))) * r2) * r2 : ((T(3)/T(10))) * r2 + (T(-9)/T(200))) + (r1 < (T(3)/T(10)) ? (((T(1)/T(2))) * r1) * r1 : ((T(3)/T(10))) * r1 + (T(-9)/T(200)))) - T(2.0) * (t < (T(3)/T(10)) ? (((T(1)/T(2))) * t) * t : ((T(3)/T(10))) * t + (T(-9)/T(200)))) * iw * iw;
   }
-  return detail::periodic_eval(x, period, p);
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -17/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
   }
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_1[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_2[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(49)/T(200)), (T(-7)/T(10)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::tent_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1, o0_2);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::tent_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1, o0_2);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
   }
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  {  // break at -7/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 23/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5182,58 +5953,93 @@ T tent_pulse30_right(T x, T sigma) {
 template <class T>
 T tent_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) {
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? (((T(1)/T(2))) * r2) * r2 : ((T(3)/T(10))) * r2 + (T(-9)/T(200))) + (r1 < (T(3)/T(10)) ? (((T(1)/T(2))) * r1) * r1 : ((T(3)/T(10))) * r1 + (T(-9)/T(200)))) - T(2.0) * (t < (T(3)/T(10)) ? (((T(1)/T(2))) * t) * t : ((T(3)/T(10))) * t + (T(-9)/T(200)))) * iw * iw;
   }
-  return detail::periodic_eval(x, period, p);
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -17/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
   }
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_1[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_2[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(49)/T(200)), (T(-7)/T(10)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::tent_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1, o0_2);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::tent_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1, o0_2);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
   }
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  {  // break at -7/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+  }
+  {  // break at 23/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
