@@ -3797,9 +3797,9 @@ float bl_box_fract_raw(float x, float sigma) {
     vec2 r2_q = bl_reduce_period(t + hw, period);
     float r2 = r2_q.x;
     float n2 = r2_q.y;
-    return ((n2 - n1) * (1.0/2.0) + ((((1.0/2.0)) * r2) * r2 - (((1.0/2.0)) * r1) * r1)) / ((2.0) * hw);
+    return ((n2 - n1) * (1.0/2.0) + (((((1.0/2.0))) * r2) * r2 - ((((1.0/2.0))) * r1) * r1)) / ((2.0) * hw);
   }
-  float acc = ((1.0)) * t;
+  float acc = (((1.0))) * t;
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
@@ -3808,28 +3808,28 @@ float bl_box_fract_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   return acc;
 }
@@ -3887,10 +3887,10 @@ float bl_box_fract_sq_raw(float x, float sigma) {
     vec2 r2_q = bl_reduce_period(t + hw, period);
     float r2 = r2_q.x;
     float n2 = r2_q.y;
-    return ((n2 - n1) * (1.0/3.0) + (((((1.0/3.0)) * r2) * r2) * r2 - ((((1.0/3.0)) * r1) * r1) * r1)) / ((2.0) * hw);
+    return ((n2 - n1) * (1.0/3.0) + ((((((1.0/3.0))) * r2) * r2) * r2 - (((((1.0/3.0))) * r1) * r1) * r1)) / ((2.0) * hw);
   }
   float s2 = sigma * sigma;
-  float acc = (((1.0)) * t) * t + ((1.0) * s2);
+  float acc = ((((1.0))) * t) * t + (((1.0)) * s2);
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
@@ -3899,28 +3899,28 @@ float bl_box_fract_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (((-1.0)) * u + (-1.0));
+    acc += (u * sc * ik) * ((((-1.0))) * u + ((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (((-1.0)) * u + (-1.0));
+    acc += (u * sc * ik) * ((((-1.0))) * u + ((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (((-1.0)) * u + (-1.0));
+    acc += (u * sc * ik) * ((((-1.0))) * u + ((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (((-1.0)) * u + (-1.0));
+    acc += (u * sc * ik) * ((((-1.0))) * u + ((-1.0)));
   }
   return acc;
 }
@@ -3951,9 +3951,9 @@ float bl_tent_fract_raw(float x, float sigma) {
     float s2w = n2 * iw;
     float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
     float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
-    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (1.0/6.0) * iw * (s2w + s1) + ((((((1.0/6.0)) * r2) * r2) * r2 + ((((1.0/6.0)) * r1) * r1) * r1) - (2.0) * ((((1.0/6.0)) * t) * t) * t) * iw * iw;
+    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (1.0/6.0) * iw * (s2w + s1) + (((((((1.0/6.0))) * r2) * r2) * r2 + (((((1.0/6.0))) * r1) * r1) * r1) - (2.0) * (((((1.0/6.0))) * t) * t) * t) * iw * iw;
   }
-  float acc = ((1.0)) * t;
+  float acc = (((1.0))) * t;
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
@@ -3962,28 +3962,28 @@ float bl_tent_fract_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   return acc;
 }
@@ -4051,10 +4051,10 @@ float bl_tent_fract_sq_raw(float x, float sigma) {
     float s2w = n2 * iw;
     float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
     float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
-    return (1.0/3.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (1.0/12.0) * iw * (s2w + s1) + (((((((1.0/12.0)) * r2) * r2) * r2) * r2 + (((((1.0/12.0)) * r1) * r1) * r1) * r1) - (2.0) * (((((1.0/12.0)) * t) * t) * t) * t) * iw * iw;
+    return (1.0/3.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (1.0/12.0) * iw * (s2w + s1) + ((((((((1.0/12.0))) * r2) * r2) * r2) * r2 + ((((((1.0/12.0))) * r1) * r1) * r1) * r1) - (2.0) * ((((((1.0/12.0))) * t) * t) * t) * t) * iw * iw;
   }
   float s2 = sigma * sigma;
-  float acc = (((1.0)) * t) * t + ((1.0) * s2);
+  float acc = ((((1.0))) * t) * t + (((1.0)) * s2);
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
@@ -4063,28 +4063,28 @@ float bl_tent_fract_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u + (-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u + (-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u + (-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u + (-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
   }
   return acc;
 }
@@ -4255,10 +4255,10 @@ float bl_box_triangle_raw(float x, float sigma) {
     vec2 r2_q = bl_reduce_period(t + hw, period);
     float r2 = r2_q.x;
     float n2 = r2_q.y;
-    return ((n2 - n1) * 1.0 + ((r2 < 1.0 ? (((1.0/2.0)) * r2) * r2 : (((-1.0/2.0)) * r2 + 2.0) * r2 + (-1.0)) - (r1 < 1.0 ? (((1.0/2.0)) * r1) * r1 : (((-1.0/2.0)) * r1 + 2.0) * r1 + (-1.0)))) / ((2.0) * hw);
+    return ((n2 - n1) * 1.0 + ((r2 < 1.0 ? ((((1.0/2.0))) * r2) * r2 : ((((-1.0/2.0))) * r2 + (2.0)) * r2 + ((-1.0))) - (r1 < 1.0 ? ((((1.0/2.0))) * r1) * r1 : ((((-1.0/2.0))) * r1 + (2.0)) * r1 + ((-1.0))))) / ((2.0) * hw);
   }
   float db1 = (neg ? (-1.0) : (1.0)) - r;
-  float acc = (db1 > (0.0) ? ((1.0)) * t : (((-1.0))) * t + (2.0));
+  float acc = (db1 > (0.0) ? (((1.0))) * t : ((((-1.0)))) * t + ((2.0)));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
@@ -4267,63 +4267,63 @@ float bl_box_triangle_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (((-1.0)) * u);
+    acc += (u * sc * ik) * ((((-1.0))) * u);
   }
   {  // break at -2 (r >= 0)
     float d = (neg ? (-4.0) : (-2.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((1.0) * u);
+    acc += (u * sc * ik) * (((1.0)) * u);
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (((-1.0)) * u);
+    acc += (u * sc * ik) * ((((-1.0))) * u);
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-2.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((1.0) * u);
+    acc += (u * sc * ik) * (((1.0)) * u);
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (-1.0) : (1.0)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (((-1.0)) * u);
+    acc += (u * sc * ik) * ((((-1.0))) * u);
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (0.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((1.0) * u);
+    acc += (u * sc * ik) * (((1.0)) * u);
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (((-1.0)) * u);
+    acc += (u * sc * ik) * ((((-1.0))) * u);
   }
   {  // break at 4 (r >= 0)
     float d = (neg ? (2.0) : (4.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((1.0) * u);
+    acc += (u * sc * ik) * (((1.0)) * u);
   }
   {  // break at 5 (r >= 0)
     float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (((-1.0)) * u);
+    acc += (u * sc * ik) * ((((-1.0))) * u);
   }
   return acc;
 }
@@ -4381,11 +4381,11 @@ float bl_box_triangle_sq_raw(float x, float sigma) {
     vec2 r2_q = bl_reduce_period(t + hw, period);
     float r2 = r2_q.x;
     float n2 = r2_q.y;
-    return ((n2 - n1) * (2.0/3.0) + ((r2 < 1.0 ? ((((1.0/3.0)) * r2) * r2) * r2 : ((((1.0/3.0)) * r2 + (-2.0)) * r2 + 4.0) * r2 + (-2.0)) - (r1 < 1.0 ? ((((1.0/3.0)) * r1) * r1) * r1 : ((((1.0/3.0)) * r1 + (-2.0)) * r1 + 4.0) * r1 + (-2.0)))) / ((2.0) * hw);
+    return ((n2 - n1) * (2.0/3.0) + ((r2 < 1.0 ? (((((1.0/3.0))) * r2) * r2) * r2 : (((((1.0/3.0))) * r2 + ((-2.0))) * r2 + (4.0)) * r2 + ((-2.0))) - (r1 < 1.0 ? (((((1.0/3.0))) * r1) * r1) * r1 : (((((1.0/3.0))) * r1 + ((-2.0))) * r1 + (4.0)) * r1 + ((-2.0))))) / ((2.0) * hw);
   }
   float s2 = sigma * sigma;
   float db1 = (neg ? (-1.0) : (1.0)) - r;
-  float acc = (db1 > (0.0) ? (((1.0)) * t) * t + ((1.0) * s2) : (((1.0)) * t + ((-4.0))) * t + ((1.0) * s2 + 4.0));
+  float acc = (db1 > (0.0) ? ((((1.0))) * t) * t + (((1.0)) * s2) : ((((1.0))) * t + (((-4.0)))) * t + (((1.0)) * s2 + (4.0)));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
@@ -4394,35 +4394,35 @@ float bl_box_triangle_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (((-2.0)) * u);
+    acc += (u * sc * ik) * ((((-2.0))) * u);
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (((-2.0)) * u);
+    acc += (u * sc * ik) * ((((-2.0))) * u);
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (-1.0) : (1.0)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (((-2.0)) * u);
+    acc += (u * sc * ik) * ((((-2.0))) * u);
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (((-2.0)) * u);
+    acc += (u * sc * ik) * ((((-2.0))) * u);
   }
   {  // break at 5 (r >= 0)
     float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (((-2.0)) * u);
+    acc += (u * sc * ik) * ((((-2.0))) * u);
   }
   return acc;
 }
@@ -4453,10 +4453,10 @@ float bl_tent_triangle_raw(float x, float sigma) {
     float s2w = n2 * iw;
     float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
     float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
-    return 1.0 * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + 1.0 * iw * (s2w + s1) + (((r2 < 1.0 ? ((((1.0/6.0)) * r2) * r2) * r2 : ((((-1.0/6.0)) * r2 + 1.0) * r2 + (-1.0)) * r2 + (1.0/3.0)) + (r1 < 1.0 ? ((((1.0/6.0)) * r1) * r1) * r1 : ((((-1.0/6.0)) * r1 + 1.0) * r1 + (-1.0)) * r1 + (1.0/3.0))) - (2.0) * (t < 1.0 ? ((((1.0/6.0)) * t) * t) * t : ((((-1.0/6.0)) * t + 1.0) * t + (-1.0)) * t + (1.0/3.0))) * iw * iw;
+    return 1.0 * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + 1.0 * iw * (s2w + s1) + (((r2 < 1.0 ? (((((1.0/6.0))) * r2) * r2) * r2 : (((((-1.0/6.0))) * r2 + (1.0)) * r2 + ((-1.0))) * r2 + ((1.0/3.0))) + (r1 < 1.0 ? (((((1.0/6.0))) * r1) * r1) * r1 : (((((-1.0/6.0))) * r1 + (1.0)) * r1 + ((-1.0))) * r1 + ((1.0/3.0)))) - (2.0) * (t < 1.0 ? (((((1.0/6.0))) * t) * t) * t : (((((-1.0/6.0))) * t + (1.0)) * t + ((-1.0))) * t + ((1.0/3.0)))) * iw * iw;
   }
   float db1 = (neg ? (-1.0) : (1.0)) - r;
-  float acc = (db1 > (0.0) ? ((1.0)) * t : (((-1.0))) * t + (2.0));
+  float acc = (db1 > (0.0) ? (((1.0))) * t : ((((-1.0)))) * t + ((2.0)));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
@@ -4465,63 +4465,63 @@ float bl_tent_triangle_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u);
   }
   {  // break at -2 (r >= 0)
     float d = (neg ? (-4.0) : (-2.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((1.0/3.0))) * u);
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u);
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-2.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((1.0/3.0))) * u);
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (-1.0) : (1.0)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u);
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (0.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((1.0/3.0))) * u);
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u);
   }
   {  // break at 4 (r >= 0)
     float d = (neg ? (2.0) : (4.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((1.0/3.0))) * u);
   }
   {  // break at 5 (r >= 0)
     float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u);
   }
   return acc;
 }
@@ -4589,11 +4589,11 @@ float bl_tent_triangle_sq_raw(float x, float sigma) {
     float s2w = n2 * iw;
     float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
     float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
-    return (2.0/3.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (2.0/3.0) * iw * (s2w + s1) + (((r2 < 1.0 ? (((((1.0/12.0)) * r2) * r2) * r2) * r2 : (((((1.0/12.0)) * r2 + (-2.0/3.0)) * r2 + 2.0) * r2 + (-2.0)) * r2 + (2.0/3.0)) + (r1 < 1.0 ? (((((1.0/12.0)) * r1) * r1) * r1) * r1 : (((((1.0/12.0)) * r1 + (-2.0/3.0)) * r1 + 2.0) * r1 + (-2.0)) * r1 + (2.0/3.0))) - (2.0) * (t < 1.0 ? (((((1.0/12.0)) * t) * t) * t) * t : (((((1.0/12.0)) * t + (-2.0/3.0)) * t + 2.0) * t + (-2.0)) * t + (2.0/3.0))) * iw * iw;
+    return (2.0/3.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (2.0/3.0) * iw * (s2w + s1) + (((r2 < 1.0 ? ((((((1.0/12.0))) * r2) * r2) * r2) * r2 : ((((((1.0/12.0))) * r2 + ((-2.0/3.0))) * r2 + (2.0)) * r2 + ((-2.0))) * r2 + ((2.0/3.0))) + (r1 < 1.0 ? ((((((1.0/12.0))) * r1) * r1) * r1) * r1 : ((((((1.0/12.0))) * r1 + ((-2.0/3.0))) * r1 + (2.0)) * r1 + ((-2.0))) * r1 + ((2.0/3.0)))) - (2.0) * (t < 1.0 ? ((((((1.0/12.0))) * t) * t) * t) * t : ((((((1.0/12.0))) * t + ((-2.0/3.0))) * t + (2.0)) * t + ((-2.0))) * t + ((2.0/3.0)))) * iw * iw;
   }
   float s2 = sigma * sigma;
   float db1 = (neg ? (-1.0) : (1.0)) - r;
-  float acc = (db1 > (0.0) ? (((1.0)) * t) * t + ((1.0) * s2) : (((1.0)) * t + ((-4.0))) * t + ((1.0) * s2 + 4.0));
+  float acc = (db1 > (0.0) ? ((((1.0))) * t) * t + (((1.0)) * s2) : ((((1.0))) * t + (((-4.0)))) * t + (((1.0)) * s2 + (4.0)));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
@@ -4602,35 +4602,35 @@ float bl_tent_triangle_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-2.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-2.0/3.0))) * u);
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-2.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-2.0/3.0))) * u);
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (-1.0) : (1.0)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((-2.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-2.0/3.0))) * u);
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-2.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-2.0/3.0))) * u);
   }
   {  // break at 5 (r >= 0)
     float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-2.0/3.0)) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((-2.0/3.0))) * u);
   }
   return acc;
 }
@@ -4801,10 +4801,10 @@ float bl_box_square_raw(float x, float sigma) {
     vec2 r2_q = bl_reduce_period(t + hw, period);
     float r2 = r2_q.x;
     float n2 = r2_q.y;
-    return ((n2 - n1) * (1.0/2.0) + ((r2 < (1.0/2.0) ? (1.0) * r2 : (1.0/2.0)) - (r1 < (1.0/2.0) ? (1.0) * r1 : (1.0/2.0)))) / ((2.0) * hw);
+    return ((n2 - n1) * (1.0/2.0) + ((r2 < (1.0/2.0) ? ((1.0)) * r2 : ((1.0/2.0))) - (r1 < (1.0/2.0) ? ((1.0)) * r1 : ((1.0/2.0))))) / ((2.0) * hw);
   }
   float db1 = (neg ? (-0.5) : (0.5)) - r;
-  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
@@ -4813,63 +4813,63 @@ float bl_box_square_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at -1/2 (r >= 0)
     float d = (neg ? (-1.5) : (-0.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 1/2 (r >= 0)
     float d = (neg ? (-0.5) : (0.5)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 3/2 (r >= 0)
     float d = (neg ? (0.5) : (1.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 5/2 (r >= 0)
     float d = (neg ? (1.5) : (2.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   return acc;
 }
@@ -4927,10 +4927,10 @@ float bl_box_square_sq_raw(float x, float sigma) {
     vec2 r2_q = bl_reduce_period(t + hw, period);
     float r2 = r2_q.x;
     float n2 = r2_q.y;
-    return ((n2 - n1) * (1.0/2.0) + ((r2 < (1.0/2.0) ? (1.0) * r2 : (1.0/2.0)) - (r1 < (1.0/2.0) ? (1.0) * r1 : (1.0/2.0)))) / ((2.0) * hw);
+    return ((n2 - n1) * (1.0/2.0) + ((r2 < (1.0/2.0) ? ((1.0)) * r2 : ((1.0/2.0))) - (r1 < (1.0/2.0) ? ((1.0)) * r1 : ((1.0/2.0))))) / ((2.0) * hw);
   }
   float db1 = (neg ? (-0.5) : (0.5)) - r;
-  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
@@ -4939,63 +4939,63 @@ float bl_box_square_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at -1/2 (r >= 0)
     float d = (neg ? (-1.5) : (-0.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 1/2 (r >= 0)
     float d = (neg ? (-0.5) : (0.5)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 3/2 (r >= 0)
     float d = (neg ? (0.5) : (1.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 5/2 (r >= 0)
     float d = (neg ? (1.5) : (2.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   return acc;
 }
@@ -5026,10 +5026,10 @@ float bl_tent_square_raw(float x, float sigma) {
     float s2w = n2 * iw;
     float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
     float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
-    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (3.0/8.0) * iw * (s2w + s1) + (((r2 < (1.0/2.0) ? (((1.0/2.0)) * r2) * r2 : ((1.0/2.0)) * r2 + (-1.0/8.0)) + (r1 < (1.0/2.0) ? (((1.0/2.0)) * r1) * r1 : ((1.0/2.0)) * r1 + (-1.0/8.0))) - (2.0) * (t < (1.0/2.0) ? (((1.0/2.0)) * t) * t : ((1.0/2.0)) * t + (-1.0/8.0))) * iw * iw;
+    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (3.0/8.0) * iw * (s2w + s1) + (((r2 < (1.0/2.0) ? ((((1.0/2.0))) * r2) * r2 : (((1.0/2.0))) * r2 + ((-1.0/8.0))) + (r1 < (1.0/2.0) ? ((((1.0/2.0))) * r1) * r1 : (((1.0/2.0))) * r1 + ((-1.0/8.0)))) - (2.0) * (t < (1.0/2.0) ? ((((1.0/2.0))) * t) * t : (((1.0/2.0))) * t + ((-1.0/8.0)))) * iw * iw;
   }
   float db1 = (neg ? (-0.5) : (0.5)) - r;
-  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
@@ -5038,63 +5038,63 @@ float bl_tent_square_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at -1/2 (r >= 0)
     float d = (neg ? (-1.5) : (-0.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 1/2 (r >= 0)
     float d = (neg ? (-0.5) : (0.5)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 3/2 (r >= 0)
     float d = (neg ? (0.5) : (1.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 5/2 (r >= 0)
     float d = (neg ? (1.5) : (2.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   return acc;
 }
@@ -5162,10 +5162,10 @@ float bl_tent_square_sq_raw(float x, float sigma) {
     float s2w = n2 * iw;
     float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
     float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
-    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (3.0/8.0) * iw * (s2w + s1) + (((r2 < (1.0/2.0) ? (((1.0/2.0)) * r2) * r2 : ((1.0/2.0)) * r2 + (-1.0/8.0)) + (r1 < (1.0/2.0) ? (((1.0/2.0)) * r1) * r1 : ((1.0/2.0)) * r1 + (-1.0/8.0))) - (2.0) * (t < (1.0/2.0) ? (((1.0/2.0)) * t) * t : ((1.0/2.0)) * t + (-1.0/8.0))) * iw * iw;
+    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (3.0/8.0) * iw * (s2w + s1) + (((r2 < (1.0/2.0) ? ((((1.0/2.0))) * r2) * r2 : (((1.0/2.0))) * r2 + ((-1.0/8.0))) + (r1 < (1.0/2.0) ? ((((1.0/2.0))) * r1) * r1 : (((1.0/2.0))) * r1 + ((-1.0/8.0)))) - (2.0) * (t < (1.0/2.0) ? ((((1.0/2.0))) * t) * t : (((1.0/2.0))) * t + ((-1.0/8.0)))) * iw * iw;
   }
   float db1 = (neg ? (-0.5) : (0.5)) - r;
-  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
@@ -5174,63 +5174,63 @@ float bl_tent_square_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at -1/2 (r >= 0)
     float d = (neg ? (-1.5) : (-0.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 1/2 (r >= 0)
     float d = (neg ? (-0.5) : (0.5)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 3/2 (r >= 0)
     float d = (neg ? (0.5) : (1.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 5/2 (r >= 0)
     float d = (neg ? (1.5) : (2.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   return acc;
 }
@@ -5479,10 +5479,10 @@ float bl_box_pulse30_raw(float x, float sigma) {
     vec2 r2_q = bl_reduce_period(t + hw, period);
     float r2 = r2_q.x;
     float n2 = r2_q.y;
-    return ((n2 - n1) * (3.0/10.0) + ((r2 < (3.0/10.0) ? (1.0) * r2 : (3.0/10.0)) - (r1 < (3.0/10.0) ? (1.0) * r1 : (3.0/10.0)))) / ((2.0) * hw);
+    return ((n2 - n1) * (3.0/10.0) + ((r2 < (3.0/10.0) ? ((1.0)) * r2 : ((3.0/10.0))) - (r1 < (3.0/10.0) ? ((1.0)) * r1 : ((3.0/10.0))))) / ((2.0) * hw);
   }
   float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
-  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
@@ -5491,63 +5491,63 @@ float bl_box_pulse30_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at -7/10 (r >= 0)
     float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 3/10 (r >= 0)
     float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 13/10 (r >= 0)
     float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 23/10 (r >= 0)
     float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   return acc;
 }
@@ -5605,10 +5605,10 @@ float bl_box_pulse30_sq_raw(float x, float sigma) {
     vec2 r2_q = bl_reduce_period(t + hw, period);
     float r2 = r2_q.x;
     float n2 = r2_q.y;
-    return ((n2 - n1) * (3.0/10.0) + ((r2 < (3.0/10.0) ? (1.0) * r2 : (3.0/10.0)) - (r1 < (3.0/10.0) ? (1.0) * r1 : (3.0/10.0)))) / ((2.0) * hw);
+    return ((n2 - n1) * (3.0/10.0) + ((r2 < (3.0/10.0) ? ((1.0)) * r2 : ((3.0/10.0))) - (r1 < (3.0/10.0) ? ((1.0)) * r1 : ((3.0/10.0))))) / ((2.0) * hw);
   }
   float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
-  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
@@ -5617,63 +5617,63 @@ float bl_box_pulse30_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at -7/10 (r >= 0)
     float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 3/10 (r >= 0)
     float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 13/10 (r >= 0)
     float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (1.0);
+    acc += (u * sc * ik) * ((1.0));
   }
   {  // break at 23/10 (r >= 0)
     float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((-1.0));
+    acc += (u * sc * ik) * (((-1.0)));
   }
   return acc;
 }
@@ -5704,10 +5704,10 @@ float bl_tent_pulse30_raw(float x, float sigma) {
     float s2w = n2 * iw;
     float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
     float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
-    return (3.0/10.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (51.0/200.0) * iw * (s2w + s1) + (((r2 < (3.0/10.0) ? (((1.0/2.0)) * r2) * r2 : ((3.0/10.0)) * r2 + (-9.0/200.0)) + (r1 < (3.0/10.0) ? (((1.0/2.0)) * r1) * r1 : ((3.0/10.0)) * r1 + (-9.0/200.0))) - (2.0) * (t < (3.0/10.0) ? (((1.0/2.0)) * t) * t : ((3.0/10.0)) * t + (-9.0/200.0))) * iw * iw;
+    return (3.0/10.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (51.0/200.0) * iw * (s2w + s1) + (((r2 < (3.0/10.0) ? ((((1.0/2.0))) * r2) * r2 : (((3.0/10.0))) * r2 + ((-9.0/200.0))) + (r1 < (3.0/10.0) ? ((((1.0/2.0))) * r1) * r1 : (((3.0/10.0))) * r1 + ((-9.0/200.0)))) - (2.0) * (t < (3.0/10.0) ? ((((1.0/2.0))) * t) * t : (((3.0/10.0))) * t + ((-9.0/200.0)))) * iw * iw;
   }
   float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
-  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
@@ -5716,63 +5716,63 @@ float bl_tent_pulse30_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at -7/10 (r >= 0)
     float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 3/10 (r >= 0)
     float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 13/10 (r >= 0)
     float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 23/10 (r >= 0)
     float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   return acc;
 }
@@ -5840,10 +5840,10 @@ float bl_tent_pulse30_sq_raw(float x, float sigma) {
     float s2w = n2 * iw;
     float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
     float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
-    return (3.0/10.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (51.0/200.0) * iw * (s2w + s1) + (((r2 < (3.0/10.0) ? (((1.0/2.0)) * r2) * r2 : ((3.0/10.0)) * r2 + (-9.0/200.0)) + (r1 < (3.0/10.0) ? (((1.0/2.0)) * r1) * r1 : ((3.0/10.0)) * r1 + (-9.0/200.0))) - (2.0) * (t < (3.0/10.0) ? (((1.0/2.0)) * t) * t : ((3.0/10.0)) * t + (-9.0/200.0))) * iw * iw;
+    return (3.0/10.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (51.0/200.0) * iw * (s2w + s1) + (((r2 < (3.0/10.0) ? ((((1.0/2.0))) * r2) * r2 : (((3.0/10.0))) * r2 + ((-9.0/200.0))) + (r1 < (3.0/10.0) ? ((((1.0/2.0))) * r1) * r1 : (((3.0/10.0))) * r1 + ((-9.0/200.0)))) - (2.0) * (t < (3.0/10.0) ? ((((1.0/2.0))) * t) * t : (((3.0/10.0))) * t + ((-9.0/200.0)))) * iw * iw;
   }
   float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
-  float acc = (db1 > (0.0) ? (1.0) : (0.0));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
@@ -5852,63 +5852,63 @@ float bl_tent_pulse30_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at -7/10 (r >= 0)
     float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 3/10 (r >= 0)
     float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 13/10 (r >= 0)
     float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
   }
   {  // break at 23/10 (r >= 0)
     float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((-1.0/2.0));
+    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
   }
   return acc;
 }
@@ -5976,11 +5976,97 @@ float bl_gaussian_floor_sq(float x, float sigma) {
 }
 
 float bl_box_floor(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = ((n0));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((1.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((1.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((1.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((1.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + (-1.0) * bl_box_fract(x, sigma);
 }
 
 float bl_box_floor_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (((n0*n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((((-1.0) + (2.0*n))));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((((-1.0) + (2.0*n))));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((((-1.0) + (2.0*n))));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((((-1.0) + (2.0*n))));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_box_fract_sq(x, sigma) + (-2.0) * (x * bl_box_fract(x, sigma) + bl_box_fract_u(x, sigma));
 }
@@ -5992,11 +6078,97 @@ float bl_box_floor_sq(float x, float sigma) {
 }
 
 float bl_tent_floor(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = ((n0));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + (-1.0) * bl_tent_fract(x, sigma);
 }
 
 float bl_tent_floor_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (((n0*n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0) + (2.0*n))) / (2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0) + (2.0*n))) / (2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0) + (2.0*n))) / (2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0) + (2.0*n))) / (2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_tent_fract_sq(x, sigma) + (-2.0) * (x * bl_tent_fract(x, sigma) + bl_tent_fract_u(x, sigma));
 }
@@ -6063,11 +6235,97 @@ float bl_gaussian_ceil_sq(float x, float sigma) {
 }
 
 float bl_box_ceil(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (((1.0 + n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((1.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((1.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((1.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((1.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + 1.0 * bl_box_fract(-x, sigma);
 }
 
 float bl_box_ceil_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = ((((2.0*n0) + (n0*n0) + 1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((((2.0*n) + 1.0)));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((((2.0*n) + 1.0)));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((((2.0*n) + 1.0)));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((((2.0*n) + 1.0)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_box_fract_sq(-x, sigma) + 2.0 * (x * bl_box_fract(-x, sigma) - bl_box_fract_u(-x, sigma));
 }
@@ -6079,11 +6337,97 @@ float bl_box_ceil_sq(float x, float sigma) {
 }
 
 float bl_tent_ceil(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (((1.0 + n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + 1.0 * bl_tent_fract(-x, sigma);
 }
 
 float bl_tent_ceil_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = ((((2.0*n0) + (n0*n0) + 1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((2.0*n) + 1.0)) / (2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((2.0*n) + 1.0)) / (2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((2.0*n) + 1.0)) / (2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((2.0*n) + 1.0)) / (2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_tent_fract_sq(-x, sigma) + 2.0 * (x * bl_tent_fract(-x, sigma) - bl_tent_fract_u(-x, sigma));
 }
@@ -6247,11 +6591,97 @@ float bl_gaussian_trunc_sq(float x, float sigma) {
 }
 
 float bl_box_trunc(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (n0 < (0.0) ? (((1.0 + n0))) : ((n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (1.0 + x) + (-1.0) * bl_box_fract(x, sigma) + (-1.0) * bl_box_step(x, sigma);
 }
 
 float bl_box_trunc_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (n0 < (0.0) ? ((((2.0*n0) + (n0*n0) + 1.0))) : (((n0*n0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+      }
+      return acc;
+    }
+  }
   BlPiece pt6[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -6268,11 +6698,97 @@ float bl_box_trunc_sq(float x, float sigma) {
 }
 
 float bl_tent_trunc(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (n0 < (0.0) ? (((1.0 + n0))) : ((n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) / (2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) / (2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) / (2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) / (2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (1.0 + x) + (-1.0) * bl_tent_fract(x, sigma) + (-1.0) * bl_tent_step(x, sigma);
 }
 
 float bl_tent_trunc_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (n0 < (0.0) ? ((((2.0*n0) + (n0*n0) + 1.0))) : (((n0*n0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) / (2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) / (2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) / (2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) / (2.0));
+      }
+      return acc;
+    }
+  }
   BlPiece pt6[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),

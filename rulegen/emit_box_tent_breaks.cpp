@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -43,8 +44,8 @@ std::string horner(const Syntax& s, const std::vector<std::string>& c, const std
   return r;
 }
 
-std::string coef(const Syntax& s, const numeric& v) {
-  return v.is_zero() ? std::string() : s.num(v);
+std::string coef(const Syntax& s, const GiNaC::ex& v) {
+  return v.is_zero() ? std::string() : "(" + s.ex(v) + ")";
 }
 
 // E[U^(2j)] / sigma^(2j): box 3^j/(2j+1), tent 2 6^j/((2j+1)(2j+2)).
@@ -56,14 +57,16 @@ numeric even_moment(Kernel k, int j) {
 }
 
 // E q(v + U) = sum_n v^n sum_j C(n+2j, 2j) c_{n+2j} m_{2j} s2^j, Horner in v and s2 = sigma^2.
-std::string kernel_mean(const Syntax& s, Kernel k, const std::vector<numeric>& c, const std::string& v) {
+template <class C>
+std::string kernel_mean(const Syntax& s, Kernel k, const std::vector<C>& c, const std::string& v) {
   std::vector<std::string> cx;
   for (size_t n = 0; n < c.size(); ++n) {
     std::vector<std::string> cs;
     for (size_t j = 0; n + 2 * j < c.size(); ++j)
       cs.push_back(
-          coef(s, GiNaC::binomial(numeric(static_cast<long>(n + 2 * j)), numeric(static_cast<long>(2 * j))) *
-                      c[n + 2 * j] * even_moment(k, static_cast<int>(j))));
+          coef(s, (GiNaC::binomial(numeric(static_cast<long>(n + 2 * j)), numeric(static_cast<long>(2 * j))) *
+                   GiNaC::ex(c[n + 2 * j]) * even_moment(k, static_cast<int>(j)))
+                      .expand()));
     const std::string h = horner(s, cs, "s2");
     cx.push_back(h == s.dbl(0) ? "" : "(" + h + ")");
   }
@@ -331,6 +334,173 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   out += s.decl("sc", "hw < " + s.dbl(1e-30) + " ? " + s.dbl(std::ldexp(1.0, 100)) + " : " + s.dbl(1));
   out += s.decl("ik", s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + " * sc)");
   return out + jump_terms(s, d.kernel, cands, T) + "  return acc;\n";
+}
+
+namespace {
+
+// The polynomial f(x) on [n, n+1) of a staircase combination (floor, ceil, trunc: poly(x) plus
+// multiples of fract(+-x) and of piecewise atomics with integer breaks such as step) for the integers
+// n of one region (regions: split by the piecewise atomics' breaks z, n < z or n >= z), as an
+// expression in x and the symbol n; nullopt when a term is of another kind.
+struct Staircase {
+  std::vector<long> z;           // region boundaries, sorted
+  std::vector<GiNaC::ex> piece;  // per region (z.size() + 1): f on [n, n+1)
+};
+
+std::optional<Staircase> staircase_of(const sym::Derived& lin, const std::vector<sym::Derived>& ds,
+                                      const GiNaC::symbol& n, bool squared) {
+  const GiNaC::ex x = sym::var_x();
+  auto atomic = [&](const std::string& name) -> const sym::Atomic* {
+    for (const auto& e : ds)
+      if (e.atomic && e.atomic_name == name) return e.atomic;
+    return nullptr;
+  };
+  Staircase st;
+  for (const auto& t : lin.terms) {
+    if (t.kind != sym::CombinationTerm::Kind::Smoothed || t.xpow != 0 || t.squared) return std::nullopt;
+    const sym::Atomic* a = atomic(t.atomic);
+    if (!a) return std::nullopt;
+    if (a->cls == sym::AtomicClass::Piecewise) {
+      if (t.arg_sign != 1) return std::nullopt;
+      for (size_t i = 0; i + 1 < a->pieces.size(); ++i) {
+        const GiNaC::ex b = a->pieces[i].hi.value;
+        if (!GiNaC::is_a<numeric>(b) || !GiNaC::ex_to<numeric>(b).is_integer()) return std::nullopt;
+        st.z.push_back(GiNaC::ex_to<numeric>(b).to_long());
+      }
+    } else if (a->cls == sym::AtomicClass::Periodic) {
+      if (!a->period || !(*a->period - 1).is_zero() || a->pieces.size() != 1) return std::nullopt;
+    } else {
+      return std::nullopt;
+    }
+  }
+  std::sort(st.z.begin(), st.z.end());
+  st.z.erase(std::unique(st.z.begin(), st.z.end()), st.z.end());
+  for (size_t r = 0; r <= st.z.size(); ++r) {
+    const long rep = r == 0 ? (st.z.empty() ? 0 : st.z[0] - 1) : st.z[r - 1];  // an n of the region
+    GiNaC::ex f = lin.poly;
+    for (const auto& t : lin.terms) {
+      const sym::Atomic* a = atomic(t.atomic);
+      GiNaC::ex v;
+      if (a->cls == sym::AtomicClass::Periodic) {
+        // fract-like: A(x) = q(x - n) on [n, n+1); A(-x) = q(n + 1 - x) there (x not an integer).
+        v = a->pieces[0].f.subs(x == (t.arg_sign > 0 ? x - n : n + 1 - x));
+      } else {
+        const double mid = rep + 0.5;
+        for (const auto& pc : a->pieces)
+          if ((!pc.lo.finite() || pc.lo.to_double() < mid) && (!pc.hi.finite() || mid < pc.hi.to_double()))
+            v = pc.f;
+      }
+      f += t.coeff * v;
+    }
+    if (squared) f = f * f;
+    st.piece.push_back(f.expand());
+  }
+  return st;
+}
+
+// The jump f(n+) - f(n-) at the integer n as a polynomial in u = x - n (coefficients in n), printed
+// per region: "n < z0 ? e(region 0) : n == z0 ? e(at z0) : ...".
+std::string region_chain(const Syntax& s, const Staircase& st, const GiNaC::symbol& n, size_t k) {
+  const GiNaC::symbol u("u");
+  const GiNaC::ex x = sym::var_x();
+  auto coeff_of = [&](const GiNaC::ex& right, const GiNaC::ex& left) {
+    const GiNaC::ex D = (right.subs(x == n + u) - left.subs(x == n + u)).expand();
+    return D.coeff(u, static_cast<int>(k));
+  };
+  auto text = [&](const GiNaC::ex& e) { return e.is_zero() ? s.dbl(0) : "(" + s.ex(e) + ")"; };
+  std::string out;
+  for (size_t r = 0; r < st.z.size(); ++r) {
+    const GiNaC::ex inside = coeff_of(st.piece[r], st.piece[r].subs(n == n - 1));
+    const GiNaC::ex at = coeff_of(st.piece[r + 1], st.piece[r].subs(n == n - 1)).subs(n == st.z[r]);
+    out += "(n < " + s.dbl(static_cast<double>(st.z[r])) + " ? " + text(inside) +
+           " : n == " + s.dbl(static_cast<double>(st.z[r])) + " ? " + text(at) + " : ";
+  }
+  const GiNaC::ex last = coeff_of(st.piece.back(), st.piece.back().subs(n == n - 1));
+  return out + text(last) + std::string(st.z.size(), ')');
+}
+
+}  // namespace
+
+// Staircases (floor, ceil, trunc, their squares), sigma > 0 (sigma = 0 keeps the plain values at the
+// integers, where ceil is not right-continuous). Centred on n0 = floor(x) (exact): the breaks n = n0 +
+// j, j in (-K, 1 + K), lie left of x for j <= 0 and right for j >= 1, so no comparison picks a side;
+// their offsets n - x are exact near x (y = x - n0 is not: -1e-9 - (-1) rounds to 1 in float, so y
+// is only the base polynomial's argument, where its rounding moves the value by eps n0); the base is f's
+// polynomial on [n0, n0+1) in y (coefficients in n0: floor^2 is n0^2 there) and each jump's coefficients are
+// polynomials in n = n0 + j (floor^2: 2n - 1, trunc^2: 2n - sign(n)), per region of n. Nothing of size x^2 is
+// formed as a difference: the result's terms are n0^p times O(1) staircase averages. Error: relative, about
+// (K + degree) eps. Wider kernels fall through to the caller's combination of periodic entries.
+std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
+                                      const std::vector<sym::Derived>* ds) {
+  if (d.kernel == Kernel::Gaussian || d.body != sym::Body::Combination || !ds || !d.atomic ||
+      !d.atomic->jumps_at_integers)
+    return "";
+  const sym::Derived* lin = nullptr;
+  for (const auto& e : *ds)
+    if (e.atomic == d.atomic && !e.squared && e.kernel == d.kernel && e.body == sym::Body::Combination)
+      lin = &e;
+  if (!lin) return "";
+  const GiNaC::symbol n("n"), n0("n0");
+  const auto st = staircase_of(*lin, *ds, n, d.squared);
+  if (!st) return "";
+  const Syntax s{lang};
+  const bool box = d.kernel == Kernel::Box;
+  const int K = 2;
+  const GiNaC::ex x = sym::var_x();
+  const GiNaC::symbol v("v");
+  std::string out = "  {  // narrow kernels: the break sum centred on n0 = floor(x)\n";
+  out += "  " + s.decl("hw", (box ? (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3")
+                                  : (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")) +
+                                 std::string(" * sigma"));
+  out += "    if (sigma > " + s.dbl(0) + " && hw <= " + s.dbl(K) + ") {\n";
+  out += "    " + s.decl("n0", "floor(x)") + "    " + s.decl("y", "x - n0");
+  // Base: f(n0 + v) on [n0, n0+1), coefficients in v.
+  std::string base;
+  bool s2 = false;
+  for (size_t r = 0; r <= st->z.size(); ++r) {
+    const GiNaC::ex f = st->piece[r].subs(GiNaC::lst{x == n0 + v, n == n0}).expand();
+    std::vector<GiNaC::ex> c;
+    for (int k = 0; k <= f.degree(v); ++k) c.push_back(f.coeff(v, k));
+    s2 = s2 || c.size() > 2;
+    const std::string m = kernel_mean(s, d.kernel, c, "y");
+    if (r < st->z.size())
+      base += "(n0 < " + s.dbl(static_cast<double>(st->z[r])) + " ? " + m + " : ";
+    else
+      base += m + std::string(st->z.size(), ')');
+  }
+  if (s2) out += "    " + s.decl("s2", "sigma * sigma");
+  out += "    " + s.T() + " acc = " + base + ";\n";
+  out +=
+      "    " + s.decl("sc", "hw < " + s.dbl(1e-30) + " ? " + s.dbl(std::ldexp(1.0, 100)) + " : " + s.dbl(1));
+  out += "    " + s.decl("ik", s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + " * sc)");
+  int maxdeg = 0;
+  {
+    const GiNaC::symbol u("u");
+    for (const auto& p : st->piece) maxdeg = std::max(maxdeg, p.degree(x));
+  }
+  for (int j = 1 - K; j <= K; ++j) {
+    const std::string J = s.dbl(j);
+    out += "      {  // break at n0 + " + std::to_string(j) + "\n";
+    out += "      " + s.decl("n", "n0 + " + J) + "      " + s.decl("d", "n - x");
+    out += "      " + s.decl("L", j <= 0 ? "hw + d" : "hw - d");
+    out += "      " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
+    out += "      " + s.decl("u", j <= 0 ? "-l" : "l");
+    std::vector<std::string> pc;
+    for (int k = 0; k <= maxdeg; ++k) {
+      const std::string e = region_chain(s, *st, n, static_cast<size_t>(k));
+      if (e == s.dbl(0)) {
+        pc.push_back("");
+        continue;
+      }
+      const long den = box ? k + 1 : (k + 1) * (k + 2);
+      pc.push_back(den == 1 ? e : e + " / " + s.dbl(static_cast<double>(den)));
+    }
+    const std::string P = horner(s, pc, "u");
+    out += box ? "        acc += (u * sc * ik) * (" + P + ");\n"
+               : "        acc += (u * sc * ik) * (l * sc * ik) * (" + P + ");\n";
+    out += "      }\n";
+  }
+  return out + "      return acc;\n    }\n  }\n";
 }
 
 }  // namespace bl::rulegen

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "derived.hpp"
 #include "printer.hpp"
@@ -15,5 +16,10 @@ namespace bl::rulegen {
 // The body of a box or tent PeriodicTable entry (polynomial pieces), or "" where this form does not
 // apply (Gaussian kernel, or polynomials whose extension over a period would cancel).
 std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang);
+
+// For a box or tent Combination entry of a staircase (floor, ceil, trunc and their squares):
+// statements that return the break sum when the kernel spans at most a few steps, else fall through
+// (prepend them to the combination body); "" where the form does not apply.
+std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds);
 
 }  // namespace bl::rulegen

@@ -3761,9 +3761,9 @@ T box_fract_raw(T x, T sigma) {
     const T r1 = detail::reduce_period(t - hw, period, n1);
     T n2;
     const T r2 = detail::reduce_period(t + hw, period, n2);
-    return ((n2 - n1) * (T(1)/T(2)) + ((((T(1)/T(2))) * r2) * r2 - (((T(1)/T(2))) * r1) * r1)) / (T(2.0) * hw);
+    return ((n2 - n1) * (T(1)/T(2)) + (((((T(1)/T(2)))) * r2) * r2 - ((((T(1)/T(2)))) * r1) * r1)) / (T(2.0) * hw);
   }
-  T acc = ((T(1))) * t;
+  T acc = (((T(1)))) * t;
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
@@ -3772,28 +3772,28 @@ T box_fract_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   return acc;
 }
@@ -3858,10 +3858,10 @@ T box_fract_sq_raw(T x, T sigma) {
     const T r1 = detail::reduce_period(t - hw, period, n1);
     T n2;
     const T r2 = detail::reduce_period(t + hw, period, n2);
-    return ((n2 - n1) * (T(1)/T(3)) + (((((T(1)/T(3))) * r2) * r2) * r2 - ((((T(1)/T(3))) * r1) * r1) * r1)) / (T(2.0) * hw);
+    return ((n2 - n1) * (T(1)/T(3)) + ((((((T(1)/T(3)))) * r2) * r2) * r2 - (((((T(1)/T(3)))) * r1) * r1) * r1)) / (T(2.0) * hw);
   }
   const T s2 = sigma * sigma;
-  T acc = (((T(1))) * t) * t + ((T(1)) * s2);
+  T acc = ((((T(1)))) * t) * t + (((T(1))) * s2);
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
@@ -3870,28 +3870,28 @@ T box_fract_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))) * u + (T(-1)));
+    acc += (u * sc * ik) * ((((T(-1)))) * u + ((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))) * u + (T(-1)));
+    acc += (u * sc * ik) * ((((T(-1)))) * u + ((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (((T(-1))) * u + (T(-1)));
+    acc += (u * sc * ik) * ((((T(-1)))) * u + ((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (((T(-1))) * u + (T(-1)));
+    acc += (u * sc * ik) * ((((T(-1)))) * u + ((T(-1))));
   }
   return acc;
 }
@@ -3927,9 +3927,9 @@ T tent_fract_raw(T x, T sigma) {
     const T s2w = n2 * iw;
     const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
-    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(1)/T(6)) * iw * (s2w + s1) + ((((((T(1)/T(6))) * r2) * r2) * r2 + ((((T(1)/T(6))) * r1) * r1) * r1) - T(2.0) * ((((T(1)/T(6))) * t) * t) * t) * iw * iw;
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(1)/T(6)) * iw * (s2w + s1) + (((((((T(1)/T(6)))) * r2) * r2) * r2 + (((((T(1)/T(6)))) * r1) * r1) * r1) - T(2.0) * (((((T(1)/T(6)))) * t) * t) * t) * iw * iw;
   }
-  T acc = ((T(1))) * t;
+  T acc = (((T(1)))) * t;
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
@@ -3938,28 +3938,28 @@ T tent_fract_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   return acc;
 }
@@ -4032,10 +4032,10 @@ T tent_fract_sq_raw(T x, T sigma) {
     const T s2w = n2 * iw;
     const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
-    return (T(1)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(1)/T(12)) * iw * (s2w + s1) + (((((((T(1)/T(12))) * r2) * r2) * r2) * r2 + (((((T(1)/T(12))) * r1) * r1) * r1) * r1) - T(2.0) * (((((T(1)/T(12))) * t) * t) * t) * t) * iw * iw;
+    return (T(1)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(1)/T(12)) * iw * (s2w + s1) + ((((((((T(1)/T(12)))) * r2) * r2) * r2) * r2 + ((((((T(1)/T(12)))) * r1) * r1) * r1) * r1) - T(2.0) * ((((((T(1)/T(12)))) * t) * t) * t) * t) * iw * iw;
   }
   const T s2 = sigma * sigma;
-  T acc = (((T(1))) * t) * t + ((T(1)) * s2);
+  T acc = ((((T(1)))) * t) * t + (((T(1))) * s2);
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
@@ -4044,28 +4044,28 @@ T tent_fract_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u + (T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u + (T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u + (T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u + (T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   return acc;
 }
@@ -4261,10 +4261,10 @@ T box_triangle_raw(T x, T sigma) {
     const T r1 = detail::reduce_period(t - hw, period, n1);
     T n2;
     const T r2 = detail::reduce_period(t + hw, period, n2);
-    return ((n2 - n1) * T(1) + ((r2 < T(1) ? (((T(1)/T(2))) * r2) * r2 : (((T(-1)/T(2))) * r2 + T(2)) * r2 + (T(-1))) - (r1 < T(1) ? (((T(1)/T(2))) * r1) * r1 : (((T(-1)/T(2))) * r1 + T(2)) * r1 + (T(-1))))) / (T(2.0) * hw);
+    return ((n2 - n1) * T(1) + ((r2 < T(1) ? ((((T(1)/T(2)))) * r2) * r2 : ((((T(-1)/T(2)))) * r2 + (T(2))) * r2 + ((T(-1)))) - (r1 < T(1) ? ((((T(1)/T(2)))) * r1) * r1 : ((((T(-1)/T(2)))) * r1 + (T(2))) * r1 + ((T(-1)))))) / (T(2.0) * hw);
   }
   const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
-  T acc = (db1 > T(0.0) ? ((T(1))) * t : (((T(-1)))) * t + (T(2)));
+  T acc = (db1 > T(0.0) ? (((T(1)))) * t : ((((T(-1))))) * t + ((T(2))));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
@@ -4273,63 +4273,63 @@ T box_triangle_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))) * u);
+    acc += (u * sc * ik) * ((((T(-1)))) * u);
   }
   {  // break at -2 (r >= 0)
     const T d = (neg ? T(-4.0) : T(-2.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(1)) * u);
+    acc += (u * sc * ik) * (((T(1))) * u);
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))) * u);
+    acc += (u * sc * ik) * ((((T(-1)))) * u);
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-2.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(1)) * u);
+    acc += (u * sc * ik) * (((T(1))) * u);
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (((T(-1))) * u);
+    acc += (u * sc * ik) * ((((T(-1)))) * u);
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(0.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(1)) * u);
+    acc += (u * sc * ik) * (((T(1))) * u);
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (((T(-1))) * u);
+    acc += (u * sc * ik) * ((((T(-1)))) * u);
   }
   {  // break at 4 (r >= 0)
     const T d = (neg ? T(2.0) : T(4.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(1)) * u);
+    acc += (u * sc * ik) * (((T(1))) * u);
   }
   {  // break at 5 (r >= 0)
     const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (((T(-1))) * u);
+    acc += (u * sc * ik) * ((((T(-1)))) * u);
   }
   return acc;
 }
@@ -4398,11 +4398,11 @@ T box_triangle_sq_raw(T x, T sigma) {
     const T r1 = detail::reduce_period(t - hw, period, n1);
     T n2;
     const T r2 = detail::reduce_period(t + hw, period, n2);
-    return ((n2 - n1) * (T(2)/T(3)) + ((r2 < T(1) ? ((((T(1)/T(3))) * r2) * r2) * r2 : ((((T(1)/T(3))) * r2 + (T(-2))) * r2 + T(4)) * r2 + (T(-2))) - (r1 < T(1) ? ((((T(1)/T(3))) * r1) * r1) * r1 : ((((T(1)/T(3))) * r1 + (T(-2))) * r1 + T(4)) * r1 + (T(-2))))) / (T(2.0) * hw);
+    return ((n2 - n1) * (T(2)/T(3)) + ((r2 < T(1) ? (((((T(1)/T(3)))) * r2) * r2) * r2 : (((((T(1)/T(3)))) * r2 + ((T(-2)))) * r2 + (T(4))) * r2 + ((T(-2)))) - (r1 < T(1) ? (((((T(1)/T(3)))) * r1) * r1) * r1 : (((((T(1)/T(3)))) * r1 + ((T(-2)))) * r1 + (T(4))) * r1 + ((T(-2)))))) / (T(2.0) * hw);
   }
   const T s2 = sigma * sigma;
   const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
-  T acc = (db1 > T(0.0) ? (((T(1))) * t) * t + ((T(1)) * s2) : (((T(1))) * t + ((T(-4)))) * t + ((T(1)) * s2 + T(4)));
+  T acc = (db1 > T(0.0) ? ((((T(1)))) * t) * t + (((T(1))) * s2) : ((((T(1)))) * t + (((T(-4))))) * t + (((T(1))) * s2 + (T(4))));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
@@ -4411,35 +4411,35 @@ T box_triangle_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (((T(-2))) * u);
+    acc += (u * sc * ik) * ((((T(-2)))) * u);
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (((T(-2))) * u);
+    acc += (u * sc * ik) * ((((T(-2)))) * u);
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (((T(-2))) * u);
+    acc += (u * sc * ik) * ((((T(-2)))) * u);
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (((T(-2))) * u);
+    acc += (u * sc * ik) * ((((T(-2)))) * u);
   }
   {  // break at 5 (r >= 0)
     const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (((T(-2))) * u);
+    acc += (u * sc * ik) * ((((T(-2)))) * u);
   }
   return acc;
 }
@@ -4476,10 +4476,10 @@ T tent_triangle_raw(T x, T sigma) {
     const T s2w = n2 * iw;
     const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
-    return T(1) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + T(1) * iw * (s2w + s1) + (((r2 < T(1) ? ((((T(1)/T(6))) * r2) * r2) * r2 : ((((T(-1)/T(6))) * r2 + T(1)) * r2 + (T(-1))) * r2 + (T(1)/T(3))) + (r1 < T(1) ? ((((T(1)/T(6))) * r1) * r1) * r1 : ((((T(-1)/T(6))) * r1 + T(1)) * r1 + (T(-1))) * r1 + (T(1)/T(3)))) - T(2.0) * (t < T(1) ? ((((T(1)/T(6))) * t) * t) * t : ((((T(-1)/T(6))) * t + T(1)) * t + (T(-1))) * t + (T(1)/T(3)))) * iw * iw;
+    return T(1) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + T(1) * iw * (s2w + s1) + (((r2 < T(1) ? (((((T(1)/T(6)))) * r2) * r2) * r2 : (((((T(-1)/T(6)))) * r2 + (T(1))) * r2 + ((T(-1)))) * r2 + ((T(1)/T(3)))) + (r1 < T(1) ? (((((T(1)/T(6)))) * r1) * r1) * r1 : (((((T(-1)/T(6)))) * r1 + (T(1))) * r1 + ((T(-1)))) * r1 + ((T(1)/T(3))))) - T(2.0) * (t < T(1) ? (((((T(1)/T(6)))) * t) * t) * t : (((((T(-1)/T(6)))) * t + (T(1))) * t + ((T(-1)))) * t + ((T(1)/T(3))))) * iw * iw;
   }
   const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
-  T acc = (db1 > T(0.0) ? ((T(1))) * t : (((T(-1)))) * t + (T(2)));
+  T acc = (db1 > T(0.0) ? (((T(1)))) * t : ((((T(-1))))) * t + ((T(2))));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
@@ -4488,63 +4488,63 @@ T tent_triangle_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u);
   }
   {  // break at -2 (r >= 0)
     const T d = (neg ? T(-4.0) : T(-2.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(1)/T(3)))) * u);
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u);
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-2.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(1)/T(3)))) * u);
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u);
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(0.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(1)/T(3)))) * u);
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u);
   }
   {  // break at 4 (r >= 0)
     const T d = (neg ? T(2.0) : T(4.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(1)/T(3)))) * u);
   }
   {  // break at 5 (r >= 0)
     const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u);
   }
   return acc;
 }
@@ -4622,11 +4622,11 @@ T tent_triangle_sq_raw(T x, T sigma) {
     const T s2w = n2 * iw;
     const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
-    return (T(2)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(2)/T(3)) * iw * (s2w + s1) + (((r2 < T(1) ? (((((T(1)/T(12))) * r2) * r2) * r2) * r2 : (((((T(1)/T(12))) * r2 + (T(-2)/T(3))) * r2 + T(2)) * r2 + (T(-2))) * r2 + (T(2)/T(3))) + (r1 < T(1) ? (((((T(1)/T(12))) * r1) * r1) * r1) * r1 : (((((T(1)/T(12))) * r1 + (T(-2)/T(3))) * r1 + T(2)) * r1 + (T(-2))) * r1 + (T(2)/T(3)))) - T(2.0) * (t < T(1) ? (((((T(1)/T(12))) * t) * t) * t) * t : (((((T(1)/T(12))) * t + (T(-2)/T(3))) * t + T(2)) * t + (T(-2))) * t + (T(2)/T(3)))) * iw * iw;
+    return (T(2)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(2)/T(3)) * iw * (s2w + s1) + (((r2 < T(1) ? ((((((T(1)/T(12)))) * r2) * r2) * r2) * r2 : ((((((T(1)/T(12)))) * r2 + ((T(-2)/T(3)))) * r2 + (T(2))) * r2 + ((T(-2)))) * r2 + ((T(2)/T(3)))) + (r1 < T(1) ? ((((((T(1)/T(12)))) * r1) * r1) * r1) * r1 : ((((((T(1)/T(12)))) * r1 + ((T(-2)/T(3)))) * r1 + (T(2))) * r1 + ((T(-2)))) * r1 + ((T(2)/T(3))))) - T(2.0) * (t < T(1) ? ((((((T(1)/T(12)))) * t) * t) * t) * t : ((((((T(1)/T(12)))) * t + ((T(-2)/T(3)))) * t + (T(2))) * t + ((T(-2)))) * t + ((T(2)/T(3))))) * iw * iw;
   }
   const T s2 = sigma * sigma;
   const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
-  T acc = (db1 > T(0.0) ? (((T(1))) * t) * t + ((T(1)) * s2) : (((T(1))) * t + ((T(-4)))) * t + ((T(1)) * s2 + T(4)));
+  T acc = (db1 > T(0.0) ? ((((T(1)))) * t) * t + (((T(1))) * s2) : ((((T(1)))) * t + (((T(-4))))) * t + (((T(1))) * s2 + (T(4))));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
@@ -4635,35 +4635,35 @@ T tent_triangle_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-2)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-2)/T(3)))) * u);
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-2)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-2)/T(3)))) * u);
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-2)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-2)/T(3)))) * u);
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-2)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-2)/T(3)))) * u);
   }
   {  // break at 5 (r >= 0)
     const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-2)/T(3))) * u);
+    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-2)/T(3)))) * u);
   }
   return acc;
 }
@@ -4858,10 +4858,10 @@ T box_square_raw(T x, T sigma) {
     const T r1 = detail::reduce_period(t - hw, period, n1);
     T n2;
     const T r2 = detail::reduce_period(t + hw, period, n2);
-    return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? (T(1)) * r2 : (T(1)/T(2))) - (r1 < (T(1)/T(2)) ? (T(1)) * r1 : (T(1)/T(2))))) / (T(2.0) * hw);
+    return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? ((T(1))) * r2 : ((T(1)/T(2)))) - (r1 < (T(1)/T(2)) ? ((T(1))) * r1 : ((T(1)/T(2)))))) / (T(2.0) * hw);
   }
   const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
-  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
@@ -4870,63 +4870,63 @@ T box_square_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at -1/2 (r >= 0)
     const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 1/2 (r >= 0)
     const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 3/2 (r >= 0)
     const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 5/2 (r >= 0)
     const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   return acc;
 }
@@ -4994,10 +4994,10 @@ T box_square_sq_raw(T x, T sigma) {
     const T r1 = detail::reduce_period(t - hw, period, n1);
     T n2;
     const T r2 = detail::reduce_period(t + hw, period, n2);
-    return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? (T(1)) * r2 : (T(1)/T(2))) - (r1 < (T(1)/T(2)) ? (T(1)) * r1 : (T(1)/T(2))))) / (T(2.0) * hw);
+    return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? ((T(1))) * r2 : ((T(1)/T(2)))) - (r1 < (T(1)/T(2)) ? ((T(1))) * r1 : ((T(1)/T(2)))))) / (T(2.0) * hw);
   }
   const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
-  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
@@ -5006,63 +5006,63 @@ T box_square_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at -1/2 (r >= 0)
     const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 1/2 (r >= 0)
     const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 3/2 (r >= 0)
     const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 5/2 (r >= 0)
     const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   return acc;
 }
@@ -5098,10 +5098,10 @@ T tent_square_raw(T x, T sigma) {
     const T s2w = n2 * iw;
     const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
-    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? (((T(1)/T(2))) * r2) * r2 : ((T(1)/T(2))) * r2 + (T(-1)/T(8))) + (r1 < (T(1)/T(2)) ? (((T(1)/T(2))) * r1) * r1 : ((T(1)/T(2))) * r1 + (T(-1)/T(8)))) - T(2.0) * (t < (T(1)/T(2)) ? (((T(1)/T(2))) * t) * t : ((T(1)/T(2))) * t + (T(-1)/T(8)))) * iw * iw;
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(1)/T(2)))) * r2 + ((T(-1)/T(8)))) + (r1 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(1)/T(2)))) * r1 + ((T(-1)/T(8))))) - T(2.0) * (t < (T(1)/T(2)) ? ((((T(1)/T(2)))) * t) * t : (((T(1)/T(2)))) * t + ((T(-1)/T(8))))) * iw * iw;
   }
   const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
-  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
@@ -5110,63 +5110,63 @@ T tent_square_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at -1/2 (r >= 0)
     const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 1/2 (r >= 0)
     const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 3/2 (r >= 0)
     const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 5/2 (r >= 0)
     const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   return acc;
 }
@@ -5243,10 +5243,10 @@ T tent_square_sq_raw(T x, T sigma) {
     const T s2w = n2 * iw;
     const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
-    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? (((T(1)/T(2))) * r2) * r2 : ((T(1)/T(2))) * r2 + (T(-1)/T(8))) + (r1 < (T(1)/T(2)) ? (((T(1)/T(2))) * r1) * r1 : ((T(1)/T(2))) * r1 + (T(-1)/T(8)))) - T(2.0) * (t < (T(1)/T(2)) ? (((T(1)/T(2))) * t) * t : ((T(1)/T(2))) * t + (T(-1)/T(8)))) * iw * iw;
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(1)/T(2)))) * r2 + ((T(-1)/T(8)))) + (r1 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(1)/T(2)))) * r1 + ((T(-1)/T(8))))) - T(2.0) * (t < (T(1)/T(2)) ? ((((T(1)/T(2)))) * t) * t : (((T(1)/T(2)))) * t + ((T(-1)/T(8))))) * iw * iw;
   }
   const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
-  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
@@ -5255,63 +5255,63 @@ T tent_square_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at -1/2 (r >= 0)
     const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 1/2 (r >= 0)
     const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 3/2 (r >= 0)
     const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 5/2 (r >= 0)
     const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   return acc;
 }
@@ -5582,10 +5582,10 @@ T box_pulse30_raw(T x, T sigma) {
     const T r1 = detail::reduce_period(t - hw, period, n1);
     T n2;
     const T r2 = detail::reduce_period(t + hw, period, n2);
-    return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? (T(1)) * r2 : (T(3)/T(10))) - (r1 < (T(3)/T(10)) ? (T(1)) * r1 : (T(3)/T(10))))) / (T(2.0) * hw);
+    return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? ((T(1))) * r2 : ((T(3)/T(10)))) - (r1 < (T(3)/T(10)) ? ((T(1))) * r1 : ((T(3)/T(10)))))) / (T(2.0) * hw);
   }
   const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
-  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
@@ -5594,63 +5594,63 @@ T box_pulse30_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at -7/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 3/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 13/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 23/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   return acc;
 }
@@ -5718,10 +5718,10 @@ T box_pulse30_sq_raw(T x, T sigma) {
     const T r1 = detail::reduce_period(t - hw, period, n1);
     T n2;
     const T r2 = detail::reduce_period(t + hw, period, n2);
-    return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? (T(1)) * r2 : (T(3)/T(10))) - (r1 < (T(3)/T(10)) ? (T(1)) * r1 : (T(3)/T(10))))) / (T(2.0) * hw);
+    return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? ((T(1))) * r2 : ((T(3)/T(10)))) - (r1 < (T(3)/T(10)) ? ((T(1))) * r1 : ((T(3)/T(10)))))) / (T(2.0) * hw);
   }
   const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
-  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
@@ -5730,63 +5730,63 @@ T box_pulse30_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at -7/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 3/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 13/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (T(1));
+    acc += (u * sc * ik) * ((T(1)));
   }
   {  // break at 23/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((T(-1)));
+    acc += (u * sc * ik) * (((T(-1))));
   }
   return acc;
 }
@@ -5823,10 +5823,10 @@ T tent_pulse30_raw(T x, T sigma) {
     const T s2w = n2 * iw;
     const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
-    return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? (((T(1)/T(2))) * r2) * r2 : ((T(3)/T(10))) * r2 + (T(-9)/T(200))) + (r1 < (T(3)/T(10)) ? (((T(1)/T(2))) * r1) * r1 : ((T(3)/T(10))) * r1 + (T(-9)/T(200)))) - T(2.0) * (t < (T(3)/T(10)) ? (((T(1)/T(2))) * t) * t : ((T(3)/T(10))) * t + (T(-9)/T(200)))) * iw * iw;
+    return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(3)/T(10)))) * r2 + ((T(-9)/T(200)))) + (r1 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(3)/T(10)))) * r1 + ((T(-9)/T(200))))) - T(2.0) * (t < (T(3)/T(10)) ? ((((T(1)/T(2)))) * t) * t : (((T(3)/T(10)))) * t + ((T(-9)/T(200))))) * iw * iw;
   }
   const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
-  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
@@ -5835,63 +5835,63 @@ T tent_pulse30_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at -7/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 3/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 13/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 23/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   return acc;
 }
@@ -5969,10 +5969,10 @@ T tent_pulse30_sq_raw(T x, T sigma) {
     const T s2w = n2 * iw;
     const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
-    return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? (((T(1)/T(2))) * r2) * r2 : ((T(3)/T(10))) * r2 + (T(-9)/T(200))) + (r1 < (T(3)/T(10)) ? (((T(1)/T(2))) * r1) * r1 : ((T(3)/T(10))) * r1 + (T(-9)/T(200)))) - T(2.0) * (t < (T(3)/T(10)) ? (((T(1)/T(2))) * t) * t : ((T(3)/T(10))) * t + (T(-9)/T(200)))) * iw * iw;
+    return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(3)/T(10)))) * r2 + ((T(-9)/T(200)))) + (r1 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(3)/T(10)))) * r1 + ((T(-9)/T(200))))) - T(2.0) * (t < (T(3)/T(10)) ? ((((T(1)/T(2)))) * t) * t : (((T(3)/T(10)))) * t + ((T(-9)/T(200))))) * iw * iw;
   }
   const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
-  T acc = (db1 > T(0.0) ? (T(1)) : T(0.0));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
@@ -5981,63 +5981,63 @@ T tent_pulse30_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at -7/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 3/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 13/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
   }
   {  // break at 23/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((T(-1)/T(2)));
+    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
   }
   return acc;
 }
@@ -6119,6 +6119,49 @@ T gaussian_floor_sq(T x, T sigma) {
 template <class T>
 T box_floor(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = ((n0));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((T(1)));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((T(1)));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((T(1)));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((T(1)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + (T(-1)) * box_fract<T>(x, sigma);
 }
@@ -6128,6 +6171,49 @@ T box_floor(T x, T sigma) {
 template <class T>
 T box_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (((n0*n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((((T(-1)) + (T(2)*n))));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((((T(-1)) + (T(2)*n))));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((((T(-1)) + (T(2)*n))));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((((T(-1)) + (T(2)*n))));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * box_fract_sq<T>(x, sigma) + (T(-2)) * (x * box_fract<T>(x, sigma) + box_fract_u<T>(x, sigma));
 }
@@ -6144,6 +6230,49 @@ T box_floor_sq(T x, T sigma) {
 template <class T>
 T tent_floor(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = ((n0));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + (T(-1)) * tent_fract<T>(x, sigma);
 }
@@ -6153,6 +6282,49 @@ T tent_floor(T x, T sigma) {
 template <class T>
 T tent_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (((n0*n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)) + (T(2)*n))) / T(2.0));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)) + (T(2)*n))) / T(2.0));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)) + (T(2)*n))) / T(2.0));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)) + (T(2)*n))) / T(2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * tent_fract_sq<T>(x, sigma) + (T(-2)) * (x * tent_fract<T>(x, sigma) + tent_fract_u<T>(x, sigma));
 }
@@ -6233,6 +6405,49 @@ T gaussian_ceil_sq(T x, T sigma) {
 template <class T>
 T box_ceil(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (((T(1) + n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((T(1)));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((T(1)));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((T(1)));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((T(1)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + T(1) * box_fract<T>(-x, sigma);
 }
@@ -6242,6 +6457,49 @@ T box_ceil(T x, T sigma) {
 template <class T>
 T box_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = ((((T(2)*n0) + (n0*n0) + T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((((T(2)*n) + T(1))));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((((T(2)*n) + T(1))));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((((T(2)*n) + T(1))));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((((T(2)*n) + T(1))));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * box_fract_sq<T>(-x, sigma) + T(2) * (x * box_fract<T>(-x, sigma) - box_fract_u<T>(-x, sigma));
 }
@@ -6258,6 +6516,49 @@ T box_ceil_sq(T x, T sigma) {
 template <class T>
 T tent_ceil(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (((T(1) + n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + T(1) * tent_fract<T>(-x, sigma);
 }
@@ -6267,6 +6568,49 @@ T tent_ceil(T x, T sigma) {
 template <class T>
 T tent_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = ((((T(2)*n0) + (n0*n0) + T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((T(2)*n) + T(1))) / T(2.0));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((T(2)*n) + T(1))) / T(2.0));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((T(2)*n) + T(1))) / T(2.0));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((((T(2)*n) + T(1))) / T(2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * tent_fract_sq<T>(-x, sigma) + T(2) * (x * tent_fract<T>(-x, sigma) - tent_fract_u<T>(-x, sigma));
 }
@@ -6446,6 +6790,49 @@ T gaussian_trunc_sq(T x, T sigma) {
 template <class T>
 T box_trunc(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (n0 < T(0.0) ? (((T(1) + n0))) : ((n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (T(1) + x) + (T(-1)) * box_fract<T>(x, sigma) + (T(-1)) * box_step<T>(x, sigma);
 }
@@ -6457,6 +6844,49 @@ T box_trunc(T x, T sigma) {
 template <class T>
 T box_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (n0 < T(0.0) ? ((((T(2)*n0) + (n0*n0) + T(1)))) : (((n0*n0))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+      }
+      return acc;
+    }
+  }
   static const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -6477,6 +6907,49 @@ T box_trunc_sq(T x, T sigma) {
 template <class T>
 T tent_trunc(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (n0 < T(0.0) ? (((T(1) + n0))) : ((n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) / T(2.0));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) / T(2.0));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) / T(2.0));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) / T(2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (T(1) + x) + (T(-1)) * tent_fract<T>(x, sigma) + (T(-1)) * tent_step<T>(x, sigma);
 }
@@ -6488,6 +6961,49 @@ T tent_trunc(T x, T sigma) {
 template <class T>
 T tent_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (n0 < T(0.0) ? ((((T(2)*n0) + (n0*n0) + T(1)))) : (((n0*n0))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) / T(2.0));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = -l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) / T(2.0));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) / T(2.0));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T u = l;
+        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) / T(2.0));
+      }
+      return acc;
+    }
+  }
   static const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
