@@ -3807,29 +3807,29 @@ float bl_box_fract_raw(float x, float sigma) {
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
   }
   return acc;
 }
@@ -3899,28 +3899,32 @@ float bl_box_fract_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((((-1.0))) * u + ((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * ((((-1.0))) * u + ((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((((-1.0))) * u + ((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * ((((-1.0))) * u + ((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((((-1.0))) * u + ((-1.0)));
+    float v = l * sc * ik;
+    acc += v * ((((-1.0))) * u + ((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((((-1.0))) * u + ((-1.0)));
+    float v = l * sc * ik;
+    acc += v * ((((-1.0))) * u + ((-1.0)));
   }
   return acc;
 }
@@ -3961,29 +3965,29 @@ float bl_tent_fract_raw(float x, float sigma) {
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
   }
   return acc;
 }
@@ -4063,28 +4067,32 @@ float bl_tent_fract_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
   }
   return acc;
 }
@@ -4267,63 +4275,72 @@ float bl_box_triangle_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((((-1.0))) * u);
+    float v = l * sc * ik;
+    acc -= v * ((((-1.0))) * u);
   }
   {  // break at -2 (r >= 0)
     float d = (neg ? (-4.0) : (-2.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (((1.0)) * u);
+    float v = l * sc * ik;
+    acc -= v * (((1.0)) * u);
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((((-1.0))) * u);
+    float v = l * sc * ik;
+    acc -= v * ((((-1.0))) * u);
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-2.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (((1.0)) * u);
+    float v = l * sc * ik;
+    acc -= v * (((1.0)) * u);
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (-1.0) : (1.0)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * ((((-1.0))) * u);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * ((((-1.0))) * u);
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (0.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (((1.0)) * u);
+    float v = l * sc * ik;
+    acc += v * (((1.0)) * u);
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((((-1.0))) * u);
+    float v = l * sc * ik;
+    acc += v * ((((-1.0))) * u);
   }
   {  // break at 4 (r >= 0)
     float d = (neg ? (2.0) : (4.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (((1.0)) * u);
+    float v = l * sc * ik;
+    acc += v * (((1.0)) * u);
   }
   {  // break at 5 (r >= 0)
     float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((((-1.0))) * u);
+    float v = l * sc * ik;
+    acc += v * ((((-1.0))) * u);
   }
   return acc;
 }
@@ -4394,35 +4411,40 @@ float bl_box_triangle_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((((-2.0))) * u);
+    float v = l * sc * ik;
+    acc -= v * ((((-2.0))) * u);
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * ((((-2.0))) * u);
+    float v = l * sc * ik;
+    acc -= v * ((((-2.0))) * u);
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (-1.0) : (1.0)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * ((((-2.0))) * u);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * ((((-2.0))) * u);
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((((-2.0))) * u);
+    float v = l * sc * ik;
+    acc += v * ((((-2.0))) * u);
   }
   {  // break at 5 (r >= 0)
     float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * ((((-2.0))) * u);
+    float v = l * sc * ik;
+    acc += v * ((((-2.0))) * u);
   }
   return acc;
 }
@@ -4465,63 +4487,72 @@ float bl_tent_triangle_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc -= v * v * ((((-1.0/3.0))) * u);
   }
   {  // break at -2 (r >= 0)
     float d = (neg ? (-4.0) : (-2.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((1.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc -= v * v * ((((1.0/3.0))) * u);
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc -= v * v * ((((-1.0/3.0))) * u);
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-2.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((1.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc -= v * v * ((((1.0/3.0))) * u);
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (-1.0) : (1.0)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * ((((-1.0/3.0))) * u);
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (0.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((1.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc += v * v * ((((1.0/3.0))) * u);
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc += v * v * ((((-1.0/3.0))) * u);
   }
   {  // break at 4 (r >= 0)
     float d = (neg ? (2.0) : (4.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((1.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc += v * v * ((((1.0/3.0))) * u);
   }
   {  // break at 5 (r >= 0)
     float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc += v * v * ((((-1.0/3.0))) * u);
   }
   return acc;
 }
@@ -4602,35 +4633,40 @@ float bl_tent_triangle_sq_raw(float x, float sigma) {
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-2.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc -= v * v * ((((-2.0/3.0))) * u);
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
     float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-2.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc -= v * v * ((((-2.0/3.0))) * u);
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (-1.0) : (1.0)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
     float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-2.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * ((((-2.0/3.0))) * u);
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-2.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc += v * v * ((((-2.0/3.0))) * u);
   }
   {  // break at 5 (r >= 0)
     float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((-2.0/3.0))) * u);
+    float v = l * sc * ik;
+    acc += v * v * ((((-2.0/3.0))) * u);
   }
   return acc;
 }
@@ -4812,64 +4848,64 @@ float bl_box_square_raw(float x, float sigma) {
     float d = (neg ? (-2.5) : (-1.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
   }
   {  // break at -1/2 (r >= 0)
     float d = (neg ? (-1.5) : (-0.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
   }
   {  // break at 1/2 (r >= 0)
     float d = (neg ? (-0.5) : (0.5)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
-    float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc += v * ((1.0));
   }
   {  // break at 3/2 (r >= 0)
     float d = (neg ? (0.5) : (1.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc += v * ((1.0));
   }
   {  // break at 5/2 (r >= 0)
     float d = (neg ? (1.5) : (2.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
   }
   return acc;
 }
@@ -4938,64 +4974,64 @@ float bl_box_square_sq_raw(float x, float sigma) {
     float d = (neg ? (-2.5) : (-1.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
   }
   {  // break at -1/2 (r >= 0)
     float d = (neg ? (-1.5) : (-0.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
   }
   {  // break at 1/2 (r >= 0)
     float d = (neg ? (-0.5) : (0.5)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
-    float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc += v * ((1.0));
   }
   {  // break at 3/2 (r >= 0)
     float d = (neg ? (0.5) : (1.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc += v * ((1.0));
   }
   {  // break at 5/2 (r >= 0)
     float d = (neg ? (1.5) : (2.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
   }
   return acc;
 }
@@ -5037,64 +5073,64 @@ float bl_tent_square_raw(float x, float sigma) {
     float d = (neg ? (-2.5) : (-1.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
   }
   {  // break at -1/2 (r >= 0)
     float d = (neg ? (-1.5) : (-0.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
   }
   {  // break at 1/2 (r >= 0)
     float d = (neg ? (-0.5) : (0.5)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
-    float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
   }
   {  // break at 3/2 (r >= 0)
     float d = (neg ? (0.5) : (1.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
   }
   {  // break at 5/2 (r >= 0)
     float d = (neg ? (1.5) : (2.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
   }
   return acc;
 }
@@ -5173,64 +5209,64 @@ float bl_tent_square_sq_raw(float x, float sigma) {
     float d = (neg ? (-2.5) : (-1.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
   }
   {  // break at -1/2 (r >= 0)
     float d = (neg ? (-1.5) : (-0.5)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
   }
   {  // break at 1/2 (r >= 0)
     float d = (neg ? (-0.5) : (0.5)) - r;
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
-    float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
   }
   {  // break at 3/2 (r >= 0)
     float d = (neg ? (0.5) : (1.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
   }
   {  // break at 5/2 (r >= 0)
     float d = (neg ? (1.5) : (2.5)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
   }
   return acc;
 }
@@ -5490,64 +5526,64 @@ float bl_box_pulse30_raw(float x, float sigma) {
     float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
   }
   {  // break at -7/10 (r >= 0)
     float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
   }
   {  // break at 3/10 (r >= 0)
     float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
-    float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc += v * ((1.0));
   }
   {  // break at 13/10 (r >= 0)
     float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc += v * ((1.0));
   }
   {  // break at 23/10 (r >= 0)
     float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
   }
   return acc;
 }
@@ -5616,64 +5652,64 @@ float bl_box_pulse30_sq_raw(float x, float sigma) {
     float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
   }
   {  // break at -7/10 (r >= 0)
     float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
   }
   {  // break at 3/10 (r >= 0)
     float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
-    float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc += v * ((1.0));
   }
   {  // break at 13/10 (r >= 0)
     float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * ((1.0));
+    float v = l * sc * ik;
+    acc += v * ((1.0));
   }
   {  // break at 23/10 (r >= 0)
     float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (((-1.0)));
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
   }
   return acc;
 }
@@ -5715,64 +5751,64 @@ float bl_tent_pulse30_raw(float x, float sigma) {
     float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
   }
   {  // break at -7/10 (r >= 0)
     float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
   }
   {  // break at 3/10 (r >= 0)
     float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
-    float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
   }
   {  // break at 13/10 (r >= 0)
     float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
   }
   {  // break at 23/10 (r >= 0)
     float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
   }
   return acc;
 }
@@ -5851,64 +5887,64 @@ float bl_tent_pulse30_sq_raw(float x, float sigma) {
     float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
   }
   {  // break at -7/10 (r >= 0)
     float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
     float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
   }
   {  // break at 3/10 (r >= 0)
     float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
     float L = hw - abs(d);
     float l = L > (0.0) ? L : (0.0);
-    float u = (d > (0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
   }
   {  // break at 1 (r >= 0)
     float d = (neg ? (0.0) : (1.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
   }
   {  // break at 13/10 (r >= 0)
     float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
   }
   {  // break at 2 (r >= 0)
     float d = (neg ? (1.0) : (2.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
   }
   {  // break at 23/10 (r >= 0)
     float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((-1.0/2.0)));
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
   }
   return acc;
 }
@@ -5989,32 +6025,32 @@ float bl_box_floor(float x, float sigma) {
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((1.0));
+        float v = l * sc * ik;
+        acc -= v * ((1.0));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((1.0));
+        float v = l * sc * ik;
+        acc -= v * ((1.0));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((1.0));
+        float v = l * sc * ik;
+        acc += v * ((1.0));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((1.0));
+        float v = l * sc * ik;
+        acc += v * ((1.0));
       }
       return acc;
     }
@@ -6037,32 +6073,32 @@ float bl_box_floor_sq_raw(float x, float sigma) {
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((((-1.0) + (2.0*n))));
+        float v = l * sc * ik;
+        acc -= v * ((((-1.0) + (2.0*n))));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((((-1.0) + (2.0*n))));
+        float v = l * sc * ik;
+        acc -= v * ((((-1.0) + (2.0*n))));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((((-1.0) + (2.0*n))));
+        float v = l * sc * ik;
+        acc += v * ((((-1.0) + (2.0*n))));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((((-1.0) + (2.0*n))));
+        float v = l * sc * ik;
+        acc += v * ((((-1.0) + (2.0*n))));
       }
       return acc;
     }
@@ -6080,43 +6116,59 @@ float bl_box_floor_sq(float x, float sigma) {
 float bl_tent_floor(float x, float sigma) {
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     float hw = BL_SQRT6 * sigma;
-    if (sigma > (0.0) && hw <= (2.0)) {
+    if (sigma > (0.0) && hw <= (3.0)) {
       float n0 = floor(x);
       float y = x - n0;
     float acc = ((n0));
       float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
       float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
+      }
       {  // break at n0 + -1
         float n = n0 + (-1.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
       }
       return acc;
     }
@@ -6128,43 +6180,59 @@ float bl_tent_floor(float x, float sigma) {
 float bl_tent_floor_sq_raw(float x, float sigma) {
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     float hw = BL_SQRT6 * sigma;
-    if (sigma > (0.0) && hw <= (2.0)) {
+    if (sigma > (0.0) && hw <= (3.0)) {
       float n0 = floor(x);
       float y = x - n0;
     float acc = (((n0*n0)));
       float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
       float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
+      }
       {  // break at n0 + -1
         float n = n0 + (-1.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0) + (2.0*n))) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0) + (2.0*n))) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0) + (2.0*n))) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((-1.0) + (2.0*n))) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
       }
       return acc;
     }
@@ -6248,32 +6316,32 @@ float bl_box_ceil(float x, float sigma) {
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((1.0));
+        float v = l * sc * ik;
+        acc -= v * ((1.0));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((1.0));
+        float v = l * sc * ik;
+        acc -= v * ((1.0));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((1.0));
+        float v = l * sc * ik;
+        acc += v * ((1.0));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((1.0));
+        float v = l * sc * ik;
+        acc += v * ((1.0));
       }
       return acc;
     }
@@ -6296,32 +6364,32 @@ float bl_box_ceil_sq_raw(float x, float sigma) {
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((((2.0*n) + 1.0)));
+        float v = l * sc * ik;
+        acc -= v * ((((2.0*n) + 1.0)));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((((2.0*n) + 1.0)));
+        float v = l * sc * ik;
+        acc -= v * ((((2.0*n) + 1.0)));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((((2.0*n) + 1.0)));
+        float v = l * sc * ik;
+        acc += v * ((((2.0*n) + 1.0)));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((((2.0*n) + 1.0)));
+        float v = l * sc * ik;
+        acc += v * ((((2.0*n) + 1.0)));
       }
       return acc;
     }
@@ -6339,43 +6407,59 @@ float bl_box_ceil_sq(float x, float sigma) {
 float bl_tent_ceil(float x, float sigma) {
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     float hw = BL_SQRT6 * sigma;
-    if (sigma > (0.0) && hw <= (2.0)) {
+    if (sigma > (0.0) && hw <= (3.0)) {
       float n0 = floor(x);
       float y = x - n0;
     float acc = (((1.0 + n0)));
       float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
       float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
+      }
       {  // break at n0 + -1
         float n = n0 + (-1.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((1.0) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
       }
       return acc;
     }
@@ -6387,43 +6471,59 @@ float bl_tent_ceil(float x, float sigma) {
 float bl_tent_ceil_sq_raw(float x, float sigma) {
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     float hw = BL_SQRT6 * sigma;
-    if (sigma > (0.0) && hw <= (2.0)) {
+    if (sigma > (0.0) && hw <= (3.0)) {
       float n0 = floor(x);
       float y = x - n0;
     float acc = ((((2.0*n0) + (n0*n0) + 1.0)));
       float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
       float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
+      }
       {  // break at n0 + -1
         float n = n0 + (-1.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((2.0*n) + 1.0)) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((2.0*n) + 1.0)) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((2.0*n) + 1.0)) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((2.0*n) + 1.0)) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
       }
       return acc;
     }
@@ -6604,32 +6704,32 @@ float bl_box_trunc(float x, float sigma) {
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+        float v = l * sc * ik;
+        acc -= v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+        float v = l * sc * ik;
+        acc -= v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+        float v = l * sc * ik;
+        acc += v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+        float v = l * sc * ik;
+        acc += v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
       }
       return acc;
     }
@@ -6652,32 +6752,32 @@ float bl_box_trunc_sq_raw(float x, float sigma) {
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+        float v = l * sc * ik;
+        acc -= v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+        float v = l * sc * ik;
+        acc -= v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+        float v = l * sc * ik;
+        acc += v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+        float v = l * sc * ik;
+        acc += v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
       }
       return acc;
     }
@@ -6700,43 +6800,59 @@ float bl_box_trunc_sq(float x, float sigma) {
 float bl_tent_trunc(float x, float sigma) {
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     float hw = BL_SQRT6 * sigma;
-    if (sigma > (0.0) && hw <= (2.0)) {
+    if (sigma > (0.0) && hw <= (3.0)) {
       float n0 = floor(x);
       float y = x - n0;
     float acc = (n0 < (0.0) ? (((1.0 + n0))) : ((n0)));
       float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
       float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
+      }
       {  // break at n0 + -1
         float n = n0 + (-1.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
       }
       return acc;
     }
@@ -6748,43 +6864,59 @@ float bl_tent_trunc(float x, float sigma) {
 float bl_tent_trunc_sq_raw(float x, float sigma) {
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     float hw = BL_SQRT6 * sigma;
-    if (sigma > (0.0) && hw <= (2.0)) {
+    if (sigma > (0.0) && hw <= (3.0)) {
       float n0 = floor(x);
       float y = x - n0;
     float acc = (n0 < (0.0) ? ((((2.0*n0) + (n0*n0) + 1.0))) : (((n0*n0))));
       float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
       float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
+      }
       {  // break at n0 + -1
         float n = n0 + (-1.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
       }
       {  // break at n0 + 0
         float n = n0 + (0.0);
         float d = n - x;
         float L = hw + d;
         float l = L > (0.0) ? L : (0.0);
-        float u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) / (2.0));
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
       }
       {  // break at n0 + 1
         float n = n0 + (1.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
       }
       {  // break at n0 + 2
         float n = n0 + (2.0);
         float d = n - x;
         float L = hw - d;
         float l = L > (0.0) ? L : (0.0);
-        float u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) / (2.0));
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
       }
       return acc;
     }

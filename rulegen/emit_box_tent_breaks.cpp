@@ -154,16 +154,19 @@ std::string jump_terms(const Syntax& s, Kernel k, const std::vector<Candidate>& 
     out += "  " + s.decl("L", L);
     out += "  " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
     std::string u = c.side < 0 ? "-l" : (c.side > 0 ? "l" : "(d > " + s.dbl(0) + " ? l : -l)");
-    out += "  " + s.decl("u", u);
+    if (c.e.size() > 1) out += "  " + s.decl("u", u);
     std::vector<std::string> pc;
     for (size_t j = 0; j < c.e.size(); ++j)
       pc.push_back(coef(s, c.e[j] / (k == Kernel::Box ? numeric(static_cast<long>(j + 1))
                                                       : numeric(static_cast<long>((j + 1) * (j + 2))))));
     const std::string P = horner(s, pc, "u");
-    if (k == Kernel::Box)
-      out += "    acc += (u * sc * ik) * (" + P + ");\n";
+    // v = l/(2h) or l/w; the box's u/(2h) = +-v, the tent's (u/w)(l/w) = +-v^2.
+    out += "  " + s.decl("v", "l * sc * ik");
+    const std::string vk = k == Kernel::Box ? "" : " * v";
+    if (c.side != 0)
+      out += std::string("    acc ") + (c.side < 0 ? "-" : "+") + "= v" + vk + " * (" + P + ");\n";
     else
-      out += "    acc += (u * sc * ik) * (l * sc * ik) * (" + P + ");\n";
+      out += "    acc += (d > " + s.dbl(0) + " ? v : -v)" + vk + " * (" + P + ");\n";
     out += "  }\n";
   }
   return out;
@@ -445,7 +448,8 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   if (!st) return "";
   const Syntax s{lang};
   const bool box = d.kernel == Kernel::Box;
-  const int K = 2;
+  // Tent: 3 steps each side (w <= 3, sigma <= 1.22: the whole bench_table range stays here).
+  const int K = box ? 2 : 3;
   const GiNaC::ex x = sym::var_x();
   const GiNaC::symbol v("v");
   std::string out = "  {  // narrow kernels: the break sum centred on n0 = floor(x)\n";
@@ -480,11 +484,6 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   }
   for (int j = 1 - K; j <= K; ++j) {
     const std::string J = s.dbl(j);
-    out += "      {  // break at n0 + " + std::to_string(j) + "\n";
-    out += "      " + s.decl("n", "n0 + " + J) + "      " + s.decl("d", "n - x");
-    out += "      " + s.decl("L", j <= 0 ? "hw + d" : "hw - d");
-    out += "      " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
-    out += "      " + s.decl("u", j <= 0 ? "-l" : "l");
     std::vector<std::string> pc;
     for (int k = 0; k <= maxdeg; ++k) {
       const std::string e = region_chain(s, *st, n, static_cast<size_t>(k));
@@ -493,11 +492,20 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
         continue;
       }
       const long den = box ? k + 1 : (k + 1) * (k + 2);
-      pc.push_back(den == 1 ? e : e + " / " + s.dbl(static_cast<double>(den)));
+      pc.push_back(den == 1 ? e : e + " * " + s.num(numeric(1, den)));
     }
+    bool uses_u = false;
+    for (size_t k = 1; k < pc.size(); ++k) uses_u = uses_u || !pc[k].empty();
+    out += "      {  // break at n0 + " + std::to_string(j) + "\n";
+    out += "      " + s.decl("n", "n0 + " + J) + "      " + s.decl("d", "n - x");
+    out += "      " + s.decl("L", j <= 0 ? "hw + d" : "hw - d");
+    out += "      " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
+    if (uses_u) out += "      " + s.decl("u", j <= 0 ? "-l" : "l");
     const std::string P = horner(s, pc, "u");
-    out += box ? "        acc += (u * sc * ik) * (" + P + ");\n"
-               : "        acc += (u * sc * ik) * (l * sc * ik) * (" + P + ");\n";
+    // Static sides: u = +-l, the tent's (u/w)(l/w) = +-(l/w)^2.
+    out += "      " + s.decl("v", "l * sc * ik");
+    out += std::string("        acc ") + (j <= 0 ? "-" : "+") + "= " + (box ? "v" : "v * v") + " * (" + P +
+           ");\n";
     out += "      }\n";
   }
   return out + "      return acc;\n    }\n  }\n";

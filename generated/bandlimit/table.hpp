@@ -3771,29 +3771,29 @@ T box_fract_raw(T x, T sigma) {
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
   }
   return acc;
 }
@@ -3870,28 +3870,32 @@ T box_fract_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((((T(-1)))) * u + ((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-1)))) * u + ((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((((T(-1)))) * u + ((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-1)))) * u + ((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((((T(-1)))) * u + ((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * ((((T(-1)))) * u + ((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((((T(-1)))) * u + ((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * ((((T(-1)))) * u + ((T(-1))));
   }
   return acc;
 }
@@ -3937,29 +3941,29 @@ T tent_fract_raw(T x, T sigma) {
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
   }
   return acc;
 }
@@ -4044,28 +4048,32 @@ T tent_fract_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   return acc;
 }
@@ -4273,63 +4281,72 @@ T box_triangle_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((((T(-1)))) * u);
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-1)))) * u);
   }
   {  // break at -2 (r >= 0)
     const T d = (neg ? T(-4.0) : T(-2.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (((T(1))) * u);
+    const T v = l * sc * ik;
+    acc -= v * (((T(1))) * u);
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((((T(-1)))) * u);
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-1)))) * u);
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-2.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (((T(1))) * u);
+    const T v = l * sc * ik;
+    acc -= v * (((T(1))) * u);
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * ((((T(-1)))) * u);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * ((((T(-1)))) * u);
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(0.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (((T(1))) * u);
+    const T v = l * sc * ik;
+    acc += v * (((T(1))) * u);
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((((T(-1)))) * u);
+    const T v = l * sc * ik;
+    acc += v * ((((T(-1)))) * u);
   }
   {  // break at 4 (r >= 0)
     const T d = (neg ? T(2.0) : T(4.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (((T(1))) * u);
+    const T v = l * sc * ik;
+    acc += v * (((T(1))) * u);
   }
   {  // break at 5 (r >= 0)
     const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((((T(-1)))) * u);
+    const T v = l * sc * ik;
+    acc += v * ((((T(-1)))) * u);
   }
   return acc;
 }
@@ -4411,35 +4428,40 @@ T box_triangle_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((((T(-2)))) * u);
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-2)))) * u);
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * ((((T(-2)))) * u);
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-2)))) * u);
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * ((((T(-2)))) * u);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * ((((T(-2)))) * u);
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((((T(-2)))) * u);
+    const T v = l * sc * ik;
+    acc += v * ((((T(-2)))) * u);
   }
   {  // break at 5 (r >= 0)
     const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * ((((T(-2)))) * u);
+    const T v = l * sc * ik;
+    acc += v * ((((T(-2)))) * u);
   }
   return acc;
 }
@@ -4488,63 +4510,72 @@ T tent_triangle_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-1)/T(3)))) * u);
   }
   {  // break at -2 (r >= 0)
     const T d = (neg ? T(-4.0) : T(-2.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(1)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(1)/T(3)))) * u);
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-1)/T(3)))) * u);
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-2.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(1)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(1)/T(3)))) * u);
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * ((((T(-1)/T(3)))) * u);
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(0.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(1)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(1)/T(3)))) * u);
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-1)/T(3)))) * u);
   }
   {  // break at 4 (r >= 0)
     const T d = (neg ? T(2.0) : T(4.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(1)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(1)/T(3)))) * u);
   }
   {  // break at 5 (r >= 0)
     const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-1)/T(3)))) * u);
   }
   return acc;
 }
@@ -4635,35 +4666,40 @@ T tent_triangle_sq_raw(T x, T sigma) {
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-2)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-2)/T(3)))) * u);
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-2)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-2)/T(3)))) * u);
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-2)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * ((((T(-2)/T(3)))) * u);
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-2)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-2)/T(3)))) * u);
   }
   {  // break at 5 (r >= 0)
     const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * ((((T(-2)/T(3)))) * u);
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-2)/T(3)))) * u);
   }
   return acc;
 }
@@ -4869,64 +4905,64 @@ T box_square_raw(T x, T sigma) {
     const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
   }
   {  // break at -1/2 (r >= 0)
     const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
   }
   {  // break at 1/2 (r >= 0)
     const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
   }
   {  // break at 3/2 (r >= 0)
     const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
   }
   {  // break at 5/2 (r >= 0)
     const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
   }
   return acc;
 }
@@ -5005,64 +5041,64 @@ T box_square_sq_raw(T x, T sigma) {
     const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
   }
   {  // break at -1/2 (r >= 0)
     const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
   }
   {  // break at 1/2 (r >= 0)
     const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
   }
   {  // break at 3/2 (r >= 0)
     const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
   }
   {  // break at 5/2 (r >= 0)
     const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
   }
   return acc;
 }
@@ -5109,64 +5145,64 @@ T tent_square_raw(T x, T sigma) {
     const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at -1/2 (r >= 0)
     const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 1/2 (r >= 0)
     const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 3/2 (r >= 0)
     const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 5/2 (r >= 0)
     const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
   }
   return acc;
 }
@@ -5254,64 +5290,64 @@ T tent_square_sq_raw(T x, T sigma) {
     const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at -1/2 (r >= 0)
     const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 1/2 (r >= 0)
     const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 3/2 (r >= 0)
     const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 5/2 (r >= 0)
     const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
   }
   return acc;
 }
@@ -5593,64 +5629,64 @@ T box_pulse30_raw(T x, T sigma) {
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
   }
   {  // break at -7/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
   }
   {  // break at 3/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
   }
   {  // break at 13/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
   }
   {  // break at 23/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
   }
   return acc;
 }
@@ -5729,64 +5765,64 @@ T box_pulse30_sq_raw(T x, T sigma) {
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
   }
   {  // break at -7/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
   }
   {  // break at 3/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
   }
   {  // break at 13/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * ((T(1)));
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
   }
   {  // break at 23/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (((T(-1))));
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
   }
   return acc;
 }
@@ -5834,64 +5870,64 @@ T tent_pulse30_raw(T x, T sigma) {
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at -7/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 3/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 13/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 23/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
   }
   return acc;
 }
@@ -5980,64 +6016,64 @@ T tent_pulse30_sq_raw(T x, T sigma) {
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at -7/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 3/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = (d > T(0.0) ? l : -l);
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
     const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 13/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
     const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 23/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    acc += (u * sc * ik) * (l * sc * ik) * (((T(-1)/T(2))));
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
   }
   return acc;
 }
@@ -6132,32 +6168,32 @@ T box_floor(T x, T sigma) {
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((T(1)));
+        const T v = l * sc * ik;
+        acc -= v * ((T(1)));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((T(1)));
+        const T v = l * sc * ik;
+        acc -= v * ((T(1)));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((T(1)));
+        const T v = l * sc * ik;
+        acc += v * ((T(1)));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((T(1)));
+        const T v = l * sc * ik;
+        acc += v * ((T(1)));
       }
       return acc;
     }
@@ -6184,32 +6220,32 @@ T box_floor_sq_raw(T x, T sigma) {
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((((T(-1)) + (T(2)*n))));
+        const T v = l * sc * ik;
+        acc -= v * ((((T(-1)) + (T(2)*n))));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((((T(-1)) + (T(2)*n))));
+        const T v = l * sc * ik;
+        acc -= v * ((((T(-1)) + (T(2)*n))));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((((T(-1)) + (T(2)*n))));
+        const T v = l * sc * ik;
+        acc += v * ((((T(-1)) + (T(2)*n))));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((((T(-1)) + (T(2)*n))));
+        const T v = l * sc * ik;
+        acc += v * ((((T(-1)) + (T(2)*n))));
       }
       return acc;
     }
@@ -6232,43 +6268,59 @@ T tent_floor(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
-    if (sigma > T(0.0) && hw <= T(2.0)) {
+    if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
     T acc = ((n0));
       const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
       const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
+      }
       {  // break at n0 + -1
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
       }
       return acc;
     }
@@ -6284,43 +6336,59 @@ T tent_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
-    if (sigma > T(0.0) && hw <= T(2.0)) {
+    if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
     T acc = (((n0*n0)));
       const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
       const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
+      }
       {  // break at n0 + -1
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)) + (T(2)*n))) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)) + (T(2)*n))) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)) + (T(2)*n))) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((T(-1)) + (T(2)*n))) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
       }
       return acc;
     }
@@ -6418,32 +6486,32 @@ T box_ceil(T x, T sigma) {
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((T(1)));
+        const T v = l * sc * ik;
+        acc -= v * ((T(1)));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((T(1)));
+        const T v = l * sc * ik;
+        acc -= v * ((T(1)));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((T(1)));
+        const T v = l * sc * ik;
+        acc += v * ((T(1)));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((T(1)));
+        const T v = l * sc * ik;
+        acc += v * ((T(1)));
       }
       return acc;
     }
@@ -6470,32 +6538,32 @@ T box_ceil_sq_raw(T x, T sigma) {
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((((T(2)*n) + T(1))));
+        const T v = l * sc * ik;
+        acc -= v * ((((T(2)*n) + T(1))));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((((T(2)*n) + T(1))));
+        const T v = l * sc * ik;
+        acc -= v * ((((T(2)*n) + T(1))));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((((T(2)*n) + T(1))));
+        const T v = l * sc * ik;
+        acc += v * ((((T(2)*n) + T(1))));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((((T(2)*n) + T(1))));
+        const T v = l * sc * ik;
+        acc += v * ((((T(2)*n) + T(1))));
       }
       return acc;
     }
@@ -6518,43 +6586,59 @@ T tent_ceil(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
-    if (sigma > T(0.0) && hw <= T(2.0)) {
+    if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
     T acc = (((T(1) + n0)));
       const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
       const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
+      }
       {  // break at n0 + -1
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((T(1)) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
       }
       return acc;
     }
@@ -6570,43 +6654,59 @@ T tent_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
-    if (sigma > T(0.0) && hw <= T(2.0)) {
+    if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
     T acc = ((((T(2)*n0) + (n0*n0) + T(1))));
       const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
       const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
+      }
       {  // break at n0 + -1
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((T(2)*n) + T(1))) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((T(2)*n) + T(1))) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((T(2)*n) + T(1))) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((((T(2)*n) + T(1))) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
       }
       return acc;
     }
@@ -6803,32 +6903,32 @@ T box_trunc(T x, T sigma) {
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+        const T v = l * sc * ik;
+        acc -= v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+        const T v = l * sc * ik;
+        acc -= v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+        const T v = l * sc * ik;
+        acc += v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+        const T v = l * sc * ik;
+        acc += v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
       }
       return acc;
     }
@@ -6857,32 +6957,32 @@ T box_trunc_sq_raw(T x, T sigma) {
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+        const T v = l * sc * ik;
+        acc -= v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+        const T v = l * sc * ik;
+        acc -= v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+        const T v = l * sc * ik;
+        acc += v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+        const T v = l * sc * ik;
+        acc += v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
       }
       return acc;
     }
@@ -6909,43 +7009,59 @@ T tent_trunc(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
-    if (sigma > T(0.0) && hw <= T(2.0)) {
+    if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
     T acc = (n0 < T(0.0) ? (((T(1) + n0))) : ((n0)));
       const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
       const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
+      }
       {  // break at n0 + -1
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
       }
       return acc;
     }
@@ -6963,43 +7079,59 @@ T tent_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
-    if (sigma > T(0.0) && hw <= T(2.0)) {
+    if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
     T acc = (n0 < T(0.0) ? ((((T(2)*n0) + (n0*n0) + T(1)))) : (((n0*n0))));
       const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
       const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
+      }
       {  // break at n0 + -1
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
       }
       {  // break at n0 + 0
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = -l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) / T(2.0));
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
       }
       {  // break at n0 + 1
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
       }
       {  // break at n0 + 2
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
         const T l = L > T(0.0) ? L : T(0.0);
-        const T u = l;
-        acc += (u * sc * ik) * (l * sc * ik) * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) / T(2.0));
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
       }
       return acc;
     }
