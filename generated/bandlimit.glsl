@@ -2456,6 +2456,25 @@ float bl_gaussian_abs_sq(float x, float sigma) {
 }
 
 float bl_box_abs_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? ((((-1.0)))) * r : (((1.0))) * r);
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * (((1.0)) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2484,6 +2503,25 @@ float bl_box_abs_sq(float x, float sigma) {
 }
 
 float bl_tent_abs_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? ((((-1.0)))) * r : (((1.0))) * r);
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((((1.0/3.0))) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2556,6 +2594,24 @@ float bl_gaussian_sign_sq(float x, float sigma) {
 }
 
 float bl_box_sign_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (((-1.0))) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((2.0));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2586,6 +2642,24 @@ float bl_box_sign_sq(float x, float sigma) {
 }
 
 float bl_tent_sign_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (((-1.0))) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((1.0));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2680,6 +2754,24 @@ float bl_gaussian_step_sq(float x, float sigma) {
 }
 
 float bl_box_step_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((1.0));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2698,6 +2790,24 @@ float bl_box_step(float x, float sigma) {
 }
 
 float bl_box_step_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((1.0));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2716,6 +2826,24 @@ float bl_box_step_sq(float x, float sigma) {
 }
 
 float bl_tent_step_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((1.0/2.0)));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2734,6 +2862,24 @@ float bl_tent_step(float x, float sigma) {
 }
 
 float bl_tent_step_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((1.0/2.0)));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2849,6 +2995,34 @@ float bl_gaussian_saturate_sq(float x, float sigma) {
 }
 
 float bl_box_saturate_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? (((1.0))) * r : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((((1.0/2.0))) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((((-1.0/2.0))) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2867,6 +3041,35 @@ float bl_box_saturate(float x, float sigma) {
 }
 
 float bl_box_saturate_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((1.0))) * r) * r + (((1.0)) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * (((((1.0/3.0))) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * (((((-1.0/3.0))) * u + ((-1.0))) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2885,6 +3088,34 @@ float bl_box_saturate_sq(float x, float sigma) {
 }
 
 float bl_tent_saturate_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? (((1.0))) * r : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((((1.0/6.0))) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((((-1.0/6.0))) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2903,6 +3134,35 @@ float bl_tent_saturate(float x, float sigma) {
 }
 
 float bl_tent_saturate_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((1.0))) * r) * r + (((1.0)) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((((1.0/12.0))) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((((-1.0/12.0))) * u + ((-1.0/3.0))) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -3031,6 +3291,35 @@ float bl_gaussian_smoothstep_sq(float x, float sigma) {
 }
 
 float bl_box_smoothstep_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((((-2.0)))) * r + ((3.0))) * r + ((((-6.0))) * s2)) * r + (((3.0)) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((((((-1.0/2.0))) * u + (1.0)) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((((((1.0/2.0))) * u + (1.0)) * u) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
@@ -3049,6 +3338,35 @@ float bl_box_smoothstep(float x, float sigma) {
 }
 
 float bl_box_smoothstep_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (1.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((((((4.0))) * r + (((-12.0)))) * r + (((60.0)) * s2 + (9.0))) * r + ((((-120.0))) * s2)) * r + ((((108.0)) * s2 + (54.0)) * s2)) * r + (((((-108.0))) * s2) * s2)) * r + ((((((108.0/7.0))) * s2 + ((81.0/5.0))) * s2) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * (((((((((4.0/7.0))) * u + ((-2.0))) * u + ((9.0/5.0))) * u) * u) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * (((((((((-4.0/7.0))) * u + ((-2.0))) * u + ((-9.0/5.0))) * u + (1.0)) * u + (2.0)) * u) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
@@ -3067,6 +3385,35 @@ float bl_box_smoothstep_sq(float x, float sigma) {
 }
 
 float bl_tent_smoothstep_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((((-2.0)))) * r + ((3.0))) * r + ((((-6.0))) * s2)) * r + (((3.0)) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((((((-1.0/10.0))) * u + ((1.0/4.0))) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((((((1.0/10.0))) * u + ((1.0/4.0))) * u) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
@@ -3085,6 +3432,35 @@ float bl_tent_smoothstep(float x, float sigma) {
 }
 
 float bl_tent_smoothstep_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (1.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((((((4.0))) * r + (((-12.0)))) * r + (((60.0)) * s2 + (9.0))) * r + ((((-120.0))) * s2)) * r + ((((144.0)) * s2 + (54.0)) * s2)) * r + (((((-144.0))) * s2) * s2)) * r + ((((((216.0/7.0))) * s2 + ((108.0/5.0))) * s2) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((((((((1.0/14.0))) * u + ((-2.0/7.0))) * u + ((3.0/10.0))) * u) * u) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((((((((-1.0/14.0))) * u + ((-2.0/7.0))) * u + ((-3.0/10.0))) * u + ((1.0/5.0))) * u + ((1.0/2.0))) * u) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),

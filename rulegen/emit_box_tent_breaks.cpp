@@ -34,6 +34,10 @@ using GiNaC::numeric;
 using sym::Kernel;
 using sym::PolyPiece;
 
+// The largest growth of the pieces' polynomial extensions over the support (in units of max|f|) the
+// break sum is used for: its terms, and so its rounding, scale with it (float: 32 * 1e-7 << 2e-5).
+constexpr double kMaxGrowth = 32;
+
 // Horner form of sum_k c[k] v^k; an empty c[k] is a zero coefficient.
 std::string horner(const Syntax& s, const std::vector<std::string>& c, const std::string& v) {
   int top = static_cast<int>(c.size()) - 1;
@@ -263,7 +267,6 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
 
   // K: the widest support (in periods, each side) whose polynomial extension grows at most
   // kMaxGrowth times max|f| (fract^2 over [-2, 3]: 9).
-  constexpr double kMaxGrowth = 32;
   const double fmax = d.fmax > 0 ? d.fmax : 1;
   double K = 0;
   for (double k : {2.0, 1.0, 0.5, 0.25}) {
@@ -509,6 +512,86 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
     out += "      }\n";
   }
   return out + "      return acc;\n    }\n  }\n";
+}
+
+// Whole-line piecewise polynomials (abs, sign, step, saturate, smoothstep and their squares): the
+// same break sum on x itself, every finite break compared at run time (its offset d = b - x from b's
+// two-part split also picks q_j, so piece and sides agree). No reduction is needed: E q_j(x+U) is a
+// polynomial in x and sigma^2, and for |x| >> h the terms vanish. With one break nothing cancels at
+// any width (abs: the result is ~max(|x|, h/2)); with bounded pieces (saturate) the jump terms grow
+// like h/W (W the narrowest bounded piece) and cancel, so the form is used for h <= K W (K from the
+// pieces' growth as for periodic atomics), the generic per-piece box_pw/tent_pw beyond. sigma = 0
+// and NaN fall through too. Error: absolute, about (breaks + degree) G max|f| eps (G <= kMaxGrowth),
+// relative to |q_j(x)| for large |x|.
+std::string box_tent_piecewise_narrow(const sym::Derived& d, sym::Lang lang) {
+  if (d.kernel == Kernel::Gaussian || d.body != sym::Body::PiecewiseTable || d.pieces.size() < 2) return "";
+  const auto& ps = d.pieces;
+  const size_t N = ps.size();
+  for (size_t i = 0; i + 1 < N; ++i)
+    if (!ps[i].hi.finite() || !GiNaC::is_a<numeric>(ps[i].hi.value)) return "";
+  auto b_of = [&](size_t i) { return GiNaC::ex_to<numeric>(ps[i].hi.value); };
+  double W = HUGE_VAL, fmax = 0;
+  for (size_t i = 1; i + 1 < N; ++i) W = std::min(W, (b_of(i) - b_of(i - 1)).to_double());
+  double limit = 1e18;  // one break: any width (bounded so that l^2 and 1/width stay finite)
+  if (N > 2) {
+    // max|f| over the bounded pieces, and the growth of their extensions over K W each side.
+    for (size_t i = 1; i + 1 < N; ++i) {
+      const double a = b_of(i - 1).to_double(), b = b_of(i).to_double();
+      for (int j = 0; j <= 256; ++j)
+        fmax = std::max(fmax, std::fabs(polyval(ps[i].c, a + (b - a) * j / 256.0)));
+    }
+    if (fmax == 0) fmax = 1;
+    double K = 0;
+    for (double k : {2.0, 1.0, 0.5, 0.25}) {
+      double g = 0;
+      for (size_t i = 0; i < N; ++i) {
+        const double lo = i == 0 ? b_of(0).to_double() - 2 * k * W : b_of(i - 1).to_double() - k * W;
+        const double hi = i + 1 == N ? b_of(N - 2).to_double() + 2 * k * W : b_of(i).to_double() + k * W;
+        for (int j = 0; j <= 256; ++j)
+          g = std::max(g, std::fabs(polyval(ps[i].c, lo + (hi - lo) * j / 256.0)));
+      }
+      if (g <= kMaxGrowth * fmax) {
+        K = k;
+        break;
+      }
+    }
+    if (K == 0) return "";
+    limit = K * W;
+  }
+  std::vector<Candidate> cands;
+  for (size_t i = 0; i + 1 < N; ++i) {
+    const std::vector<numeric> e = minus(shifted(ps[i + 1].c, b_of(i)), shifted(ps[i].c, b_of(i)));
+    if (!e.empty()) cands.push_back({b_of(i), 0, e});
+  }
+  const Syntax s{lang};
+  const bool box = d.kernel == Kernel::Box;
+  std::string out = "  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)\n";
+  out += "  " + s.decl("hw", (box ? (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3")
+                                  : (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")) +
+                                 std::string(" * sigma"));
+  out += "    if (sigma > " + s.dbl(0) + " && hw <= " + s.dbl(limit) + ") {\n";
+  out += "    " + s.decl("r", "x");
+  int maxdeg = 0;
+  for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
+  if (maxdeg >= 2) out += "    " + s.decl("s2", "sigma * sigma");
+  std::string base;
+  for (size_t i = 0; i < N; ++i) {
+    const std::string m = kernel_mean(s, d.kernel, ps[i].c, "r");
+    if (i + 1 < N) {
+      const std::string di = "db" + std::to_string(i);
+      out += "  " + offset_decl(s, di, b_of(i), 0);
+      base += "(" + di + " > " + s.dbl(0) + " ? " + m + " : ";
+    } else {
+      base += m + std::string(N - 1, ')');
+    }
+  }
+  out += "    " + s.T() + " acc = " + base + ";\n";
+  out +=
+      "    " + s.decl("sc", "hw < " + s.dbl(1e-30) + " ? " + s.dbl(std::ldexp(1.0, 100)) + " : " + s.dbl(1));
+  out += "    " + s.decl("ik", s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + " * sc)");
+  std::string terms = jump_terms(s, d.kernel, cands, 0);
+  for (size_t at = 0; (at = terms.find("\n  ", at)) != std::string::npos; at += 3) terms.insert(at + 1, "  ");
+  return out + "  " + terms + "      return acc;\n    }\n  }\n";
 }
 
 }  // namespace bl::rulegen

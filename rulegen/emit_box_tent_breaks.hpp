@@ -22,4 +22,9 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang);
 // (prepend them to the combination body); "" where the form does not apply.
 std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds);
 
+// For a box or tent PiecewiseTable entry with polynomial pieces: statements that return the break
+// sum when sigma > 0 and the kernel is narrow enough, else fall through (prepend them to the
+// piecewise body); "" where the form does not apply.
+std::string box_tent_piecewise_narrow(const sym::Derived& d, sym::Lang lang);
+
 }  // namespace bl::rulegen

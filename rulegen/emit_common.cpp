@@ -1169,7 +1169,7 @@ std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
       b = body_closed(d, s);
       break;
     case Body::PiecewiseTable:
-      b = body_piecewise(d, s);
+      b = box_tent_piecewise_narrow(d, lang) + body_piecewise(d, s);
       break;
     case Body::PeriodicTable:
       b = box_tent_periodic_body(d, lang);  // "" where the break form does not apply

@@ -2178,6 +2178,25 @@ T gaussian_abs_sq(T x, T sigma) {
 template <class T>
 T box_abs_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? ((((T(-1))))) * r : (((T(1)))) * r);
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * (((T(1))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2216,6 +2235,25 @@ T box_abs_sq(T x, T sigma) {
 template <class T>
 T tent_abs_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? ((((T(-1))))) * r : (((T(1)))) * r);
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((((T(1)/T(3)))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2306,6 +2344,24 @@ T gaussian_sign_sq(T x, T sigma) {
 template <class T>
 T box_sign_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? (((T(-1)))) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((T(2)));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2346,6 +2402,24 @@ T box_sign_sq(T x, T sigma) {
 template <class T>
 T tent_sign_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? (((T(-1)))) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((T(1)));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2457,6 +2531,24 @@ T gaussian_step_sq(T x, T sigma) {
 template <class T>
 T box_step_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((T(1)));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2479,6 +2571,24 @@ T box_step(T x, T sigma) {
 template <class T>
 T box_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((T(1)));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2502,6 +2612,24 @@ T box_step_sq(T x, T sigma) {
 template <class T>
 T tent_step_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((T(1)/T(2))));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2525,6 +2653,24 @@ T tent_step(T x, T sigma) {
 template <class T>
 T tent_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((T(1)/T(2))));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2661,6 +2807,34 @@ T gaussian_saturate_sq(T x, T sigma) {
 template <class T>
 T box_saturate_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? (((T(1)))) * r : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((((T(1)/T(2)))) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((((T(-1)/T(2)))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2685,6 +2859,35 @@ T box_saturate(T x, T sigma) {
 template <class T>
 T box_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((T(1)))) * r) * r + (((T(1))) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * (((((T(1)/T(3)))) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * (((((T(-1)/T(3)))) * u + ((T(-1)))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
@@ -2709,6 +2912,34 @@ T box_saturate_sq(T x, T sigma) {
 template <class T>
 T tent_saturate_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? (((T(1)))) * r : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((((T(1)/T(6)))) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((((T(-1)/T(6)))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2733,6 +2964,35 @@ T tent_saturate(T x, T sigma) {
 template <class T>
 T tent_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((T(1)))) * r) * r + (((T(1))) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((((T(1)/T(12)))) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((((T(-1)/T(12)))) * u + ((T(-1)/T(3)))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
@@ -2917,6 +3177,35 @@ T gaussian_smoothstep_sq(T x, T sigma) {
 template <class T>
 T box_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((((T(-2))))) * r + ((T(3)))) * r + ((((T(-6)))) * s2)) * r + (((T(3))) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((((((T(-1)/T(2)))) * u + (T(1))) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((((((T(1)/T(2)))) * u + (T(1))) * u) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
@@ -2941,6 +3230,35 @@ T box_smoothstep(T x, T sigma) {
 template <class T>
 T box_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((((((T(4)))) * r + (((T(-12))))) * r + (((T(60))) * s2 + (T(9)))) * r + ((((T(-120)))) * s2)) * r + ((((T(108))) * s2 + (T(54))) * s2)) * r + (((((T(-108)))) * s2) * s2)) * r + ((((((T(108)/T(7)))) * s2 + ((T(81)/T(5)))) * s2) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * (((((((((T(4)/T(7)))) * u + ((T(-2)))) * u + ((T(9)/T(5)))) * u) * u) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * (((((((((T(-4)/T(7)))) * u + ((T(-2)))) * u + ((T(-9)/T(5)))) * u + (T(1))) * u + (T(2))) * u) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
@@ -2966,6 +3284,35 @@ T box_smoothstep_sq(T x, T sigma) {
 template <class T>
 T tent_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((((T(-2))))) * r + ((T(3)))) * r + ((((T(-6)))) * s2)) * r + (((T(3))) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((((((T(-1)/T(10)))) * u + ((T(1)/T(4)))) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((((((T(1)/T(10)))) * u + ((T(1)/T(4)))) * u) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
@@ -2991,6 +3338,35 @@ T tent_smoothstep(T x, T sigma) {
 template <class T>
 T tent_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((((((T(4)))) * r + (((T(-12))))) * r + (((T(60))) * s2 + (T(9)))) * r + ((((T(-120)))) * s2)) * r + ((((T(144))) * s2 + (T(54))) * s2)) * r + (((((T(-144)))) * s2) * s2)) * r + ((((((T(216)/T(7)))) * s2 + ((T(108)/T(5)))) * s2) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((((((((T(1)/T(14)))) * u + ((T(-2)/T(7)))) * u + ((T(3)/T(10)))) * u) * u) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((((((((T(-1)/T(14)))) * u + ((T(-2)/T(7)))) * u + ((T(-3)/T(10)))) * u + ((T(1)/T(5)))) * u + ((T(1)/T(2)))) * u) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
