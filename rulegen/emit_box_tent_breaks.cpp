@@ -200,14 +200,17 @@ bool is_pow2(const numeric& T) {
 // Wide kernels (support more than ~K periods): Appendix C, the differences of the periodic
 // antiderivatives on the reduced argument (support.hpp box_periodic/tent_periodic (b), straight-line
 // here). Every term is O(max|f|) or O(A w / T) (A = F_p(T)), so the division by the width loses
-// nothing; the reductions are exact (fmod), the rounding of t +- h (eps h) is divided by 2h.
+// nothing; the rounding of t +- h (eps h) and of the reductions (at most eps T) is divided by 2h.
 std::string wide_regime(const sym::Derived& d, const Syntax& s) {
   const bool box = d.kernel == Kernel::Box;
   std::string out;
+  // Power-of-two periods: no fmod (reduce_period_pow2; its rounding for -T < y < 0 is eps T, here
+  // divided by a width above K periods).
+  const std::string fn =
+      is_pow2(GiNaC::ex_to<numeric>(d.period)) ? "detail::reduce_period_pow2" : "detail::reduce_period";
   auto reduce = [&](const std::string& r, const std::string& q, const std::string& y) {
     if (s.cpp())
-      return "    T " + q + ";\n    const T " + r + " = detail::reduce_period(" + y + ", period, " + q +
-             ");\n";
+      return "    T " + q + ";\n    const T " + r + " = " + fn + "(" + y + ", period, " + q + ");\n";
     return "    vec2 " + r + "_q = bl_reduce_period(" + y + ", period);\n    float " + r + " = " + r +
            "_q.x;\n    float " + q + " = " + r + "_q.y;\n";
   };

@@ -4134,9 +4134,9 @@ T box_fract_raw(T x, T sigma) {
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(1)/T(2)) + (((((T(1)/T(2)))) * r2) * r2 - ((((T(1)/T(2)))) * r1) * r1)) / (T(2.0) * hw);
   }
   T acc = (((T(1)))) * t;
@@ -4231,9 +4231,9 @@ T box_fract_sq_raw(T x, T sigma) {
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(1)/T(3)) + ((((((T(1)/T(3)))) * r2) * r2) * r2 - (((((T(1)/T(3)))) * r1) * r1) * r1)) / (T(2.0) * hw);
   }
   const T s2 = sigma * sigma;
@@ -4299,9 +4299,9 @@ T tent_fract_raw(T x, T sigma) {
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     const T iw = T(1.0) / hw;
     const T s1 = n1 * iw;
     const T s2w = n2 * iw;
@@ -4404,9 +4404,9 @@ T tent_fract_sq_raw(T x, T sigma) {
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     const T iw = T(1.0) / hw;
     const T s1 = n1 * iw;
     const T s2w = n2 * iw;
@@ -4642,9 +4642,9 @@ T box_triangle_raw(T x, T sigma) {
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * T(1) + ((r2 < T(1) ? ((((T(1)/T(2)))) * r2) * r2 : ((((T(-1)/T(2)))) * r2 + (T(2))) * r2 + ((T(-1)))) - (r1 < T(1) ? ((((T(1)/T(2)))) * r1) * r1 : ((((T(-1)/T(2)))) * r1 + (T(2))) * r1 + ((T(-1)))))) / (T(2.0) * hw);
   }
   const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
@@ -4788,9 +4788,9 @@ T box_triangle_sq_raw(T x, T sigma) {
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(2)/T(3)) + ((r2 < T(1) ? (((((T(1)/T(3)))) * r2) * r2) * r2 : (((((T(1)/T(3)))) * r2 + ((T(-2)))) * r2 + (T(4))) * r2 + ((T(-2)))) - (r1 < T(1) ? (((((T(1)/T(3)))) * r1) * r1) * r1 : (((((T(1)/T(3)))) * r1 + ((T(-2)))) * r1 + (T(4))) * r1 + ((T(-2)))))) / (T(2.0) * hw);
   }
   const T s2 = sigma * sigma;
@@ -4866,9 +4866,9 @@ T tent_triangle_raw(T x, T sigma) {
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     const T iw = T(1.0) / hw;
     const T s1 = n1 * iw;
     const T s2w = n2 * iw;
@@ -5021,9 +5021,9 @@ T tent_triangle_sq_raw(T x, T sigma) {
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     const T iw = T(1.0) / hw;
     const T s1 = n1 * iw;
     const T s2w = n2 * iw;
@@ -5267,9 +5267,9 @@ T box_square_raw(T x, T sigma) {
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? ((T(1))) * r2 : ((T(1)/T(2)))) - (r1 < (T(1)/T(2)) ? ((T(1))) * r1 : ((T(1)/T(2)))))) / (T(2.0) * hw);
   }
   const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
@@ -5403,9 +5403,9 @@ T box_square_sq_raw(T x, T sigma) {
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? ((T(1))) * r2 : ((T(1)/T(2)))) - (r1 < (T(1)/T(2)) ? ((T(1))) * r1 : ((T(1)/T(2)))))) / (T(2.0) * hw);
   }
   const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
@@ -5502,9 +5502,9 @@ T tent_square_raw(T x, T sigma) {
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     const T iw = T(1.0) / hw;
     const T s1 = n1 * iw;
     const T s2w = n2 * iw;
@@ -5647,9 +5647,9 @@ T tent_square_sq_raw(T x, T sigma) {
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     const T iw = T(1.0) / hw;
     const T s1 = n1 * iw;
     const T s2w = n2 * iw;
@@ -5991,9 +5991,9 @@ T box_pulse30_raw(T x, T sigma) {
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? ((T(1))) * r2 : ((T(3)/T(10)))) - (r1 < (T(3)/T(10)) ? ((T(1))) * r1 : ((T(3)/T(10)))))) / (T(2.0) * hw);
   }
   const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
@@ -6127,9 +6127,9 @@ T box_pulse30_sq_raw(T x, T sigma) {
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? ((T(1))) * r2 : ((T(3)/T(10)))) - (r1 < (T(3)/T(10)) ? ((T(1))) * r1 : ((T(3)/T(10)))))) / (T(2.0) * hw);
   }
   const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
@@ -6227,9 +6227,9 @@ T tent_pulse30_raw(T x, T sigma) {
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     const T iw = T(1.0) / hw;
     const T s1 = n1 * iw;
     const T s2w = n2 * iw;
@@ -6373,9 +6373,9 @@ T tent_pulse30_sq_raw(T x, T sigma) {
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
-    const T r1 = detail::reduce_period(t - hw, period, n1);
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
-    const T r2 = detail::reduce_period(t + hw, period, n2);
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     const T iw = T(1.0) / hw;
     const T s1 = n1 * iw;
     const T s2w = n2 * iw;
