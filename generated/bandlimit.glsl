@@ -4632,7 +4632,7 @@ float bl_box_triangle_raw(float x, float sigma) {
   bool neg = r < (0.0);
   float t = neg ? r + period : r;
   float hw = BL_SQRT3 * sigma;
-  if (!(hw <= (4.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= (2.0))) {  // support wider than 1.00 periods each side
     vec2 r1_q = bl_reduce_period(t - hw, period);
     float r1 = r1_q.x;
     float n1 = r1_q.y;
@@ -4646,22 +4646,6 @@ float bl_box_triangle_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
-  {  // break at -3 (r >= 0)
-    float d = (neg ? (-5.0) : (-3.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    float v = l * sc * ik;
-    acc -= v * ((((-1.0))) * u);
-  }
-  {  // break at -2 (r >= 0)
-    float d = (neg ? (-4.0) : (-2.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    float v = l * sc * ik;
-    acc -= v * (((1.0)) * u);
-  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
@@ -4696,22 +4680,6 @@ float bl_box_triangle_raw(float x, float sigma) {
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    float v = l * sc * ik;
-    acc += v * ((((-1.0))) * u);
-  }
-  {  // break at 4 (r >= 0)
-    float d = (neg ? (2.0) : (4.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    float v = l * sc * ik;
-    acc += v * (((1.0)) * u);
-  }
-  {  // break at 5 (r >= 0)
-    float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
@@ -4767,7 +4735,7 @@ float bl_box_triangle_sq_raw(float x, float sigma) {
   bool neg = r < (0.0);
   float t = neg ? r + period : r;
   float hw = BL_SQRT3 * sigma;
-  if (!(hw <= (4.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= (2.0))) {  // support wider than 1.00 periods each side
     vec2 r1_q = bl_reduce_period(t - hw, period);
     float r1 = r1_q.x;
     float n1 = r1_q.y;
@@ -4782,14 +4750,6 @@ float bl_box_triangle_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
-  {  // break at -3 (r >= 0)
-    float d = (neg ? (-5.0) : (-3.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    float v = l * sc * ik;
-    acc -= v * ((((-2.0))) * u);
-  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
@@ -4814,14 +4774,6 @@ float bl_box_triangle_sq_raw(float x, float sigma) {
     float v = l * sc * ik;
     acc += v * ((((-2.0))) * u);
   }
-  {  // break at 5 (r >= 0)
-    float d = (neg ? (3.0) : (5.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    float v = l * sc * ik;
-    acc += v * ((((-2.0))) * u);
-  }
   return acc;
 }
 
@@ -4839,7 +4791,7 @@ float bl_tent_triangle_raw(float x, float sigma) {
   bool neg = r < (0.0);
   float t = neg ? r + period : r;
   float hw = BL_SQRT6 * sigma;
-  if (!(hw <= (4.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= (2.0))) {  // support wider than 1.00 periods each side
     vec2 r1_q = bl_reduce_period(t - hw, period);
     float r1 = r1_q.x;
     float n1 = r1_q.y;
@@ -4858,22 +4810,6 @@ float bl_tent_triangle_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
-  {  // break at -3 (r >= 0)
-    float d = (neg ? (-5.0) : (-3.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    float v = l * sc * ik;
-    acc -= v * v * ((((-1.0/3.0))) * u);
-  }
-  {  // break at -2 (r >= 0)
-    float d = (neg ? (-4.0) : (-2.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    float v = l * sc * ik;
-    acc -= v * v * ((((1.0/3.0))) * u);
-  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
@@ -4908,22 +4844,6 @@ float bl_tent_triangle_raw(float x, float sigma) {
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    float v = l * sc * ik;
-    acc += v * v * ((((-1.0/3.0))) * u);
-  }
-  {  // break at 4 (r >= 0)
-    float d = (neg ? (2.0) : (4.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    float v = l * sc * ik;
-    acc += v * v * ((((1.0/3.0))) * u);
-  }
-  {  // break at 5 (r >= 0)
-    float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;
@@ -4984,7 +4904,7 @@ float bl_tent_triangle_sq_raw(float x, float sigma) {
   bool neg = r < (0.0);
   float t = neg ? r + period : r;
   float hw = BL_SQRT6 * sigma;
-  if (!(hw <= (4.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= (2.0))) {  // support wider than 1.00 periods each side
     vec2 r1_q = bl_reduce_period(t - hw, period);
     float r1 = r1_q.x;
     float n1 = r1_q.y;
@@ -5004,14 +4924,6 @@ float bl_tent_triangle_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
-  {  // break at -3 (r >= 0)
-    float d = (neg ? (-5.0) : (-3.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = -l;
-    float v = l * sc * ik;
-    acc -= v * v * ((((-2.0/3.0))) * u);
-  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
@@ -5030,14 +4942,6 @@ float bl_tent_triangle_sq_raw(float x, float sigma) {
   }
   {  // break at 3 (r >= 0)
     float d = (neg ? (1.0) : (3.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float u = l;
-    float v = l * sc * ik;
-    acc += v * v * ((((-2.0/3.0))) * u);
-  }
-  {  // break at 5 (r >= 0)
-    float d = (neg ? (3.0) : (5.0)) - r;
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float u = l;

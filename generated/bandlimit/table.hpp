@@ -4640,7 +4640,7 @@ T box_triangle_raw(T x, T sigma) {
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
-  if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
     T n1;
     const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
@@ -4652,22 +4652,6 @@ T box_triangle_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
-  {  // break at -3 (r >= 0)
-    const T d = (neg ? T(-5.0) : T(-3.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    const T v = l * sc * ik;
-    acc -= v * ((((T(-1)))) * u);
-  }
-  {  // break at -2 (r >= 0)
-    const T d = (neg ? T(-4.0) : T(-2.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    const T v = l * sc * ik;
-    acc -= v * (((T(1))) * u);
-  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -4702,22 +4686,6 @@ T box_triangle_raw(T x, T sigma) {
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    const T v = l * sc * ik;
-    acc += v * ((((T(-1)))) * u);
-  }
-  {  // break at 4 (r >= 0)
-    const T d = (neg ? T(2.0) : T(4.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    const T v = l * sc * ik;
-    acc += v * (((T(1))) * u);
-  }
-  {  // break at 5 (r >= 0)
-    const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
@@ -4786,7 +4754,7 @@ T box_triangle_sq_raw(T x, T sigma) {
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
-  if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
     T n1;
     const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
@@ -4799,14 +4767,6 @@ T box_triangle_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
-  {  // break at -3 (r >= 0)
-    const T d = (neg ? T(-5.0) : T(-3.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    const T v = l * sc * ik;
-    acc -= v * ((((T(-2)))) * u);
-  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -4825,14 +4785,6 @@ T box_triangle_sq_raw(T x, T sigma) {
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    const T v = l * sc * ik;
-    acc += v * ((((T(-2)))) * u);
-  }
-  {  // break at 5 (r >= 0)
-    const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
@@ -4864,7 +4816,7 @@ T tent_triangle_raw(T x, T sigma) {
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt6<T>() * sigma;
-  if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
     T n1;
     const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
@@ -4881,22 +4833,6 @@ T tent_triangle_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
-  {  // break at -3 (r >= 0)
-    const T d = (neg ? T(-5.0) : T(-3.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    const T v = l * sc * ik;
-    acc -= v * v * ((((T(-1)/T(3)))) * u);
-  }
-  {  // break at -2 (r >= 0)
-    const T d = (neg ? T(-4.0) : T(-2.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    const T v = l * sc * ik;
-    acc -= v * v * ((((T(1)/T(3)))) * u);
-  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -4931,22 +4867,6 @@ T tent_triangle_raw(T x, T sigma) {
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    const T v = l * sc * ik;
-    acc += v * v * ((((T(-1)/T(3)))) * u);
-  }
-  {  // break at 4 (r >= 0)
-    const T d = (neg ? T(2.0) : T(4.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    const T v = l * sc * ik;
-    acc += v * v * ((((T(1)/T(3)))) * u);
-  }
-  {  // break at 5 (r >= 0)
-    const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
@@ -5019,7 +4939,7 @@ T tent_triangle_sq_raw(T x, T sigma) {
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt6<T>() * sigma;
-  if (!(hw <= T(4.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
     T n1;
     const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
@@ -5037,14 +4957,6 @@ T tent_triangle_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
-  {  // break at -3 (r >= 0)
-    const T d = (neg ? T(-5.0) : T(-3.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = -l;
-    const T v = l * sc * ik;
-    acc -= v * v * ((((T(-2)/T(3)))) * u);
-  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -5063,14 +4975,6 @@ T tent_triangle_sq_raw(T x, T sigma) {
   }
   {  // break at 3 (r >= 0)
     const T d = (neg ? T(1.0) : T(3.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T u = l;
-    const T v = l * sc * ik;
-    acc += v * v * ((((T(-2)/T(3)))) * u);
-  }
-  {  // break at 5 (r >= 0)
-    const T d = (neg ? T(3.0) : T(5.0)) - r;
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
