@@ -2556,6 +2556,25 @@ float bl_gaussian_abs_sq(float x, float sigma) {
 }
 
 float bl_box_abs_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? ((((-1.0)))) * r : (((1.0))) * r);
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * (((1.0)) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2584,6 +2603,25 @@ float bl_box_abs_sq(float x, float sigma) {
 }
 
 float bl_tent_abs_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? ((((-1.0)))) * r : (((1.0))) * r);
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((((1.0/3.0))) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2656,6 +2694,24 @@ float bl_gaussian_sign_sq(float x, float sigma) {
 }
 
 float bl_box_sign_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (((-1.0))) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((2.0));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2686,6 +2742,24 @@ float bl_box_sign_sq(float x, float sigma) {
 }
 
 float bl_tent_sign_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (((-1.0))) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((1.0));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2780,6 +2854,24 @@ float bl_gaussian_step_sq(float x, float sigma) {
 }
 
 float bl_box_step_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((1.0));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2798,6 +2890,24 @@ float bl_box_step(float x, float sigma) {
 }
 
 float bl_box_step_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((1.0));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2816,6 +2926,24 @@ float bl_box_step_sq(float x, float sigma) {
 }
 
 float bl_tent_step_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((1.0/2.0)));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2834,6 +2962,24 @@ float bl_tent_step(float x, float sigma) {
 }
 
 float bl_tent_step_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (1e+18)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : ((1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((1.0/2.0)));
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2949,6 +3095,34 @@ float bl_gaussian_saturate_sq(float x, float sigma) {
 }
 
 float bl_box_saturate_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? (((1.0))) * r : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((((1.0/2.0))) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((((-1.0/2.0))) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2967,6 +3141,35 @@ float bl_box_saturate(float x, float sigma) {
 }
 
 float bl_box_saturate_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((1.0))) * r) * r + (((1.0)) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * (((((1.0/3.0))) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * (((((-1.0/3.0))) * u + ((-1.0))) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -2985,6 +3188,34 @@ float bl_box_saturate_sq(float x, float sigma) {
 }
 
 float bl_tent_saturate_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? (((1.0))) * r : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((((1.0/6.0))) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((((-1.0/6.0))) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -3003,6 +3234,35 @@ float bl_tent_saturate(float x, float sigma) {
 }
 
 float bl_tent_saturate_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((1.0))) * r) * r + (((1.0)) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((((1.0/12.0))) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((((-1.0/12.0))) * u + ((-1.0/3.0))) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -3131,6 +3391,35 @@ float bl_gaussian_smoothstep_sq(float x, float sigma) {
 }
 
 float bl_box_smoothstep_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((((-2.0)))) * r + ((3.0))) * r + ((((-6.0))) * s2)) * r + (((3.0)) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((((((-1.0/2.0))) * u + (1.0)) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * ((((((1.0/2.0))) * u + (1.0)) * u) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
@@ -3149,6 +3438,35 @@ float bl_box_smoothstep(float x, float sigma) {
 }
 
 float bl_box_smoothstep_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (1.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((((((4.0))) * r + (((-12.0)))) * r + (((60.0)) * s2 + (9.0))) * r + ((((-120.0))) * s2)) * r + ((((108.0)) * s2 + (54.0)) * s2)) * r + (((((-108.0))) * s2) * s2)) * r + ((((((108.0/7.0))) * s2 + ((81.0/5.0))) * s2) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * (((((((((4.0/7.0))) * u + ((-2.0))) * u + ((9.0/5.0))) * u) * u) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * (((((((((-4.0/7.0))) * u + ((-2.0))) * u + ((-9.0/5.0))) * u + (1.0)) * u + (2.0)) * u) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
@@ -3167,6 +3485,35 @@ float bl_box_smoothstep_sq(float x, float sigma) {
 }
 
 float bl_tent_smoothstep_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((((-2.0)))) * r + ((3.0))) * r + ((((-6.0))) * s2)) * r + (((3.0)) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((((((-1.0/10.0))) * u + ((1.0/4.0))) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * ((((((1.0/10.0))) * u + ((1.0/4.0))) * u) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
@@ -3185,6 +3532,35 @@ float bl_tent_smoothstep(float x, float sigma) {
 }
 
 float bl_tent_smoothstep_sq_raw(float x, float sigma) {
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (1.0)) {
+      float r = x;
+      float s2 = sigma * sigma;
+    float db0 = (0.0) - r;
+    float db1 = (1.0) - r;
+    float acc = (db0 > (0.0) ? (0.0) : (db1 > (0.0) ? ((((((((4.0))) * r + (((-12.0)))) * r + (((60.0)) * s2 + (9.0))) * r + ((((-120.0))) * s2)) * r + ((((144.0)) * s2 + (54.0)) * s2)) * r + (((((-144.0))) * s2) * s2)) * r + ((((((216.0/7.0))) * s2 + ((108.0/5.0))) * s2) * s2) : ((1.0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+    {  // break at 0
+      float d = (0.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((((((((1.0/14.0))) * u + ((-2.0/7.0))) * u + ((3.0/10.0))) * u) * u) * u) * u);
+    }
+    {  // break at 1
+      float d = (1.0) - r;
+      float L = hw - abs(d);
+      float l = L > (0.0) ? L : (0.0);
+      float u = (d > (0.0) ? l : -l);
+      float v = l * sc * ik;
+      acc += (d > (0.0) ? v : -v) * v * (((((((((-1.0/14.0))) * u + ((-2.0/7.0))) * u + ((-3.0/10.0))) * u + ((1.0/5.0))) * u + ((1.0/2.0))) * u) * u);
+    }
+      return acc;
+    }
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
@@ -4638,20 +5014,54 @@ float bl_gaussian_fract_sq(float x, float sigma) {
 }
 
 float bl_box_fract_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
-  return bl_box_periodic(x, sigma, period, 1, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (1.0/2.0) + (((((1.0/2.0))) * r2) * r2 - ((((1.0/2.0))) * r1) * r1)) / ((2.0) * hw);
+  }
+  float acc = (((1.0))) * t;
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+  return acc;
 }
 
 float bl_box_fract(float x, float sigma) {
@@ -4694,20 +5104,59 @@ float bl_box_fract_right(float x, float sigma) {
 }
 
 float bl_box_fract_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
-  return bl_box_periodic(x, sigma, period, 1, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (1.0/3.0) + ((((((1.0/3.0))) * r2) * r2) * r2 - (((((1.0/3.0))) * r1) * r1) * r1)) / ((2.0) * hw);
+  }
+  float s2 = sigma * sigma;
+  float acc = ((((1.0))) * t) * t + (((1.0)) * s2);
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * ((((-1.0))) * u + ((-1.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * ((((-1.0))) * u + ((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * ((((-1.0))) * u + ((-1.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * ((((-1.0))) * u + ((-1.0)));
+  }
+  return acc;
 }
 
 float bl_box_fract_sq(float x, float sigma) {
@@ -4718,25 +5167,59 @@ float bl_box_fract_sq(float x, float sigma) {
 }
 
 float bl_tent_fract_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/6.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
-  return bl_tent_periodic(x, sigma, period, 1, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (1.0/6.0) * iw * (s2w + s1) + (((((((1.0/6.0))) * r2) * r2) * r2 + (((((1.0/6.0))) * r1) * r1) * r1) - (2.0) * (((((1.0/6.0))) * t) * t) * t) * iw * iw;
+  }
+  float acc = (((1.0))) * t;
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+  return acc;
 }
 
 float bl_tent_fract(float x, float sigma) {
@@ -4784,25 +5267,64 @@ float bl_tent_fract_right(float x, float sigma) {
 }
 
 float bl_tent_fract_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, (1.0/12.0), 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
-  return bl_tent_periodic(x, sigma, period, 1, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (1.0/3.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (1.0/12.0) * iw * (s2w + s1) + ((((((((1.0/12.0))) * r2) * r2) * r2) * r2 + ((((((1.0/12.0))) * r1) * r1) * r1) * r1) - (2.0) * ((((((1.0/12.0))) * t) * t) * t) * t) * iw * iw;
+  }
+  float s2 = sigma * sigma;
+  float acc = ((((1.0))) * t) * t + (((1.0)) * s2);
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * v * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * v * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * v * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * v * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
+  }
+  return acc;
 }
 
 float bl_tent_fract_sq(float x, float sigma) {
@@ -4958,20 +5480,67 @@ float bl_gaussian_triangle_sq(float x, float sigma) {
 }
 
 float bl_box_triangle_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((-1.0), 2.0, (-1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 2.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 1.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * 1.0 + ((r2 < 1.0 ? ((((1.0/2.0))) * r2) * r2 : ((((-1.0/2.0))) * r2 + (2.0)) * r2 + ((-1.0))) - (r1 < 1.0 ? ((((1.0/2.0))) * r1) * r1 : ((((-1.0/2.0))) * r1 + (2.0)) * r1 + ((-1.0))))) / ((2.0) * hw);
+  }
+  float db1 = (neg ? (-1.0) : (1.0)) - r;
+  float acc = (db1 > (0.0) ? (((1.0))) * t : ((((-1.0)))) * t + ((2.0)));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-3.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * ((((-1.0))) * u);
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-2.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * (((1.0)) * u);
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * ((((-1.0))) * u);
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (0.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * (((1.0)) * u);
+  }
+  {  // break at 3 (r >= 0)
+    float d = (neg ? (1.0) : (3.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * ((((-1.0))) * u);
+  }
+  return acc;
 }
 
 float bl_box_triangle(float x, float sigma) {
@@ -5014,20 +5583,52 @@ float bl_box_triangle_right(float x, float sigma) {
 }
 
 float bl_box_triangle_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](4.0, (-4.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((-2.0), 4.0, (-2.0), (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 2.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 1.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (2.0/3.0) + ((r2 < 1.0 ? (((((1.0/3.0))) * r2) * r2) * r2 : (((((1.0/3.0))) * r2 + ((-2.0))) * r2 + (4.0)) * r2 + ((-2.0))) - (r1 < 1.0 ? (((((1.0/3.0))) * r1) * r1) * r1 : (((((1.0/3.0))) * r1 + ((-2.0))) * r1 + (4.0)) * r1 + ((-2.0))))) / ((2.0) * hw);
+  }
+  float s2 = sigma * sigma;
+  float db1 = (neg ? (-1.0) : (1.0)) - r;
+  float acc = (db1 > (0.0) ? ((((1.0))) * t) * t + (((1.0)) * s2) : ((((1.0))) * t + (((-4.0)))) * t + (((1.0)) * s2 + (4.0)));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-3.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * ((((-2.0))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * ((((-2.0))) * u);
+  }
+  {  // break at 3 (r >= 0)
+    float d = (neg ? (1.0) : (3.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * ((((-2.0))) * u);
+  }
+  return acc;
 }
 
 float bl_box_triangle_sq(float x, float sigma) {
@@ -5038,25 +5639,72 @@ float bl_box_triangle_sq(float x, float sigma) {
 }
 
 float bl_tent_triangle_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((-1.0), 2.0, (-1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/6.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((1.0/3.0), (-1.0), 1.0, (-1.0/6.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 2.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 1.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return 1.0 * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + 1.0 * iw * (s2w + s1) + (((r2 < 1.0 ? (((((1.0/6.0))) * r2) * r2) * r2 : (((((-1.0/6.0))) * r2 + (1.0)) * r2 + ((-1.0))) * r2 + ((1.0/3.0))) + (r1 < 1.0 ? (((((1.0/6.0))) * r1) * r1) * r1 : (((((-1.0/6.0))) * r1 + (1.0)) * r1 + ((-1.0))) * r1 + ((1.0/3.0)))) - (2.0) * (t < 1.0 ? (((((1.0/6.0))) * t) * t) * t : (((((-1.0/6.0))) * t + (1.0)) * t + ((-1.0))) * t + ((1.0/3.0)))) * iw * iw;
+  }
+  float db1 = (neg ? (-1.0) : (1.0)) - r;
+  float acc = (db1 > (0.0) ? (((1.0))) * t : ((((-1.0)))) * t + ((2.0)));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-3.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * v * ((((-1.0/3.0))) * u);
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-2.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * v * ((((1.0/3.0))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * ((((-1.0/3.0))) * u);
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (0.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * v * ((((1.0/3.0))) * u);
+  }
+  {  // break at 3 (r >= 0)
+    float d = (neg ? (1.0) : (3.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * v * ((((-1.0/3.0))) * u);
+  }
+  return acc;
 }
 
 float bl_tent_triangle(float x, float sigma) {
@@ -5104,25 +5752,57 @@ float bl_tent_triangle_right(float x, float sigma) {
 }
 
 float bl_tent_triangle_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](4.0, (-4.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((-2.0), 4.0, (-2.0), (1.0/3.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, (1.0/12.0), 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((2.0/3.0), (-2.0), 2.0, (-2.0/3.0), (1.0/12.0), 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 2.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 1.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (2.0/3.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (2.0/3.0) * iw * (s2w + s1) + (((r2 < 1.0 ? ((((((1.0/12.0))) * r2) * r2) * r2) * r2 : ((((((1.0/12.0))) * r2 + ((-2.0/3.0))) * r2 + (2.0)) * r2 + ((-2.0))) * r2 + ((2.0/3.0))) + (r1 < 1.0 ? ((((((1.0/12.0))) * r1) * r1) * r1) * r1 : ((((((1.0/12.0))) * r1 + ((-2.0/3.0))) * r1 + (2.0)) * r1 + ((-2.0))) * r1 + ((2.0/3.0)))) - (2.0) * (t < 1.0 ? ((((((1.0/12.0))) * t) * t) * t) * t : ((((((1.0/12.0))) * t + ((-2.0/3.0))) * t + (2.0)) * t + ((-2.0))) * t + ((2.0/3.0)))) * iw * iw;
+  }
+  float s2 = sigma * sigma;
+  float db1 = (neg ? (-1.0) : (1.0)) - r;
+  float acc = (db1 > (0.0) ? ((((1.0))) * t) * t + (((1.0)) * s2) : ((((1.0))) * t + (((-4.0)))) * t + (((1.0)) * s2 + (4.0)));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-3.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * v * ((((-2.0/3.0))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * ((((-2.0/3.0))) * u);
+  }
+  {  // break at 3 (r >= 0)
+    float d = (neg ? (1.0) : (3.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * v * ((((-2.0/3.0))) * u);
+  }
+  return acc;
 }
 
 float bl_tent_triangle_sq(float x, float sigma) {
@@ -5278,20 +5958,90 @@ float bl_gaussian_square_sq(float x, float sigma) {
 }
 
 float bl_box_square_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (1.0/2.0) + ((r2 < (1.0/2.0) ? ((1.0)) * r2 : ((1.0/2.0))) - (r1 < (1.0/2.0) ? ((1.0)) * r1 : ((1.0/2.0))))) / ((2.0) * hw);
+  }
+  float db1 = (neg ? (-0.5) : (0.5)) - r;
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -3/2 (r >= 0)
+    float d = (neg ? (-2.5) : (-1.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
+  }
+  {  // break at -1/2 (r >= 0)
+    float d = (neg ? (-1.5) : (-0.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+  {  // break at 3/2 (r >= 0)
+    float d = (neg ? (0.5) : (1.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+  {  // break at 5/2 (r >= 0)
+    float d = (neg ? (1.5) : (2.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+  return acc;
 }
 
 float bl_box_square(float x, float sigma) {
@@ -5334,20 +6084,90 @@ float bl_box_square_right(float x, float sigma) {
 }
 
 float bl_box_square_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (1.0/2.0) + ((r2 < (1.0/2.0) ? ((1.0)) * r2 : ((1.0/2.0))) - (r1 < (1.0/2.0) ? ((1.0)) * r1 : ((1.0/2.0))))) / ((2.0) * hw);
+  }
+  float db1 = (neg ? (-0.5) : (0.5)) - r;
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -3/2 (r >= 0)
+    float d = (neg ? (-2.5) : (-1.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
+  }
+  {  // break at -1/2 (r >= 0)
+    float d = (neg ? (-1.5) : (-0.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+  {  // break at 3/2 (r >= 0)
+    float d = (neg ? (0.5) : (1.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+  {  // break at 5/2 (r >= 0)
+    float d = (neg ? (1.5) : (2.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+  return acc;
 }
 
 float bl_box_square_sq(float x, float sigma) {
@@ -5358,25 +6178,95 @@ float bl_box_square_sq(float x, float sigma) {
 }
 
 float bl_tent_square_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((-1.0/8.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (3.0/8.0) * iw * (s2w + s1) + (((r2 < (1.0/2.0) ? ((((1.0/2.0))) * r2) * r2 : (((1.0/2.0))) * r2 + ((-1.0/8.0))) + (r1 < (1.0/2.0) ? ((((1.0/2.0))) * r1) * r1 : (((1.0/2.0))) * r1 + ((-1.0/8.0)))) - (2.0) * (t < (1.0/2.0) ? ((((1.0/2.0))) * t) * t : (((1.0/2.0))) * t + ((-1.0/8.0)))) * iw * iw;
+  }
+  float db1 = (neg ? (-0.5) : (0.5)) - r;
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -3/2 (r >= 0)
+    float d = (neg ? (-2.5) : (-1.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
+  }
+  {  // break at -1/2 (r >= 0)
+    float d = (neg ? (-1.5) : (-0.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+  {  // break at 3/2 (r >= 0)
+    float d = (neg ? (0.5) : (1.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+  {  // break at 5/2 (r >= 0)
+    float d = (neg ? (1.5) : (2.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+  return acc;
 }
 
 float bl_tent_square(float x, float sigma) {
@@ -5424,25 +6314,95 @@ float bl_tent_square_right(float x, float sigma) {
 }
 
 float bl_tent_square_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8]((-1.0/8.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (1.0/2.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (3.0/8.0) * iw * (s2w + s1) + (((r2 < (1.0/2.0) ? ((((1.0/2.0))) * r2) * r2 : (((1.0/2.0))) * r2 + ((-1.0/8.0))) + (r1 < (1.0/2.0) ? ((((1.0/2.0))) * r1) * r1 : (((1.0/2.0))) * r1 + ((-1.0/8.0)))) - (2.0) * (t < (1.0/2.0) ? ((((1.0/2.0))) * t) * t : (((1.0/2.0))) * t + ((-1.0/8.0)))) * iw * iw;
+  }
+  float db1 = (neg ? (-0.5) : (0.5)) - r;
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -3/2 (r >= 0)
+    float d = (neg ? (-2.5) : (-1.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
+  }
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
+  }
+  {  // break at -1/2 (r >= 0)
+    float d = (neg ? (-1.5) : (-0.5)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+  {  // break at 3/2 (r >= 0)
+    float d = (neg ? (0.5) : (1.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+  {  // break at 5/2 (r >= 0)
+    float d = (neg ? (1.5) : (2.5)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+  return acc;
 }
 
 float bl_tent_square_sq(float x, float sigma) {
@@ -5676,55 +6636,90 @@ float bl_gaussian_pulse30_sq(float x, float sigma) {
 }
 
 float bl_box_pulse30_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) {
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (3.0/10.0) + ((r2 < (3.0/10.0) ? ((1.0)) * r2 : ((3.0/10.0))) - (r1 < (3.0/10.0) ? ((1.0)) * r1 : ((3.0/10.0))))) / ((2.0) * hw);
   }
-  return bl_periodic_eval(x, period, 2, p);
+  float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -17/10 (r >= 0)
+    float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_1[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_box_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_box_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
   }
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  {  // break at -7/10 (r >= 0)
+    float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+  {  // break at 23/10 (r >= 0)
+    float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+  return acc;
 }
 
 float bl_box_pulse30(float x, float sigma) {
@@ -5767,55 +6762,90 @@ float bl_box_pulse30_right(float x, float sigma) {
 }
 
 float bl_box_pulse30_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) {
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT3 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    return ((n2 - n1) * (3.0/10.0) + ((r2 < (3.0/10.0) ? ((1.0)) * r2 : ((3.0/10.0))) - (r1 < (3.0/10.0) ? ((1.0)) * r1 : ((3.0/10.0))))) / ((2.0) * hw);
   }
-  return bl_periodic_eval(x, period, 2, p);
+  float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / ((2.0) * hw * sc);
+  {  // break at -17/10 (r >= 0)
+    float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
   }
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_1[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_box_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_box_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
   }
-  return bl_box_periodic(x, sigma, period, 2, p, p1);
+  {  // break at -7/10 (r >= 0)
+    float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+  {  // break at 23/10 (r >= 0)
+    float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+  return acc;
 }
 
 float bl_box_pulse30_sq(float x, float sigma) {
@@ -5826,65 +6856,95 @@ float bl_box_pulse30_sq(float x, float sigma) {
 }
 
 float bl_tent_pulse30_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((-9.0/200.0), (3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) {
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (3.0/10.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (51.0/200.0) * iw * (s2w + s1) + (((r2 < (3.0/10.0) ? ((((1.0/2.0))) * r2) * r2 : (((3.0/10.0))) * r2 + ((-9.0/200.0))) + (r1 < (3.0/10.0) ? ((((1.0/2.0))) * r1) * r1 : (((3.0/10.0))) * r1 + ((-9.0/200.0)))) - (2.0) * (t < (3.0/10.0) ? ((((1.0/2.0))) * t) * t : (((3.0/10.0))) * t + ((-9.0/200.0)))) * iw * iw;
   }
-  return bl_periodic_eval(x, period, 2, p);
+  float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -17/10 (r >= 0)
+    float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_1[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_2[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((49.0/200.0), (-7.0/10.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_tent_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1, o0_2);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_tent_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1, o0_2);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
   }
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  {  // break at -7/10 (r >= 0)
+    float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+  {  // break at 23/10 (r >= 0)
+    float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+  return acc;
 }
 
 float bl_tent_pulse30(float x, float sigma) {
@@ -5932,65 +6992,95 @@ float bl_tent_pulse30_right(float x, float sigma) {
 }
 
 float bl_tent_pulse30_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p1[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  BlPiece p2[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8]((-9.0/200.0), (3.0/10.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float period = 1.0;
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) {
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_periodic_eval((r_o - bh0) - bl0, period, 2, o0);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_periodic_eval((r_o - ch0) - cl0, period, 2, o0);
+  float r = bl_reduce_signed(x, period);
+  bool neg = r < (0.0);
+  float t = neg ? r + period : r;
+  float hw = BL_SQRT6 * sigma;
+  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+    vec2 r1_q = bl_reduce_period(t - hw, period);
+    float r1 = r1_q.x;
+    float n1 = r1_q.y;
+    vec2 r2_q = bl_reduce_period(t + hw, period);
+    float r2 = r2_q.x;
+    float n2 = r2_q.y;
+    float iw = (1.0) / hw;
+    float s1 = n1 * iw;
+    float s2w = n2 * iw;
+    float g1 = period * s1 * ((n1 - (1.0)) * iw) * (0.5);
+    float g2 = period * s2w * ((n2 - (1.0)) * iw) * (0.5);
+    return (3.0/10.0) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (51.0/200.0) * iw * (s2w + s1) + (((r2 < (3.0/10.0) ? ((((1.0/2.0))) * r2) * r2 : (((3.0/10.0))) * r2 + ((-9.0/200.0))) + (r1 < (3.0/10.0) ? ((((1.0/2.0))) * r1) * r1 : (((3.0/10.0))) * r1 + ((-9.0/200.0)))) - (2.0) * (t < (3.0/10.0) ? ((((1.0/2.0))) * t) * t : (((3.0/10.0))) * t + ((-9.0/200.0)))) * iw * iw;
   }
-  return bl_periodic_eval(x, period, 2, p);
+  float db1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+  float acc = (db1 > (0.0) ? ((1.0)) : (0.0));
+  if (sigma == (0.0)) return acc;
+  float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+  float ik = (1.0) / (hw * sc);
+  {  // break at -17/10 (r >= 0)
+    float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
   }
-  float r_o = bl_reduce_signed(x, period);
-  {  // break at 3/10
-    BlPiece o0[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_1[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((-7.0/10.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    BlPiece o0_2[4] = BlPiece[4](
-        BlPiece(0.0, (7.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece((7.0/10.0), 1.0, float[8]((49.0/200.0), (-7.0/10.0), (1.0/2.0), 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-    float bh0 = (0.30000001192092896);
-    float bl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - bh0) < (0.15)) return bl_tent_periodic((r_o - bh0) - bl0, sigma, period, 2, o0, o0_1, o0_2);
-    float ch0 = (-0.699999988079071);
-    float cl0 = (-1.1920929132713809e-08);
-    if (abs(r_o - ch0) < (0.15)) return bl_tent_periodic((r_o - ch0) - cl0, sigma, period, 2, o0, o0_1, o0_2);
+  {  // break at -1 (r >= 0)
+    float d = (neg ? (-2.0) : (-1.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
   }
-  return bl_tent_periodic(x, sigma, period, 2, p, p1, p2);
+  {  // break at -7/10 (r >= 0)
+    float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
+  }
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (1.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+  {  // break at 23/10 (r >= 0)
+    float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+  return acc;
 }
 
 float bl_tent_pulse30_sq(float x, float sigma) {
@@ -6056,11 +7146,97 @@ float bl_gaussian_floor_sq(float x, float sigma) {
 }
 
 float bl_box_floor(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = ((n0));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((1.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((1.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((1.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((1.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + (-1.0) * bl_box_fract(x, sigma);
 }
 
 float bl_box_floor_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (((n0*n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((((-1.0) + (2.0*n))));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((((-1.0) + (2.0*n))));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((((-1.0) + (2.0*n))));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((((-1.0) + (2.0*n))));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_box_fract_sq(x, sigma) + (-2.0) * (x * bl_box_fract(x, sigma) + bl_box_fract_u(x, sigma));
 }
@@ -6072,11 +7248,129 @@ float bl_box_floor_sq(float x, float sigma) {
 }
 
 float bl_tent_floor(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (3.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = ((n0));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + (-1.0) * bl_tent_fract(x, sigma);
 }
 
 float bl_tent_floor_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (3.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (((n0*n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
+      }
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((((-1.0) + (2.0*n))) * (1.0/2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_tent_fract_sq(x, sigma) + (-2.0) * (x * bl_tent_fract(x, sigma) + bl_tent_fract_u(x, sigma));
 }
@@ -6143,11 +7437,97 @@ float bl_gaussian_ceil_sq(float x, float sigma) {
 }
 
 float bl_box_ceil(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (((1.0 + n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((1.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((1.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((1.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((1.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + 1.0 * bl_box_fract(-x, sigma);
 }
 
 float bl_box_ceil_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = ((((2.0*n0) + (n0*n0) + 1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((((2.0*n) + 1.0)));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((((2.0*n) + 1.0)));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((((2.0*n) + 1.0)));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((((2.0*n) + 1.0)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_box_fract_sq(-x, sigma) + 2.0 * (x * bl_box_fract(-x, sigma) - bl_box_fract_u(-x, sigma));
 }
@@ -6159,11 +7539,129 @@ float bl_box_ceil_sq(float x, float sigma) {
 }
 
 float bl_tent_ceil(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (3.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (((1.0 + n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((1.0) * (1.0/2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + 1.0 * bl_tent_fract(-x, sigma);
 }
 
 float bl_tent_ceil_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (3.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = ((((2.0*n0) + (n0*n0) + 1.0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((((2.0*n) + 1.0)) * (1.0/2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + 1.0 * bl_tent_fract_sq(-x, sigma) + 2.0 * (x * bl_tent_fract(-x, sigma) - bl_tent_fract_u(-x, sigma));
 }
@@ -6327,11 +7825,97 @@ float bl_gaussian_trunc_sq(float x, float sigma) {
 }
 
 float bl_box_trunc(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (n0 < (0.0) ? (((1.0 + n0))) : ((n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (1.0 + x) + (-1.0) * bl_box_fract(x, sigma) + (-1.0) * bl_box_step(x, sigma);
 }
 
 float bl_box_trunc_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT3 * sigma;
+    if (sigma > (0.0) && hw <= (2.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (n0 < (0.0) ? ((((2.0*n0) + (n0*n0) + 1.0))) : (((n0*n0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / ((2.0) * hw * sc);
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))));
+      }
+      return acc;
+    }
+  }
   BlPiece pt6[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -6348,11 +7932,129 @@ float bl_box_trunc_sq(float x, float sigma) {
 }
 
 float bl_tent_trunc(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (3.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (n0 < (0.0) ? (((1.0 + n0))) : ((n0)));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (1.0) : n == (0.0) ? (0.0) : (1.0)) * (1.0/2.0));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return (1.0 + x) + (-1.0) * bl_tent_fract(x, sigma) + (-1.0) * bl_tent_step(x, sigma);
 }
 
 float bl_tent_trunc_sq_raw(float x, float sigma) {
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    float hw = BL_SQRT6 * sigma;
+    if (sigma > (0.0) && hw <= (3.0)) {
+      float n0 = floor(x);
+      float y = x - n0;
+    float acc = (n0 < (0.0) ? ((((2.0*n0) + (n0*n0) + 1.0))) : (((n0*n0))));
+      float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
+      float ik = (1.0) / (hw * sc);
+      {  // break at n0 + -2
+        float n = n0 + (-2.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
+      }
+      {  // break at n0 + -1
+        float n = n0 + (-1.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
+      }
+      {  // break at n0 + 0
+        float n = n0 + (0.0);
+        float d = n - x;
+        float L = hw + d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc -= v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
+      }
+      {  // break at n0 + 1
+        float n = n0 + (1.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
+      }
+      {  // break at n0 + 2
+        float n = n0 + (2.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
+      }
+      {  // break at n0 + 3
+        float n = n0 + (3.0);
+        float d = n - x;
+        float L = hw - d;
+        float l = L > (0.0) ? L : (0.0);
+        float v = l * sc * ik;
+        acc += v * v * ((n < (0.0) ? (((2.0*n) + 1.0)) : n == (0.0) ? (0.0) : (((-1.0) + (2.0*n)))) * (1.0/2.0));
+      }
+      return acc;
+    }
+  }
   BlPiece pt6[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "emit_box_tent_breaks.hpp"
 #include "emit_box_tent_ept.hpp"
 #include "emit_gauss_periodic.hpp"
 #include "emit_syntax.hpp"
@@ -1235,13 +1236,14 @@ std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
       b = body_closed(d, s);
       break;
     case Body::PiecewiseTable:
-      b = body_piecewise(d, s);
+      b = box_tent_piecewise_narrow(d, lang) + body_piecewise(d, s);
       break;
     case Body::PeriodicTable:
-      b = body_periodic(d, s);
+      b = box_tent_periodic_body(d, lang);  // "" where the break form does not apply
+      if (b.empty()) b = body_periodic(d, s);
       break;
     case Body::Combination:
-      b = body_combination(d, s, ds);
+      b = box_tent_staircase_narrow(d, lang, ds) + body_combination(d, s, ds);
       break;
     case Body::Antiderivative:
       b = body_antiderivative(d, s);

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <string>
 
-#include "catalog.hpp"
+#include "derived.hpp"
 #include "printer.hpp"
 
 namespace bl::rulegen {

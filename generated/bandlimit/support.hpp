@@ -1239,6 +1239,22 @@ inline T reduce_signed_pow2(T y, T period) {
   return copysign(a - period * floor(a / period), y);
 }
 
+// reduce_period for a power-of-two period, without the libm fmod: y/period and q period are exact,
+// and so is y - q period once |y| >= period (Sterbenz); only for -period < y < 0 is r = y + period
+// rounded (by eps period), which the callers (the wide-kernel F-differences, divided by a width
+// above a period) do not see. r in [0, period), n = q with y ~ n period + r.
+template <class T>
+inline T reduce_period_pow2(T y, T period, T& n) {
+  using std::floor;
+  n = floor(y / period);
+  T r = y - n * period;
+  if (!(r < period)) {  // y + period rounded up to period
+    r = T(0);
+    n += T(1);
+  }
+  return r;
+}
+
 template <class T, int N>
 inline T periodic_piece_eval(T r, const Piece<T> (&p)[N]) {  // r in [0, period)
   for (int i = 0; i < N - 1; ++i)

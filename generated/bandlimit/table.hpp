@@ -2306,6 +2306,25 @@ T gaussian_abs_sq(T x, T sigma) {
 template <class T>
 T box_abs_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? ((((T(-1))))) * r : (((T(1)))) * r);
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * (((T(1))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2344,6 +2363,25 @@ T box_abs_sq(T x, T sigma) {
 template <class T>
 T tent_abs_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? ((((T(-1))))) * r : (((T(1)))) * r);
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((((T(1)/T(3)))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2434,6 +2472,24 @@ T gaussian_sign_sq(T x, T sigma) {
 template <class T>
 T box_sign_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? (((T(-1)))) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((T(2)));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2474,6 +2530,24 @@ T box_sign_sq(T x, T sigma) {
 template <class T>
 T tent_sign_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? (((T(-1)))) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((T(1)));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2585,6 +2659,24 @@ T gaussian_step_sq(T x, T sigma) {
 template <class T>
 T box_step_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((T(1)));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2607,6 +2699,24 @@ T box_step(T x, T sigma) {
 template <class T>
 T box_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((T(1)));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2630,6 +2740,24 @@ T box_step_sq(T x, T sigma) {
 template <class T>
 T tent_step_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((T(1)/T(2))));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2653,6 +2781,24 @@ T tent_step(T x, T sigma) {
 template <class T>
 T tent_step_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1e+18)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : ((T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((T(1)/T(2))));
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2789,6 +2935,34 @@ T gaussian_saturate_sq(T x, T sigma) {
 template <class T>
 T box_saturate_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? (((T(1)))) * r : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((((T(1)/T(2)))) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((((T(-1)/T(2)))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2813,6 +2987,35 @@ T box_saturate(T x, T sigma) {
 template <class T>
 T box_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((T(1)))) * r) * r + (((T(1))) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * (((((T(1)/T(3)))) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * (((((T(-1)/T(3)))) * u + ((T(-1)))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
@@ -2837,6 +3040,34 @@ T box_saturate_sq(T x, T sigma) {
 template <class T>
 T tent_saturate_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? (((T(1)))) * r : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((((T(1)/T(6)))) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((((T(-1)/T(6)))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -2861,6 +3092,35 @@ T tent_saturate(T x, T sigma) {
 template <class T>
 T tent_saturate_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((T(1)))) * r) * r + (((T(1))) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((((T(1)/T(12)))) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((((T(-1)/T(12)))) * u + ((T(-1)/T(3)))) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
@@ -3045,6 +3305,35 @@ T gaussian_smoothstep_sq(T x, T sigma) {
 template <class T>
 T box_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((((T(-2))))) * r + ((T(3)))) * r + ((((T(-6)))) * s2)) * r + (((T(3))) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((((((T(-1)/T(2)))) * u + (T(1))) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * ((((((T(1)/T(2)))) * u + (T(1))) * u) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
@@ -3069,6 +3358,35 @@ T box_smoothstep(T x, T sigma) {
 template <class T>
 T box_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((((((T(4)))) * r + (((T(-12))))) * r + (((T(60))) * s2 + (T(9)))) * r + ((((T(-120)))) * s2)) * r + ((((T(108))) * s2 + (T(54))) * s2)) * r + (((((T(-108)))) * s2) * s2)) * r + ((((((T(108)/T(7)))) * s2 + ((T(81)/T(5)))) * s2) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * (((((((((T(4)/T(7)))) * u + ((T(-2)))) * u + ((T(9)/T(5)))) * u) * u) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * (((((((((T(-4)/T(7)))) * u + ((T(-2)))) * u + ((T(-9)/T(5)))) * u + (T(1))) * u + (T(2))) * u) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
@@ -3094,6 +3412,35 @@ T box_smoothstep_sq(T x, T sigma) {
 template <class T>
 T tent_smoothstep_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((((T(-2))))) * r + ((T(3)))) * r + ((((T(-6)))) * s2)) * r + (((T(3))) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((((((T(-1)/T(10)))) * u + ((T(1)/T(4)))) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * ((((((T(1)/T(10)))) * u + ((T(1)/T(4)))) * u) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(3), (T(-2)), T(0), T(0), T(0), T(0)}},
@@ -3119,6 +3466,35 @@ T tent_smoothstep(T x, T sigma) {
 template <class T>
 T tent_smoothstep_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(1.0)) {
+      const T r = x;
+      const T s2 = sigma * sigma;
+    const T db0 = T(0.0) - r;
+    const T db1 = T(1.0) - r;
+    T acc = (db0 > T(0.0) ? T(0.0) : (db1 > T(0.0) ? ((((((((T(4)))) * r + (((T(-12))))) * r + (((T(60))) * s2 + (T(9)))) * r + ((((T(-120)))) * s2)) * r + ((((T(144))) * s2 + (T(54))) * s2)) * r + (((((T(-144)))) * s2) * s2)) * r + ((((((T(216)/T(7)))) * s2 + ((T(108)/T(5)))) * s2) * s2) : ((T(1)))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+    {  // break at 0
+      const T d = T(0.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((((((((T(1)/T(14)))) * u + ((T(-2)/T(7)))) * u + ((T(3)/T(10)))) * u) * u) * u) * u);
+    }
+    {  // break at 1
+      const T d = T(1.0) - r;
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
+      const T v = l * sc * ik;
+      acc += (d > T(0.0) ? v : -v) * v * (((((((((T(-1)/T(14)))) * u + ((T(-2)/T(7)))) * u + ((T(-3)/T(10)))) * u + ((T(1)/T(5)))) * u + ((T(1)/T(2)))) * u) * u);
+    }
+      return acc;
+    }
+  }
   static const detail::Piece<T> p[3] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), T(1), {T(0), T(0), T(0), T(0), T(9), (T(-12)), T(4), T(0)}},
@@ -5026,16 +5402,52 @@ T gaussian_fract_sq(T x, T sigma) {
 template <class T>
 T box_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[1] = {
-      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    return ((n2 - n1) * (T(1)/T(2)) + (((((T(1)/T(2)))) * r2) * r2 - ((((T(1)/T(2)))) * r1) * r1)) / (T(2.0) * hw);
+  }
+  T acc = (((T(1)))) * t;
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5087,16 +5499,57 @@ T box_fract_right(T x, T sigma) {
 template <class T>
 T box_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[1] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    return ((n2 - n1) * (T(1)/T(3)) + ((((((T(1)/T(3)))) * r2) * r2) * r2 - (((((T(1)/T(3)))) * r1) * r1) * r1)) / (T(2.0) * hw);
+  }
+  const T s2 = sigma * sigma;
+  T acc = ((((T(1)))) * t) * t + (((T(1))) * s2);
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-1)))) * u + ((T(-1))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-1)))) * u + ((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * ((((T(-1)))) * u + ((T(-1))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * ((((T(-1)))) * u + ((T(-1))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5114,19 +5567,57 @@ T box_fract_sq(T x, T sigma) {
 template <class T>
 T tent_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[1] = {
-      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[1] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(1)/T(6)) * iw * (s2w + s1) + (((((((T(1)/T(6)))) * r2) * r2) * r2 + (((((T(1)/T(6)))) * r1) * r1) * r1) - T(2.0) * (((((T(1)/T(6)))) * t) * t) * t) * iw * iw;
+  }
+  T acc = (((T(1)))) * t;
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5181,19 +5672,62 @@ T tent_fract_right(T x, T sigma) {
 template <class T>
 T tent_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[1] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[1] = {
-      {T(0), T(1), {T(0), T(0), T(0), T(0), (T(1)/T(12)), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(1)/T(12)) * iw * (s2w + s1) + ((((((((T(1)/T(12)))) * r2) * r2) * r2) * r2 + ((((((T(1)/T(12)))) * r1) * r1) * r1) * r1) - T(2.0) * ((((((T(1)/T(12)))) * t) * t) * t) * t) * iw * iw;
+  }
+  const T s2 = sigma * sigma;
+  T acc = ((((T(1)))) * t) * t + (((T(1))) * s2);
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5729,18 +6263,65 @@ T gaussian_triangle_sq(T x, T sigma) {
 template <class T>
 T box_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    return ((n2 - n1) * T(1) + ((r2 < T(1) ? ((((T(1)/T(2)))) * r2) * r2 : ((((T(-1)/T(2)))) * r2 + (T(2))) * r2 + ((T(-1)))) - (r1 < T(1) ? ((((T(1)/T(2)))) * r1) * r1 : ((((T(-1)/T(2)))) * r1 + (T(2))) * r1 + ((T(-1)))))) / (T(2.0) * hw);
+  }
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
+  T acc = (db1 > T(0.0) ? (((T(1)))) * t : ((((T(-1))))) * t + ((T(2))));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-1)))) * u);
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * (((T(1))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * ((((T(-1)))) * u);
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(0.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * (((T(1))) * u);
+  }
+  {  // break at 3 (r >= 0)
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * ((((T(-1)))) * u);
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5796,18 +6377,50 @@ T box_triangle_right(T x, T sigma) {
 template <class T>
 T box_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(-2)), T(4), (T(-2)), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    return ((n2 - n1) * (T(2)/T(3)) + ((r2 < T(1) ? (((((T(1)/T(3)))) * r2) * r2) * r2 : (((((T(1)/T(3)))) * r2 + ((T(-2)))) * r2 + (T(4))) * r2 + ((T(-2)))) - (r1 < T(1) ? (((((T(1)/T(3)))) * r1) * r1) * r1 : (((((T(1)/T(3)))) * r1 + ((T(-2)))) * r1 + (T(4))) * r1 + ((T(-2)))))) / (T(2.0) * hw);
+  }
+  const T s2 = sigma * sigma;
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
+  T acc = (db1 > T(0.0) ? ((((T(1)))) * t) * t + (((T(1))) * s2) : ((((T(1)))) * t + (((T(-4))))) * t + (((T(1))) * s2 + (T(4))));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-2)))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * ((((T(-2)))) * u);
+  }
+  {  // break at 3 (r >= 0)
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * ((((T(-2)))) * u);
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5826,22 +6439,70 @@ T box_triangle_sq(T x, T sigma) {
 template <class T>
 T tent_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(1), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(-1)), T(2), (T(-1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(6)), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(1)/T(3)), (T(-1)), T(1), (T(-1)/T(6)), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return T(1) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + T(1) * iw * (s2w + s1) + (((r2 < T(1) ? (((((T(1)/T(6)))) * r2) * r2) * r2 : (((((T(-1)/T(6)))) * r2 + (T(1))) * r2 + ((T(-1)))) * r2 + ((T(1)/T(3)))) + (r1 < T(1) ? (((((T(1)/T(6)))) * r1) * r1) * r1 : (((((T(-1)/T(6)))) * r1 + (T(1))) * r1 + ((T(-1)))) * r1 + ((T(1)/T(3))))) - T(2.0) * (t < T(1) ? (((((T(1)/T(6)))) * t) * t) * t : (((((T(-1)/T(6)))) * t + (T(1))) * t + ((T(-1)))) * t + ((T(1)/T(3))))) * iw * iw;
+  }
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
+  T acc = (db1 > T(0.0) ? (((T(1)))) * t : ((((T(-1))))) * t + ((T(2))));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-1)/T(3)))) * u);
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(1)/T(3)))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * ((((T(-1)/T(3)))) * u);
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(0.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(1)/T(3)))) * u);
+  }
+  {  // break at 3 (r >= 0)
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-1)/T(3)))) * u);
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5901,22 +6562,55 @@ T tent_triangle_right(T x, T sigma) {
 template <class T>
 T tent_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), T(1), {T(0), T(0), T(0), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(-2)), T(4), (T(-2)), (T(1)/T(3)), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), T(1), {T(0), T(0), T(0), T(0), (T(1)/T(12)), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(2)/T(3)), (T(-2)), T(2), (T(-2)/T(3)), (T(1)/T(12)), T(0), T(0), T(0)}},
-  };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(2)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(2)/T(3)) * iw * (s2w + s1) + (((r2 < T(1) ? ((((((T(1)/T(12)))) * r2) * r2) * r2) * r2 : ((((((T(1)/T(12)))) * r2 + ((T(-2)/T(3)))) * r2 + (T(2))) * r2 + ((T(-2)))) * r2 + ((T(2)/T(3)))) + (r1 < T(1) ? ((((((T(1)/T(12)))) * r1) * r1) * r1) * r1 : ((((((T(1)/T(12)))) * r1 + ((T(-2)/T(3)))) * r1 + (T(2))) * r1 + ((T(-2)))) * r1 + ((T(2)/T(3))))) - T(2.0) * (t < T(1) ? ((((((T(1)/T(12)))) * t) * t) * t) * t : ((((((T(1)/T(12)))) * t + ((T(-2)/T(3)))) * t + (T(2))) * t + ((T(-2)))) * t + ((T(2)/T(3))))) * iw * iw;
+  }
+  const T s2 = sigma * sigma;
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
+  T acc = (db1 > T(0.0) ? ((((T(1)))) * t) * t + (((T(1))) * s2) : ((((T(1)))) * t + (((T(-4))))) * t + (((T(1))) * s2 + (T(4))));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-2)/T(3)))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * ((((T(-2)/T(3)))) * u);
+  }
+  {  // break at 3 (r >= 0)
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-2)/T(3)))) * u);
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -6386,18 +7080,88 @@ T gaussian_square_sq(T x, T sigma) {
 template <class T>
 T box_square_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? ((T(1))) * r2 : ((T(1)/T(2)))) - (r1 < (T(1)/T(2)) ? ((T(1))) * r1 : ((T(1)/T(2)))))) / (T(2.0) * hw);
+  }
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -3/2 (r >= 0)
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
+  }
+  {  // break at -1/2 (r >= 0)
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+  {  // break at 3/2 (r >= 0)
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+  {  // break at 5/2 (r >= 0)
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -6452,18 +7216,88 @@ T box_square_right(T x, T sigma) {
 template <class T>
 T box_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::box_periodic(x, sigma, period, p, p1);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? ((T(1))) * r2 : ((T(1)/T(2)))) - (r1 < (T(1)/T(2)) ? ((T(1))) * r1 : ((T(1)/T(2)))))) / (T(2.0) * hw);
+  }
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -3/2 (r >= 0)
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
+  }
+  {  // break at -1/2 (r >= 0)
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+  {  // break at 3/2 (r >= 0)
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+  {  // break at 5/2 (r >= 0)
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -6481,22 +7315,93 @@ T box_square_sq(T x, T sigma) {
 template <class T>
 T tent_square_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(1)/T(2)))) * r2 + ((T(-1)/T(8)))) + (r1 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(1)/T(2)))) * r1 + ((T(-1)/T(8))))) - T(2.0) * (t < (T(1)/T(2)) ? ((((T(1)/T(2)))) * t) * t : (((T(1)/T(2)))) * t + ((T(-1)/T(8))))) * iw * iw;
+  }
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -3/2 (r >= 0)
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
+  }
+  {  // break at -1/2 (r >= 0)
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+  {  // break at 3/2 (r >= 0)
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+  {  // break at 5/2 (r >= 0)
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -6555,22 +7460,93 @@ T tent_square_right(T x, T sigma) {
 template <class T>
 T tent_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {(T(-1)/T(8)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(1)/T(2)))) * r2 + ((T(-1)/T(8)))) + (r1 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(1)/T(2)))) * r1 + ((T(-1)/T(8))))) - T(2.0) * (t < (T(1)/T(2)) ? ((((T(1)/T(2)))) * t) * t : (((T(1)/T(2)))) * t + ((T(-1)/T(8))))) * iw * iw;
+  }
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -3/2 (r >= 0)
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
+  }
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
+  }
+  {  // break at -1/2 (r >= 0)
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+  {  // break at 3/2 (r >= 0)
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+  {  // break at 5/2 (r >= 0)
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -6828,50 +7804,88 @@ T gaussian_pulse30_sq(T x, T sigma) {
 template <class T>
 T box_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) {
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? ((T(1))) * r2 : ((T(3)/T(10)))) - (r1 < (T(3)/T(10)) ? ((T(1))) * r1 : ((T(3)/T(10)))))) / (T(2.0) * hw);
   }
-  return detail::periodic_eval(x, period, p);
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -17/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_1[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::box_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::box_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
   }
-  return detail::box_periodic(x, sigma, period, p, p1);
+  {  // break at -7/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+  {  // break at 23/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -6926,50 +7940,88 @@ T box_pulse30_right(T x, T sigma) {
 template <class T>
 T box_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) {
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? ((T(1))) * r2 : ((T(3)/T(10)))) - (r1 < (T(3)/T(10)) ? ((T(1))) * r1 : ((T(3)/T(10)))))) / (T(2.0) * hw);
   }
-  return detail::periodic_eval(x, period, p);
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (T(2.0) * hw * sc);
+  {  // break at -17/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
   }
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_1[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::box_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::box_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
   }
-  return detail::box_periodic(x, sigma, period, p, p1);
+  {  // break at -7/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+  {  // break at 23/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -6988,58 +8040,93 @@ T box_pulse30_sq(T x, T sigma) {
 template <class T>
 T tent_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) {
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(3)/T(10)))) * r2 + ((T(-9)/T(200)))) + (r1 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(3)/T(10)))) * r1 + ((T(-9)/T(200))))) - T(2.0) * (t < (T(3)/T(10)) ? ((((T(1)/T(2)))) * t) * t : (((T(3)/T(10)))) * t + ((T(-9)/T(200))))) * iw * iw;
   }
-  return detail::periodic_eval(x, period, p);
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -17/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_1[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_2[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(49)/T(200)), (T(-7)/T(10)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::tent_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1, o0_2);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::tent_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1, o0_2);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
   }
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  {  // break at -7/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+  {  // break at 23/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -7099,58 +8186,93 @@ T tent_pulse30_right(T x, T sigma) {
 template <class T>
 T tent_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(3)/T(10)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p1[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  static const detail::Piece<T> p2[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(0), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {(T(-9)/T(200)), (T(3)/T(10)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) {
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::periodic_eval((r_o - bh0) - bl0, period, o0);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::periodic_eval((r_o - ch0) - cl0, period, o0);
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+    T n1;
+    const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
+    T n2;
+    const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(3)/T(10)))) * r2 + ((T(-9)/T(200)))) + (r1 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(3)/T(10)))) * r1 + ((T(-9)/T(200))))) - T(2.0) * (t < (T(3)/T(10)) ? ((((T(1)/T(2)))) * t) * t : (((T(3)/T(10)))) * t + ((T(-9)/T(200))))) * iw * iw;
   }
-  return detail::periodic_eval(x, period, p);
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
+  if (sigma == T(0.0)) return acc;
+  const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+  const T ik = T(1.0) / (hw * sc);
+  {  // break at -17/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
   }
-  const T r_o = detail::reduce_signed(x, period);
-  {  // break at 3/10
-    static const detail::Piece<T> o0[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_1[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(-7)/T(10)), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    static const detail::Piece<T> o0_2[2] = {
-        {T(0), (T(7)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-        {(T(7)/T(10)), T(1), {(T(49)/T(200)), (T(-7)/T(10)), (T(1)/T(2)), T(0), T(0), T(0), T(0), T(0)}},
-    };
-    const T bh0 = (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3));
-    const T bl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17));
-    if (abs(r_o - bh0) < T(0.15)) return detail::tent_periodic((r_o - bh0) - bl0, sigma, period, o0, o0_1, o0_2);
-    const T ch0 = (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7));
-    const T cl0 = (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17));
-    if (abs(r_o - ch0) < T(0.15)) return detail::tent_periodic((r_o - ch0) - cl0, sigma, period, o0, o0_1, o0_2);
+  {  // break at -1 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
   }
-  return detail::tent_periodic(x, sigma, period, p, p1, p2);
+  {  // break at -7/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+  {  // break at 23/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+  return acc;
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -7409,6 +8531,49 @@ T gaussian_floor_sq(T x, T sigma) {
 template <class T>
 T box_floor(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = ((n0));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((T(1)));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((T(1)));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((T(1)));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((T(1)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + (T(-1)) * box_fract<T>(x, sigma);
 }
@@ -7418,6 +8583,49 @@ T box_floor(T x, T sigma) {
 template <class T>
 T box_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (((n0*n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((((T(-1)) + (T(2)*n))));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((((T(-1)) + (T(2)*n))));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((((T(-1)) + (T(2)*n))));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((((T(-1)) + (T(2)*n))));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * box_fract_sq<T>(x, sigma) + (T(-2)) * (x * box_fract<T>(x, sigma) + box_fract_u<T>(x, sigma));
 }
@@ -7434,6 +8642,65 @@ T box_floor_sq(T x, T sigma) {
 template <class T>
 T tent_floor(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(3.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = ((n0));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + (T(-1)) * tent_fract<T>(x, sigma);
 }
@@ -7443,6 +8710,65 @@ T tent_floor(T x, T sigma) {
 template <class T>
 T tent_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(3.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (((n0*n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * tent_fract_sq<T>(x, sigma) + (T(-2)) * (x * tent_fract<T>(x, sigma) + tent_fract_u<T>(x, sigma));
 }
@@ -7702,6 +9028,49 @@ T gaussian_ceil_sq(T x, T sigma) {
 template <class T>
 T box_ceil(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (((T(1) + n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((T(1)));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((T(1)));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((T(1)));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((T(1)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + T(1) * box_fract<T>(-x, sigma);
 }
@@ -7711,6 +9080,49 @@ T box_ceil(T x, T sigma) {
 template <class T>
 T box_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = ((((T(2)*n0) + (n0*n0) + T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((((T(2)*n) + T(1))));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((((T(2)*n) + T(1))));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((((T(2)*n) + T(1))));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((((T(2)*n) + T(1))));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * box_fract_sq<T>(-x, sigma) + T(2) * (x * box_fract<T>(-x, sigma) - box_fract_u<T>(-x, sigma));
 }
@@ -7727,6 +9139,65 @@ T box_ceil_sq(T x, T sigma) {
 template <class T>
 T tent_ceil(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(3.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (((T(1) + n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((T(1)) * (T(1)/T(2)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + T(1) * tent_fract<T>(-x, sigma);
 }
@@ -7736,6 +9207,65 @@ T tent_ceil(T x, T sigma) {
 template <class T>
 T tent_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(3.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = ((((T(2)*n0) + (n0*n0) + T(1))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return ((sigma*sigma) + (x*x)) + T(1) * tent_fract_sq<T>(-x, sigma) + T(2) * (x * tent_fract<T>(-x, sigma) - tent_fract_u<T>(-x, sigma));
 }
@@ -8471,6 +10001,49 @@ T gaussian_trunc_sq(T x, T sigma) {
 template <class T>
 T box_trunc(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (n0 < T(0.0) ? (((T(1) + n0))) : ((n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (T(1) + x) + (T(-1)) * box_fract<T>(x, sigma) + (T(-1)) * box_step<T>(x, sigma);
 }
@@ -8482,6 +10055,49 @@ T box_trunc(T x, T sigma) {
 template <class T>
 T box_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(2.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (n0 < T(0.0) ? ((((T(2)*n0) + (n0*n0) + T(1)))) : (((n0*n0))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (T(2.0) * hw * sc);
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+      }
+      return acc;
+    }
+  }
   static const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
@@ -8502,6 +10118,65 @@ T box_trunc_sq(T x, T sigma) {
 template <class T>
 T tent_trunc(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(3.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (n0 < T(0.0) ? (((T(1) + n0))) : ((n0)));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
+      }
+      return acc;
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return (T(1) + x) + (T(-1)) * tent_fract<T>(x, sigma) + (T(-1)) * tent_step<T>(x, sigma);
 }
@@ -8513,6 +10188,65 @@ T tent_trunc(T x, T sigma) {
 template <class T>
 T tent_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  {  // narrow kernels: the break sum centred on n0 = floor(x)
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    if (sigma > T(0.0) && hw <= T(3.0)) {
+      const T n0 = floor(x);
+      const T y = x - n0;
+    T acc = (n0 < T(0.0) ? ((((T(2)*n0) + (n0*n0) + T(1)))) : (((n0*n0))));
+      const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
+      const T ik = T(1.0) / (hw * sc);
+      {  // break at n0 + -2
+        const T n = n0 + T(-2.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + -1
+        const T n = n0 + T(-1.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 0
+        const T n = n0 + T(0.0);
+        const T d = n - x;
+        const T L = hw + d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc -= v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 1
+        const T n = n0 + T(1.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 2
+        const T n = n0 + T(2.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
+      }
+      {  // break at n0 + 3
+        const T n = n0 + T(3.0);
+        const T d = n - x;
+        const T L = hw - d;
+        const T l = L > T(0.0) ? L : T(0.0);
+        const T v = l * sc * ik;
+        acc += v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
+      }
+      return acc;
+    }
+  }
   static const detail::Piece<T> pt6[2] = {
       {-detail::inf<T>(), T(0), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
       {T(0), detail::inf<T>(), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},

@@ -1,0 +1,603 @@
+// Box and tent entries by the break decomposition, printed as straight-line C++ or GLSL.
+//
+// With q_j the polynomial of the piece containing x and, for each break b, e_k the Taylor
+// coefficients about b of the jump q_right - q_left (exact here), d = b - x:
+//   E f(x+U) = E q_j(x+U) + sum_b J_b,
+//   E q_j(x+U) = sum over even k of g_k m_k (g: q_j about x), m_k = E U^k: box h^k/(k+1) (h =
+//     sqrt3 sigma), tent 2 w^k/((k+1)(k+2)) (w = sqrt6 sigma); printed as a polynomial in x and
+//     sigma^2 with exact coefficients;
+//   box:  J_b = (u/2h) P(u),         P(u) = sum_k e_k u^k/(k+1),
+//   tent: J_b = (u/w)(|u|/w) Q(u),   Q(u) = sum_k e_k u^k/((k+1)(k+2)),
+// u = +L for b right of x (d > 0), -L for b left of it (d <= 0), L = max(halfwidth - |d|, 0) the
+// length of the support beyond b: (1/2h) int_b^{x+h} D = (1/2h) sum e_k L^{k+1}/(k+1) on the right,
+// -(1/2h) int_{x-h}^b D = -(1/2h) sum e_k (-L)^{k+1}/(-(k+1)) on the left, and the tent's weight
+// (w - |t - x|)/w^2 gives the (k+1)(k+2) the same way. Nothing is truncated (compact kernels), L is
+// formed from the exact offset d (no difference of rounded ends is divided by the width), so tiny
+// sigma is exact to rounding; the terms stay O(max|f|) while the polynomial extension of q_j over the
+// support stays O(max|f|), which bounds the width this form is used for.
+#include "emit_box_tent_breaks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "emit_syntax.hpp"
+
+namespace bl::rulegen {
+namespace {
+
+using GiNaC::numeric;
+using sym::Kernel;
+using sym::PolyPiece;
+
+// The largest growth of the pieces' polynomial extensions over the support (in units of max|f|) the
+// break sum is used for: its terms, and so its rounding, scale with it (float: 32 * 1e-7 << 2e-5).
+constexpr double kMaxGrowth = 32;
+
+// Horner form of sum_k c[k] v^k; an empty c[k] is a zero coefficient.
+std::string horner(const Syntax& s, const std::vector<std::string>& c, const std::string& v) {
+  int top = static_cast<int>(c.size()) - 1;
+  while (top >= 0 && c[top].empty()) --top;
+  if (top < 0) return s.dbl(0);
+  std::string r = c[top];
+  for (int k = top - 1; k >= 0; --k) r = "(" + r + ") * " + v + (c[k].empty() ? "" : " + " + c[k]);
+  return r;
+}
+
+std::string coef(const Syntax& s, const GiNaC::ex& v) {
+  return v.is_zero() ? std::string() : "(" + s.ex(v) + ")";
+}
+
+// E[U^(2j)] / sigma^(2j): box 3^j/(2j+1), tent 2 6^j/((2j+1)(2j+2)).
+numeric even_moment(Kernel k, int j) {
+  const numeric a = k == Kernel::Box ? numeric(3) : numeric(6);
+  numeric m = j == 0 ? numeric(1) : a.power(j);
+  if (k == Kernel::Box) return m / numeric(2 * j + 1);
+  return numeric(2) * m / numeric((2 * j + 1) * (2 * j + 2));
+}
+
+// E q(v + U) = sum_n v^n sum_j C(n+2j, 2j) c_{n+2j} m_{2j} s2^j, Horner in v and s2 = sigma^2.
+template <class C>
+std::string kernel_mean(const Syntax& s, Kernel k, const std::vector<C>& c, const std::string& v) {
+  std::vector<std::string> cx;
+  for (size_t n = 0; n < c.size(); ++n) {
+    std::vector<std::string> cs;
+    for (size_t j = 0; n + 2 * j < c.size(); ++j)
+      cs.push_back(
+          coef(s, (GiNaC::binomial(numeric(static_cast<long>(n + 2 * j)), numeric(static_cast<long>(2 * j))) *
+                   GiNaC::ex(c[n + 2 * j]) * even_moment(k, static_cast<int>(j)))
+                      .expand()));
+    const std::string h = horner(s, cs, "s2");
+    cx.push_back(h == s.dbl(0) ? "" : "(" + h + ")");
+  }
+  return horner(s, cx, v);
+}
+
+// Coefficients of p(t + a) from those of p(t), exact.
+std::vector<numeric> shifted(const std::vector<numeric>& c, const numeric& a) {
+  std::vector<numeric> r(c.size(), 0);
+  for (size_t k = 0; k < c.size(); ++k)  // c_k (t + a)^k = c_k sum_m C(k, m) t^m a^(k-m)
+    for (size_t m = 0; m <= k; ++m)
+      r[m] += c[k] * GiNaC::binomial(numeric(static_cast<long>(k)), numeric(static_cast<long>(m))) *
+              (k == m ? numeric(1) : a.power(static_cast<long>(k - m)));
+  return r;
+}
+
+std::vector<numeric> minus(std::vector<numeric> a, const std::vector<numeric>& b) {
+  if (a.size() < b.size()) a.resize(b.size(), 0);
+  for (size_t k = 0; k < b.size(); ++k) a[k] -= b[k];
+  while (!a.empty() && a.back().is_zero()) a.pop_back();
+  return a;
+}
+
+double polyval(const std::vector<numeric>& c, double t) {
+  double r = 0;
+  for (size_t k = c.size(); k-- > 0;) r = r * t + c[k].to_double();
+  return r;
+}
+
+// The exact value of a double, as a rational.
+numeric exact_value(double v) {
+  if (v == 0) return 0;
+  int e = 0;
+  const double m = std::frexp(v, &e);
+  const numeric mi(static_cast<long>(std::ldexp(m, 53)));
+  return mi * GiNaC::pow(numeric(2), numeric(e - 53));
+}
+
+// b = hi + lo in T: hi the rounded value, lo the rest rounded (float's split for float, double's for
+// double and wider types); lo is "" when b is exact in both.
+std::pair<std::string, std::string> split_text(const Syntax& s, const numeric& b) {
+  const double hd = b.to_double(), ld = (b - exact_value(hd)).to_double();
+  const double hf = static_cast<float>(hd), lf = static_cast<float>((b - exact_value(hf)).to_double());
+  if (ld == 0 && lf == 0) return {s.dbl(hd), ""};
+  if (!s.cpp()) return {s.dbl(hf), s.dbl(lf)};
+  auto pick = [&](double vf, double vd) {
+    return "(sizeof(T) < sizeof(double) ? " + s.dbl(vf) + " : " + s.dbl(vd) + ")";
+  };
+  return {pick(hf, hd), pick(lf, ld)};
+}
+
+// One break of the sum: position B in the reduced coordinate (for r >= 0; B - shift for r < 0),
+// on which side of the point it always lies (-1 left, +1 right, 0 decided at run time), and its jump
+// polynomial's Taylor coefficients about B.
+struct Candidate {
+  numeric B;
+  int side = 0;
+  std::vector<numeric> e;
+};
+
+// The statements "const T d<i> = B - r" (exact offset, from B's two-part split; the shifted
+// constant when neg).
+std::string offset_decl(const Syntax& s, const std::string& name, const numeric& B, const numeric& shift) {
+  const auto [h0, l0] = split_text(s, B);
+  if (shift.is_zero()) return s.decl(name, l0.empty() ? h0 + " - r" : "(" + h0 + " - r) + " + l0);
+  const auto [h1, l1] = split_text(s, B - shift);
+  std::string v = "(neg ? " + h1 + " : " + h0 + ") - r";
+  if (!l0.empty() || !l1.empty())
+    v = "(" + v + ") + (neg ? " + (l1.empty() ? s.dbl(0) : l1) + " : " + (l0.empty() ? s.dbl(0) : l0) + ")";
+  return s.decl(name, v);
+}
+
+// The jump terms of the candidates: acc += J_b (see the file comment). `hw`: the half-width h or w,
+// `ik`: 1/(2h sc) or 1/(w sc), `sc` an exact power of two that keeps ik finite for tiny kernels.
+std::string jump_terms(const Syntax& s, Kernel k, const std::vector<Candidate>& cs, const numeric& shift) {
+  std::string out;
+  for (size_t i = 0; i < cs.size(); ++i) {
+    const auto& c = cs[i];
+    const std::string n = std::to_string(i);
+    std::ostringstream bt;
+    bt << c.B;
+    out += "  {  // break at " + bt.str() + (shift.is_zero() ? "" : " (r >= 0)") + "\n";
+    out += "  " + offset_decl(s, "d", c.B, shift);
+    const std::string L = c.side < 0 ? "hw + d" : (c.side > 0 ? "hw - d" : "hw - abs(d)");
+    out += "  " + s.decl("L", L);
+    out += "  " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
+    std::string u = c.side < 0 ? "-l" : (c.side > 0 ? "l" : "(d > " + s.dbl(0) + " ? l : -l)");
+    if (c.e.size() > 1) out += "  " + s.decl("u", u);
+    std::vector<std::string> pc;
+    for (size_t j = 0; j < c.e.size(); ++j)
+      pc.push_back(coef(s, c.e[j] / (k == Kernel::Box ? numeric(static_cast<long>(j + 1))
+                                                      : numeric(static_cast<long>((j + 1) * (j + 2))))));
+    const std::string P = horner(s, pc, "u");
+    // v = l/(2h) or l/w; the box's u/(2h) = +-v, the tent's (u/w)(l/w) = +-v^2.
+    out += "  " + s.decl("v", "l * sc * ik");
+    const std::string vk = k == Kernel::Box ? "" : " * v";
+    if (c.side != 0)
+      out += std::string("    acc ") + (c.side < 0 ? "-" : "+") + "= v" + vk + " * (" + P + ");\n";
+    else
+      out += "    acc += (d > " + s.dbl(0) + " ? v : -v)" + vk + " * (" + P + ");\n";
+    out += "  }\n";
+  }
+  return out;
+}
+
+// A straight-line chain "r < hi_0 ? p_0(r) : r < hi_1 ? ... : p_last(r)" over pieces on [0, T).
+std::string piece_chain(const Syntax& s, const std::vector<PolyPiece>& ps, const std::string& v) {
+  std::string out;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    std::vector<std::string> c;
+    for (const auto& x : ps[i].c) c.push_back(coef(s, x));
+    const std::string p = horner(s, c, v);
+    if (i + 1 < ps.size())
+      out += "(" + v + " < " + s.bound(ps[i].hi) + " ? " + p + " : ";
+    else
+      out += p + std::string(ps.size() - 1, ')');
+  }
+  return out;
+}
+
+bool is_pow2(const numeric& T) {
+  const double pd = T.to_double();
+  int e = 0;
+  return pd > 0 && std::frexp(pd, &e) == 0.5 && exact_value(pd) == T;
+}
+
+// Wide kernels (support more than ~K periods): Appendix C, the differences of the periodic
+// antiderivatives on the reduced argument (support.hpp box_periodic/tent_periodic (b), straight-line
+// here). Every term is O(max|f|) or O(A w / T) (A = F_p(T)), so the division by the width loses
+// nothing; the rounding of t +- h (eps h) and of the reductions (at most eps T) is divided by 2h.
+std::string wide_regime(const sym::Derived& d, const Syntax& s) {
+  const bool box = d.kernel == Kernel::Box;
+  std::string out;
+  // Power-of-two periods: no fmod (reduce_period_pow2; its rounding for -T < y < 0 is eps T, here
+  // divided by a width above K periods).
+  const std::string fn =
+      is_pow2(GiNaC::ex_to<numeric>(d.period)) ? "detail::reduce_period_pow2" : "detail::reduce_period";
+  auto reduce = [&](const std::string& r, const std::string& q, const std::string& y) {
+    if (s.cpp())
+      return "    T " + q + ";\n    const T " + r + " = " + fn + "(" + y + ", period, " + q + ");\n";
+    return "    vec2 " + r + "_q = bl_reduce_period(" + y + ", period);\n    float " + r + " = " + r +
+           "_q.x;\n    float " + q + " = " + r + "_q.y;\n";
+  };
+  out += reduce("r1", "n1", "t - hw") + reduce("r2", "n2", "t + hw");
+  const numeric T = GiNaC::ex_to<numeric>(d.period);
+  auto at_T = [&](const std::vector<PolyPiece>& P) {
+    numeric v = 0, tk = 1;
+    for (const auto& c : P.back().c) {
+      v += c * tk;
+      tk *= T;
+    }
+    return v;
+  };
+  if (box) {
+    out += "    return ((n2 - n1) * " + s.num(at_T(d.P1)) + " + (" + piece_chain(s, d.P1, "r2") + " - " +
+           piece_chain(s, d.P1, "r1") + ")) / (" + s.dbl(2) + " * hw);\n";
+    return out;
+  }
+  // Tent: every term divided by w^2 as it is formed (q^2 and w^2 overflow float past w ~ 1e19).
+  out += "  " + s.decl("iw", s.dbl(1) + " / hw");
+  out += "  " + s.decl("s1", "n1 * iw") + "  " + s.decl("s2w", "n2 * iw");
+  out += "  " + s.decl("g1", "period * s1 * ((n1 - " + s.dbl(1) + ") * iw) * " + s.dbl(0.5));
+  out += "  " + s.decl("g2", "period * s2w * ((n2 - " + s.dbl(1) + ") * iw) * " + s.dbl(0.5));
+  out += "    return " + s.num(at_T(d.P1)) + " * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + " +
+         s.num(at_T(d.P2)) + " * iw * (s2w + s1) + ((" + piece_chain(s, d.P2, "r2") + " + " +
+         piece_chain(s, d.P2, "r1") + ") - " + s.dbl(2) + " * " + piece_chain(s, d.P2, "t") +
+         ") * iw * iw;\n";
+  return out;
+}
+
+}  // namespace
+
+// Periodic f, pieces q_i on [0, T). The point is reduced to the exact signed remainder r = fmod(x, T)
+// in (-T, T) and t = r (r >= 0) or r + T (r < 0) in [0, T] (the rounding of r + T only moves the
+// argument of a polynomial, by eps T). The breaks b_i + m T that a support of half-width up to K T
+// can meet lie in (-K T, T + K T) (shifted by -T when r < 0): those left of 0 are always left of the
+// point, those from T on always right, the interior ones (0 < b_i < T) compared at run time; their
+// offsets d = b - r come from b's exact two-part split (a break float cannot hold, 3/10, is still seen
+// where it is by a kernel narrower than its rounding) and the same comparisons pick q_j, so the
+// piece and the side of every break always agree. Error: absolute, about (number of active terms +
+// degree) G max|f| eps, G the growth of the pieces' extensions over K periods (<= kMaxGrowth).
+// Wider kernels: wide_regime.
+std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
+  if (d.kernel == Kernel::Gaussian || d.body != sym::Body::PeriodicTable || d.pieces.empty()) return "";
+  const Syntax s{lang};
+  const auto& ps = d.pieces;
+  const size_t N = ps.size();
+  if (!GiNaC::is_a<numeric>(d.period)) return "";
+  const numeric T = GiNaC::ex_to<numeric>(d.period);
+  const double Td = T.to_double();
+  for (const auto& p : ps)
+    if (!p.lo.finite() || !p.hi.finite() || !GiNaC::is_a<numeric>(p.lo.value.evalf())) return "";
+  auto lo_of = [&](size_t i) { return GiNaC::ex_to<numeric>(ps[i].lo.value); };
+  auto hi_of = [&](size_t i) { return GiNaC::ex_to<numeric>(ps[i].hi.value); };
+  for (size_t i = 0; i < N; ++i)
+    if (!GiNaC::is_a<numeric>(ps[i].lo.value) || !GiNaC::is_a<numeric>(ps[i].hi.value)) return "";
+
+  // K: the widest support (in periods, each side) whose polynomial extension grows at most
+  // kMaxGrowth times max|f| (fract^2 over [-2, 3]: 9).
+  const double fmax = d.fmax > 0 ? d.fmax : 1;
+  double K = 0;
+  for (double k : {2.0, 1.0, 0.5, 0.25}) {
+    double g = 0;
+    for (size_t i = 0; i < N; ++i) {
+      const double a = lo_of(i).to_double() - k * Td, b = hi_of(i).to_double() + k * Td;
+      for (int j = 0; j <= 256; ++j) g = std::max(g, std::fabs(polyval(ps[i].c, a + (b - a) * j / 256.0)));
+    }
+    if (g <= kMaxGrowth * fmax) {
+      K = k;
+      break;
+    }
+  }
+  if (K == 0) return "";
+  // Each extra period costs a compare and a term per break: no more than needed for half-widths up
+  // to 2 (sigma up to 1.15 box, 0.82 tent), the wide regime beyond (triangle, T = 2: K = 1).
+  while (K > 0.25 && 0.5 * K * Td >= 2) K *= 0.5;
+
+  // The jumps: at b_0 = 0 between q_{N-1}(T + u) and q_0(u), at b_i = lo_i between q_{i-1} and q_i,
+  // each expanded about its break.
+  std::vector<std::pair<numeric, std::vector<numeric>>> jumps;  // (b, e)
+  for (size_t i = 0; i < N; ++i) {
+    const numeric b = i == 0 ? numeric(0) : lo_of(i);
+    const std::vector<numeric> right = shifted(ps[i].c, b);
+    const std::vector<numeric> left = shifted(ps[i == 0 ? N - 1 : i - 1].c, i == 0 ? T : b);
+    const std::vector<numeric> e = minus(right, left);
+    if (!e.empty()) jumps.push_back({b, e});
+  }
+  std::vector<Candidate> cands;
+  const numeric Kn = exact_value(K);
+  for (long m = -static_cast<long>(std::ceil(K)) - 1; m <= static_cast<long>(std::ceil(K)) + 1; ++m)
+    for (const auto& [b, e] : jumps) {
+      const numeric B = b + m * T;
+      if (!(B > -Kn * T) || !(B < T + Kn * T)) continue;
+      cands.push_back({B, B <= 0 ? -1 : (B >= T ? 1 : 0), e});
+    }
+  std::sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) { return a.B < b.B; });
+
+  std::string out;
+  out += s.decl("period", s.num(T));
+  out += "  if (!(sigma >= " + s.dbl(0) + ")) return " + s.nan() + ";  // sigma < 0 or NaN\n";
+  const std::string reduce =
+      s.cpp() && is_pow2(T) ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
+  out += s.decl("r", reduce + "(x, period)");
+  out += std::string("  ") + (s.cpp() ? "const bool" : "bool") + " neg = r < " + s.dbl(0) + ";\n";
+  out += s.decl("t", "neg ? r + period : r");
+  const bool box = d.kernel == Kernel::Box;
+  out += s.decl("hw", (box ? (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3")
+                           : (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")) +
+                          std::string(" * sigma"));
+  out += "  if (!(hw <= " + s.dbl(K * Td) + ")) {  // support wider than " + std::to_string(K).substr(0, 4) +
+         " periods each side\n" + wide_regime(d, s) + "  }\n";
+
+  // The base: q_j(t + U) in mean, j picked by the interior breaks' offsets.
+  int maxdeg = 0;
+  for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
+  if (maxdeg >= 2) out += s.decl("s2", "sigma * sigma");
+  std::string base;
+  size_t opened = 0;
+  for (size_t i = 0; i < N; ++i) {
+    const std::string m = kernel_mean(s, d.kernel, ps[i].c, "t");
+    if (i + 1 < N) {
+      const std::string di = "db" + std::to_string(i + 1);
+      out += offset_decl(s, di, lo_of(i + 1), T);
+      base += "(" + di + " > " + s.dbl(0) + " ? " + m + " : ";
+      ++opened;
+    } else {
+      base += m + std::string(opened, ')');
+    }
+  }
+  out += "  " + s.T() + " acc = " + base + ";\n";
+  out += "  if (sigma == " + s.dbl(0) + ") return acc;\n";
+  // Tiny kernels: an exact power-of-two rescale of the offsets keeps 1/(width) finite.
+  out += s.decl("sc", "hw < " + s.dbl(1e-30) + " ? " + s.dbl(std::ldexp(1.0, 100)) + " : " + s.dbl(1));
+  out += s.decl("ik", s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + " * sc)");
+  return out + jump_terms(s, d.kernel, cands, T) + "  return acc;\n";
+}
+
+namespace {
+
+// The polynomial f(x) on [n, n+1) of a staircase combination (floor, ceil, trunc: poly(x) plus
+// multiples of fract(+-x) and of piecewise atomics with integer breaks such as step) for the integers
+// n of one region (regions: split by the piecewise atomics' breaks z, n < z or n >= z), as an
+// expression in x and the symbol n; nullopt when a term is of another kind.
+struct Staircase {
+  std::vector<long> z;           // region boundaries, sorted
+  std::vector<GiNaC::ex> piece;  // per region (z.size() + 1): f on [n, n+1)
+};
+
+std::optional<Staircase> staircase_of(const sym::Derived& lin, const std::vector<sym::Derived>& ds,
+                                      const GiNaC::symbol& n, bool squared) {
+  const GiNaC::ex x = sym::var_x();
+  auto atomic = [&](const std::string& name) -> const sym::Atomic* {
+    for (const auto& e : ds)
+      if (e.atomic && e.atomic_name == name) return e.atomic;
+    return nullptr;
+  };
+  Staircase st;
+  for (const auto& t : lin.terms) {
+    if (t.kind != sym::CombinationTerm::Kind::Smoothed || t.xpow != 0 || t.squared) return std::nullopt;
+    const sym::Atomic* a = atomic(t.atomic);
+    if (!a) return std::nullopt;
+    if (a->cls == sym::AtomicClass::Piecewise) {
+      if (t.arg_sign != 1) return std::nullopt;
+      for (size_t i = 0; i + 1 < a->pieces.size(); ++i) {
+        const GiNaC::ex b = a->pieces[i].hi.value;
+        if (!GiNaC::is_a<numeric>(b) || !GiNaC::ex_to<numeric>(b).is_integer()) return std::nullopt;
+        st.z.push_back(GiNaC::ex_to<numeric>(b).to_long());
+      }
+    } else if (a->cls == sym::AtomicClass::Periodic) {
+      if (!a->period || !(*a->period - 1).is_zero() || a->pieces.size() != 1) return std::nullopt;
+    } else {
+      return std::nullopt;
+    }
+  }
+  std::sort(st.z.begin(), st.z.end());
+  st.z.erase(std::unique(st.z.begin(), st.z.end()), st.z.end());
+  for (size_t r = 0; r <= st.z.size(); ++r) {
+    const long rep = r == 0 ? (st.z.empty() ? 0 : st.z[0] - 1) : st.z[r - 1];  // an n of the region
+    GiNaC::ex f = lin.poly;
+    for (const auto& t : lin.terms) {
+      const sym::Atomic* a = atomic(t.atomic);
+      GiNaC::ex v;
+      if (a->cls == sym::AtomicClass::Periodic) {
+        // fract-like: A(x) = q(x - n) on [n, n+1); A(-x) = q(n + 1 - x) there (x not an integer).
+        v = a->pieces[0].f.subs(x == (t.arg_sign > 0 ? x - n : n + 1 - x));
+      } else {
+        const double mid = rep + 0.5;
+        for (const auto& pc : a->pieces)
+          if ((!pc.lo.finite() || pc.lo.to_double() < mid) && (!pc.hi.finite() || mid < pc.hi.to_double()))
+            v = pc.f;
+      }
+      f += t.coeff * v;
+    }
+    if (squared) f = f * f;
+    st.piece.push_back(f.expand());
+  }
+  return st;
+}
+
+// The jump f(n+) - f(n-) at the integer n as a polynomial in u = x - n (coefficients in n), printed
+// per region: "n < z0 ? e(region 0) : n == z0 ? e(at z0) : ...".
+std::string region_chain(const Syntax& s, const Staircase& st, const GiNaC::symbol& n, size_t k) {
+  const GiNaC::symbol u("u");
+  const GiNaC::ex x = sym::var_x();
+  auto coeff_of = [&](const GiNaC::ex& right, const GiNaC::ex& left) {
+    const GiNaC::ex D = (right.subs(x == n + u) - left.subs(x == n + u)).expand();
+    return D.coeff(u, static_cast<int>(k));
+  };
+  auto text = [&](const GiNaC::ex& e) { return e.is_zero() ? s.dbl(0) : "(" + s.ex(e) + ")"; };
+  std::string out;
+  for (size_t r = 0; r < st.z.size(); ++r) {
+    const GiNaC::ex inside = coeff_of(st.piece[r], st.piece[r].subs(n == n - 1));
+    const GiNaC::ex at = coeff_of(st.piece[r + 1], st.piece[r].subs(n == n - 1)).subs(n == st.z[r]);
+    out += "(n < " + s.dbl(static_cast<double>(st.z[r])) + " ? " + text(inside) +
+           " : n == " + s.dbl(static_cast<double>(st.z[r])) + " ? " + text(at) + " : ";
+  }
+  const GiNaC::ex last = coeff_of(st.piece.back(), st.piece.back().subs(n == n - 1));
+  return out + text(last) + std::string(st.z.size(), ')');
+}
+
+}  // namespace
+
+// Staircases (floor, ceil, trunc, their squares), sigma > 0 (sigma = 0 keeps the plain values at the
+// integers, where ceil is not right-continuous). Centred on n0 = floor(x) (exact): the breaks n = n0 +
+// j, j in (-K, 1 + K), lie left of x for j <= 0 and right for j >= 1, so no comparison picks a side;
+// their offsets n - x are exact near x (y = x - n0 is not: -1e-9 - (-1) rounds to 1 in float, so y
+// is only the base polynomial's argument, where its rounding moves the value by eps n0); the base is f's
+// polynomial on [n0, n0+1) in y (coefficients in n0: floor^2 is n0^2 there) and each jump's coefficients are
+// polynomials in n = n0 + j (floor^2: 2n - 1, trunc^2: 2n - sign(n)), per region of n. Nothing of size x^2 is
+// formed as a difference: the result's terms are n0^p times O(1) staircase averages. Error: relative, about
+// (K + degree) eps. Wider kernels fall through to the caller's combination of periodic entries.
+std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
+                                      const std::vector<sym::Derived>* ds) {
+  if (d.kernel == Kernel::Gaussian || d.body != sym::Body::Combination || !ds || !d.atomic ||
+      !d.atomic->jumps_at_integers)
+    return "";
+  const sym::Derived* lin = nullptr;
+  for (const auto& e : *ds)
+    if (e.atomic == d.atomic && !e.squared && e.kernel == d.kernel && e.body == sym::Body::Combination)
+      lin = &e;
+  if (!lin) return "";
+  const GiNaC::symbol n("n"), n0("n0");
+  const auto st = staircase_of(*lin, *ds, n, d.squared);
+  if (!st) return "";
+  const Syntax s{lang};
+  const bool box = d.kernel == Kernel::Box;
+  // Tent: 3 steps each side (w <= 3, sigma <= 1.22: the whole bench_table range stays here).
+  const int K = box ? 2 : 3;
+  const GiNaC::ex x = sym::var_x();
+  const GiNaC::symbol v("v");
+  std::string out = "  {  // narrow kernels: the break sum centred on n0 = floor(x)\n";
+  out += "  " + s.decl("hw", (box ? (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3")
+                                  : (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")) +
+                                 std::string(" * sigma"));
+  out += "    if (sigma > " + s.dbl(0) + " && hw <= " + s.dbl(K) + ") {\n";
+  out += "    " + s.decl("n0", "floor(x)") + "    " + s.decl("y", "x - n0");
+  // Base: f(n0 + v) on [n0, n0+1), coefficients in v.
+  std::string base;
+  bool s2 = false;
+  for (size_t r = 0; r <= st->z.size(); ++r) {
+    const GiNaC::ex f = st->piece[r].subs(GiNaC::lst{x == n0 + v, n == n0}).expand();
+    std::vector<GiNaC::ex> c;
+    for (int k = 0; k <= f.degree(v); ++k) c.push_back(f.coeff(v, k));
+    s2 = s2 || c.size() > 2;
+    const std::string m = kernel_mean(s, d.kernel, c, "y");
+    if (r < st->z.size())
+      base += "(n0 < " + s.dbl(static_cast<double>(st->z[r])) + " ? " + m + " : ";
+    else
+      base += m + std::string(st->z.size(), ')');
+  }
+  if (s2) out += "    " + s.decl("s2", "sigma * sigma");
+  out += "    " + s.T() + " acc = " + base + ";\n";
+  out +=
+      "    " + s.decl("sc", "hw < " + s.dbl(1e-30) + " ? " + s.dbl(std::ldexp(1.0, 100)) + " : " + s.dbl(1));
+  out += "    " + s.decl("ik", s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + " * sc)");
+  int maxdeg = 0;
+  {
+    const GiNaC::symbol u("u");
+    for (const auto& p : st->piece) maxdeg = std::max(maxdeg, p.degree(x));
+  }
+  for (int j = 1 - K; j <= K; ++j) {
+    const std::string J = s.dbl(j);
+    std::vector<std::string> pc;
+    for (int k = 0; k <= maxdeg; ++k) {
+      const std::string e = region_chain(s, *st, n, static_cast<size_t>(k));
+      if (e == s.dbl(0)) {
+        pc.push_back("");
+        continue;
+      }
+      const long den = box ? k + 1 : (k + 1) * (k + 2);
+      pc.push_back(den == 1 ? e : e + " * " + s.num(numeric(1, den)));
+    }
+    bool uses_u = false;
+    for (size_t k = 1; k < pc.size(); ++k) uses_u = uses_u || !pc[k].empty();
+    out += "      {  // break at n0 + " + std::to_string(j) + "\n";
+    out += "      " + s.decl("n", "n0 + " + J) + "      " + s.decl("d", "n - x");
+    out += "      " + s.decl("L", j <= 0 ? "hw + d" : "hw - d");
+    out += "      " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
+    if (uses_u) out += "      " + s.decl("u", j <= 0 ? "-l" : "l");
+    const std::string P = horner(s, pc, "u");
+    // Static sides: u = +-l, the tent's (u/w)(l/w) = +-(l/w)^2.
+    out += "      " + s.decl("v", "l * sc * ik");
+    out += std::string("        acc ") + (j <= 0 ? "-" : "+") + "= " + (box ? "v" : "v * v") + " * (" + P +
+           ");\n";
+    out += "      }\n";
+  }
+  return out + "      return acc;\n    }\n  }\n";
+}
+
+// Whole-line piecewise polynomials (abs, sign, step, saturate, smoothstep and their squares): the
+// same break sum on x itself, every finite break compared at run time (its offset d = b - x from b's
+// two-part split also picks q_j, so piece and sides agree). No reduction is needed: E q_j(x+U) is a
+// polynomial in x and sigma^2, and for |x| >> h the terms vanish. With one break nothing cancels at
+// any width (abs: the result is ~max(|x|, h/2)); with bounded pieces (saturate) the jump terms grow
+// like h/W (W the narrowest bounded piece) and cancel, so the form is used for h <= K W (K from the
+// pieces' growth as for periodic atomics), the generic per-piece box_pw/tent_pw beyond. sigma = 0
+// and NaN fall through too. Error: absolute, about (breaks + degree) G max|f| eps (G <= kMaxGrowth),
+// relative to |q_j(x)| for large |x|.
+std::string box_tent_piecewise_narrow(const sym::Derived& d, sym::Lang lang) {
+  if (d.kernel == Kernel::Gaussian || d.body != sym::Body::PiecewiseTable || d.pieces.size() < 2) return "";
+  const auto& ps = d.pieces;
+  const size_t N = ps.size();
+  for (size_t i = 0; i + 1 < N; ++i)
+    if (!ps[i].hi.finite() || !GiNaC::is_a<numeric>(ps[i].hi.value)) return "";
+  auto b_of = [&](size_t i) { return GiNaC::ex_to<numeric>(ps[i].hi.value); };
+  double W = HUGE_VAL, fmax = 0;
+  for (size_t i = 1; i + 1 < N; ++i) W = std::min(W, (b_of(i) - b_of(i - 1)).to_double());
+  double limit = 1e18;  // one break: any width (bounded so that l^2 and 1/width stay finite)
+  if (N > 2) {
+    // max|f| over the bounded pieces, and the growth of their extensions over K W each side.
+    for (size_t i = 1; i + 1 < N; ++i) {
+      const double a = b_of(i - 1).to_double(), b = b_of(i).to_double();
+      for (int j = 0; j <= 256; ++j)
+        fmax = std::max(fmax, std::fabs(polyval(ps[i].c, a + (b - a) * j / 256.0)));
+    }
+    if (fmax == 0) fmax = 1;
+    double K = 0;
+    for (double k : {2.0, 1.0, 0.5, 0.25}) {
+      double g = 0;
+      for (size_t i = 0; i < N; ++i) {
+        const double lo = i == 0 ? b_of(0).to_double() - 2 * k * W : b_of(i - 1).to_double() - k * W;
+        const double hi = i + 1 == N ? b_of(N - 2).to_double() + 2 * k * W : b_of(i).to_double() + k * W;
+        for (int j = 0; j <= 256; ++j)
+          g = std::max(g, std::fabs(polyval(ps[i].c, lo + (hi - lo) * j / 256.0)));
+      }
+      if (g <= kMaxGrowth * fmax) {
+        K = k;
+        break;
+      }
+    }
+    if (K == 0) return "";
+    limit = K * W;
+  }
+  std::vector<Candidate> cands;
+  for (size_t i = 0; i + 1 < N; ++i) {
+    const std::vector<numeric> e = minus(shifted(ps[i + 1].c, b_of(i)), shifted(ps[i].c, b_of(i)));
+    if (!e.empty()) cands.push_back({b_of(i), 0, e});
+  }
+  const Syntax s{lang};
+  const bool box = d.kernel == Kernel::Box;
+  std::string out = "  {  // the break sum (narrow enough kernels; see emit_box_tent_breaks.cpp)\n";
+  out += "  " + s.decl("hw", (box ? (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3")
+                                  : (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")) +
+                                 std::string(" * sigma"));
+  out += "    if (sigma > " + s.dbl(0) + " && hw <= " + s.dbl(limit) + ") {\n";
+  out += "    " + s.decl("r", "x");
+  int maxdeg = 0;
+  for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
+  if (maxdeg >= 2) out += "    " + s.decl("s2", "sigma * sigma");
+  std::string base;
+  for (size_t i = 0; i < N; ++i) {
+    const std::string m = kernel_mean(s, d.kernel, ps[i].c, "r");
+    if (i + 1 < N) {
+      const std::string di = "db" + std::to_string(i);
+      out += "  " + offset_decl(s, di, b_of(i), 0);
+      base += "(" + di + " > " + s.dbl(0) + " ? " + m + " : ";
+    } else {
+      base += m + std::string(N - 1, ')');
+    }
+  }
+  out += "    " + s.T() + " acc = " + base + ";\n";
+  out +=
+      "    " + s.decl("sc", "hw < " + s.dbl(1e-30) + " ? " + s.dbl(std::ldexp(1.0, 100)) + " : " + s.dbl(1));
+  out += "    " + s.decl("ik", s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + " * sc)");
+  std::string terms = jump_terms(s, d.kernel, cands, 0);
+  for (size_t at = 0; (at = terms.find("\n  ", at)) != std::string::npos; at += 3) terms.insert(at + 1, "  ");
+  return out + "  " + terms + "      return acc;\n    }\n  }\n";
+}
+
+}  // namespace bl::rulegen

@@ -1,0 +1,30 @@
+// Box and tent entries of polynomial piecewise and periodic atomics as straight-line code, by the
+// break decomposition (the box/tent counterpart of emit_common.cpp's body_gauss_pw):
+//   E f(x+U) = E q_j(x+U) + sum over breaks b within the kernel's support of one jump term,
+// q_j the polynomial of the piece containing x, the jump terms exact integrals of the jump
+// polynomial over the part of the support beyond b. See emit_box_tent_breaks.cpp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "derived.hpp"
+#include "printer.hpp"
+
+namespace bl::rulegen {
+
+// The body of a box or tent PeriodicTable entry (polynomial pieces), or "" where this form does not
+// apply (Gaussian kernel, or polynomials whose extension over a period would cancel).
+std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang);
+
+// For a box or tent Combination entry of a staircase (floor, ceil, trunc and their squares):
+// statements that return the break sum when the kernel spans at most a few steps, else fall through
+// (prepend them to the combination body); "" where the form does not apply.
+std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds);
+
+// For a box or tent PiecewiseTable entry with polynomial pieces: statements that return the break
+// sum when sigma > 0 and the kernel is narrow enough, else fall through (prepend them to the
+// piecewise body); "" where the form does not apply.
+std::string box_tent_piecewise_narrow(const sym::Derived& d, sym::Lang lang);
+
+}  // namespace bl::rulegen
