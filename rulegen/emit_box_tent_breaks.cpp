@@ -520,6 +520,66 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   return out + "      return acc;\n    }\n  }\n";
 }
 
+// Gaussian staircases whose combination has a half-line term (trunc^2: f constant on each [n, n+1), its jump
+// J_n a constant per region of n, trunc^2: 2n - sign(n)), near 0 where the caller's combination would
+// take the generic half-line series (gaussian_fract_right): E f(x+U) = f(n0) + sum_{n > x} J_n
+// Phic((n - x)/sigma) - sum_{n <= x} J_n Phic((x - n)/sigma), n0 = floor(x), over the breaks n0 + j,
+// j in (-K, K]; each Phic is one exp (float) or one erfc (double) and the offsets n - x are exact. The
+// dropped breaks lie >= K from x, so for sigma <= K / t_req their terms are below sum_{m>=0} 2 (2(|x| + K
+// + m) + 1) Phic(t_req + m/sigma) (|x| < 7 sigma here, K <= 4): float t_req = 6 (Phic = 1e-9: < 4e-8
+// absolute), double t_req = 8.5 (Phic = 1e-17: < 4e-16). Offsets past tail_cut sd are taken at tail_cut
+// (no subnormal exp; Phic there < 1e-19). Tiny sigma (below 1e-30 float, 1e-300 double, where 1/sigma
+// could overflow), wider sigma and wider types fall through to the combination. C++ only.
+std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds) {
+  if (lang != sym::Lang::Cpp || d.kernel != Kernel::Gaussian || d.body != sym::Body::Combination || !ds ||
+      !d.atomic || !d.atomic->jumps_at_integers)
+    return "";
+  const sym::Derived* lin = nullptr;
+  for (const auto& e : *ds)
+    if (e.atomic == d.atomic && !e.squared && e.kernel == d.kernel && e.body == sym::Body::Combination)
+      lin = &e;
+  if (!lin) return "";
+  const GiNaC::symbol n("n"), n0("n0");
+  const auto st = staircase_of(*lin, *ds, n, d.squared);
+  if (!st || st->z.empty()) return "";
+  // Only where the combination takes a half-line series (trunc^2): trunc's own near branch is cheaper.
+  bool half_lines = false;
+  for (const auto& t : d.terms) half_lines = half_lines || t.kind == sym::CombinationTerm::Kind::HalfLines;
+  if (!half_lines) return "";
+  const GiNaC::ex x = sym::var_x();
+  for (const auto& p : st->piece)
+    if (p.degree(x) != 0) return "";
+  const Syntax s{lang};
+  std::string base;
+  for (size_t r = 0; r <= st->z.size(); ++r) {
+    const std::string m = "(" + s.ex(st->piece[r].subs(n == n0).expand()) + ")";
+    if (r < st->z.size())
+      base += "(n0 < " + s.dbl(static_cast<double>(st->z[r])) + " ? " + m + " : ";
+    else
+      base += m + std::string(st->z.size(), ')');
+  }
+  const std::string J = region_chain(s, *st, n, 0);
+  auto block = [&](int K, double smax, const char* tiny) {
+    std::string out =
+        "      if (sigma >= " + s.dbl(std::atof(tiny)) + " && sigma <= " + s.dbl(smax) + ") {\n";
+    out += "        const T n0 = floor(x);\n        const T inv = T(1) / sigma;\n";
+    out += "        T acc = " + base + ";\n";
+    for (int j = 1 - K; j <= K; ++j) {
+      out += "        {  // break at n0 + " + std::to_string(j) + "\n";
+      out += "          const T n = n0 + " + s.dbl(j) + ";\n";
+      out += "          const T t = detail::min2((" + std::string(j <= 0 ? "x - n" : "n - x") +
+             ") * inv, detail::tail_cut<T>());\n";
+      out += std::string("          acc ") + (j <= 0 ? "-" : "+") + "= " + J + " * detail::Phic_tail(t);\n";
+      out += "        }\n";
+    }
+    return out + "        return acc;\n      }\n";
+  };
+  std::string out = "  if (abs(x) < T(7) * sigma) {  // near 0: the break sum (see the emitter's comment)\n";
+  out += "    if constexpr (std::is_same<T, float>::value) {\n" + block(4, 4.0 / 6.0, "1e-30") + "    }\n";
+  out += "    if constexpr (std::is_same<T, double>::value) {\n" + block(4, 4.0 / 8.5, "1e-300") + "    }\n";
+  return out + "  }\n";
+}
+
 // Whole-line piecewise polynomials (abs, sign, step, saturate, smoothstep and their squares): the
 // same break sum on x itself, every finite break compared at run time (its offset d = b - x from b's
 // two-part split also picks q_j, so piece and sides agree). No reduction is needed: E q_j(x+U) is a

@@ -20,11 +20,15 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang);
 // For a box or tent Combination entry of a staircase (floor, ceil, trunc and their squares):
 // statements that return the break sum when the kernel spans at most a few steps, else fall through
 // (prepend them to the combination body); "" where the form does not apply.
-std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds);
+std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
+                                      const std::vector<sym::Derived>* ds);
 
 // For a box or tent PiecewiseTable entry with polynomial pieces: statements that return the break
 // sum when sigma > 0 and the kernel is narrow enough, else fall through (prepend them to the
 // piecewise body); "" where the form does not apply.
+// Gaussian trunc/trunc^2 near 0, narrow kernels: a straight-line break sum ("" where it does not apply).
+std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds);
+
 std::string box_tent_piecewise_narrow(const sym::Derived& d, sym::Lang lang);
 
 }  // namespace bl::rulegen

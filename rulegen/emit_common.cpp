@@ -1243,7 +1243,8 @@ std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
       if (b.empty()) b = body_periodic(d, s);
       break;
     case Body::Combination:
-      b = box_tent_staircase_narrow(d, lang, ds) + body_combination(d, s, ds);
+      b = box_tent_staircase_narrow(d, lang, ds) + gauss_staircase_near(d, lang, ds) +
+          body_combination(d, s, ds);
       break;
     case Body::Antiderivative:
       b = body_antiderivative(d, s);

@@ -150,4 +150,53 @@ TEST(GaussPeriodicFast, FloatWithin2e5OfTheReference) {
   for (const Entry& e : entries()) check<float>(e, e.ef, 2e-5);
 }
 
+// gaussian trunc^2 near 0 (the straight-line break sum for sigma <= 2/3 float, 0.47 double, and the
+// combination beyond): reference sum_n trunc(n + 1/2)^2 P(n <= x + U < n + 1) in long double over the
+// steps within 40 sigma (the rest < 1e-300), sigma <= 10. Hard inputs: x = 0, +-1e-12, next to the
+// integers, the near-0 window edge 7 sigma, |x| = 1e6 (1e30 would not step the long double loop), far |x|;
+// sigma -> 0 and the tier edges.
+LD trunc_sq_reference(LD x, LD s) {
+  if (s == 0) {
+    const LD t = std::trunc(x);
+    return t * t;
+  }
+  LD acc = 0;
+  for (LD n = std::floor(x - 40 * s) - 1; n <= std::floor(x + 40 * s) + 1; ++n) {
+    const LD v = std::trunc(n + 0.5L);
+    const LD pa = Phic((n - x) / s), pb = Phic((n + 1 - x) / s);
+    acc += v * v * (pa - pb);
+  }
+  return acc;
+}
+
+template <class R>
+void check_trunc_sq(double tol) {
+  std::vector<R> xs = {R(0), R(1e-12), R(-1e-12), R(0.5), R(-0.5), R(2.3), R(-2.7), R(1e6), R(-1e6)};
+  for (R b : {R(1), R(-1), R(2), R(-2), R(3), R(-3)}) {
+    xs.push_back(b);
+    xs.push_back(std::nextafter(b, R(10)));
+    xs.push_back(std::nextafter(b, R(-10)));
+  }
+  int bad = 0;
+  for (R s : {R(1e-30), R(1e-12), R(1e-3), R(0.05), R(0.166), R(0.3), R(0.47), R(0.48), R(0.6), R(0.666),
+              R(0.667), R(1), R(3), R(10)})
+    for (R x0 : xs)
+      for (R x : {x0, R(x0 + R(7) * s), R(x0 - R(7) * s)}) {
+        const R v = bl::detail::gen::gaussian_trunc_sq<R>(x, s);
+        const LD ref = trunc_sq_reference(LD(x), LD(s));
+        const double err = std::fabs(double(LD(v) - ref)) / std::max(1.0, std::fabs(double(ref)));
+        if (!(err <= tol) && bad++ < 5)
+          ADD_FAILURE() << "trunc_sq" << (sizeof(R) == 4 ? " float" : " double") << " x=" << double(x)
+                        << " sigma=" << double(s) << ": " << double(v) << " vs " << double(ref);
+      }
+  EXPECT_EQ(bad, 0);
+}
+
+TEST(GaussPeriodicFast, TruncSqNearZeroDouble) {
+  check_trunc_sq<double>(1e-9);
+}
+TEST(GaussPeriodicFast, TruncSqNearZeroFloat) {
+  check_trunc_sq<float>(2e-5);
+}
+
 }  // namespace

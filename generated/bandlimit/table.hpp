@@ -9301,6 +9301,104 @@ T gaussian_trunc(T x, T sigma) {
 template <class T>
 T gaussian_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  if (abs(x) < T(7) * sigma) {  // near 0: the break sum (see the emitter's comment)
+    if constexpr (std::is_same<T, float>::value) {
+      if (sigma >= T(1e-30) && sigma <= T(0.6666666666666666)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        return acc;
+      }
+    }
+    if constexpr (std::is_same<T, double>::value) {
+      if (sigma >= T(1e-300) && sigma <= T(0.47058823529411764)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+        }
+        return acc;
+      }
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   const T Rf = detail::image_z(T(6.0), detail::series_tol<T>()) * sigma;
   if (x - Rf >= T(0.0)) {
