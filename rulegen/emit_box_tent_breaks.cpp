@@ -38,16 +38,6 @@ using sym::PolyPiece;
 // break sum is used for: its terms, and so its rounding, scale with it (float: 32 * 1e-7 << 2e-5).
 constexpr double kMaxGrowth = 32;
 
-// Horner form of sum_k c[k] v^k; an empty c[k] is a zero coefficient.
-std::string horner(const Syntax& s, const std::vector<std::string>& c, const std::string& v) {
-  int top = static_cast<int>(c.size()) - 1;
-  while (top >= 0 && c[top].empty()) --top;
-  if (top < 0) return s.dbl(0);
-  std::string r = c[top];
-  for (int k = top - 1; k >= 0; --k) r = "(" + r + ") * " + v + (c[k].empty() ? "" : " + " + c[k]);
-  return r;
-}
-
 std::string coef(const Syntax& s, const GiNaC::ex& v) {
   return v.is_zero() ? std::string() : "(" + s.ex(v) + ")";
 }

@@ -116,16 +116,6 @@ std::string body_closed(const Derived& d, const Syntax& s) {
   return out + "  return " + s.ex(d.closed) + ";\n";
 }
 
-// Horner form of sum_k c[k] v^k; an empty c[k] is a zero coefficient.
-std::string horner(const Syntax& s, const std::vector<std::string>& c, const std::string& v) {
-  int top = static_cast<int>(c.size()) - 1;
-  while (top >= 0 && c[top].empty()) --top;
-  if (top < 0) return s.dbl(0);
-  std::string r = c[top];
-  for (int k = top - 1; k >= 0; --k) r = "(" + r + ") * " + v + (c[k].empty() ? "" : " + " + c[k]);
-  return r;
-}
-
 std::string coef(const Syntax& s, const GiNaC::ex& v) {
   if (v.is_zero()) return "";
   if (!is_a<numeric>(v)) {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "derived.hpp"
+#include "emit_syntax.hpp"
 #include "kernels.hpp"
 #include "printer.hpp"
 
@@ -19,16 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Shortest double text that reads back as v, as T(...).
 std::string lit(double v) {
-  std::string t;
-  for (int prec = 6; prec <= 17; ++prec) {
-    std::ostringstream s;
-    s.precision(prec);
-    s << v;
-    t = s.str();
-    if (std::stod(t) == v) break;
-  }
-  if (t.find_first_of(".e") == std::string::npos) t += ".0";
-  return "T(" + t + ")";
+  return Syntax{Lang::Cpp}.dbl(v);
 }
 
 // A coefficient as text: a literal when numeric, else the printed expression; "" when zero.

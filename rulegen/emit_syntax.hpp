@@ -4,6 +4,7 @@
 
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "derived.hpp"
 #include "printer.hpp"
@@ -48,5 +49,15 @@ struct Syntax {
     return std::string("  ") + (cpp() ? "const " : "") + T() + " " + name + " = " + value + ";\n";
   }
 };
+
+// Horner form of sum_k c[k] v^k; an empty c[k] is a zero coefficient.
+inline std::string horner(const Syntax& s, const std::vector<std::string>& c, const std::string& v) {
+  int top = static_cast<int>(c.size()) - 1;
+  while (top >= 0 && c[top].empty()) --top;
+  if (top < 0) return s.dbl(0);
+  std::string r = c[top];
+  for (int k = top - 1; k >= 0; --k) r = "(" + r + ") * " + v + (c[k].empty() ? "" : " + " + c[k]);
+  return r;
+}
 
 }  // namespace bl::rulegen
