@@ -139,6 +139,19 @@ double break_bound(const Break& b, const ex& delta, double sig, double t) {
   return s;
 }
 
+// Locals j0..j<ne-1> = J_k(t) = int_t^inf (z - t)^k phi(z) dz of one break, by J_1 = phi - t J_0,
+// J_{k+1} = k J_{k-1} - t J_k: Phic alone (no exp in double) when neither J_1 nor phi (`ph`) is read.
+std::string j_chain(size_t ne, bool needs_phi, const std::string& in = "        ") {
+  std::string o = ne <= 1 && !needs_phi ? in + "const T j0 = detail::Phic_tail(t);\n"
+                                        : in + "T ph, j0;\n" + in + "detail::phi_Phic(t, ph, j0);\n";
+  for (size_t k = 1; k < ne; ++k) {
+    const std::string prev =
+        k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
+    o += in + "const T j" + std::to_string(k) + " = " + prev + " - t * j" + std::to_string(k - 1) + ";\n";
+  }
+  return o;
+}
+
 }  // namespace
 
 std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
@@ -263,16 +276,7 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
     o += "        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer\n";
     o += "        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());\n";
     const size_t ne = std::max(bl.e.size(), bR.e.size());
-    if (ne <= 1 && !bl.delta && !bR.delta)
-      o += "        const T j0 = detail::Phic_tail(t);\n";
-    else
-      o += "        T ph, j0;\n        detail::phi_Phic(t, ph, j0);\n";
-    for (size_t k = 1; k < ne; ++k) {
-      const std::string prev =
-          k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
-      o +=
-          "        const T j" + std::to_string(k) + " = " + prev + " - t * j" + std::to_string(k - 1) + ";\n";
-    }
+    o += j_chain(ne, bl.delta || bR.delta);
     bool blend = false;
     std::vector<std::string> et;
     for (size_t k = 0; k < ne; ++k) {
@@ -370,16 +374,7 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
            " + base) - r;  // exact near the breaks\n";
       o += "        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer\n";
       o += "        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());\n";
-      if (ne <= 1)
-        o += "        const T j0 = detail::Phic_tail(t);\n";
-      else
-        o += "        T ph, j0;\n        detail::phi_Phic(t, ph, j0);\n";
-      for (size_t k = 1; k < ne; ++k) {
-        const std::string prev =
-            k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
-        o += "        const T j" + std::to_string(k) + " = " + prev + " - t * j" + std::to_string(k - 1) +
-             ";\n";
-      }
+      o += j_chain(ne, false);
       bool two = false;
       std::vector<std::string> et(ne);
       for (size_t k = 0; k < ne; ++k) {
@@ -427,16 +422,7 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
         o += "      {\n        const T d = (" + blend(pos) + " + base) - r;  // exact near the break\n";
         o += std::string("        const T t = detail::min2(") + (side > 0 ? "d" : "-d") +
              " * inv, detail::tail_cut<T>());\n";
-        if (ne <= 1 && dl.empty())
-          o += "        const T j0 = detail::Phic_tail(t);\n";
-        else
-          o += "        T ph, j0;\n        detail::phi_Phic(t, ph, j0);\n";
-        for (size_t k = 1; k < ne; ++k) {
-          const std::string prev =
-              k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
-          o += "        const T j" + std::to_string(k) + " = " + prev + " - t * j" + std::to_string(k - 1) +
-               ";\n";
-        }
+        o += j_chain(ne, !dl.empty());
         const std::string term = horner(et, side > 0 ? "sigma" : "(-sigma)");
         if (term != "T(0)") o += std::string("        acc ") + (side > 0 ? "+" : "-") + "= " + term + ";\n";
         if (!dl.empty()) o += "        acc += " + dl + " * ph;\n";
@@ -496,16 +482,7 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
           blk += "          const T d = (" + lit(P.to_double()) + " + base) - r;  // exact near the break\n";
           blk += std::string("          const T t = detail::min2(") + (side > 0 ? "d" : "-d") +
                  " * inv, detail::tail_cut<T>());\n";
-          if (b.e.size() <= 1 && !b.delta)
-            blk += "          const T j0 = detail::Phic_tail(t);\n";
-          else
-            blk += "          T ph, j0;\n          detail::phi_Phic(t, ph, j0);\n";
-          for (size_t k = 1; k < b.e.size(); ++k) {
-            const std::string prev =
-                k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));
-            blk += "          const T j" + std::to_string(k) + " = " + prev + " - t * j" +
-                   std::to_string(k - 1) + ";\n";
-          }
+          blk += j_chain(b.e.size(), b.delta, "          ");
           std::string term = horner(et, side > 0 ? "sigma" : "(-sigma)");
           if (term != "T(0)")
             blk += std::string("          acc ") + (side > 0 ? "+" : "-") + "= " + term + ";\n";
