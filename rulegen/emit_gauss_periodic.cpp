@@ -446,33 +446,15 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
     }
     for (size_t j = 0; j < N && !blended; ++j) {
       std::string blk;
-      // E q_j(rp + U) = sum_m rp^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}.
-      const auto& c = sp.c[j];
-      std::vector<std::string> cx;
-      for (size_t m = 0; m < c.size(); ++m) {
-        std::vector<std::string> cs;
-        numeric df = 1;
-        for (size_t i = 0; m + 2 * i < c.size(); ++i) {
-          if (i > 0) df *= numeric(long(2 * i - 1));
-          cs.push_back(
-              coef_text(df * binomial(numeric(long(m + 2 * i)), numeric(long(2 * i))) * c[m + 2 * i]));
-        }
-        const std::string h = horner(cs, "s2");
-        cx.push_back(h == "T(0)" ? "" : "(" + h + ")");
-      }
+      const std::vector<std::string> cx = mean_coefs(j);  // E q_j(rp + U) in powers of rp
       blk += "        acc = " + horner(cx, "rp") + ";\n";
       if (p.nside == 0) blk += nearest_block(j);
       // Candidates: left breaks lo_j, lo_{j-1}, ...; right breaks hi_j, ...
       for (int side = -1; side <= 1 && p.nside > 0; side += 2) {
         for (int n = 0; n < p.nside; ++n) {
-          // break index and its position relative to this period
-          long idx = side < 0 ? long(j) - n : long(j) + 1 + n;
-          numeric shift = 0;
-          while (idx < 0) idx += long(N), shift -= T;
-          while (idx >= long(N)) idx -= long(N), shift += T;
+          const auto [idx, P] = slot(j, side, n);  // break type and position relative to this period
           const Break& b = br[idx];
           if (b.e.empty() && !b.delta) continue;
-          const numeric P = b.pos + shift;
           std::vector<std::string> et;
           for (size_t k = 0; k < b.e.size(); ++k) {
             const std::string t = coef_text(b.e[k]);
