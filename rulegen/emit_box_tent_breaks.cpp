@@ -421,6 +421,16 @@ std::string region_chain(const Syntax& s, const Staircase& st, const GiNaC::symb
   return out + text(last) + std::string(st.z.size(), ')');
 }
 
+// The combination entry of d's atomic itself (not squared) under d's kernel, whose terms define the
+// staircase (floor = x - fract, ...); nullptr when the table has none.
+const sym::Derived* linear_combination(const sym::Derived& d, const std::vector<sym::Derived>& ds) {
+  const sym::Derived* lin = nullptr;
+  for (const auto& e : ds)
+    if (e.atomic == d.atomic && !e.squared && e.kernel == d.kernel && e.body == sym::Body::Combination)
+      lin = &e;
+  return lin;
+}
+
 }  // namespace
 
 // Staircases (floor, ceil, trunc, their squares), sigma > 0 (sigma = 0 keeps the plain values at the
@@ -437,10 +447,7 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   if (d.kernel == Kernel::Gaussian || d.body != sym::Body::Combination || !ds || !d.atomic ||
       !d.atomic->jumps_at_integers)
     return "";
-  const sym::Derived* lin = nullptr;
-  for (const auto& e : *ds)
-    if (e.atomic == d.atomic && !e.squared && e.kernel == d.kernel && e.body == sym::Body::Combination)
-      lin = &e;
+  const sym::Derived* lin = linear_combination(d, *ds);
   if (!lin) return "";
   const GiNaC::symbol n("n"), n0("n0");
   const auto st = staircase_of(*lin, *ds, n, d.squared);
@@ -524,10 +531,7 @@ std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const st
   if (lang != sym::Lang::Cpp || d.kernel != Kernel::Gaussian || d.body != sym::Body::Combination || !ds ||
       !d.atomic || !d.atomic->jumps_at_integers)
     return "";
-  const sym::Derived* lin = nullptr;
-  for (const auto& e : *ds)
-    if (e.atomic == d.atomic && !e.squared && e.kernel == d.kernel && e.body == sym::Body::Combination)
-      lin = &e;
+  const sym::Derived* lin = linear_combination(d, *ds);
   if (!lin) return "";
   const GiNaC::symbol n("n"), n0("n0");
   const auto st = staircase_of(*lin, *ds, n, d.squared);
