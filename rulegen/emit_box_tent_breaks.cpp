@@ -563,7 +563,7 @@ std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const st
       out += "          const T n = n0 + " + s.dbl(j) + ";\n";
       out += "          const T t = detail::min2((" + std::string(j <= 0 ? "x - n" : "n - x") +
              ") * inv, detail::tail_cut<T>());\n";
-      out += std::string("          acc ") + (j <= 0 ? "-" : "+") + "= " + J + " * detail::Phic_tail(t);\n";
+      out += std::string("          acc ") + (j <= 0 ? "-" : "+") + "= " + J + " * detail::normal_Phic(t);\n";
       out += "        }\n";
     }
     return out + "        return acc;\n      }\n";

@@ -216,7 +216,8 @@ std::string body_gauss_pw(const Derived& d, const Syntax& s) {
     out += "  " + s.decl("t", "abs(db)");
     out += "    if (t < " + (s.cpp() ? std::string("detail::tail_cut<T>()") : s.dbl(9)) + ") {\n";
     out += "      " + s.T() + " j0;\n      " + s.T() + " ph;\n";
-    out += "      " + s.helper("phi_Phic") + "(t, ph, j0);\n";
+    out += "      " + (s.cpp() ? std::string("detail::normal_phi_Phic") : s.helper("phi_Phic")) +
+           "(t, ph, j0);\n";
     for (int k = 1; k <= dd; ++k) {
       const std::string prev =
           k == 1 ? "ph" : (k == 2 ? "j0" : s.dbl(k - 1) + " * j" + std::to_string(k - 2));

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "emit_common.hpp"
+#include "emit_normal_table.hpp"
 
 namespace bl::rulegen {
 using sym::Body;
@@ -49,13 +50,16 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
   const std::string tdir = BL_TEMPLATES_DIR;
   write_file(out_dir + "/bandlimit/support.hpp", read_file(tdir + "/support.hpp"));
   write_file(out_dir + "/bandlimit/emit_helpers.hpp", read_file(tdir + "/emit_helpers.hpp"));
+  write_file(out_dir + "/bandlimit/normal_fast.hpp", read_file(tdir + "/normal_fast.hpp"));
   write_file(out_dir + "/bandlimit/registry_types.hpp", read_file(tdir + "/registry_types.hpp"));
+  write_file(out_dir + "/bandlimit/normal_table.hpp", normal_table_hpp());
 
   std::ostringstream t;
   t << kBanner << "// The smoothed atomic functions: bl::<kernel>::<atomic>(x, sigma) = E[f(x + U)], U the\n"
     << "// kernel with standard deviation sigma (gaussian, box, tent); <atomic>_sq smooths f^2.\n"
     << "// float and double overloads; sigma = 0 gives f(x); sigma < 0 or NaN gives NaN.\n"
-    << "#pragma once\n\n#include \"emit_helpers.hpp\"\n#include \"support.hpp\"\n\n"
+    << "#pragma once\n\n#include \"emit_helpers.hpp\"\n#include \"normal_fast.hpp\"\n#include "
+       "\"support.hpp\"\n\n"
     << "namespace bl {\nnamespace detail {\nnamespace gen {\n\n";
   // Declarations first: combinations call other entries.
   for (const auto& a : cat.atomics) t << "template <class T>\nT " << plain_impl_name(a.name) << "(T x);\n";

@@ -142,8 +142,8 @@ double break_bound(const Break& b, const ex& delta, double sig, double t) {
 // Locals j0..j<ne-1> = J_k(t) = int_t^inf (z - t)^k phi(z) dz of one break, by J_1 = phi - t J_0,
 // J_{k+1} = k J_{k-1} - t J_k: Phic alone (no exp in double) when neither J_1 nor phi (`ph`) is read.
 std::string j_chain(size_t ne, bool needs_phi, const std::string& in = "        ") {
-  std::string o = ne <= 1 && !needs_phi ? in + "const T j0 = detail::Phic_tail(t);\n"
-                                        : in + "T ph, j0;\n" + in + "detail::phi_Phic(t, ph, j0);\n";
+  std::string o = ne <= 1 && !needs_phi ? in + "const T j0 = detail::normal_Phic(t);\n"
+                                        : in + "T ph, j0;\n" + in + "detail::normal_phi_Phic(t, ph, j0);\n";
   for (size_t k = 1; k < ne; ++k) {
     const std::string prev =
         k == 1 ? "ph" : (k == 2 ? "j0" : lit(double(k - 1)) + " * j" + std::to_string(k - 2));

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "emit_helpers.hpp"
+#include "normal_fast.hpp"
 #include "support.hpp"
 
 namespace bl {
@@ -2268,7 +2269,7 @@ T gaussian_abs_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T st = x < T(0) ? sigma : -sigma;
       acc += (x < T(0) ? T(1.0) : T(-1.0)) * ((T(2) * j1) * st);
@@ -2434,7 +2435,7 @@ T gaussian_sign_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T st = x < T(0) ? sigma : -sigma;
       acc += (x < T(0) ? T(1.0) : T(-1.0)) * (T(2) * j0);
     }
@@ -2602,7 +2603,7 @@ T gaussian_step_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T st = x < T(0) ? sigma : -sigma;
       acc += (x < T(0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
     }
@@ -2638,7 +2639,7 @@ T gaussian_step_sq_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T st = x < T(0) ? sigma : -sigma;
       acc += (x < T(0) ? T(1.0) : T(-1.0)) * (T(1) * j0);
     }
@@ -2841,7 +2842,7 @@ T gaussian_saturate_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T st = x < T(0) ? sigma : -sigma;
       acc += (x < T(0) ? T(1.0) : T(-1.0)) * ((T(1) * j1) * st);
@@ -2853,7 +2854,7 @@ T gaussian_saturate_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T st = x < T(1) ? sigma : -sigma;
       acc += (x < T(1) ? T(1.0) : T(-1.0)) * (((T(-1)) * j1) * st);
@@ -2898,7 +2899,7 @@ T gaussian_saturate_sq_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
       const T st = x < T(0) ? sigma : -sigma;
@@ -2911,7 +2912,7 @@ T gaussian_saturate_sq_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
       const T st = x < T(1) ? sigma : -sigma;
@@ -3172,7 +3173,7 @@ T gaussian_smoothstep_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
       const T j3 = T(2.0) * j1 - t * j2;
@@ -3186,7 +3187,7 @@ T gaussian_smoothstep_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
       const T j3 = T(2.0) * j1 - t * j2;
@@ -3260,7 +3261,7 @@ T gaussian_smoothstep_sq_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
       const T j3 = T(2.0) * j1 - t * j2;
@@ -3277,7 +3278,7 @@ T gaussian_smoothstep_sq_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T j2 = j0 - t * j1;
       const T j3 = T(2.0) * j1 - t * j2;
@@ -4963,7 +4964,7 @@ T gaussian_fract_raw(T x, T sigma) {
         const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         acc += sd * (T(-1.0) * j0);
         return acc;
       }
@@ -4972,13 +4973,13 @@ T gaussian_fract_raw(T x, T sigma) {
         {  // break at 0
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          const T j0 = detail::Phic_tail(t);
+          const T j0 = detail::normal_Phic(t);
           acc -= T(-1.0) * j0;
         }
         {  // break at 1
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          const T j0 = detail::Phic_tail(t);
+          const T j0 = detail::normal_Phic(t);
           acc += T(-1.0) * j0;
         }
       }
@@ -5022,7 +5023,7 @@ T gaussian_fract_raw(T x, T sigma) {
         const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         acc += sd * (T(-1.0) * j0);
         return acc;
       }
@@ -5031,13 +5032,13 @@ T gaussian_fract_raw(T x, T sigma) {
         {  // break at 0
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-          const T j0 = detail::Phic_tail(t);
+          const T j0 = detail::normal_Phic(t);
           acc -= T(-1.0) * j0;
         }
         {  // break at 1
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
-          const T j0 = detail::Phic_tail(t);
+          const T j0 = detail::normal_Phic(t);
           acc += T(-1.0) * j0;
         }
       }
@@ -5213,7 +5214,7 @@ T gaussian_fract_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + T(-1.0) * j0);
         return acc;
@@ -5224,7 +5225,7 @@ T gaussian_fract_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + T(-1.0) * j0;
         }
@@ -5232,7 +5233,7 @@ T gaussian_fract_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + T(-1.0) * j0;
         }
@@ -5284,7 +5285,7 @@ T gaussian_fract_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + T(-1.0) * j0);
         return acc;
@@ -5295,7 +5296,7 @@ T gaussian_fract_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + T(-1.0) * j0;
         }
@@ -5303,7 +5304,7 @@ T gaussian_fract_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + T(-1.0) * j0;
         }
@@ -5778,7 +5779,7 @@ T gaussian_triangle_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * (((hr * (w0 * T(-2.0) + w1 * T(2.0)) + hl * (w0 * T(2.0) + w1 * T(-2.0))) * j1) * (sd * sigma));
@@ -5788,7 +5789,7 @@ T gaussian_triangle_raw(T x, T sigma) {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc -= ((w0 * T(2.0) + w1 * T(-2.0)) * j1) * (-sigma);
       }
@@ -5796,7 +5797,7 @@ T gaussian_triangle_raw(T x, T sigma) {
         const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += ((w0 * T(-2.0) + w1 * T(2.0)) * j1) * sigma;
       }
@@ -5845,7 +5846,7 @@ T gaussian_triangle_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * (((hr * (w0 * T(-2.0) + w1 * T(2.0)) + hl * (w0 * T(2.0) + w1 * T(-2.0))) * j1) * (sd * sigma));
@@ -5855,7 +5856,7 @@ T gaussian_triangle_raw(T x, T sigma) {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc -= ((w0 * T(2.0) + w1 * T(-2.0)) * j1) * (-sigma);
       }
@@ -5863,7 +5864,7 @@ T gaussian_triangle_raw(T x, T sigma) {
         const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += ((w0 * T(-2.0) + w1 * T(2.0)) * j1) * sigma;
       }
@@ -6048,7 +6049,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * (((hr * (w0 * T(-4.0)) + hl * (w1 * T(-4.0))) * j1) * (sd * sigma));
@@ -6058,7 +6059,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc -= ((w1 * T(-4.0)) * j1) * (-sigma);
       }
@@ -6066,7 +6067,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
         const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += ((w0 * T(-4.0)) * j1) * sigma;
       }
@@ -6130,7 +6131,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * (((hr * (w0 * T(-4.0)) + hl * (w1 * T(-4.0))) * j1) * (sd * sigma));
@@ -6140,7 +6141,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc -= ((w1 * T(-4.0)) * j1) * (-sigma);
       }
@@ -6148,7 +6149,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
         const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += ((w0 * T(-4.0)) * j1) * sigma;
       }
@@ -6659,7 +6660,7 @@ T gaussian_square_raw(T x, T sigma) {
         const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
         return acc;
@@ -6667,13 +6668,13 @@ T gaussian_square_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
       {
         const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
@@ -6721,7 +6722,7 @@ T gaussian_square_raw(T x, T sigma) {
         const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
         return acc;
@@ -6729,13 +6730,13 @@ T gaussian_square_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
       {
         const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
@@ -6915,7 +6916,7 @@ T gaussian_square_sq_raw(T x, T sigma) {
         const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
         return acc;
@@ -6923,13 +6924,13 @@ T gaussian_square_sq_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
       {
         const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
@@ -6977,7 +6978,7 @@ T gaussian_square_sq_raw(T x, T sigma) {
         const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * ((hr * (w0 * T(-1.0) + w1 * T(1.0)) + hl * (w0 * T(1.0) + w1 * T(-1.0))) * j0);
         return acc;
@@ -6985,13 +6986,13 @@ T gaussian_square_sq_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(0.5)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         acc -= (w0 * T(1.0) + w1 * T(-1.0)) * j0;
       }
       {
         const T d = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        const T j0 = detail::Phic_tail(t);
+        const T j0 = detail::normal_Phic(t);
         acc += (w0 * T(-1.0) + w1 * T(1.0)) * j0;
       }
       return acc;
@@ -8326,7 +8327,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
         acc += ((T(2)*sigma)) * ph;
@@ -8338,7 +8339,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -8347,7 +8348,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -8404,7 +8405,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
         acc += ((T(2)*sigma)) * ph;
@@ -8416,7 +8417,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -8425,7 +8426,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -8823,7 +8824,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
         acc += ((T(2)*sigma)) * ph;
@@ -8835,7 +8836,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -8844,7 +8845,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -8901,7 +8902,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
         acc += ((T(2)*sigma)) * ph;
@@ -8913,7 +8914,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -8922,7 +8923,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9310,42 +9311,42 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
         {  // break at n0 + -3
           const T n = n0 + T(-3.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + -2
           const T n = n0 + T(-2.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + -1
           const T n = n0 + T(-1.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + 2
           const T n = n0 + T(2.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + 3
           const T n = n0 + T(3.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + 4
           const T n = n0 + T(4.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         return acc;
       }
@@ -9358,42 +9359,42 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
         {  // break at n0 + -3
           const T n = n0 + T(-3.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + -2
           const T n = n0 + T(-2.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + -1
           const T n = n0 + T(-1.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + 2
           const T n = n0 + T(2.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + 3
           const T n = n0 + T(3.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         {  // break at n0 + 4
           const T n = n0 + T(4.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::Phic_tail(t);
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
         return acc;
       }
@@ -9430,7 +9431,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
         acc += ((T(2)*sigma)) * ph;
@@ -9442,7 +9443,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9451,7 +9452,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9508,7 +9509,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
         acc += ((T(2)*sigma)) * ph;
@@ -9520,7 +9521,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9529,7 +9530,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9651,7 +9652,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
         acc += ((T(2)*sigma)) * ph;
@@ -9663,7 +9664,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9672,7 +9673,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9729,7 +9730,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
         acc += ((T(2)*sigma)) * ph;
@@ -9741,7 +9742,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9750,7 +9751,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9859,7 +9860,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     if (t < detail::tail_cut<T>()) {
       T j0;
       T ph;
-      detail::phi_Phic(t, ph, j0);
+      detail::normal_phi_Phic(t, ph, j0);
       const T j1 = ph - t * j0;
       const T st = x < T(0) ? sigma : -sigma;
       acc += (x < T(0) ? T(1.0) : T(-1.0)) * (((T(-2)) * j1) * st + (T(-1)) * j0);
@@ -9894,7 +9895,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
         acc += ((T(2)*sigma)) * ph;
@@ -9906,7 +9907,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9915,7 +9916,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9972,7 +9973,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
         T ph, j0;
-        detail::phi_Phic(t, ph, j0);
+        detail::normal_phi_Phic(t, ph, j0);
         const T j1 = ph - t * j0;
         acc += sd * ((T(-2.0) * j1) * (sd * sigma) + (((-lam) + (T(-1)))) * j0);
         acc += ((T(2)*sigma)) * ph;
@@ -9984,7 +9985,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(0.0) + base) - r;  // exact near the break
           const T t = detail::min2(-d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc -= (T(-2.0) * j1) * (-sigma) + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
@@ -9993,7 +9994,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
           const T d = (T(1.0) + base) - r;  // exact near the break
           const T t = detail::min2(d * inv, detail::tail_cut<T>());
           T ph, j0;
-          detail::phi_Phic(t, ph, j0);
+          detail::normal_phi_Phic(t, ph, j0);
           const T j1 = ph - t * j0;
           acc += (T(-2.0) * j1) * sigma + (((-lam) + (T(-1)))) * j0;
           acc += ((T(2)*sigma)) * ph;
