@@ -523,8 +523,9 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
 // Phic((n - x)/sigma) - sum_{n <= x} J_n Phic((x - n)/sigma), n0 = floor(x), over the breaks n0 + j,
 // j in (-K, K]; each Phic is one exp (float) or one erfc (double) and the offsets n - x are exact. The
 // dropped breaks lie >= K from x, so for sigma <= K / t_req their terms are below sum_{m>=0} 2 (2(|x| + K
-// + m) + 1) Phic(t_req + m/sigma) (|x| < 7 sigma here, K <= 4): float t_req = 6 (Phic = 1e-9: < 4e-8
-// absolute), double t_req = 8.5 (Phic = 1e-17: < 4e-16). Offsets past tail_cut sd are taken at tail_cut
+// + m) + 1) Phic(t_req + m/sigma) (|x| < 7 sigma here; K = 4, then 6 in float and 9 in double for the
+// wider tier): float t_req = 6 (Phic = 1e-9: < 6e-8 absolute at sigma = 1, where f(x) ~ 1 or more),
+// double t_req = 8.5 (Phic = 1e-17: < 8e-16). Offsets past tail_cut sd are taken at tail_cut
 // (no subnormal exp; Phic there < 1e-19). Tiny sigma (below 1e-30 float, 1e-300 double, where 1/sigma
 // could overflow), wider sigma and wider types fall through to the combination. C++ only.
 std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds) {
@@ -569,8 +570,12 @@ std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const st
     return out + "        return acc;\n      }\n";
   };
   std::string out = "  if (abs(x) < T(7) * sigma) {  // near 0: the break sum (see the emitter's comment)\n";
-  out += "    if constexpr (std::is_same<T, float>::value) {\n" + block(4, 4.0 / 6.0, "1e-30") + "    }\n";
-  out += "    if constexpr (std::is_same<T, double>::value) {\n" + block(4, 4.0 / 8.5, "1e-300") + "    }\n";
+  // Two tiers per type: K = 4 up to 4 / t_req, then a wider K up to sigma ~ 1 (18-24 breaks instead
+  // of the generic half-line series, ~10x dearer there).
+  out += "    if constexpr (std::is_same<T, float>::value) {\n" + block(4, 4.0 / 6.0, "1e-30") +
+         block(6, 6.0 / 6.0, "1e-30") + "    }\n";
+  out += "    if constexpr (std::is_same<T, double>::value) {\n" + block(4, 4.0 / 8.5, "1e-300") +
+         block(9, 9.0 / 8.5, "1e-300") + "    }\n";
   return out + "  }\n";
 }
 

@@ -150,11 +150,11 @@ TEST(GaussPeriodicFast, FloatWithin2e5OfTheReference) {
   for (const Entry& e : entries()) check<float>(e, e.ef, 2e-5);
 }
 
-// gaussian trunc^2 near 0 (the straight-line break sum for sigma <= 2/3 float, 0.47 double, and the
-// combination beyond): reference sum_n trunc(n + 1/2)^2 P(n <= x + U < n + 1) in long double over the
-// steps within 40 sigma (the rest < 1e-300), sigma <= 10. Hard inputs: x = 0, +-1e-12, next to the
-// integers, the near-0 window edge 7 sigma, |x| = 1e6 (1e30 would not step the long double loop), far |x|;
-// sigma -> 0 and the tier edges.
+// gaussian trunc^2 near 0 (the straight-line break sums: 8 breaks for sigma <= 2/3 float, 0.47 double,
+// 12 / 18 breaks up to 1 float, 18/17 double, and the combination beyond): reference sum_n trunc(n + 1/2)^2
+// P(n <= x + U < n + 1) in long double over the steps within 40 sigma (the rest < 1e-300), sigma <= 10. Hard
+// inputs: x = 0, +-1e-12, next to the integers, the near-0 window edge 7 sigma, |x| = 1e6 (1e30 would not
+// step the long double loop), far |x|; sigma -> 0 and the tier edges.
 LD trunc_sq_reference(LD x, LD s) {
   if (s == 0) {
     const LD t = std::trunc(x);
@@ -178,8 +178,9 @@ void check_trunc_sq(double tol) {
     xs.push_back(std::nextafter(b, R(-10)));
   }
   int bad = 0;
-  for (R s : {R(1e-30), R(1e-12), R(1e-3), R(0.05), R(0.166), R(0.3), R(0.47), R(0.48), R(0.6), R(0.666),
-              R(0.667), R(1), R(3), R(10)})
+  for (R s : {R(1e-30), R(1e-12), R(1e-3),  R(0.05),  R(0.166), R(0.3),  R(0.47), R(0.48),
+              R(0.6),   R(0.666), R(0.667), R(0.7),   R(0.706), R(0.71), R(0.9),  R(0.999),
+              R(1),     R(1.001), R(1.05),  R(1.058), R(1.06),  R(3),    R(10)})
     for (R x0 : xs)
       for (R x : {x0, R(x0 + R(7) * s), R(x0 - R(7) * s)}) {
         const R v = bl::detail::gen::gaussian_trunc_sq<R>(x, s);
