@@ -4952,14 +4952,14 @@ T gaussian_fract_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.1739: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.751 sd; below 0.08706 the nearest one alone, the others beyond 5.743 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1739).
+    // float (tolerance 1e-07): sigma < 0.1875: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.334 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1875).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
-    if (sigma < T(0.17388222158237718)) {
+    if (sigma < T(0.18746015382974018)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       T acc;
-      if (sigma < T(0.08706434220766679)) {  // the nearest break alone
+      if (sigma < T(0.09339361644125409)) {  // the nearest break alone
         acc = ((T(1.0))) * rp;
         const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
@@ -5200,15 +5200,15 @@ T gaussian_fract_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.1739: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.751 sd; below 0.08706 the nearest one alone, the others beyond 5.743 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1739).
+    // float (tolerance 1e-07): sigma < 0.1865: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.361 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1865).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
-    if (sigma < T(0.17388222158237718)) {
+    if (sigma < T(0.1865228530605915)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
-      if (sigma < T(0.08706434220766679)) {  // the nearest break alone
+      if (sigma < T(0.09339361644125409)) {  // the nearest break alone
         acc = (((T(1.0))) * rp) * rp + ((T(1.0)) * s2);
         const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
@@ -5763,9 +5763,9 @@ T gaussian_triangle_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.1896: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.274 sd; below 0.09687 the nearest one alone, the others beyond 5.162 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09481).
+    // float (tolerance 1e-07): sigma < 0.2055: the 1 nearest break(s) on each side (the dropped ones lie beyond 4.867 sd; below 0.1055 the nearest one alone, the others beyond 4.74 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1027).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
-    if (sigma < T(0.18961729470818975)) {
+    if (sigma < T(0.20545118674910237)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
@@ -5774,7 +5774,7 @@ T gaussian_triangle_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = ((w0 * (T(1.0)) + w1 * (T(-1.0)))) * rp + (w1 * (T(2.0)));
-      if (sigma < T(0.09686586613025365)) {  // the nearest break alone
+      if (sigma < T(0.10548200916383271)) {  // the nearest break alone
         const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
@@ -6032,9 +6032,9 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.1849: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.408 sd; below 0.09447 the nearest one alone, the others beyond 5.293 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09246).
+    // float (tolerance 1e-07): sigma < 0.1994: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.016 sd; below 0.1024 the nearest one alone, the others beyond 4.885 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.09968).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
-    if (sigma < T(0.18492403023450515)) {
+    if (sigma < T(0.1993641836359492)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
@@ -6044,7 +6044,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = (((T(1.0))) * rp + (w1 * (T(-4.0)))) * rp + (w0 * ((T(1.0)) * s2) + w1 * ((T(1.0)) * s2 + T(4.0)));
-      if (sigma < T(0.09446831516360035)) {  // the nearest break alone
+      if (sigma < T(0.10235684192424897)) {  // the nearest break alone
         const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
@@ -6108,10 +6108,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     const T c_9 = C2 * c_7 - c_5;
     const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
     const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
-    const T c_10 = C2 * c_8 - c_6;
-    const T r_8 = detail::at_least(r_6 * q8, T(8.673617379884035e-19));
-    const T d_10 = detail::at_least(d_8 * r_8, T(8.673617379884035e-19));
-    const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4) + d_6 * (T(0.011257909293593086) * c_6) + d_8 * (T(0.006332573977646111) * c_8) + d_10 * (T(0.004052847345693511) * c_10));
+    const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4) + d_6 * (T(0.011257909293593086) * c_6) + d_8 * (T(0.006332573977646111) * c_8));
     return acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1404: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.124 sd; below 0.07099 the nearest one alone, the others beyond 7.043 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07018).
@@ -6646,9 +6643,9 @@ T gaussian_square_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.08706: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.743 sd; below 0.04338 the nearest one alone, the others beyond 5.764 sd: their tails sum to <= tol); else 11 Fourier terms (tail <= tol for sigma/T >= 0.08706).
+    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
-    if (sigma < T(0.08706434220766679)) {
+    if (sigma < T(0.09339361644125409)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T inv = T(1) / sigma;
       T acc;
@@ -6656,7 +6653,7 @@ T gaussian_square_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = (w0 * (T(1.0)));
-      if (sigma < T(0.043375904776212296)) {  // the nearest break alone
+      if (sigma < T(0.04676299685992172)) {  // the nearest break alone
         const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
@@ -6702,10 +6699,7 @@ T gaussian_square_raw(T x, T sigma) {
     const T s_9 = C2 * s_7 - s_5;
     const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
     const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
-    const T s_11 = C2 * s_9 - s_7;
-    const T r_9 = detail::at_least(r_7 * q8, T(8.673617379884035e-19));
-    const T d_11 = detail::at_least(d_9 * r_9, T(8.673617379884035e-19));
-    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11));
+    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9));
     return acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd; below 0.03342 the nearest one alone, the others beyond 7.48 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
@@ -6902,9 +6896,9 @@ T gaussian_square_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.08706: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.743 sd; below 0.04338 the nearest one alone, the others beyond 5.764 sd: their tails sum to <= tol); else 11 Fourier terms (tail <= tol for sigma/T >= 0.08706).
+    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339).
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
-    if (sigma < T(0.08706434220766679)) {
+    if (sigma < T(0.09339361644125409)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T inv = T(1) / sigma;
       T acc;
@@ -6912,7 +6906,7 @@ T gaussian_square_sq_raw(T x, T sigma) {
       const T w0 = T(1) - h1;
       const T w1 = h1;
       acc = (w0 * (T(1.0)));
-      if (sigma < T(0.043375904776212296)) {  // the nearest break alone
+      if (sigma < T(0.04676299685992172)) {  // the nearest break alone
         const T dl = r - ((w0 * T(0.0) + w1 * T(0.5)) + base), dr = ((w0 * T(0.5) + w1 * T(1.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
@@ -6958,10 +6952,7 @@ T gaussian_square_sq_raw(T x, T sigma) {
     const T s_9 = C2 * s_7 - s_5;
     const T r_7 = detail::at_least(r_5 * q8, T(8.673617379884035e-19));
     const T d_9 = detail::at_least(d_7 * r_7, T(8.673617379884035e-19));
-    const T s_11 = C2 * s_9 - s_7;
-    const T r_9 = detail::at_least(r_7 * q8, T(8.673617379884035e-19));
-    const T d_11 = detail::at_least(d_9 * r_9, T(8.673617379884035e-19));
-    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9) + d_11 * (T(0.05787452476068921) * s_11));
+    const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9));
     return acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd; below 0.03342 the nearest one alone, the others beyond 7.48 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
@@ -8313,15 +8304,15 @@ T gaussian_floor_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
-    if (sigma < T(0.16704744067563246)) {
+    if (sigma < T(0.17829525136613786)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
-      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+      if (sigma < T(0.09017346495423652)) {  // the nearest break alone
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
@@ -8384,11 +8375,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     const T s_5 = C2 * s_3 - s_1;
     const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
     const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
-    const T c_6 = C2 * c_4 - c_2;
-    const T s_6 = C2 * s_4 - s_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
-    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
-    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
     return rest + acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
@@ -8810,15 +8797,15 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
-    if (sigma < T(0.16704744067563246)) {
+    if (sigma < T(0.17829525136613786)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
-      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+      if (sigma < T(0.09017346495423652)) {  // the nearest break alone
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
@@ -8881,11 +8868,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     const T s_5 = C2 * s_3 - s_1;
     const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
     const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
-    const T c_6 = C2 * c_4 - c_2;
-    const T s_6 = C2 * s_4 - s_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
-    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
-    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
     return rest + acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
@@ -9579,15 +9562,15 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
-    if (sigma < T(0.16704744067563246)) {
+    if (sigma < T(0.17829525136613786)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
-      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+      if (sigma < T(0.09017346495423652)) {  // the nearest break alone
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
@@ -9650,11 +9633,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T s_5 = C2 * s_3 - s_1;
     const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
     const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
-    const T c_6 = C2 * c_4 - c_2;
-    const T s_6 = C2 * s_4 - s_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
-    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
-    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
     return rest + acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
@@ -9800,15 +9779,15 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
-    if (sigma < T(0.16704744067563246)) {
+    if (sigma < T(0.17829525136613786)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
-      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+      if (sigma < T(0.09017346495423652)) {  // the nearest break alone
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
@@ -9871,11 +9850,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T s_5 = C2 * s_3 - s_1;
     const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
     const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
-    const T c_6 = C2 * c_4 - c_2;
-    const T s_6 = C2 * s_4 - s_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
-    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
-    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
     return rest + acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
@@ -10043,15 +10018,15 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-08): sigma < 0.167: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.986 sd; below 0.08406 the nearest one alone, the others beyond 5.948 sd: their tails sum to <= tol); else 6 Fourier terms (tail <= tol for sigma/T >= 0.167).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
-    if (sigma < T(0.16704744067563246)) {
+    if (sigma < T(0.17829525136613786)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
       const T rp = r - base;  // in [0, T]; distances below use the exact r
       const T inv = T(1) / sigma;
       const T s2 = sigma * sigma;
       T acc;
-      if (sigma < T(0.08406242000238873)) {  // the nearest break alone
+      if (sigma < T(0.09017346495423652)) {  // the nearest break alone
         acc = (((T(1.0))) * rp + ((lam))) * rp + ((T(1.0)) * s2);
         const T dl = r - (T(0.0) + base), dr = (T(1.0) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
@@ -10114,11 +10089,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T s_5 = C2 * s_3 - s_1;
     const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
     const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
-    const T c_6 = C2 * c_4 - c_2;
-    const T s_6 = C2 * s_4 - s_2;
-    const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
-    const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
-    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6));
+    const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
     return rest + acc;
     } else {
     // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
