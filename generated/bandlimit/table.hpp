@@ -9447,6 +9447,72 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
         }
         return acc;
       }
+      if (sigma >= T(1e-300) && sigma <= T(0.7058823529411765)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -5
+          const T n = n0 + T(-5.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -4
+          const T n = n0 + T(-4.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 5
+          const T n = n0 + T(5.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 6
+          const T n = n0 + T(6.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
       if (sigma >= T(1e-300) && sigma <= T(1.0588235294117647)) {
         const T n0 = floor(x);
         const T inv = T(1) / sigma;
