@@ -68,6 +68,24 @@ void latency_def(std::ostringstream& os, const std::string& name, const std::str
      << body << "  }\n  out[0][0] = t;\n}\n";
 }
 
+// kSpillRegs values computed before a call, pinned in registers there (the empty asm), and read after
+// it: what a call costs inside a program that keeps its pairs live across it.
+constexpr int kSpillVals = CostModel::kSpillRegs;
+std::string spill_pre() {
+  std::string s;
+  for (int v = 0; v < kSpillVals; ++v) {
+    const std::string V = "v" + std::to_string(v);
+    s += "    float " + V + " = a[2][j] * " + std::to_string(1.0 + 0.01 * v) + "f + a[4][j];\n";
+    s += "    __asm__ volatile(\"\" : \"+x\"(" + V + "));\n";
+  }
+  return s;
+}
+std::string spill_post(const std::string& result) {
+  std::string s = "    float acc = " + result + ";\n";
+  for (int v = 0; v < kSpillVals; ++v) s += "    acc = acc * 0.5f + v" + std::to_string(v) + ";\n";
+  return s + "    out[0][j] = acc;\n";
+}
+
 std::string source(const std::vector<int>& fns) {
   std::ostringstream os;
   os << "// bandlimit cost-model calibration kernels (runtime/tuner/calibrate_compiled.cpp)\n"
@@ -108,6 +126,7 @@ std::string source(const std::vector<int>& fns) {
   kernel_def(os, "bl_win_chain",
              "    float t = a[0][j];\n    for (int c = 0; c < 8; ++c) t = bl::plain::sin(t + a[2][j]);\n"
              "    out[0][j] = t;\n");
+  kernel_def(os, "bl_sp_base", spill_pre() + spill_post("a[0][j]"));
   kernel_def(os, "bl_op_tex_plain",
              "    out[0][j] = bl::texture::sample_plain(*g_tex, a[0][j], a[2][j], 0);\n");
   kernel_def(os, "bl_op_tex_stat",
@@ -124,6 +143,14 @@ std::string source(const std::vector<int>& fns) {
                      ");\n    out[0][j] = r.mean + r.var;\n");
     else
       kernel_def(os, "bl_fn" + std::to_string(f), "    out[0][j] = " + F.cpp + "(" + arg_list(args) + ");\n");
+    if (F.stat)
+      kernel_def(os, "bl_sp" + std::to_string(f),
+                 spill_pre() + "    const bl::stat<float> r = " + F.cpp + "(" + arg_list(args) + ");\n" +
+                     spill_post("r.mean + r.var"));
+    else
+      kernel_def(
+          os, "bl_sp" + std::to_string(f),
+          spill_pre() + "    const float r = " + F.cpp + "(" + arg_list(args) + ");\n" + spill_post("r"));
     // Latency through x and, for two or more arguments, through the second one (a kernel entry's
     // sigma: in a program the sd of a nested node depends on the node before it).
     for (std::size_t via = 0; via < std::min<std::size_t>(2, args.size()); ++via) {
@@ -306,11 +333,17 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
   if (wanted("neg") && m.op_ns.count("sub")) record("neg", m.op_ns["sub"], false);
   if (wanted("tex_plain")) record("tex_plain", net(time("bl_op_tex_plain", in, main_opt), 2), false);
   if (wanted("tex_stat")) record("tex_stat", net(time("bl_op_tex_stat", in, main_opt), 4), false);
+  // The values alone (no call), against which each function's spill kernel is read.
+  const double sp_base = time("bl_sp_base", in, main_opt);
   for (int f : fns) {
     const compiler::Function& F = all[f];
     const std::string sym = "bl_fn" + std::to_string(f);
     const int inputs = distinct(calibration_args(F.arity, F.stat));
-    record(F.cpp, net(time(sym, in, main_opt), inputs), true);
+    const double alone = time(sym, in, main_opt);
+    record(F.cpp, net(alone, inputs), true);
+    // Spill: the call among kSpillVals live values, less the call alone and the values alone.
+    const double among = time("bl_sp" + std::to_string(f), in, main_opt);
+    m.fn_spill_ns[F.cpp] = std::max(0.0, (among - alone - (sp_base - loop)) / kSpillVals);
     double lat = time("bl_lat" + std::to_string(f), in, main_opt);
     if (calibration_args(F.arity, F.stat).size() >= 2)
       lat = std::max(lat, time("bl_lat" + std::to_string(f) + "_1", in, main_opt));

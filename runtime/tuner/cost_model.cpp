@@ -161,13 +161,40 @@ double CostModel::critical_path(const compiler::Program& p) const {
   return longest;
 }
 
+std::vector<int> CostModel::live_across(const compiler::Program& p) {
+  const int n = static_cast<int>(p.insts.size());
+  std::vector<int> last(n, -1);
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < compiler::lop_arity(p.insts[i]); ++a)
+      if (p.insts[i].arg[a] >= 0) last[p.insts[i].arg[a]] = std::max(last[p.insts[i].arg[a]], i);
+  for (int o : p.outputs)
+    if (o >= 0) last[o] = n;
+  // Sweep: a value is live across i when it was defined before i and its last read is after i.
+  std::vector<int> ends(n + 1, 0), live(n, 0);
+  int open = 0;
+  for (int i = 0; i < n; ++i) {
+    open -= ends[i];
+    live[i] = open;
+    if (p.insts[i].op != LOp::Const && last[i] > i) {
+      ++open;
+      ++ends[std::min(last[i], n)];
+    }
+  }
+  return live;
+}
+
 double CostModel::throughput(const compiler::Program& p) const {
   double ns = 0;
   if (const auto px = op_ns.find("pixel"); px != op_ns.end()) ns += px->second;
   if (const auto o = op_ns.find("output"); o != op_ns.end()) ns += o->second * p.outputs.size();
-  for (const compiler::Inst& in : p.insts) {
+  const std::vector<int> live = fn_spill_ns.empty() ? std::vector<int>() : live_across(p);
+  for (std::size_t i = 0; i < p.insts.size(); ++i) {
+    const compiler::Inst& in = p.insts[i];
     if (in.op == LOp::Call || in.op == LOp::CallStat) {
       ns += function_cost(in.fn);
+      if (!live.empty())
+        if (const auto sp = fn_spill_ns.find(compiler::functions().at(in.fn).cpp); sp != fn_spill_ns.end())
+          ns += sp->second * std::min(live[i], kSpillRegs);
     } else {
       const auto it = op_ns.find(lop_name(in.op));
       if (it == op_ns.end())
@@ -238,6 +265,8 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
     cm.fn_lat_ns = m.at("function_latency").get<std::map<std::string, double>>();
   if (m.contains("function_bands"))
     cm.fn_band_ns = m.at("function_bands").get<std::map<std::string, std::vector<double>>>();
+  if (m.contains("function_spill"))
+    cm.fn_spill_ns = m.at("function_spill").get<std::map<std::string, double>>();
   return cm;
 }
 
@@ -250,10 +279,15 @@ void save_cost_model(const std::string& path, const CostModel& m) {
       j = nlohmann::json::object();  // a corrupt file is replaced, not merged
     }
   }
-  j["machines"][m.machine] = {{"method", m.method},        {"ops", m.op_ns},
-                              {"functions", m.fn_ns},      {"function_bands", m.fn_band_ns},
-                              {"op_latency", m.op_lat_ns}, {"function_latency", m.fn_lat_ns},
-                              {"window_ns", m.window_ns},  {"kernels", m.kernels}};
+  j["machines"][m.machine] = {{"method", m.method},
+                              {"ops", m.op_ns},
+                              {"functions", m.fn_ns},
+                              {"function_bands", m.fn_band_ns},
+                              {"op_latency", m.op_lat_ns},
+                              {"function_latency", m.fn_lat_ns},
+                              {"window_ns", m.window_ns},
+                              {"kernels", m.kernels},
+                              {"function_spill", m.fn_spill_ns}};
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
   const std::string tmp = path + ".tmp";

@@ -36,8 +36,9 @@ struct CostModel {
   std::string method = "compiled";  // "compiled" (-O3 via bl::jit) or "evaluator" (fallback)
   // Version of the compiled calibration's kernels; a file measured with other kernels is
   // recalibrated (1: vectorized loops, which made straight-line entries 4x too cheap; 2: scalar
-  // loops shaped like a program's, with the per-output cost).
-  static constexpr int kKernels = 2;
+  // loops shaped like a program's, with the per-output cost; 3: the spill cost of values live across
+  // a call).
+  static constexpr int kKernels = 3;
   int kernels = kKernels;
   // LOp name -> ns per pixel; "pixel": per-pixel overhead (the loop), "output": per output stored.
   std::map<std::string, double> op_ns;
@@ -49,6 +50,13 @@ struct CostModel {
   // calls depend on each other (nested noise) is latency-bound in per-pixel code. A function's
   // latency in band b is its band-b cost x fn_lat_ns / fn_ns. Empty: throughput only.
   std::map<std::string, double> op_lat_ns, fn_lat_ns;
+  // Function::cpp -> ns per value live across one call (at most kSpillRegs counted): every xmm
+  // register is caller-saved, so a call that is not inlined away (libm's sinf, expf, ...) makes the
+  // program store and reload what it keeps in registers. The one-function calibration kernels hold
+  // nothing across their call; a large smoothed program holds its (mean, var) pairs (fire_bumps'
+  // all-Dorn program: 22 libm calls per pixel).
+  static constexpr int kSpillRegs = 16;
+  std::map<std::string, double> fn_spill_ns;
   // The out-of-order window in ns of throughput work: a program of throughput T and critical path
   // L overlaps max(1, window / T) pixels, so it costs max(T, L x min(1, T / window)).
   double window_ns = 0;
@@ -67,6 +75,9 @@ struct CostModel {
   double cost(const compiler::Program& p) const;
   double throughput(const compiler::Program& p) const;     // the sum alone (+ overhead)
   double critical_path(const compiler::Program& p) const;  // the latency path alone (0 without latencies)
+  // Per instruction, the values (non-constant instructions) defined before it and read after it or
+  // stored as outputs: what a call there must keep across itself.
+  static std::vector<int> live_across(const compiler::Program& p);
   // True when every LOp and every current generated function has an entry.
   bool covers_all() const;
   // The names covers_all() misses (for messages).

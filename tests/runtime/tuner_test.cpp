@@ -236,6 +236,57 @@ TEST(CostModel, FormulaOnAHandBuiltModel) {
   EXPECT_NE(m.missing().find("output"), std::string::npos);  // a compiled model needs it
 }
 
+// The spill term: a call costs fn_spill_ns per value live across it (defined before, read after or
+// an output; constants and the call's own last-read arguments excluded), at most kSpillRegs of them.
+TEST(CostModel, SpillCostCountsTheValuesLiveAcrossACall) {
+  using compiler::Inst;
+  using compiler::LOp;
+  CostModel m;
+  m.method = "compiled";
+  m.op_ns = {{"in_mean", 0}, {"add", 1}, {"const", 0}};
+  const int fract = compiler::find_function("bl::plain::fract");
+  ASSERT_GE(fract, 0);
+  m.fn_ns = {{"bl::plain::fract", 10}};
+  compiler::Program p;
+  p.input_count = 2;
+  auto inst = [&](LOp op, int a = -1, int b = -1) {
+    Inst in;
+    in.op = op;
+    in.arg[0] = a, in.arg[1] = b;
+    if (op == LOp::Call) in.fn = fract;
+    p.insts.push_back(in);
+    return static_cast<int>(p.insts.size()) - 1;
+  };
+  const int u = inst(LOp::InMean, 0), v = inst(LOp::InMean, 1), k = inst(LOp::Const);
+  const int w = inst(LOp::Add, u, v);  // read only by the call: not live across it
+  const int c = inst(LOp::Call, w);    // live across: u (read below), v (an output)
+  const int x = inst(LOp::Add, c, u);
+  const int y = inst(LOp::Add, x, k);  // k is a constant: never counted
+  p.outputs = {y, v};
+  const std::vector<int> live = CostModel::live_across(p);
+  EXPECT_EQ(live[c], 2);
+  EXPECT_EQ(live[x], 1);  // v only: c and u are last read here, x's own value is not yet live
+  // T = 3 adds + 10 (fract) without spill costs; 2 live values x 0.5 ns with them.
+  EXPECT_DOUBLE_EQ(m.throughput(p), 13);
+  m.fn_spill_ns = {{"bl::plain::fract", 0.5}};
+  EXPECT_DOUBLE_EQ(m.throughput(p), 14);
+  // More live values than kSpillRegs: only kSpillRegs are charged.
+  compiler::Program q = p;
+  std::vector<int> extra;
+  q.insts.erase(q.insts.begin() + c, q.insts.end());  // keep u, v, k, w
+  p = q;
+  for (int i = 0; i < CostModel::kSpillRegs + 4; ++i) extra.push_back(inst(LOp::Add, u, v));
+  const int c2 = inst(LOp::Call, w);
+  int acc = c2;
+  for (int e : extra) acc = inst(LOp::Add, acc, e);
+  p.outputs = {acc, v};
+  EXPECT_EQ(CostModel::live_across(p)[c2],
+            CostModel::kSpillRegs + 4 + 1);  // the extras and v (u ends before)
+  const double with = m.throughput(p);
+  m.fn_spill_ns.clear();
+  EXPECT_DOUBLE_EQ(with - m.throughput(p), 0.5 * CostModel::kSpillRegs);
+}
+
 // The report's model-vs-compiled line: median and worst over front and baselines, and the points
 // outside 1 +- 25% named with their ratio; points without a compiled time are left out.
 TEST(Report, ModelAccuracyNamesThePointsOutsideTheTolerance) {
