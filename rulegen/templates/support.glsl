@@ -1031,17 +1031,25 @@ bool bl_u_bad(float x, float sigma) {
 }
 
 // int_a^b s^j q(s) ds, 0 <= a <= b, divided differences (see support.hpp).
+// c is indexed by the loop counter alone (i = n - j), not by n - j: NVIDIA's compiler refuses a
+// parameter array indexed by an expression it cannot bound ("C5025: lvalue in array access too
+// complex"). Same operations in the same order as the C++ twin.
 float bl_u_piece_moment(float c[8], int deg, int j, float a, float b) {
   float S = 1.0;
   float an = 1.0;
+  for (int n = 1; n < 3; ++n) {  // S_j (j <= 2)
+    if (n > j) break;
+    an *= a;
+    S = b * S + an;
+  }
   float sum = 0.0;
-  for (int k = 0; k < 10; ++k) {
-    if (k > deg + j) break;
-    if (k > 0) {
+  for (int i = 0; i < 8; ++i) {
+    if (i > deg) break;
+    if (i > 0) {
       an *= a;
       S = b * S + an;
     }
-    if (k >= j) sum += c[k - j] * S / float(k + 1);
+    if (c[i] != 0.0) sum += c[i] * S / float(i + j + 1);
   }
   return (b - a) * sum;
 }

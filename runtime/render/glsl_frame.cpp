@@ -9,10 +9,10 @@
 
 namespace bl::render {
 
-std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program& p,
-                                 const std::string& version) {
+std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program& p, const std::string& version,
+                                 const FragmentOptions& options) {
   return glsl_version_line(version) + compiler::emit_glsl(p, "bl_shade", "scene " + s.name) + "\n" +
-         glsl_fragment_main(p, "bl_shade");
+         glsl_fragment_main(p, "bl_shade", options);
 }
 
 std::string glsl_version_line(const std::string& version) {
@@ -21,10 +21,10 @@ std::string glsl_version_line(const std::string& version) {
   return v;
 }
 
-std::string glsl_fragment_main(const compiler::Program& p, const std::string& function) {
-  std::ostringstream os;
-  // The camera of runtime/camera/plane_hit.cpp, per fragment (gl_FragCoord: y down, see egl_runner).
-  os << R"(uniform vec3 bl_cam_pos;
+namespace {
+
+// The camera of runtime/camera/plane_hit.cpp, per fragment (gl_FragCoord: y down, see egl_runner).
+const char* const kCameraPrelude = R"(uniform vec3 bl_cam_pos;
 uniform vec3 bl_cam_right;
 uniform vec3 bl_cam_up;
 uniform vec3 bl_cam_forward;
@@ -42,7 +42,53 @@ vec3 bl_plane_differential(float t, vec3 d, vec3 dd) { return t * (dd - d * (dd.
 vec3 bl_ray(vec2 p) {
   return bl_focal * bl_cam_forward + (p.x - 0.5 * bl_size.x) * bl_cam_right - (p.y - 0.5 * bl_size.y) * bl_cam_up;
 }
-// Phi(z) through the erfc fit of generated/bandlimit.glsl (relative error < 1.2e-7).
+)";
+
+// The pixel the fragment shades: gl_FragCoord, or (tiled) its position within the scene's image.
+std::string pixel_line(const FragmentOptions& o) {
+  return o.tiled ? "  vec2 p = mod(gl_FragCoord.xy, bl_size);\n" : "  vec2 p = gl_FragCoord.xy;\n";
+}
+
+// Declares m, s, gx, gy and fills them from hit, su, sv, du, dv, view (in scope), by input name.
+std::string input_lines(const compiler::Program& p, const std::string& indent) {
+  std::ostringstream os;
+  const int n = std::max(1, p.input_count);
+  os << indent << "float m[" << n << "]; float s[" << n << "]; float gx[" << n << "]; float gy[" << n << "];\n";
+  if (p.input_count == 0) os << indent << "m[0] = 0.0; s[0] = 0.0; gx[0] = 0.0; gy[0] = 0.0;\n";
+  for (int i = 0; i < p.input_count; ++i) {
+    const std::string& name = p.input_names[i];
+    std::string mean = "0.0", sd = "0.0", gxs = "0.0", gys = "0.0";
+    if (name == "u")
+      mean = "k * hit.x", sd = "su", gxs = "du.x", gys = "du.y";
+    else if (name == "v")
+      mean = "k * hit.y", sd = "sv", gxs = "dv.x", gys = "dv.y";
+    else if (name == "view_x")
+      mean = "view.x";
+    else if (name == "view_y")
+      mean = "view.y";
+    else if (name == "view_z")
+      mean = "view.z";
+    else if (name == "time")
+      mean = "bl_time";
+    else if (name == "light_x")
+      mean = "bl_light.x";
+    else if (name == "light_y")
+      mean = "bl_light.y";
+    else if (name == "light_z")
+      mean = "bl_light.z";
+    else
+      throw std::invalid_argument("glsl frame: the program reads an unknown input '" + name + "'");
+    os << indent << "m[" << i << "] = " << mean << "; s[" << i << "] = " << sd << "; gx[" << i << "] = " << gxs
+       << "; gy[" << i << "] = " << gys << ";\n";
+  }
+  os << indent << "float o[" << p.outputs.size() << "];\n";
+  return os.str();
+}
+
+// One evaluation at the pixel centre with the pixel's footprint (the smoothed renderer).
+std::string footprint_main(const compiler::Program& p, const std::string& function, const FragmentOptions& o) {
+  std::ostringstream os;
+  os << R"(// Phi(z) through the erfc fit of generated/bandlimit.glsl (relative error < 1.2e-7).
 float bl_cover_Phi(float z) {
   float x = -z * 0.70710678, a = min(abs(x), 10.0), t = 1.0 / (1.0 + 0.5 * a);
   float r = t * exp(-a * a - 1.26551223 + t * (1.00002368 + t * (0.37409196 + t * (0.09678418 +
@@ -52,8 +98,8 @@ float bl_cover_Phi(float z) {
 }
 
 void main() {
-  vec2 p = gl_FragCoord.xy;
-  vec3 d = bl_ray(p);
+)" << pixel_line(o)
+     << R"(  vec3 d = bl_ray(p);
   // The horizon by the pixel filter's coverage (runtime/camera/horizon_coverage.hpp): d.z is affine
   // in p; shade the covered part's mean, weight the shade by the covered fraction.
   float cover = d.z < 0.0 ? 1.0 : 0.0;
@@ -84,39 +130,55 @@ void main() {
   float su = bl_marginal != 0 ? bl_pixel_sigma * length(du) : bl_pixel_sigma * (abs(du.x) + abs(du.y));
   float sv = bl_marginal != 0 ? bl_pixel_sigma * length(dv) : bl_pixel_sigma * (abs(dv.x) + abs(dv.y));
   vec3 view = -d / length(d);
-)";
-  const int n = std::max(1, p.input_count);
-  os << "  float m[" << n << "]; float s[" << n << "]; float gx[" << n << "]; float gy[" << n << "];\n";
-  if (p.input_count == 0) os << "  m[0] = 0.0; s[0] = 0.0; gx[0] = 0.0; gy[0] = 0.0;\n";
-  for (int i = 0; i < p.input_count; ++i) {
-    const std::string& name = p.input_names[i];
-    std::string mean = "0.0", sd = "0.0", gxs = "0.0", gys = "0.0";
-    if (name == "u")
-      mean = "k * hit.x", sd = "su", gxs = "du.x", gys = "du.y";
-    else if (name == "v")
-      mean = "k * hit.y", sd = "sv", gxs = "dv.x", gys = "dv.y";
-    else if (name == "view_x")
-      mean = "view.x";
-    else if (name == "view_y")
-      mean = "view.y";
-    else if (name == "view_z")
-      mean = "view.z";
-    else if (name == "time")
-      mean = "bl_time";
-    else if (name == "light_x")
-      mean = "bl_light.x";
-    else if (name == "light_y")
-      mean = "bl_light.y";
-    else if (name == "light_z")
-      mean = "bl_light.z";
-    else
-      throw std::invalid_argument("glsl frame: the program reads an unknown input '" + name + "'");
-    os << "  m[" << i << "] = " << mean << "; s[" << i << "] = " << sd << "; gx[" << i << "] = " << gxs
-       << "; gy[" << i << "] = " << gys << ";\n";
-  }
-  os << "  float o[" << p.outputs.size() << "];\n  " << function << "(m, s, gx, gy, o);\n"
+)" << input_lines(p, "  ")
+     << "  " << function << "(m, s, gx, gy, o);\n"
      << "  bl_color = vec4(mix(bl_background, vec3(o[0], o[1], o[2]), cover), 1.0);\n}\n";
   return os.str();
+}
+
+// Supersampling as a renderer would run it: o.samples evaluations per fragment at Gaussian-jittered
+// positions (sd bl_pixel_sigma, as runtime/render), each with a zero footprint, averaged; a sample
+// whose ray misses the plane takes the background. The offsets come from a 32-bit counter hash of
+// (pixel, sample) (PCG's output function), not from render/jitter.hpp's 64-bit one: desktop GLSL 4.5
+// has no 64-bit integers without an extension. Same kernel, different draws.
+std::string supersample_main(const compiler::Program& p, const std::string& function, const FragmentOptions& o) {
+  std::ostringstream os;
+  os << R"(uint bl_hash(uint x) {
+  uint s = x * 747796405u + 2891336453u;
+  uint w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
+  return (w >> 22u) ^ w;
+}
+
+void main() {
+)" << pixel_line(o)
+     << "  const int bl_samples = " << o.samples << ";\n"
+     << R"(  uint pixel = uint(p.y) * uint(bl_size.x) + uint(p.x);
+  vec3 acc = vec3(0.0);
+  for (int j = 0; j < bl_samples; ++j) {
+    uint h1 = bl_hash(pixel + bl_hash(uint(j))), h2 = bl_hash(h1 ^ 0x5851F42Du);
+    float u1 = (float(h1 >> 8u) + 1.0) * (1.0 / 16777216.0), u2 = float(h2 >> 8u) * (1.0 / 16777216.0);
+    float r = bl_pixel_sigma * sqrt(-2.0 * log(u1)), a = 6.2831853 * u2;
+    vec3 d = bl_ray(p + r * vec2(cos(a), sin(a)));
+    if (!(d.z < 0.0)) { acc += bl_background; continue; }
+    vec3 hit = bl_cam_pos + (-bl_cam_pos.z / d.z) * d;
+    float k = bl_uv_scale, su = 0.0, sv = 0.0;
+    vec2 du = vec2(0.0), dv = vec2(0.0);
+    vec3 view = -d / length(d);
+)" << input_lines(p, "    ")
+     << "    " << function << "(m, s, gx, gy, o);\n"
+     << "    acc += vec3(o[0], o[1], o[2]);\n  }\n"
+     << "  bl_color = vec4(acc / float(bl_samples), 1.0);\n}\n";
+  return os.str();
+}
+
+}  // namespace
+
+std::string glsl_fragment_main(const compiler::Program& p, const std::string& function,
+                               const FragmentOptions& options) {
+  if (options.samples < 0)
+    throw std::invalid_argument("glsl frame: samples must be >= 0, got " + std::to_string(options.samples));
+  return kCameraPrelude +
+         (options.samples > 0 ? supersample_main(p, function, options) : footprint_main(p, function, options));
 }
 
 std::vector<gl::Uniform> glsl_frame_uniforms(const scene::Scene& s, const Frame& f) {

@@ -12,14 +12,26 @@
 
 namespace bl::render {
 
+// How the fragment main turns a fragment into the program's inputs.
+struct FragmentOptions {
+  // 0: one evaluation at the pixel centre with the pixel's footprint (the smoothed renderer).
+  // n > 0: supersampling, n evaluations at Gaussian-jittered positions with a zero footprint,
+  // averaged (MSAA-n of a plain program, as a renderer runs it: all samples in one fragment).
+  int samples = 0;
+  // Shade pixel gl_FragCoord mod bl_size: a target larger than the scene repeats the scene's image,
+  // so a GPU can be filled with exactly the scene's per-pixel work (timing).
+  bool tiled = false;
+};
+
 // The complete fragment shader (with its #version line) for `program` in scene `s`.
 std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program& program,
-                                 const std::string& version = "450");
+                                 const std::string& version = "450", const FragmentOptions& options = {});
 // Its parts: the #version line (with the precision lines of an "es" version), and the uniforms and
 // main() that compute the program's inputs per fragment and call `function`, a function of the
 // emit_glsl signature defined before them (e.g. bltune's front/<label>.glsl, named "shade").
 std::string glsl_version_line(const std::string& version = "450");
-std::string glsl_fragment_main(const compiler::Program& program, const std::string& function);
+std::string glsl_fragment_main(const compiler::Program& program, const std::string& function,
+                               const FragmentOptions& options = {});
 // Uniform values for frame f.
 std::vector<gl::Uniform> glsl_frame_uniforms(const scene::Scene& s, const Frame& f);
 

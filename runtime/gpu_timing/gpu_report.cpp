@@ -1,0 +1,104 @@
+#include "gpu_timing/gpu_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace bl::gpu_timing {
+
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+SceneSummary summarize(const SceneTimes& s) {
+  SceneSummary r;
+  const double px = static_cast<double>(s.width) * s.height;
+  auto ns = [&](const ProgramTime& p) { return p.gpu_ms * 1e6 / px; };
+  const ProgramTime* msaa16 = nullptr;
+  for (const ProgramTime& p : s.programs) {
+    if (!p.failure.empty()) ++r.failures;
+    r.max_compile_ms = std::max(r.max_compile_ms, p.compile_ms);
+    if (p.kind != "baseline") continue;
+    if (p.label == "plain" && p.gpu_ms >= 0) r.plain_ns = ns(p);
+    if (p.label == "gaussian" && p.gpu_ms >= 0) r.gaussian_ns = ns(p);
+    if (p.msaa == 16) msaa16 = &p;
+  }
+  if (msaa16 == nullptr) return r;
+  r.msaa16_error = msaa16->error;
+  if (msaa16->gpu_ms >= 0) r.msaa16_ns = ns(*msaa16);
+  // The fastest front point that reaches MSAA-16's error, by each clock.
+  const ProgramTime *gpu = nullptr, *cpu = nullptr;
+  for (const ProgramTime& p : s.programs) {
+    if (p.kind != "front" || !(p.error <= msaa16->error)) continue;
+    if (p.gpu_ms >= 0 && (gpu == nullptr || p.gpu_ms < gpu->gpu_ms)) gpu = &p;
+    if (p.compiled_ns >= 0 && (cpu == nullptr || p.compiled_ns < cpu->compiled_ns)) cpu = &p;
+  }
+  if (gpu != nullptr && msaa16->gpu_ms >= 0) {
+    r.gpu_label = gpu->label;
+    r.gpu_ns = ns(*gpu);
+    r.gpu_speedup = msaa16->gpu_ms / gpu->gpu_ms;
+  }
+  if (cpu != nullptr && msaa16->compiled_ns >= 0) {
+    r.cpu_label = cpu->label;
+    r.cpu_speedup = msaa16->compiled_ns / cpu->compiled_ns;
+  }
+  return r;
+}
+
+std::string report_markdown(const std::vector<SceneTimes>& scenes, const std::string& renderer, int tile) {
+  std::ostringstream os;
+  os << "GPU: " << renderer << "; each scene's image tiled " << tile << " x " << tile
+     << " (one draw shades every pixel of the scene " << tile * tile
+     << " times); ns per pixel of the target, best of 3 runs of glFinish-bracketed draws. Errors are "
+        "bltune's (CPU) RMS against the truth; \"CPU\" = bltune's compiled-C++ speed-up on its own "
+        "fastest point at MSAA-16's error.\n\n";
+  os << "| scene | plain ns/px | MSAA-16 ns/px (x plain) | all-Gaussian ns/px (x plain) | fastest point at MSAA-16's "
+        "error | its ns/px | GPU speed-up at MSAA-16's error | CPU speed-up | slowest compile ms | failures |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<double> gpu_up, cpu_up;
+  int reached = 0, ten_gpu = 0, ten_cpu = 0, failures = 0;
+  for (const SceneTimes& s : scenes) {
+    const SceneSummary r = summarize(s);
+    failures += r.failures;
+    auto ratio = [&](double v) { return v >= 0 && r.plain_ns > 0 ? fmt("%.1fx", v / r.plain_ns) : "-"; };
+    os << "| " << s.scene << " | " << (r.plain_ns >= 0 ? fmt("%.3f", r.plain_ns) : "-") << " | "
+       << (r.msaa16_ns >= 0 ? fmt("%.3f", r.msaa16_ns) : "-") << " (" << ratio(r.msaa16_ns) << ") | "
+       << (r.gaussian_ns >= 0 ? fmt("%.3f", r.gaussian_ns) : "-") << " (" << ratio(r.gaussian_ns) << ") | "
+       << (r.gpu_label.empty() ? "not reached" : r.gpu_label) << " | "
+       << (r.gpu_ns >= 0 ? fmt("%.3f", r.gpu_ns) : "-") << " | "
+       << (r.gpu_speedup > 0 ? fmt("%.1fx", r.gpu_speedup) : "-") << " | "
+       << (r.cpu_speedup > 0 ? fmt("%.1fx", r.cpu_speedup) : "-") << " | "
+       << (r.max_compile_ms >= 0 ? fmt("%.0f", r.max_compile_ms) : "-") << " | " << r.failures << " |\n";
+    if (r.gpu_speedup > 0) {
+      ++reached;
+      gpu_up.push_back(r.gpu_speedup);
+      if (r.gpu_speedup >= 10) ++ten_gpu;
+    }
+    if (r.cpu_speedup > 0) {
+      cpu_up.push_back(r.cpu_speedup);
+      if (r.cpu_speedup >= 10) ++ten_cpu;
+    }
+  }
+  os << "\nMSAA-16's error reached on " << reached << " of " << scenes.size() << " scenes; speed-up at that error >= 10x on "
+     << ten_gpu << " (GPU) / " << ten_cpu << " (CPU compiled); median speed-up "
+     << (gpu_up.empty() ? "-" : fmt("%.1fx", median(gpu_up))) << " (GPU) / "
+     << (cpu_up.empty() ? "-" : fmt("%.1fx", median(cpu_up))) << " (CPU compiled); " << failures
+     << " program(s) failed to compile or draw.\n";
+  return os.str();
+}
+
+}  // namespace bl::gpu_timing

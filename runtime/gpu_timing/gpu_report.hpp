@@ -1,0 +1,42 @@
+// The GPU timing report: per scene, what MSAA-n and the tuned front cost on a GPU's driver, and the
+// speed-up at MSAA-16's error, next to the compiled-C++ speed-up bltune measured on the CPU.
+// Pure data -> markdown (no GL), so it is tested without a GPU.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace bl::gpu_timing {
+
+struct ProgramTime {
+  std::string label, kind;  // kind: "baseline" (plain, msaaN, uniform rules) or "front"
+  int msaa = 0;             // samples per fragment (0: one evaluation)
+  double error = 0;         // RMS vs truth as bltune measured it (CPU); may be +inf (infeasible)
+  double compiled_ns = -1;  // bltune's compiled-C++ ns per pixel (< 0: not measured)
+  double gpu_ms = -1;       // ms per frame of the tiled target (< 0: not timed)
+  double compile_ms = -1;   // driver compile + link, ms
+  std::string failure;      // compile or draw failure (then gpu_ms < 0)
+};
+
+struct SceneTimes {
+  std::string scene;
+  int width = 0, height = 0;  // the tiled target
+  std::vector<ProgramTime> programs;
+};
+
+// What the report concludes for one scene.
+struct SceneSummary {
+  double plain_ns = -1, msaa16_ns = -1, gaussian_ns = -1;  // GPU ns per pixel
+  double msaa16_error = -1;
+  std::string gpu_label;         // fastest front point on the GPU with error <= MSAA-16's ("" = none)
+  double gpu_ns = -1, gpu_speedup = -1;
+  std::string cpu_label;         // the same by bltune's compiled-C++ time
+  double cpu_speedup = -1;
+  double max_compile_ms = -1;
+  int failures = 0;
+};
+
+SceneSummary summarize(const SceneTimes& s);
+std::string report_markdown(const std::vector<SceneTimes>& scenes, const std::string& renderer, int tile);
+
+}  // namespace bl::gpu_timing

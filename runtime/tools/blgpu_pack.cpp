@@ -1,0 +1,185 @@
+// blgpu_pack: the GLSL a renderer would run for a tuned suite, packed for timing on a GPU machine
+// by blgpu_time (which needs nothing but an EGL/OpenGL driver, so the pack travels; see
+// docs/gpu_timing.md). For each scene directory of a `bltune --suite` output: every front point's
+// smoothed shader, the plain shader, MSAA-n of it (n samples per fragment) and the uniform rules,
+// each as a complete fragment shader; the image is tiled so one draw fills a GPU with exactly the
+// scene's per-pixel work. manifest.json holds the uniforms of the scene's first frame and, per
+// program, the error and compiled-C++ time bltune measured (the timing tool only adds GPU times).
+//
+//   blgpu_pack --suite docs/tuning/suite --scenes scenes/suite --out build/gpu_pack [--tile 10]
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "compiler/lower.hpp"
+#include "compiler/schedule_csv.hpp"
+#include "compiler/schedule_text.hpp"
+#include "render/glsl_frame.hpp"
+#include "render/render.hpp"
+#include "scene/scene.hpp"
+#include "shaders/shader.hpp"
+
+using namespace bl;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json uniform_json(const gl::Uniform& u) {
+  json j{{"name", u.name}};
+  std::visit(
+      [&](const auto& v) {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, float>)
+          j["float"] = v;
+        else if constexpr (std::is_same_v<T, int>)
+          j["int"] = v;
+        else if constexpr (std::is_same_v<T, gl::Vec2> || std::is_same_v<T, gl::Vec3> ||
+                           std::is_same_v<T, gl::Vec4>)
+          j["vec"] = std::vector<float>(v.begin(), v.end());
+        else
+          throw std::invalid_argument("uniform " + u.name + ": matrices and samplers are not packed");
+      },
+      u.value);
+  return j;
+}
+
+json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path.string() + ": cannot read");
+  try {
+    return json::parse(in);
+  } catch (const json::exception& e) {
+    throw std::runtime_error(path.string() + ": " + e.what());
+  }
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw std::runtime_error(path.string() + ": write failed");
+}
+
+// One scene: its programs as fragment shaders under out/<scene>/, its manifest entry returned.
+// Which programs to pack: every baseline and front point, or (a short GPU session) the named
+// baselines and the `fronts` fastest front points (by compiled C++) at MSAA-16's error.
+struct Selection {
+  std::vector<std::string> baselines;  // empty: all
+  int fronts = -1;                     // < 0: all
+};
+
+json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const fs::path& out, int tile,
+                const Selection& sel) {
+  const json result = read_json(result_dir / "result.json");
+  const std::string name = result.at("scene").get<std::string>();
+  const fs::path scene_file = scenes_dir / (name + ".json");
+  const scene::Scene s = scene::load_scene(scene_file.string());
+  if (!s.texture_files.empty())
+    throw std::invalid_argument(scene_file.string() + ": textured scenes are not packed (no sampler uniforms)");
+  const ir::Graph g = shaders::trace(s.shader_def(), s.effects());
+  if (compiler::graph_hash_text(g) != result.at("graph_hash").get<std::string>())
+    throw std::invalid_argument((result_dir / "result.json").string() + ": tuned for graph " +
+                                result.at("graph_hash").get<std::string>() + ", but " + scene_file.string() +
+                                " traces to " + compiler::graph_hash_text(g) + " (rerun bltune)");
+  const std::string csv = (result_dir / "front.csv").string();
+  fs::create_directories(out / name);
+  json programs = json::array();
+  auto add = [&](const json& row, const std::string& kind) {
+    const std::string label = row.at("label").get<std::string>();
+    const int msaa = row.at("msaa").get<int>();
+    // MSAA rows are the plain schedule run with n samples per fragment.
+    const compiler::Schedule sched = compiler::load_schedule(csv + ":" + (msaa > 0 ? "plain" : label), g).schedule;
+    const compiler::Program p = compiler::lower(g, sched);
+    render::FragmentOptions fo;
+    fo.samples = msaa;
+    fo.tiled = true;
+    const std::string frag = name + "/" + label + ".frag";
+    write_file(out / frag, render::glsl_fragment_source(s, p, "450", fo));
+    programs.push_back({{"label", label},
+                        {"kind", kind},
+                        {"msaa", msaa},
+                        {"error", row.at("error")},
+                        {"compiled_ns", row.value("compiled_ns", -1.0)},
+                        {"model_ns", row.value("model_ns", -1.0)},
+                        {"mix", row.value("mix", json::object())},
+                        {"frag", frag}});
+  };
+  double msaa16_error = -1;
+  for (const json& b : result.at("baselines")) {
+    if (b.at("msaa").get<int>() == 16) msaa16_error = b.at("error").get<double>();
+    const std::string label = b.at("label");
+    if (sel.baselines.empty() || std::find(sel.baselines.begin(), sel.baselines.end(), label) != sel.baselines.end())
+      add(b, "baseline");
+  }
+  std::vector<json> fronts;
+  for (const json& f : result.at("front"))
+    if (sel.fronts < 0 || (f.at("error").is_number() && f.at("error").get<double>() <= msaa16_error))
+      fronts.push_back(f);
+  if (sel.fronts >= 0) {
+    std::sort(fronts.begin(), fronts.end(), [](const json& a, const json& b) {
+      return a.value("compiled_ns", 1e30) < b.value("compiled_ns", 1e30);
+    });
+    if (static_cast<int>(fronts.size()) > sel.fronts) fronts.resize(sel.fronts);
+  }
+  for (const json& f : fronts) add(f, "front");
+  json uniforms = json::array();
+  for (const gl::Uniform& u : render::glsl_frame_uniforms(s, render::frames(s).front()))
+    uniforms.push_back(uniform_json(u));
+  return {{"scene", name},
+          {"scene_width", s.width},
+          {"scene_height", s.height},
+          {"width", s.width * tile},
+          {"height", s.height * tile},
+          {"uniforms", uniforms},
+          {"programs", programs}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"blgpu_pack: a tuned suite's GLSL (fronts, plain, MSAA-n, uniform rules) packed for blgpu_time"};
+  std::string suite = "docs/tuning/suite", scenes = "scenes/suite", out, only;
+  int tile = 10;
+  Selection sel;
+  app.add_option("--suite", suite, "a bltune --suite output (one directory per scene with result.json)");
+  app.add_option("--scenes", scenes, "the directory of the scene files it was tuned on");
+  app.add_option("--out", out, "the pack's directory (created; manifest.json and <scene>/<label>.frag)")
+      ->required();
+  app.add_option("--tile", tile, "the target is the scene's image repeated tile x tile times")
+      ->check(CLI::Range(1, 64));
+  app.add_option("--only", only, "pack only scenes whose name contains this");
+  app.add_option("--baselines", sel.baselines, "pack only these baselines (plain, msaa16, gaussian, ...)")
+      ->delimiter(',');
+  app.add_option("--fronts", sel.fronts,
+                 "pack only the N fastest front points (compiled C++) at MSAA-16's error (default: every point)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    std::vector<fs::path> dirs;
+    if (!fs::is_directory(suite)) throw std::invalid_argument(suite + ": not a directory");
+    for (const auto& e : fs::directory_iterator(suite))
+      if (fs::exists(e.path() / "result.json") && e.path().filename().string().find(only) != std::string::npos)
+        dirs.push_back(e.path());
+    if (dirs.empty())
+      throw std::invalid_argument(suite + ": no <scene>/result.json" + (only.empty() ? "" : " matching " + only));
+    std::sort(dirs.begin(), dirs.end());
+    fs::create_directories(out);
+    json manifest{{"suite", suite}, {"tile", tile}, {"scenes", json::array()}};
+    std::size_t count = 0;
+    for (const fs::path& d : dirs) {
+      manifest["scenes"].push_back(pack_scene(d, scenes, out, tile, sel));
+      count += manifest["scenes"].back()["programs"].size();
+      std::fprintf(stderr, "packed %s (%zu programs)\n", d.filename().c_str(),
+                   manifest["scenes"].back()["programs"].size());
+    }
+    write_file(fs::path(out) / "manifest.json", manifest.dump(1));
+    std::printf("%s: %zu scenes, %zu fragment shaders\n", out.c_str(), dirs.size(), count);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "blgpu_pack: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

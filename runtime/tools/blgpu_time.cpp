@@ -1,0 +1,266 @@
+// blgpu_time: times a blgpu_pack pack on this machine's OpenGL driver (EGL device platform on a
+// GPU, llvmpipe elsewhere) and writes the per-program times and the report. Links only bl_gl and
+// the report, so it runs where our other dependencies are not installed (docs/gpu_timing.md).
+//
+//   blgpu_time PACK --out OUT                       one process: compile and time everything
+//   blgpu_time PACK --out OUT --shard K/N           (N processes) compile program i with i % N == K,
+//                                                   then time them holding OUT/.timing.lock, so
+//                                                   compiles run in parallel and timings never overlap
+//   blgpu_time PACK --out OUT --merge               join OUT/shard_*.json into the report
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include "gl/egl_runner.hpp"
+#include "gpu_timing/gpu_report.hpp"
+
+using namespace bl;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  if (!in) throw std::runtime_error(p.string() + ": cannot read");
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+void write_text(const fs::path& p, const std::string& text) {
+  {
+    std::ofstream out(p.string() + ".tmp");
+    out << text;
+    if (!out) throw std::runtime_error(p.string() + ": write failed");
+  }
+  fs::rename(p.string() + ".tmp", p);
+}
+
+std::vector<gl::Uniform> uniforms_of(const json& scene) {
+  std::vector<gl::Uniform> u;
+  for (const json& j : scene.at("uniforms")) {
+    const std::string name = j.at("name");
+    if (j.contains("float")) {
+      u.push_back({name, j["float"].get<float>()});
+    } else if (j.contains("int")) {
+      u.push_back({name, j["int"].get<int>()});
+    } else {
+      const auto v = j.at("vec").get<std::vector<float>>();
+      if (v.size() == 2)
+        u.push_back({name, gl::Vec2{v[0], v[1]}});
+      else if (v.size() == 3)
+        u.push_back({name, gl::Vec3{v[0], v[1], v[2]}});
+      else if (v.size() == 4)
+        u.push_back({name, gl::Vec4{v[0], v[1], v[2], v[3]}});
+      else
+        throw std::invalid_argument("manifest: uniform " + name + " has " + std::to_string(v.size()) +
+                                    " components");
+    }
+  }
+  return u;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Best of 3 timings, each of enough draws to last ~budget_ms (one of 2 draws when a draw is longer).
+double time_program(gl::Context& ctx, const gl::Program& prog, int w, int h, const std::vector<gl::Uniform>& u,
+                    double budget_ms) {
+  const double first = ctx.time_ms(prog, w, h, u, 2);
+  if (first > budget_ms) return first;  // a slow program: 2 draws say enough, and more would cost seconds
+  const int reps = static_cast<int>(std::clamp(budget_ms / std::max(first, 1e-3), 3.0, 500.0));
+  double best = first;
+  for (int t = 0; t < 3; ++t) best = std::min(best, ctx.time_ms(prog, w, h, u, reps));
+  return best;
+}
+
+// One program of the pack: where it is and what is known of it.
+struct Job {
+  int scene = 0;  // index into the manifest's scenes
+  json entry;     // the manifest's program entry
+  gpu_timing::ProgramTime time;
+  gl::Program program;
+};
+
+gpu_timing::ProgramTime from_entry(const json& pj) {
+  gpu_timing::ProgramTime p;
+  p.label = pj.at("label");
+  p.kind = pj.at("kind");
+  p.msaa = pj.at("msaa");
+  p.error = pj.at("error").is_number() ? pj["error"].get<double>() : INFINITY;  // null: infeasible
+  p.compiled_ns = pj.value("compiled_ns", -1.0);
+  return p;
+}
+
+json time_json(const std::string& scene, const gpu_timing::ProgramTime& p, double pixels) {
+  return {{"scene", scene},
+          {"label", p.label},
+          {"gpu_ms", p.gpu_ms},
+          {"gpu_ns_per_pixel", p.gpu_ms >= 0 ? p.gpu_ms * 1e6 / pixels : -1.0},
+          {"compile_ms", p.compile_ms},
+          {"failure", p.failure}};
+}
+
+// Holds an exclusive flock on a file for its lifetime (released by close, also if we crash).
+class FileLock {
+ public:
+  explicit FileLock(const fs::path& p) : fd_(::open(p.c_str(), O_CREAT | O_RDWR, 0644)) {
+    if (fd_ < 0 || ::flock(fd_, LOCK_EX) != 0) throw std::runtime_error(p.string() + ": cannot lock");
+  }
+  ~FileLock() { ::close(fd_); }
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+
+ private:
+  int fd_;
+};
+
+// Compiles and times this shard's jobs; returns the shard's records.
+json run_shard(const fs::path& pack, const json& manifest, const fs::path& out, int shard, int shards,
+               const std::string& only, double budget_ms, double compile_seconds, std::string& renderer) {
+  std::vector<Job> jobs;
+  int index = 0;
+  const json& scenes = manifest.at("scenes");
+  for (int s = 0; s < static_cast<int>(scenes.size()); ++s) {
+    if (scenes[s].at("scene").get<std::string>().find(only) == std::string::npos) continue;
+    for (const json& pj : scenes[s].at("programs"))
+      if (index++ % shards == shard) jobs.push_back({s, pj, from_entry(pj), {}});
+  }
+  const gl::Availability a = gl::Context::availability();
+  if (!a.ok) throw std::runtime_error("no OpenGL context: " + a.reason);
+  gl::Context ctx;
+  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);  // drivers drop uniforms a shader does not read
+  renderer = ctx.renderer() + " (OpenGL " + ctx.version() + ")";
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t compiled = 0;
+  for (Job& j : jobs) {  // compiles: in parallel across shards
+    if (seconds_since(start) > compile_seconds) {
+      std::fprintf(stderr, "[shard %d] compile time (%.0f s) spent: %zu of %zu programs left untimed\n", shard,
+                   compile_seconds, jobs.size() - compiled, jobs.size());
+      break;
+    }
+    ++compiled;
+    const std::string scene = scenes[j.scene].at("scene");
+    try {
+      const auto t0 = std::chrono::steady_clock::now();
+      j.program = ctx.compile(read_text(pack / j.entry.at("frag").get<std::string>()));
+      j.time.compile_ms = 1e3 * seconds_since(t0);
+    } catch (const gl::Error& e) {
+      j.time.failure = e.what();
+      std::fprintf(stderr, "blgpu_time: %s/%s: %s\n", scene.c_str(), j.time.label.c_str(), e.what());
+    }
+    std::fprintf(stderr, "[shard %d, %6.1f s] compiled %s/%s in %.0f ms\n", shard, seconds_since(start),
+                 scene.c_str(), j.time.label.c_str(), j.time.compile_ms);
+  }
+  json records = json::array();
+  jobs.resize(compiled);
+  const FileLock lock(out / ".timing.lock");  // timings: one process at a time
+  for (Job& j : jobs) {
+    const json& sc = scenes[j.scene];
+    const int w = sc.at("width"), h = sc.at("height");
+    if (j.program.valid()) {
+      try {
+        j.time.gpu_ms = time_program(ctx, j.program, w, h, uniforms_of(sc), budget_ms);
+      } catch (const gl::Error& e) {
+        j.time.failure = e.what();
+      }
+    }
+    records.push_back(time_json(sc.at("scene"), j.time, static_cast<double>(w) * h));
+    // After every program: a shard cut off by a time limit still leaves what it measured.
+    write_text(out / ("shard_" + std::to_string(shard) + ".json"),
+               json{{"renderer", renderer}, {"programs", records}}.dump(1));
+    std::fprintf(stderr, "[shard %d, %6.1f s] %s/%s: %.4f ms per %dx%d frame\n", shard, seconds_since(start),
+                 sc.at("scene").get<std::string>().c_str(), j.time.label.c_str(), j.time.gpu_ms, w, h);
+  }
+  return records;
+}
+
+// The report from every shard's records, in the manifest's order.
+void merge(const json& manifest, const fs::path& out, const std::vector<json>& shard_files) {
+  std::map<std::pair<std::string, std::string>, json> by_key;
+  std::string renderer;
+  for (const json& f : shard_files) {
+    renderer = f.at("renderer");
+    for (const json& r : f.at("programs")) by_key[{r.at("scene"), r.at("label")}] = r;
+  }
+  std::vector<gpu_timing::SceneTimes> scenes;
+  json all = json::array();
+  for (const json& sc : manifest.at("scenes")) {
+    gpu_timing::SceneTimes st;
+    st.scene = sc.at("scene");
+    st.width = sc.at("width");
+    st.height = sc.at("height");
+    for (const json& pj : sc.at("programs")) {
+      const auto it = by_key.find({st.scene, pj.at("label")});
+      if (it == by_key.end()) continue;  // not timed (--only, or a shard that did not finish)
+      gpu_timing::ProgramTime p = from_entry(pj);
+      p.gpu_ms = it->second.at("gpu_ms");
+      p.compile_ms = it->second.at("compile_ms");
+      p.failure = it->second.at("failure");
+      st.programs.push_back(p);
+      json r = it->second;
+      r["kind"] = p.kind, r["msaa"] = p.msaa, r["error"] = pj.at("error"), r["compiled_ns"] = p.compiled_ns;
+      all.push_back(r);
+    }
+    if (!st.programs.empty()) scenes.push_back(st);
+  }
+  const int tile = manifest.at("tile");
+  write_text(out / "gpu_times.json", json{{"renderer", renderer}, {"tile", tile}, {"programs", all}}.dump(1));
+  const std::string md = gpu_timing::report_markdown(scenes, renderer, tile);
+  write_text(out / "report.md", md);
+  std::fputs(md.c_str(), stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"blgpu_time: a blgpu_pack pack timed on this machine's OpenGL driver"};
+  std::string pack, out, only, shard_text = "0/1";
+  double budget_ms = 40, compile_seconds = 1e9;
+  bool merge_only = false;
+  app.add_option("pack", pack, "the directory blgpu_pack wrote (manifest.json)")->required();
+  app.add_option("--out", out, "where shard_<K>.json, gpu_times.json and report.md go")->required();
+  app.add_option("--only", only, "time only scenes whose name contains this");
+  app.add_option("--shard", shard_text, "K/N: this process's share of the programs (see the file comment)");
+  app.add_flag("--merge", merge_only, "only join OUT/shard_*.json into gpu_times.json and report.md");
+  app.add_option("--compile-seconds", compile_seconds,
+                 "stop compiling new programs after this long and time those compiled (a time-limited GPU)");
+  app.add_option("--budget-ms", budget_ms, "draw time per timing run (3 runs per program)")
+      ->check(CLI::Range(1.0, 10000.0));
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const json manifest = json::parse(read_text(fs::path(pack) / "manifest.json"));
+    fs::create_directories(out);
+    int shard = 0, shards = 1;
+    if (std::sscanf(shard_text.c_str(), "%d/%d", &shard, &shards) != 2 || shards < 1 || shard < 0 ||
+        shard >= shards)
+      throw std::invalid_argument("--shard " + shard_text + ": expected K/N with 0 <= K < N");
+    if (!merge_only) {
+      std::string renderer;
+      run_shard(pack, manifest, out, shard, shards, only, budget_ms, compile_seconds, renderer);
+      if (shards > 1) return 0;  // the caller merges when every shard is done
+    }
+    std::vector<json> files;
+    for (const auto& e : fs::directory_iterator(out))
+      if (e.path().filename().string().rfind("shard_", 0) == 0 && e.path().extension() == ".json")
+        files.push_back(json::parse(read_text(e.path())));
+    if (files.empty()) throw std::runtime_error(out + ": no shard_*.json to merge");
+    merge(manifest, out, files);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "blgpu_time: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

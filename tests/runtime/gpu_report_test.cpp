@@ -1,0 +1,71 @@
+// The GPU timing report's conclusions, on a hand-made table (numbers chosen so every answer is
+// worked out by hand below).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gpu_timing/gpu_report.hpp"
+
+namespace bl::gpu_timing {
+namespace {
+
+SceneTimes table() {
+  SceneTimes s;
+  s.scene = "toy";
+  s.width = 1000, s.height = 1000;  // 1e6 pixels: ms per frame x 1e6 / 1e6 = ns per pixel
+  auto p = [](const char* label, const char* kind, int msaa, double error, double cpu_ns, double gpu_ms) {
+    ProgramTime t;
+    t.label = label, t.kind = kind, t.msaa = msaa, t.error = error, t.compiled_ns = cpu_ns, t.gpu_ms = gpu_ms;
+    t.compile_ms = 10;
+    return t;
+  };
+  s.programs = {p("plain", "baseline", 0, 0.10, 5, 0.5),       p("msaa16", "baseline", 16, 0.04, 80, 8.0),
+                p("gaussian", "baseline", 0, 0.03, 60, 2.0),   p("front00", "front", 0, 0.10, 5, 0.5),
+                p("front01", "front", 0, 0.05, 10, 0.6),       // misses MSAA-16's error
+                p("front02", "front", 0, 0.04, 20, 1.6),       // reaches it: GPU 8 / 1.6 = 5x, CPU 80 / 20 = 4x
+                p("front03", "front", 0, 0.02, 16, 2.0),       // reaches it, faster on the CPU: 80 / 16 = 5x
+                p("front04", "front", 0, INFINITY, 1, 0.1)};   // infeasible: never picked
+  s.programs[6].compile_ms = 250;
+  return s;
+}
+
+TEST(GpuReport, PicksTheFastestPointAtMsaa16sErrorByEachClock) {
+  const SceneSummary r = summarize(table());
+  EXPECT_DOUBLE_EQ(r.plain_ns, 0.5);
+  EXPECT_DOUBLE_EQ(r.msaa16_ns, 8.0);
+  EXPECT_DOUBLE_EQ(r.gaussian_ns, 2.0);
+  EXPECT_EQ(r.gpu_label, "front02");
+  EXPECT_DOUBLE_EQ(r.gpu_speedup, 5.0);
+  EXPECT_EQ(r.cpu_label, "front03");
+  EXPECT_DOUBLE_EQ(r.cpu_speedup, 5.0);
+  EXPECT_DOUBLE_EQ(r.max_compile_ms, 250);
+  EXPECT_EQ(r.failures, 0);
+}
+
+TEST(GpuReport, AFailedProgramIsCountedAndNeverPicked) {
+  SceneTimes s = table();
+  s.programs[5].gpu_ms = -1;
+  s.programs[5].failure = "compile failed";
+  const SceneSummary r = summarize(s);
+  EXPECT_EQ(r.failures, 1);
+  EXPECT_EQ(r.gpu_label, "front03");
+  EXPECT_DOUBLE_EQ(r.gpu_speedup, 4.0);
+  const std::string md = report_markdown({s}, "toy GPU", 10);
+  EXPECT_NE(md.find("| toy | 0.500 | 8.000 (16.0x) | 2.000 (4.0x) | front03 | 2.000 | 4.0x | 5.0x | 250 | 1 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("1 program(s) failed"), std::string::npos);
+}
+
+TEST(GpuReport, NotReachedWhenNoFrontPointIsAsAccurate) {
+  SceneTimes s = table();
+  for (ProgramTime& p : s.programs)
+    if (p.kind == "front") p.error = 0.05;
+  const SceneSummary r = summarize(s);
+  EXPECT_TRUE(r.gpu_label.empty());
+  EXPECT_LT(r.gpu_speedup, 0);
+  EXPECT_NE(report_markdown({s}, "toy GPU", 10).find("not reached"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace bl::gpu_timing
