@@ -34,6 +34,7 @@ const float BL_SQRT6 = 2.44948974278318;
 const float BL_LN2 = 0.693147180559945;
 const float BL_SERIES_TOL = 1.0e-8;  // series_tol<float>()
 const float BL_ZMAX = 40.0;          // phi(40) and Phic(40) are 0 in float
+const float BL_TAIL_CUT = 9.0;       // tail_cut<float>(): a break beyond 9 sd is taken at 9 sd
 
 bool bl_is_inf(float v) { return abs(v) >= BL_INF; }
 
@@ -740,6 +741,17 @@ vec2 bl_reduce_period(float y, float period) {
 
 // Signed remainder in (-period, period): y itself when |y| < period, so a tiny negative y (just
 // below a period boundary) is not rounded by "+ period" before a tiny kernel magnifies it.
+// reduce_signed_pow2 (support.hpp): y mod period with y's sign, exact for a power-of-two period.
+float bl_reduce_signed_pow2(float y, float period) {
+  float a = abs(y);
+  float r = a - period * floor(a / period);
+  return y < 0.0 ? -r : r;
+}
+
+// copysign(1, v) up to the sign of zero (-0.0 gives +1: the generated callers take either side of
+// an exact tie).
+float bl_copysign1(float v) { return v < 0.0 ? -1.0 : 1.0; }
+
 float bl_reduce_signed(float y, float period) {
   float r = y - period * trunc(y / period);
   if (abs(r) >= period) r = 0.0;
@@ -4880,13 +4892,75 @@ float bl_tent_exp_ramp_sq(float x, float sigma) {
 }
 
 float bl_gaussian_fract_raw(float x, float sigma) {
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1875: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.334 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1875).
+    float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < (0.18746015382974018)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float acc;
+      if (sigma < (0.09339361644125409)) {  // the nearest break alone
+        acc = (((1.0))) * rp;
+        float dl = r - ((0.0) + base), dr = ((1.0) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float j0 = bl_Phic(t);
+        acc += sd * ((-1.0) * j0);
+        return acc;
+      }
+      {
+        acc = (((1.0))) * rp;
+        {  // break at 0
+          float d = ((0.0) + base) - r;  // exact near the break
+          float t = min(-d * inv, BL_TAIL_CUT);
+          float j0 = bl_Phic(t);
+          acc -= (-1.0) * j0;
+        }
+        {  // break at 1
+          float d = ((1.0) + base) - r;  // exact near the break
+          float t = min(d * inv, BL_TAIL_CUT);
+          float j0 = bl_Phic(t);
+          acc += (-1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float s_1 = s1;
+    float d_1 = q;
+    float s_2 = (2.0) * s1 * c1;
+    float d_2 = q4;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float s_4 = C2 * s_2;
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1) + d_3 * ((-0.1061032953945969) * s_3) + d_5 * ((-0.06366197723675814) * s_5)) + (d_2 * ((-0.15915494309189535) * s_2) + d_4 * ((-0.07957747154594767) * s_4));
+    return acc;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 1.0;
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   float s = sigma / period;
   if (s >= (0.08357381802701377)) {
@@ -4978,13 +5052,87 @@ float bl_gaussian_fract_right(float x, float sigma) {
 }
 
 float bl_gaussian_fract_sq_raw(float x, float sigma) {
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1865: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.361 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1865).
+    float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < (0.1865228530605915)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float s2 = sigma * sigma;
+      float acc;
+      if (sigma < (0.09339361644125409)) {  // the nearest break alone
+        acc = ((((1.0))) * rp) * rp + (((1.0)) * s2);
+        float dl = r - ((0.0) + base), dr = ((1.0) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += sd * (((-2.0) * j1) * (sd * sigma) + (-1.0) * j0);
+        return acc;
+      }
+      {
+        acc = ((((1.0))) * rp) * rp + (((1.0)) * s2);
+        {  // break at 0
+          float d = ((0.0) + base) - r;  // exact near the break
+          float t = min(-d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc -= ((-2.0) * j1) * (-sigma) + (-1.0) * j0;
+        }
+        {  // break at 1
+          float d = ((1.0) + base) - r;  // exact near the break
+          float t = min(d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc += ((-2.0) * j1) * sigma + (-1.0) * j0;
+        }
+      }
+      return acc;
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float s_1 = s1;
+    float d_1 = q;
+    float c_2 = (0.5) * C2;
+    float s_2 = (2.0) * s1 * c1;
+    float d_2 = q4;
+    float c_3 = C2 * c_1 - c1;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_4 = C2 * c_2 - (1.0);
+    float s_4 = C2 * s_2;
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float acc = (0.3333333333333333) + (d_1 * ((0.10132118364233778) * c_1 + (-0.3183098861837907) * s_1) + d_3 * ((0.011257909293593086) * c_3 + (-0.1061032953945969) * s_3) + d_5 * ((0.004052847345693511) * c_5 + (-0.06366197723675814) * s_5)) + (d_2 * ((0.025330295910584444) * c_2 + (-0.15915494309189535) * s_2) + d_4 * ((0.006332573977646111) * c_4 + (-0.07957747154594767) * s_4));
+    return acc;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 1.0;
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   float s = sigma / period;
   if (s >= (0.08357381802701377)) {
@@ -5343,13 +5491,83 @@ float bl_tent_fract_sq(float x, float sigma) {
 }
 
 float bl_gaussian_triangle_raw(float x, float sigma) {
+  float period = 2.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.2055: the 1 nearest break(s) on each side (the dropped ones lie beyond 4.867 sd; below 0.1055 the nearest one alone, the others beyond 4.74 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1027).
+    float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < (0.20545118674910237)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float acc;
+      float h1 = (0.5) * ((1.0) + bl_copysign1(r - ((1.0) + base)));
+      float w0 = (1.0) - h1;
+      float w1 = h1;
+      acc = ((w0 * ((1.0)) + w1 * ((-1.0)))) * rp + (w1 * ((2.0)));
+      if (sigma < (0.10548200916383271)) {  // the nearest break alone
+        float dl = r - ((w0 * (0.0) + w1 * (1.0)) + base), dr = ((w0 * (1.0) + w1 * (2.0)) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        float hr = (0.5) * (sd + (1.0)), hl = (1.0) - hr;
+        acc += sd * (((hr * (w0 * (-2.0) + w1 * (2.0)) + hl * (w0 * (2.0) + w1 * (-2.0))) * j1) * (sd * sigma));
+        return acc;
+      }
+      {
+        float d = ((w0 * (0.0) + w1 * (1.0)) + base) - r;  // exact near the break
+        float t = min(-d * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc -= ((w0 * (2.0) + w1 * (-2.0)) * j1) * (-sigma);
+      }
+      {
+        float d = ((w0 * (1.0) + w1 * (2.0)) + base) - r;  // exact near the break
+        float t = min(d * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += ((w0 * (-2.0) + w1 * (2.0)) * j1) * sigma;
+      }
+      return acc;
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-4.934802200544679) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float d_1 = q;
+    float c_3 = C2 * c_1 - c1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float c_7 = C2 * c_5 - c_3;
+    float r_5 = max(r_3 * q8, (8.673617379884035e-19));
+    float d_7 = max(d_5 * r_5, (8.673617379884035e-19));
+    float c_9 = C2 * c_7 - c_5;
+    float r_7 = max(r_5 * q8, (8.673617379884035e-19));
+    float d_9 = max(d_7 * r_7, (8.673617379884035e-19));
+    float acc = (0.5) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3) + d_5 * ((-0.016211389382774045) * c_5) + d_7 * ((-0.008271117032027573) * c_7) + d_9 * ((-0.005003515241596927) * c_9));
+    return acc;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 2.0;
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
@@ -5443,13 +5661,95 @@ float bl_gaussian_triangle_right(float x, float sigma) {
 }
 
 float bl_gaussian_triangle_sq_raw(float x, float sigma) {
+  float period = 2.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1994: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.016 sd; below 0.1024 the nearest one alone, the others beyond 4.885 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.09968).
+    float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < (0.1993641836359492)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float s2 = sigma * sigma;
+      float acc;
+      float h1 = (0.5) * ((1.0) + bl_copysign1(r - ((1.0) + base)));
+      float w0 = (1.0) - h1;
+      float w1 = h1;
+      acc = ((((1.0))) * rp + (w1 * ((-4.0)))) * rp + (w0 * (((1.0)) * s2) + w1 * (((1.0)) * s2 + (4.0)));
+      if (sigma < (0.10235684192424897)) {  // the nearest break alone
+        float dl = r - ((w0 * (0.0) + w1 * (1.0)) + base), dr = ((w0 * (1.0) + w1 * (2.0)) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        float hr = (0.5) * (sd + (1.0)), hl = (1.0) - hr;
+        acc += sd * (((hr * (w0 * (-4.0)) + hl * (w1 * (-4.0))) * j1) * (sd * sigma));
+        return acc;
+      }
+      {
+        float d = ((w0 * (0.0) + w1 * (1.0)) + base) - r;  // exact near the break
+        float t = min(-d * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc -= ((w1 * (-4.0)) * j1) * (-sigma);
+      }
+      {
+        float d = ((w0 * (1.0) + w1 * (2.0)) + base) - r;  // exact near the break
+        float t = min(d * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += ((w0 * (-4.0)) * j1) * sigma;
+      }
+      return acc;
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-4.934802200544679) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float d_1 = q;
+    float c_2 = (0.5) * C2;
+    float d_2 = q4;
+    float c_3 = C2 * c_1 - c1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_4 = C2 * c_2 - (1.0);
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float c_6 = C2 * c_4 - c_2;
+    float r_4 = max(r_2 * q8, (8.673617379884035e-19));
+    float d_6 = max(d_4 * r_4, (8.673617379884035e-19));
+    float c_7 = C2 * c_5 - c_3;
+    float r_5 = max(r_3 * q8, (8.673617379884035e-19));
+    float d_7 = max(d_5 * r_5, (8.673617379884035e-19));
+    float c_8 = C2 * c_6 - c_4;
+    float r_6 = max(r_4 * q8, (8.673617379884035e-19));
+    float d_8 = max(d_6 * r_6, (8.673617379884035e-19));
+    float c_9 = C2 * c_7 - c_5;
+    float r_7 = max(r_5 * q8, (8.673617379884035e-19));
+    float d_9 = max(d_7 * r_7, (8.673617379884035e-19));
+    float acc = (0.3333333333333333) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3) + d_5 * ((-0.016211389382774045) * c_5) + d_7 * ((-0.008271117032027573) * c_7) + d_9 * ((-0.005003515241596927) * c_9)) + (d_2 * ((0.10132118364233778) * c_2) + d_4 * ((0.025330295910584444) * c_4) + d_6 * ((0.011257909293593086) * c_6) + d_8 * ((0.006332573977646111) * c_8));
+    return acc;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 2.0, float[8](4.0, (-4.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 2.0;
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
@@ -5821,13 +6121,75 @@ float bl_tent_triangle_sq(float x, float sigma) {
 }
 
 float bl_gaussian_square_raw(float x, float sigma) {
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339).
+    float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < (0.09339361644125409)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float inv = (1.0) / sigma;
+      float acc;
+      float h1 = (0.5) * ((1.0) + bl_copysign1(r - ((0.5) + base)));
+      float w0 = (1.0) - h1;
+      float w1 = h1;
+      acc = (w0 * ((1.0)));
+      if (sigma < (0.04676299685992172)) {  // the nearest break alone
+        float dl = r - ((w0 * (0.0) + w1 * (0.5)) + base), dr = ((w0 * (0.5) + w1 * (1.0)) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float j0 = bl_Phic(t);
+        float hr = (0.5) * (sd + (1.0)), hl = (1.0) - hr;
+        acc += sd * ((hr * (w0 * (-1.0) + w1 * (1.0)) + hl * (w0 * (1.0) + w1 * (-1.0))) * j0);
+        return acc;
+      }
+      {
+        float d = ((w0 * (0.0) + w1 * (0.5)) + base) - r;  // exact near the break
+        float t = min(-d * inv, BL_TAIL_CUT);
+        float j0 = bl_Phic(t);
+        acc -= (w0 * (1.0) + w1 * (-1.0)) * j0;
+      }
+      {
+        float d = ((w0 * (0.5) + w1 * (1.0)) + base) - r;  // exact near the break
+        float t = min(d * inv, BL_TAIL_CUT);
+        float j0 = bl_Phic(t);
+        acc += (w0 * (-1.0) + w1 * (1.0)) * j0;
+      }
+      return acc;
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float s_1 = s1;
+    float d_1 = q;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float s_7 = C2 * s_5 - s_3;
+    float r_5 = max(r_3 * q8, (8.673617379884035e-19));
+    float d_7 = max(d_5 * r_5, (8.673617379884035e-19));
+    float s_9 = C2 * s_7 - s_5;
+    float r_7 = max(r_5 * q8, (8.673617379884035e-19));
+    float d_9 = max(d_7 * r_7, (8.673617379884035e-19));
+    float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3) + d_5 * ((0.12732395447351627) * s_5) + d_7 * ((0.09094568176679733) * s_7) + d_9 * ((0.07073553026306459) * s_9));
+    return acc;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 1.0;
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
@@ -5921,13 +6283,75 @@ float bl_gaussian_square_right(float x, float sigma) {
 }
 
 float bl_gaussian_square_sq_raw(float x, float sigma) {
+  float period = 1.0;
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339).
+    float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
+    if (sigma < (0.09339361644125409)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float inv = (1.0) / sigma;
+      float acc;
+      float h1 = (0.5) * ((1.0) + bl_copysign1(r - ((0.5) + base)));
+      float w0 = (1.0) - h1;
+      float w1 = h1;
+      acc = (w0 * ((1.0)));
+      if (sigma < (0.04676299685992172)) {  // the nearest break alone
+        float dl = r - ((w0 * (0.0) + w1 * (0.5)) + base), dr = ((w0 * (0.5) + w1 * (1.0)) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float j0 = bl_Phic(t);
+        float hr = (0.5) * (sd + (1.0)), hl = (1.0) - hr;
+        acc += sd * ((hr * (w0 * (-1.0) + w1 * (1.0)) + hl * (w0 * (1.0) + w1 * (-1.0))) * j0);
+        return acc;
+      }
+      {
+        float d = ((w0 * (0.0) + w1 * (0.5)) + base) - r;  // exact near the break
+        float t = min(-d * inv, BL_TAIL_CUT);
+        float j0 = bl_Phic(t);
+        acc -= (w0 * (1.0) + w1 * (-1.0)) * j0;
+      }
+      {
+        float d = ((w0 * (0.5) + w1 * (1.0)) + base) - r;  // exact near the break
+        float t = min(d * inv, BL_TAIL_CUT);
+        float j0 = bl_Phic(t);
+        acc += (w0 * (-1.0) + w1 * (1.0)) * j0;
+      }
+      return acc;
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float s_1 = s1;
+    float d_1 = q;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float s_7 = C2 * s_5 - s_3;
+    float r_5 = max(r_3 * q8, (8.673617379884035e-19));
+    float d_7 = max(d_5 * r_5, (8.673617379884035e-19));
+    float s_9 = C2 * s_7 - s_5;
+    float r_7 = max(r_5 * q8, (8.673617379884035e-19));
+    float d_9 = max(d_7 * r_7, (8.673617379884035e-19));
+    float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3) + d_5 * ((0.12732395447351627) * s_5) + d_7 * ((0.09094568176679733) * s_7) + d_9 * ((0.07073553026306459) * s_9));
+    return acc;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float period = 1.0;
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
@@ -7109,6 +7533,83 @@ float bl_gaussian_floor_sq_raw(float x, float sigma) {
   float y = x;
   float lam = ((-2.0)*y);
   float period = 1.0;
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < (0.17829525136613786)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float s2 = sigma * sigma;
+      float acc;
+      if (sigma < (0.09017346495423652)) {  // the nearest break alone
+        acc = ((((1.0))) * rp + ((lam))) * rp + (((1.0)) * s2);
+        float dl = r - ((0.0) + base), dr = ((1.0) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += sd * (((-2.0) * j1) * (sd * sigma) + (((-lam) + ((-1.0)))) * j0);
+        acc += (((2.0)*sigma)) * ph;
+        return rest + acc + ((((-2.0))*(sigma*sigma)));
+      }
+      {
+        acc = ((((1.0))) * rp + ((lam))) * rp + (((1.0)) * s2);
+        {  // break at 0
+          float d = ((0.0) + base) - r;  // exact near the break
+          float t = min(-d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc -= ((-2.0) * j1) * (-sigma) + (((-lam) + ((-1.0)))) * j0;
+          acc += (((2.0)*sigma)) * ph;
+        }
+        {  // break at 1
+          float d = ((1.0) + base) - r;  // exact near the break
+          float t = min(d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc += ((-2.0) * j1) * sigma + (((-lam) + ((-1.0)))) * j0;
+          acc += (((2.0)*sigma)) * ph;
+        }
+      }
+      return rest + acc + ((((-2.0))*(sigma*sigma)));
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float s_1 = s1;
+    float d_1 = q;
+    float c_2 = (0.5) * C2;
+    float s_2 = (2.0) * s1 * c1;
+    float d_2 = q4;
+    float c_3 = C2 * c_1 - c1;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_4 = C2 * c_2 - (1.0);
+    float s_4 = C2 * s_2;
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (((((-1.0)/(5.0))*((1.0)/(BL_PI))) + (((-1.0)/(5.0))*((1.0)/(BL_PI))*lam))) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (((((-1.0)/(4.0))*((1.0)/(BL_PI))) + (((-1.0)/(4.0))*((1.0)/(BL_PI))*lam))) * s_4));
+    return rest + acc;
+  }
   BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float s = sigma / period;
   if (s >= (0.08106660348620336)) {
@@ -7400,6 +7901,83 @@ float bl_gaussian_ceil_sq_raw(float x, float sigma) {
   float y = -x;
   float lam = ((-2.0)*y);
   float period = 1.0;
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < (0.17829525136613786)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float s2 = sigma * sigma;
+      float acc;
+      if (sigma < (0.09017346495423652)) {  // the nearest break alone
+        acc = ((((1.0))) * rp + ((lam))) * rp + (((1.0)) * s2);
+        float dl = r - ((0.0) + base), dr = ((1.0) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += sd * (((-2.0) * j1) * (sd * sigma) + (((-lam) + ((-1.0)))) * j0);
+        acc += (((2.0)*sigma)) * ph;
+        return rest + acc + ((((-2.0))*(sigma*sigma)));
+      }
+      {
+        acc = ((((1.0))) * rp + ((lam))) * rp + (((1.0)) * s2);
+        {  // break at 0
+          float d = ((0.0) + base) - r;  // exact near the break
+          float t = min(-d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc -= ((-2.0) * j1) * (-sigma) + (((-lam) + ((-1.0)))) * j0;
+          acc += (((2.0)*sigma)) * ph;
+        }
+        {  // break at 1
+          float d = ((1.0) + base) - r;  // exact near the break
+          float t = min(d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc += ((-2.0) * j1) * sigma + (((-lam) + ((-1.0)))) * j0;
+          acc += (((2.0)*sigma)) * ph;
+        }
+      }
+      return rest + acc + ((((-2.0))*(sigma*sigma)));
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float s_1 = s1;
+    float d_1 = q;
+    float c_2 = (0.5) * C2;
+    float s_2 = (2.0) * s1 * c1;
+    float d_2 = q4;
+    float c_3 = C2 * c_1 - c1;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_4 = C2 * c_2 - (1.0);
+    float s_4 = C2 * s_2;
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (((((-1.0)/(5.0))*((1.0)/(BL_PI))) + (((-1.0)/(5.0))*((1.0)/(BL_PI))*lam))) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (((((-1.0)/(4.0))*((1.0)/(BL_PI))) + (((-1.0)/(4.0))*((1.0)/(BL_PI))*lam))) * s_4));
+    return rest + acc;
+  }
   BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float s = sigma / period;
   if (s >= (0.08106660348620336)) {
@@ -7705,6 +8283,83 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
   float y = x;
   float lam = ((-2.0)*y);
   float period = 1.0;
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < (0.17829525136613786)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float s2 = sigma * sigma;
+      float acc;
+      if (sigma < (0.09017346495423652)) {  // the nearest break alone
+        acc = ((((1.0))) * rp + ((lam))) * rp + (((1.0)) * s2);
+        float dl = r - ((0.0) + base), dr = ((1.0) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += sd * (((-2.0) * j1) * (sd * sigma) + (((-lam) + ((-1.0)))) * j0);
+        acc += (((2.0)*sigma)) * ph;
+        return rest + acc + ((((-2.0))*(sigma*sigma)));
+      }
+      {
+        acc = ((((1.0))) * rp + ((lam))) * rp + (((1.0)) * s2);
+        {  // break at 0
+          float d = ((0.0) + base) - r;  // exact near the break
+          float t = min(-d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc -= ((-2.0) * j1) * (-sigma) + (((-lam) + ((-1.0)))) * j0;
+          acc += (((2.0)*sigma)) * ph;
+        }
+        {  // break at 1
+          float d = ((1.0) + base) - r;  // exact near the break
+          float t = min(d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc += ((-2.0) * j1) * sigma + (((-lam) + ((-1.0)))) * j0;
+          acc += (((2.0)*sigma)) * ph;
+        }
+      }
+      return rest + acc + ((((-2.0))*(sigma*sigma)));
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float s_1 = s1;
+    float d_1 = q;
+    float c_2 = (0.5) * C2;
+    float s_2 = (2.0) * s1 * c1;
+    float d_2 = q4;
+    float c_3 = C2 * c_1 - c1;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_4 = C2 * c_2 - (1.0);
+    float s_4 = C2 * s_2;
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (((((-1.0)/(5.0))*((1.0)/(BL_PI))) + (((-1.0)/(5.0))*((1.0)/(BL_PI))*lam))) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (((((-1.0)/(4.0))*((1.0)/(BL_PI))) + (((-1.0)/(4.0))*((1.0)/(BL_PI))*lam))) * s_4));
+    return rest + acc;
+  }
   BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float s = sigma / period;
   if (s >= (0.08106660348620336)) {
@@ -7747,6 +8402,83 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
   float y = x;
   float lam = (((-2.0)*y) + (-2.0));
   float period = 1.0;
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < (0.17829525136613786)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float s2 = sigma * sigma;
+      float acc;
+      if (sigma < (0.09017346495423652)) {  // the nearest break alone
+        acc = ((((1.0))) * rp + ((lam))) * rp + (((1.0)) * s2);
+        float dl = r - ((0.0) + base), dr = ((1.0) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += sd * (((-2.0) * j1) * (sd * sigma) + (((-lam) + ((-1.0)))) * j0);
+        acc += (((2.0)*sigma)) * ph;
+        return rest + acc + ((((-2.0))*(sigma*sigma)));
+      }
+      {
+        acc = ((((1.0))) * rp + ((lam))) * rp + (((1.0)) * s2);
+        {  // break at 0
+          float d = ((0.0) + base) - r;  // exact near the break
+          float t = min(-d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc -= ((-2.0) * j1) * (-sigma) + (((-lam) + ((-1.0)))) * j0;
+          acc += (((2.0)*sigma)) * ph;
+        }
+        {  // break at 1
+          float d = ((1.0) + base) - r;  // exact near the break
+          float t = min(d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc += ((-2.0) * j1) * sigma + (((-lam) + ((-1.0)))) * j0;
+          acc += (((2.0)*sigma)) * ph;
+        }
+      }
+      return rest + acc + ((((-2.0))*(sigma*sigma)));
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float s_1 = s1;
+    float d_1 = q;
+    float c_2 = (0.5) * C2;
+    float s_2 = (2.0) * s1 * c1;
+    float d_2 = q4;
+    float c_3 = C2 * c_1 - c1;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_4 = C2 * c_2 - (1.0);
+    float s_4 = C2 * s_2;
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (((((-1.0)/(5.0))*((1.0)/(BL_PI))) + (((-1.0)/(5.0))*((1.0)/(BL_PI))*lam))) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (((((-1.0)/(4.0))*((1.0)/(BL_PI))) + (((-1.0)/(4.0))*((1.0)/(BL_PI))*lam))) * s_4));
+    return rest + acc;
+  }
   BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float s = sigma / period;
   if (s >= (0.08106660348620336)) {
@@ -7788,6 +8520,83 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
   float y = x;
   float lam = (((-2.0)*y) + (-2.0));
   float period = 1.0;
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < (0.17829525136613786)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float s2 = sigma * sigma;
+      float acc;
+      if (sigma < (0.09017346495423652)) {  // the nearest break alone
+        acc = ((((1.0))) * rp + ((lam))) * rp + (((1.0)) * s2);
+        float dl = r - ((0.0) + base), dr = ((1.0) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += sd * (((-2.0) * j1) * (sd * sigma) + (((-lam) + ((-1.0)))) * j0);
+        acc += (((2.0)*sigma)) * ph;
+        return rest + acc + ((((-2.0))*(sigma*sigma)));
+      }
+      {
+        acc = ((((1.0))) * rp + ((lam))) * rp + (((1.0)) * s2);
+        {  // break at 0
+          float d = ((0.0) + base) - r;  // exact near the break
+          float t = min(-d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc -= ((-2.0) * j1) * (-sigma) + (((-lam) + ((-1.0)))) * j0;
+          acc += (((2.0)*sigma)) * ph;
+        }
+        {  // break at 1
+          float d = ((1.0) + base) - r;  // exact near the break
+          float t = min(d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc += ((-2.0) * j1) * sigma + (((-lam) + ((-1.0)))) * j0;
+          acc += (((2.0)*sigma)) * ph;
+        }
+      }
+      return rest + acc + ((((-2.0))*(sigma*sigma)));
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float s_1 = s1;
+    float d_1 = q;
+    float c_2 = (0.5) * C2;
+    float s_2 = (2.0) * s1 * c1;
+    float d_2 = q4;
+    float c_3 = C2 * c_1 - c1;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_4 = C2 * c_2 - (1.0);
+    float s_4 = C2 * s_2;
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (((((-1.0)/(5.0))*((1.0)/(BL_PI))) + (((-1.0)/(5.0))*((1.0)/(BL_PI))*lam))) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (((((-1.0)/(4.0))*((1.0)/(BL_PI))) + (((-1.0)/(4.0))*((1.0)/(BL_PI))*lam))) * s_4));
+    return rest + acc;
+  }
   BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   float s = sigma / period;
   if (s >= (0.08106660348620336)) {

@@ -508,11 +508,20 @@ GaussPeriodicSpec periodic_spec(const Derived& d) {
 
 std::string body_periodic(const Derived& d, const Syntax& s) {
   const size_t n = d.pieces.size();
-  std::string out = piece_table(s, "p", d.pieces);
-  if (d.kernel != Kernel::Gaussian) out += piece_table(s, "p1", d.P1);
-  if (d.kernel == Kernel::Tent) out += piece_table(s, "p2", d.P2);
-  out += s.decl("period", s.ex(d.period));
-  out += guard_sigma(s);
+  // GLSL, Gaussian: the straight-line regimes (sigma >= 1e-30) go before the piece table, which
+  // only sigma = 0 and the generic code below read: a GPU keeps such an array in local memory.
+  const bool glsl_fast_first = !s.cpp() && d.kernel == Kernel::Gaussian && d.phases.empty() && d.origins.empty();
+  std::string out;
+  if (glsl_fast_first) {
+    out += s.decl("period", s.ex(d.period)) + guard_sigma(s) + gauss_periodic_fast_glsl(periodic_spec(d));
+    out += piece_table(s, "p", d.pieces);
+  } else {
+    out += piece_table(s, "p", d.pieces);
+    if (d.kernel != Kernel::Gaussian) out += piece_table(s, "p1", d.P1);
+    if (d.kernel == Kernel::Tent) out += piece_table(s, "p2", d.P2);
+    out += s.decl("period", s.ex(d.period));
+    out += guard_sigma(s);
+  }
   auto plain = [&](const std::string& y, const std::string& t) {
     return s.helper("periodic_eval") + "(" + y + ", period, " + pieces_arg(s, t, n) + ")";
   };
@@ -617,17 +626,19 @@ std::string fused_periodic(const Derived& d, const FusedTerms& f, const FusableP
   out += s.decl("y", f.sgn < 0 ? "-x" : "x");
   out += s.decl("lam", s.ex(f.c0 + c1s * y));
   out += s.decl("period", s.ex(T));
+  std::string table;
   if (s.cpp())
-    out += "  const detail::Piece<T> p[1] = {{" + s.bound(A.pieces[0].lo) + ", " + s.bound(A.pieces[0].hi) +
-           ", {" + coeffs + "}}};\n";
+    table = "  const detail::Piece<T> p[1] = {{" + s.bound(A.pieces[0].lo) + ", " + s.bound(A.pieces[0].hi) +
+            ", {" + coeffs + "}}};\n";
   else
-    out += "  BlPiece p[4] = BlPiece[4](BlPiece(" + s.bound(A.pieces[0].lo) + ", " + s.bound(A.pieces[0].hi) +
-           ", float[8](" + coeffs +
-           ")), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), "
-           "BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, "
-           "float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));\n";
+    table = "  BlPiece p[4] = BlPiece[4](BlPiece(" + s.bound(A.pieces[0].lo) + ", " + s.bound(A.pieces[0].hi) +
+            ", float[8](" + coeffs +
+            ")), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), "
+            "BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, "
+            "float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));\n";
   const std::string lead = rest.empty() ? "" : rest + " + ";
-  if (s.cpp() && GiNaC::is_a<GiNaC::numeric>(T) && GiNaC::is_a<GiNaC::numeric>(A.pieces[0].lo.value)) {
+  std::string fast;
+  if (GiNaC::is_a<GiNaC::numeric>(T) && GiNaC::is_a<GiNaC::numeric>(A.pieces[0].lo.value)) {
     GaussPeriodicSpec sp;
     sp.period = GiNaC::ex_to<GiNaC::numeric>(T);
     sp.lo = {GiNaC::ex_to<GiNaC::numeric>(A.pieces[0].lo.value)};
@@ -637,8 +648,11 @@ std::string fused_periodic(const Derived& d, const FusedTerms& f, const FusableP
     sp.break_extra = c1s * g[1] * sig * sig;
     sp.y = "y";
     sp.lead = lead;
-    out += gauss_periodic_fast_cpp(sp);
+    fast = s.cpp() ? gauss_periodic_fast_cpp(sp) : gauss_periodic_fast_glsl(sp);
   }
+  // GLSL: the straight-line regimes before the piece table, which only the generic code reads (a
+  // GPU keeps such an array in local memory).
+  out += s.cpp() ? table + fast : fast + table;
   out += fourier_branch(dd, s, 0, s.ex(dd.a0),
                         "damp * (" + s.ex(dd.ak) + " * cos(th) + " + s.ex(dd.bk) + " * sin(th))",
                         lead + "acc", "y");

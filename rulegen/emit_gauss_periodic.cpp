@@ -158,7 +158,54 @@ std::string j_chain(size_t ne, bool needs_phi, const std::string& in = "        
 
 }  // namespace
 
-std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
+// The C++ text of the float regimes (below) respelled as GLSL: the regime printer writes C++, and
+// its vocabulary is closed (this file's own spellings and sym::print's C++ coefficients), so the
+// respelling is a fixed map; anything outside it throws rather than reach a driver.
+std::string glsl_spelling(std::string code) {
+  auto replace_all = [&](const std::string& from, const std::string& to) {
+    for (size_t at = code.find(from); at != std::string::npos; at = code.find(from, at + to.size()))
+      code.replace(at, from.size(), to);
+  };
+  // round(v) instead of (v + 1.5 2^23) - 1.5 2^23: a GPU compiler may fold the latter to v.
+  replace_all("v - ((v + T(12582912.0)) - T(12582912.0))", "v - round(v)");
+  replace_all("std::copysign(T(1), ", "bl_copysign1(");
+  replace_all("detail::normal_phi_Phic(", "bl_phi_Phic(");
+  replace_all("detail::normal_Phic(", "bl_Phic(");
+  replace_all("detail::reduce_signed_pow2(", "bl_reduce_signed_pow2(");
+  replace_all("detail::tail_cut<T>()", "BL_TAIL_CUT");
+  replace_all("detail::min2(", "min(");
+  replace_all("detail::at_least(", "max(");
+  replace_all("detail::pi<T>()", "BL_PI");
+  replace_all("const T ", "float ");
+  replace_all("  T ph, j0;", "  float ph, j0;");
+  replace_all("  T acc;", "  float acc;");
+  // T(literal) -> a float literal.
+  std::string out;
+  for (size_t i = 0; i < code.size();) {
+    const bool ident_before = i > 0 && (std::isalnum(static_cast<unsigned char>(code[i - 1])) || code[i - 1] == '_');
+    if (!ident_before && code.compare(i, 2, "T(") == 0) {
+      const size_t close = code.find(')', i + 2);
+      const std::string lit_text = code.substr(i + 2, close - i - 2);
+      if (close != std::string::npos && !lit_text.empty() &&
+          lit_text.find_first_not_of("0123456789.e+-") == std::string::npos) {
+        const bool is_float = lit_text.find_first_of(".e") != std::string::npos;
+        out += "(" + lit_text + (is_float ? "" : ".0") + ")";
+        i = close + 1;
+        continue;
+      }
+    }
+    out += code[i++];
+  }
+  for (const char* cpp_only : {"T(", "std::", "detail::", "<T>", "sizeof", "constexpr"}) {
+    const size_t at = out.find(cpp_only);
+    if (at != std::string::npos)
+      throw std::logic_error(std::string("gauss periodic GLSL: no GLSL spelling for '") + cpp_only + "' in: " +
+                             out.substr(at > 60 ? at - 60 : 0, 160));
+  }
+  return out;
+}
+
+std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
   const size_t N = sp.lo.size();
   if (N == 0 || N != sp.c.size() || !dyadic(sp.period) || sp.lo[0] != 0) return "";
   double Pd = sp.period.to_double();
@@ -603,6 +650,12 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
     return h.str();
   };
   std::string out;
+  if (lang == Lang::Glsl) {
+    out += "  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break\n";
+    out += "  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.\n";
+    out += "  if (sigma >= 1e-30) {\n" + header(pf, "float", kTolFloat) + glsl_spelling(regimes(pf, true)) + "  }\n";
+    return out;
+  }
   out += "  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate\n";
   out +=
       "  // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from\n";
@@ -618,5 +671,8 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
   out += "   }\n  }\n";
   return out;
 }
+
+std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) { return gauss_periodic_fast(sp, Lang::Cpp); }
+std::string gauss_periodic_fast_glsl(const GaussPeriodicSpec& sp) { return gauss_periodic_fast(sp, Lang::Glsl); }
 
 }  // namespace bl::rulegen

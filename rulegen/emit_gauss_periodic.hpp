@@ -26,5 +26,8 @@ struct GaussPeriodicSpec {
 // breaks), guarded by `if constexpr`; other types fall through to the caller's generic code. ""
 // when the spec does not fit.
 std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp);
+// The float regimes of the same plan as GLSL statements, guarded by sigma >= 1e-30 (the caller's
+// generic code follows for smaller sigma); "" when the spec does not fit.
+std::string gauss_periodic_fast_glsl(const GaussPeriodicSpec& sp);
 
 }  // namespace bl::rulegen

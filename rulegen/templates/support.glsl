@@ -28,6 +28,7 @@ const float BL_SQRT6 = 2.44948974278318;
 const float BL_LN2 = 0.693147180559945;
 const float BL_SERIES_TOL = 1.0e-8;  // series_tol<float>()
 const float BL_ZMAX = 40.0;          // phi(40) and Phic(40) are 0 in float
+const float BL_TAIL_CUT = 9.0;       // tail_cut<float>(): a break beyond 9 sd is taken at 9 sd
 
 bool bl_is_inf(float v) { return abs(v) >= BL_INF; }
 
@@ -734,6 +735,17 @@ vec2 bl_reduce_period(float y, float period) {
 
 // Signed remainder in (-period, period): y itself when |y| < period, so a tiny negative y (just
 // below a period boundary) is not rounded by "+ period" before a tiny kernel magnifies it.
+// reduce_signed_pow2 (support.hpp): y mod period with y's sign, exact for a power-of-two period.
+float bl_reduce_signed_pow2(float y, float period) {
+  float a = abs(y);
+  float r = a - period * floor(a / period);
+  return y < 0.0 ? -r : r;
+}
+
+// copysign(1, v) up to the sign of zero (-0.0 gives +1: the generated callers take either side of
+// an exact tie).
+float bl_copysign1(float v) { return v < 0.0 ? -1.0 : 1.0; }
+
 float bl_reduce_signed(float y, float period) {
   float r = y - period * trunc(y / period);
   if (abs(r) >= period) r = 0.0;

@@ -64,45 +64,39 @@ TEST(GlslExec, MatchesTheCppRenderer) {
 // atomics: the GLSL print of the same description as the C++ one, executed, against the double
 // table, at and beside breaks, on both sides of the periodic reduction's sign and across the
 // hand-over widths (tent: the wide regime from sigma = 0.82).
-TEST(GlslExec, BoxTentBreakSums) {
-  const auto av = gl::Context::availability();
-  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
-  gl::Context ctx;
+// Runs every registry entry of `kernels` and `names` (convolutions of f and f^2) in GLSL at every
+// (x, sigma) of the grid, one shader and one draw (compiling per entry took 20 s on llvmpipe: row r
+// evaluates entry r, pixel k of it (xs[k % nx], ss[k / nx])), against the C++ double table.
+// Returns the number of values checked.
+int check_entries(gl::Context& ctx, const std::vector<std::string>& kernels, const std::vector<std::string>& names,
+                  const std::vector<float>& xs, const std::vector<float>& ss, double tol) {
   int n = 0;
   const auto* e = bl::registry::entries<double>(&n);
   int checked = 0;
-  const std::string names[] = {"fract", "square", "triangle", "floor",    "ceil",      "trunc",
-                               "abs",   "sign",   "step",     "saturate", "smoothstep"};
-  const float xs[] = {-3.75f, -1.0f, -0.25f, -1e-6f, 0.0f, 0.25f, 0.5f, 0.999f, 1.0f, 2.75f, 37.5f};
-  const float ss[] = {1e-3f, 0.1f, 0.5f, 0.8f, 1.0f, 3.0f};
-  const int nx = 11, ns = 6;
-  auto list = [](const float* v, int k) {
+  const int nx = static_cast<int>(xs.size()), ns = static_cast<int>(ss.size());
+  auto list = [](const std::vector<float>& v) {
     std::ostringstream o;
     o.precision(9);
-    for (int i = 0; i < k; ++i) o << (i ? ", " : "") << std::showpoint << v[i];
+    for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << std::showpoint << v[i];
     return o.str();
   };
   std::vector<int> picked;
   std::vector<std::string> fns;
   for (int i = 0; i < n; ++i) {
-    const std::string atomic = e[i].atomic->name;
-    if (e[i].rule != std::string("convolution") ||
-        !(e[i].kernel == std::string("box") || e[i].kernel == std::string("tent")))
-      continue;
-    if (std::find(std::begin(names), std::end(names), atomic) == std::end(names)) continue;
+    if (e[i].rule != std::string("convolution")) continue;
+    if (std::find(kernels.begin(), kernels.end(), e[i].kernel) == kernels.end()) continue;
+    if (std::find(names.begin(), names.end(), e[i].atomic->name) == names.end()) continue;
     picked.push_back(i);
     fns.push_back(e[i].glsl);
   }
-  // One shader and one draw (compiling per entry took 20 s on llvmpipe): row r evaluates entry r,
-  // pixel k of it (xs[k % nx], ss[k / nx]).
   const int rows = static_cast<int>(picked.size());
   std::string calls;
   for (int r = 0; r < rows; ++r)
     calls += "  " + std::string(r ? "else " : "") + "if (row == " + std::to_string(r) + ") v = " + fns[r] +
              "(x, s);\n";
   const std::string src = "#version 450\n" + compiler::glsl_library_slice(fns) + "const float xs[" +
-                          std::to_string(nx) + "] = float[](" + list(xs, nx) + ");\nconst float ss[" +
-                          std::to_string(ns) + "] = float[](" + list(ss, ns) +
+                          std::to_string(nx) + "] = float[](" + list(xs) + ");\nconst float ss[" +
+                          std::to_string(ns) + "] = float[](" + list(ss) +
                           ");\nout vec4 o;\nvoid main() {\n  int k = int(gl_FragCoord.x), row = "
                           "int(gl_FragCoord.y);\n  float x = xs[k % " +
                           std::to_string(nx) + "], s = ss[k / " + std::to_string(nx) +
@@ -113,11 +107,41 @@ TEST(GlslExec, BoxTentBreakSums) {
     for (int k = 0; k < nx * ns; ++k) {
       const float x = xs[k % nx], s = ss[k / nx];
       const double want = e[picked[r]].smoothed(x, s);
-      EXPECT_NEAR(px[4 * (r * nx * ns + k)], want, 1e-4 * std::max(1.0, std::fabs(want)))
+      EXPECT_NEAR(px[4 * (r * nx * ns + k)], want, tol * std::max(1.0, std::fabs(want)))
           << fns[r] << " x=" << x << " s=" << s;
       ++checked;
     }
+  return checked;
+}
+
+TEST(GlslExec, BoxTentBreakSums) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  const int checked = check_entries(
+      ctx, {"box", "tent"},
+      {"fract", "square", "triangle", "floor", "ceil", "trunc", "abs", "sign", "step", "saturate", "smoothstep"},
+      {-3.75f, -1.0f, -0.25f, -1e-6f, 0.0f, 0.25f, 0.5f, 0.999f, 1.0f, 2.75f, 37.5f},
+      {1e-3f, 0.1f, 0.5f, 0.8f, 1.0f, 3.0f}, 1e-4);
   EXPECT_GT(checked, 1000);
+}
+
+// The Gaussian periodic entries' straight-line GLSL (rulegen/emit_gauss_periodic.cpp, the C++ plan
+// respelled) against the C++ double table, within blverify's float bound 2e-5: at, beside and between
+// the breaks (period 1 and 2), on both sides of the signed reduction, at |x| up to 1e4, and at sigmas
+// on both sides of every regime hand-over the float plans use (the emitted comments: 0.047 to 0.21),
+// down to 1e-6 and up to 30. (Setting BL_TAIL_CUT to 2 fails 1155 of these values.)
+TEST(GlslExec, GaussianPeriodicStraightLine) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  const int checked = check_entries(
+      ctx, {"gaussian"}, {"fract", "square", "triangle", "floor", "ceil", "trunc"},
+      {-1000.25f, -3.75f, -1.0f, -0.5f, -1e-6f, 0.0f, 1e-6f, 0.25f, 0.5f, 0.999f, 1.0f, 1.5f, 2.75f, 37.5f, 1e4f},
+      {1e-6f, 1e-3f, 0.03f, 0.045f, 0.05f, 0.07f, 0.09f, 0.095f, 0.1f, 0.104f, 0.15f, 0.18f, 0.19f, 0.2f,
+       0.21f, 0.25f, 0.35f, 0.5f, 1.0f, 3.0f, 30.0f},
+      2e-5);
+  EXPECT_GT(checked, 2000);
 }
 
 }  // namespace
