@@ -2533,13 +2533,8 @@ float bl_tent_xexp_sq(float x, float sigma) {
 }
 
 float bl_gaussian_abs_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
+  if (sigma > (0.0)) {
   float acc = (0.0);
   if (x < 0.0) acc = (((-1.0))) * x;
   else acc = ((1.0)) * x;
@@ -2556,6 +2551,14 @@ float bl_gaussian_abs_raw(float x, float sigma) {
     }
   }
   return acc;
+  }
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
+  return bl_nan();  // not reached: sigma > 0 returned above
 }
 
 float bl_gaussian_abs(float x, float sigma) {
@@ -2670,13 +2673,8 @@ float bl_tent_abs_sq(float x, float sigma) {
 }
 
 float bl_gaussian_sign_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
+  if (sigma > (0.0)) {
   float acc = (0.0);
   if (x < 0.0) acc = ((-1.0));
   else acc = (1.0);
@@ -2692,6 +2690,14 @@ float bl_gaussian_sign_raw(float x, float sigma) {
     }
   }
   return acc;
+  }
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
+  return bl_nan();  // not reached: sigma > 0 returned above
 }
 
 float bl_gaussian_sign(float x, float sigma) {
@@ -2810,13 +2816,8 @@ float bl_tent_sign_sq(float x, float sigma) {
 }
 
 float bl_gaussian_step_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
+  if (sigma > (0.0)) {
   float acc = (0.0);
   if (x < 0.0) acc = (0.0);
   else acc = (1.0);
@@ -2832,6 +2833,14 @@ float bl_gaussian_step_raw(float x, float sigma) {
     }
   }
   return acc;
+  }
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
+  return bl_nan();  // not reached: sigma > 0 returned above
 }
 
 float bl_gaussian_step(float x, float sigma) {
@@ -2842,13 +2851,8 @@ float bl_gaussian_step(float x, float sigma) {
 }
 
 float bl_gaussian_step_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
+  if (sigma > (0.0)) {
   float acc = (0.0);
   if (x < 0.0) acc = (0.0);
   else acc = (1.0);
@@ -2864,6 +2868,14 @@ float bl_gaussian_step_sq_raw(float x, float sigma) {
     }
   }
   return acc;
+  }
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
+  return bl_nan();  // not reached: sigma > 0 returned above
 }
 
 float bl_gaussian_step_sq(float x, float sigma) {
@@ -3018,14 +3030,8 @@ float bl_tent_step_sq(float x, float sigma) {
 }
 
 float bl_gaussian_saturate_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  if (!(sigma <= (1.0))) return bl_gauss_pw(x, sigma, 3, p);
+  if (sigma > (0.0) && sigma <= (1.0)) {
   float acc = (0.0);
   if (x < 0.0) acc = (0.0);
   else if (x < 1.0) acc = ((1.0)) * x;
@@ -3055,6 +3061,14 @@ float bl_gaussian_saturate_raw(float x, float sigma) {
     }
   }
   return acc;
+  }
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
+  return bl_gauss_pw(x, sigma, 3, p);
 }
 
 float bl_gaussian_saturate(float x, float sigma) {
@@ -3065,14 +3079,8 @@ float bl_gaussian_saturate(float x, float sigma) {
 }
 
 float bl_gaussian_saturate_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  if (!(sigma <= (1.0))) return bl_gauss_pw(x, sigma, 3, p);
+  if (sigma > (0.0) && sigma <= (1.0)) {
   float s2 = sigma * sigma;
   float acc = (0.0);
   if (x < 0.0) acc = (0.0);
@@ -3105,6 +3113,14 @@ float bl_gaussian_saturate_sq_raw(float x, float sigma) {
     }
   }
   return acc;
+  }
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
+  return bl_gauss_pw(x, sigma, 3, p);
 }
 
 float bl_gaussian_saturate_sq(float x, float sigma) {
@@ -3301,14 +3317,8 @@ float bl_tent_saturate_sq(float x, float sigma) {
 }
 
 float bl_gaussian_smoothstep_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  if (!(sigma <= (1.0))) return bl_gauss_pw(x, sigma, 3, p);
+  if (sigma > (0.0) && sigma <= (1.0)) {
   float s2 = sigma * sigma;
   float acc = (0.0);
   if (x < 0.0) acc = (0.0);
@@ -3343,6 +3353,14 @@ float bl_gaussian_smoothstep_raw(float x, float sigma) {
     }
   }
   return acc;
+  }
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
+  return bl_gauss_pw(x, sigma, 3, p);
 }
 
 float bl_gaussian_smoothstep(float x, float sigma) {
@@ -3353,14 +3371,8 @@ float bl_gaussian_smoothstep(float x, float sigma) {
 }
 
 float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  if (!(sigma <= (0.5))) return bl_gauss_pw(x, sigma, 3, p);
+  if (sigma > (0.0) && sigma <= (0.5)) {
   float s2 = sigma * sigma;
   float acc = (0.0);
   if (x < 0.0) acc = (0.0);
@@ -3401,6 +3413,14 @@ float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
     }
   }
   return acc;
+  }
+  BlPiece p[4] = BlPiece[4](
+      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
+      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
+      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
+  return bl_gauss_pw(x, sigma, 3, p);
 }
 
 float bl_gaussian_smoothstep_sq(float x, float sigma) {

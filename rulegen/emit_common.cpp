@@ -167,11 +167,22 @@ std::string body_gauss_pw(const Derived& d, const Syntax& s) {
       if (!ps[i].c[k].is_zero()) maxdeg = std::max(maxdeg, static_cast<int>(k));
     if (i > 0 && i + 1 < n) wmin = std::min(wmin, ps[i].hi.to_double() - ps[i].lo.to_double());
   }
-  std::string out = piece_table(s, "p", ps) + guard_sigma(s) + "  if (sigma == " + s.dbl(0) + ") return " +
-                    s.helper("pw_eval") + "(x, " + P + ");\n";
+  // GLSL: the straight-line block first, as `if (sigma > 0 [&& sigma <= thr]) { ... return acc; }`,
+  // and the piece table after it (only sigma = 0 and the generic gauss_pw read it): a GPU keeps such
+  // an array in local memory, so it is built only where it is read.
+  const bool glsl = !s.cpp();
+  std::string out;
+  if (glsl) {
+    out = guard_sigma(s);
+    const double thr_f = maxdeg <= 3 ? wmin : 0.5 * wmin;
+    out += "  if (sigma > " + s.dbl(0) + (n > 2 ? " && sigma <= " + s.dbl(thr_f) : std::string()) + ") {\n";
+  } else {
+    out = piece_table(s, "p", ps) + guard_sigma(s) + "  if (sigma == " + s.dbl(0) + ") return " +
+          s.helper("pw_eval") + "(x, " + P + ");\n";
+  }
   // Past degree 3 the terms reach ~400 max|f| at sigma = wmin (smoothstep^2): float keeps the form
   // up to wmin/2 and takes it in double up to wmin (GLSL: the generic gauss_pw there).
-  if (n > 2) {
+  if (n > 2 && !glsl) {
     const double thr_d = wmin, thr_f = maxdeg <= 3 ? wmin : 0.5 * wmin;
     out += "  if (!(sigma <= " + s.dbl(s.cpp() ? thr_d : thr_f) + ")) return " + s.helper("gauss_pw") +
            "(x, sigma, " + P + ");\n";
@@ -230,7 +241,11 @@ std::string body_gauss_pw(const Derived& d, const Syntax& s) {
            horner(s, terms, "st") + ");\n";
     out += "    }\n  }\n";
   }
-  return out + "  return acc;\n";
+  if (!glsl) return out + "  return acc;\n";
+  out += "  return acc;\n  }\n" + piece_table(s, "p", ps) + "  if (sigma == " + s.dbl(0) + ") return " +
+         s.helper("pw_eval") + "(x, " + P + ");\n";
+  return out + (n > 2 ? "  return " + s.helper("gauss_pw") + "(x, sigma, " + P + ");\n"
+                      : "  return " + s.nan() + ";  // not reached: sigma > 0 returned above\n");
 }
 
 std::string body_piecewise(const Derived& d, const Syntax& s) {

@@ -144,6 +144,21 @@ TEST(GlslExec, GaussianPeriodicStraightLine) {
   EXPECT_GT(checked, 2000);
 }
 
+// The Gaussian piecewise entries' GLSL (straight-line per break, the piece table built only for
+// sigma = 0 and the generic wide-kernel code) against the C++ double table: at and beside the breaks
+// (0, +-1 for saturate/smoothstep), far out, and across the hand-over to the generic code at the
+// narrowest piece's width (saturate, smoothstep: 1, or 1/2 for degree > 3).
+TEST(GlslExec, GaussianPiecewiseStraightLine) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  const int checked =
+      check_entries(ctx, {"gaussian"}, {"abs", "sign", "step", "saturate", "smoothstep"},
+                    {-1e4f, -37.5f, -1.0f, -0.999f, -0.5f, -1e-6f, 0.0f, 1e-6f, 0.25f, 0.5f, 1.0f, 1.001f, 37.5f},
+                    {1e-6f, 1e-3f, 0.1f, 0.45f, 0.5f, 0.55f, 0.99f, 1.0f, 1.01f, 3.0f, 1e3f}, 2e-5);
+  EXPECT_GT(checked, 1000);
+}
+
 }  // namespace
 }  // namespace bl
 
