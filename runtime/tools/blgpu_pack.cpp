@@ -7,6 +7,7 @@
 // program, the error and compiled-C++ time bltune measured (the timing tool only adds GPU times).
 //
 //   blgpu_pack --suite docs/tuning/suite --scenes scenes/suite --out build/gpu_pack [--tile 10]
+//   blgpu_pack --suite out/tune/mine --scene my/pattern.json --out build/gpu_pack   (one scene)
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -72,11 +73,11 @@ struct Selection {
   int fronts = -1;                     // < 0: all
 };
 
-json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const fs::path& out, int tile,
-                const Selection& sel) {
+json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const std::string& scene_override,
+                const fs::path& out, int tile, const Selection& sel) {
   const json result = read_json(result_dir / "result.json");
   const std::string name = result.at("scene").get<std::string>();
-  const fs::path scene_file = scenes_dir / (name + ".json");
+  const fs::path scene_file = scene_override.empty() ? scenes_dir / (name + ".json") : fs::path(scene_override);
   const scene::Scene s = scene::load_scene(scene_file.string());
   if (!s.texture_files.empty())
     throw std::invalid_argument(scene_file.string() + ": textured scenes are not packed (no sampler uniforms)");
@@ -142,11 +143,15 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const fs
 
 int main(int argc, char** argv) {
   CLI::App app{"blgpu_pack: a tuned suite's GLSL (fronts, plain, MSAA-n, uniform rules) packed for blgpu_time"};
-  std::string suite = "docs/tuning/suite", scenes = "scenes/suite", out, only;
+  std::string suite = "docs/tuning/suite", scenes = "scenes/suite", scene_file, out, only;
   int tile = 10;
   Selection sel;
-  app.add_option("--suite", suite, "a bltune --suite output (one directory per scene with result.json)");
-  app.add_option("--scenes", scenes, "the directory of the scene files it was tuned on");
+  app.add_option("--suite", suite,
+                 "a bltune --suite output (one directory per scene with result.json), or one bltune --out "
+                 "directory (result.json in it)");
+  auto* scenes_opt = app.add_option("--scenes", scenes, "the directory of the scene files it was tuned on");
+  app.add_option("--scene", scene_file, "the scene file of a single bltune --out directory (your own scene)")
+      ->excludes(scenes_opt);
   app.add_option("--out", out, "the pack's directory (created; manifest.json and <scene>/<label>.frag)")
       ->required();
   app.add_option("--tile", tile, "the target is the scene's image repeated tile x tile times")
@@ -160,9 +165,15 @@ int main(int argc, char** argv) {
   try {
     std::vector<fs::path> dirs;
     if (!fs::is_directory(suite)) throw std::invalid_argument(suite + ": not a directory");
-    for (const auto& e : fs::directory_iterator(suite))
-      if (fs::exists(e.path() / "result.json") && e.path().filename().string().find(only) != std::string::npos)
-        dirs.push_back(e.path());
+    if (fs::exists(fs::path(suite) / "result.json")) {
+      dirs.push_back(suite);  // one scene's bltune output
+    } else {
+      if (!scene_file.empty())
+        throw std::invalid_argument("--scene names one scene, but " + suite + " has no result.json");
+      for (const auto& e : fs::directory_iterator(suite))
+        if (fs::exists(e.path() / "result.json") && e.path().filename().string().find(only) != std::string::npos)
+          dirs.push_back(e.path());
+    }
     if (dirs.empty())
       throw std::invalid_argument(suite + ": no <scene>/result.json" + (only.empty() ? "" : " matching " + only));
     std::sort(dirs.begin(), dirs.end());
@@ -170,7 +181,7 @@ int main(int argc, char** argv) {
     json manifest{{"suite", suite}, {"tile", tile}, {"scenes", json::array()}};
     std::size_t count = 0;
     for (const fs::path& d : dirs) {
-      manifest["scenes"].push_back(pack_scene(d, scenes, out, tile, sel));
+      manifest["scenes"].push_back(pack_scene(d, scenes, scene_file, out, tile, sel));
       count += manifest["scenes"].back()["programs"].size();
       std::fprintf(stderr, "packed %s (%zu programs)\n", d.filename().c_str(),
                    manifest["scenes"].back()["programs"].size());

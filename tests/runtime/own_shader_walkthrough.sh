@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # docs/own_shader.md's commands on a small scene whose GLSL lives outside the repository: blrender
 # renders it (plain, MSAA 16, gaussian, ground truth) with no rebuild, blsmooth emits it, a tiny
-# bltune writes every front point as code, and --schedule rebuilds a front point in both tools.
+# bltune writes every front point as code, and --schedule rebuilds a front point in both tools;
+# docs/gpu_timing.md's pack and timer run the tuned scene on this machine's GL driver.
 set -euo pipefail
-blrender=$1 blsmooth=$2 work=$3 bltune=$4
+blrender=$1 blsmooth=$2 work=$3 bltune=$4 blgpu_pack=$5 blgpu_time=$6
 rm -rf "$work" && mkdir -p "$work/my"
 cat > "$work/my/stripes.glsl" <<'GLSL'
 #version 450
@@ -45,4 +46,18 @@ if "$blsmooth" "$work/my/edited.json" --schedule "$work/tune/front.csv:$label" -
 fi
 grep -q "tuned for graph" "$work/err.txt" || { cat "$work/err.txt"; exit 1; }
 [ ! -e "$work/x.glsl" ]
+# GPU timing of your own tuned scene (here on whatever GL driver there is: llvmpipe in CI): every
+# baseline and front point packed, drawn on a 2 x 2 tiling, reported with no failure.
+"$blgpu_pack" --suite "$work/tune" --scene "$work/my/stripes.json" --tile 2 --out "$work/gpu_pack" > "$work/pack.log"
+grep -q "1 scenes" "$work/pack.log" || { cat "$work/pack.log"; exit 1; }
+ls "$work/gpu_pack/stripes/plain.frag" "$work/gpu_pack/stripes/msaa16.frag" "$work/gpu_pack/stripes/$label.frag" > /dev/null
+"$blgpu_time" "$work/gpu_pack" --out "$work/gpu" --budget-ms 2 > "$work/gpu.log" 2> "$work/gpu.err" ||
+  { cat "$work/gpu.err"; exit 1; }
+grep -q "^| stripes | [0-9.]* | [0-9.]* (" "$work/gpu/report.md" || { cat "$work/gpu/report.md"; exit 1; }
+grep -q "0 program(s) failed" "$work/gpu/report.md" || { cat "$work/gpu/report.md"; exit 1; }
+# A --scene that is not the one tuned is refused, naming the graph hashes.
+if "$blgpu_pack" --suite "$work/tune" --scene "$work/my/edited.json" --out "$work/gpu_bad" 2> "$work/err2.txt"; then
+  echo "blgpu_pack accepted another scene's graph"; exit 1
+fi
+grep -q "tuned for graph" "$work/err2.txt" || { cat "$work/err2.txt"; exit 1; }
 echo ok
