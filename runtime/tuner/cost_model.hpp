@@ -75,8 +75,9 @@ struct CostModel {
   double cost(const compiler::Program& p) const;
   double throughput(const compiler::Program& p) const;     // the sum alone (+ overhead)
   double critical_path(const compiler::Program& p) const;  // the latency path alone (0 without latencies)
-  // Per instruction, the values (non-constant instructions) defined before it and read after it or
-  // stored as outputs: what a call there must keep across itself.
+  // Per call instruction, the values (non-constant instructions) placed before it and read after it
+  // or stored as outputs: what the call must keep across itself. Non-call instructions are placed as
+  // late as their readers allow (the compiler sinks arithmetic to its use); 0 at non-calls.
   static std::vector<int> live_across(const compiler::Program& p);
   // True when every LOp and every current generated function has an entry.
   bool covers_all() const;
