@@ -48,6 +48,34 @@ std::vector<int> spread(int n, int k) {
   return idx;
 }
 
+}  // namespace
+
+std::vector<int> pick_front_points(const std::vector<Point>& front, int k, const std::vector<double>& targets) {
+  const int n = static_cast<int>(front.size());
+  std::vector<int> by_time(n);
+  for (int i = 0; i < n; ++i) by_time[i] = i;
+  std::stable_sort(by_time.begin(), by_time.end(),
+                   [&](int a, int b) { return front[a].obj.time < front[b].obj.time; });
+  std::vector<int> idx;
+  for (double e : targets) {
+    int taken = 0;
+    for (int i : by_time)
+      if (taken < kAnchorsPerTarget && front[i].obj.error <= kAnchorMargin * e &&
+          static_cast<int>(idx.size()) < std::max(0, k - 2)) {
+        idx.push_back(i);
+        ++taken;
+      }
+  }
+  std::sort(idx.begin(), idx.end());
+  idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
+  for (int i : spread(n, std::max(2, k - static_cast<int>(idx.size())))) idx.push_back(i);
+  std::sort(idx.begin(), idx.end());
+  idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
+  return idx;
+}
+
+namespace {
+
 struct Timer {
   std::unique_ptr<gl::Context> ctx;
   std::string renderer;
@@ -139,54 +167,8 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.nonfinite = sc.counts.nonfinite;
     m.out_of_range = sc.counts.out_of_range;
   };
-  // Front points: refine sd factors, then measure on full images. Refinement minimises the error
-  // alone and can raise the time (an sd factor moves an entry into a costlier sigma band: zigzag_none
-  // went from 110 to 208 ns/px), so a refined point that costs more than its search point is
-  // measured next to the unrefined one and the Pareto filter below keeps whichever is not dominated.
-  std::vector<Measured> pts;
-  std::vector<compiler::Schedule> schedules;
-  auto consider = [&](const compiler::Schedule& sch, const Objectives& o, bool refined) {
-    const auto p = t.lower(sch);
-    if (!p) return;
-    Measured m;
-    m.refined = refined;
-    m.schedule = compiler::schedule_to_text(t.graph(), sch);
-    m.model_ns = o.time;
-    m.search_error = o.error;
-    set_score(m, t.full_score(*p));
-    if (m.nonfinite > 0) {  // NaN/inf off the sample: as infeasible as on it
-      std::fprintf(stderr,
-                   "finalize: %s: a front point gives NaN/inf on %zu pixel(s) of the full images: dropped\n",
-                   s.name.c_str(), m.nonfinite);
-      return;
-    }
-    m.mix = rule_mix(t, sch);
-    pts.push_back(m);
-    schedules.push_back(sch);
-  };
-  for (int i : spread(static_cast<int>(front.size()), opt.max_points)) {
-    const compiler::Schedule sch = t.schedule(front[i].genome);
-    Objectives o;
-    const compiler::Schedule refined = t.refine_sigma(sch, &o);
-    const bool changed = !(refined == sch);
-    consider(refined, o, changed);
-    if (changed && o.time > front[i].obj.time) consider(sch, t.evaluate(sch), false);
-  }
-  // Refinement changes errors (and, through the scale constants, times a little): keep the front.
-  std::vector<Objectives> obj;
-  for (const Measured& m : pts) obj.push_back({m.model_ns, m.error});
-  std::vector<compiler::Schedule> front_schedules;
-  for (int i : pareto_front(obj)) {
-    res.front.push_back(pts[i]);
-    front_schedules.push_back(schedules[i]);
-  }
-  for (std::size_t i = 0; i < res.front.size(); ++i) {
-    char label[32];
-    std::snprintf(label, sizeof label, "front%02zu", i);
-    res.front[i].label = label;
-    measure(t, *t.lower(front_schedules[i]), gl, &res.front[i]);
-  }
-  // Baselines: the plain program, MSAA as n plain evaluations per pixel, all-Dorn, all-Gaussian.
+  // Baselines first: the plain program and MSAA as n plain evaluations per pixel (their errors pick
+  // the front points below); all-Dorn and all-Gaussian after the front.
   auto uniform = [&](const std::string& label, const std::string& rule) {
     const auto p = t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule(rule)));
     if (!p) {
@@ -231,6 +213,56 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.glsl_ms = plain.glsl_ms >= 0 ? n * plain.glsl_ms : -1;
     m.mix["none"] = 1;
     res.baselines.push_back(m);
+  }
+  // Front points: refine sd factors, then measure on full images. Refinement minimises the error
+  // alone and can raise the time (an sd factor moves an entry into a costlier sigma band: zigzag_none
+  // went from 110 to 208 ns/px), so a refined point that costs more than its search point is
+  // measured next to the unrefined one and the Pareto filter below keeps whichever is not dominated.
+  std::vector<Measured> pts;
+  std::vector<compiler::Schedule> schedules;
+  auto consider = [&](const compiler::Schedule& sch, const Objectives& o, bool refined) {
+    const auto p = t.lower(sch);
+    if (!p) return;
+    Measured m;
+    m.refined = refined;
+    m.schedule = compiler::schedule_to_text(t.graph(), sch);
+    m.model_ns = o.time;
+    m.search_error = o.error;
+    set_score(m, t.full_score(*p));
+    if (m.nonfinite > 0) {  // NaN/inf off the sample: as infeasible as on it
+      std::fprintf(stderr,
+                   "finalize: %s: a front point gives NaN/inf on %zu pixel(s) of the full images: dropped\n",
+                   s.name.c_str(), m.nonfinite);
+      return;
+    }
+    m.mix = rule_mix(t, sch);
+    pts.push_back(m);
+    schedules.push_back(sch);
+  };
+  std::vector<double> msaa_errors;
+  for (const Measured& b : res.baselines)
+    if (b.msaa == 4 || b.msaa == 8 || b.msaa == 16) msaa_errors.push_back(b.error);
+  for (int i : pick_front_points(front, opt.max_points, msaa_errors)) {
+    const compiler::Schedule sch = t.schedule(front[i].genome);
+    Objectives o;
+    const compiler::Schedule refined = t.refine_sigma(sch, &o);
+    const bool changed = !(refined == sch);
+    consider(refined, o, changed);
+    if (changed && o.time > front[i].obj.time) consider(sch, t.evaluate(sch), false);
+  }
+  // Refinement changes errors (and, through the scale constants, times a little): keep the front.
+  std::vector<Objectives> obj;
+  for (const Measured& m : pts) obj.push_back({m.model_ns, m.error});
+  std::vector<compiler::Schedule> front_schedules;
+  for (int i : pareto_front(obj)) {
+    res.front.push_back(pts[i]);
+    front_schedules.push_back(schedules[i]);
+  }
+  for (std::size_t i = 0; i < res.front.size(); ++i) {
+    char label[32];
+    std::snprintf(label, sizeof label, "front%02zu", i);
+    res.front[i].label = label;
+    measure(t, *t.lower(front_schedules[i]), gl, &res.front[i]);
   }
   uniform("dorn", "dorn");
   uniform("gaussian", "gaussian");

@@ -46,13 +46,22 @@ struct SceneResult {
 
 struct FinalizeOptions {
   bool glsl = false;    // time the GLSL when a driver exists (opt-in: llvmpipe compiles take minutes)
-  int max_points = 12;  // at most this many front points are refined and measured (spread by error)
+  int max_points = 12;  // at most this many front points are refined and measured (pick_front_points)
   std::string out_dir;  // images go here when non-empty
   int trials = 9;       // timing trials (minimum kept)
   jit::Options jit;     // compiler, flags, object cache of the compiled-code timings
 };
 
 SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const FinalizeOptions& opt);
+
+// Which search-front points finalize refines and measures (indices, ascending): for each target
+// error (MSAA 4, 8 and 16's), the kAnchorsPerTarget cheapest points whose search error is within
+// kAnchorMargin of it (the speed-up at that error is read off them; spacing alone once skipped
+// checkerboard_none's all-box point), then points spread evenly over the front, both ends kept, up
+// to k in all.
+constexpr int kAnchorsPerTarget = 2;
+constexpr double kAnchorMargin = 1.15;
+std::vector<int> pick_front_points(const std::vector<Point>& front, int k, const std::vector<double>& targets);
 
 std::map<std::string, double> rule_mix(const SceneTuner& t, const compiler::Schedule& s);
 std::string rule_family(const rules::Rule& r);  // "none", "gaussian(rho=0)", "mc", "rule1", ...

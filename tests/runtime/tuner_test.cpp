@@ -1,6 +1,8 @@
 // bl_tuner: Pareto ranking, genome operators, cost model, determinism, resumption, error measure.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <set>
 
@@ -11,6 +13,7 @@
 #include "shaders/shader.hpp"
 #include "tuner/calibrate.hpp"
 #include "tuner/checkpoint.hpp"
+#include "tuner/finalize.hpp"
 #include "tuner/genetic.hpp"
 #include "tuner/magnitude_profile.hpp"
 #include "tuner/pareto.hpp"
@@ -291,6 +294,33 @@ TEST(CostModel, SpillCostCountsTheValuesLiveAcrossACall) {
   const double with = m.throughput(p);
   m.fn_spill_ns.clear();
   EXPECT_DOUBLE_EQ(with - m.throughput(p), 0.5 * CostModel::kSpillRegs);
+}
+
+// finalize's choice of front points: the cheapest points at each MSAA error are always measured,
+// even where even spacing over a long front would skip them; both ends are kept; at most k.
+TEST(Finalize, PicksTheCheapestPointsAtEachMsaaErrorAndSpreadsTheRest) {
+  std::vector<Point> front;
+  for (int i = 0; i < 35; ++i) {  // time rises, error falls along the front
+    Point p;
+    p.obj.time = 10 + i;
+    p.obj.error = 0.2 * std::pow(0.9, i);
+    front.push_back(p);
+  }
+  // error(i) = 0.2 * 0.9^i: <= 1.15 * 0.03 from i = 17 on (0.0334), <= 1.15 * 0.01 from i = 28 on.
+  const std::vector<int> idx = pick_front_points(front, 12, {0.03, 0.01});
+  EXPECT_LE(idx.size(), 12u);
+  EXPECT_TRUE(std::is_sorted(idx.begin(), idx.end()));
+  for (int want : {0, 17, 18, 28, 29, 34})
+    EXPECT_NE(std::find(idx.begin(), idx.end(), want), idx.end()) << "point " << want;
+  // Without targets: even spacing alone (k = 12 over 35: every third point or so, ends kept).
+  const std::vector<int> even = pick_front_points(front, 12, {});
+  EXPECT_EQ(even.size(), 12u);
+  EXPECT_EQ(even.front(), 0);
+  EXPECT_EQ(even.back(), 34);
+  EXPECT_EQ(std::find(even.begin(), even.end(), 17), even.end());  // the case the anchors fix
+  // A short front: everything.
+  front.resize(5);
+  EXPECT_EQ(pick_front_points(front, 12, {0.03}).size(), 5u);
 }
 
 // The report's model-vs-compiled line: median and worst over front and baselines, and the points
