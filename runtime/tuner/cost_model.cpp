@@ -213,8 +213,20 @@ double CostModel::throughput(const compiler::Program& p) const {
   if (const auto px = op_ns.find("pixel"); px != op_ns.end()) ns += px->second;
   if (const auto o = op_ns.find("output"); o != op_ns.end()) ns += o->second * p.outputs.size();
   const std::vector<int> live = fn_spill_ns.empty() ? std::vector<int>() : live_across(p);
+  // Plain sin and cos of one argument: GCC emits one sincosf for the pair, so the cos costs only
+  // kSincosExtra of its calibrated price and keeps nothing live of its own.
+  static const int sin_fn = compiler::find_function("bl::plain::sin"),
+                   cos_fn = compiler::find_function("bl::plain::cos");
+  std::vector<int> sin_args;
+  for (const compiler::Inst& in : p.insts)
+    if (in.op == LOp::Call && in.fn == sin_fn) sin_args.push_back(in.arg[0]);
   for (std::size_t i = 0; i < p.insts.size(); ++i) {
     const compiler::Inst& in = p.insts[i];
+    if (in.op == LOp::Call && in.fn == cos_fn &&
+        std::find(sin_args.begin(), sin_args.end(), in.arg[0]) != sin_args.end()) {
+      ns += kSincosExtra * function_cost(in.fn);
+      continue;
+    }
     if (in.op == LOp::Call || in.op == LOp::CallStat) {
       ns += function_cost(in.fn);
       if (!live.empty())

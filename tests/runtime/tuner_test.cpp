@@ -296,6 +296,38 @@ TEST(CostModel, SpillCostCountsTheValuesLiveAcrossACall) {
   EXPECT_DOUBLE_EQ(with - m.throughput(p), 0.5 * CostModel::kSpillRegs);
 }
 
+// sin and cos of one argument are one sincosf call in the compiled code (GCC merges them): the cos
+// of such a pair costs kSincosExtra of its price and no spill; a cos of another argument, all of it.
+TEST(CostModel, SinAndCosOfOneArgumentCostOneSincos) {
+  using compiler::Inst;
+  using compiler::LOp;
+  const int sin_fn = compiler::find_function("bl::plain::sin"), cos_fn = compiler::find_function("bl::plain::cos");
+  ASSERT_GE(sin_fn, 0);
+  ASSERT_GE(cos_fn, 0);
+  CostModel m;
+  m.method = "compiled";
+  m.op_ns = {{"in_mean", 0}};
+  m.fn_ns = {{"bl::plain::sin", 10}, {"bl::plain::cos", 8}};
+  compiler::Program p;
+  p.input_count = 2;
+  auto inst = [&](LOp op, int a = -1, int fn = -1) {
+    Inst in;
+    in.op = op;
+    in.arg[0] = a;
+    in.fn = fn;
+    p.insts.push_back(in);
+    return static_cast<int>(p.insts.size()) - 1;
+  };
+  const int u = inst(LOp::InMean, 0), v = inst(LOp::InMean, 1);
+  const int c = inst(LOp::Call, u, cos_fn);  // before its sin: still the pair's cheap half
+  const int s = inst(LOp::Call, u, sin_fn);
+  const int c2 = inst(LOp::Call, v, cos_fn);
+  p.outputs = {s, c, c2};
+  EXPECT_DOUBLE_EQ(m.throughput(p), 10 + CostModel::kSincosExtra * 8 + 8);
+  p.insts[s].arg[0] = v;  // now sin(v) pairs with the second cos instead
+  EXPECT_DOUBLE_EQ(m.throughput(p), 10 + 8 + CostModel::kSincosExtra * 8);
+}
+
 // finalize's choice of front points: the cheapest points at each MSAA error are always measured,
 // even where even spacing over a long front would skip them; both ends are kept; at most k.
 TEST(Finalize, PicksTheCheapestPointsAtEachMsaaErrorAndSpreadsTheRest) {
