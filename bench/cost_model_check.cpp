@@ -10,9 +10,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "compiler/schedule_csv.hpp"
+#include "tuner/report.hpp"
+#include "tuner/result_json.hpp"
 #include "tuner/scene_tuner.hpp"
 
 using namespace bl;
@@ -50,36 +52,36 @@ int main(int argc, char** argv) {
         "|---|---|---|---|---|---|\n");
     for (const fs::path& d : dirs) {
       std::ifstream in(d / "result.json");
-      const nlohmann::json r = nlohmann::json::parse(in);
-      const std::string name = r.at("scene");
-      const scene::Scene s = scene::load_scene((scenes / (name + ".json")).string());
+      std::ostringstream text;
+      text << in.rdbuf();
+      tuner::SceneResult r = tuner::result_from_json(text.str());
+      const scene::Scene s = scene::load_scene((scenes / (r.scene + ".json")).string());
       const tuner::SceneTuner t(s, cm, opt);
-      std::vector<double> dev, ratio;
-      auto score = [&](const nlohmann::json& p) {
-        if (p.value("compiled_ns", -1.0) <= 0) return;
-        // MSAA-n: n times the plain program, as bltune models it.
-        const int n = p.at("msaa").get<int>();
-        const std::string label = n > 0 ? "plain" : p.at("label").get<std::string>();
-        const auto sched = compiler::load_schedule((d / "front.csv").string() + ":" + label, t.graph());
-        const auto prog = t.lower(sched.schedule);
-        if (!prog) return;
-        const double model = std::max(n, 1) * t.cost_model().cost(*prog);
-        ratio.push_back(model / p.at("compiled_ns").get<double>());
-        dev.push_back(std::fabs(ratio.back() - 1));
-      };
-      for (const auto& p : r.at("baselines")) score(p);
-      for (const auto& p : r.at("front")) score(p);
-      const double med = median(dev), worst = *std::max_element(dev.begin(), dev.end());
-      const long within = std::count_if(dev.begin(), dev.end(), [](double x) { return x <= 0.25; });
-      scenes_within += med <= 0.25;
-      all.insert(all.end(), dev.begin(), dev.end());
-      std::printf("| %s | %zu | %.2f | %.0f%% | %.0f%% | %ld |\n", name.c_str(), dev.size(), median(ratio), 100 * med,
-                  100 * worst, within);
+      // Re-score every measured point with this model (model_accuracy leaves out model_ns <= 0).
+      std::vector<double> ratio;
+      for (auto* list : {&r.baselines, &r.front})
+        for (tuner::Measured& m : *list) {
+          // MSAA-n: n times the plain program, as bltune models it.
+          const std::string label = m.msaa > 0 ? "plain" : m.label;
+          const auto prog =
+              t.lower(compiler::load_schedule((d / "front.csv").string() + ":" + label, t.graph()).schedule);
+          m.model_ns = prog ? std::max(m.msaa, 1) * t.cost_model().cost(*prog) : -1;
+          if (m.model_ns > 0 && m.compiled_ns > 0) {
+            ratio.push_back(m.model_ns / m.compiled_ns);
+            all.push_back(std::fabs(ratio.back() - 1));
+          }
+        }
+      const tuner::ModelAccuracy a = tuner::model_accuracy(r);
+      scenes_within += a.median <= tuner::kModelTolerance;
+      std::printf("| %s | %d | %.2f | %.0f%% | %.0f%% | %zu |\n", r.scene.c_str(), a.points, median(ratio),
+                  100 * a.median, 100 * a.worst, a.points - a.outside.size());
     }
-    const long within = std::count_if(all.begin(), all.end(), [](double x) { return x <= 0.25; });
-    std::printf("\n%zu points: median abs(model/compiled - 1) %.3f, %.0f%% within 25%%; %d of %zu scenes with "
-                "their median within 25%%\n",
-                all.size(), median(all), 100.0 * within / all.size(), scenes_within, dirs.size());
+    const long within =
+        std::count_if(all.begin(), all.end(), [](double x) { return x <= tuner::kModelTolerance; });
+    std::printf(
+        "\n%zu points: median abs(model/compiled - 1) %.3f, %.0f%% within 25%%; %d of %zu scenes with "
+        "their median within 25%%\n",
+        all.size(), median(all), 100.0 * within / all.size(), scenes_within, dirs.size());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cost_model_check: %s\n", e.what());
     return 1;

@@ -183,7 +183,7 @@ std::vector<int> CostModel::live_across(const compiler::Program& p) {
       slot[i] = i;
       continue;
     }
-    int first = output[i] ? n : n;
+    int first = n;  // read by no call-bound reader (an output alone, or dead): after every call
     for (int u : readers[i]) first = std::min(first, slot[u]);
     slot[i] = first;
   }
