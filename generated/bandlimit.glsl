@@ -88,6 +88,8 @@ void bl_phi_Phic(float t, out float ph, out float pc) {
   ph = bl_phi(t);
   pc = bl_Phic(t);
 }
+// J_1(t) = phi(t) - t Phic(t), t >= 0 (normal_fast.hpp: normal_J1): a kink's break term.
+float bl_J1(float t) { return bl_phi(t) - t * bl_Phic(t); }
 
 // sin(t)/t: series for |t| < 1 (GPU sin has an absolute, not relative, error bound), quotient
 // beyond.
@@ -4917,7 +4919,7 @@ float bl_gaussian_fract_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.1875: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.334 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1875).
+    // float (tolerance 1e-07): sigma < 0.1875: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.334 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1875), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.18746015382974018)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -4959,7 +4961,40 @@ float bl_gaussian_fract_raw(float x, float sigma) {
     float c1 = (1.0) - (2.0) * sp * sp;
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-19.739208802178716) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.47084571749856524)) {  // 1 term(s)
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1));
+      return acc;
+    }
+    if (sigma >= (0.31389722143504767)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float s_1 = s1;
+      float d_1 = q;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1)) + (d_2 * ((-0.15915494309189535) * s_2));
+      return acc;
+    }
+    if (sigma >= (0.23542392184410124)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float s_1 = s1;
+      float d_1 = q;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1) + d_3 * ((-0.1061032953945969) * s_3)) + (d_2 * ((-0.15915494309189535) * s_2));
+      return acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float s_1 = s1;
     float d_1 = q;
@@ -5077,7 +5112,7 @@ float bl_gaussian_fract_sq_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.1865: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.361 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1865).
+    // float (tolerance 1e-07): sigma < 0.1865: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.361 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1865), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.1865228530605915)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -5126,7 +5161,47 @@ float bl_gaussian_fract_sq_raw(float x, float sigma) {
     float c1 = (1.0) - (2.0) * sp * sp;
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-19.739208802178716) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.47084571749856524)) {  // 1 term(s)
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (0.3333333333333333) + (d_1 * ((0.10132118364233778) * c_1 + (-0.3183098861837907) * s_1));
+      return acc;
+    }
+    if (sigma >= (0.31389722143504767)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float acc = (0.3333333333333333) + (d_1 * ((0.10132118364233778) * c_1 + (-0.3183098861837907) * s_1)) + (d_2 * ((0.025330295910584444) * c_2 + (-0.15915494309189535) * s_2));
+      return acc;
+    }
+    if (sigma >= (0.23542392184410124)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (0.3333333333333333) + (d_1 * ((0.10132118364233778) * c_1 + (-0.3183098861837907) * s_1) + d_3 * ((0.011257909293593086) * c_3 + (-0.1061032953945969) * s_3)) + (d_2 * ((0.025330295910584444) * c_2 + (-0.15915494309189535) * s_2));
+      return acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float c_1 = c1;
     float s_1 = s1;
@@ -5516,7 +5591,7 @@ float bl_gaussian_triangle_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.2055: the 1 nearest break(s) on each side (the dropped ones lie beyond 4.867 sd; below 0.1055 the nearest one alone, the others beyond 4.74 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1027).
+    // float (tolerance 1e-07): sigma < 0.2055: the 1 nearest break(s) on each side (the dropped ones lie beyond 4.867 sd; below 0.1055 the nearest one alone, the others beyond 4.74 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1027), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.20545118674910237)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -5531,9 +5606,7 @@ float bl_gaussian_triangle_raw(float x, float sigma) {
         float dl = r - ((w0 * (0.0) + w1 * (1.0)) + base), dr = ((w0 * (1.0) + w1 * (2.0)) + base) - r;  // exact near the breaks
         float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
         float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
-        float ph, j0;
-        bl_phi_Phic(t, ph, j0);
-        float j1 = ph - t * j0;
+        float j1 = bl_J1(t);
         float hr = (0.5) * (sd + (1.0)), hl = (1.0) - hr;
         acc += sd * (((hr * (w0 * (-2.0) + w1 * (2.0)) + hl * (w0 * (2.0) + w1 * (-2.0))) * j1) * (sd * sigma));
         return acc;
@@ -5541,17 +5614,13 @@ float bl_gaussian_triangle_raw(float x, float sigma) {
       {
         float d = ((w0 * (0.0) + w1 * (1.0)) + base) - r;  // exact near the break
         float t = min(-d * inv, BL_TAIL_CUT);
-        float ph, j0;
-        bl_phi_Phic(t, ph, j0);
-        float j1 = ph - t * j0;
+        float j1 = bl_J1(t);
         acc -= ((w0 * (2.0) + w1 * (-2.0)) * j1) * (-sigma);
       }
       {
         float d = ((w0 * (1.0) + w1 * (2.0)) + base) - r;  // exact near the break
         float t = min(d * inv, BL_TAIL_CUT);
-        float ph, j0;
-        bl_phi_Phic(t, ph, j0);
-        float j1 = ph - t * j0;
+        float j1 = bl_J1(t);
         acc += ((w0 * (-2.0) + w1 * (2.0)) * j1) * sigma;
       }
       return acc;
@@ -5565,7 +5634,67 @@ float bl_gaussian_triangle_raw(float x, float sigma) {
     float c1 = (1.0) - (2.0) * sp * sp;
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-4.934802200544679) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.9416914349971305)) {  // 1 term(s)
+      float c_1 = c1;
+      float d_1 = q;
+      float acc = (0.5) + (d_1 * ((-0.4052847345693511) * c_1));
+      return acc;
+    }
+    if (sigma >= (0.6277944428700953)) {  // 2 term(s)
+      float c_1 = c1;
+      float d_1 = q;
+      float acc = (0.5) + (d_1 * ((-0.4052847345693511) * c_1));
+      return acc;
+    }
+    if (sigma >= (0.4708478436882025)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float d_1 = q;
+      float c_3 = C2 * c_1 - c1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3));
+      return acc;
+    }
+    if (sigma >= (0.3139233739022991)) {  // 5 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float d_1 = q;
+      float c_3 = C2 * c_1 - c1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float c_5 = C2 * c_3 - c_1;
+      float r_3 = max(q8 * q8, (8.673617379884035e-19));
+      float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3) + d_5 * ((-0.016211389382774045) * c_5));
+      return acc;
+    }
+    if (sigma >= (0.20938765365351583)) {  // 8 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float d_1 = q;
+      float c_3 = C2 * c_1 - c1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float c_5 = C2 * c_3 - c_1;
+      float r_3 = max(q8 * q8, (8.673617379884035e-19));
+      float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+      float c_7 = C2 * c_5 - c_3;
+      float r_5 = max(r_3 * q8, (8.673617379884035e-19));
+      float d_7 = max(d_5 * r_5, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3) + d_5 * ((-0.016211389382774045) * c_5) + d_7 * ((-0.008271117032027573) * c_7));
+      return acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float c_1 = c1;
     float d_1 = q;
@@ -5686,7 +5815,7 @@ float bl_gaussian_triangle_sq_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.1994: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.016 sd; below 0.1024 the nearest one alone, the others beyond 4.885 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.09968).
+    // float (tolerance 1e-07): sigma < 0.1994: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.016 sd; below 0.1024 the nearest one alone, the others beyond 4.885 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.09968), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.1993641836359492)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -5702,9 +5831,7 @@ float bl_gaussian_triangle_sq_raw(float x, float sigma) {
         float dl = r - ((w0 * (0.0) + w1 * (1.0)) + base), dr = ((w0 * (1.0) + w1 * (2.0)) + base) - r;  // exact near the breaks
         float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
         float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
-        float ph, j0;
-        bl_phi_Phic(t, ph, j0);
-        float j1 = ph - t * j0;
+        float j1 = bl_J1(t);
         float hr = (0.5) * (sd + (1.0)), hl = (1.0) - hr;
         acc += sd * (((hr * (w0 * (-4.0)) + hl * (w1 * (-4.0))) * j1) * (sd * sigma));
         return acc;
@@ -5712,17 +5839,13 @@ float bl_gaussian_triangle_sq_raw(float x, float sigma) {
       {
         float d = ((w0 * (0.0) + w1 * (1.0)) + base) - r;  // exact near the break
         float t = min(-d * inv, BL_TAIL_CUT);
-        float ph, j0;
-        bl_phi_Phic(t, ph, j0);
-        float j1 = ph - t * j0;
+        float j1 = bl_J1(t);
         acc -= ((w1 * (-4.0)) * j1) * (-sigma);
       }
       {
         float d = ((w0 * (1.0) + w1 * (2.0)) + base) - r;  // exact near the break
         float t = min(d * inv, BL_TAIL_CUT);
-        float ph, j0;
-        bl_phi_Phic(t, ph, j0);
-        float j1 = ph - t * j0;
+        float j1 = bl_J1(t);
         acc += ((w0 * (-4.0)) * j1) * sigma;
       }
       return acc;
@@ -5736,7 +5859,90 @@ float bl_gaussian_triangle_sq_raw(float x, float sigma) {
     float c1 = (1.0) - (2.0) * sp * sp;
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-4.934802200544679) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.9416914349971305)) {  // 1 term(s)
+      float c_1 = c1;
+      float d_1 = q;
+      float acc = (0.3333333333333333) + (d_1 * ((-0.4052847345693511) * c_1));
+      return acc;
+    }
+    if (sigma >= (0.6277944428700953)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float d_2 = q4;
+      float acc = (0.3333333333333333) + (d_1 * ((-0.4052847345693511) * c_1)) + (d_2 * ((0.10132118364233778) * c_2));
+      return acc;
+    }
+    if (sigma >= (0.4708478436882025)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (0.3333333333333333) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3)) + (d_2 * ((0.10132118364233778) * c_2));
+      return acc;
+    }
+    if (sigma >= (0.3139233739022991)) {  // 5 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float c_4 = C2 * c_2 - (1.0);
+      float r_2 = max(q4 * q8, (8.673617379884035e-19));
+      float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+      float c_5 = C2 * c_3 - c_1;
+      float r_3 = max(q8 * q8, (8.673617379884035e-19));
+      float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+      float acc = (0.3333333333333333) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3) + d_5 * ((-0.016211389382774045) * c_5)) + (d_2 * ((0.10132118364233778) * c_2) + d_4 * ((0.025330295910584444) * c_4));
+      return acc;
+    }
+    if (sigma >= (0.20938765365351583)) {  // 8 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float c_4 = C2 * c_2 - (1.0);
+      float r_2 = max(q4 * q8, (8.673617379884035e-19));
+      float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+      float c_5 = C2 * c_3 - c_1;
+      float r_3 = max(q8 * q8, (8.673617379884035e-19));
+      float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+      float c_6 = C2 * c_4 - c_2;
+      float r_4 = max(r_2 * q8, (8.673617379884035e-19));
+      float d_6 = max(d_4 * r_4, (8.673617379884035e-19));
+      float c_7 = C2 * c_5 - c_3;
+      float r_5 = max(r_3 * q8, (8.673617379884035e-19));
+      float d_7 = max(d_5 * r_5, (8.673617379884035e-19));
+      float c_8 = C2 * c_6 - c_4;
+      float r_6 = max(r_4 * q8, (8.673617379884035e-19));
+      float d_8 = max(d_6 * r_6, (8.673617379884035e-19));
+      float acc = (0.3333333333333333) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3) + d_5 * ((-0.016211389382774045) * c_5) + d_7 * ((-0.008271117032027573) * c_7)) + (d_2 * ((0.10132118364233778) * c_2) + d_4 * ((0.025330295910584444) * c_4) + d_6 * ((0.011257909293593086) * c_6) + d_8 * ((0.006332573977646111) * c_8));
+      return acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float c_1 = c1;
     float d_1 = q;
@@ -6146,7 +6352,7 @@ float bl_gaussian_square_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339).
+    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.09339361644125409)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -6187,7 +6393,67 @@ float bl_gaussian_square_raw(float x, float sigma) {
     float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-19.739208802178716) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.47084571749856524)) {  // 1 term(s)
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= (0.31389722143504767)) {  // 2 term(s)
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= (0.23542392184410124)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float s_1 = s1;
+      float d_1 = q;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3));
+      return acc;
+    }
+    if (sigma >= (0.15696168695114954)) {  // 5 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float s_1 = s1;
+      float d_1 = q;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float s_5 = C2 * s_3 - s_1;
+      float r_3 = max(q8 * q8, (8.673617379884035e-19));
+      float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3) + d_5 * ((0.12732395447351627) * s_5));
+      return acc;
+    }
+    if (sigma >= (0.10469382682675792)) {  // 8 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float s_1 = s1;
+      float d_1 = q;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float s_5 = C2 * s_3 - s_1;
+      float r_3 = max(q8 * q8, (8.673617379884035e-19));
+      float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+      float s_7 = C2 * s_5 - s_3;
+      float r_5 = max(r_3 * q8, (8.673617379884035e-19));
+      float d_7 = max(d_5 * r_5, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3) + d_5 * ((0.12732395447351627) * s_5) + d_7 * ((0.09094568176679733) * s_7));
+      return acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float s_1 = s1;
     float d_1 = q;
@@ -6308,7 +6574,7 @@ float bl_gaussian_square_sq_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339).
+    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.09339361644125409)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -6349,7 +6615,67 @@ float bl_gaussian_square_sq_raw(float x, float sigma) {
     float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-19.739208802178716) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.47084571749856524)) {  // 1 term(s)
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= (0.31389722143504767)) {  // 2 term(s)
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= (0.23542392184410124)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float s_1 = s1;
+      float d_1 = q;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3));
+      return acc;
+    }
+    if (sigma >= (0.15696168695114954)) {  // 5 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float s_1 = s1;
+      float d_1 = q;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float s_5 = C2 * s_3 - s_1;
+      float r_3 = max(q8 * q8, (8.673617379884035e-19));
+      float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3) + d_5 * ((0.12732395447351627) * s_5));
+      return acc;
+    }
+    if (sigma >= (0.10469382682675792)) {  // 8 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float s_1 = s1;
+      float d_1 = q;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float s_5 = C2 * s_3 - s_1;
+      float r_3 = max(q8 * q8, (8.673617379884035e-19));
+      float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+      float s_7 = C2 * s_5 - s_3;
+      float r_5 = max(r_3 * q8, (8.673617379884035e-19));
+      float d_7 = max(d_5 * r_5, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3) + d_5 * ((0.12732395447351627) * s_5) + d_7 * ((0.09094568176679733) * s_7));
+      return acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float s_1 = s1;
     float d_1 = q;
@@ -7556,7 +7882,7 @@ float bl_gaussian_floor_sq_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4963, 2 from 0.3309, 3 from 0.2482.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.17829525136613786)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -7608,7 +7934,47 @@ float bl_gaussian_floor_sq_raw(float x, float sigma) {
     float c1 = (1.0) - (2.0) * sp * sp;
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-19.739208802178716) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.4963274416761912)) {  // 1 term(s)
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= (0.33088498096092556)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= (0.24816410205897985)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2));
+      return rest + acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float c_1 = c1;
     float s_1 = s1;
@@ -7924,7 +8290,7 @@ float bl_gaussian_ceil_sq_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4963, 2 from 0.3309, 3 from 0.2482.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.17829525136613786)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -7976,7 +8342,47 @@ float bl_gaussian_ceil_sq_raw(float x, float sigma) {
     float c1 = (1.0) - (2.0) * sp * sp;
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-19.739208802178716) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.4963274416761912)) {  // 1 term(s)
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= (0.33088498096092556)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= (0.24816410205897985)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2));
+      return rest + acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float c_1 = c1;
     float s_1 = s1;
@@ -8306,7 +8712,7 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4963, 2 from 0.3309, 3 from 0.2482.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.17829525136613786)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -8358,7 +8764,47 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
     float c1 = (1.0) - (2.0) * sp * sp;
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-19.739208802178716) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.4963274416761912)) {  // 1 term(s)
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= (0.33088498096092556)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= (0.24816410205897985)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2));
+      return rest + acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float c_1 = c1;
     float s_1 = s1;
@@ -8425,7 +8871,7 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4995, 2 from 0.333, 3 from 0.2498.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.17829525136613786)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -8477,7 +8923,47 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
     float c1 = (1.0) - (2.0) * sp * sp;
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-19.739208802178716) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.4995236368464045)) {  // 1 term(s)
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= (0.33301577457469106)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= (0.24976215247960654)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2));
+      return rest + acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float c_1 = c1;
     float s_1 = s1;
@@ -8543,7 +9029,7 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
   if (sigma >= 1e-30) {
-    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4995, 2 from 0.333, 3 from 0.2498.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.17829525136613786)) {
       float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
@@ -8595,7 +9081,47 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
     float c1 = (1.0) - (2.0) * sp * sp;
     float s1 = (2.0) * sp * cp;
     float q0 = exp((-19.739208802178716) * sigma * sigma);
-    float q = max(q0, (8.673617379884035e-19)), q2 = max(q * q, (8.673617379884035e-19)), q4 = max(q2 * q2, (8.673617379884035e-19)), q8 = max(q4 * q4, (8.673617379884035e-19));
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.4995236368464045)) {  // 1 term(s)
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= (0.33301577457469106)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= (0.24976215247960654)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2));
+      return rest + acc;
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
     float C2 = (2.0) - (4.0) * s1 * s1;
     float c_1 = c1;
     float s_1 = s1;

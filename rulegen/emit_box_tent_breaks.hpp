@@ -28,6 +28,8 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
 // piecewise body); "" where the form does not apply.
 // Gaussian trunc/trunc^2 near 0, narrow kernels: a straight-line break sum ("" where it does not apply).
 std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds);
+// Gaussian staircases at any x, narrow kernels: the nearest breaks' Phic sum ("" where it does not apply).
+std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds);
 
 std::string box_tent_piecewise_narrow(const sym::Derived& d, sym::Lang lang);
 

@@ -523,12 +523,14 @@ GaussPeriodicSpec periodic_spec(const Derived& d) {
 
 std::string body_periodic(const Derived& d, const Syntax& s) {
   const size_t n = d.pieces.size();
-  // GLSL, Gaussian: the straight-line regimes (sigma >= 1e-30) go before the piece table, which
-  // only sigma = 0 and the generic code below read: a GPU keeps such an array in local memory.
-  const bool glsl_fast_first = !s.cpp() && d.kernel == Kernel::Gaussian && d.phases.empty() && d.origins.empty();
+  // Gaussian: the straight-line regimes go before the piece table, which only sigma = 0 and the
+  // generic code below read (a GPU keeps such an array in local memory; a CPU would build it on
+  // the stack on every call).
+  const bool fast_first = d.kernel == Kernel::Gaussian && d.phases.empty() && d.origins.empty();
   std::string out;
-  if (glsl_fast_first) {
-    out += s.decl("period", s.ex(d.period)) + guard_sigma(s) + gauss_periodic_fast_glsl(periodic_spec(d));
+  if (fast_first) {
+    out += s.decl("period", s.ex(d.period)) + guard_sigma(s) +
+           (s.cpp() ? gauss_periodic_fast_cpp(periodic_spec(d)) : gauss_periodic_fast_glsl(periodic_spec(d)));
     out += piece_table(s, "p", d.pieces);
   } else {
     out += piece_table(s, "p", d.pieces);
@@ -559,7 +561,6 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
   std::string terms;
   if (!d.ak.is_zero()) terms = s.ex(d.ak) + " * cos(th)";
   if (!d.bk.is_zero()) terms += (terms.empty() ? "" : " + ") + s.ex(d.bk) + " * sin(th)";
-  if (s.cpp() && d.phases.empty() && d.origins.empty()) out += gauss_periodic_fast_cpp(periodic_spec(d));
   out += fourier_branch(d, s, 0, s.ex(d.a0), "damp * (" + (terms.empty() ? s.dbl(0) : terms) + ")", "acc");
   auto call = [&](const std::string& y, const std::string& t) {
     return s.helper("gauss_periodic_image") + "(" + y + ", sigma, period, " + pieces_arg(s, t, n) + ", " +
@@ -646,8 +647,8 @@ std::string fused_periodic(const Derived& d, const FusedTerms& f, const FusableP
     table = "  const detail::Piece<T> p[1] = {{" + s.bound(A.pieces[0].lo) + ", " + s.bound(A.pieces[0].hi) +
             ", {" + coeffs + "}}};\n";
   else
-    table = "  BlPiece p[4] = BlPiece[4](BlPiece(" + s.bound(A.pieces[0].lo) + ", " + s.bound(A.pieces[0].hi) +
-            ", float[8](" + coeffs +
+    table = "  BlPiece p[4] = BlPiece[4](BlPiece(" + s.bound(A.pieces[0].lo) + ", " +
+            s.bound(A.pieces[0].hi) + ", float[8](" + coeffs +
             ")), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), "
             "BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, "
             "float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));\n";
@@ -665,9 +666,9 @@ std::string fused_periodic(const Derived& d, const FusedTerms& f, const FusableP
     sp.lead = lead;
     fast = s.cpp() ? gauss_periodic_fast_cpp(sp) : gauss_periodic_fast_glsl(sp);
   }
-  // GLSL: the straight-line regimes before the piece table, which only the generic code reads (a
-  // GPU keeps such an array in local memory).
-  out += s.cpp() ? table + fast : fast + table;
+  // The straight-line regimes before the piece table, which only the generic code reads (a GPU
+  // keeps such an array in local memory, a CPU builds it on the stack on every call).
+  out += fast + table;
   out += fourier_branch(dd, s, 0, s.ex(dd.a0),
                         "damp * (" + s.ex(dd.ak) + " * cos(th) + " + s.ex(dd.bk) + " * sin(th))",
                         lead + "acc", "y");
@@ -1263,8 +1264,8 @@ std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
       if (b.empty()) b = body_periodic(d, s);
       break;
     case Body::Combination:
-      b = box_tent_staircase_narrow(d, lang, ds) + gauss_staircase_near(d, lang, ds) +
-          body_combination(d, s, ds);
+      b = box_tent_staircase_narrow(d, lang, ds) + gauss_staircase_narrow(d, lang, ds) +
+          gauss_staircase_near(d, lang, ds) + body_combination(d, s, ds);
       break;
     case Body::Antiderivative:
       b = body_antiderivative(d, s);

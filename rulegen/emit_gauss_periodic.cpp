@@ -128,6 +128,7 @@ struct Plan {
   double z;            // dropped breaks lie beyond z sigma
   double sigma_0 = 0;  // one piece, nside 1: below this the nearest break alone (0: none)
   double z0 = 0;
+  std::vector<std::pair<double, int>> tiers;  // Fourier: from sigma on, K terms suffice (sigma decreasing)
 };
 
 // Tail bound of one dropped break at t sd: sum_k |e_k| sigma^k k! phi(t)/t^(k+1) (J_k(t) <=
@@ -145,7 +146,9 @@ double break_bound(const Break& b, const ex& delta, double sig, double t) {
 
 // Locals j0..j<ne-1> = J_k(t) = int_t^inf (z - t)^k phi(z) dz of one break, by J_1 = phi - t J_0,
 // J_{k+1} = k J_{k-1} - t J_k: Phic alone (no exp in double) when neither J_1 nor phi (`ph`) is read.
-std::string j_chain(size_t ne, bool needs_phi, const std::string& in = "        ") {
+std::string j_chain(size_t ne, bool needs_phi, const std::string& in = "        ", bool only_j1 = false) {
+  // A kink (e_0 = 0, e_1 only): J_1 from its own table column, one Horner chain.
+  if (ne == 2 && !needs_phi && only_j1) return in + "const T j1 = detail::normal_J1(t);\n";
   std::string o = ne <= 1 && !needs_phi ? in + "const T j0 = detail::normal_Phic(t);\n"
                                         : in + "T ph, j0;\n" + in + "detail::normal_phi_Phic(t, ph, j0);\n";
   for (size_t k = 1; k < ne; ++k) {
@@ -171,6 +174,7 @@ std::string glsl_spelling(std::string code) {
   replace_all("std::copysign(T(1), ", "bl_copysign1(");
   replace_all("detail::normal_phi_Phic(", "bl_phi_Phic(");
   replace_all("detail::normal_Phic(", "bl_Phic(");
+  replace_all("detail::normal_J1(", "bl_J1(");
   replace_all("detail::reduce_signed_pow2(", "bl_reduce_signed_pow2(");
   replace_all("detail::tail_cut<T>()", "BL_TAIL_CUT");
   replace_all("detail::min2(", "min(");
@@ -182,7 +186,8 @@ std::string glsl_spelling(std::string code) {
   // T(literal) -> a float literal.
   std::string out;
   for (size_t i = 0; i < code.size();) {
-    const bool ident_before = i > 0 && (std::isalnum(static_cast<unsigned char>(code[i - 1])) || code[i - 1] == '_');
+    const bool ident_before =
+        i > 0 && (std::isalnum(static_cast<unsigned char>(code[i - 1])) || code[i - 1] == '_');
     if (!ident_before && code.compare(i, 2, "T(") == 0) {
       const size_t close = code.find(')', i + 2);
       const std::string lit_text = code.substr(i + 2, close - i - 2);
@@ -199,8 +204,8 @@ std::string glsl_spelling(std::string code) {
   for (const char* cpp_only : {"T(", "std::", "detail::", "<T>", "sizeof", "constexpr"}) {
     const size_t at = out.find(cpp_only);
     if (at != std::string::npos)
-      throw std::logic_error(std::string("gauss periodic GLSL: no GLSL spelling for '") + cpp_only + "' in: " +
-                             out.substr(at > 60 ? at - 60 : 0, 160));
+      throw std::logic_error(std::string("gauss periodic GLSL: no GLSL spelling for '") + cpp_only +
+                             "' in: " + out.substr(at > 60 ? at - 60 : 0, 160));
   }
   return out;
 }
@@ -310,8 +315,25 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
     }
     return best;
   };
-  const Plan pf = choose(kTolFloat), pd = choose(1e-13);
+  // Fourier tiers: the sigma from which K' < K terms meet tol (fourier_K decreases with sigma), for
+  // K' in {1, 2, 3, 5, 8}; fewer tiers would leave most wide kernels summing terms below tol, more
+  // add branches for little.
+  auto add_tiers = [&](Plan& p, double tol) {
+    for (int Kt : {1, 2, 3, 5, 8}) {
+      if (Kt >= p.K) break;
+      double lo = p.sigma_b, hi = p.sigma_b;
+      while (fourier_K(hi / Pd, tol) > Kt) hi *= 2;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (fourier_K(mid / Pd, tol) > Kt ? lo : hi) = mid;
+      }
+      p.tiers.push_back({hi, Kt});
+    }
+  };
+  Plan pf = choose(kTolFloat), pd = choose(1e-13);
   if (pf.K >= 1000 || pd.K >= 1000) return "";
+  add_tiers(pf, kTolFloat);
+  add_tiers(pd, 1e-13);
 
   const ex kk = sym::var_k(), pk = sym::var_pk();
   // Nearest break only (nside 0): the left break lo_j or the right one hi_j, whichever is nearer,
@@ -327,7 +349,7 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
     o += "        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer\n";
     o += "        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());\n";
     const size_t ne = std::max(bl.e.size(), bR.e.size());
-    o += j_chain(ne, bl.delta || bR.delta);
+    const size_t chain_at = o.size();  // the J chain goes here once the terms are known
     bool blend = false;
     std::vector<std::string> et;
     for (size_t k = 0; k < ne; ++k) {
@@ -342,6 +364,7 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
       }
       et.push_back(c.empty() ? "" : c + " * j" + std::to_string(k));
     }
+    o.insert(chain_at, j_chain(ne, bl.delta || bR.delta, "        ", !et.empty() && et[0].empty()));
     if (blend) o += "        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;\n";
     const std::string term = horner(et, "(sd * sigma)");
     if (term != "T(0)") o += "        acc += sd * (" + term + ");\n";
@@ -425,7 +448,7 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
            " + base) - r;  // exact near the breaks\n";
       o += "        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer\n";
       o += "        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());\n";
-      o += j_chain(ne, false);
+      const size_t chain_at = o.size();
       bool two = false;
       std::vector<std::string> et(ne);
       for (size_t k = 0; k < ne; ++k) {
@@ -444,6 +467,7 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
         }
         et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
       }
+      o.insert(chain_at, j_chain(ne, false, "        ", !et.empty() && et[0].empty()));
       if (two) o += "        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;\n";
       const std::string term = horner(et, "(sd * sigma)");
       if (term != "T(0)") o += "        acc += sd * (" + term + ");\n";
@@ -473,7 +497,7 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
         o += "      {\n        const T d = (" + blend(pos) + " + base) - r;  // exact near the break\n";
         o += std::string("        const T t = detail::min2(") + (side > 0 ? "d" : "-d") +
              " * inv, detail::tail_cut<T>());\n";
-        o += j_chain(ne, !dl.empty());
+        o += j_chain(ne, !dl.empty(), "        ", !et.empty() && et[0].empty());
         const std::string term = horner(et, side > 0 ? "sigma" : "(-sigma)");
         if (term != "T(0)") o += std::string("        acc ") + (side > 0 ? "+" : "-") + "= " + term + ";\n";
         if (!dl.empty()) o += "        acc += " + dl + " * ph;\n";
@@ -515,7 +539,7 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
           blk += "          const T d = (" + lit(P.to_double()) + " + base) - r;  // exact near the break\n";
           blk += std::string("          const T t = detail::min2(") + (side > 0 ? "d" : "-d") +
                  " * inv, detail::tail_cut<T>());\n";
-          blk += j_chain(b.e.size(), b.delta, "          ");
+          blk += j_chain(b.e.size(), b.delta, "          ", !et.empty() && et[0].empty());
           std::string term = horner(et, side > 0 ? "sigma" : "(-sigma)");
           if (term != "T(0)")
             blk += std::string("          acc ") + (side > 0 ? "+" : "-") + "= " + term + ";\n";
@@ -576,65 +600,78 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
     const double tiny = is_float ? std::ldexp(1.0, -60) : std::ldexp(1.0, -500);
     const std::string TN = lit(tiny);
     o += "    const T q0 = exp(" + lit(-2 * kPi * kPi / (Pd * Pd)) + " * sigma * sigma);\n";
-    std::vector<std::pair<std::string, std::string>> ab(p.K + 1);
-    int lastC = 0, lastS = 0;
-    for (int k = 1; k <= p.K; ++k) {
-      const ex sgn = (k % 2) ? -1 : 1;
-      ab[k].first = coef_text(sp.ak.subs(lst{kk == k, pk == sgn}));
-      ab[k].second = coef_text(sp.bk.subs(lst{kk == k, pk == sgn}));
-      if (!ab[k].first.empty()) lastC = k;
-      if (!ab[k].second.empty()) lastS = k;
-    }
-    const int last = std::max(lastC, lastS);
-    // Two interleaved chains (odd and even k) halve the serial latency: with C2 = 2 cos(2 theta),
-    // f_k = C2 f_{k-2} - f_{k-4} for f = cos(k theta), sin(k theta) (from f_{-1}, f_1 and f_0, f_2),
-    // and damp_k = q^(k^2) = damp_{k-2} r_{k-2}, r_k = q^(4k+4) = r_{k-2} q^8.
-    o += "    const T q = detail::at_least(q0, " + TN + "), q2 = detail::at_least(q * q, " + TN +
-         "), q4 = detail::at_least(q2 * q2, " + TN + "), q8 = detail::at_least(q4 * q4, " + TN + ");\n";
-    if (last >= 2) o += "    const T C2 = T(2) - T(4) * s1 * s1;\n";
-    std::string acc[2];
-    for (int k = 1; k <= last; ++k) {
-      const std::string K = std::to_string(k), K2 = std::to_string(k - 2), K4 = std::to_string(k - 4);
-      const bool nc = k <= lastC, ns = k <= lastS;
-      if (k == 1) {
-        if (nc) o += "    const T c_1 = c1;\n";
-        if (ns) o += "    const T s_1 = s1;\n";
-        o += "    const T d_1 = q;\n";
-      } else if (k == 2) {
-        if (nc) o += "    const T c_2 = T(0.5) * C2;\n";
-        if (ns) o += "    const T s_2 = T(2) * s1 * c1;\n";
-        o += "    const T d_2 = q4;\n";
-      } else {
-        if (nc)
-          o += "    const T c_" + K + " = C2 * c_" + K2 + " - " +
-               (k == 3   ? std::string("c1")
-                : k == 4 ? std::string("T(1)")
-                         : "c_" + K4) +
-               ";\n";
-        if (ns)
-          o += "    const T s_" + K + " = C2 * s_" + K2 +
-               (k == 3   ? std::string(" + s1")
-                : k == 4 ? std::string("")
-                         : " - s_" + K4) +
-               ";\n";
-        const std::string rprev = k == 3 ? "q8" : k == 4 ? "r_2" : "r_" + K2;
-        if (k == 4) o += "    const T r_2 = detail::at_least(q4 * q8, " + TN + ");\n";
-        if (k >= 5)
-          o += "    const T r_" + K2 + " = detail::at_least(" + (k == 5 ? std::string("q8") : "r_" + K4) +
-               " * q8, " + TN + ");\n";
-        o += "    const T d_" + K + " = detail::at_least(d_" + K2 + " * " + rprev + ", " + TN + ");\n";
+    o += "    const T q = detail::at_least(q0, " + TN + ");\n";
+    // Sum of the first K harmonics and the return, as one block of declarations. Two interleaved
+    // chains (odd and even k) halve the serial latency: with C2 = 2 cos(2 theta), f_k = C2 f_{k-2} -
+    // f_{k-4} for f = cos(k theta), sin(k theta) (from f_{-1}, f_1 and f_0, f_2), and damp_k =
+    // q^(k^2) = damp_{k-2} r_{k-2}, r_k = q^(4k+4) = r_{k-2} q^8.
+    auto harmonics = [&](int K, const std::string& in) {
+      std::vector<std::pair<std::string, std::string>> ab(K + 1);
+      int lastC = 0, lastS = 0;
+      for (int k = 1; k <= K; ++k) {
+        const ex sgn = (k % 2) ? -1 : 1;
+        ab[k].first = coef_text(sp.ak.subs(lst{kk == k, pk == sgn}));
+        ab[k].second = coef_text(sp.bk.subs(lst{kk == k, pk == sgn}));
+        if (!ab[k].first.empty()) lastC = k;
+        if (!ab[k].second.empty()) lastS = k;
       }
-      std::string t;
-      if (!ab[k].first.empty()) t = ab[k].first + " * c_" + K;
-      if (!ab[k].second.empty()) t += (t.empty() ? "" : " + ") + ab[k].second + " * s_" + K;
-      if (!t.empty()) acc[k % 2] += (acc[k % 2].empty() ? "d_" : " + d_") + K + " * (" + t + ")";
-    }
-    const std::string a0 = coef_text(sp.a0);
-    o += "    const T acc = " + (a0.empty() ? std::string("T(0)") : a0);
-    for (int par : {1, 0})
-      if (!acc[par].empty()) o += " + (" + acc[par] + ")";
-    o += ";\n";
-    o += "    return " + sp.lead + "acc;\n";
+      const int last = std::max(lastC, lastS);
+      std::string b;
+      b += in + "const T q2 = detail::at_least(q * q, " + TN + ");\n";
+      b += in + "const T q4 = detail::at_least(q2 * q2, " + TN + ");\n";
+      b += in + "const T q8 = detail::at_least(q4 * q4, " + TN + ");\n";
+      if (last >= 2) b += in + "const T C2 = T(2) - T(4) * s1 * s1;\n";
+      std::string acc[2];
+      for (int k = 1; k <= last; ++k) {
+        const std::string Ks = std::to_string(k), K2 = std::to_string(k - 2), K4 = std::to_string(k - 4);
+        const bool nc = k <= lastC, ns = k <= lastS;
+        if (k == 1) {
+          if (nc) b += in + "const T c_1 = c1;\n";
+          if (ns) b += in + "const T s_1 = s1;\n";
+          b += in + "const T d_1 = q;\n";
+        } else if (k == 2) {
+          if (nc) b += in + "const T c_2 = T(0.5) * C2;\n";
+          if (ns) b += in + "const T s_2 = T(2) * s1 * c1;\n";
+          b += in + "const T d_2 = q4;\n";
+        } else {
+          if (nc)
+            b += in + "const T c_" + Ks + " = C2 * c_" + K2 + " - " +
+                 (k == 3   ? std::string("c1")
+                  : k == 4 ? std::string("T(1)")
+                           : "c_" + K4) +
+                 ";\n";
+          if (ns)
+            b += in + "const T s_" + Ks + " = C2 * s_" + K2 +
+                 (k == 3   ? std::string(" + s1")
+                  : k == 4 ? std::string("")
+                           : " - s_" + K4) +
+                 ";\n";
+          const std::string rprev = k == 3 ? "q8" : k == 4 ? "r_2" : "r_" + K2;
+          if (k == 4) b += in + "const T r_2 = detail::at_least(q4 * q8, " + TN + ");\n";
+          if (k >= 5)
+            b += in + "const T r_" + K2 + " = detail::at_least(" + (k == 5 ? std::string("q8") : "r_" + K4) +
+                 " * q8, " + TN + ");\n";
+          b += in + "const T d_" + Ks + " = detail::at_least(d_" + K2 + " * " + rprev + ", " + TN + ");\n";
+        }
+        std::string t;
+        if (!ab[k].first.empty()) t = ab[k].first + " * c_" + Ks;
+        if (!ab[k].second.empty()) t += (t.empty() ? "" : " + ") + ab[k].second + " * s_" + Ks;
+        if (!t.empty()) acc[k % 2] += (acc[k % 2].empty() ? "d_" : " + d_") + Ks + " * (" + t + ")";
+      }
+      const std::string a0 = coef_text(sp.a0);
+      b += in + "const T acc = " + (a0.empty() ? std::string("T(0)") : a0);
+      for (int par : {1, 0})
+        if (!acc[par].empty()) b += " + (" + acc[par] + ")";
+      b += ";\n";
+      b += in + "return " + sp.lead + "acc;\n";
+      return drop_unused(b);
+    };
+    // Wider kernels need fewer terms: each tier returns with its own K (its sigma bound from the
+    // same tail test); the last block is the plan's K at sigma_b.
+    for (const auto& [sig, K] : p.tiers)
+      o += "    if (sigma >= " + lit(sig) + ") {  // " + std::to_string(K) + " term(s)\n" +
+           harmonics(K, "      ") + "    }\n";
+    o += harmonics(p.K, "    ");
     o = o.substr(0, fourier_at) + drop_unused(o.substr(fourier_at));
     return o;
   };
@@ -646,14 +683,18 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
     if (p.sigma_0 > 0)
       h << "; below " << p.sigma_0 << " the nearest one alone, the others beyond " << p.z0 << " sd";
     h << ": their tails sum to <= tol); else " << p.K
-      << " Fourier terms (tail <= tol for sigma/T >= " << p.sigma_b / Pd << ").\n";
+      << " Fourier terms (tail <= tol for sigma/T >= " << p.sigma_b / Pd << ")";
+    for (const auto& [sig, K] : p.tiers) h << ", " << K << " from " << sig / Pd;
+    h << ".\n";
     return h.str();
   };
   std::string out;
   if (lang == Lang::Glsl) {
-    out += "  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break\n";
+    out +=
+        "  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break\n";
     out += "  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.\n";
-    out += "  if (sigma >= 1e-30) {\n" + header(pf, "float", kTolFloat) + glsl_spelling(regimes(pf, true)) + "  }\n";
+    out += "  if (sigma >= 1e-30) {\n" + header(pf, "float", kTolFloat) + glsl_spelling(regimes(pf, true)) +
+           "  }\n";
     return out;
   }
   out += "  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate\n";
@@ -672,7 +713,11 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
   return out;
 }
 
-std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) { return gauss_periodic_fast(sp, Lang::Cpp); }
-std::string gauss_periodic_fast_glsl(const GaussPeriodicSpec& sp) { return gauss_periodic_fast(sp, Lang::Glsl); }
+std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
+  return gauss_periodic_fast(sp, Lang::Cpp);
+}
+std::string gauss_periodic_fast_glsl(const GaussPeriodicSpec& sp) {
+  return gauss_periodic_fast(sp, Lang::Glsl);
+}
 
 }  // namespace bl::rulegen

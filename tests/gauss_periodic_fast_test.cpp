@@ -8,8 +8,12 @@
 
 #include <bandlimit/table.hpp>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <limits>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -111,14 +115,40 @@ std::vector<R> xs(bool huge) {
   return v;
 }
 
+// Every sigma bound the generated Gaussian entries of these atomics test ("sigma < T(b)", "sigma >=
+// T(b)", ...): the regime and tier edges of whatever plan rulegen emitted, read from the header itself.
+std::vector<double> emitted_sigma_bounds() {
+  std::ifstream in(BL_TABLE_HPP);
+  EXPECT_TRUE(in.good()) << "cannot read " << BL_TABLE_HPP;
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string all = text.str();
+  std::set<double> out;
+  const std::regex fn(
+      "\\nT gaussian_(fract|fract_sq|square|square_sq|triangle|triangle_sq|floor|floor_sq|ceil|"
+      "ceil_sq|trunc|trunc_sq)_raw\\(");
+  const std::regex bound("sigma (<|<=|>=) T\\(([0-9.e+-]+)\\)");
+  for (auto it = std::sregex_iterator(all.begin(), all.end(), fn); it != std::sregex_iterator(); ++it) {
+    const size_t from = static_cast<size_t>(it->position());
+    const size_t to = all.find("\n}\n", from);
+    const std::string body = all.substr(from, to - from);
+    for (auto b = std::sregex_iterator(body.begin(), body.end(), bound); b != std::sregex_iterator(); ++b) {
+      const double v = std::stod((*b)[2].str());
+      if (v > 1e-20 && v < 100) out.insert(v);
+    }
+  }
+  EXPECT_GE(out.size(), 10u) << "the emitted regime bounds were not found in " << BL_TABLE_HPP;
+  return {out.begin(), out.end()};
+}
+
 template <class R>
 std::vector<R> sigmas() {
-  // 1e-30 and 1e-12 (narrow kernels), the regime boundaries sigma_b of the emitted plans and their
-  // neighbours (float 0.0871, 0.1667-0.1896; double 0.0671, 0.1307-0.1425), wide kernels.
+  // 1e-30 and 1e-12 (narrow kernels), every regime and tier bound of the emitted plans and their
+  // neighbours, wide kernels.
   std::vector<R> v = {R(1e-30), R(1e-12), R(1e-6), R(1e-3), R(0.01), R(0.05),
                       R(0.3),   R(0.5),   R(1),    R(3),    R(10)};
-  for (double b : {0.08706434220766679, 0.17388222158237718, 0.167, 0.1849, 0.1896, 0.06709, 0.134, 0.1307,
-                   0.1404, 0.1425}) {
+  static const std::vector<double> bounds = emitted_sigma_bounds();
+  for (double b : bounds) {
     v.push_back(R(b));
     v.push_back(std::nextafter(R(b), R(1)));
     v.push_back(std::nextafter(R(b), R(0)));

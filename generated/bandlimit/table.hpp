@@ -4937,12 +4937,8 @@ T tent_exp_ramp_sq(T x, T sigma) {
 template <class T>
 T gaussian_fract_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -4952,7 +4948,7 @@ T gaussian_fract_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.1875: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.334 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1875).
+    // float (tolerance 1e-07): sigma < 0.1875: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.334 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1875), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.18746015382974018)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -4994,7 +4990,40 @@ T gaussian_fract_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.47084571749856524)) {  // 1 term(s)
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.31389722143504767)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1)) + (d_2 * (T(-0.15915494309189535) * s_2));
+      return acc;
+    }
+    if (sigma >= T(0.23542392184410124)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1) + d_3 * (T(-0.1061032953945969) * s_3)) + (d_2 * (T(-0.15915494309189535) * s_2));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
     const T d_1 = q;
@@ -5011,7 +5040,7 @@ T gaussian_fract_raw(T x, T sigma) {
     const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1) + d_3 * (T(-0.1061032953945969) * s_3) + d_5 * (T(-0.06366197723675814) * s_5)) + (d_2 * (T(-0.15915494309189535) * s_2) + d_4 * (T(-0.07957747154594767) * s_4));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd; below 0.06709 the nearest one alone, the others beyond 7.453 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
+    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd; below 0.06709 the nearest one alone, the others beyond 7.453 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134), 1 from 0.6298, 2 from 0.4199, 3 from 0.3149, 5 from 0.2099, 8 from 0.14.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.13398475271138335)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -5053,7 +5082,89 @@ T gaussian_fract_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(0.6298183664078316)) {  // 1 term(s)
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.4198789109442853)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1)) + (d_2 * (T(-0.15915494309189535) * s_2));
+      return acc;
+    }
+    if (sigma >= T(0.3149091839988019)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1) + d_3 * (T(-0.1061032953945969) * s_3)) + (d_2 * (T(-0.15915494309189535) * s_2));
+      return acc;
+    }
+    if (sigma >= T(0.20993955346919552)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1) + d_3 * (T(-0.1061032953945969) * s_3) + d_5 * (T(-0.06366197723675814) * s_5)) + (d_2 * (T(-0.15915494309189535) * s_2) + d_4 * (T(-0.07957747154594767) * s_4));
+      return acc;
+    }
+    if (sigma >= T(0.1399617581894937)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T s_6 = C2 * s_4 - s_2;
+      const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+      const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T s_8 = C2 * s_6 - s_4;
+      const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+      const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(-0.3183098861837907) * s_1) + d_3 * (T(-0.1061032953945969) * s_3) + d_5 * (T(-0.06366197723675814) * s_5) + d_7 * (T(-0.04547284088339867) * s_7)) + (d_2 * (T(-0.15915494309189535) * s_2) + d_4 * (T(-0.07957747154594767) * s_4) + d_6 * (T(-0.05305164769729845) * s_6) + d_8 * (T(-0.039788735772973836) * s_8));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
     const T d_1 = q;
@@ -5084,6 +5195,10 @@ T gaussian_fract_raw(T x, T sigma) {
     }
    }
   }
+  static const detail::Piece<T> p[1] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08357381802701377) : T(0.06752621123868706))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0370742988786399) : T(1.2953937915302423)) / s));
@@ -5185,12 +5300,8 @@ T gaussian_fract_right(T x, T sigma) {
 template <class T>
 T gaussian_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -5200,7 +5311,7 @@ T gaussian_fract_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.1865: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.361 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1865).
+    // float (tolerance 1e-07): sigma < 0.1865: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.361 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1865), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.1865228530605915)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -5249,7 +5360,47 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.47084571749856524)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.31389722143504767)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2));
+      return acc;
+    }
+    if (sigma >= T(0.23542392184410124)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1) + d_3 * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -5271,7 +5422,7 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1) + d_3 * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3) + d_5 * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2) + d_4 * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd; below 0.06709 the nearest one alone, the others beyond 7.453 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134).
+    // double (tolerance 1e-13): sigma < 0.134: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.464 sd; below 0.06709 the nearest one alone, the others beyond 7.453 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.134), 1 from 0.6298, 2 from 0.4199, 3 from 0.3149, 5 from 0.2099, 8 from 0.14.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.13398475271138335)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -5320,7 +5471,109 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(0.6298183664078316)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.4198789109442853)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2));
+      return acc;
+    }
+    if (sigma >= T(0.3149091839988019)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1) + d_3 * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2));
+      return acc;
+    }
+    if (sigma >= T(0.20993955346919552)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1) + d_3 * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3) + d_5 * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2) + d_4 * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4));
+      return acc;
+    }
+    if (sigma >= T(0.1399617581894937)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T c_6 = C2 * c_4 - c_2;
+      const T s_6 = C2 * s_4 - s_2;
+      const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+      const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+      const T c_7 = C2 * c_5 - c_3;
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T c_8 = C2 * c_6 - c_4;
+      const T s_8 = C2 * s_6 - s_4;
+      const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+      const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+      const T acc = T(0.3333333333333333) + (d_1 * (T(0.10132118364233778) * c_1 + T(-0.3183098861837907) * s_1) + d_3 * (T(0.011257909293593086) * c_3 + T(-0.1061032953945969) * s_3) + d_5 * (T(0.004052847345693511) * c_5 + T(-0.06366197723675814) * s_5) + d_7 * (T(0.0020677792580068933) * c_7 + T(-0.04547284088339867) * s_7)) + (d_2 * (T(0.025330295910584444) * c_2 + T(-0.15915494309189535) * s_2) + d_4 * (T(0.006332573977646111) * c_4 + T(-0.07957747154594767) * s_4) + d_6 * (T(0.0028144773233982714) * c_6 + T(-0.05305164769729845) * s_6) + d_8 * (T(0.0015831434944115277) * c_8 + T(-0.039788735772973836) * s_8));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -5360,6 +5613,10 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     }
    }
   }
+  static const detail::Piece<T> p[1] = {
+      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08357381802701377) : T(0.06752621123868706))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0370742988786399) : T(1.2953937915302423)) / s));
@@ -5747,13 +6004,8 @@ T tent_fract_sq(T x, T sigma) {
 template <class T>
 T gaussian_triangle_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -5763,7 +6015,7 @@ T gaussian_triangle_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.2055: the 1 nearest break(s) on each side (the dropped ones lie beyond 4.867 sd; below 0.1055 the nearest one alone, the others beyond 4.74 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1027).
+    // float (tolerance 1e-07): sigma < 0.2055: the 1 nearest break(s) on each side (the dropped ones lie beyond 4.867 sd; below 0.1055 the nearest one alone, the others beyond 4.74 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1027), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.20545118674910237)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -5778,9 +6030,7 @@ T gaussian_triangle_raw(T x, T sigma) {
         const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * (((hr * (w0 * T(-2.0) + w1 * T(2.0)) + hl * (w0 * T(2.0) + w1 * T(-2.0))) * j1) * (sd * sigma));
         return acc;
@@ -5788,17 +6038,13 @@ T gaussian_triangle_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         acc -= ((w0 * T(2.0) + w1 * T(-2.0)) * j1) * (-sigma);
       }
       {
         const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         acc += ((w0 * T(-2.0) + w1 * T(2.0)) * j1) * sigma;
       }
       return acc;
@@ -5812,7 +6058,67 @@ T gaussian_triangle_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.9416914349971305)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1));
+      return acc;
+    }
+    if (sigma >= T(0.6277944428700953)) {  // 2 term(s)
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1));
+      return acc;
+    }
+    if (sigma >= T(0.4708478436882025)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3));
+      return acc;
+    }
+    if (sigma >= T(0.3139233739022991)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T c_5 = C2 * c_3 - c_1;
+      const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+      const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+      const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5));
+      return acc;
+    }
+    if (sigma >= T(0.20938765365351583)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T c_5 = C2 * c_3 - c_1;
+      const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+      const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+      const T c_7 = C2 * c_5 - c_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+      const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+      const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T d_1 = q;
@@ -5830,7 +6136,7 @@ T gaussian_triangle_raw(T x, T sigma) {
     const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1425: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.018 sd; below 0.07207 the nearest one alone, the others beyond 6.938 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07125).
+    // double (tolerance 1e-13): sigma < 0.1425: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.018 sd; below 0.07207 the nearest one alone, the others beyond 6.938 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07125), 1 from 0.6298, 2 from 0.4199, 3 from 0.3149, 5 from 0.2099, 8 from 0.14.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.1424930061042748)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -5845,9 +6151,7 @@ T gaussian_triangle_raw(T x, T sigma) {
         const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * (((hr * (w0 * T(-2.0) + w1 * T(2.0)) + hl * (w0 * T(2.0) + w1 * T(-2.0))) * j1) * (sd * sigma));
         return acc;
@@ -5855,17 +6159,13 @@ T gaussian_triangle_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         acc -= ((w0 * T(2.0) + w1 * T(-2.0)) * j1) * (-sigma);
       }
       {
         const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         acc += ((w0 * T(-2.0) + w1 * T(2.0)) * j1) * sigma;
       }
       return acc;
@@ -5879,7 +6179,67 @@ T gaussian_triangle_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(1.2596367328156632)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1));
+      return acc;
+    }
+    if (sigma >= T(0.8397578218885706)) {  // 2 term(s)
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1));
+      return acc;
+    }
+    if (sigma >= T(0.6298183679976038)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3));
+      return acc;
+    }
+    if (sigma >= T(0.41987910693839103)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5));
+      return acc;
+    }
+    if (sigma >= T(0.2799235163789874)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T c_7 = C2 * c_5 - c_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T d_1 = q;
@@ -5911,6 +6271,11 @@ T gaussian_triangle_raw(T x, T sigma) {
     }
    }
   }
+  static const detail::Piece<T> p[2] = {
+      {T(0), T(1), {T(0), T(1), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {T(2), (T(-1)), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -6016,13 +6381,8 @@ T gaussian_triangle_right(T x, T sigma) {
 template <class T>
 T gaussian_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -6032,7 +6392,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.1994: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.016 sd; below 0.1024 the nearest one alone, the others beyond 4.885 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.09968).
+    // float (tolerance 1e-07): sigma < 0.1994: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.016 sd; below 0.1024 the nearest one alone, the others beyond 4.885 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.09968), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.1993641836359492)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6048,9 +6408,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
         const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * (((hr * (w0 * T(-4.0)) + hl * (w1 * T(-4.0))) * j1) * (sd * sigma));
         return acc;
@@ -6058,17 +6416,13 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         acc -= ((w1 * T(-4.0)) * j1) * (-sigma);
       }
       {
         const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         acc += ((w0 * T(-4.0)) * j1) * sigma;
       }
       return acc;
@@ -6082,7 +6436,90 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.9416914349971305)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1));
+      return acc;
+    }
+    if (sigma >= T(0.6277944428700953)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T d_2 = q4;
+      const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1)) + (d_2 * (T(0.10132118364233778) * c_2));
+      return acc;
+    }
+    if (sigma >= T(0.4708478436882025)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3)) + (d_2 * (T(0.10132118364233778) * c_2));
+      return acc;
+    }
+    if (sigma >= T(0.3139233739022991)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T c_4 = C2 * c_2 - T(1);
+      const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+      const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+      const T c_5 = C2 * c_3 - c_1;
+      const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+      const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+      const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4));
+      return acc;
+    }
+    if (sigma >= T(0.20938765365351583)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T c_4 = C2 * c_2 - T(1);
+      const T r_2 = detail::at_least(q4 * q8, T(8.673617379884035e-19));
+      const T d_4 = detail::at_least(d_2 * r_2, T(8.673617379884035e-19));
+      const T c_5 = C2 * c_3 - c_1;
+      const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+      const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+      const T c_6 = C2 * c_4 - c_2;
+      const T r_4 = detail::at_least(r_2 * q8, T(8.673617379884035e-19));
+      const T d_6 = detail::at_least(d_4 * r_4, T(8.673617379884035e-19));
+      const T c_7 = C2 * c_5 - c_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+      const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+      const T c_8 = C2 * c_6 - c_4;
+      const T r_6 = detail::at_least(r_4 * q8, T(8.673617379884035e-19));
+      const T d_8 = detail::at_least(d_6 * r_6, T(8.673617379884035e-19));
+      const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4) + d_6 * (T(0.011257909293593086) * c_6) + d_8 * (T(0.006332573977646111) * c_8));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T d_1 = q;
@@ -6111,7 +6548,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7) + d_9 * (T(-0.005003515241596927) * c_9)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4) + d_6 * (T(0.011257909293593086) * c_6) + d_8 * (T(0.006332573977646111) * c_8));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1404: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.124 sd; below 0.07099 the nearest one alone, the others beyond 7.043 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07018).
+    // double (tolerance 1e-13): sigma < 0.1404: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.124 sd; below 0.07099 the nearest one alone, the others beyond 7.043 sd: their tails sum to <= tol); else 17 Fourier terms (tail <= tol for sigma/T >= 0.07018), 1 from 0.6298, 2 from 0.4199, 3 from 0.3149, 5 from 0.2099, 8 from 0.14.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.1403662801765427)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6127,9 +6564,7 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
         const T dl = r - ((w0 * T(0.0) + w1 * T(1.0)) + base), dr = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the breaks
         const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer
         const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;
         acc += sd * (((hr * (w0 * T(-4.0)) + hl * (w1 * T(-4.0))) * j1) * (sd * sigma));
         return acc;
@@ -6137,17 +6572,13 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
       {
         const T d = ((w0 * T(0.0) + w1 * T(1.0)) + base) - r;  // exact near the break
         const T t = detail::min2(-d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         acc -= ((w1 * T(-4.0)) * j1) * (-sigma);
       }
       {
         const T d = ((w0 * T(1.0) + w1 * T(2.0)) + base) - r;  // exact near the break
         const T t = detail::min2(d * inv, detail::tail_cut<T>());
-        T ph, j0;
-        detail::normal_phi_Phic(t, ph, j0);
-        const T j1 = ph - t * j0;
+        const T j1 = detail::normal_J1(t);
         acc += ((w0 * T(-4.0)) * j1) * sigma;
       }
       return acc;
@@ -6161,7 +6592,90 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-4.934802200544679) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(1.2596367328156632)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1));
+      return acc;
+    }
+    if (sigma >= T(0.8397578218885706)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T d_2 = q4;
+      const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1)) + (d_2 * (T(0.10132118364233778) * c_2));
+      return acc;
+    }
+    if (sigma >= T(0.6298183679976038)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3)) + (d_2 * (T(0.10132118364233778) * c_2));
+      return acc;
+    }
+    if (sigma >= T(0.41987910693839103)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4));
+      return acc;
+    }
+    if (sigma >= T(0.2799235163789874)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T c_6 = C2 * c_4 - c_2;
+      const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+      const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+      const T c_7 = C2 * c_5 - c_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T c_8 = C2 * c_6 - c_4;
+      const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+      const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+      const T acc = T(0.3333333333333333) + (d_1 * (T(-0.4052847345693511) * c_1) + d_3 * (T(-0.04503163717437234) * c_3) + d_5 * (T(-0.016211389382774045) * c_5) + d_7 * (T(-0.008271117032027573) * c_7)) + (d_2 * (T(0.10132118364233778) * c_2) + d_4 * (T(0.025330295910584444) * c_4) + d_6 * (T(0.011257909293593086) * c_6) + d_8 * (T(0.006332573977646111) * c_8));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T d_1 = q;
@@ -6216,6 +6730,11 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
     }
    }
   }
+  static const detail::Piece<T> p[2] = {
+      {T(0), T(1), {T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(0)}},
+      {T(1), T(2), {T(4), (T(-4)), T(1), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -6627,13 +7146,8 @@ T tent_triangle_sq(T x, T sigma) {
 template <class T>
 T gaussian_square_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -6643,7 +7157,7 @@ T gaussian_square_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339).
+    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.09339361644125409)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6684,7 +7198,67 @@ T gaussian_square_raw(T x, T sigma) {
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.47084571749856524)) {  // 1 term(s)
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.31389722143504767)) {  // 2 term(s)
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.23542392184410124)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3));
+      return acc;
+    }
+    if (sigma >= T(0.15696168695114954)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+      const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5));
+      return acc;
+    }
+    if (sigma >= T(0.10469382682675792)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+      const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+      const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
     const T d_1 = q;
@@ -6702,7 +7276,7 @@ T gaussian_square_raw(T x, T sigma) {
     const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd; below 0.03342 the nearest one alone, the others beyond 7.48 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
+    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd; below 0.03342 the nearest one alone, the others beyond 7.48 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709), 1 from 0.6298, 2 from 0.4199, 3 from 0.3149, 5 from 0.2099, 8 from 0.14.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.06708733218678724)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6743,7 +7317,67 @@ T gaussian_square_raw(T x, T sigma) {
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(0.6298183664078316)) {  // 1 term(s)
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.4198789109442853)) {  // 2 term(s)
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.3149091839988019)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3));
+      return acc;
+    }
+    if (sigma >= T(0.20993955346919552)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5));
+      return acc;
+    }
+    if (sigma >= T(0.1399617581894937)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
     const T d_1 = q;
@@ -6775,6 +7409,11 @@ T gaussian_square_raw(T x, T sigma) {
     }
    }
   }
+  static const detail::Piece<T> p[2] = {
+      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -6880,13 +7519,8 @@ T gaussian_square_right(T x, T sigma) {
 template <class T>
 T gaussian_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  static const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -6896,7 +7530,7 @@ T gaussian_square_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339).
+    // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.09339361644125409)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6937,7 +7571,67 @@ T gaussian_square_sq_raw(T x, T sigma) {
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.47084571749856524)) {  // 1 term(s)
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.31389722143504767)) {  // 2 term(s)
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.23542392184410124)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3));
+      return acc;
+    }
+    if (sigma >= T(0.15696168695114954)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+      const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5));
+      return acc;
+    }
+    if (sigma >= T(0.10469382682675792)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(8.673617379884035e-19));
+      const T d_5 = detail::at_least(d_3 * r_3, T(8.673617379884035e-19));
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(8.673617379884035e-19));
+      const T d_7 = detail::at_least(d_5 * r_5, T(8.673617379884035e-19));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
     const T d_1 = q;
@@ -6955,7 +7649,7 @@ T gaussian_square_sq_raw(T x, T sigma) {
     const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7) + d_9 * (T(0.07073553026306459) * s_9));
     return acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd; below 0.03342 the nearest one alone, the others beyond 7.48 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709).
+    // double (tolerance 1e-13): sigma < 0.06709: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.453 sd; below 0.03342 the nearest one alone, the others beyond 7.48 sd: their tails sum to <= tol); else 18 Fourier terms (tail <= tol for sigma/T >= 0.06709), 1 from 0.6298, 2 from 0.4199, 3 from 0.3149, 5 from 0.2099, 8 from 0.14.
     const T r = detail::reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < T(0.06708733218678724)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -6996,7 +7690,67 @@ T gaussian_square_sq_raw(T x, T sigma) {
     const T sp = T(2) * sh * ch, cp = T(1) - T(2) * sh * sh;  // sin, cos of pi uf
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(0.6298183664078316)) {  // 1 term(s)
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.4198789109442853)) {  // 2 term(s)
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1));
+      return acc;
+    }
+    if (sigma >= T(0.3149091839988019)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3));
+      return acc;
+    }
+    if (sigma >= T(0.20993955346919552)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5));
+      return acc;
+    }
+    if (sigma >= T(0.1399617581894937)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T acc = T(0.5) + (d_1 * (T(0.6366197723675814) * s_1) + d_3 * (T(0.2122065907891938) * s_3) + d_5 * (T(0.12732395447351627) * s_5) + d_7 * (T(0.09094568176679733) * s_7));
+      return acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T s_1 = s1;
     const T d_1 = q;
@@ -7028,6 +7782,11 @@ T gaussian_square_sq_raw(T x, T sigma) {
     }
    }
   }
+  static const detail::Piece<T> p[2] = {
+      {T(0), (T(1)/T(2)), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
+  };
+  if (sigma == T(0.0)) return detail::periodic_eval(x, period, p);
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.03785605326894285) : T(0.04685254583492731))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0725509182905828) : T(1.3087272190410122)) / s));
@@ -8280,6 +9039,63 @@ T tent_pulse30_sq(T x, T sigma) {
 template <class T>
 T gaussian_floor(T x, T sigma) {
   BL_MATH_USING
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+  if constexpr (std::is_same<T, float>::value) {
+    if (sigma >= T(1e-30) && sigma < T(0.18773265168785536)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = (n0);
+      if (sigma < T(0.09386632584392768)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (T(1)) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (T(1)) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (T(1)) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
+  if constexpr (std::is_same<T, double>::value) {
+    if (sigma >= T(1e-300) && sigma < T(0.13439230616863712)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = (n0);
+      if (sigma < T(0.06719615308431856)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (T(1)) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (T(1)) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (T(1)) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + (T(-1)) * gaussian_fract<T>(x, sigma);
 }
@@ -8289,12 +9105,68 @@ T gaussian_floor(T x, T sigma) {
 template <class T>
 T gaussian_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+  if constexpr (std::is_same<T, float>::value) {
+    if (sigma >= T(1e-30) && sigma < T(0.17504451970780102)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = ((n0*n0));
+      if (sigma < T(0.08783081590188237)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (((T(-1)) + (T(2)*n))) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (((T(-1)) + (T(2)*n))) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (((T(-1)) + (T(2)*n))) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
+  if constexpr (std::is_same<T, double>::value) {
+    if (sigma >= T(1e-300) && sigma < T(0.1294356288356279)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = ((n0*n0));
+      if (sigma < T(0.06484384458674322)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (((T(-1)) + (T(2)*n))) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (((T(-1)) + (T(2)*n))) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (((T(-1)) + (T(2)*n))) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   const T rest = ((sigma*sigma) + (x*x));
   const T y = x;
   const T lam = ((T(-2))*y);
   const T period = T(1);
-  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -8304,7 +9176,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4963, 2 from 0.3309, 3 from 0.2482.
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.17829525136613786)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -8356,7 +9228,47 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.4963274416761912)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= T(0.33088498096092556)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.24816410205897985)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -8378,7 +9290,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
     return rest + acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307), 1 from 0.6491, 2 from 0.4327, 3 from 0.3245, 5 from 0.2164, 8 from 0.1442.
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.13066846301911936)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -8430,7 +9342,109 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(0.6490889111748249)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= T(0.4327259407847362)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.32454445587893155)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.2163630201007815)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
+      return rest + acc;
+    }
+    if (sigma >= T(0.14424331579923794)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T c_6 = C2 * c_4 - c_2;
+      const T s_6 = C2 * s_4 - s_2;
+      const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+      const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+      const T c_7 = C2 * c_5 - c_3;
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T c_8 = C2 * c_6 - c_4;
+      const T s_8 = C2 * s_6 - s_4;
+      const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+      const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
+      return rest + acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -8470,6 +9484,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
     }
    }
   }
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
@@ -8773,6 +9788,63 @@ T tent_floor_sq(T x, T sigma) {
 template <class T>
 T gaussian_ceil(T x, T sigma) {
   BL_MATH_USING
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+  if constexpr (std::is_same<T, float>::value) {
+    if (sigma >= T(1e-30) && sigma < T(0.18773265168785536)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = ((T(1) + n0));
+      if (sigma < T(0.09386632584392768)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (T(1)) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (T(1)) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (T(1)) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
+  if constexpr (std::is_same<T, double>::value) {
+    if (sigma >= T(1e-300) && sigma < T(0.13439230616863712)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = ((T(1) + n0));
+      if (sigma < T(0.06719615308431856)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (T(1)) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (T(1)) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (T(1)) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   return x + T(1) * gaussian_fract<T>(-x, sigma);
 }
@@ -8782,12 +9854,68 @@ T gaussian_ceil(T x, T sigma) {
 template <class T>
 T gaussian_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+  if constexpr (std::is_same<T, float>::value) {
+    if (sigma >= T(1e-30) && sigma < T(0.17400768091611796)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = (((T(2)*n0) + (n0*n0) + T(1)));
+      if (sigma < T(0.08724893665295351)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (((T(2)*n) + T(1))) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (((T(2)*n) + T(1))) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (((T(2)*n) + T(1))) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
+  if constexpr (std::is_same<T, double>::value) {
+    if (sigma >= T(1e-300) && sigma < T(0.1290095155139225)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = (((T(2)*n0) + (n0*n0) + T(1)));
+      if (sigma < T(0.06460569069665084)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (((T(2)*n) + T(1))) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (((T(2)*n) + T(1))) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (((T(2)*n) + T(1))) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   const T rest = ((sigma*sigma) + (x*x));
   const T y = -x;
   const T lam = ((T(-2))*y);
   const T period = T(1);
-  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -8797,7 +9925,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4963, 2 from 0.3309, 3 from 0.2482.
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.17829525136613786)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -8849,7 +9977,47 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.4963274416761912)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= T(0.33088498096092556)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.24816410205897985)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -8871,7 +10039,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
     return rest + acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307), 1 from 0.6491, 2 from 0.4327, 3 from 0.3245, 5 from 0.2164, 8 from 0.1442.
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.13066846301911936)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -8923,7 +10091,109 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(0.6490889111748249)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= T(0.4327259407847362)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.32454445587893155)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.2163630201007815)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
+      return rest + acc;
+    }
+    if (sigma >= T(0.14424331579923794)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T c_6 = C2 * c_4 - c_2;
+      const T s_6 = C2 * s_4 - s_2;
+      const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+      const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+      const T c_7 = C2 * c_5 - c_3;
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T c_8 = C2 * c_6 - c_4;
+      const T s_8 = C2 * s_6 - s_4;
+      const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+      const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
+      return rest + acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -8963,6 +10233,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
     }
    }
   }
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
@@ -9266,6 +10537,63 @@ T tent_ceil_sq(T x, T sigma) {
 template <class T>
 T gaussian_trunc(T x, T sigma) {
   BL_MATH_USING
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+  if constexpr (std::is_same<T, float>::value) {
+    if (sigma >= T(1e-30) && sigma < T(0.18106228898026977)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = (n0 < T(0.0) ? ((T(1) + n0)) : (n0));
+      if (sigma < T(0.09106055354861416)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
+  if constexpr (std::is_same<T, double>::value) {
+    if (sigma >= T(1e-300) && sigma < T(0.13184488546376683)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = (n0 < T(0.0) ? ((T(1) + n0)) : (n0));
+      if (sigma < T(0.06612886942936483)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   const T Rf = detail::image_z(T(1.0), detail::series_tol<T>()) * sigma;
   if (x - Rf >= T(0.0)) {
@@ -9285,6 +10613,63 @@ T gaussian_trunc(T x, T sigma) {
 template <class T>
 T gaussian_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+  if constexpr (std::is_same<T, float>::value) {
+    if (sigma >= T(1e-30) && sigma < T(0.17504451970780102)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+      if (sigma < T(0.08783081590188237)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
+  if constexpr (std::is_same<T, double>::value) {
+    if (sigma >= T(1e-300) && sigma < T(0.1294356288356279)) {
+      const T n0 = floor(x);
+      const T inv = T(1) / sigma;
+      const T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+      if (sigma < T(0.06484384458674322)) {  // the nearest break alone
+        const T dl = x - n0, dr = (n0 + T(1)) - x;  // exact near the breaks
+        const T sd = std::copysign(T(1), dl - dr);  // +1: n0 + 1 is nearer
+        const T n = n0 + T(0.5) * (sd + T(1));
+        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());
+        return acc + sd * (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        T a = acc;
+        {
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          a -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          a += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return a;
+      }
+    }
+  }
   if (abs(x) < T(7) * sigma) {  // near 0: the break sum (see the emitter's comment)
     if constexpr (std::is_same<T, float>::value) {
       if (sigma >= T(1e-30) && sigma <= T(0.6666666666666666)) {
@@ -9618,7 +11003,6 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const T y = x;
   const T lam = ((T(-2))*y);
   const T period = T(1);
-  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -9628,7 +11012,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4963, 2 from 0.3309, 3 from 0.2482.
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.17829525136613786)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -9680,7 +11064,47 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.4963274416761912)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= T(0.33088498096092556)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.24816410205897985)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -9702,7 +11126,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
     return rest + acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307), 1 from 0.6491, 2 from 0.4327, 3 from 0.3245, 5 from 0.2164, 8 from 0.1442.
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.13066846301911936)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -9754,7 +11178,109 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(0.6490889111748249)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= T(0.4327259407847362)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.32454445587893155)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.2163630201007815)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
+      return rest + acc;
+    }
+    if (sigma >= T(0.14424331579923794)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T c_6 = C2 * c_4 - c_2;
+      const T s_6 = C2 * s_4 - s_2;
+      const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+      const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+      const T c_7 = C2 * c_5 - c_3;
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T c_8 = C2 * c_6 - c_4;
+      const T s_8 = C2 * s_6 - s_4;
+      const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+      const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
+      return rest + acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -9794,6 +11320,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
    }
   }
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.084802204626763) : T(1.331847372875349)) / s));
@@ -9835,7 +11362,6 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const T y = x;
   const T lam = (((T(-2))*y) + (T(-2)));
   const T period = T(1);
-  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -9845,7 +11371,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4995, 2 from 0.333, 3 from 0.2498.
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.17829525136613786)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -9897,7 +11423,47 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.4995236368464045)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= T(0.33301577457469106)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.24976215247960654)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -9919,7 +11485,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
     return rest + acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307), 1 from 0.6515, 2 from 0.4344, 3 from 0.3258, 5 from 0.2172, 8 from 0.1448.
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.13066846301911936)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -9971,7 +11537,109 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(0.6515361456032942)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= T(0.4343574304034766)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.32576807305777716)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.21717876074399386)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
+      return rest + acc;
+    }
+    if (sigma >= T(0.14478706837479527)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T c_6 = C2 * c_4 - c_2;
+      const T s_6 = C2 * s_4 - s_2;
+      const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+      const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+      const T c_7 = C2 * c_5 - c_3;
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T c_8 = C2 * c_6 - c_4;
+      const T s_8 = C2 * s_6 - s_4;
+      const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+      const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
+      return rest + acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -10011,6 +11679,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
    }
   }
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0906546478299144) : T(1.3366185552747945)) / s));
@@ -10074,7 +11743,6 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   const T y = x;
   const T lam = (((T(-2))*y) + (T(-2)));
   const T period = T(1);
-  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate
   // break (one phi_Phic), Fourier regime unrolled, cos/sin(k theta) by Chebyshev recurrence from
   // Taylor sin/cos of pi v / 2 (v = x_r/T - round(x_r/T), |pi v / 2| <= pi/4: remainder float
@@ -10084,7 +11752,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300))) {
     if constexpr (sizeof(T) < sizeof(double)) {
-    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783).
+    // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4995, 2 from 0.333, 3 from 0.2498.
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.17829525136613786)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -10136,7 +11804,47 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(8.673617379884035e-19)), q2 = detail::at_least(q * q, T(8.673617379884035e-19)), q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19)), q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+    const T q = detail::at_least(q0, T(8.673617379884035e-19));
+    if (sigma >= T(0.4995236368464045)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= T(0.33301577457469106)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.24976215247960654)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+      const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+      const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(8.673617379884035e-19));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    const T q2 = detail::at_least(q * q, T(8.673617379884035e-19));
+    const T q4 = detail::at_least(q2 * q2, T(8.673617379884035e-19));
+    const T q8 = detail::at_least(q4 * q4, T(8.673617379884035e-19));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -10158,7 +11866,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
     return rest + acc;
     } else {
-    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307).
+    // double (tolerance 1e-13): sigma < 0.1307: the 1 nearest break(s) on each side (the dropped ones lie beyond 7.653 sd; below 0.06576 the nearest one alone, the others beyond 7.604 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1307), 1 from 0.6515, 2 from 0.4344, 3 from 0.3258, 5 from 0.2172, 8 from 0.1448.
     const T r = detail::reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < T(0.13066846301911936)) {
       const T base = (std::copysign(T(1), r) - T(1)) * (T(0.5) * period);  // -T for r < 0, else 0
@@ -10210,7 +11918,109 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     const T c1 = T(1) - T(2) * sp * sp;
     const T s1 = T(2) * sp * cp;
     const T q0 = exp(T(-19.739208802178716) * sigma * sigma);
-    const T q = detail::at_least(q0, T(3.054936363499605e-151)), q2 = detail::at_least(q * q, T(3.054936363499605e-151)), q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151)), q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+    const T q = detail::at_least(q0, T(3.054936363499605e-151));
+    if (sigma >= T(0.6515361456032942)) {  // 1 term(s)
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1));
+      return rest + acc;
+    }
+    if (sigma >= T(0.4343574304034766)) {  // 2 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.32576807305777716)) {  // 3 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2));
+      return rest + acc;
+    }
+    if (sigma >= T(0.21717876074399386)) {  // 5 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4));
+      return rest + acc;
+    }
+    if (sigma >= T(0.14478706837479527)) {  // 8 term(s)
+      const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+      const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+      const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
+      const T C2 = T(2) - T(4) * s1 * s1;
+      const T c_1 = c1;
+      const T s_1 = s1;
+      const T d_1 = q;
+      const T c_2 = T(0.5) * C2;
+      const T s_2 = T(2) * s1 * c1;
+      const T d_2 = q4;
+      const T c_3 = C2 * c_1 - c1;
+      const T s_3 = C2 * s_1 + s1;
+      const T d_3 = detail::at_least(d_1 * q8, T(3.054936363499605e-151));
+      const T c_4 = C2 * c_2 - T(1);
+      const T s_4 = C2 * s_2;
+      const T r_2 = detail::at_least(q4 * q8, T(3.054936363499605e-151));
+      const T d_4 = detail::at_least(d_2 * r_2, T(3.054936363499605e-151));
+      const T c_5 = C2 * c_3 - c_1;
+      const T s_5 = C2 * s_3 - s_1;
+      const T r_3 = detail::at_least(q8 * q8, T(3.054936363499605e-151));
+      const T d_5 = detail::at_least(d_3 * r_3, T(3.054936363499605e-151));
+      const T c_6 = C2 * c_4 - c_2;
+      const T s_6 = C2 * s_4 - s_2;
+      const T r_4 = detail::at_least(r_2 * q8, T(3.054936363499605e-151));
+      const T d_6 = detail::at_least(d_4 * r_4, T(3.054936363499605e-151));
+      const T c_7 = C2 * c_5 - c_3;
+      const T s_7 = C2 * s_5 - s_3;
+      const T r_5 = detail::at_least(r_3 * q8, T(3.054936363499605e-151));
+      const T d_7 = detail::at_least(d_5 * r_5, T(3.054936363499605e-151));
+      const T c_8 = C2 * c_6 - c_4;
+      const T s_8 = C2 * s_6 - s_4;
+      const T r_6 = detail::at_least(r_4 * q8, T(3.054936363499605e-151));
+      const T d_8 = detail::at_least(d_6 * r_6, T(3.054936363499605e-151));
+      const T acc = ((((T(1)/T(2))*lam) + (T(1)/T(3)))) + (d_1 * ((((T(1)/(detail::pi<T>()*detail::pi<T>())) + (T(4)*(sigma*sigma)))) * c_1 + (((-(T(1)/(detail::pi<T>()))) + (-(T(1)/(detail::pi<T>()))*lam))) * s_1) + d_3 * (((((T(1)/T(9))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_3 + ((((T(-1)/T(3))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(3))*(T(1)/(detail::pi<T>()))*lam))) * s_3) + d_5 * (((((T(1)/T(25))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_5 + ((((T(-1)/T(5))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(5))*(T(1)/(detail::pi<T>()))*lam))) * s_5) + d_7 * (((((T(1)/T(49))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_7 + ((((T(-1)/T(7))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(7))*(T(1)/(detail::pi<T>()))*lam))) * s_7)) + (d_2 * (((((T(1)/T(4))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_2 + ((((T(-1)/T(2))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(2))*(T(1)/(detail::pi<T>()))*lam))) * s_2) + d_4 * (((((T(1)/T(16))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_4 + ((((T(-1)/T(4))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(4))*(T(1)/(detail::pi<T>()))*lam))) * s_4) + d_6 * (((((T(1)/T(36))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_6 + ((((T(-1)/T(6))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(6))*(T(1)/(detail::pi<T>()))*lam))) * s_6) + d_8 * (((((T(1)/T(64))*(T(1)/(detail::pi<T>()*detail::pi<T>()))) + (T(4)*(sigma*sigma)))) * c_8 + ((((T(-1)/T(8))*(T(1)/(detail::pi<T>()))) + ((T(-1)/T(8))*(T(1)/(detail::pi<T>()))*lam))) * s_8));
+      return rest + acc;
+    }
+    const T q2 = detail::at_least(q * q, T(3.054936363499605e-151));
+    const T q4 = detail::at_least(q2 * q2, T(3.054936363499605e-151));
+    const T q8 = detail::at_least(q4 * q4, T(3.054936363499605e-151));
     const T C2 = T(2) - T(4) * s1 * s1;
     const T c_1 = c1;
     const T s_1 = s1;
@@ -10250,6 +12060,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
    }
   }
+  const detail::Piece<T> p[1] = {{T(0), T(1), {T(0), lam, T(1), T(0), T(0), T(0), T(0), T(0)}}};
   const T s = sigma / period;
   if (s >= (sizeof(T) < sizeof(double) ? T(0.08106660348620336) : T(0.06961465076153306))) {
     const int K = int(floor((sizeof(T) < sizeof(double) ? T(1.0906546478299144) : T(1.3366185552747945)) / s));

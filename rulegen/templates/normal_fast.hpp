@@ -56,5 +56,23 @@ inline T normal_Phic(T t) {
   }
 }
 
+// J_1(t) = phi(t) - t Phic(t) alone, t >= 0 (a break whose jump is a kink: only the first
+// derivative jumps).
+template <class T>
+inline T normal_J1(T t) {
+  using Tab = NormalTable<T>;
+  if constexpr (Tab::kHave) {
+    T u;
+    const T* c = normal_row(t, u) + 2 * (Tab::kDeg + 1);
+    T p = c[Tab::kDeg];
+    for (int k = Tab::kDeg - 1; k >= 0; --k) p = p * u + c[k];
+    return p;
+  } else {
+    T ph, pc;
+    phi_Phic(t, ph, pc);
+    return ph - t * pc;
+  }
+}
+
 }  // namespace detail
 }  // namespace bl

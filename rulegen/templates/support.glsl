@@ -82,6 +82,8 @@ void bl_phi_Phic(float t, out float ph, out float pc) {
   ph = bl_phi(t);
   pc = bl_Phic(t);
 }
+// J_1(t) = phi(t) - t Phic(t), t >= 0 (normal_fast.hpp: normal_J1): a kink's break term.
+float bl_J1(float t) { return bl_phi(t) - t * bl_Phic(t); }
 
 // sin(t)/t: series for |t| < 1 (GPU sin has an absolute, not relative, error bound), quotient
 // beyond.
