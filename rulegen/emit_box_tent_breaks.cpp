@@ -517,17 +517,58 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   return out + "      return acc;\n    }\n  }\n";
 }
 
+// The dropped breaks of a Gaussian staircase break sum: those >= D from x (both sides) sum to <=
+// sum_m 2 (Jb + Js (D + m + 1)) Phic((D + m)/sigma), Jb = max |J_n| over n in [-2, 3], Js the
+// growth of |J_n| per step (f grows as fast, so the bound is absolute for |x| <= 1 and relative to f
+// beyond). reach(D, tol): the largest sigma whose bound stays <= tol.
+namespace {
+struct StaircaseTail {
+  double Jb = 0, Js = 0;
+  bool ok = true;
+  StaircaseTail(const Staircase& st, const GiNaC::symbol& n) {
+    auto f_at = [&](long m) {
+      size_t r = 0;
+      while (r < st.z.size() && m >= st.z[r]) ++r;
+      const GiNaC::ex v = st.piece[r].subs(n == m).evalf();
+      return GiNaC::is_a<numeric>(v) ? GiNaC::ex_to<numeric>(v).to_double() : NAN;
+    };
+    for (long m = -6; m <= 6; ++m) {
+      const double J = f_at(m) - f_at(m - 1), Jp = f_at(m - 1) - f_at(m - 2);
+      if (!std::isfinite(J) || !std::isfinite(Jp)) ok = false;
+      if (m >= -2 && m <= 3) Jb = std::max(Jb, std::fabs(J));
+      if (std::isfinite(J - Jp)) Js = std::max(Js, std::fabs(J - Jp));
+    }
+  }
+  double tail(double sig, double D) const {
+    double t = 0;
+    for (int m = 0; m < 400; ++m) {
+      const double term = 2 * (Jb + Js * (D + m + 1)) * 0.5 * std::erfc((D + m) / sig / std::sqrt(2.0));
+      t += term;
+      if (term < 1e-40) break;
+    }
+    return t;
+  }
+  double reach(double D, double tol) const {
+    double lo = 1e-6, hi = 4.0;
+    for (int it = 0; it < 80; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (tail(mid, D) <= tol ? lo : hi) = mid;
+    }
+    return lo;
+  }
+};
+}  // namespace
+
 // Gaussian staircases whose combination has a half-line term (trunc^2: f constant on each [n, n+1), its jump
 // J_n a constant per region of n, trunc^2: 2n - sign(n)), near 0 where the caller's combination would
-// take the generic half-line series (gaussian_fract_right): E f(x+U) = f(n0) + sum_{n > x} J_n
+// take the generic half-line series (gaussian_fract_right; the caller places this block after its
+// far sides): E f(x+U) = f(n0) + sum_{n > x} J_n
 // Phic((n - x)/sigma) - sum_{n <= x} J_n Phic((x - n)/sigma), n0 = floor(x), over the breaks n0 + j,
-// j in (-K, K]; each Phic is one exp (float) or one erfc (double) and the offsets n - x are exact. The
-// dropped breaks lie >= K from x, so for sigma <= K / t_req their terms are below sum_{m>=0} 2 (2(|x| + K
-// + m) + 1) Phic(t_req + m/sigma) (|x| < 7 sigma here; K = 4, then 6 in float and 9 in double for the
-// wider tier): float t_req = 6 (Phic = 1e-9: < 6e-8 absolute at sigma = 1, where f(x) ~ 1 or more),
-// double t_req = 8.5 (Phic = 1e-17: < 8e-16). Offsets past tail_cut sd are taken at tail_cut
-// (no subnormal exp; Phic there < 1e-19). Tiny sigma (below 1e-30 float, 1e-300 double, where 1/sigma
-// could overflow), wider sigma and wider types fall through to the combination. C++ only.
+// j in (-K, K]; each Phic is one row of the normal table and the offsets n - x are exact. The dropped
+// breaks lie >= K from x: StaircaseTail bounds them (absolute for |x| <= 1, relative to f beyond) and
+// gives each tier's sigma bound at the type's tolerance (float 1e-7, double 1e-13). Offsets past
+// tail_cut sd are taken at tail_cut (no subnormal exp). Tiny sigma (below 1e-30 float, 1e-300 double,
+// where 1/sigma could overflow), wider sigma and wider types fall through to the combination. C++ only.
 std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds) {
   if (lang != sym::Lang::Cpp || d.kernel != Kernel::Gaussian || d.body != sym::Body::Combination || !ds ||
       !d.atomic || !d.atomic->jumps_at_integers)
@@ -569,13 +610,25 @@ std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const st
     }
     return out + "        return acc;\n      }\n";
   };
-  std::string out = "  if (abs(x) < T(7) * sigma) {  // near 0: the break sum (see the emitter's comment)\n";
-  // Tiers per type: K = 4 up to 4 / t_req, then wider K up to sigma ~ 1 (12-18 breaks instead of the
-  // generic half-line series, ~4x dearer there); double steps through K = 6 (its breaks cost more).
-  out += "    if constexpr (std::is_same<T, float>::value) {\n" + block(4, 4.0 / 6.0, "1e-30") +
-         block(6, 6.0 / 6.0, "1e-30") + "    }\n";
-  out += "    if constexpr (std::is_same<T, double>::value) {\n" + block(4, 4.0 / 8.5, "1e-300") +
-         block(6, 6.0 / 8.5, "1e-300") + block(9, 9.0 / 8.5, "1e-300") + "    }\n";
+  // Placed after the combination's far sides (x - Rf >= bmax, x + Rf < bmin: the periodic terms
+  // alone), so it runs exactly where they do not apply and the generic half-line series would.
+  std::string out = "  {  // near 0: the break sum (see the emitter's comment)\n";
+  // Tiers per type: K breaks per side up to reach(K) (StaircaseTail at the type's tolerance, float
+  // 1e-7, double 1e-13), K = 3, 4, 5, ... until sigma ~ 1 is covered (12-18 breaks there instead of
+  // the generic half-line series, ~4x dearer); one more break per tier costs one Phic.
+  const StaircaseTail tails(*st, n);
+  if (!tails.ok) return "";
+  auto tiers = [&](double tol, double smax, const char* tiny) {
+    std::string o;
+    for (int K = 3; K <= 12; ++K) {
+      const double r = tails.reach(K, tol);
+      o += block(K, r, tiny);
+      if (r >= smax) break;
+    }
+    return o;
+  };
+  out += "    if constexpr (std::is_same<T, float>::value) {\n" + tiers(1e-7, 1.0, "1e-30") + "    }\n";
+  out += "    if constexpr (std::is_same<T, double>::value) {\n" + tiers(1e-13, 1.05, "1e-300") + "    }\n";
   return out + "  }\n";
 }
 
@@ -601,37 +654,9 @@ std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   const GiNaC::ex x = sym::var_x();
   for (const auto& p : st->piece)
     if (p.degree(x) != 0) return "";
-  auto f_at = [&](long m) {
-    size_t r = 0;
-    while (r < st->z.size() && m >= st->z[r]) ++r;
-    const GiNaC::ex v = st->piece[r].subs(n == m).evalf();
-    return GiNaC::is_a<numeric>(v) ? GiNaC::ex_to<numeric>(v).to_double() : NAN;
-  };
-  double Jb = 0, Js = 0;
-  for (long m = -6; m <= 6; ++m) {
-    const double J = f_at(m) - f_at(m - 1), Jp = f_at(m - 1) - f_at(m - 2);
-    if (!std::isfinite(J) || !std::isfinite(Jp)) return "";
-    if (m >= -2 && m <= 3) Jb = std::max(Jb, std::fabs(J));
-    Js = std::max(Js, std::fabs(J - Jp));
-  }
-  auto tail = [&](double sig, double D) {
-    double t = 0;
-    for (int m = 0; m < 400; ++m) {
-      const double term = 2 * (Jb + Js * (D + m + 1)) * 0.5 * std::erfc((D + m) / sig / std::sqrt(2.0));
-      t += term;
-      if (term < 1e-40) break;
-    }
-    return t;
-  };
-  // The largest sigma whose dropped tails stay within tol.
-  auto reach = [&](double D, double tol) {
-    double lo = 1e-6, hi = 4.0;
-    for (int it = 0; it < 80; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (tail(mid, D) <= tol ? lo : hi) = mid;
-    }
-    return lo;
-  };
+  const StaircaseTail tails(*st, n);
+  if (!tails.ok) return "";
+  auto reach = [&](double D, double tol) { return tails.reach(D, tol); };
   const Syntax s{lang};
   std::string base;
   for (size_t r = 0; r <= st->z.size(); ++r) {

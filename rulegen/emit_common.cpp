@@ -797,7 +797,8 @@ std::string far_sides(const Derived& d, const Syntax& s, const std::vector<Deriv
   return out;
 }
 
-std::string body_combination(const Derived& d, const Syntax& s, const std::vector<Derived>* ds) {
+std::string body_combination(const Derived& d, const Syntax& s, const std::vector<Derived>* ds,
+                             const std::string& between) {
   using Kind = sym::CombinationTerm::Kind;
   // Gaussian: fuse the terms A(y), A(y)^2, x A(y) of one periodic atomic (see fused_periodic).
   FusedTerms fz;
@@ -920,7 +921,7 @@ std::string body_combination(const Derived& d, const Syntax& s, const std::vecto
   }
   const std::string near =
       fz.idx.empty() ? out + ";\n" : s.decl("rest", out) + fused_periodic(d, fz, pr, s, "rest");
-  return tables + guard_sigma(s) + far_sides(d, s, ds, fz, pr) + near;
+  return tables + guard_sigma(s) + far_sides(d, s, ds, fz, pr) + between + near;
 }
 
 // Common subexpressions g(x) of the Taylor coefficients become locals u0, u1, ...
@@ -1264,8 +1265,9 @@ std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
       if (b.empty()) b = body_periodic(d, s);
       break;
     case Body::Combination:
+      // gauss_staircase_near goes where the far sides (the periodic terms alone) do not apply.
       b = box_tent_staircase_narrow(d, lang, ds) + gauss_staircase_narrow(d, lang, ds) +
-          gauss_staircase_near(d, lang, ds) + body_combination(d, s, ds);
+          body_combination(d, s, ds, gauss_staircase_near(d, lang, ds));
       break;
     case Body::Antiderivative:
       b = body_antiderivative(d, s);

@@ -10670,332 +10670,6 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
       }
     }
   }
-  if (abs(x) < T(7) * sigma) {  // near 0: the break sum (see the emitter's comment)
-    if constexpr (std::is_same<T, float>::value) {
-      if (sigma >= T(1e-30) && sigma <= T(0.6666666666666666)) {
-        const T n0 = floor(x);
-        const T inv = T(1) / sigma;
-        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
-        {  // break at n0 + -3
-          const T n = n0 + T(-3.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -2
-          const T n = n0 + T(-2.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -1
-          const T n = n0 + T(-1.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 0
-          const T n = n0 + T(0.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 1
-          const T n = n0 + T(1.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 2
-          const T n = n0 + T(2.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 3
-          const T n = n0 + T(3.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 4
-          const T n = n0 + T(4.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        return acc;
-      }
-      if (sigma >= T(1e-30) && sigma <= T(1.0)) {
-        const T n0 = floor(x);
-        const T inv = T(1) / sigma;
-        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
-        {  // break at n0 + -5
-          const T n = n0 + T(-5.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -4
-          const T n = n0 + T(-4.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -3
-          const T n = n0 + T(-3.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -2
-          const T n = n0 + T(-2.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -1
-          const T n = n0 + T(-1.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 0
-          const T n = n0 + T(0.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 1
-          const T n = n0 + T(1.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 2
-          const T n = n0 + T(2.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 3
-          const T n = n0 + T(3.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 4
-          const T n = n0 + T(4.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 5
-          const T n = n0 + T(5.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 6
-          const T n = n0 + T(6.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        return acc;
-      }
-    }
-    if constexpr (std::is_same<T, double>::value) {
-      if (sigma >= T(1e-300) && sigma <= T(0.47058823529411764)) {
-        const T n0 = floor(x);
-        const T inv = T(1) / sigma;
-        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
-        {  // break at n0 + -3
-          const T n = n0 + T(-3.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -2
-          const T n = n0 + T(-2.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -1
-          const T n = n0 + T(-1.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 0
-          const T n = n0 + T(0.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 1
-          const T n = n0 + T(1.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 2
-          const T n = n0 + T(2.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 3
-          const T n = n0 + T(3.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 4
-          const T n = n0 + T(4.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        return acc;
-      }
-      if (sigma >= T(1e-300) && sigma <= T(0.7058823529411765)) {
-        const T n0 = floor(x);
-        const T inv = T(1) / sigma;
-        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
-        {  // break at n0 + -5
-          const T n = n0 + T(-5.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -4
-          const T n = n0 + T(-4.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -3
-          const T n = n0 + T(-3.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -2
-          const T n = n0 + T(-2.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -1
-          const T n = n0 + T(-1.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 0
-          const T n = n0 + T(0.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 1
-          const T n = n0 + T(1.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 2
-          const T n = n0 + T(2.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 3
-          const T n = n0 + T(3.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 4
-          const T n = n0 + T(4.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 5
-          const T n = n0 + T(5.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 6
-          const T n = n0 + T(6.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        return acc;
-      }
-      if (sigma >= T(1e-300) && sigma <= T(1.0588235294117647)) {
-        const T n0 = floor(x);
-        const T inv = T(1) / sigma;
-        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
-        {  // break at n0 + -8
-          const T n = n0 + T(-8.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -7
-          const T n = n0 + T(-7.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -6
-          const T n = n0 + T(-6.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -5
-          const T n = n0 + T(-5.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -4
-          const T n = n0 + T(-4.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -3
-          const T n = n0 + T(-3.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -2
-          const T n = n0 + T(-2.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + -1
-          const T n = n0 + T(-1.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 0
-          const T n = n0 + T(0.0);
-          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
-          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 1
-          const T n = n0 + T(1.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 2
-          const T n = n0 + T(2.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 3
-          const T n = n0 + T(3.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 4
-          const T n = n0 + T(4.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 5
-          const T n = n0 + T(5.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 6
-          const T n = n0 + T(6.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 7
-          const T n = n0 + T(7.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 8
-          const T n = n0 + T(8.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        {  // break at n0 + 9
-          const T n = n0 + T(9.0);
-          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
-          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
-        }
-        return acc;
-      }
-    }
-  }
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
   const T Rf = detail::image_z(T(6.0), detail::series_tol<T>()) * sigma;
   if (x - Rf >= T(0.0)) {
@@ -11715,6 +11389,678 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
   }
   return rest + detail::gauss_periodic_image(y, sigma, period, p, T(5.0)) + (T(-2)) * sigma * sigma + T(2) * T(0.3989422804014327) * sigma * th;
+  }
+  {  // near 0: the break sum (see the emitter's comment)
+    if constexpr (std::is_same<T, float>::value) {
+      if (sigma >= T(1e-30) && sigma <= T(0.519474581271772)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+      if (sigma >= T(1e-30) && sigma <= T(0.6897592533345794)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+      if (sigma >= T(1e-30) && sigma <= T(0.859082988743625)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -4
+          const T n = n0 + T(-4.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 5
+          const T n = n0 + T(5.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+      if (sigma >= T(1e-30) && sigma <= T(1.027578874840207)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -5
+          const T n = n0 + T(-5.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -4
+          const T n = n0 + T(-4.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 5
+          const T n = n0 + T(5.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 6
+          const T n = n0 + T(6.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+    }
+    if constexpr (std::is_same<T, double>::value) {
+      if (sigma >= T(1e-300) && sigma <= T(0.3859738338289336)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+      if (sigma >= T(1e-300) && sigma <= T(0.5134361425689475)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+      if (sigma >= T(1e-300) && sigma <= T(0.640496379382664)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -4
+          const T n = n0 + T(-4.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 5
+          const T n = n0 + T(5.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+      if (sigma >= T(1e-300) && sigma <= T(0.767218325530643)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -5
+          const T n = n0 + T(-5.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -4
+          const T n = n0 + T(-4.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 5
+          const T n = n0 + T(5.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 6
+          const T n = n0 + T(6.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+      if (sigma >= T(1e-300) && sigma <= T(0.8936486651800183)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -6
+          const T n = n0 + T(-6.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -5
+          const T n = n0 + T(-5.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -4
+          const T n = n0 + T(-4.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 5
+          const T n = n0 + T(5.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 6
+          const T n = n0 + T(6.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 7
+          const T n = n0 + T(7.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+      if (sigma >= T(1e-300) && sigma <= T(1.019822122324083)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -7
+          const T n = n0 + T(-7.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -6
+          const T n = n0 + T(-6.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -5
+          const T n = n0 + T(-5.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -4
+          const T n = n0 + T(-4.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 5
+          const T n = n0 + T(5.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 6
+          const T n = n0 + T(6.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 7
+          const T n = n0 + T(7.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 8
+          const T n = n0 + T(8.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+      if (sigma >= T(1e-300) && sigma <= T(1.1457646171258324)) {
+        const T n0 = floor(x);
+        const T inv = T(1) / sigma;
+        T acc = (n0 < T(0.0) ? (((T(2)*n0) + (n0*n0) + T(1))) : ((n0*n0)));
+        {  // break at n0 + -8
+          const T n = n0 + T(-8.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -7
+          const T n = n0 + T(-7.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -6
+          const T n = n0 + T(-6.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -5
+          const T n = n0 + T(-5.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -4
+          const T n = n0 + T(-4.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -3
+          const T n = n0 + T(-3.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -2
+          const T n = n0 + T(-2.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + -1
+          const T n = n0 + T(-1.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 0
+          const T n = n0 + T(0.0);
+          const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
+          acc -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 1
+          const T n = n0 + T(1.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 2
+          const T n = n0 + T(2.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 3
+          const T n = n0 + T(3.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 4
+          const T n = n0 + T(4.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 5
+          const T n = n0 + T(5.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 6
+          const T n = n0 + T(6.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 7
+          const T n = n0 + T(7.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 8
+          const T n = n0 + T(8.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        {  // break at n0 + 9
+          const T n = n0 + T(9.0);
+          const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
+          acc += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
+        }
+        return acc;
+      }
+    }
   }
   const T rest = ((T(2)*x) + (sigma*sigma) + (x*x) + T(1)) + [&]() -> T {
   static const detail::Piece<T> p[2] = {
