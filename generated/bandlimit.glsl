@@ -1320,6 +1320,7 @@ float bl_tent_periodic_u(float x, float sigma, float period, int n, BlPiece p[4]
 // Helpers of the generated GLSL besides the support functions.
 float bl_nan() { return uintBitsToFloat(0x7fc00000u); }
 float bl_pi() { return 3.14159265358979; }
+float bl_pow4(float v) { float v2 = v * v; return v2 * v2; }  // see emit_helpers.hpp
 float bl_series_reach() { return 0.35; }  // see emit_helpers.hpp
 // Clausen's Cl2 and the dilogarithm on [-1, 0]: see emit_helpers.hpp.
 float bl_clausen2(float t) {
@@ -1555,7 +1556,7 @@ float bl_plain_inv2(float x) {
 // ---- entries ----
 
 float bl_gaussian_sin_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
   return (exp(((-1.0/2.0)*(sigma*sigma)))*sin(x));
 }
 
@@ -1567,8 +1568,8 @@ float bl_gaussian_sin(float x, float sigma) {
 }
 
 float bl_gaussian_sin_sq_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((-1.0/2.0)*cos((2.0*x))*exp(((-2.0)*(sigma*sigma)))) + (1.0/2.0));
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
+  return (((-1.0/2.0)*(((-2.0)*(sin(x)*sin(x))) + 1.0)*bl_pow4(exp(((-1.0/2.0)*(sigma*sigma))))) + (1.0/2.0));
 }
 
 float bl_gaussian_sin_sq(float x, float sigma) {
@@ -1579,7 +1580,7 @@ float bl_gaussian_sin_sq(float x, float sigma) {
 }
 
 float bl_box_sin_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
   return (bl_sinc((sigma*sqrt(3.0)))*sin(x));
 }
 
@@ -1591,8 +1592,8 @@ float bl_box_sin(float x, float sigma) {
 }
 
 float bl_box_sin_sq_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((-1.0/2.0)*bl_sinc((2.0*sigma*sqrt(3.0)))*cos((2.0*x))) + (1.0/2.0));
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
+  return (((-1.0/2.0)*(((-2.0)*(sin(x)*sin(x))) + 1.0)*bl_sinc((2.0*sigma*sqrt(3.0)))) + (1.0/2.0));
 }
 
 float bl_box_sin_sq(float x, float sigma) {
@@ -1603,7 +1604,7 @@ float bl_box_sin_sq(float x, float sigma) {
 }
 
 float bl_tent_sin_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
   return ((bl_sinc(((1.0/2.0)*sigma*sqrt(6.0)))*bl_sinc(((1.0/2.0)*sigma*sqrt(6.0))))*sin(x));
 }
 
@@ -1615,8 +1616,8 @@ float bl_tent_sin(float x, float sigma) {
 }
 
 float bl_tent_sin_sq_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((-1.0/2.0)*(bl_sinc((sigma*sqrt(6.0)))*bl_sinc((sigma*sqrt(6.0))))*cos((2.0*x))) + (1.0/2.0));
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
+  return (((-1.0/2.0)*(((-2.0)*(sin(x)*sin(x))) + 1.0)*(bl_sinc((sigma*sqrt(6.0)))*bl_sinc((sigma*sqrt(6.0))))) + (1.0/2.0));
 }
 
 float bl_tent_sin_sq(float x, float sigma) {
@@ -1627,7 +1628,7 @@ float bl_tent_sin_sq(float x, float sigma) {
 }
 
 float bl_gaussian_cos_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
   return (cos(x)*exp(((-1.0/2.0)*(sigma*sigma))));
 }
 
@@ -1639,8 +1640,8 @@ float bl_gaussian_cos(float x, float sigma) {
 }
 
 float bl_gaussian_cos_sq_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/2.0)*cos((2.0*x))*exp(((-2.0)*(sigma*sigma)))) + (1.0/2.0));
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
+  return (((-1.0/2.0)*(((-2.0)*(cos(x)*cos(x))) + 1.0)*bl_pow4(exp(((-1.0/2.0)*(sigma*sigma))))) + (1.0/2.0));
 }
 
 float bl_gaussian_cos_sq(float x, float sigma) {
@@ -1651,7 +1652,7 @@ float bl_gaussian_cos_sq(float x, float sigma) {
 }
 
 float bl_box_cos_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
   return (bl_sinc((sigma*sqrt(3.0)))*cos(x));
 }
 
@@ -1663,8 +1664,8 @@ float bl_box_cos(float x, float sigma) {
 }
 
 float bl_box_cos_sq_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/2.0)*bl_sinc((2.0*sigma*sqrt(3.0)))*cos((2.0*x))) + (1.0/2.0));
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
+  return (((-1.0/2.0)*(((-2.0)*(cos(x)*cos(x))) + 1.0)*bl_sinc((2.0*sigma*sqrt(3.0)))) + (1.0/2.0));
 }
 
 float bl_box_cos_sq(float x, float sigma) {
@@ -1675,7 +1676,7 @@ float bl_box_cos_sq(float x, float sigma) {
 }
 
 float bl_tent_cos_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
   return ((bl_sinc(((1.0/2.0)*sigma*sqrt(6.0)))*bl_sinc(((1.0/2.0)*sigma*sqrt(6.0))))*cos(x));
 }
 
@@ -1687,8 +1688,8 @@ float bl_tent_cos(float x, float sigma) {
 }
 
 float bl_tent_cos_sq_raw(float x, float sigma) {
-  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  return (((1.0/2.0)*(bl_sinc((sigma*sqrt(6.0)))*bl_sinc((sigma*sqrt(6.0))))*cos((2.0*x))) + (1.0/2.0));
+  sigma = sigma >= (0.0) ? sigma : bl_nan();  // sigma < 0 or NaN
+  return (((-1.0/2.0)*(((-2.0)*(cos(x)*cos(x))) + 1.0)*(bl_sinc((sigma*sqrt(6.0)))*bl_sinc((sigma*sqrt(6.0))))) + (1.0/2.0));
 }
 
 float bl_tent_cos_sq(float x, float sigma) {
@@ -1946,7 +1947,7 @@ float bl_tent_pow2_sq(float x, float sigma) {
 
 float bl_gaussian_pow3(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x == (0.0)) return (0.0);  // odd in x
+  if (x == (0.0)) return isnan(sigma) ? sigma : 0.0;  // odd in x (NaN for a bad sigma)
   return ((3.0*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -1963,7 +1964,7 @@ float bl_gaussian_pow3_sq(float x, float sigma) {
 
 float bl_box_pow3(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x == (0.0)) return (0.0);  // odd in x
+  if (x == (0.0)) return isnan(sigma) ? sigma : 0.0;  // odd in x (NaN for a bad sigma)
   return ((3.0*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -1980,7 +1981,7 @@ float bl_box_pow3_sq(float x, float sigma) {
 
 float bl_tent_pow3(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x == (0.0)) return (0.0);  // odd in x
+  if (x == (0.0)) return isnan(sigma) ? sigma : 0.0;  // odd in x (NaN for a bad sigma)
   return ((3.0*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -2063,7 +2064,7 @@ float bl_tent_pow4_sq(float x, float sigma) {
 
 float bl_gaussian_pow5(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x == (0.0)) return (0.0);  // odd in x
+  if (x == (0.0)) return isnan(sigma) ? sigma : 0.0;  // odd in x (NaN for a bad sigma)
   return ((10.0*(sigma*sigma)*(x*x*x)) + (15.0*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -2080,7 +2081,7 @@ float bl_gaussian_pow5_sq(float x, float sigma) {
 
 float bl_box_pow5(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x == (0.0)) return (0.0);  // odd in x
+  if (x == (0.0)) return isnan(sigma) ? sigma : 0.0;  // odd in x (NaN for a bad sigma)
   return ((10.0*(sigma*sigma)*(x*x*x)) + (9.0*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -2097,7 +2098,7 @@ float bl_box_pow5_sq(float x, float sigma) {
 
 float bl_tent_pow5(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x == (0.0)) return (0.0);  // odd in x
+  if (x == (0.0)) return isnan(sigma) ? sigma : 0.0;  // odd in x (NaN for a bad sigma)
   return ((10.0*(sigma*sigma)*(x*x*x)) + (12.0*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -2180,7 +2181,7 @@ float bl_tent_pow6_sq(float x, float sigma) {
 
 float bl_gaussian_pow7(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x == (0.0)) return (0.0);  // odd in x
+  if (x == (0.0)) return isnan(sigma) ? sigma : 0.0;  // odd in x (NaN for a bad sigma)
   return ((105.0*(sigma*sigma*sigma*sigma)*(x*x*x)) + (105.0*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (21.0*(sigma*sigma)*(x*x*x*x*x)) + (x*x*x*x*x*x*x));
 }
 
@@ -2197,7 +2198,7 @@ float bl_gaussian_pow7_sq(float x, float sigma) {
 
 float bl_box_pow7(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x == (0.0)) return (0.0);  // odd in x
+  if (x == (0.0)) return isnan(sigma) ? sigma : 0.0;  // odd in x (NaN for a bad sigma)
   return ((21.0*(sigma*sigma)*(x*x*x*x*x)) + (27.0*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (63.0*(sigma*sigma*sigma*sigma)*(x*x*x)) + (x*x*x*x*x*x*x));
 }
 
@@ -2214,7 +2215,7 @@ float bl_box_pow7_sq(float x, float sigma) {
 
 float bl_tent_pow7(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (x == (0.0)) return (0.0);  // odd in x
+  if (x == (0.0)) return isnan(sigma) ? sigma : 0.0;  // odd in x (NaN for a bad sigma)
   return ((21.0*(sigma*sigma)*(x*x*x*x*x)) + (54.0*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (84.0*(sigma*sigma*sigma*sigma)*(x*x*x)) + (x*x*x*x*x*x*x));
 }
 

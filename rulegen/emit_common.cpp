@@ -106,14 +106,47 @@ std::string guard_sigma(const Syntax& s) {
   return "  if (!(sigma >= " + s.dbl(0) + ")) return " + s.nan() + ";  // sigma < 0 or NaN\n";
 }
 
+// The closed form of sin^2 / cos^2 under a kernel, written to share the transcendental calls of the
+// same kernel's sin / cos entry, which a program calls with the same (x, sigma) for the node's mean:
+// cos(2x) = 1 - 2 sin(x)^2 (sin^2) or 2 cos(x)^2 - 1 (cos^2), and the Gaussian's e^{-2 sigma^2} =
+// (e^{-sigma^2/2})^4. The compiler then merges the calls (libm's sin, cos and exp are pure), so the
+// node's variance costs a few multiplies instead of two more calls. Other entries: unchanged.
+std::string shared_closed_text(const Derived& d, const Syntax& s) {
+  const GiNaC::ex& x = sym::var_x();
+  const GiNaC::ex& sig = sym::var_sigma();
+  const bool trig = d.squared && (d.atomic_name == "sin" || d.atomic_name == "cos");
+  if (!trig) return s.ex(d.closed);
+  const GiNaC::ex c2 = d.atomic_name == "sin" ? 1 - 2 * pow(sin(x), 2) : 2 * pow(cos(x), 2) - 1;
+  GiNaC::ex e = d.closed.subs(cos(2 * x) == c2);
+  // GiNaC folds (e^a)^4 into e^{4a}: a placeholder symbol stands for e^{-2 sigma^2} until printed as
+  // pow4(e^{-sigma^2/2}) (one exp, two squarings).
+  const GiNaC::symbol e4("bl_e4_placeholder");
+  if (d.kernel == Kernel::Gaussian) e = e.subs(exp(-2 * pow(sig, 2)) == e4);
+  std::string text = s.ex(e);
+  const std::string e4_text = s.helper("pow4") + "(" + s.ex(exp(-pow(sig, 2) / 2)) + ")";
+  for (size_t at = text.find(e4.get_name()); at != std::string::npos; at = text.find(e4.get_name(), at))
+    text.replace(at, e4.get_name().size(), e4_text);
+  return text;
+}
+
 std::string body_closed(const Derived& d, const Syntax& s) {
   // An odd closed form is exactly 0 at x = 0, also where a power of sigma overflows (float x^9
   // moments at sigma = 1e6 would give 0 * inf).
   const GiNaC::ex& x = sym::var_x();
   const bool odd = (d.closed + d.closed.subs(x == -x)).expand().is_zero() && !d.closed.expand().is_zero();
-  std::string out = guard_sigma(s);
-  if (odd) out += "  if (x == " + s.dbl(0) + ") return " + s.dbl(0) + ";  // odd in x\n";
-  return out + "  return " + s.ex(d.closed) + ";\n";
+  // sigma < 0 or NaN. sin, cos and their squares run the formula on a NaN sigma (their closed forms
+  // propagate it: table_test) instead of returning early, so no branch separates an f^2 entry's
+  // calls from its f entry's (see above) and the compiler can merge them; others return early (a
+  // form may not read sigma: the Gaussian sign^2 is 1).
+  const bool trig = d.atomic_name == "sin" || d.atomic_name == "cos";
+  std::string out =
+      trig ? "  sigma = sigma >= " + s.dbl(0) + " ? sigma : " + s.nan() + ";  // sigma < 0 or NaN\n"
+           : guard_sigma(s);
+  if (odd)
+    out += "  if (x == " + s.dbl(0) + ") return " +
+           (s.cpp() ? "sigma == sigma ? T(0) : sigma" : "isnan(sigma) ? sigma : 0.0") +
+           ";  // odd in x (NaN for a bad sigma)\n";
+  return out + "  return " + shared_closed_text(d, s) + ";\n";
 }
 
 std::string coef(const Syntax& s, const GiNaC::ex& v) {

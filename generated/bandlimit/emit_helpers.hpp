@@ -50,6 +50,13 @@ template <class T>
 T nan() {
   return T(std::numeric_limits<double>::quiet_NaN());
 }
+// v^4 as two squarings: the Gaussian sin^2 / cos^2 entries' e^{-2 sigma^2} = (e^{-sigma^2/2})^4,
+// one exp shared with the same node's sin / cos entry.
+template <class T>
+inline T pow4(T v) {
+  const T v2 = v * v;
+  return v2 * v2;
+}
 // pi in the precision of T (atan folds to a constant for float and double).
 template <class T>
 T pi() {

@@ -870,7 +870,7 @@ T plain_inv2(T x) {
 template <class T>
 T gaussian_sin_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
   return (exp(((T(-1)/T(2))*(sigma*sigma)))*sin(x));
 }
 
@@ -887,8 +887,8 @@ T gaussian_sin(T x, T sigma) {
 template <class T>
 T gaussian_sin_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(-1)/T(2))*cos((T(2)*x))*exp(((T(-2))*(sigma*sigma)))) + (T(1)/T(2)));
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
+  return (((T(-1)/T(2))*(((T(-2))*(sin(x)*sin(x))) + T(1))*detail::pow4(exp(((T(-1)/T(2))*(sigma*sigma))))) + (T(1)/T(2)));
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -904,7 +904,7 @@ T gaussian_sin_sq(T x, T sigma) {
 template <class T>
 T box_sin_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
   return (detail::sinc((sigma*sqrt(T(3))))*sin(x));
 }
 
@@ -921,8 +921,8 @@ T box_sin(T x, T sigma) {
 template <class T>
 T box_sin_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(-1)/T(2))*cos((T(2)*x))*detail::sinc((T(2)*sigma*sqrt(T(3))))) + (T(1)/T(2)));
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
+  return (((T(-1)/T(2))*(((T(-2))*(sin(x)*sin(x))) + T(1))*detail::sinc((T(2)*sigma*sqrt(T(3))))) + (T(1)/T(2)));
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -938,7 +938,7 @@ T box_sin_sq(T x, T sigma) {
 template <class T>
 T tent_sin_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
   return ((detail::sinc(((T(1)/T(2))*sigma*sqrt(T(6))))*detail::sinc(((T(1)/T(2))*sigma*sqrt(T(6)))))*sin(x));
 }
 
@@ -955,8 +955,8 @@ T tent_sin(T x, T sigma) {
 template <class T>
 T tent_sin_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(-1)/T(2))*(detail::sinc((sigma*sqrt(T(6))))*detail::sinc((sigma*sqrt(T(6)))))*cos((T(2)*x))) + (T(1)/T(2)));
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
+  return (((T(-1)/T(2))*(((T(-2))*(sin(x)*sin(x))) + T(1))*(detail::sinc((sigma*sqrt(T(6))))*detail::sinc((sigma*sqrt(T(6)))))) + (T(1)/T(2)));
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -972,7 +972,7 @@ T tent_sin_sq(T x, T sigma) {
 template <class T>
 T gaussian_cos_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
   return (cos(x)*exp(((T(-1)/T(2))*(sigma*sigma))));
 }
 
@@ -989,8 +989,8 @@ T gaussian_cos(T x, T sigma) {
 template <class T>
 T gaussian_cos_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(2))*cos((T(2)*x))*exp(((T(-2))*(sigma*sigma)))) + (T(1)/T(2)));
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
+  return (((T(-1)/T(2))*(((T(-2))*(cos(x)*cos(x))) + T(1))*detail::pow4(exp(((T(-1)/T(2))*(sigma*sigma))))) + (T(1)/T(2)));
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -1006,7 +1006,7 @@ T gaussian_cos_sq(T x, T sigma) {
 template <class T>
 T box_cos_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
   return (cos(x)*detail::sinc((sigma*sqrt(T(3)))));
 }
 
@@ -1023,8 +1023,8 @@ T box_cos(T x, T sigma) {
 template <class T>
 T box_cos_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(2))*cos((T(2)*x))*detail::sinc((T(2)*sigma*sqrt(T(3))))) + (T(1)/T(2)));
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
+  return (((T(-1)/T(2))*(((T(-2))*(cos(x)*cos(x))) + T(1))*detail::sinc((T(2)*sigma*sqrt(T(3))))) + (T(1)/T(2)));
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -1040,7 +1040,7 @@ T box_cos_sq(T x, T sigma) {
 template <class T>
 T tent_cos_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
   return ((detail::sinc(((T(1)/T(2))*sigma*sqrt(T(6))))*detail::sinc(((T(1)/T(2))*sigma*sqrt(T(6)))))*cos(x));
 }
 
@@ -1057,8 +1057,8 @@ T tent_cos(T x, T sigma) {
 template <class T>
 T tent_cos_sq_raw(T x, T sigma) {
   BL_MATH_USING
-  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  return (((T(1)/T(2))*(detail::sinc((sigma*sqrt(T(6))))*detail::sinc((sigma*sqrt(T(6)))))*cos((T(2)*x))) + (T(1)/T(2)));
+  sigma = sigma >= T(0.0) ? sigma : detail::nan<T>();  // sigma < 0 or NaN
+  return (((T(-1)/T(2))*(((T(-2))*(cos(x)*cos(x))) + T(1))*(detail::sinc((sigma*sqrt(T(6))))*detail::sinc((sigma*sqrt(T(6)))))) + (T(1)/T(2)));
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -1435,7 +1435,7 @@ template <class T>
 T gaussian_pow3(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x == T(0.0)) return T(0.0);  // odd in x
+  if (x == T(0.0)) return sigma == sigma ? T(0) : sigma;  // odd in x (NaN for a bad sigma)
   return ((T(3)*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -1460,7 +1460,7 @@ template <class T>
 T box_pow3(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x == T(0.0)) return T(0.0);  // odd in x
+  if (x == T(0.0)) return sigma == sigma ? T(0) : sigma;  // odd in x (NaN for a bad sigma)
   return ((T(3)*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -1485,7 +1485,7 @@ template <class T>
 T tent_pow3(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x == T(0.0)) return T(0.0);  // odd in x
+  if (x == T(0.0)) return sigma == sigma ? T(0) : sigma;  // odd in x (NaN for a bad sigma)
   return ((T(3)*(sigma*sigma)*x) + (x*x*x));
 }
 
@@ -1609,7 +1609,7 @@ template <class T>
 T gaussian_pow5(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x == T(0.0)) return T(0.0);  // odd in x
+  if (x == T(0.0)) return sigma == sigma ? T(0) : sigma;  // odd in x (NaN for a bad sigma)
   return ((T(10)*(sigma*sigma)*(x*x*x)) + (T(15)*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -1635,7 +1635,7 @@ template <class T>
 T box_pow5(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x == T(0.0)) return T(0.0);  // odd in x
+  if (x == T(0.0)) return sigma == sigma ? T(0) : sigma;  // odd in x (NaN for a bad sigma)
   return ((T(10)*(sigma*sigma)*(x*x*x)) + (T(9)*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -1661,7 +1661,7 @@ template <class T>
 T tent_pow5(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x == T(0.0)) return T(0.0);  // odd in x
+  if (x == T(0.0)) return sigma == sigma ? T(0) : sigma;  // odd in x (NaN for a bad sigma)
   return ((T(10)*(sigma*sigma)*(x*x*x)) + (T(12)*(sigma*sigma*sigma*sigma)*x) + (x*x*x*x*x));
 }
 
@@ -1789,7 +1789,7 @@ template <class T>
 T gaussian_pow7(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x == T(0.0)) return T(0.0);  // odd in x
+  if (x == T(0.0)) return sigma == sigma ? T(0) : sigma;  // odd in x (NaN for a bad sigma)
   return ((T(105)*(sigma*sigma*sigma*sigma)*(x*x*x)) + (T(105)*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (T(21)*(sigma*sigma)*(x*x*x*x*x)) + (x*x*x*x*x*x*x));
 }
 
@@ -1816,7 +1816,7 @@ template <class T>
 T box_pow7(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x == T(0.0)) return T(0.0);  // odd in x
+  if (x == T(0.0)) return sigma == sigma ? T(0) : sigma;  // odd in x (NaN for a bad sigma)
   return ((T(21)*(sigma*sigma)*(x*x*x*x*x)) + (T(27)*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (T(63)*(sigma*sigma*sigma*sigma)*(x*x*x)) + (x*x*x*x*x*x*x));
 }
 
@@ -1843,7 +1843,7 @@ template <class T>
 T tent_pow7(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (x == T(0.0)) return T(0.0);  // odd in x
+  if (x == T(0.0)) return sigma == sigma ? T(0) : sigma;  // odd in x (NaN for a bad sigma)
   return ((T(21)*(sigma*sigma)*(x*x*x*x*x)) + (T(54)*(sigma*sigma*sigma*sigma*sigma*sigma)*x) + (T(84)*(sigma*sigma*sigma*sigma)*(x*x*x)) + (x*x*x*x*x*x*x));
 }
 

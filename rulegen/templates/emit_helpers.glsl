@@ -1,6 +1,7 @@
 // Helpers of the generated GLSL besides the support functions.
 float bl_nan() { return uintBitsToFloat(0x7fc00000u); }
 float bl_pi() { return 3.14159265358979; }
+float bl_pow4(float v) { float v2 = v * v; return v2 * v2; }  // see emit_helpers.hpp
 float bl_series_reach() { return 0.35; }  // see emit_helpers.hpp
 // Clausen's Cl2 and the dilogarithm on [-1, 0]: see emit_helpers.hpp.
 float bl_clausen2(float t) {

@@ -151,6 +151,11 @@ std::string source(const std::vector<int>& fns) {
       kernel_def(
           os, "bl_sp" + std::to_string(f),
           spill_pre() + "    const float r = " + F.cpp + "(" + arg_list(args) + ");\n" + spill_post("r"));
+    // An f^2 entry beside its f entry on the same arguments (a smoothed node's mean and variance).
+    if (const int sib = CostModel::square_sibling(f); sib >= 0 && std::count(fns.begin(), fns.end(), sib))
+      kernel_def(os, "bl_pair" + std::to_string(f),
+                 "    out[0][j] = " + all[sib].cpp + "(" + arg_list(args) + ") + " + F.cpp + "(" +
+                     arg_list(args) + ");\n");
     // Latency through x and, for two or more arguments, through the second one (a kernel entry's
     // sigma: in a program the sd of a nested node depends on the node before it).
     for (std::size_t via = 0; via < std::min<std::size_t>(2, args.size()); ++via) {
@@ -348,6 +353,14 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
     if (calibration_args(F.arity, F.stat).size() >= 2)
       lat = std::max(lat, time("bl_lat" + std::to_string(f) + "_1", in, main_opt));
     m.fn_lat_ns[F.cpp] = std::max(0.01, lat - lat_base);
+    // The pair's extra over its f entry alone (both kernels read the same inputs).
+    if (const int sib = CostModel::square_sibling(f); sib >= 0 && std::count(fns.begin(), fns.end(), sib)) {
+      const double pair = time("bl_pair" + std::to_string(f), in, main_opt);
+      const double sib_alone = time("bl_fn" + std::to_string(sib), in, main_opt);
+      // At most the entry alone: a pair that shares nothing costs two calls, and a larger reading
+      // is this machine's noise.
+      m.fn_pair_ns[F.cpp] = std::clamp(pair - sib_alone, 0.01, m.fn_ns[F.cpp]);
+    }
     if (CostModel::atomic_of(F.cpp).empty()) continue;
     std::vector<double> per;
     if (F.arity == 2 && !F.stat) {  // kernel entry f(x, sigma): every (|x|, sigma) band pair

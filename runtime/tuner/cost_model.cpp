@@ -1,6 +1,7 @@
 #include "tuner/cost_model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -92,6 +93,20 @@ std::string CostModel::atomic_of(const std::string& cpp) {
     return a;
   }
   return "";
+}
+
+int CostModel::square_sibling(int fn) {
+  static const std::vector<int> sib = [] {
+    std::vector<int> v(compiler::functions().size(), -1);
+    for (std::size_t f = 0; f < v.size(); ++f) {
+      const compiler::Function& F = compiler::functions()[f];
+      const std::string& n = F.cpp;
+      if (F.arity == 2 && !F.stat && n.size() > 3 && n.compare(n.size() - 3, 3, "_sq") == 0)
+        v[f] = compiler::find_function(n.substr(0, n.size() - 3));
+    }
+    return v;
+  }();
+  return fn >= 0 && fn < static_cast<int>(sib.size()) ? sib[fn] : -1;
 }
 
 double CostModel::function_cost(int fn) const {
@@ -220,12 +235,26 @@ double CostModel::throughput(const compiler::Program& p) const {
   std::vector<int> sin_args;
   for (const compiler::Inst& in : p.insts)
     if (in.op == LOp::Call && in.fn == sin_fn) sin_args.push_back(in.arg[0]);
+  // f^2 entries beside their f entry on the same (x, sigma): the pair's calibrated extra.
+  std::vector<std::array<int, 3>> calls;  // (fn, arg0, arg1) of the two-argument calls
+  if (!fn_pair_ns.empty())
+    for (const compiler::Inst& in : p.insts)
+      if (in.op == LOp::Call) calls.push_back({in.fn, in.arg[0], in.arg[1]});
   for (std::size_t i = 0; i < p.insts.size(); ++i) {
     const compiler::Inst& in = p.insts[i];
     if (in.op == LOp::Call && in.fn == cos_fn &&
         std::find(sin_args.begin(), sin_args.end(), in.arg[0]) != sin_args.end()) {
       ns += kSincosExtra * function_cost(in.fn);
       continue;
+    }
+    if (in.op == LOp::Call && !calls.empty()) {
+      const int sib = square_sibling(in.fn);
+      const auto pr = sib < 0 ? fn_pair_ns.end() : fn_pair_ns.find(compiler::functions().at(in.fn).cpp);
+      if (pr != fn_pair_ns.end() && std::find(calls.begin(), calls.end(),
+                                              std::array<int, 3>{sib, in.arg[0], in.arg[1]}) != calls.end()) {
+        ns += pr->second;
+        continue;
+      }
     }
     if (in.op == LOp::Call || in.op == LOp::CallStat) {
       ns += function_cost(in.fn);
@@ -304,6 +333,7 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
     cm.fn_band_ns = m.at("function_bands").get<std::map<std::string, std::vector<double>>>();
   if (m.contains("function_spill"))
     cm.fn_spill_ns = m.at("function_spill").get<std::map<std::string, double>>();
+  if (m.contains("function_pair")) cm.fn_pair_ns = m.at("function_pair").get<std::map<std::string, double>>();
   return cm;
 }
 
@@ -324,7 +354,8 @@ void save_cost_model(const std::string& path, const CostModel& m) {
                               {"function_latency", m.fn_lat_ns},
                               {"window_ns", m.window_ns},
                               {"kernels", m.kernels},
-                              {"function_spill", m.fn_spill_ns}};
+                              {"function_spill", m.fn_spill_ns},
+                              {"function_pair", m.fn_pair_ns}};
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
   const std::string tmp = path + ".tmp";

@@ -37,8 +37,8 @@ struct CostModel {
   // Version of the compiled calibration's kernels; a file measured with other kernels is
   // recalibrated (1: vectorized loops, which made straight-line entries 4x too cheap; 2: scalar
   // loops shaped like a program's, with the per-output cost; 3: the spill cost of values live across
-  // a call).
-  static constexpr int kKernels = 3;
+  // a call; 4: an f^2 entry beside its f entry).
+  static constexpr int kKernels = 4;
   int kernels = kKernels;
   // LOp name -> ns per pixel; "pixel": per-pixel overhead (the loop), "output": per output stored.
   std::map<std::string, double> op_ns;
@@ -57,6 +57,13 @@ struct CostModel {
   // all-Dorn program: 22 libm calls per pixel).
   static constexpr int kSpillRegs = 16;
   std::map<std::string, double> fn_spill_ns;
+  // Function::cpp of an f^2 kernel entry -> ns per pixel it adds when the program also calls its f
+  // entry with the same (x, sigma), as every smoothed node does for its mean and variance: the
+  // entries share their transcendental calls (sin(x); rulegen writes sin^2 and cos^2 to share them)
+  // and the compiler merges them. Absent: the entry's own cost.
+  std::map<std::string, double> fn_pair_ns;
+  // The f entry of an f^2 kernel entry (bl::tent::sin for bl::tent::sin_sq), -1 for others.
+  static int square_sibling(int fn);
   // The out-of-order window in ns of throughput work: a program of throughput T and critical path
   // L overlaps max(1, window / T) pixels, so it costs max(T, L x min(1, T / window)).
   double window_ns = 0;

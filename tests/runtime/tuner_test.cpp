@@ -301,7 +301,8 @@ TEST(CostModel, SpillCostCountsTheValuesLiveAcrossACall) {
 TEST(CostModel, SinAndCosOfOneArgumentCostOneSincos) {
   using compiler::Inst;
   using compiler::LOp;
-  const int sin_fn = compiler::find_function("bl::plain::sin"), cos_fn = compiler::find_function("bl::plain::cos");
+  const int sin_fn = compiler::find_function("bl::plain::sin"),
+            cos_fn = compiler::find_function("bl::plain::cos");
   ASSERT_GE(sin_fn, 0);
   ASSERT_GE(cos_fn, 0);
   CostModel m;
@@ -326,6 +327,46 @@ TEST(CostModel, SinAndCosOfOneArgumentCostOneSincos) {
   EXPECT_DOUBLE_EQ(m.throughput(p), 10 + CostModel::kSincosExtra * 8 + 8);
   p.insts[s].arg[0] = v;  // now sin(v) pairs with the second cos instead
   EXPECT_DOUBLE_EQ(m.throughput(p), 10 + 8 + CostModel::kSincosExtra * 8);
+}
+
+// A smoothed node calls its f entry and its f^2 entry on the same (mean, sd): rulegen writes sin^2 to
+// share sin's calls, so the f^2 entry costs only its calibrated extra there (fn_pair_ns); on other
+// arguments, or without a pair calibration, all of its price.
+TEST(CostModel, SquareEntryBesideItsEntryCostsThePairExtra) {
+  using compiler::Inst;
+  using compiler::LOp;
+  const int f = compiler::find_function("bl::tent::sin"), f2 = compiler::find_function("bl::tent::sin_sq");
+  ASSERT_GE(f, 0);
+  ASSERT_GE(f2, 0);
+  EXPECT_EQ(CostModel::square_sibling(f2), f);
+  EXPECT_EQ(CostModel::square_sibling(f), -1);
+  EXPECT_EQ(CostModel::square_sibling(compiler::find_function("bl::plain::sin")), -1);
+  CostModel m;
+  m.method = "compiled";
+  m.op_ns = {{"in_mean", 0}, {"in_sd", 0}};
+  m.fn_ns = {{"bl::tent::sin", 5}, {"bl::tent::sin_sq", 6}};
+  m.fn_pair_ns = {{"bl::tent::sin_sq", 2}};
+  compiler::Program p;
+  p.input_count = 2;
+  auto inst = [&](LOp op, int a = -1, int b = -1, int fn = -1) {
+    Inst in;
+    in.op = op;
+    in.arg[0] = a;
+    in.arg[1] = b;
+    in.fn = fn;
+    p.insts.push_back(in);
+    return static_cast<int>(p.insts.size()) - 1;
+  };
+  const int x = inst(LOp::InMean, 0), s = inst(LOp::InSd, 0), y = inst(LOp::InMean, 1);
+  const int q = inst(LOp::Call, x, s, f2);  // before its f entry: still the pair
+  const int mn = inst(LOp::Call, x, s, f);
+  p.outputs = {mn, q};
+  EXPECT_DOUBLE_EQ(m.throughput(p), 5 + 2);
+  p.insts[q].arg[0] = y;  // sin_sq of another argument: its own price
+  EXPECT_DOUBLE_EQ(m.throughput(p), 5 + 6);
+  p.insts[q].arg[0] = x;
+  m.fn_pair_ns.clear();  // no pair calibration: its own price
+  EXPECT_DOUBLE_EQ(m.throughput(p), 5 + 6);
 }
 
 // finalize's choice of front points: the cheapest points at each MSAA error are always measured,
