@@ -103,7 +103,9 @@ Options resolved(const Options& opt) {
   Options o = opt;
   if (o.compiler.empty()) o.compiler = env_or("BL_JIT_CXX", env_or("CXX", "g++"));
   if (o.flags.empty()) {
-    std::istringstream in(env_or("BL_JIT_FLAGS", "-O3 -std=c++17"));
+    // -fno-math-errno: emitted code never reads errno, and without it GCC may not merge two exp
+    // calls of one argument (a smoothed sin node's mean and variance share e^{-sigma^2/2}).
+    std::istringstream in(env_or("BL_JIT_FLAGS", "-O3 -fno-math-errno -std=c++17"));
     for (std::string f; in >> f;) o.flags.push_back(f);
   }
   if (o.include_dirs.empty()) o.include_dirs = {BL_JIT_INCLUDE_GENERATED, BL_JIT_INCLUDE_RUNTIME};

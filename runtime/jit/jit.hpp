@@ -21,7 +21,7 @@ class Error : public std::runtime_error {
 
 struct Options {
   std::string compiler;  // empty: $BL_JIT_CXX, else $CXX, else "g++"
-  std::vector<std::string> flags;         // empty: $BL_JIT_FLAGS (split at spaces), else -O3 -std=c++17
+  std::vector<std::string> flags;         // empty: $BL_JIT_FLAGS (split at spaces), else -O3 -fno-math-errno -std=c++17
   std::vector<std::string> include_dirs;  // empty: the source tree's generated/ and runtime/
   std::string cache_dir;                  // empty: $BL_JIT_CACHE, else "build/jit_cache"
 };
