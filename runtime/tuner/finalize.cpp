@@ -57,15 +57,15 @@ std::vector<int> pick_front_points(const std::vector<Point>& front, int k, const
   std::stable_sort(by_time.begin(), by_time.end(),
                    [&](int a, int b) { return front[a].obj.time < front[b].obj.time; });
   std::vector<int> idx;
-  for (double e : targets) {
-    int taken = 0;
-    for (int i : by_time)
-      if (taken < kAnchorsPerTarget && front[i].obj.error <= kAnchorMargin * e &&
-          static_cast<int>(idx.size()) < std::max(0, k - 2)) {
-        idx.push_back(i);
-        ++taken;
-      }
-  }
+  for (double e : targets)
+    for (double m : kAnchorMargins)
+      for (int i : by_time)
+        if (front[i].obj.error <= m * e) {
+          if (std::find(idx.begin(), idx.end(), i) == idx.end() &&
+              static_cast<int>(idx.size()) < std::max(0, k - 2))
+            idx.push_back(i);
+          break;
+        }
   std::sort(idx.begin(), idx.end());
   idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
   for (int i : spread(n, std::max(2, k - static_cast<int>(idx.size())))) idx.push_back(i);

@@ -55,12 +55,13 @@ struct FinalizeOptions {
 SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const FinalizeOptions& opt);
 
 // Which search-front points finalize refines and measures (indices, ascending): for each target
-// error (MSAA 4, 8 and 16's), the kAnchorsPerTarget cheapest points whose search error is within
-// kAnchorMargin of it (the speed-up at that error is read off them; spacing alone once skipped
-// checkerboard_none's all-box point), then points spread evenly over the front, both ends kept, up
-// to k in all.
-constexpr int kAnchorsPerTarget = 2;
-constexpr double kAnchorMargin = 1.15;
+// error e (MSAA 4, 8 and 16's) and each margin m of kAnchorMargins, the cheapest point whose search
+// error is <= m e (the speed-up at that error is read off them: the search error is measured on
+// sampled pixels, and a point just under e there often lands just over it in the full render, so a
+// point with room to spare is measured too; spacing alone skipped checkerboard_none's all-box point,
+// and two points just under 1.15 e skipped it again), then points spread evenly over the front, both
+// ends kept, up to k in all.
+constexpr double kAnchorMargins[] = {1.15, 1.0, 0.8};
 std::vector<int> pick_front_points(const std::vector<Point>& front, int k, const std::vector<double>& targets);
 
 std::map<std::string, double> rule_mix(const SceneTuner& t, const compiler::Schedule& s);
