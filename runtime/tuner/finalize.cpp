@@ -17,6 +17,7 @@
 #include "render/compiled_frame.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
+#include "tuner/polish.hpp"
 
 namespace bl::tuner {
 
@@ -50,7 +51,8 @@ std::vector<int> spread(int n, int k) {
 
 }  // namespace
 
-std::vector<int> pick_front_points(const std::vector<Point>& front, int k, const std::vector<double>& targets) {
+std::vector<int> pick_front_points(const std::vector<Point>& front, int k,
+                                   const std::vector<double>& targets) {
   const int n = static_cast<int>(front.size());
   std::vector<int> by_time(n);
   for (int i = 0; i < n; ++i) by_time[i] = i;
@@ -242,13 +244,39 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   std::vector<double> msaa_errors;
   for (const Measured& b : res.baselines)
     if (b.msaa == 4 || b.msaa == 8 || b.msaa == 16) msaa_errors.push_back(b.error);
-  for (int i : pick_front_points(front, opt.max_points, msaa_errors)) {
-    const compiler::Schedule sch = t.schedule(front[i].genome);
+  auto refine_and_consider = [&](const Point& pt) {
+    const compiler::Schedule sch = t.schedule(pt.genome);
     Objectives o;
     const compiler::Schedule refined = t.refine_sigma(sch, &o);
     const bool changed = !(refined == sch);
     consider(refined, o, changed);
-    if (changed && o.time > front[i].obj.time) consider(sch, t.evaluate(sch), false);
+    if (changed && o.time > pt.obj.time) consider(sch, t.evaluate(sch), false);
+  };
+  const std::vector<int> picked = pick_front_points(front, opt.max_points, msaa_errors);
+  for (int i : picked) refine_and_consider(front[i]);
+  // The points the speed-up at MSAA-16's error is read from (its anchors), polished: single-gene
+  // changes that lower the model time at no more sample error (polish.hpp).
+  double e16 = -1;
+  for (const Measured& b : res.baselines)
+    if (b.msaa == 16) e16 = b.error;
+  if (opt.polish && e16 > 0) {
+    // Each anchor (the cheapest point under m e16 for each margin m) may spend up to its margin.
+    std::vector<Genome> polished;
+    for (double m : kAnchorMargins) {
+      int i = -1;
+      for (int j = 0; j < static_cast<int>(front.size()); ++j)
+        if (front[j].obj.error <= m * e16 && (i < 0 || front[j].obj.time < front[i].obj.time)) i = j;
+      if (i < 0) continue;
+      const Point q = polish(t, front[i], m * e16);
+      std::fprintf(stderr,
+                   "finalize: %s: polished search point %d: %.2f -> %.2f ns/px, sample error %.5f -> %.5f\n",
+                   s.name.c_str(), i, front[i].obj.time, q.obj.time, front[i].obj.error, q.obj.error);
+      if (q.genome != front[i].genome &&
+          std::find(polished.begin(), polished.end(), q.genome) == polished.end()) {
+        polished.push_back(q.genome);
+        refine_and_consider(q);
+      }
+    }
   }
   // Refinement changes errors (and, through the scale constants, times a little): keep the front.
   std::vector<Objectives> obj;

@@ -50,6 +50,7 @@ struct FinalizeOptions {
   std::string out_dir;  // images go here when non-empty
   int trials = 9;       // timing trials (minimum kept)
   jit::Options jit;     // compiler, flags, object cache of the compiled-code timings
+  bool polish = true;   // greedy descent from the points at MSAA-16's error (polish.hpp)
 };
 
 SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const FinalizeOptions& opt);
@@ -62,7 +63,8 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
 // and two points just under 1.15 e skipped it again), then points spread evenly over the front, both
 // ends kept, up to k in all.
 constexpr double kAnchorMargins[] = {1.15, 1.0, 0.8};
-std::vector<int> pick_front_points(const std::vector<Point>& front, int k, const std::vector<double>& targets);
+std::vector<int> pick_front_points(const std::vector<Point>& front, int k,
+                                   const std::vector<double>& targets);
 
 std::map<std::string, double> rule_mix(const SceneTuner& t, const compiler::Schedule& s);
 std::string rule_family(const rules::Rule& r);  // "none", "gaussian(rho=0)", "mc", "rule1", ...

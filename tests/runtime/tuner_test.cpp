@@ -18,6 +18,7 @@
 #include "tuner/magnitude_profile.hpp"
 #include "tuner/pareto.hpp"
 #include "tuner/pixel_sample.hpp"
+#include "tuner/polish.hpp"
 #include "tuner/report.hpp"
 #include "tuner/scene_tuner.hpp"
 
@@ -531,6 +532,30 @@ TEST(Search, DeterministicAcrossRunsAndThreadCounts) {
   const Objectives again = t.evaluate(t.schedule(ra.front.back().genome));
   EXPECT_EQ(again.time, ra.front.back().obj.time);
   EXPECT_EQ(again.error, ra.front.back().obj.error);
+}
+
+// Greedy descent (polish.hpp): never dearer, never above its error limit, its objectives those of its
+// genome; with no error limit from an all-mc4 start it must find cheaper rules (none costs less).
+TEST(Polish, LowersTheTimeWithinTheErrorLimit) {
+  const std::string cache = temp_dir("cache_polish");
+  TuneOptions o = tiny_options(cache);
+  SceneTuner t(tiny_scene(), quick_model(), o);
+  const Palette& pal = t.problem().palette;
+  const int mc4 = static_cast<int>(std::find(pal.names.begin(), pal.names.end(), "mc4") - pal.names.begin());
+  ASSERT_LT(mc4, static_cast<int>(pal.names.size()));
+  Point start;
+  start.genome.assign(t.problem().space.size(), static_cast<std::uint8_t>(mc4));
+  start.obj = t.evaluate(t.schedule(start.genome));
+  PolishOptions few;
+  few.max_steps = 3;
+  const Point free = polish(t, start, std::numeric_limits<double>::infinity(), few);
+  EXPECT_LT(free.obj.time, start.obj.time);
+  const Point kept = polish(t, start, -1, few);  // limit: the start's own error
+  EXPECT_LE(kept.obj.time, start.obj.time);
+  EXPECT_LE(kept.obj.error, start.obj.error);
+  const Objectives again = t.evaluate(t.schedule(kept.genome));
+  EXPECT_EQ(again.time, kept.obj.time);
+  EXPECT_EQ(again.error, kept.obj.error);
 }
 
 TEST(Search, ResumeFromCheckpointReproducesTheFront) {

@@ -1,0 +1,24 @@
+// Greedy descent from a search-front point: single-gene rule changes that lower the model time while
+// the sample error stays at most the point's own. The genetic search stops after 20 generations
+// with fronts that still hold such moves (quadratic_sine_none's point at MSAA-16's error kept
+// smoothing nodes whose plain rule costs less and changes nothing visible); finalize polishes the
+// points it reads the speed-up at MSAA-16's error from.
+#pragma once
+
+#include "tuner/genetic.hpp"
+#include "tuner/scene_tuner.hpp"
+
+namespace bl::tuner {
+
+struct PolishOptions {
+  int max_steps = 24;            // accepted changes
+  int max_evals_per_step = 400;  // sample-error evaluations tried per step, cheapest model time first
+};
+
+// The point after descent (the input itself when no change helps): every step lowers the model time
+// of all single-gene changes (lowering only, no pixels), then evaluates the sample error of the
+// cheaper ones in order of model time and takes the first whose error is <= limit (the start's own
+// error when limit < 0).
+Point polish(const SceneTuner& t, const Point& start, double limit = -1, const PolishOptions& opt = {});
+
+}  // namespace bl::tuner
