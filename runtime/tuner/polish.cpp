@@ -12,7 +12,8 @@ Point polish(const SceneTuner& t, const Point& start, double limit, const Polish
   const int rules = static_cast<int>(prob.palette.rules.size());
   if (limit < 0) limit = start.obj.error;
   Point cur = start;
-  for (int step = 0; step < opt.max_steps; ++step) {
+  int evals = 0;
+  for (int step = 0; step < opt.max_steps && evals < opt.max_evals; ++step) {
     // Model time of every single-gene change (lowering and the cost model only).
     std::vector<std::pair<double, Genome>> cheaper;
     for (int g = 0; g < prob.space.size(); ++g)
@@ -27,8 +28,10 @@ Point polish(const SceneTuner& t, const Point& start, double limit, const Polish
       }
     std::sort(cheaper.begin(), cheaper.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     bool moved = false;
-    for (int k = 0; k < static_cast<int>(cheaper.size()) && k < opt.max_evals_per_step; ++k) {
+    for (int k = 0;
+         k < static_cast<int>(cheaper.size()) && k < opt.max_evals_per_step && evals < opt.max_evals; ++k) {
       const Objectives o = t.evaluate(t.schedule(cheaper[k].second));
+      ++evals;
       if (o.error <= limit && o.time < cur.obj.time) {
         cur.genome = cheaper[k].second;
         cur.obj = o;

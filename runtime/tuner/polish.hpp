@@ -11,8 +11,9 @@
 namespace bl::tuner {
 
 struct PolishOptions {
-  int max_steps = 24;            // accepted changes
-  int max_evals_per_step = 400;  // sample-error evaluations tried per step, cheapest model time first
+  int max_steps = 20;            // accepted changes
+  int max_evals_per_step = 160;  // sample-error evaluations tried per step, cheapest model time first
+  int max_evals = 1000;          // in all: bounds the time on large lattice shaders (bricks: ~5 ms each)
 };
 
 // The point after descent (the input itself when no change helps): every step lowers the model time
