@@ -557,6 +557,30 @@ struct StaircaseTail {
     return lo;
   }
 };
+
+// f on [n0, n0 + 1) (n0 = floor(x)) per region of n0, as a chain of selects.
+std::string staircase_base(const Syntax& s, const Staircase& st, const GiNaC::symbol& n,
+                           const GiNaC::symbol& n0) {
+  std::string base;
+  for (size_t r = 0; r <= st.z.size(); ++r) {
+    const std::string m = "(" + s.ex(st.piece[r].subs(n == n0).expand()) + ")";
+    if (r < st.z.size())
+      base += "(n0 < " + s.dbl(static_cast<double>(st.z[r])) + " ? " + m + " : ";
+    else
+      base += m + std::string(st.z.size(), ')');
+  }
+  return base;
+}
+
+// The break n = n0 + j's term J_n Phic(|n - x| / sigma) into `acc` (left of x for j <= 0).
+std::string staircase_break(const Syntax& s, int j, const std::string& J, const std::string& acc) {
+  std::string out = "        {  // break at n0 + " + std::to_string(j) + "\n";
+  out += "          const T n = n0 + " + s.dbl(j) + ";\n";
+  out += "          const T t = detail::min2((" + std::string(j <= 0 ? "x - n" : "n - x") +
+         ") * inv, detail::tail_cut<T>());\n";
+  out += "          " + acc + (j <= 0 ? " -" : " +") + "= " + J + " * detail::normal_Phic(t);\n";
+  return out + "        }\n";
+}
 }  // namespace
 
 // Gaussian staircases whose combination has a half-line term (trunc^2: f constant on each [n, n+1), its jump
@@ -586,28 +610,14 @@ std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const st
   for (const auto& p : st->piece)
     if (p.degree(x) != 0) return "";
   const Syntax s{lang};
-  std::string base;
-  for (size_t r = 0; r <= st->z.size(); ++r) {
-    const std::string m = "(" + s.ex(st->piece[r].subs(n == n0).expand()) + ")";
-    if (r < st->z.size())
-      base += "(n0 < " + s.dbl(static_cast<double>(st->z[r])) + " ? " + m + " : ";
-    else
-      base += m + std::string(st->z.size(), ')');
-  }
+  const std::string base = staircase_base(s, *st, n, n0);
   const std::string J = region_chain(s, *st, n, 0);
   auto block = [&](int K, double smax, const char* tiny) {
     std::string out =
         "      if (sigma >= " + s.dbl(std::atof(tiny)) + " && sigma <= " + s.dbl(smax) + ") {\n";
     out += "        const T n0 = floor(x);\n        const T inv = T(1) / sigma;\n";
     out += "        T acc = " + base + ";\n";
-    for (int j = 1 - K; j <= K; ++j) {
-      out += "        {  // break at n0 + " + std::to_string(j) + "\n";
-      out += "          const T n = n0 + " + s.dbl(j) + ";\n";
-      out += "          const T t = detail::min2((" + std::string(j <= 0 ? "x - n" : "n - x") +
-             ") * inv, detail::tail_cut<T>());\n";
-      out += std::string("          acc ") + (j <= 0 ? "-" : "+") + "= " + J + " * detail::normal_Phic(t);\n";
-      out += "        }\n";
-    }
+    for (int j = 1 - K; j <= K; ++j) out += staircase_break(s, j, J, "acc");
     return out + "        return acc;\n      }\n";
   };
   // Placed after the combination's far sides (x - Rf >= bmax, x + Rf < bmin: the periodic terms
@@ -658,14 +668,7 @@ std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   if (!tails.ok) return "";
   auto reach = [&](double D, double tol) { return tails.reach(D, tol); };
   const Syntax s{lang};
-  std::string base;
-  for (size_t r = 0; r <= st->z.size(); ++r) {
-    const std::string m = "(" + s.ex(st->piece[r].subs(n == n0).expand()) + ")";
-    if (r < st->z.size())
-      base += "(n0 < " + s.dbl(static_cast<double>(st->z[r])) + " ? " + m + " : ";
-    else
-      base += m + std::string(st->z.size(), ')');
-  }
+  const std::string base = staircase_base(s, *st, n, n0);
   const std::string J = region_chain(s, *st, n, 0);
   // One break per side at most: measured on floor^2 (float, x86-64 baseline), the nearest alone
   // costs 8-10 ns, a pair 11 ns, two pairs 19.5 ns, as dear as the fused form's Fourier regime there
@@ -687,13 +690,7 @@ std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang,
       const bool last = K == Kmax;
       out += std::string("      ") + (last ? "{" : "if (sigma < " + s.dbl(reach(K, tol)) + ") {") + "  // " +
              std::to_string(K) + " break(s) on each side\n        T a = acc;\n";
-      for (int j = 1 - K; j <= K; ++j) {
-        out += "        {\n          const T n = n0 + " + s.dbl(j) + ";\n";
-        out += "          const T t = detail::min2((" + std::string(j <= 0 ? "x - n" : "n - x") +
-               ") * inv, detail::tail_cut<T>());\n";
-        out += std::string("          a ") + (j <= 0 ? "-" : "+") + "= " + J + " * detail::normal_Phic(t);\n";
-        out += "        }\n";
-      }
+      for (int j = 1 - K; j <= K; ++j) out += staircase_break(s, j, J, "a");
       out += "        return a;\n      }\n";
     }
     return out + "    }\n";

@@ -9054,12 +9054,12 @@ T gaussian_floor(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (T(1)) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (T(1)) * detail::normal_Phic(t);
@@ -9082,12 +9082,12 @@ T gaussian_floor(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (T(1)) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (T(1)) * detail::normal_Phic(t);
@@ -9120,12 +9120,12 @@ T gaussian_floor_sq_raw(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (((T(-1)) + (T(2)*n))) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (((T(-1)) + (T(2)*n))) * detail::normal_Phic(t);
@@ -9148,12 +9148,12 @@ T gaussian_floor_sq_raw(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (((T(-1)) + (T(2)*n))) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (((T(-1)) + (T(2)*n))) * detail::normal_Phic(t);
@@ -9803,12 +9803,12 @@ T gaussian_ceil(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (T(1)) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (T(1)) * detail::normal_Phic(t);
@@ -9831,12 +9831,12 @@ T gaussian_ceil(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (T(1)) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (T(1)) * detail::normal_Phic(t);
@@ -9869,12 +9869,12 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (((T(2)*n) + T(1))) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (((T(2)*n) + T(1))) * detail::normal_Phic(t);
@@ -9897,12 +9897,12 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (((T(2)*n) + T(1))) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (((T(2)*n) + T(1))) * detail::normal_Phic(t);
@@ -10552,12 +10552,12 @@ T gaussian_trunc(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * detail::normal_Phic(t);
@@ -10580,12 +10580,12 @@ T gaussian_trunc(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * detail::normal_Phic(t);
@@ -10628,12 +10628,12 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
@@ -10656,12 +10656,12 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
       }
       {  // 1 break(s) on each side
         T a = acc;
-        {
+        {  // break at n0 + 0
           const T n = n0 + T(0.0);
           const T t = detail::min2((x - n) * inv, detail::tail_cut<T>());
           a -= (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
         }
-        {
+        {  // break at n0 + 1
           const T n = n0 + T(1.0);
           const T t = detail::min2((n - x) * inv, detail::tail_cut<T>());
           a += (n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * detail::normal_Phic(t);
