@@ -49,25 +49,28 @@ std::vector<int> spread(int n, int k) {
   return idx;
 }
 
+// The cheapest point whose search error is <= limit (the first of equal times), -1 if none: the
+// anchors finalize measures and polishes.
+int cheapest_under(const std::vector<Point>& front, double limit) {
+  int best = -1;
+  for (int j = 0; j < static_cast<int>(front.size()); ++j)
+    if (front[j].obj.error <= limit && (best < 0 || front[j].obj.time < front[best].obj.time)) best = j;
+  return best;
+}
+
 }  // namespace
 
 std::vector<int> pick_front_points(const std::vector<Point>& front, int k,
                                    const std::vector<double>& targets) {
   const int n = static_cast<int>(front.size());
-  std::vector<int> by_time(n);
-  for (int i = 0; i < n; ++i) by_time[i] = i;
-  std::stable_sort(by_time.begin(), by_time.end(),
-                   [&](int a, int b) { return front[a].obj.time < front[b].obj.time; });
   std::vector<int> idx;
   for (double e : targets)
-    for (double m : kAnchorMargins)
-      for (int i : by_time)
-        if (front[i].obj.error <= m * e) {
-          if (std::find(idx.begin(), idx.end(), i) == idx.end() &&
-              static_cast<int>(idx.size()) < std::max(0, k - 2))
-            idx.push_back(i);
-          break;
-        }
+    for (double m : kAnchorMargins) {
+      const int i = cheapest_under(front, m * e);
+      if (i >= 0 && std::find(idx.begin(), idx.end(), i) == idx.end() &&
+          static_cast<int>(idx.size()) < std::max(0, k - 2))
+        idx.push_back(i);
+    }
   std::sort(idx.begin(), idx.end());
   idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
   for (int i : spread(n, std::max(2, k - static_cast<int>(idx.size())))) idx.push_back(i);
@@ -242,8 +245,11 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     schedules.push_back(sch);
   };
   std::vector<double> msaa_errors;
-  for (const Measured& b : res.baselines)
+  double e16 = -1;
+  for (const Measured& b : res.baselines) {
     if (b.msaa == 4 || b.msaa == 8 || b.msaa == 16) msaa_errors.push_back(b.error);
+    if (b.msaa == 16) e16 = b.error;
+  }
   auto refine_and_consider = [&](const Point& pt) {
     const compiler::Schedule sch = t.schedule(pt.genome);
     Objectives o;
@@ -256,16 +262,11 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   for (int i : picked) refine_and_consider(front[i]);
   // The points the speed-up at MSAA-16's error is read from (its anchors), polished: single-gene
   // changes that lower the model time at no more sample error (polish.hpp).
-  double e16 = -1;
-  for (const Measured& b : res.baselines)
-    if (b.msaa == 16) e16 = b.error;
   if (opt.polish && e16 > 0) {
     // Each anchor (the cheapest point under m e16 for each margin m) may spend up to its margin.
     std::vector<Genome> polished;
     for (double m : kAnchorMargins) {
-      int i = -1;
-      for (int j = 0; j < static_cast<int>(front.size()); ++j)
-        if (front[j].obj.error <= m * e16 && (i < 0 || front[j].obj.time < front[i].obj.time)) i = j;
+      const int i = cheapest_under(front, m * e16);
       if (i < 0) continue;
       const Point q = polish(t, front[i], m * e16);
       std::fprintf(stderr,
