@@ -558,6 +558,24 @@ struct StaircaseTail {
   }
 };
 
+// The staircase of a Gaussian combination entry whose f is constant on every [n, n+1) (floor, ceil,
+// trunc and their squares), in the symbol n; nullopt where the break sums do not apply (C++ only).
+std::optional<Staircase> gauss_constant_staircase(const sym::Derived& d, sym::Lang lang,
+                                                  const std::vector<sym::Derived>* ds,
+                                                  const GiNaC::symbol& n) {
+  if (lang != sym::Lang::Cpp || d.kernel != Kernel::Gaussian || d.body != sym::Body::Combination || !ds ||
+      !d.atomic || !d.atomic->jumps_at_integers)
+    return std::nullopt;
+  const sym::Derived* lin = linear_combination(d, *ds);
+  if (!lin) return std::nullopt;
+  auto st = staircase_of(*lin, *ds, n, d.squared);
+  if (!st) return std::nullopt;
+  const GiNaC::ex x = sym::var_x();
+  for (const auto& p : st->piece)
+    if (p.degree(x) != 0) return std::nullopt;
+  return st;
+}
+
 // f on [n0, n0 + 1) (n0 = floor(x)) per region of n0, as a chain of selects.
 std::string staircase_base(const Syntax& s, const Staircase& st, const GiNaC::symbol& n,
                            const GiNaC::symbol& n0) {
@@ -594,21 +612,13 @@ std::string staircase_break(const Syntax& s, int j, const std::string& J, const 
 // tail_cut sd are taken at tail_cut (no subnormal exp). Tiny sigma (below 1e-30 float, 1e-300 double,
 // where 1/sigma could overflow), wider sigma and wider types fall through to the combination. C++ only.
 std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds) {
-  if (lang != sym::Lang::Cpp || d.kernel != Kernel::Gaussian || d.body != sym::Body::Combination || !ds ||
-      !d.atomic || !d.atomic->jumps_at_integers)
-    return "";
-  const sym::Derived* lin = linear_combination(d, *ds);
-  if (!lin) return "";
   const GiNaC::symbol n("n"), n0("n0");
-  const auto st = staircase_of(*lin, *ds, n, d.squared);
+  const auto st = gauss_constant_staircase(d, lang, ds, n);
   if (!st || st->z.empty()) return "";
   // Only where the combination takes a half-line series (trunc^2): trunc's own near branch is cheaper.
   bool half_lines = false;
   for (const auto& t : d.terms) half_lines = half_lines || t.kind == sym::CombinationTerm::Kind::HalfLines;
   if (!half_lines) return "";
-  const GiNaC::ex x = sym::var_x();
-  for (const auto& p : st->piece)
-    if (p.degree(x) != 0) return "";
   const Syntax s{lang};
   const std::string base = staircase_base(s, *st, n, n0);
   const std::string J = region_chain(s, *st, n, 0);
@@ -653,20 +663,11 @@ std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const st
 // relative to f (which grows as fast as J) beyond. Wider kernels fall through. C++ only.
 std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang,
                                    const std::vector<sym::Derived>* ds) {
-  if (lang != sym::Lang::Cpp || d.kernel != Kernel::Gaussian || d.body != sym::Body::Combination || !ds ||
-      !d.atomic || !d.atomic->jumps_at_integers)
-    return "";
-  const sym::Derived* lin = linear_combination(d, *ds);
-  if (!lin) return "";
   const GiNaC::symbol n("n"), n0("n0");
-  const auto st = staircase_of(*lin, *ds, n, d.squared);
+  const auto st = gauss_constant_staircase(d, lang, ds, n);
   if (!st) return "";
-  const GiNaC::ex x = sym::var_x();
-  for (const auto& p : st->piece)
-    if (p.degree(x) != 0) return "";
   const StaircaseTail tails(*st, n);
   if (!tails.ok) return "";
-  auto reach = [&](double D, double tol) { return tails.reach(D, tol); };
   const Syntax s{lang};
   const std::string base = staircase_base(s, *st, n, n0);
   const std::string J = region_chain(s, *st, n, 0);
@@ -675,9 +676,9 @@ std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   // (19.6 ns with 5 terms at sigma 0.18-0.25, 15 ns with 3 beyond).
   const int Kmax = 1;
   auto tiers = [&](double tol, const char* tiny) {
-    const double s0 = reach(0.5, tol);
-    std::string out =
-        "    if (sigma >= " + s.dbl(std::atof(tiny)) + " && sigma < " + s.dbl(reach(Kmax, tol)) + ") {\n";
+    const double s0 = tails.reach(0.5, tol);
+    std::string out = "    if (sigma >= " + s.dbl(std::atof(tiny)) + " && sigma < " +
+                      s.dbl(tails.reach(Kmax, tol)) + ") {\n";
     out += "      const T n0 = floor(x);\n      const T inv = T(1) / sigma;\n";
     out += "      const T acc = " + base + ";\n";
     out += "      if (sigma < " + s.dbl(s0) + ") {  // the nearest break alone\n";
@@ -688,8 +689,8 @@ std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang,
     out += "        return acc + sd * " + J + " * detail::normal_Phic(t);\n      }\n";
     for (int K = 1; K <= Kmax; ++K) {
       const bool last = K == Kmax;
-      out += std::string("      ") + (last ? "{" : "if (sigma < " + s.dbl(reach(K, tol)) + ") {") + "  // " +
-             std::to_string(K) + " break(s) on each side\n        T a = acc;\n";
+      out += std::string("      ") + (last ? "{" : "if (sigma < " + s.dbl(tails.reach(K, tol)) + ") {") +
+             "  // " + std::to_string(K) + " break(s) on each side\n        T a = acc;\n";
       for (int j = 1 - K; j <= K; ++j) out += staircase_break(s, j, J, "a");
       out += "        return a;\n      }\n";
     }
