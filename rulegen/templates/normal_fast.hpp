@@ -41,16 +41,22 @@ inline void normal_phi_Phic(T t, T& ph, T& pc) {
   }
 }
 
+// One function of t's row alone: column 0 Phic, 1 phi, 2 J_1 (one Horner chain).
+template <class T>
+inline T normal_column(T t, int column) {
+  using Tab = NormalTable<T>;
+  T u;
+  const T* c = normal_row(t, u) + column * (Tab::kDeg + 1);
+  T p = c[Tab::kDeg];
+  for (int k = Tab::kDeg - 1; k >= 0; --k) p = p * u + c[k];
+  return p;
+}
+
 // Phic(t) alone, t >= 0 (a break whose jump is a constant).
 template <class T>
 inline T normal_Phic(T t) {
-  using Tab = NormalTable<T>;
-  if constexpr (Tab::kHave) {
-    T u;
-    const T* c = normal_row(t, u);
-    T p = c[Tab::kDeg];
-    for (int k = Tab::kDeg - 1; k >= 0; --k) p = p * u + c[k];
-    return p;
+  if constexpr (NormalTable<T>::kHave) {
+    return normal_column(t, 0);
   } else {
     return Phic_tail(t);
   }
@@ -60,13 +66,8 @@ inline T normal_Phic(T t) {
 // derivative jumps).
 template <class T>
 inline T normal_J1(T t) {
-  using Tab = NormalTable<T>;
-  if constexpr (Tab::kHave) {
-    T u;
-    const T* c = normal_row(t, u) + 2 * (Tab::kDeg + 1);
-    T p = c[Tab::kDeg];
-    for (int k = Tab::kDeg - 1; k >= 0; --k) p = p * u + c[k];
-    return p;
+  if constexpr (NormalTable<T>::kHave) {
+    return normal_column(t, 2);
   } else {
     T ph, pc;
     phi_Phic(t, ph, pc);
