@@ -180,11 +180,12 @@ TEST(GaussPeriodicFast, FloatWithin2e5OfTheReference) {
   for (const Entry& e : entries()) check<float>(e, e.ef, 2e-5);
 }
 
-// gaussian trunc^2 near 0 (the straight-line break sums: 8 breaks for sigma <= 2/3 float, 0.47 double,
-// 12 / 18 breaks up to 1 float, 18/17 double, and the combination beyond): reference sum_n trunc(n + 1/2)^2
-// P(n <= x + U < n + 1) in long double over the steps within 40 sigma (the rest < 1e-300), sigma <= 10. Hard
-// inputs: x = 0, +-1e-12, next to the integers, the near-0 window edge 7 sigma, |x| = 1e6 (1e30 would not
-// step the long double loop), far |x|; sigma -> 0 and the tier edges.
+// gaussian trunc^2 near 0 (narrow kernels: the straight-line break sums; sigma in [0.25, 3]: floor^2~(|x|)
+// minus the loop over the breaks n <= 0 of trunc^2 - floor^2; the combination beyond): reference sum_n
+// trunc(n + 1/2)^2 P(n <= x + U < n + 1) in long double over the steps within 40 sigma (the rest <
+// 1e-300), sigma <= 10. Hard inputs: x = 0, +-1e-12, next to the integers, the near-0 window edge 7
+// sigma, |x| = 1e6 (1e30 would not step the long double loop), far |x|; sigma -> 0, the mirrored
+// form's ends and the tier edges.
 LD trunc_sq_reference(LD x, LD s) {
   if (s == 0) {
     const LD t = std::trunc(x);
@@ -210,7 +211,8 @@ void check_trunc_sq(double tol) {
   int bad = 0;
   for (R s : {R(1e-30), R(1e-12), R(1e-3),  R(0.05),  R(0.166), R(0.3),  R(0.47), R(0.48),
               R(0.6),   R(0.666), R(0.667), R(0.7),   R(0.706), R(0.71), R(0.9),  R(0.999),
-              R(1),     R(1.001), R(1.05),  R(1.058), R(1.06),  R(3),    R(10)})
+              R(1),     R(1.001), R(1.05),  R(1.058), R(1.06),  R(3),    R(10),   R(0.2499),
+              R(0.25),  R(2),     R(2.999), R(3.001)})
     for (R x0 : xs)
       for (R x : {x0, R(x0 + R(7) * s), R(x0 - R(7) * s)}) {
         const R v = bl::detail::gen::gaussian_trunc_sq<R>(x, s);
@@ -228,6 +230,14 @@ TEST(GaussPeriodicFast, TruncSqNearZeroDouble) {
 }
 TEST(GaussPeriodicFast, TruncSqNearZeroFloat) {
   check_trunc_sq<float>(2e-5);
+}
+
+// The mirrored form loops over breaks until one lies beyond its cut: a NaN x must leave the loop.
+TEST(GaussPeriodicFast, TruncSqNaNLeavesTheBreakLoop) {
+  for (double s : {0.25, 1.0, 3.0}) {
+    EXPECT_TRUE(std::isnan(bl::detail::gen::gaussian_trunc_sq<double>(NAN, s))) << s;
+    EXPECT_TRUE(std::isnan(bl::detail::gen::gaussian_trunc_sq<float>(NAN, float(s)))) << s;
+  }
 }
 
 }  // namespace
