@@ -7870,11 +7870,65 @@ float bl_tent_pulse30_sq(float x, float sigma) {
 }
 
 float bl_gaussian_floor(float x, float sigma) {
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+    if (sigma >= (1e-30) && sigma < (0.18773265168785536)) {
+      float n0 = floor(x);
+      float inv = (1.0) / sigma;
+      float acc = (n0);
+      if (sigma < (0.09386632584392768)) {  // the nearest break alone
+        float dl = x - n0, dr = (n0 + (1.0)) - x;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: n0 + 1 is nearer
+        float n = n0 + (0.5) * (sd + (1.0));
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        return acc + sd * ((1.0)) * bl_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        float a = acc;
+        {  // break at n0 + 0
+          float n = n0 + (0.0);
+          float t = min((x - n) * inv, BL_TAIL_CUT);
+          a -= ((1.0)) * bl_Phic(t);
+        }
+        {  // break at n0 + 1
+          float n = n0 + (1.0);
+          float t = min((n - x) * inv, BL_TAIL_CUT);
+          a += ((1.0)) * bl_Phic(t);
+        }
+        return a;
+      }
+    }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + (-1.0) * bl_gaussian_fract(x, sigma);
 }
 
 float bl_gaussian_floor_sq_raw(float x, float sigma) {
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+    if (sigma >= (1e-30) && sigma < (0.17504451970780102)) {
+      float n0 = floor(x);
+      float inv = (1.0) / sigma;
+      float acc = ((n0*n0));
+      if (sigma < (0.08783081590188237)) {  // the nearest break alone
+        float dl = x - n0, dr = (n0 + (1.0)) - x;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: n0 + 1 is nearer
+        float n = n0 + (0.5) * (sd + (1.0));
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        return acc + sd * ((((-1.0)) + ((2.0)*n))) * bl_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        float a = acc;
+        {  // break at n0 + 0
+          float n = n0 + (0.0);
+          float t = min((x - n) * inv, BL_TAIL_CUT);
+          a -= ((((-1.0)) + ((2.0)*n))) * bl_Phic(t);
+        }
+        {  // break at n0 + 1
+          float n = n0 + (1.0);
+          float t = min((n - x) * inv, BL_TAIL_CUT);
+          a += ((((-1.0)) + ((2.0)*n))) * bl_Phic(t);
+        }
+        return a;
+      }
+    }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float rest = ((sigma*sigma) + (x*x));
   float y = x;
@@ -8278,11 +8332,65 @@ float bl_tent_floor_sq(float x, float sigma) {
 }
 
 float bl_gaussian_ceil(float x, float sigma) {
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+    if (sigma >= (1e-30) && sigma < (0.18773265168785536)) {
+      float n0 = floor(x);
+      float inv = (1.0) / sigma;
+      float acc = (((1.0) + n0));
+      if (sigma < (0.09386632584392768)) {  // the nearest break alone
+        float dl = x - n0, dr = (n0 + (1.0)) - x;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: n0 + 1 is nearer
+        float n = n0 + (0.5) * (sd + (1.0));
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        return acc + sd * ((1.0)) * bl_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        float a = acc;
+        {  // break at n0 + 0
+          float n = n0 + (0.0);
+          float t = min((x - n) * inv, BL_TAIL_CUT);
+          a -= ((1.0)) * bl_Phic(t);
+        }
+        {  // break at n0 + 1
+          float n = n0 + (1.0);
+          float t = min((n - x) * inv, BL_TAIL_CUT);
+          a += ((1.0)) * bl_Phic(t);
+        }
+        return a;
+      }
+    }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   return x + 1.0 * bl_gaussian_fract(-x, sigma);
 }
 
 float bl_gaussian_ceil_sq_raw(float x, float sigma) {
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+    if (sigma >= (1e-30) && sigma < (0.17400768091611796)) {
+      float n0 = floor(x);
+      float inv = (1.0) / sigma;
+      float acc = ((((2.0)*n0) + (n0*n0) + (1.0)));
+      if (sigma < (0.08724893665295351)) {  // the nearest break alone
+        float dl = x - n0, dr = (n0 + (1.0)) - x;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: n0 + 1 is nearer
+        float n = n0 + (0.5) * (sd + (1.0));
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        return acc + sd * ((((2.0)*n) + (1.0))) * bl_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        float a = acc;
+        {  // break at n0 + 0
+          float n = n0 + (0.0);
+          float t = min((x - n) * inv, BL_TAIL_CUT);
+          a -= ((((2.0)*n) + (1.0))) * bl_Phic(t);
+        }
+        {  // break at n0 + 1
+          float n = n0 + (1.0);
+          float t = min((n - x) * inv, BL_TAIL_CUT);
+          a += ((((2.0)*n) + (1.0))) * bl_Phic(t);
+        }
+        return a;
+      }
+    }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float rest = ((sigma*sigma) + (x*x));
   float y = -x;
@@ -8686,6 +8794,33 @@ float bl_tent_ceil_sq(float x, float sigma) {
 }
 
 float bl_gaussian_trunc(float x, float sigma) {
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+    if (sigma >= (1e-30) && sigma < (0.18106228898026977)) {
+      float n0 = floor(x);
+      float inv = (1.0) / sigma;
+      float acc = (n0 < (0.0) ? (((1.0) + n0)) : (n0));
+      if (sigma < (0.09106055354861416)) {  // the nearest break alone
+        float dl = x - n0, dr = (n0 + (1.0)) - x;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: n0 + 1 is nearer
+        float n = n0 + (0.5) * (sd + (1.0));
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        return acc + sd * (n < (0.0) ? ((1.0)) : n == (0.0) ? (0.0) : ((1.0))) * bl_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        float a = acc;
+        {  // break at n0 + 0
+          float n = n0 + (0.0);
+          float t = min((x - n) * inv, BL_TAIL_CUT);
+          a -= (n < (0.0) ? ((1.0)) : n == (0.0) ? (0.0) : ((1.0))) * bl_Phic(t);
+        }
+        {  // break at n0 + 1
+          float n = n0 + (1.0);
+          float t = min((n - x) * inv, BL_TAIL_CUT);
+          a += (n < (0.0) ? ((1.0)) : n == (0.0) ? (0.0) : ((1.0))) * bl_Phic(t);
+        }
+        return a;
+      }
+    }
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   float Rf = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
   if (x - Rf >= (0.0)) {
@@ -8698,6 +8833,33 @@ float bl_gaussian_trunc(float x, float sigma) {
 }
 
 float bl_gaussian_trunc_sq_raw(float x, float sigma) {
+  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
+    if (sigma >= (1e-30) && sigma < (0.17504451970780102)) {
+      float n0 = floor(x);
+      float inv = (1.0) / sigma;
+      float acc = (n0 < (0.0) ? ((((2.0)*n0) + (n0*n0) + (1.0))) : ((n0*n0)));
+      if (sigma < (0.08783081590188237)) {  // the nearest break alone
+        float dl = x - n0, dr = (n0 + (1.0)) - x;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: n0 + 1 is nearer
+        float n = n0 + (0.5) * (sd + (1.0));
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        return acc + sd * (n < (0.0) ? ((((2.0)*n) + (1.0))) : n == (0.0) ? (0.0) : ((((-1.0)) + ((2.0)*n)))) * bl_Phic(t);
+      }
+      {  // 1 break(s) on each side
+        float a = acc;
+        {  // break at n0 + 0
+          float n = n0 + (0.0);
+          float t = min((x - n) * inv, BL_TAIL_CUT);
+          a -= (n < (0.0) ? ((((2.0)*n) + (1.0))) : n == (0.0) ? (0.0) : ((((-1.0)) + ((2.0)*n)))) * bl_Phic(t);
+        }
+        {  // break at n0 + 1
+          float n = n0 + (1.0);
+          float t = min((n - x) * inv, BL_TAIL_CUT);
+          a += (n < (0.0) ? ((((2.0)*n) + (1.0))) : n == (0.0) ? (0.0) : ((((-1.0)) + ((2.0)*n)))) * bl_Phic(t);
+        }
+        return a;
+      }
+    }
   BlPiece pm[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1e30, float[8]((-1.0), (-2.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -9022,6 +9184,55 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
     }
   }
   return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (5.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
+  }
+  {  // near 0: the break sum (see the emitter's comment)
+      if (sigma >= (0.25) && sigma <= (3.0)) {  // even f: g~(|x|) + h's breaks n = 0, -1, ... (all left of |x|)
+        float ax = abs(x);
+        float inv = (1.0) / sigma;
+        float acc = bl_gaussian_floor_sq(ax, sigma);
+        for (float n = (0.0); n > (-20.0); n -= (1.0)) {
+          float t = (ax - n) * inv;
+          if (!(t <= (5.765926591102952))) break;
+          acc -= (n < (0.0) ? ((2.0)) : n == (0.0) ? ((1.0)) : (0.0)) * bl_Phic(t);
+        }
+        return acc;
+      }
+      if (sigma >= (1e-30) && sigma <= (0.519474581271772)) {
+        float n0 = floor(x);
+        float inv = (1.0) / sigma;
+        float acc = (n0 < (0.0) ? ((((2.0)*n0) + (n0*n0) + (1.0))) : ((n0*n0)));
+        {  // break at n0 + -2
+          float n = n0 + (-2.0);
+          float t = min((x - n) * inv, BL_TAIL_CUT);
+          acc -= (n < (0.0) ? ((((2.0)*n) + (1.0))) : n == (0.0) ? (0.0) : ((((-1.0)) + ((2.0)*n)))) * bl_Phic(t);
+        }
+        {  // break at n0 + -1
+          float n = n0 + (-1.0);
+          float t = min((x - n) * inv, BL_TAIL_CUT);
+          acc -= (n < (0.0) ? ((((2.0)*n) + (1.0))) : n == (0.0) ? (0.0) : ((((-1.0)) + ((2.0)*n)))) * bl_Phic(t);
+        }
+        {  // break at n0 + 0
+          float n = n0 + (0.0);
+          float t = min((x - n) * inv, BL_TAIL_CUT);
+          acc -= (n < (0.0) ? ((((2.0)*n) + (1.0))) : n == (0.0) ? (0.0) : ((((-1.0)) + ((2.0)*n)))) * bl_Phic(t);
+        }
+        {  // break at n0 + 1
+          float n = n0 + (1.0);
+          float t = min((n - x) * inv, BL_TAIL_CUT);
+          acc += (n < (0.0) ? ((((2.0)*n) + (1.0))) : n == (0.0) ? (0.0) : ((((-1.0)) + ((2.0)*n)))) * bl_Phic(t);
+        }
+        {  // break at n0 + 2
+          float n = n0 + (2.0);
+          float t = min((n - x) * inv, BL_TAIL_CUT);
+          acc += (n < (0.0) ? ((((2.0)*n) + (1.0))) : n == (0.0) ? (0.0) : ((((-1.0)) + ((2.0)*n)))) * bl_Phic(t);
+        }
+        {  // break at n0 + 3
+          float n = n0 + (3.0);
+          float t = min((n - x) * inv, BL_TAIL_CUT);
+          acc += (n < (0.0) ? ((((2.0)*n) + (1.0))) : n == (0.0) ? (0.0) : ((((-1.0)) + ((2.0)*n)))) * bl_Phic(t);
+        }
+        return acc;
+      }
   }
   float rest = ((2.0*x) + (sigma*sigma) + (x*x) + 1.0) + bl_gauss_pw(x, sigma, 2, pm) + 2.0 * (1.0 * bl_gaussian_fract_right(x, sigma));
   float y = x;

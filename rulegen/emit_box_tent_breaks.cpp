@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "emit_common.hpp"
+#include "emit_gauss_periodic.hpp"
 #include "emit_syntax.hpp"
 
 namespace bl::rulegen {
@@ -560,12 +561,11 @@ struct StaircaseTail {
 };
 
 // The staircase of a Gaussian combination entry whose f is constant on every [n, n+1) (floor, ceil,
-// trunc and their squares), in the symbol n; nullopt where the break sums do not apply (C++ only).
-std::optional<Staircase> gauss_constant_staircase(const sym::Derived& d, sym::Lang lang,
-                                                  const std::vector<sym::Derived>* ds,
+// trunc and their squares), in the symbol n; nullopt where the break sums do not apply.
+std::optional<Staircase> gauss_constant_staircase(const sym::Derived& d, const std::vector<sym::Derived>* ds,
                                                   const GiNaC::symbol& n) {
-  if (lang != sym::Lang::Cpp || d.kernel != Kernel::Gaussian || d.body != sym::Body::Combination || !ds ||
-      !d.atomic || !d.atomic->jumps_at_integers)
+  if (d.kernel != Kernel::Gaussian || d.body != sym::Body::Combination || !ds || !d.atomic ||
+      !d.atomic->jumps_at_integers)
     return std::nullopt;
   const sym::Derived* lin = linear_combination(d, *ds);
   if (!lin) return std::nullopt;
@@ -605,11 +605,11 @@ std::string staircase_break(const Syntax& s, int j, const std::string& J, const 
 // there): E f(x+U) = E f(|x|+U) = g~(|x|) + E h(|x|+U), h = f - g, which is 0 on [0, inf), so all
 // its breaks n <= 0 lie left of |x| and E h(|x|+U) = -sum_{n <= 0} J^h_n Phic((|x| - n)/sigma).
 struct EvenMirror {
-  std::string g_call;  // g~ at (ax, sigma)
+  std::string g_impl;  // g~'s implementation name (impl_name)
   Staircase h;         // f - g
 };
 
-std::optional<EvenMirror> even_mirror(const sym::Derived& d, const Staircase& st, sym::Lang lang,
+std::optional<EvenMirror> even_mirror(const sym::Derived& d, const Staircase& st,
                                       const std::vector<sym::Derived>& ds, const GiNaC::symbol& n) {
   auto at = [&](const Staircase& s, long m) {
     size_t r = 0;
@@ -621,9 +621,9 @@ std::optional<EvenMirror> even_mirror(const sym::Derived& d, const Staircase& st
     if (!(at(st, m) == at(st, -m - 1))) return std::nullopt;
   for (const auto& e : ds) {
     if (&e == &d || e.kernel != Kernel::Gaussian || e.squared != d.squared || e.atomic == d.atomic) continue;
-    const auto g = gauss_constant_staircase(e, lang, &ds, n);
+    const auto g = gauss_constant_staircase(e, &ds, n);
     if (!g || !g->z.empty() || !(g->piece[0] - st.piece.back()).expand().is_zero()) continue;
-    EvenMirror mr{Syntax{lang}.fn(impl_name(e)) + "(ax, sigma)", st};
+    EvenMirror mr{impl_name(e), st};
     for (auto& p : mr.h.piece) p = (p - g->piece[0]).expand();
     bool zero_right = true;
     for (long m = 0; m <= 8; ++m) zero_right = zero_right && at(mr.h, m) == 0;
@@ -642,16 +642,18 @@ std::optional<EvenMirror> even_mirror(const sym::Derived& d, const Staircase& st
 // breaks lie >= K from x: StaircaseTail bounds them (absolute for |x| <= 1, relative to f beyond) and
 // gives each tier's sigma bound at the type's tolerance (float 1e-7, double 1e-13). Offsets past
 // tail_cut sd are taken at tail_cut (no subnormal exp). Tiny sigma (below 1e-30 float, 1e-300 double,
-// where 1/sigma could overflow), wider sigma and wider types fall through to the combination. C++ only.
+// where 1/sigma could overflow), wider sigma and wider types fall through to the combination. GLSL:
+// the float tiers, respelled (glsl_spelling).
 std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds) {
   const GiNaC::symbol n("n"), n0("n0");
-  const auto st = gauss_constant_staircase(d, lang, ds, n);
+  const auto st = gauss_constant_staircase(d, ds, n);
   if (!st || st->z.empty()) return "";
   // Only where the combination takes a half-line series (trunc^2): trunc's own near branch is cheaper.
   bool half_lines = false;
   for (const auto& t : d.terms) half_lines = half_lines || t.kind == sym::CombinationTerm::Kind::HalfLines;
   if (!half_lines) return "";
-  const Syntax s{lang};
+  const Syntax s{sym::Lang::Cpp};  // GLSL: the float text respelled
+  const bool glsl = lang != sym::Lang::Cpp;
   const std::string base = staircase_base(s, *st, n, n0);
   const std::string J = region_chain(s, *st, n, 0);
   auto block = [&](int K, double smax, const char* tiny) {
@@ -673,7 +675,7 @@ std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const st
   // 38.9, 115 -> 61.8); below 0.25 g's Fourier regime has 5 terms and the two cost the same, at 4
   // the loop's ~25 breaks cost as much as the generic half-line series (48 vs 47 ns).
   constexpr double kMirrorLo = 0.25, kMirrorHi = 3.0;
-  const auto mirror = even_mirror(d, *st, lang, *ds, n);
+  const auto mirror = even_mirror(d, *st, *ds, n);
   std::optional<StaircaseTail> htails;
   if (mirror) htails.emplace(mirror->h, n);
   const bool mirrored = mirror && htails->ok;
@@ -702,14 +704,16 @@ std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const st
     }
     return hi;
   };
+  // The loop runs at most c kMirrorHi + 2 times (a NaN t leaves at once).
   auto mirror_block = [&](double tol) {
+    const double c = mirror_cut(tol);
     std::string o = "      if (sigma >= " + s.dbl(kMirrorLo) + " && sigma <= " + s.dbl(kMirrorHi) +
                     ") {  // even f: g~(|x|) + h's breaks n = 0, -1, ... (all left of |x|)\n";
-    o += "        const T ax = fabs(x);\n        const T inv = T(1) / sigma;\n";
-    o += "        T acc = " + mirror->g_call + ";\n";
-    o += "        for (T n = T(0);; n -= T(1)) {  // exits on a NaN t too\n";
+    o += "        const T ax = abs(x);\n        const T inv = T(1) / sigma;\n";
+    o += "        T acc = " + (glsl ? "bl_" + mirror->g_impl : mirror->g_impl + "<T>") + "(ax, sigma);\n";
+    o += "        for (T n = T(0); n > " + s.dbl(-std::ceil(c * kMirrorHi + 2)) + "; n -= T(1)) {\n";
     o += "          const T t = (ax - n) * inv;\n";
-    o += "          if (!(t <= " + s.dbl(mirror_cut(tol)) + ")) break;\n";
+    o += "          if (!(t <= " + s.dbl(c) + ")) break;\n";
     o += "          acc -= " + region_chain(s, mirror->h, n, 0) + " * detail::normal_Phic(t);\n";
     return o + "        }\n        return acc;\n      }\n";
   };
@@ -727,6 +731,7 @@ std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const st
     }
     return o;
   };
+  if (glsl) return out + glsl_spelling(tiers(1e-7, 1.0, "1e-30")) + "  }\n";
   out += "    if constexpr (std::is_same<T, float>::value) {\n" + tiers(1e-7, 1.0, "1e-30") + "    }\n";
   out += "    if constexpr (std::is_same<T, double>::value) {\n" + tiers(1e-13, 1.05, "1e-300") + "    }\n";
   return out + "  }\n";
@@ -740,15 +745,16 @@ std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const st
 // forms x^2 - 2 x E[..] differences. Tiers: the dropped breaks lie >= D (0.5 nearest-only, K else) from
 // x, their tails sum to <= sum_m 2 (Jb + Js (D + m + 1)) Phic((D + m)/sigma) with Jb = max |J_n| over
 // n in [-2, 3] and Js its growth per step: <= tol (float 1e-7, double 1e-13) absolute for |x| <= 1,
-// relative to f (which grows as fast as J) beyond. Wider kernels fall through. C++ only.
+// relative to f (which grows as fast as J) beyond. Wider kernels fall through. GLSL: the float tiers,
+// respelled (glsl_spelling).
 std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang,
                                    const std::vector<sym::Derived>* ds) {
   const GiNaC::symbol n("n"), n0("n0");
-  const auto st = gauss_constant_staircase(d, lang, ds, n);
+  const auto st = gauss_constant_staircase(d, ds, n);
   if (!st) return "";
   const StaircaseTail tails(*st, n);
   if (!tails.ok) return "";
-  const Syntax s{lang};
+  const Syntax s{sym::Lang::Cpp};  // GLSL: the float text respelled
   const std::string base = staircase_base(s, *st, n, n0);
   const std::string J = region_chain(s, *st, n, 0);
   // One break per side at most: measured on floor^2 (float, x86-64 baseline), the nearest alone
@@ -777,6 +783,7 @@ std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang,
     return out + "    }\n";
   };
   std::string out = "  // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).\n";
+  if (lang != sym::Lang::Cpp) return out + glsl_spelling(tiers(1e-7, "1e-30"));
   out += "  if constexpr (std::is_same<T, float>::value) {\n" + tiers(1e-7, "1e-30") + "  }\n";
   out += "  if constexpr (std::is_same<T, double>::value) {\n" + tiers(1e-13, "1e-300") + "  }\n";
   return out;

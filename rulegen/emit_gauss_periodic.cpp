@@ -183,6 +183,9 @@ std::string glsl_spelling(std::string code) {
   replace_all("const T ", "float ");
   replace_all("  T ph, j0;", "  float ph, j0;");
   replace_all("  T acc;", "  float acc;");
+  replace_all(" T acc = ", " float acc = ");
+  replace_all(" T a = ", " float a = ");
+  replace_all("for (T ", "for (float ");
   // T(literal) -> a float literal.
   std::string out;
   for (size_t i = 0; i < code.size();) {

@@ -30,4 +30,9 @@ std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp);
 // generic code follows for smaller sigma); "" when the spec does not fit.
 std::string gauss_periodic_fast_glsl(const GaussPeriodicSpec& sp);
 
+// The C++ text of a float regime (the straight-line break and Fourier forms here and in
+// emit_box_tent_breaks.cpp) respelled as GLSL: a fixed map over a closed vocabulary; anything C++
+// left over throws (std::logic_error) rather than reach a driver.
+std::string glsl_spelling(std::string code);
+
 }  // namespace bl::rulegen

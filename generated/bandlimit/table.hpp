@@ -11393,10 +11393,10 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
   {  // near 0: the break sum (see the emitter's comment)
     if constexpr (std::is_same<T, float>::value) {
       if (sigma >= T(0.25) && sigma <= T(3.0)) {  // even f: g~(|x|) + h's breaks n = 0, -1, ... (all left of |x|)
-        const T ax = fabs(x);
+        const T ax = abs(x);
         const T inv = T(1) / sigma;
         T acc = gaussian_floor_sq<T>(ax, sigma);
-        for (T n = T(0);; n -= T(1)) {  // exits on a NaN t too
+        for (T n = T(0); n > T(-20.0); n -= T(1)) {
           const T t = (ax - n) * inv;
           if (!(t <= T(5.765926591102952))) break;
           acc -= (n < T(0.0) ? (T(2)) : n == T(0.0) ? (T(1)) : T(0.0)) * detail::normal_Phic(t);
@@ -11442,10 +11442,10 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
     }
     if constexpr (std::is_same<T, double>::value) {
       if (sigma >= T(0.25) && sigma <= T(3.0)) {  // even f: g~(|x|) + h's breaks n = 0, -1, ... (all left of |x|)
-        const T ax = fabs(x);
+        const T ax = abs(x);
         const T inv = T(1) / sigma;
         T acc = gaussian_floor_sq<T>(ax, sigma);
-        for (T n = T(0);; n -= T(1)) {  // exits on a NaN t too
+        for (T n = T(0); n > T(-26.0); n -= T(1)) {
           const T t = (ax - n) * inv;
           if (!(t <= T(7.7881519399215176))) break;
           acc -= (n < T(0.0) ? (T(2)) : n == T(0.0) ? (T(1)) : T(0.0)) * detail::normal_Phic(t);

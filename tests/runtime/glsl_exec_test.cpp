@@ -129,8 +129,9 @@ TEST(GlslExec, BoxTentBreakSums) {
 // The Gaussian periodic entries' straight-line GLSL (rulegen/emit_gauss_periodic.cpp, the C++ plan
 // respelled) against the C++ double table, within blverify's float bound 2e-5: at, beside and between
 // the breaks (period 1 and 2), on both sides of the signed reduction, at |x| up to 1e4, and at sigmas
-// on both sides of every regime hand-over the float plans use (the emitted comments: 0.047 to 0.21),
-// down to 1e-6 and up to 30. (Setting BL_TAIL_CUT to 2 fails 1155 of these values.)
+// on both sides of every regime hand-over the float plans use (the emitted comments: 0.047 to 0.21;
+// the staircases' narrow break sums below 0.088 / 0.175, trunc^2's mirrored form 0.25 to 3), down to
+// 1e-6 and up to 30. (Setting BL_TAIL_CUT to 2 fails 1155 of these values.)
 TEST(GlslExec, GaussianPeriodicStraightLine) {
   const auto av = gl::Context::availability();
   if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
@@ -139,7 +140,7 @@ TEST(GlslExec, GaussianPeriodicStraightLine) {
       ctx, {"gaussian"}, {"fract", "square", "triangle", "floor", "ceil", "trunc"},
       {-1000.25f, -3.75f, -1.0f, -0.5f, -1e-6f, 0.0f, 1e-6f, 0.25f, 0.5f, 0.999f, 1.0f, 1.5f, 2.75f, 37.5f, 1e4f},
       {1e-6f, 1e-3f, 0.03f, 0.045f, 0.05f, 0.07f, 0.09f, 0.095f, 0.1f, 0.104f, 0.15f, 0.18f, 0.19f, 0.2f,
-       0.21f, 0.25f, 0.35f, 0.5f, 1.0f, 3.0f, 30.0f},
+       0.21f, 0.25f, 0.35f, 0.5f, 1.0f, 3.0f, 30.0f, 0.087f, 0.088f, 0.174f, 0.176f, 0.249f, 2.5f, 3.01f},
       2e-5);
   EXPECT_GT(checked, 2000);
 }
