@@ -100,6 +100,40 @@ TEST(Bivariate, ComparisonsAreNormalCdfOfTheDifference) {
   EXPECT_EQ(bl::bivariate::less(1.0, 0.0, 1.0, 0.0, 0.0).mean, 0.0);  // step(0) = 0
 }
 
+// less and greater run in float (no double detour): against long double P(B - A > 0) over a grid with
+// the hard inputs (|t| up to 1e6 and 14, beyond and near the table's reach; rho = +-1; sa = sb, so
+// B - A's spread cancels to 0 at rho = 1; sigmas 1e-20 to 1e15; means 1e6 apart) within
+// 1e-6 (1 + t^2) relative (t rounded to float: Phi's relative condition number in its tail is ~t^2)
+// plus 1e-7 absolute (the normal table's Phic, which the float form reads: absolute, not relative,
+// in the tail, as for the table entries; beyond tail_cut = 9 sd the small side, < 1e-19, is 0).
+TEST(Bivariate, FloatComparisonsMatchLongDouble) {
+  int bad = 0, n = 0;
+  auto Phi_ld = [](long double z) { return 0.5L * std::erfc(-z / std::sqrt(2.0L)); };
+  for (float ma : {-1e6f, -3.0f, 0.0f, 0.25f, 1.0f, 1e6f})
+    for (float mb : {-2.5f, 0.0f, 0.3f, 1.0f, 7.0f})
+      for (float sa : {0.0f, 1e-20f, 0.1f, 0.4f, 1.0f, 1e15f})
+        for (float sb : {0.0f, 0.1f, 0.4f, 2.0f})
+          for (float rho : {-1.0f, -0.3f, 0.0f, 0.9f, 1.0f}) {
+            const long double s2 = (long double)(sb - sa) * (sb - sa) + 2.0L * (1.0L - rho) * sa * sb;
+            const long double d = (long double)mb - ma;
+            const long double p = s2 > 0 ? Phi_ld(d / std::sqrt(s2)) : (d > 0 ? 1.0L : 0.0L);
+            const long double want_var = s2 > 0 ? p * Phi_ld(-d / std::sqrt(s2)) : 0.0L;
+            for (int greater = 0; greater < 2; ++greater) {
+              const bl::stat<float> f = greater ? bl::bivariate::greater(ma, sa, mb, sb, rho)
+                                                : bl::bivariate::less(ma, sa, mb, sb, rho);
+              long double want = greater ? (s2 > 0 ? Phi_ld(-d / std::sqrt(s2)) : (d < 0 ? 1.0L : 0.0L)) : p;
+              const long double t = s2 > 0 ? d / std::sqrt(s2) : 0.0L;
+              for (auto [got, ref] : {std::pair<long double, long double>{f.mean, want}, {f.var, want_var}}) {
+                ++n;
+                if (!(std::fabs(got - ref) <= 1e-6L * (1 + t * t) * std::fabs(ref) + 1e-7L) && bad++ < 5)
+                  ADD_FAILURE() << (greater ? "greater" : "less") << "(" << ma << ", " << sa << ", " << mb
+                                << ", " << sb << ", " << rho << "): " << (double)got << " vs " << (double)ref;
+              }
+            }
+          }
+  EXPECT_EQ(bad, 0) << "of " << n;
+}
+
 TEST(Bivariate, BadInputGivesNaNAndSigmaZeroIsExact) {
   const double nan = std::nan("");
   for (auto r : {bl::bivariate::add(1.0, -0.1, 2.0, 0.1, 0.0), bl::bivariate::mul(1.0, 0.1, 2.0, nan, 0.0),

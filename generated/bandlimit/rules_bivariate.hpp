@@ -125,15 +125,16 @@ stat<T> max(T ma, T sa, T mb, T sb, T rho) {
 template <class T>
 stat<T> less(T ma, T sa, T mb, T sb, T rho) {
   BL_MATH_USING
-  if constexpr (sizeof(T) < sizeof(double)) {  // float: evaluated in double (cancellation)
-    const stat<double> r = detail::gen_bivariate::less<double>(ma, sa, mb, sb, rho);
-    return {T(r.mean), T(r.var)};
-  }
   if (!(sa >= T(0)) || !(sb >= T(0)) || !(rho >= T(-1) && rho <= T(1))) return {detail::nan<T>(), detail::nan<T>()};  // sigma < 0, NaN, |rho| > 1
   const T s2 = ((((-sa) + sb)*((-sa) + sb)) + (T(2)*((-rho) + T(1))*sa*sb));
   if (!(s2 > T(0))) return {(mb - ma > T(0) ? T(1) : T(0)), T(0)};  // step of a constant
   const T s = sqrt(s2);
   const T t = (((-ma) + mb)*(T(1)/(s)));
+  if constexpr (std::is_same<T, float>::value) {
+    const T a = abs(t);
+    const T q = a > detail::tail_cut<T>() ? T(0) : detail::normal_Phic(a);  // Phi(-|t|)
+    return {t >= T(0) ? T(1) - q : q, (T(1) - q) * q};
+  }
   return {detail::Phi(t), (detail::Phi((-t))*detail::Phi(t))};
 }
 
@@ -141,15 +142,16 @@ stat<T> less(T ma, T sa, T mb, T sb, T rho) {
 template <class T>
 stat<T> greater(T ma, T sa, T mb, T sb, T rho) {
   BL_MATH_USING
-  if constexpr (sizeof(T) < sizeof(double)) {  // float: evaluated in double (cancellation)
-    const stat<double> r = detail::gen_bivariate::greater<double>(ma, sa, mb, sb, rho);
-    return {T(r.mean), T(r.var)};
-  }
   if (!(sa >= T(0)) || !(sb >= T(0)) || !(rho >= T(-1) && rho <= T(1))) return {detail::nan<T>(), detail::nan<T>()};  // sigma < 0, NaN, |rho| > 1
   const T s2 = ((((-sa) + sb)*((-sa) + sb)) + (T(2)*((-rho) + T(1))*sa*sb));
   if (!(s2 > T(0))) return {(ma - mb > T(0) ? T(1) : T(0)), T(0)};  // step of a constant
   const T s = sqrt(s2);
   const T t = (-((-ma) + mb)*(T(1)/(s)));
+  if constexpr (std::is_same<T, float>::value) {
+    const T a = abs(t);
+    const T q = a > detail::tail_cut<T>() ? T(0) : detail::normal_Phic(a);  // Phi(-|t|)
+    return {t >= T(0) ? T(1) - q : q, (T(1) - q) * q};
+  }
   return {detail::Phi(t), (detail::Phi((-t))*detail::Phi(t))};
 }
 
