@@ -814,7 +814,8 @@ float bl_clamped_plain_inv2(float x) {
 
 vec2 bl_rule3_sin(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_sin(c), bl_deriv_sin_d1(c), bl_deriv_sin_d2(c), m);
   return bl_rule3_in_range(s, (-1.0), 1.0);
@@ -822,7 +823,8 @@ vec2 bl_rule3_sin(float mu, float sigma) {
 
 vec2 bl_rule3_cos(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_cos(c), bl_deriv_cos_d1(c), bl_deriv_cos_d2(c), m);
   return bl_rule3_in_range(s, (-1.0), 1.0);
@@ -830,7 +832,8 @@ vec2 bl_rule3_cos(float mu, float sigma) {
 
 vec2 bl_rule3_exp(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_exp(c), bl_deriv_exp_d1(c), bl_deriv_exp_d2(c), m);
   return bl_rule3_in_range(s, 0.0, BL_INF);
@@ -838,7 +841,8 @@ vec2 bl_rule3_exp(float mu, float sigma) {
 
 vec2 bl_rule3_sinh(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_sinh(c), bl_deriv_sinh_d1(c), bl_deriv_sinh_d2(c), m);
   return s;
@@ -846,7 +850,8 @@ vec2 bl_rule3_sinh(float mu, float sigma) {
 
 vec2 bl_rule3_cosh(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_cosh(c), bl_deriv_cosh_d1(c), bl_deriv_cosh_d2(c), m);
   return bl_rule3_in_range(s, 1.0, BL_INF);
@@ -854,7 +859,8 @@ vec2 bl_rule3_cosh(float mu, float sigma) {
 
 vec2 bl_rule3_pow2(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow2(c), bl_deriv_pow2_d1(c), bl_deriv_pow2_d2(c), m);
   return bl_rule3_in_range(s, 0.0, BL_INF);
@@ -862,7 +868,8 @@ vec2 bl_rule3_pow2(float mu, float sigma) {
 
 vec2 bl_rule3_pow3(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow3(c), bl_deriv_pow3_d1(c), bl_deriv_pow3_d2(c), m);
   return s;
@@ -870,7 +877,8 @@ vec2 bl_rule3_pow3(float mu, float sigma) {
 
 vec2 bl_rule3_pow4(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow4(c), bl_deriv_pow4_d1(c), bl_deriv_pow4_d2(c), m);
   return bl_rule3_in_range(s, 0.0, BL_INF);
@@ -878,7 +886,8 @@ vec2 bl_rule3_pow4(float mu, float sigma) {
 
 vec2 bl_rule3_pow5(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow5(c), bl_deriv_pow5_d1(c), bl_deriv_pow5_d2(c), m);
   return s;
@@ -886,7 +895,8 @@ vec2 bl_rule3_pow5(float mu, float sigma) {
 
 vec2 bl_rule3_pow6(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow6(c), bl_deriv_pow6_d1(c), bl_deriv_pow6_d2(c), m);
   return bl_rule3_in_range(s, 0.0, BL_INF);
@@ -894,7 +904,8 @@ vec2 bl_rule3_pow6(float mu, float sigma) {
 
 vec2 bl_rule3_pow7(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow7(c), bl_deriv_pow7_d1(c), bl_deriv_pow7_d2(c), m);
   return s;
@@ -902,7 +913,8 @@ vec2 bl_rule3_pow7(float mu, float sigma) {
 
 vec2 bl_rule3_pow8(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pow8(c), bl_deriv_pow8_d1(c), bl_deriv_pow8_d2(c), m);
   return bl_rule3_in_range(s, 0.0, BL_INF);
@@ -910,7 +922,8 @@ vec2 bl_rule3_pow8(float mu, float sigma) {
 
 vec2 bl_rule3_xexp(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_xexp(c), bl_deriv_xexp_d1(c), bl_deriv_xexp_d2(c), m);
   return bl_rule3_in_range(s, (-exp((-1.0))), BL_INF);
@@ -918,7 +931,8 @@ vec2 bl_rule3_xexp(float mu, float sigma) {
 
 vec2 bl_rule3_abs(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_abs(c), bl_deriv_abs_d1(c), bl_deriv_abs_d2(c), m);
   return bl_rule3_in_range(s, 0.0, BL_INF);
@@ -926,7 +940,8 @@ vec2 bl_rule3_abs(float mu, float sigma) {
 
 vec2 bl_rule3_sign(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_sign(c), bl_deriv_sign_d1(c), bl_deriv_sign_d2(c), m);
   return bl_rule3_in_range(s, (-1.0), 1.0);
@@ -934,7 +949,8 @@ vec2 bl_rule3_sign(float mu, float sigma) {
 
 vec2 bl_rule3_step(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_step(c), bl_deriv_step_d1(c), bl_deriv_step_d2(c), m);
   return bl_rule3_in_range(s, 0.0, 1.0);
@@ -942,7 +958,8 @@ vec2 bl_rule3_step(float mu, float sigma) {
 
 vec2 bl_rule3_saturate(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_saturate(c), bl_deriv_saturate_d1(c), bl_deriv_saturate_d2(c), m);
   return bl_rule3_in_range(s, 0.0, 1.0);
@@ -950,7 +967,8 @@ vec2 bl_rule3_saturate(float mu, float sigma) {
 
 vec2 bl_rule3_smoothstep(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_smoothstep(c), bl_deriv_smoothstep_d1(c), bl_deriv_smoothstep_d2(c), m);
   return bl_rule3_in_range(s, 0.0, 1.0);
@@ -958,7 +976,8 @@ vec2 bl_rule3_smoothstep(float mu, float sigma) {
 
 vec2 bl_rule3_laplace(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_laplace(c), bl_deriv_laplace_d1(c), bl_deriv_laplace_d2(c), m);
   return bl_rule3_in_range(s, 0.0, 1.0);
@@ -966,7 +985,8 @@ vec2 bl_rule3_laplace(float mu, float sigma) {
 
 vec2 bl_rule3_exp_decay(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_exp_decay(c), bl_deriv_exp_decay_d1(c), bl_deriv_exp_decay_d2(c), m);
   return bl_rule3_in_range(s, 0.0, 1.0);
@@ -974,7 +994,8 @@ vec2 bl_rule3_exp_decay(float mu, float sigma) {
 
 vec2 bl_rule3_exp_ramp(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_exp_ramp(c), bl_deriv_exp_ramp_d1(c), bl_deriv_exp_ramp_d2(c), m);
   return bl_rule3_in_range(s, 0.0, exp((-1.0)));
@@ -982,7 +1003,8 @@ vec2 bl_rule3_exp_ramp(float mu, float sigma) {
 
 vec2 bl_rule3_fract(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_fract(c), bl_deriv_fract_d1(c), bl_deriv_fract_d2(c), m);
   return bl_rule3_in_range(s, 0.0, 1.0);
@@ -990,7 +1012,8 @@ vec2 bl_rule3_fract(float mu, float sigma) {
 
 vec2 bl_rule3_triangle(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_triangle(c), bl_deriv_triangle_d1(c), bl_deriv_triangle_d2(c), m);
   return bl_rule3_in_range(s, 0.0, 1.0);
@@ -998,7 +1021,8 @@ vec2 bl_rule3_triangle(float mu, float sigma) {
 
 vec2 bl_rule3_square(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_square(c), bl_deriv_square_d1(c), bl_deriv_square_d2(c), m);
   return bl_rule3_in_range(s, 0.0, 1.0);
@@ -1006,7 +1030,8 @@ vec2 bl_rule3_square(float mu, float sigma) {
 
 vec2 bl_rule3_pulse30(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_pulse30(c), bl_deriv_pulse30_d1(c), bl_deriv_pulse30_d2(c), m);
   return bl_rule3_in_range(s, 0.0, 1.0);
@@ -1014,7 +1039,8 @@ vec2 bl_rule3_pulse30(float mu, float sigma) {
 
 vec2 bl_rule3_floor(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_floor(c), bl_deriv_floor_d1(c), bl_deriv_floor_d2(c), m);
   return s;
@@ -1022,7 +1048,8 @@ vec2 bl_rule3_floor(float mu, float sigma) {
 
 vec2 bl_rule3_ceil(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_ceil(c), bl_deriv_ceil_d1(c), bl_deriv_ceil_d2(c), m);
   return s;
@@ -1030,7 +1057,8 @@ vec2 bl_rule3_ceil(float mu, float sigma) {
 
 vec2 bl_rule3_trunc(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_trunc(c), bl_deriv_trunc_d1(c), bl_deriv_trunc_d2(c), m);
   return s;
@@ -1038,7 +1066,8 @@ vec2 bl_rule3_trunc(float mu, float sigma) {
 
 vec2 bl_rule3_tan(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_tan(c), bl_deriv_tan_d1(c), bl_deriv_tan_d2(c), m);
   return s;
@@ -1046,7 +1075,8 @@ vec2 bl_rule3_tan(float mu, float sigma) {
 
 vec2 bl_rule3_tanh(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_tanh(c), bl_deriv_tanh_d1(c), bl_deriv_tanh_d2(c), m);
   return bl_rule3_in_range(s, (-1.0), 1.0);
@@ -1070,7 +1100,8 @@ vec2 bl_rule3_sqrt(float mu, float sigma) {
 
 vec2 bl_rule3_inv(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_inv(c), bl_deriv_inv_d1(c), bl_deriv_inv_d2(c), m);
   return s;
@@ -1078,7 +1109,8 @@ vec2 bl_rule3_inv(float mu, float sigma) {
 
 vec2 bl_rule3_inv2(float mu, float sigma) {
   if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
-  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, -BL_INF, BL_INF);
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_inv2(c), bl_deriv_inv2_d1(c), bl_deriv_inv2_d2(c), m);
   return bl_rule3_in_range(s, 0.0, BL_INF);

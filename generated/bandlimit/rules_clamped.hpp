@@ -718,7 +718,8 @@ stat<T> rule3_sin(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_sin<double>(c), deriv_sin_d1<double>(c), deriv_sin_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (-1.0), (1.0));  // f's range
@@ -731,7 +732,8 @@ stat<T> rule3_cos(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_cos<double>(c), deriv_cos_d1<double>(c), deriv_cos_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (-1.0), (1.0));  // f's range
@@ -744,7 +746,8 @@ stat<T> rule3_exp(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_exp<double>(c), deriv_exp_d1<double>(c), deriv_exp_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
@@ -757,7 +760,8 @@ stat<T> rule3_sinh(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_sinh<double>(c), deriv_sinh_d1<double>(c), deriv_sinh_d2<double>(c), m);
   return {T(s.mean), T(s.var)};
@@ -769,7 +773,8 @@ stat<T> rule3_cosh(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_cosh<double>(c), deriv_cosh_d1<double>(c), deriv_cosh_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (1.0), truncnorm::detail::inf());  // f's range
@@ -782,7 +787,8 @@ stat<T> rule3_pow2(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow2<double>(c), deriv_pow2_d1<double>(c), deriv_pow2_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
@@ -795,7 +801,8 @@ stat<T> rule3_pow3(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow3<double>(c), deriv_pow3_d1<double>(c), deriv_pow3_d2<double>(c), m);
   return {T(s.mean), T(s.var)};
@@ -807,7 +814,8 @@ stat<T> rule3_pow4(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow4<double>(c), deriv_pow4_d1<double>(c), deriv_pow4_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
@@ -820,7 +828,8 @@ stat<T> rule3_pow5(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow5<double>(c), deriv_pow5_d1<double>(c), deriv_pow5_d2<double>(c), m);
   return {T(s.mean), T(s.var)};
@@ -832,7 +841,8 @@ stat<T> rule3_pow6(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow6<double>(c), deriv_pow6_d1<double>(c), deriv_pow6_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
@@ -845,7 +855,8 @@ stat<T> rule3_pow7(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow7<double>(c), deriv_pow7_d1<double>(c), deriv_pow7_d2<double>(c), m);
   return {T(s.mean), T(s.var)};
@@ -857,7 +868,8 @@ stat<T> rule3_pow8(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pow8<double>(c), deriv_pow8_d1<double>(c), deriv_pow8_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
@@ -870,7 +882,8 @@ stat<T> rule3_xexp(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_xexp<double>(c), deriv_xexp_d1<double>(c), deriv_xexp_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (-0.36787944117144233), truncnorm::detail::inf());  // f's range
@@ -883,7 +896,8 @@ stat<T> rule3_abs(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_abs<double>(c), deriv_abs_d1<double>(c), deriv_abs_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range
@@ -896,7 +910,8 @@ stat<T> rule3_sign(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_sign<double>(c), deriv_sign_d1<double>(c), deriv_sign_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (-1.0), (1.0));  // f's range
@@ -909,7 +924,8 @@ stat<T> rule3_step(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_step<double>(c), deriv_step_d1<double>(c), deriv_step_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
@@ -922,7 +938,8 @@ stat<T> rule3_saturate(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_saturate<double>(c), deriv_saturate_d1<double>(c), deriv_saturate_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
@@ -935,7 +952,8 @@ stat<T> rule3_smoothstep(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_smoothstep<double>(c), deriv_smoothstep_d1<double>(c), deriv_smoothstep_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
@@ -948,7 +966,8 @@ stat<T> rule3_laplace(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_laplace<double>(c), deriv_laplace_d1<double>(c), deriv_laplace_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
@@ -961,7 +980,8 @@ stat<T> rule3_exp_decay(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_exp_decay<double>(c), deriv_exp_decay_d1<double>(c), deriv_exp_decay_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
@@ -974,7 +994,8 @@ stat<T> rule3_exp_ramp(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_exp_ramp<double>(c), deriv_exp_ramp_d1<double>(c), deriv_exp_ramp_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), (0.36787944117144233));  // f's range
@@ -987,7 +1008,8 @@ stat<T> rule3_fract(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_fract<double>(c), deriv_fract_d1<double>(c), deriv_fract_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
@@ -1000,7 +1022,8 @@ stat<T> rule3_triangle(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_triangle<double>(c), deriv_triangle_d1<double>(c), deriv_triangle_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
@@ -1013,7 +1036,8 @@ stat<T> rule3_square(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_square<double>(c), deriv_square_d1<double>(c), deriv_square_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
@@ -1026,7 +1050,8 @@ stat<T> rule3_pulse30(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_pulse30<double>(c), deriv_pulse30_d1<double>(c), deriv_pulse30_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), (1.0));  // f's range
@@ -1039,7 +1064,8 @@ stat<T> rule3_floor(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_floor<double>(c), deriv_floor_d1<double>(c), deriv_floor_d2<double>(c), m);
   return {T(s.mean), T(s.var)};
@@ -1051,7 +1077,8 @@ stat<T> rule3_ceil(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_ceil<double>(c), deriv_ceil_d1<double>(c), deriv_ceil_d2<double>(c), m);
   return {T(s.mean), T(s.var)};
@@ -1063,7 +1090,8 @@ stat<T> rule3_trunc(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_trunc<double>(c), deriv_trunc_d1<double>(c), deriv_trunc_d2<double>(c), m);
   return {T(s.mean), T(s.var)};
@@ -1075,7 +1103,8 @@ stat<T> rule3_tan(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_tan<double>(c), deriv_tan_d1<double>(c), deriv_tan_d2<double>(c), m);
   return {T(s.mean), T(s.var)};
@@ -1087,7 +1116,8 @@ stat<T> rule3_tanh(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_tanh<double>(c), deriv_tanh_d1<double>(c), deriv_tanh_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (-1.0), (1.0));  // f's range
@@ -1125,7 +1155,8 @@ stat<T> rule3_inv(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_inv<double>(c), deriv_inv_d1<double>(c), deriv_inv_d2<double>(c), m);
   return {T(s.mean), T(s.var)};
@@ -1137,7 +1168,8 @@ stat<T> rule3_inv2(T mu, T sigma) {
   const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
   if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
     return {detail::nan<T>(), detail::nan<T>()};
-  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
   const double c = m.mean;
   const stat<double> s = rule3::from_derivatives<double>(plain_inv2<double>(c), deriv_inv2_d1<double>(c), deriv_inv2_d2<double>(c), m);
   const stat<double> r = rule3::in_range<double>(s, (0.0), truncnorm::detail::inf());  // f's range

@@ -64,23 +64,32 @@ void rule3(Ctx& x, const sym::Atomic& a) {
   const std::string impl = "rule3_" + a.name, cpp = "bl::rule3::" + a.name, glsl = "bl_rule3_" + a.name;
   const std::string lo = dom_d(a.domain_lo), hi = dom_d(a.domain_hi);
   const bool bounded = a.range_lo.finite() || a.range_hi.finite();  // the Taylor rule is clamped to f's range
+  // On the whole line nothing is truncated: the normal's own moments (mass 1, mean mu, var sigma^2,
+  // mu3 0, mu4 3 sigma^4), not the generic truncated-moment code (fract: 18.8 ns a call).
+  const bool whole = a.domain_lo.inf < 0 && a.domain_hi.inf > 0;
+  const std::string moments_cpp =
+      whole ? "  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated\n"
+              "  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};\n"
+            : "  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);\n";
+  const std::string moments_glsl =
+      whole ? "  float k2 = sigma * sigma;  // the whole line: nothing truncated\n"
+              "  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);\n"
+            : "  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, " + dom(a.domain_lo, Lang::Glsl) + ", " +
+                  dom(a.domain_hi, Lang::Glsl) + ");\n";
   x.out.impl +=
       "// Rule 3: second-order Taylor of " + a.name +
       " at the mean of N(mu, sigma^2) truncated to the domain.\n" + "template <class T>\nstat<T> " + impl +
       "(T mu, T sigma) {\n" + "  const double lo = " + lo + ", hi = " + hi + ";\n" +
       "  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))\n" +
       "    return {detail::nan<T>(), detail::nan<T>()};\n" +
-      "  const auto m = truncnorm::moments<double>(double(mu), double(sigma), lo, hi);\n" +
-      "  const double c = m.mean;\n" + "  const stat<double> s = rule3::from_derivatives<double>(plain_" +
+      moments_cpp + "  const double c = m.mean;\n" + "  const stat<double> s = rule3::from_derivatives<double>(plain_" +
       a.name + "<double>(c), deriv_" + a.name + "_d1<double>(c), deriv_" + a.name + "_d2<double>(c), m);\n" +
       (bounded ? "  const stat<double> r = rule3::in_range<double>(s, " + dom_d(a.range_lo) + ", " +
                      dom_d(a.range_hi) + ");  // f's range\n  return {T(r.mean), T(r.var)};\n}\n\n"
                : "  return {T(s.mean), T(s.var)};\n}\n\n");
   x.out.glsl += "vec2 " + glsl +
                 "(float mu, float sigma) {\n  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());\n" +
-                "  BlTruncMoments m = bl_truncnorm_moments(mu, sigma, " + dom(a.domain_lo, Lang::Glsl) +
-                ", " + dom(a.domain_hi, Lang::Glsl) +
-                ");\n  float c = m.mean;\n  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_" + a.name +
+                moments_glsl + "  float c = m.mean;\n  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_" + a.name +
                 "(c), bl_deriv_" + a.name + "_d1(c), bl_deriv_" + a.name + "_d2(c), m);\n" +
                 (bounded ? "  return bl_rule3_in_range(s, " + dom(a.range_lo, Lang::Glsl) + ", " +
                                dom(a.range_hi, Lang::Glsl) + ");\n}\n\n"
