@@ -481,75 +481,87 @@ float bl_deriv_exp_ramp_d2(float x) {
 }
 
 float bl_deriv_fract_d1(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 1.0, 1, p);
+  float r = bl_reduce_signed(x, 1.0);
+  if (r != r) return r;
+  if (!(r < 0.0)) {
+    return 1.0;
+  }
+  return 1.0;
 }
 
 float bl_deriv_fract_d2(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 1.0, 1, p);
+  float r = bl_reduce_signed(x, 1.0);
+  if (r != r) return r;
+  if (!(r < 0.0)) {
+    return 0.0;
+  }
+  return 0.0;
 }
 
 float bl_deriv_triangle_d1(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 2.0, 2, p);
+  float r = bl_reduce_signed(x, 2.0);
+  if (r != r) return r;
+  if (!(r < 0.0)) {
+    if (r < 1.0) return 1.0;
+    return (-1.0);
+  }
+  if (r < (-1.0)) return 1.0;
+  return (-1.0);
 }
 
 float bl_deriv_triangle_d2(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 2.0, 2, p);
+  float r = bl_reduce_signed(x, 2.0);
+  if (r != r) return r;
+  if (!(r < 0.0)) {
+    if (r < 1.0) return 0.0;
+    return 0.0;
+  }
+  if (r < (-1.0)) return 0.0;
+  return 0.0;
 }
 
 float bl_deriv_square_d1(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 1.0, 2, p);
+  float r = bl_reduce_signed(x, 1.0);
+  if (r != r) return r;
+  if (!(r < 0.0)) {
+    if (r < (1.0/2.0)) return 0.0;
+    return 0.0;
+  }
+  if (r < (-1.0/2.0)) return 0.0;
+  return 0.0;
 }
 
 float bl_deriv_square_d2(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 1.0, 2, p);
+  float r = bl_reduce_signed(x, 1.0);
+  if (r != r) return r;
+  if (!(r < 0.0)) {
+    if (r < (1.0/2.0)) return 0.0;
+    return 0.0;
+  }
+  if (r < (-1.0/2.0)) return 0.0;
+  return 0.0;
 }
 
 float bl_deriv_pulse30_d1(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 1.0, 2, p);
+  float r = bl_reduce_signed(x, 1.0);
+  if (r != r) return r;
+  if (!(r < 0.0)) {
+    if (r < (3.0/10.0)) return 0.0;
+    return 0.0;
+  }
+  if (r < (-7.0/10.0)) return 0.0;
+  return 0.0;
 }
 
 float bl_deriv_pulse30_d2(float x) {
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (3.0/10.0), float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((3.0/10.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_periodic_eval(x, 1.0, 2, p);
+  float r = bl_reduce_signed(x, 1.0);
+  if (r != r) return r;
+  if (!(r < 0.0)) {
+    if (r < (3.0/10.0)) return 0.0;
+    return 0.0;
+  }
+  if (r < (-7.0/10.0)) return 0.0;
+  return 0.0;
 }
 
 float bl_deriv_floor_d1(float x) {

@@ -500,86 +500,108 @@ T deriv_exp_ramp_d2(T x) {
 template <class T>
 T deriv_fract_d1(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(1), p);
+  const T r = detail::reduce_signed_pow2(x, T(1));
+  if (r != r) return r;
+  if (!(r < T(0))) {
+    return T(1);
+  }
+  return T(1);
 }
 
 // 0 on [0, 1) (period 1); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_fract_d2(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[1] = {
-      {T(0), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(1), p);
+  const T r = detail::reduce_signed_pow2(x, T(1));
+  if (r != r) return r;
+  if (!(r < T(0))) {
+    return T(0);
+  }
+  return T(0);
 }
 
 // 1 on [0, 1); (-1) on [1, 2) (period 2); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_triangle_d1(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(1), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {(T(-1)), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(2), p);
+  const T r = detail::reduce_signed_pow2(x, T(2));
+  if (r != r) return r;
+  if (!(r < T(0))) {
+    if (r < T(1)) return T(1);
+    return (T(-1));
+  }
+  if (r < (T(-1))) return T(1);
+  return (T(-1));
 }
 
 // 0 on [0, 1); 0 on [1, 2) (period 2); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_triangle_d2(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {T(0), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {T(1), T(2), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(2), p);
+  const T r = detail::reduce_signed_pow2(x, T(2));
+  if (r != r) return r;
+  if (!(r < T(0))) {
+    if (r < T(1)) return T(0);
+    return T(0);
+  }
+  if (r < (T(-1))) return T(0);
+  return T(0);
 }
 
 // 0 on [0, (1/2)); 0 on [(1/2), 1) (period 1); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_square_d1(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(1), p);
+  const T r = detail::reduce_signed_pow2(x, T(1));
+  if (r != r) return r;
+  if (!(r < T(0))) {
+    if (r < (T(1)/T(2))) return T(0);
+    return T(0);
+  }
+  if (r < (T(-1)/T(2))) return T(0);
+  return T(0);
 }
 
 // 0 on [0, (1/2)); 0 on [(1/2), 1) (period 1); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_square_d2(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {T(0), (T(1)/T(2)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(1)/T(2)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(1), p);
+  const T r = detail::reduce_signed_pow2(x, T(1));
+  if (r != r) return r;
+  if (!(r < T(0))) {
+    if (r < (T(1)/T(2))) return T(0);
+    return T(0);
+  }
+  if (r < (T(-1)/T(2))) return T(0);
+  return T(0);
 }
 
 // 0 on [0, (3/10)); 0 on [(3/10), 1) (period 1); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_pulse30_d1(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(1), p);
+  const T r = detail::reduce_signed_pow2(x, T(1));
+  if (r != r) return r;
+  if (!(r < T(0))) {
+    if (r < (T(3)/T(10))) return T(0);
+    return T(0);
+  }
+  if (r < (T(-7)/T(10))) return T(0);
+  return T(0);
 }
 
 // 0 on [0, (3/10)); 0 on [(3/10), 1) (period 1); right piece at a break, jumps' delta functions dropped
 template <class T>
 T deriv_pulse30_d2(T x) {
   BL_MATH_USING
-  const detail::Piece<T> p[2] = {
-      {T(0), (T(3)/T(10)), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-      {(T(3)/T(10)), T(1), {T(0), T(0), T(0), T(0), T(0), T(0), T(0), T(0)}},
-  };
-  return detail::periodic_eval(x, T(1), p);
+  const T r = detail::reduce_signed_pow2(x, T(1));
+  if (r != r) return r;
+  if (!(r < T(0))) {
+    if (r < (T(3)/T(10))) return T(0);
+    return T(0);
+  }
+  if (r < (T(-7)/T(10))) return T(0);
+  return T(0);
 }
 
 // 1 + -1*fract_d1(x)
