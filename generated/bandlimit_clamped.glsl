@@ -513,10 +513,8 @@ float bl_deriv_triangle_d2(float x) {
   float r = bl_reduce_signed(x, 2.0);
   if (r != r) return r;
   if (!(r < 0.0)) {
-    if (r < 1.0) return 0.0;
     return 0.0;
   }
-  if (r < (-1.0)) return 0.0;
   return 0.0;
 }
 
@@ -524,10 +522,8 @@ float bl_deriv_square_d1(float x) {
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
   if (!(r < 0.0)) {
-    if (r < (1.0/2.0)) return 0.0;
     return 0.0;
   }
-  if (r < (-1.0/2.0)) return 0.0;
   return 0.0;
 }
 
@@ -535,10 +531,8 @@ float bl_deriv_square_d2(float x) {
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
   if (!(r < 0.0)) {
-    if (r < (1.0/2.0)) return 0.0;
     return 0.0;
   }
-  if (r < (-1.0/2.0)) return 0.0;
   return 0.0;
 }
 
@@ -546,10 +540,8 @@ float bl_deriv_pulse30_d1(float x) {
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
   if (!(r < 0.0)) {
-    if (r < (3.0/10.0)) return 0.0;
     return 0.0;
   }
-  if (r < (-7.0/10.0)) return 0.0;
   return 0.0;
 }
 
@@ -557,10 +549,8 @@ float bl_deriv_pulse30_d2(float x) {
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
   if (!(r < 0.0)) {
-    if (r < (3.0/10.0)) return 0.0;
     return 0.0;
   }
-  if (r < (-7.0/10.0)) return 0.0;
   return 0.0;
 }
 

@@ -541,10 +541,8 @@ T deriv_triangle_d2(T x) {
   const T r = detail::reduce_signed_pow2(x, T(2));
   if (r != r) return r;
   if (!(r < T(0))) {
-    if (r < T(1)) return T(0);
     return T(0);
   }
-  if (r < (T(-1))) return T(0);
   return T(0);
 }
 
@@ -555,10 +553,8 @@ T deriv_square_d1(T x) {
   const T r = detail::reduce_signed_pow2(x, T(1));
   if (r != r) return r;
   if (!(r < T(0))) {
-    if (r < (T(1)/T(2))) return T(0);
     return T(0);
   }
-  if (r < (T(-1)/T(2))) return T(0);
   return T(0);
 }
 
@@ -569,10 +565,8 @@ T deriv_square_d2(T x) {
   const T r = detail::reduce_signed_pow2(x, T(1));
   if (r != r) return r;
   if (!(r < T(0))) {
-    if (r < (T(1)/T(2))) return T(0);
     return T(0);
   }
-  if (r < (T(-1)/T(2))) return T(0);
   return T(0);
 }
 
@@ -583,10 +577,8 @@ T deriv_pulse30_d1(T x) {
   const T r = detail::reduce_signed_pow2(x, T(1));
   if (r != r) return r;
   if (!(r < T(0))) {
-    if (r < (T(3)/T(10))) return T(0);
     return T(0);
   }
-  if (r < (T(-7)/T(10))) return T(0);
   return T(0);
 }
 
@@ -597,10 +589,8 @@ T deriv_pulse30_d2(T x) {
   const T r = detail::reduce_signed_pow2(x, T(1));
   if (r != r) return r;
   if (!(r < T(0))) {
-    if (r < (T(3)/T(10))) return T(0);
     return T(0);
   }
-  if (r < (T(-7)/T(10))) return T(0);
   return T(0);
 }
 

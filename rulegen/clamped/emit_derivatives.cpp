@@ -44,7 +44,20 @@ std::string periodic_straight(const Derivative& d, Lang lang) {
   const std::string P = sym::print(d.period, lang), T = cpp ? "const T" : "float";
   const std::string reduce =
       cpp ? (pow2 ? "detail::reduce_signed_pow2" : "detail::reduce_signed") : "bl_reduce_signed";
-  const auto& ps = d.pieces;
+  // Neighbours with the same polynomial are one piece (square' is 0 on both halves).
+  std::vector<sym::PolyPiece> ps;
+  for (const auto& pc : d.pieces) {
+    auto same = [](const std::vector<GiNaC::numeric>& a, const std::vector<GiNaC::numeric>& b) {
+      if (a.size() != b.size()) return false;
+      for (size_t k = 0; k < a.size(); ++k)
+        if (!a[k].is_equal(b[k])) return false;
+      return true;
+    };
+    if (!ps.empty() && same(ps.back().c, pc.c))
+      ps.back().hi = pc.hi;
+    else
+      ps.push_back(pc);
+  }
   std::string o = "  " + T + " r = " + reduce + "(x, " + P + ");\n  if (r != r) return r;\n";
   o += "  if (!(r < " + std::string(cpp ? "T(0)" : "0.0") + ")) {\n";
   for (size_t i = 0; i + 1 < ps.size(); ++i)
