@@ -200,7 +200,7 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
 }
 
 std::string atomic_info_initializer(const sym::Atomic* a) {
-  if (!a) return "{\"moment\", \"entire\", 0, 0, {}, 0, {}, -kInf, kInf, -kInf, kInf}";
+  if (!a) return "{\"moment\", \"entire\", 0, 0, {}, 0, {}, -kInf, kInf, -kInf, kInf, false}";
   std::vector<double> breaks, singular;
   double period = a->period ? GiNaC::ex_to<GiNaC::numeric>(a->period->evalf()).to_double() : 0;
   std::string cls = sym::to_string(a->cls);
@@ -221,11 +221,17 @@ std::string atomic_info_initializer(const sym::Atomic* a) {
   std::string b, s;
   for (double v : breaks) b += (b.empty() ? "" : ", ") + dbl(v);
   for (double v : singular) s += (s.empty() ? "" : ", ") + dbl(v);
+  // Indicator: a piecewise or periodic atomic every piece of which is the constant 0 or 1 (the pieces
+  // are right-continuous and cover the line, so f is 0 or 1 at every x, the breaks included).
+  bool indicator = (a->cls == sym::AtomicClass::Piecewise || a->cls == sym::AtomicClass::Periodic) &&
+                   !a->pieces.empty();
+  for (const auto& pc : a->pieces)
+    indicator = indicator && (pc.f.is_zero() || (pc.f - 1).is_zero());
   std::ostringstream o;
   o << "{\"" << a->name << "\", \"" << cls << "\", " << dbl(period) << ", " << breaks.size() << ", {" << b
     << "}, " << singular.size() << ", {" << s << "}, " << dbl(a->domain_lo.to_double()) << ", "
     << dbl(a->domain_hi.to_double()) << ", " << dbl(a->range_lo.to_double()) << ", "
-    << dbl(a->range_hi.to_double()) << "}";
+    << dbl(a->range_hi.to_double()) << ", " << (indicator ? "true" : "false") << "}";
   return o.str();
 }
 

@@ -22,6 +22,7 @@ struct AtomicInfo {
   double domain_hi;
   double range_lo;        // closed bounds of f (may be infinite)
   double range_hi;
+  bool indicator;         // f takes only the values 0 and 1 (step, square, pulse30): f^2 = f everywhere
 };
 
 template <class T>

@@ -61,6 +61,11 @@ void atomic_range(int index, double* lo, double* hi) {
   *hi = bl::registry::kAtomics[index].range_hi;
 }
 
+bool atomic_indicator(int index) {
+  atomic_name(index);  // range check
+  return bl::registry::kAtomics[index].indicator;
+}
+
 double plain_atomic(int index, double x) {
   return plains<double>().at(index)(x);
 }

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "compiler/evaluator.hpp"
+#include "compiler/functions.hpp"
 #include "compiler/lower.hpp"
 #include "dsl/math.hpp"
 #include "fixtures.hpp"
@@ -203,6 +204,34 @@ TEST(Compiler, SingleNodeRulesAgreeWithClosedForms) {
   const ir::Graph g_lin = one_input([](dsl::Var u) { return u * 3.0 + 1.0; });
   EXPECT_NEAR(run1(g_lin, "mc4", 0.25f, 0.3f), 1.75, 1e-6);
   EXPECT_NEAR(run1(g_sin, "none", 0.25f, 0.3f), std::sin(0.75), 1e-6);
+}
+
+// An indicator atomic (f in {0, 1}: step, square, pulse30; the registry's AtomicInfo::indicator)
+// takes its variance as m (1 - m), without calling f^2's entry: sin(2 step(u)) under the Gaussian
+// rule is exp(-Var/2) sin(2 m) with m = Phi(mu/s), Var = 4 m (1 - m) (closed form, computed here).
+TEST(Compiler, IndicatorVarianceIsMeanTimesOneMinusMean) {
+  const ir::Graph g = one_input([](dsl::Var u) { return dsl::sin(dsl::step(u) * 2.0); });
+  const compiler::Program p = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
+  for (int fi : p.used_functions())
+    EXPECT_EQ(compiler::functions()[static_cast<std::size_t>(fi)].cpp.find("step_sq"), std::string::npos)
+        << compiler::functions()[static_cast<std::size_t>(fi)].cpp;
+  for (float mu : {-0.3f, 0.0f, 0.05f, 0.4f})
+    for (float s : {0.01f, 0.2f, 1.0f}) {
+      const double m = 0.5 * std::erfc(-mu / (s * std::sqrt(2.0))), var = 4 * m * (1 - m);
+      EXPECT_NEAR(run1(g, "gaussian", mu, s), std::exp(-var / 2) * std::sin(2 * m), 2e-6) << mu << " " << s;
+    }
+  int n_ind = 0;
+  for (int a = 0; a < ir::atomic_count(); ++a) {
+    // Independent of the flag's derivation: the plain function on a dense grid is 0 or 1 exactly.
+    bool zero_one = true;
+    for (int i = -4000; i <= 4000 && zero_one; ++i) {
+      const double x = i * 0.00125, y = ir::plain_atomic(a, x);
+      zero_one = y == 0.0 || y == 1.0;
+    }
+    EXPECT_EQ(ir::atomic_indicator(a), zero_one) << ir::atomic_name(a);
+    n_ind += zero_one;
+  }
+  EXPECT_EQ(n_ind, 3);  // step, square, pulse30
 }
 
 TEST(Compiler, DeadCodeIsRemoved) {
