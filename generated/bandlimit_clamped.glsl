@@ -483,7 +483,7 @@ float bl_deriv_exp_ramp_d2(float x) {
 float bl_deriv_fract_d1(float x) {
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
-  if (!(r < 0.0)) {
+  if (!(r < (0.0))) {
     return 1.0;
   }
   return 1.0;
@@ -492,7 +492,7 @@ float bl_deriv_fract_d1(float x) {
 float bl_deriv_fract_d2(float x) {
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
-  if (!(r < 0.0)) {
+  if (!(r < (0.0))) {
     return 0.0;
   }
   return 0.0;
@@ -501,7 +501,7 @@ float bl_deriv_fract_d2(float x) {
 float bl_deriv_triangle_d1(float x) {
   float r = bl_reduce_signed(x, 2.0);
   if (r != r) return r;
-  if (!(r < 0.0)) {
+  if (!(r < (0.0))) {
     if (r < 1.0) return 1.0;
     return (-1.0);
   }
@@ -512,7 +512,7 @@ float bl_deriv_triangle_d1(float x) {
 float bl_deriv_triangle_d2(float x) {
   float r = bl_reduce_signed(x, 2.0);
   if (r != r) return r;
-  if (!(r < 0.0)) {
+  if (!(r < (0.0))) {
     return 0.0;
   }
   return 0.0;
@@ -521,7 +521,7 @@ float bl_deriv_triangle_d2(float x) {
 float bl_deriv_square_d1(float x) {
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
-  if (!(r < 0.0)) {
+  if (!(r < (0.0))) {
     return 0.0;
   }
   return 0.0;
@@ -530,7 +530,7 @@ float bl_deriv_square_d1(float x) {
 float bl_deriv_square_d2(float x) {
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
-  if (!(r < 0.0)) {
+  if (!(r < (0.0))) {
     return 0.0;
   }
   return 0.0;
@@ -539,7 +539,7 @@ float bl_deriv_square_d2(float x) {
 float bl_deriv_pulse30_d1(float x) {
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
-  if (!(r < 0.0)) {
+  if (!(r < (0.0))) {
     return 0.0;
   }
   return 0.0;
@@ -548,7 +548,7 @@ float bl_deriv_pulse30_d1(float x) {
 float bl_deriv_pulse30_d2(float x) {
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
-  if (!(r < 0.0)) {
+  if (!(r < (0.0))) {
     return 0.0;
   }
   return 0.0;

@@ -524,16 +524,19 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
 // growth of |J_n| per step (f grows as fast, so the bound is absolute for |x| <= 1 and relative to f
 // beyond). reach(D, tol): the largest sigma whose bound stays <= tol.
 namespace {
+// f on [m, m+1) of a staircase whose pieces are constants in x (NaN when not a number).
+double staircase_at(const Staircase& st, const GiNaC::symbol& n, long m) {
+  size_t r = 0;
+  while (r < st.z.size() && m >= st.z[r]) ++r;
+  const GiNaC::ex v = st.piece[r].subs(n == m).evalf();
+  return GiNaC::is_a<numeric>(v) ? GiNaC::ex_to<numeric>(v).to_double() : NAN;
+}
+
 struct StaircaseTail {
   double Jb = 0, Js = 0;
   bool ok = true;
   StaircaseTail(const Staircase& st, const GiNaC::symbol& n) {
-    auto f_at = [&](long m) {
-      size_t r = 0;
-      while (r < st.z.size() && m >= st.z[r]) ++r;
-      const GiNaC::ex v = st.piece[r].subs(n == m).evalf();
-      return GiNaC::is_a<numeric>(v) ? GiNaC::ex_to<numeric>(v).to_double() : NAN;
-    };
+    auto f_at = [&](long m) { return staircase_at(st, n, m); };
     for (long m = -6; m <= 6; ++m) {
       const double J = f_at(m) - f_at(m - 1), Jp = f_at(m - 1) - f_at(m - 2);
       if (!std::isfinite(J) || !std::isfinite(Jp)) ok = false;
@@ -611,12 +614,7 @@ struct EvenMirror {
 
 std::optional<EvenMirror> even_mirror(const sym::Derived& d, const Staircase& st,
                                       const std::vector<sym::Derived>& ds, const GiNaC::symbol& n) {
-  auto at = [&](const Staircase& s, long m) {
-    size_t r = 0;
-    while (r < s.z.size() && m >= s.z[r]) ++r;
-    const GiNaC::ex v = s.piece[r].subs(n == m).evalf();
-    return GiNaC::is_a<numeric>(v) ? GiNaC::ex_to<numeric>(v).to_double() : NAN;
-  };
+  auto at = [&](const Staircase& s, long m) { return staircase_at(s, n, m); };
   for (long m = -8; m <= 8; ++m)  // f on [m, m+1) = f on [-m-1, -m)
     if (!(at(st, m) == at(st, -m - 1))) return std::nullopt;
   for (const auto& e : ds) {

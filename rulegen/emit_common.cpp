@@ -1312,13 +1312,13 @@ std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
   return (s.cpp() ? "  BL_MATH_USING\n" : "") + b;
 }
 
-// A periodic plain function as straight-line code: f(x - P floor(x/P)) piece by piece on the exact
-// signed remainder r (as periodic_eval: a negative r picks its piece against hi - P, so a jump just
-// below a period boundary stays on its side). C++ reduces without fmod when P is a power of two
-// (exact there). The plain function is the baseline every ratio and MSAA time divides by.
-std::string plain_periodic_straight(const sym::Atomic& a, const Syntax& s) {
+// f(x - P floor(x/P)) piece by piece on the exact signed remainder r (as periodic_eval: a negative r
+// picks its piece against hi - P, so a jump just below a period boundary stays on its side). C++
+// reduces without fmod when P is a power of two (exact there).
+std::string periodic_straight(const GiNaC::ex& P, const std::vector<std::pair<GiNaC::ex, GiNaC::ex>>& pieces,
+                              Lang lang, bool nan_guard) {
+  const Syntax s{lang};
   const GiNaC::symbol r("r"), t("t");
-  const GiNaC::ex P = *a.period;
   bool pow2 = false;
   if (GiNaC::is_a<GiNaC::numeric>(P)) {
     const double pd = GiNaC::ex_to<GiNaC::numeric>(P).to_double();
@@ -1328,18 +1328,26 @@ std::string plain_periodic_straight(const sym::Atomic& a, const Syntax& s) {
   const std::string T = s.cpp() ? "const T" : "float";  // GLSL ES: const needs a constant
   const std::string reduce = s.cpp() && pow2 ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
   std::string out = "  " + T + " r = " + reduce + "(x, " + s.ex(P) + ");\n";
+  if (nan_guard) out += "  if (r != r) return r;\n";
+  auto f_at = [&](size_t i, const GiNaC::symbol& v) { return s.ex(pieces[i].second.subs(sym::var_x() == v)); };
   out += "  if (!(r < " + s.dbl(0) + ")) {\n";
-  for (size_t i = 0; i + 1 < a.pieces.size(); ++i)
-    out += "    if (r < " + s.ex(a.pieces[i].hi.value) + ") return " +
-           s.ex(a.pieces[i].f.subs(sym::var_x() == r)) + ";\n";
-  out += "    return " + s.ex(a.pieces.back().f.subs(sym::var_x() == r)) + ";\n  }\n";
+  for (size_t i = 0; i + 1 < pieces.size(); ++i)
+    out += "    if (r < " + s.ex(pieces[i].first) + ") return " + f_at(i, r) + ";\n";
+  out += "    return " + f_at(pieces.size() - 1, r) + ";\n  }\n";
   bool uses_x = false;
-  for (const auto& pc : a.pieces) uses_x = uses_x || pc.f.has(sym::var_x());
+  for (const auto& pc : pieces) uses_x = uses_x || pc.second.has(sym::var_x());
   if (uses_x) out += "  " + T + " t = r + " + s.ex(P) + ";\n";
-  for (size_t i = 0; i + 1 < a.pieces.size(); ++i)
-    out += "  if (r < " + s.ex(a.pieces[i].hi.value - P) + ") return " +
-           s.ex(a.pieces[i].f.subs(sym::var_x() == t)) + ";\n";
-  return out + "  return " + s.ex(a.pieces.back().f.subs(sym::var_x() == t)) + ";\n";
+  for (size_t i = 0; i + 1 < pieces.size(); ++i)
+    out += "  if (r < " + s.ex(pieces[i].first - P) + ") return " + f_at(i, t) + ";\n";
+  return out + "  return " + f_at(pieces.size() - 1, t) + ";\n";
+}
+
+// A periodic plain function as straight-line code: the plain function is the baseline every ratio
+// and MSAA time divides by.
+std::string plain_periodic_straight(const sym::Atomic& a, const Syntax& s) {
+  std::vector<std::pair<GiNaC::ex, GiNaC::ex>> pieces;
+  for (const auto& pc : a.pieces) pieces.emplace_back(pc.hi.value, pc.f);
+  return periodic_straight(*a.period, pieces, s.lang, false);
 }
 
 std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lang lang) {

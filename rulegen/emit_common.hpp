@@ -48,6 +48,11 @@ inline bool has_half_line(const Derived& d) {
 }
 // Body of the plain (unsmoothed) function f(x).
 std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lang lang);
+// A periodic function of x given on one period [0, P) by pieces (hi_i, f_i(sym::var_x())), as
+// straight-line statements on the exact signed remainder r (periodic_eval's piece choice). With
+// nan_guard a NaN r (x NaN or infinite) is returned as is (constant pieces would hide it).
+std::string periodic_straight(const GiNaC::ex& P, const std::vector<std::pair<GiNaC::ex, GiNaC::ex>>& pieces,
+                              Lang lang, bool nan_guard);
 
 std::string read_file(const std::string& path);
 // Writes only if the content changed; creates parent directories.

@@ -502,7 +502,7 @@ T deriv_fract_d1(T x) {
   BL_MATH_USING
   const T r = detail::reduce_signed_pow2(x, T(1));
   if (r != r) return r;
-  if (!(r < T(0))) {
+  if (!(r < T(0.0))) {
     return T(1);
   }
   return T(1);
@@ -514,7 +514,7 @@ T deriv_fract_d2(T x) {
   BL_MATH_USING
   const T r = detail::reduce_signed_pow2(x, T(1));
   if (r != r) return r;
-  if (!(r < T(0))) {
+  if (!(r < T(0.0))) {
     return T(0);
   }
   return T(0);
@@ -526,7 +526,7 @@ T deriv_triangle_d1(T x) {
   BL_MATH_USING
   const T r = detail::reduce_signed_pow2(x, T(2));
   if (r != r) return r;
-  if (!(r < T(0))) {
+  if (!(r < T(0.0))) {
     if (r < T(1)) return T(1);
     return (T(-1));
   }
@@ -540,7 +540,7 @@ T deriv_triangle_d2(T x) {
   BL_MATH_USING
   const T r = detail::reduce_signed_pow2(x, T(2));
   if (r != r) return r;
-  if (!(r < T(0))) {
+  if (!(r < T(0.0))) {
     return T(0);
   }
   return T(0);
@@ -552,7 +552,7 @@ T deriv_square_d1(T x) {
   BL_MATH_USING
   const T r = detail::reduce_signed_pow2(x, T(1));
   if (r != r) return r;
-  if (!(r < T(0))) {
+  if (!(r < T(0.0))) {
     return T(0);
   }
   return T(0);
@@ -564,7 +564,7 @@ T deriv_square_d2(T x) {
   BL_MATH_USING
   const T r = detail::reduce_signed_pow2(x, T(1));
   if (r != r) return r;
-  if (!(r < T(0))) {
+  if (!(r < T(0.0))) {
     return T(0);
   }
   return T(0);
@@ -576,7 +576,7 @@ T deriv_pulse30_d1(T x) {
   BL_MATH_USING
   const T r = detail::reduce_signed_pow2(x, T(1));
   if (r != r) return r;
-  if (!(r < T(0))) {
+  if (!(r < T(0.0))) {
     return T(0);
   }
   return T(0);
@@ -588,7 +588,7 @@ T deriv_pulse30_d2(T x) {
   BL_MATH_USING
   const T r = detail::reduce_signed_pow2(x, T(1));
   if (r != r) return r;
-  if (!(r < T(0))) {
+  if (!(r < T(0.0))) {
     return T(0);
   }
   return T(0);

@@ -1,9 +1,8 @@
 // bl::deriv::<atomic>_d1/_d2 (C++) and bl_deriv_<atomic>_d1/_d2 (GLSL), plus their registry.
 #include "derivatives.hpp"
 
-#include <cmath>
-
 #include "emit_clamped.hpp"
+#include "emit_common.hpp"
 
 namespace bl::rulegen::clamped {
 using sym::Lang;
@@ -22,53 +21,27 @@ std::string domain_guard(const sym::Atomic& a, Lang lang) {
   return out;
 }
 
-// One period's pieces as straight-line code on the exact signed remainder r (periodic_eval's
-// semantics: for r < 0 the piece is found against hi - P, so a jump just below a period boundary
-// stays on its side): Rule 3 calls f' and f'' beside f at every node, and the generic table walk
-// with fmod cost more than the rule's own arithmetic. A NaN r (x NaN or infinite) is returned as is,
-// so constant pieces (fract' = 1) do not turn it into a number.
-std::string periodic_straight(const Derivative& d, Lang lang) {
-  const bool cpp = lang == Lang::Cpp;
-  const GiNaC::symbol r("r"), t("t");
-  bool pow2 = false;
-  if (GiNaC::is_a<GiNaC::numeric>(d.period)) {
-    const double pd = GiNaC::ex_to<GiNaC::numeric>(d.period).to_double();
-    int e = 0;
-    pow2 = pd > 0 && std::frexp(pd, &e) == 0.5;
-  }
-  auto poly = [&](const sym::PolyPiece& pc, const GiNaC::symbol& v) {
-    GiNaC::ex e = 0;
-    for (size_t k = 0; k < pc.c.size(); ++k) e += pc.c[k] * GiNaC::pow(v, static_cast<int>(k));
-    return sym::print(e, lang);
-  };
-  const std::string P = sym::print(d.period, lang), T = cpp ? "const T" : "float";
-  const std::string reduce =
-      cpp ? (pow2 ? "detail::reduce_signed_pow2" : "detail::reduce_signed") : "bl_reduce_signed";
-  // Neighbours with the same polynomial are one piece (square' is 0 on both halves).
-  std::vector<sym::PolyPiece> ps;
+// One period's pieces as straight-line code (emit_common's periodic_straight, periodic_eval's
+// semantics): Rule 3 calls f' and f'' beside f at every node, and the generic table walk with fmod
+// cost more than the rule's own arithmetic. A NaN r (x NaN or infinite) is returned as is, so
+// constant pieces (fract' = 1) do not turn it into a number. Neighbours with the same polynomial are
+// one piece (square' is 0 on both halves).
+std::string periodic_derivative(const Derivative& d, Lang lang) {
+  std::vector<std::pair<GiNaC::ex, GiNaC::ex>> pieces;
+  const std::vector<GiNaC::numeric>* last = nullptr;
   for (const auto& pc : d.pieces) {
-    auto same = [](const std::vector<GiNaC::numeric>& a, const std::vector<GiNaC::numeric>& b) {
-      if (a.size() != b.size()) return false;
-      for (size_t k = 0; k < a.size(); ++k)
-        if (!a[k].is_equal(b[k])) return false;
-      return true;
-    };
-    if (!ps.empty() && same(ps.back().c, pc.c))
-      ps.back().hi = pc.hi;
-    else
-      ps.push_back(pc);
+    bool same = last && last->size() == pc.c.size();
+    for (size_t k = 0; same && k < pc.c.size(); ++k) same = (*last)[k].is_equal(pc.c[k]);
+    if (same) {
+      pieces.back().first = pc.hi.value;
+      continue;
+    }
+    GiNaC::ex f = 0;
+    for (size_t k = 0; k < pc.c.size(); ++k) f += pc.c[k] * GiNaC::pow(sym::var_x(), static_cast<int>(k));
+    pieces.emplace_back(pc.hi.value, f);
+    last = &pc.c;
   }
-  std::string o = "  " + T + " r = " + reduce + "(x, " + P + ");\n  if (r != r) return r;\n";
-  o += "  if (!(r < " + std::string(cpp ? "T(0)" : "0.0") + ")) {\n";
-  for (size_t i = 0; i + 1 < ps.size(); ++i)
-    o += "    if (r < " + sym::print(ps[i].hi.value, lang) + ") return " + poly(ps[i], r) + ";\n";
-  o += "    return " + poly(ps.back(), r) + ";\n  }\n";
-  bool uses_t = false;
-  for (const auto& pc : ps) uses_t = uses_t || pc.c.size() > 1;
-  if (uses_t) o += "  " + T + " t = r + " + P + ";\n";
-  for (size_t i = 0; i + 1 < ps.size(); ++i)
-    o += "  if (r < " + sym::print(ps[i].hi.value - d.period, lang) + ") return " + poly(ps[i], t) + ";\n";
-  return o + "  return " + poly(ps.back(), t) + ";\n";
+  return periodic_straight(d.period, pieces, lang, true);
 }
 
 std::string body(const Derivative& d, Lang lang) {
@@ -83,7 +56,7 @@ std::string body(const Derivative& d, Lang lang) {
       return out + piece_table("p", d.pieces, lang) + "  return " +
              (cpp ? "detail::pw_eval(x, p)" : "bl_pw_eval(x, " + n + ", p)") + ";\n";
     case Derivative::Kind::Periodic:
-      return out + periodic_straight(d, lang);
+      return out + periodic_derivative(d, lang);
     case Derivative::Kind::Chain:
       for (size_t i = 0; i + 1 < d.chain.size(); ++i)
         out += "  if (x < " + sym::print(d.chain[i].first.value, lang) + ") return " +
