@@ -1329,7 +1329,9 @@ std::string periodic_straight(const GiNaC::ex& P, const std::vector<std::pair<Gi
   const std::string reduce = s.cpp() && pow2 ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
   std::string out = "  " + T + " r = " + reduce + "(x, " + s.ex(P) + ");\n";
   if (nan_guard) out += "  if (r != r) return r;\n";
-  auto f_at = [&](size_t i, const GiNaC::symbol& v) { return s.ex(pieces[i].second.subs(sym::var_x() == v)); };
+  auto f_at = [&](size_t i, const GiNaC::symbol& v) {
+    return s.ex(pieces[i].second.subs(sym::var_x() == v));
+  };
   out += "  if (!(r < " + s.dbl(0) + ")) {\n";
   for (size_t i = 0; i + 1 < pieces.size(); ++i)
     out += "    if (r < " + s.ex(pieces[i].first) + ") return " + f_at(i, r) + ";\n";

@@ -223,10 +223,9 @@ std::string atomic_info_initializer(const sym::Atomic* a) {
   for (double v : singular) s += (s.empty() ? "" : ", ") + dbl(v);
   // Indicator: a piecewise or periodic atomic every piece of which is the constant 0 or 1 (the pieces
   // are right-continuous and cover the line, so f is 0 or 1 at every x, the breaks included).
-  bool indicator = (a->cls == sym::AtomicClass::Piecewise || a->cls == sym::AtomicClass::Periodic) &&
-                   !a->pieces.empty();
-  for (const auto& pc : a->pieces)
-    indicator = indicator && (pc.f.is_zero() || (pc.f - 1).is_zero());
+  bool indicator =
+      (a->cls == sym::AtomicClass::Piecewise || a->cls == sym::AtomicClass::Periodic) && !a->pieces.empty();
+  for (const auto& pc : a->pieces) indicator = indicator && (pc.f.is_zero() || (pc.f - 1).is_zero());
   std::ostringstream o;
   o << "{\"" << a->name << "\", \"" << cls << "\", " << dbl(period) << ", " << breaks.size() << ", {" << b
     << "}, " << singular.size() << ", {" << s << "}, " << dbl(a->domain_lo.to_double()) << ", "

@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "bivariate.hpp"
-#include "functions.hpp"
 #include "emit_common.hpp"
+#include "functions.hpp"
 #include "mode_fit.hpp"
 
 namespace bl::rulegen {
@@ -57,7 +57,9 @@ struct L {
 // Float evaluates in double (the variance cancels for add/sub at rho ~ 1, mul, and min/max's
 // E[..^2] - mean^2), except less and greater: Phi(t) and Phi(t) Phi(-t) of one t, nothing to cancel
 // (binary_body prints their float form).
-bool float_in_double(const std::string& op) { return op != "less" && op != "greater"; }
+bool float_in_double(const std::string& op) {
+  return op != "less" && op != "greater";
+}
 
 std::string binary_head(const L& l, const std::string& op) {
   if (l.cpp() && !float_in_double(op))

@@ -1,6 +1,5 @@
 // bl::deriv::<atomic>_d1/_d2 (C++) and bl_deriv_<atomic>_d1/_d2 (GLSL), plus their registry.
 #include "derivatives.hpp"
-
 #include "emit_clamped.hpp"
 #include "emit_common.hpp"
 

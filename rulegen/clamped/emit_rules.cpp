@@ -81,16 +81,16 @@ void rule3(Ctx& x, const sym::Atomic& a) {
       " at the mean of N(mu, sigma^2) truncated to the domain.\n" + "template <class T>\nstat<T> " + impl +
       "(T mu, T sigma) {\n" + "  const double lo = " + lo + ", hi = " + hi + ";\n" +
       "  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))\n" +
-      "    return {detail::nan<T>(), detail::nan<T>()};\n" +
-      moments_cpp + "  const double c = m.mean;\n" + "  const stat<double> s = rule3::from_derivatives<double>(plain_" +
-      a.name + "<double>(c), deriv_" + a.name + "_d1<double>(c), deriv_" + a.name + "_d2<double>(c), m);\n" +
+      "    return {detail::nan<T>(), detail::nan<T>()};\n" + moments_cpp + "  const double c = m.mean;\n" +
+      "  const stat<double> s = rule3::from_derivatives<double>(plain_" + a.name + "<double>(c), deriv_" +
+      a.name + "_d1<double>(c), deriv_" + a.name + "_d2<double>(c), m);\n" +
       (bounded ? "  const stat<double> r = rule3::in_range<double>(s, " + dom_d(a.range_lo) + ", " +
                      dom_d(a.range_hi) + ");  // f's range\n  return {T(r.mean), T(r.var)};\n}\n\n"
                : "  return {T(s.mean), T(s.var)};\n}\n\n");
   x.out.glsl += "vec2 " + glsl +
                 "(float mu, float sigma) {\n  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());\n" +
-                moments_glsl + "  float c = m.mean;\n  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_" + a.name +
-                "(c), bl_deriv_" + a.name + "_d1(c), bl_deriv_" + a.name + "_d2(c), m);\n" +
+                moments_glsl + "  float c = m.mean;\n  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_" +
+                a.name + "(c), bl_deriv_" + a.name + "_d1(c), bl_deriv_" + a.name + "_d2(c), m);\n" +
                 (bounded ? "  return bl_rule3_in_range(s, " + dom(a.range_lo, Lang::Glsl) + ", " +
                                dom(a.range_hi, Lang::Glsl) + ");\n}\n\n"
                          : "  return s;\n}\n\n");

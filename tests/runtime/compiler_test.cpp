@@ -211,7 +211,8 @@ TEST(Compiler, SingleNodeRulesAgreeWithClosedForms) {
 // rule is exp(-Var/2) sin(2 m) with m = Phi(mu/s), Var = 4 m (1 - m) (closed form, computed here).
 TEST(Compiler, IndicatorVarianceIsMeanTimesOneMinusMean) {
   const ir::Graph g = one_input([](dsl::Var u) { return dsl::sin(dsl::step(u) * 2.0); });
-  const compiler::Program p = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
+  const compiler::Program p =
+      compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
   for (int fi : p.used_functions())
     EXPECT_EQ(compiler::functions()[static_cast<std::size_t>(fi)].cpp.find("step_sq"), std::string::npos)
         << compiler::functions()[static_cast<std::size_t>(fi)].cpp;

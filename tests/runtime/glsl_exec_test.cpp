@@ -68,8 +68,9 @@ TEST(GlslExec, MatchesTheCppRenderer) {
 // (x, sigma) of the grid, one shader and one draw (compiling per entry took 20 s on llvmpipe: row r
 // evaluates entry r, pixel k of it (xs[k % nx], ss[k / nx])), against the C++ double table.
 // Returns the number of values checked.
-int check_entries(gl::Context& ctx, const std::vector<std::string>& kernels, const std::vector<std::string>& names,
-                  const std::vector<float>& xs, const std::vector<float>& ss, double tol) {
+int check_entries(gl::Context& ctx, const std::vector<std::string>& kernels,
+                  const std::vector<std::string>& names, const std::vector<float>& xs,
+                  const std::vector<float>& ss, double tol) {
   int n = 0;
   const auto* e = bl::registry::entries<double>(&n);
   int checked = 0;
@@ -118,11 +119,12 @@ TEST(GlslExec, BoxTentBreakSums) {
   const auto av = gl::Context::availability();
   if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
   gl::Context ctx;
-  const int checked = check_entries(
-      ctx, {"box", "tent"},
-      {"fract", "square", "triangle", "floor", "ceil", "trunc", "abs", "sign", "step", "saturate", "smoothstep"},
-      {-3.75f, -1.0f, -0.25f, -1e-6f, 0.0f, 0.25f, 0.5f, 0.999f, 1.0f, 2.75f, 37.5f},
-      {1e-3f, 0.1f, 0.5f, 0.8f, 1.0f, 3.0f}, 1e-4);
+  const int checked =
+      check_entries(ctx, {"box", "tent"},
+                    {"fract", "square", "triangle", "floor", "ceil", "trunc", "abs", "sign", "step",
+                     "saturate", "smoothstep"},
+                    {-3.75f, -1.0f, -0.25f, -1e-6f, 0.0f, 0.25f, 0.5f, 0.999f, 1.0f, 2.75f, 37.5f},
+                    {1e-3f, 0.1f, 0.5f, 0.8f, 1.0f, 3.0f}, 1e-4);
   EXPECT_GT(checked, 1000);
 }
 
@@ -136,12 +138,14 @@ TEST(GlslExec, GaussianPeriodicStraightLine) {
   const auto av = gl::Context::availability();
   if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
   gl::Context ctx;
-  const int checked = check_entries(
-      ctx, {"gaussian"}, {"fract", "square", "triangle", "floor", "ceil", "trunc"},
-      {-1000.25f, -3.75f, -1.0f, -0.5f, -1e-6f, 0.0f, 1e-6f, 0.25f, 0.5f, 0.999f, 1.0f, 1.5f, 2.75f, 37.5f, 1e4f},
-      {1e-6f, 1e-3f, 0.03f, 0.045f, 0.05f, 0.07f, 0.09f, 0.095f, 0.1f, 0.104f, 0.15f, 0.18f, 0.19f, 0.2f,
-       0.21f, 0.25f, 0.35f, 0.5f, 1.0f, 3.0f, 30.0f, 0.087f, 0.088f, 0.174f, 0.176f, 0.249f, 2.5f, 3.01f},
-      2e-5);
+  const int checked =
+      check_entries(ctx, {"gaussian"}, {"fract", "square", "triangle", "floor", "ceil", "trunc"},
+                    {-1000.25f, -3.75f, -1.0f, -0.5f, -1e-6f, 0.0f, 1e-6f, 0.25f, 0.5f, 0.999f, 1.0f, 1.5f,
+                     2.75f, 37.5f, 1e4f},
+                    {1e-6f, 1e-3f,  0.03f,  0.045f, 0.05f,  0.07f,  0.09f, 0.095f, 0.1f, 0.104f,
+                     0.15f, 0.18f,  0.19f,  0.2f,   0.21f,  0.25f,  0.35f, 0.5f,   1.0f, 3.0f,
+                     30.0f, 0.087f, 0.088f, 0.174f, 0.176f, 0.249f, 2.5f,  3.01f},
+                    2e-5);
   EXPECT_GT(checked, 2000);
 }
 
@@ -153,10 +157,10 @@ TEST(GlslExec, GaussianPiecewiseStraightLine) {
   const auto av = gl::Context::availability();
   if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
   gl::Context ctx;
-  const int checked =
-      check_entries(ctx, {"gaussian"}, {"abs", "sign", "step", "saturate", "smoothstep"},
-                    {-1e4f, -37.5f, -1.0f, -0.999f, -0.5f, -1e-6f, 0.0f, 1e-6f, 0.25f, 0.5f, 1.0f, 1.001f, 37.5f},
-                    {1e-6f, 1e-3f, 0.1f, 0.45f, 0.5f, 0.55f, 0.99f, 1.0f, 1.01f, 3.0f, 1e3f}, 2e-5);
+  const int checked = check_entries(
+      ctx, {"gaussian"}, {"abs", "sign", "step", "saturate", "smoothstep"},
+      {-1e4f, -37.5f, -1.0f, -0.999f, -0.5f, -1e-6f, 0.0f, 1e-6f, 0.25f, 0.5f, 1.0f, 1.001f, 37.5f},
+      {1e-6f, 1e-3f, 0.1f, 0.45f, 0.5f, 0.55f, 0.99f, 1.0f, 1.01f, 3.0f, 1e3f}, 2e-5);
   EXPECT_GT(checked, 1000);
 }
 
