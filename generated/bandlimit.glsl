@@ -10347,3 +10347,410 @@ float bl_tent_moment(int n, float x, float sigma) {
   return bl_nan();
 }
 
+// ---- one-pass (mean, variance) entries (rulegen/emit_stat_pairs.hpp) ----
+
+vec2 bl_gaussian_fract_stat(float x, float sigma) {
+  if (!(sigma >= 0.0)) return vec2(bl_nan(), bl_nan());
+  float y = x;
+  float period = 1.0;
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1865: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.361 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1865), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354.
+    float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < (0.1865228530605915)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float s2 = sigma * sigma;
+      float acc;
+      float acc1;
+      if (sigma < (0.09339361644125409)) {  // the nearest break alone
+        acc = (((1.0))) * rp;
+        acc1 = ((((1.0))) * rp) * rp + (((1.0)) * s2);
+        float dl = r - ((0.0) + base), dr = ((1.0) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += sd * ((-1.0) * j0);
+        acc1 += sd * (((-2.0) * j1) * (sd * sigma) + (-1.0) * j0);
+        return vec2(max(min((acc), (1.0)), (0.0)), max((acc1) - (acc) * (acc), (0.0)));
+      }
+      {
+        acc = (((1.0))) * rp;
+        acc1 = ((((1.0))) * rp) * rp + (((1.0)) * s2);
+        {  // break at 0
+          float d = ((0.0) + base) - r;  // exact near the break
+          float t = min(-d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc -= (-1.0) * j0;
+          acc1 -= ((-2.0) * j1) * (-sigma) + (-1.0) * j0;
+        }
+        {  // break at 1
+          float d = ((1.0) + base) - r;  // exact near the break
+          float t = min(d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc += (-1.0) * j0;
+          acc1 += ((-2.0) * j1) * sigma + (-1.0) * j0;
+        }
+      }
+      return vec2(max(min((acc), (1.0)), (0.0)), max((acc1) - (acc) * (acc), (0.0)));
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.47084571749856524)) {  // 1 term(s)
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1));
+      float acc1 = (0.3333333333333333) + (d_1 * ((0.10132118364233778) * c_1 + (-0.3183098861837907) * s_1));
+      return vec2(max(min((acc), (1.0)), (0.0)), max((acc1) - (acc) * (acc), (0.0)));
+    }
+    if (sigma >= (0.31389722143504767)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1)) + (d_2 * ((-0.15915494309189535) * s_2));
+      float acc1 = (0.3333333333333333) + (d_1 * ((0.10132118364233778) * c_1 + (-0.3183098861837907) * s_1)) + (d_2 * ((0.025330295910584444) * c_2 + (-0.15915494309189535) * s_2));
+      return vec2(max(min((acc), (1.0)), (0.0)), max((acc1) - (acc) * (acc), (0.0)));
+    }
+    if (sigma >= (0.23542392184410124)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1) + d_3 * ((-0.1061032953945969) * s_3)) + (d_2 * ((-0.15915494309189535) * s_2));
+      float acc1 = (0.3333333333333333) + (d_1 * ((0.10132118364233778) * c_1 + (-0.3183098861837907) * s_1) + d_3 * ((0.011257909293593086) * c_3 + (-0.1061032953945969) * s_3)) + (d_2 * ((0.025330295910584444) * c_2 + (-0.15915494309189535) * s_2));
+      return vec2(max(min((acc), (1.0)), (0.0)), max((acc1) - (acc) * (acc), (0.0)));
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float s_1 = s1;
+    float d_1 = q;
+    float c_2 = (0.5) * C2;
+    float s_2 = (2.0) * s1 * c1;
+    float d_2 = q4;
+    float c_3 = C2 * c_1 - c1;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_4 = C2 * c_2 - (1.0);
+    float s_4 = C2 * s_2;
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1) + d_3 * ((-0.1061032953945969) * s_3) + d_5 * ((-0.06366197723675814) * s_5)) + (d_2 * ((-0.15915494309189535) * s_2) + d_4 * ((-0.07957747154594767) * s_4));
+    float acc1 = (0.3333333333333333) + (d_1 * ((0.10132118364233778) * c_1 + (-0.3183098861837907) * s_1) + d_3 * ((0.011257909293593086) * c_3 + (-0.1061032953945969) * s_3) + d_5 * ((0.004052847345693511) * c_5 + (-0.06366197723675814) * s_5)) + (d_2 * ((0.025330295910584444) * c_2 + (-0.15915494309189535) * s_2) + d_4 * ((0.006332573977646111) * c_4 + (-0.07957747154594767) * s_4));
+    return vec2(max(min((acc), (1.0)), (0.0)), max((acc1) - (acc) * (acc), (0.0)));
+  }
+  float m = bl_gaussian_fract(x, sigma);
+  float m2 = bl_gaussian_fract_sq(x, sigma);
+  return vec2(m, max(m2 - m * m, 0.0));
+}
+
+vec2 bl_gaussian_floor_stat(float x, float sigma) {
+  if (!(sigma >= 0.0)) return vec2(bl_nan(), bl_nan());
+  float y = x;
+  float period = 1.0;
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1801: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.553 sd; below 0.09154 the nearest one alone, the others beyond 5.462 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1801), 1 from 0.492, 2 from 0.328, 3 from 0.246.
+    float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < (0.1800916657318127)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float s2 = sigma * sigma;
+      float acc;
+      float acc1;
+      if (sigma < (0.09153970651645797)) {  // the nearest break alone
+        acc = (((1.0))) * rp;
+        acc1 = ((((1.0))) * rp) * rp + (((1.0)) * s2);
+        float dl = r - ((0.0) + base), dr = ((1.0) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += sd * ((-1.0) * j0);
+        acc1 += sd * (((-2.0) * j1) * (sd * sigma) + (-1.0) * j0);
+        acc1 += (((2.0)*sigma)) * ph;
+        return vec2(x + (-1.0) * (acc), max((acc1 + ((-(sigma*sigma)))) - (acc) * (acc), (0.0)));
+      }
+      {
+        acc = (((1.0))) * rp;
+        acc1 = ((((1.0))) * rp) * rp + (((1.0)) * s2);
+        {  // break at 0
+          float d = ((0.0) + base) - r;  // exact near the break
+          float t = min(-d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc -= (-1.0) * j0;
+          acc1 -= ((-2.0) * j1) * (-sigma) + (-1.0) * j0;
+          acc1 += (((2.0)*sigma)) * ph;
+        }
+        {  // break at 1
+          float d = ((1.0) + base) - r;  // exact near the break
+          float t = min(d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc += (-1.0) * j0;
+          acc1 += ((-2.0) * j1) * sigma + (-1.0) * j0;
+          acc1 += (((2.0)*sigma)) * ph;
+        }
+      }
+      return vec2(x + (-1.0) * (acc), max((acc1 + ((-(sigma*sigma)))) - (acc) * (acc), (0.0)));
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.49201570982974746)) {  // 1 term(s)
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1));
+      float acc1 = ((((1.0)/(3.0)) + (sigma*sigma))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (-0.3183098861837907) * s_1));
+      return vec2(x + (-1.0) * (acc), max((acc1) - (acc) * (acc), (0.0)));
+    }
+    if (sigma >= (0.32801049826630296)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1)) + (d_2 * ((-0.15915494309189535) * s_2));
+      float acc1 = ((((1.0)/(3.0)) + (sigma*sigma))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (-0.3183098861837907) * s_1)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (-0.15915494309189535) * s_2));
+      return vec2(x + (-1.0) * (acc), max((acc1) - (acc) * (acc), (0.0)));
+    }
+    if (sigma >= (0.24600830992933181)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1) + d_3 * ((-0.1061032953945969) * s_3)) + (d_2 * ((-0.15915494309189535) * s_2));
+      float acc1 = ((((1.0)/(3.0)) + (sigma*sigma))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (-0.3183098861837907) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (-0.1061032953945969) * s_3)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (-0.15915494309189535) * s_2));
+      return vec2(x + (-1.0) * (acc), max((acc1) - (acc) * (acc), (0.0)));
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float s_1 = s1;
+    float d_1 = q;
+    float c_2 = (0.5) * C2;
+    float s_2 = (2.0) * s1 * c1;
+    float d_2 = q4;
+    float c_3 = C2 * c_1 - c1;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_4 = C2 * c_2 - (1.0);
+    float s_4 = C2 * s_2;
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1) + d_3 * ((-0.1061032953945969) * s_3) + d_5 * ((-0.06366197723675814) * s_5)) + (d_2 * ((-0.15915494309189535) * s_2) + d_4 * ((-0.07957747154594767) * s_4));
+    float acc1 = ((((1.0)/(3.0)) + (sigma*sigma))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (-0.3183098861837907) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (-0.1061032953945969) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (-0.06366197723675814) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (-0.15915494309189535) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (-0.07957747154594767) * s_4));
+    return vec2(x + (-1.0) * (acc), max((acc1) - (acc) * (acc), (0.0)));
+  }
+  float m = bl_gaussian_floor(x, sigma);
+  float m2 = bl_gaussian_floor_sq(x, sigma);
+  return vec2(m, max(m2 - m * m, 0.0));
+}
+
+vec2 bl_gaussian_ceil_stat(float x, float sigma) {
+  if (!(sigma >= 0.0)) return vec2(bl_nan(), bl_nan());
+  float y = -x;
+  float period = 1.0;
+  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
+  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
+  if (sigma >= 1e-30) {
+    // float (tolerance 1e-07): sigma < 0.1801: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.553 sd; below 0.09154 the nearest one alone, the others beyond 5.462 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1801), 1 from 0.492, 2 from 0.328, 3 from 0.246.
+    float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
+    if (sigma < (0.1800916657318127)) {
+      float base = (bl_copysign1(r) - (1.0)) * ((0.5) * period);  // -T for r < 0, else 0
+      float rp = r - base;  // in [0, T]; distances below use the exact r
+      float inv = (1.0) / sigma;
+      float s2 = sigma * sigma;
+      float acc;
+      float acc1;
+      if (sigma < (0.09153970651645797)) {  // the nearest break alone
+        acc = (((1.0))) * rp;
+        acc1 = ((((1.0))) * rp) * rp + (((1.0)) * s2);
+        float dl = r - ((0.0) + base), dr = ((1.0) + base) - r;  // exact near the breaks
+        float sd = bl_copysign1(dl - dr);  // +1: the right break is nearer
+        float t = min(min(dl, dr) * inv, BL_TAIL_CUT);
+        float ph, j0;
+        bl_phi_Phic(t, ph, j0);
+        float j1 = ph - t * j0;
+        acc += sd * ((-1.0) * j0);
+        acc1 += sd * (((-2.0) * j1) * (sd * sigma) + (-1.0) * j0);
+        acc1 += (((2.0)*sigma)) * ph;
+        return vec2(x + (acc), max((acc1 + ((-(sigma*sigma)))) - (acc) * (acc), (0.0)));
+      }
+      {
+        acc = (((1.0))) * rp;
+        acc1 = ((((1.0))) * rp) * rp + (((1.0)) * s2);
+        {  // break at 0
+          float d = ((0.0) + base) - r;  // exact near the break
+          float t = min(-d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc -= (-1.0) * j0;
+          acc1 -= ((-2.0) * j1) * (-sigma) + (-1.0) * j0;
+          acc1 += (((2.0)*sigma)) * ph;
+        }
+        {  // break at 1
+          float d = ((1.0) + base) - r;  // exact near the break
+          float t = min(d * inv, BL_TAIL_CUT);
+          float ph, j0;
+          bl_phi_Phic(t, ph, j0);
+          float j1 = ph - t * j0;
+          acc += (-1.0) * j0;
+          acc1 += ((-2.0) * j1) * sigma + (-1.0) * j0;
+          acc1 += (((2.0)*sigma)) * ph;
+        }
+      }
+      return vec2(x + (acc), max((acc1 + ((-(sigma*sigma)))) - (acc) * (acc), (0.0)));
+    }
+    float v = r / period;  // exact (T a power of two), in (-1, 1)
+    float uf = v - round(v);  // v - round(v), in [-1/2, 1/2]
+    float ph = (0.5) * BL_PI * uf, p2 = ph * ph;
+    float sh = ph * ((((((2.7557319223985893e-06)) * p2 + (-0.0001984126984126984)) * p2 + (0.008333333333333333)) * p2 + (-0.16666666666666666)) * p2 + (1.0));
+    float ch = ((((((-2.755731922398589e-07)) * p2 + (2.48015873015873e-05)) * p2 + (-0.001388888888888889)) * p2 + (0.041666666666666664)) * p2 + (-0.5)) * p2 + (1.0);
+    float sp = (2.0) * sh * ch, cp = (1.0) - (2.0) * sh * sh;  // sin, cos of pi uf
+    float c1 = (1.0) - (2.0) * sp * sp;
+    float s1 = (2.0) * sp * cp;
+    float q0 = exp((-19.739208802178716) * sigma * sigma);
+    float q = max(q0, (8.673617379884035e-19));
+    if (sigma >= (0.49201570982974746)) {  // 1 term(s)
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1));
+      float acc1 = ((((1.0)/(3.0)) + (sigma*sigma))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (-0.3183098861837907) * s_1));
+      return vec2(x + (acc), max((acc1) - (acc) * (acc), (0.0)));
+    }
+    if (sigma >= (0.32801049826630296)) {  // 2 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1)) + (d_2 * ((-0.15915494309189535) * s_2));
+      float acc1 = ((((1.0)/(3.0)) + (sigma*sigma))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (-0.3183098861837907) * s_1)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (-0.15915494309189535) * s_2));
+      return vec2(x + (acc), max((acc1) - (acc) * (acc), (0.0)));
+    }
+    if (sigma >= (0.24600830992933181)) {  // 3 term(s)
+      float q2 = max(q * q, (8.673617379884035e-19));
+      float q4 = max(q2 * q2, (8.673617379884035e-19));
+      float q8 = max(q4 * q4, (8.673617379884035e-19));
+      float C2 = (2.0) - (4.0) * s1 * s1;
+      float c_1 = c1;
+      float s_1 = s1;
+      float d_1 = q;
+      float c_2 = (0.5) * C2;
+      float s_2 = (2.0) * s1 * c1;
+      float d_2 = q4;
+      float c_3 = C2 * c_1 - c1;
+      float s_3 = C2 * s_1 + s1;
+      float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+      float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1) + d_3 * ((-0.1061032953945969) * s_3)) + (d_2 * ((-0.15915494309189535) * s_2));
+      float acc1 = ((((1.0)/(3.0)) + (sigma*sigma))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (-0.3183098861837907) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (-0.1061032953945969) * s_3)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (-0.15915494309189535) * s_2));
+      return vec2(x + (acc), max((acc1) - (acc) * (acc), (0.0)));
+    }
+    float q2 = max(q * q, (8.673617379884035e-19));
+    float q4 = max(q2 * q2, (8.673617379884035e-19));
+    float q8 = max(q4 * q4, (8.673617379884035e-19));
+    float C2 = (2.0) - (4.0) * s1 * s1;
+    float c_1 = c1;
+    float s_1 = s1;
+    float d_1 = q;
+    float c_2 = (0.5) * C2;
+    float s_2 = (2.0) * s1 * c1;
+    float d_2 = q4;
+    float c_3 = C2 * c_1 - c1;
+    float s_3 = C2 * s_1 + s1;
+    float d_3 = max(d_1 * q8, (8.673617379884035e-19));
+    float c_4 = C2 * c_2 - (1.0);
+    float s_4 = C2 * s_2;
+    float r_2 = max(q4 * q8, (8.673617379884035e-19));
+    float d_4 = max(d_2 * r_2, (8.673617379884035e-19));
+    float c_5 = C2 * c_3 - c_1;
+    float s_5 = C2 * s_3 - s_1;
+    float r_3 = max(q8 * q8, (8.673617379884035e-19));
+    float d_5 = max(d_3 * r_3, (8.673617379884035e-19));
+    float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1) + d_3 * ((-0.1061032953945969) * s_3) + d_5 * ((-0.06366197723675814) * s_5)) + (d_2 * ((-0.15915494309189535) * s_2) + d_4 * ((-0.07957747154594767) * s_4));
+    float acc1 = ((((1.0)/(3.0)) + (sigma*sigma))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (-0.3183098861837907) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (-0.1061032953945969) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (-0.06366197723675814) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (-0.15915494309189535) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (-0.07957747154594767) * s_4));
+    return vec2(x + (acc), max((acc1) - (acc) * (acc), (0.0)));
+  }
+  float m = bl_gaussian_ceil(x, sigma);
+  float m2 = bl_gaussian_ceil_sq(x, sigma);
+  return vec2(m, max(m2 - m * m, 0.0));
+}
+

@@ -540,7 +540,8 @@ std::string origin_dispatch(const Derived& d, const Syntax& s, int integrals,
   return out;
 }
 
-// The straight-line plan's input (emit_gauss_periodic.hpp) of a Gaussian periodic entry.
+}  // namespace
+
 GaussPeriodicSpec periodic_spec(const Derived& d) {
   GaussPeriodicSpec sp;
   if (!GiNaC::is_a<GiNaC::numeric>(d.period)) return sp;
@@ -553,6 +554,8 @@ GaussPeriodicSpec periodic_spec(const Derived& d) {
   sp.a0 = d.a0, sp.ak = d.ak, sp.bk = d.bk, sp.coef_bound = d.coef_bound;
   return sp;
 }
+
+namespace {
 
 std::string body_periodic(const Derived& d, const Syntax& s) {
   const size_t n = d.pieces.size();
@@ -602,12 +605,8 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
   return out + origin_dispatch(d, s, 0, call) + "  return " + call("x", "p") + ";\n";
 }
 
-// The Gaussian entries of a one-piece periodic atomic A (fract) and of A^2, when both were derived
-// with polynomial pieces of degree <= 1 (A) and <= 2 (A^2) and no interior break.
-struct FusablePair {
-  const Derived* a = nullptr;
-  const Derived* a2 = nullptr;
-};
+}  // namespace
+
 FusablePair fusable_pair(const std::string& atomic, const std::vector<Derived>* ds) {
   FusablePair f;
   if (!ds) return f;
@@ -623,6 +622,8 @@ FusablePair fusable_pair(const std::string& atomic, const std::vector<Derived>* 
   if (!ok(f.a, 1) || !ok(f.a2, 2)) f = FusablePair{};
   return f;
 }
+
+namespace {
 
 // Fused Gaussian form of the terms c0 A(y) + c2 A(y)^2 + c1 x A(y) of a combination, y = sgn x,
 // A periodic with one piece g(t) = g0 + g1 t on [0, T) (fract): one dual series instead of the

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "derived.hpp"
+#include "emit_gauss_periodic.hpp"
 #include "printer.hpp"
 
 namespace bl::rulegen {
@@ -53,6 +54,17 @@ std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lan
 // nan_guard a NaN r (x NaN or infinite) is returned as is (constant pieces would hide it).
 std::string periodic_straight(const GiNaC::ex& P, const std::vector<std::pair<GiNaC::ex, GiNaC::ex>>& pieces,
                               Lang lang, bool nan_guard);
+
+// The straight-line plan's input (emit_gauss_periodic.hpp) of a Gaussian periodic entry (an empty
+// spec when its period or breaks are not numbers).
+GaussPeriodicSpec periodic_spec(const Derived& d);
+// The Gaussian entries of a one-piece periodic atomic A (fract) and of A^2, when both were derived
+// with polynomial pieces of degree <= 1 (A) and <= 2 (A^2) and no interior break; both null else.
+struct FusablePair {
+  const Derived* a = nullptr;
+  const Derived* a2 = nullptr;
+};
+FusablePair fusable_pair(const std::string& atomic, const std::vector<Derived>* ds);
 
 std::string read_file(const std::string& path);
 // Writes only if the content changed; creates parent directories.

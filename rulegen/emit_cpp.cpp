@@ -7,6 +7,7 @@
 
 #include "emit_common.hpp"
 #include "emit_normal_table.hpp"
+#include "emit_stat_pairs.hpp"
 
 namespace bl::rulegen {
 using sym::Body;
@@ -132,6 +133,8 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
         << "_right(T x, T sigma) {\n"
         << body_half_line(d, Lang::Cpp) << "}\n\n";
   }
+  const std::vector<StatPair> pairs = stat_pairs(ds);
+  for (const StatPair& p : pairs) t << stat_pair_definition(p, Lang::Cpp);
   t << "}  // namespace gen\n}  // namespace detail\n\n";
   // Public float/double overloads.
   t << "namespace plain {\n";
@@ -154,6 +157,12 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
       for (const char* T : {"float", "double"})
         t << "inline " << T << " " << d.fn_suffix() << "(" << T << " x, " << T
           << " sigma) { return detail::gen::" << impl_name(d) << "<" << T << ">(x, sigma); }\n";
+    }
+    for (const StatPair& p : pairs) {
+      if (p.f->kernel != k) continue;
+      for (const char* T : {"float", "double"})
+        t << "inline stat<" << T << "> " << p.f->atomic_name << "_stat(" << T << " x, " << T
+          << " sigma) { return detail::gen::" << p.name() << "<" << T << ">(x, sigma); }\n";
     }
     t << "}  // namespace " << sym::to_string(k) << "\n\n";
   }
@@ -193,6 +202,19 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
       << (d.squared ? "true" : "false") << ", \"" << d.rule << "\", " << d.order << ", "
       << (compact ? "true" : "false") << ", " << (compact ? "0.5" : "0.0") << ", \"" << cpp << "\", \""
       << glsl << "\", " << smoothed << ", " << plain << "},\n";
+  }
+  r << "  };\n  *count = static_cast<int>(sizeof(e) / sizeof(e[0]));\n  return e;\n}\n\n";
+  // The one-pass (mean, variance) entries (emit_stat_pairs.hpp).
+  r << "template <class T>\nconst RuleEntry<T>* stat_entries(int* count) {\n  static const RuleEntry<T> e[] "
+       "= "
+       "{\n";
+  for (const StatPair& p : pairs) {
+    size_t ai = 0;
+    for (size_t i = 0; i < cat.atomics.size(); ++i)
+      if (&cat.atomics[i] == p.f->atomic) ai = i;
+    r << "      {&kAtomics[" << ai
+      << "], \"stat\", \"gaussian\", \"one pass\", \"bl::gaussian::" << p.f->atomic_name << "_stat\", \"bl_"
+      << p.name() << "\", &detail::gen::" << p.name() << "<T>},\n";
   }
   r << "  };\n  *count = static_cast<int>(sizeof(e) / sizeof(e[0]));\n  return e;\n}\n\n"
     << "}  // namespace registry\n}  // namespace bl\n";

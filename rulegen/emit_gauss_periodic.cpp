@@ -2,6 +2,7 @@
 #include "emit_gauss_periodic.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -183,6 +184,8 @@ std::string glsl_spelling(std::string code) {
   replace_all("const T ", "float ");
   replace_all("  T ph, j0;", "  float ph, j0;");
   replace_all("  T acc;", "  float acc;");
+  replace_all("  T acc1;", "  float acc1;");
+  replace_all("detail::make_stat(", "vec2(");
   replace_all(" T acc = ", " float acc = ");
   replace_all(" T a = ", " float a = ");
   replace_all("for (T ", "for (float ");
@@ -216,6 +219,15 @@ std::string glsl_spelling(std::string code) {
 std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
   const size_t N = sp.lo.size();
   if (N == 0 || N != sp.c.size() || !dyadic(sp.period) || sp.lo[0] != 0) return "";
+  // The outputs of the pass: sp itself, then sp.more (one piece only: the per-piece paths below
+  // print every channel; the blended two- and three-piece forms print one).
+  std::vector<const GaussPeriodicSpec*> chs{&sp};
+  for (const GaussPeriodicSpec& m : sp.more) chs.push_back(&m);
+  const size_t C = chs.size();
+  if (C > 1 && (N != 1 || sp.finish.empty())) return "";
+  for (const GaussPeriodicSpec* ch : chs)
+    if (ch->c.size() != N) return "";
+  auto accn = [](size_t ci) { return ci == 0 ? std::string("acc") : "acc" + std::to_string(ci); };
   double Pd = sp.period.to_double();
   {
     int e2 = 0;
@@ -229,21 +241,25 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
   for (size_t i = 0; i < N; ++i) wmin = std::min(wmin, (hi_of(i) - sp.lo[i]).to_double());
   // Break types: i at lo[i], jump q_i(lo_i + u) - q_{i-1}(lo_i + u) (q_{-1}(T + u) at i = 0).
   const symbol u("u");
-  std::vector<Break> br(N);
+  std::vector<std::vector<Break>> brs(C, std::vector<Break>(N));  // per channel
   int maxdd = 0;
-  for (size_t i = 0; i < N; ++i) {
-    const size_t pi = i == 0 ? N - 1 : i - 1;
-    const ex at_prev = i == 0 ? ex(T) + u : ex(sp.lo[i]) + u;
-    ex jump = 0;
-    for (size_t k = 0; k < sp.c[i].size(); ++k) jump += sp.c[i][k] * pow(sp.lo[i] + u, int(k));
-    for (size_t k = 0; k < sp.c[pi].size(); ++k) jump -= sp.c[pi][k] * pow(at_prev, int(k));
-    jump = jump.expand();
-    br[i].pos = sp.lo[i];
-    br[i].delta = i == 0 && !sp.delta.is_zero();
-    const int deg = jump.is_zero() ? -1 : jump.degree(u);
-    for (int k = 0; k <= deg; ++k) br[i].e.push_back(jump.coeff(u, k));
-    maxdd = std::max(maxdd, deg);
-  }
+  for (size_t ci = 0; ci < C; ++ci)
+    for (size_t i = 0; i < N; ++i) {
+      const auto& c = chs[ci]->c;
+      const size_t pi = i == 0 ? N - 1 : i - 1;
+      const ex at_prev = i == 0 ? ex(T) + u : ex(sp.lo[i]) + u;
+      ex jump = 0;
+      for (size_t k = 0; k < c[i].size(); ++k) jump += c[i][k] * pow(sp.lo[i] + u, int(k));
+      for (size_t k = 0; k < c[pi].size(); ++k) jump -= c[pi][k] * pow(at_prev, int(k));
+      jump = jump.expand();
+      Break& b = brs[ci][i];
+      b.pos = sp.lo[i];
+      b.delta = i == 0 && !chs[ci]->delta.is_zero();
+      const int deg = jump.is_zero() ? -1 : jump.degree(u);
+      for (int k = 0; k <= deg; ++k) b.e.push_back(jump.coeff(u, k));
+      maxdd = std::max(maxdd, deg);
+    }
+  const std::vector<Break>& br = brs[0];  // positions (the same in every channel); channel 0's jumps
   // Distance beyond the nside nearest breaks on a side: the narrowest run of nside pieces.
   auto run_min = [&](int n) {
     if (n == 0) return 0.5 * wmin;  // nearest break only: the other one is at least wmin/2 away
@@ -266,17 +282,20 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
     for (int m = 0; m < 200; ++m) {
       const double t = (D + m * wmin) / sig;
       double b = 0;
-      for (const Break& x : br) b = std::max(b, break_bound(x, sp.delta, sig, t));
+      for (size_t ci = 0; ci < C; ++ci)
+        for (const Break& x : brs[ci]) b = std::max(b, break_bound(x, chs[ci]->delta, sig, t));
       s += b;
       if (b < 1e-30) break;
     }
     return 2 * s;
   };
+  double coef_bound = 0;
+  for (const GaussPeriodicSpec* ch : chs) coef_bound = std::max(coef_bound, ch->coef_bound);
   auto fourier_K = [&](double s, double tol) {
     const double a = 2 * kPi * kPi * s * s;
     for (int K = 0; K < 1000; ++K) {
       const double uu = K + 1.0;
-      if (sp.coef_bound * std::exp(-a * uu * uu) / (-std::expm1(-2 * a * uu)) <= tol) return K;
+      if (coef_bound * std::exp(-a * uu * uu) / (-std::expm1(-2 * a * uu)) <= tol) return K;
     }
     return 1000;
   };
@@ -303,8 +322,11 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
       int nnz = 0;  // nonzero Fourier terms
       for (int k = 1; k <= p.K; ++k) {
         const ex sg = (k % 2) ? -1 : 1;
-        nnz += !(sp.ak.subs(lst{sym::var_k() == k, sym::var_pk() == sg}).expand().is_zero() &&
-                 sp.bk.subs(lst{sym::var_k() == k, sym::var_pk() == sg}).expand().is_zero());
+        bool zero = true;
+        for (const GaussPeriodicSpec* ch : chs)
+          zero &= ch->ak.subs(lst{sym::var_k() == k, sym::var_pk() == sg}).expand().is_zero() &&
+                  ch->bk.subs(lst{sym::var_k() == k, sym::var_pk() == sg}).expand().is_zero();
+        nnz += !zero;
       }
       const double cb = (n ? 17.0 * n : 12.8) * (1 + 0.1 * maxdd), cf = 7.0 + 1.6 * nnz;
       const double c = std::max(cb, cf);
@@ -343,47 +365,54 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
   // chosen without a branch: sd = +1 (right) or -1 (left); the term is sd sum_k e_k (sd sigma)^k J_k
   // with e the chosen break's jump, blended as h e_right + (1 - h) e_left, h = (sd + 1)/2 in {0, 1}.
   auto nearest_block = [&](size_t j) {
-    const Break& bl = br[j];
-    const Break& bR = br[(j + 1) % N];
-    const numeric L = bl.pos, R = j + 1 < N ? br[j + 1].pos : T;
+    const numeric L = br[j].pos, R = j + 1 < N ? br[j + 1].pos : T;
     std::string o;
     o += "        const T dl = r - (" + lit(L.to_double()) + " + base), dr = (" + lit(R.to_double()) +
          " + base) - r;  // exact near the breaks\n";
     o += "        const T sd = std::copysign(T(1), dl - dr);  // +1: the right break is nearer\n";
     o += "        const T t = detail::min2(detail::min2(dl, dr) * inv, detail::tail_cut<T>());\n";
-    const size_t ne = std::max(bl.e.size(), bR.e.size());
-    const size_t chain_at = o.size();  // the J chain goes here once the terms are known
-    bool blend = false;
-    std::vector<std::string> et;
-    for (size_t k = 0; k < ne; ++k) {
-      const ex el = k < bl.e.size() ? bl.e[k] : ex(0), er = k < bR.e.size() ? bR.e[k] : ex(0);
-      std::string c;
-      if ((el - er).expand().is_zero()) {
-        c = coef_text(el);
-      } else {
-        blend = true;
-        const std::string a = coef_text(er), b = coef_text(el);
-        c = "(hr * " + (a.empty() ? "T(0)" : a) + " + hl * " + (b.empty() ? "T(0)" : b) + ")";
+    size_t ne = 0;
+    bool any_delta = false, blend = false, no_j0 = true;
+    for (size_t ci = 0; ci < C; ++ci) {
+      const Break &bl = brs[ci][j], &bR = brs[ci][(j + 1) % N];
+      ne = std::max({ne, bl.e.size(), bR.e.size()});
+      any_delta |= bl.delta || bR.delta;
+    }
+    std::string terms;  // per channel
+    for (size_t ci = 0; ci < C; ++ci) {
+      const Break &bl = brs[ci][j], &bR = brs[ci][(j + 1) % N];
+      std::vector<std::string> et;
+      for (size_t k = 0; k < ne; ++k) {
+        const ex el = k < bl.e.size() ? bl.e[k] : ex(0), er = k < bR.e.size() ? bR.e[k] : ex(0);
+        std::string c;
+        if ((el - er).expand().is_zero()) {
+          c = coef_text(el);
+        } else {
+          blend = true;
+          const std::string a = coef_text(er), b = coef_text(el);
+          c = "(hr * " + (a.empty() ? "T(0)" : a) + " + hl * " + (b.empty() ? "T(0)" : b) + ")";
+        }
+        et.push_back(c.empty() ? "" : c + " * j" + std::to_string(k));
       }
-      et.push_back(c.empty() ? "" : c + " * j" + std::to_string(k));
+      no_j0 &= et.empty() || et[0].empty();
+      const std::string term = horner(et, "(sd * sigma)");
+      if (term != "T(0)") terms += "        " + accn(ci) + " += sd * (" + term + ");\n";
+      if (bl.delta || bR.delta) {
+        // theta's phi_sigma sum: the delta sits at lo[0]; for N = 1 both neighbours are such breaks.
+        if (N == 1)
+          terms += "        " + accn(ci) + " += " + coef_text(chs[ci]->delta) + " * ph;\n";
+        else
+          return std::string();  // not planned: a delta with several break types
+      }
     }
-    o.insert(chain_at, j_chain(ne, bl.delta || bR.delta, "        ", !et.empty() && et[0].empty()));
+    o += j_chain(ne, any_delta, "        ", no_j0);
     if (blend) o += "        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;\n";
-    const std::string term = horner(et, "(sd * sigma)");
-    if (term != "T(0)") o += "        acc += sd * (" + term + ");\n";
-    if (bl.delta || bR.delta) {
-      // theta's phi_sigma sum: the delta sits at lo[0]; for N = 1 both neighbours are such breaks.
-      if (N == 1)
-        o += "        acc += " + coef_text(sp.delta) + " * ph;\n";
-      else
-        return std::string();  // not planned: a delta with several break types
-    }
-    return o;
+    return o + terms;
   };
   // E q_j(rp + U) = sum_m rp^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}: the coefficient texts
   // of rp^m (Horner in s2 = sigma^2).
-  auto mean_coefs = [&](size_t j) {
-    const auto& c = sp.c[j];
+  auto mean_coefs = [&](size_t j, size_t ci = 0) {
+    const auto& c = chs[ci]->c[j];
     std::vector<std::string> cx;
     for (size_t m = 0; m < c.size(); ++m) {
       std::vector<std::string> cs;
@@ -508,45 +537,73 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
       }
     return o;
   };
+  // The returned expression from the channels' values: lead + value, or finish with @i replaced.
+  auto result = [&](const std::vector<std::string>& vals) {
+    if (C == 1) return sp.lead + vals[0];
+    std::string f = sp.finish;
+    for (size_t ci = C; ci-- > 0;) {  // @1 before @10 cannot clash: at most 9 channels
+      const std::string at = "@" + std::to_string(ci);
+      for (size_t k = f.find(at); k != std::string::npos; k = f.find(at, k + 1))
+        f.replace(k, at.size(), "(" + vals[ci] + ")");
+    }
+    return f;
+  };
   auto regimes = [&](const Plan& p, bool is_float) {
     std::string o;
     o += "    const T r = detail::reduce_signed_pow2(" + sp.y + ", period);  // exact, in (-T, T)\n";
     o += "    if (sigma < " + lit(p.sigma_b) + ") {\n";
     std::string pcs;  // the per-piece blocks
     const bool blended = p.nside >= 1 && N >= 2 && N <= 3;
-    const std::string extra = coef_text(sp.break_extra);
-    const std::string ret = "      return " + sp.lead + "acc" + (extra.empty() ? "" : " + " + extra) + ";\n";
+    // The break regime's value of each channel: acc plus its break_extra.
+    std::vector<std::string> vals(C);
+    for (size_t ci = 0; ci < C; ++ci) {
+      const std::string extra = coef_text(chs[ci]->break_extra);
+      vals[ci] = extra.empty() ? accn(ci) : accn(ci) + " + " + extra;
+    }
+    const std::string ret = "      return " + result(vals) + ";\n";
     if (blended) pcs = blended_block(p, ret);
+    // E q_j(rp + U) in powers of rp, for every channel.
+    auto means = [&](size_t j) {
+      std::string m;
+      for (size_t ci = 0; ci < C; ++ci)
+        m += "        " + accn(ci) + " = " + horner(mean_coefs(j, ci), "rp") + ";\n";
+      return m;
+    };
     if (p.sigma_0 > 0 && N == 1) {
-      const std::vector<std::string> cx = mean_coefs(0);
       pcs += "      if (sigma < " + lit(p.sigma_0) + ") {  // the nearest break alone\n";
-      pcs += "        acc = " + horner(cx, "rp") + ";\n" + nearest_block(0) + "  " + ret + "      }\n";
+      pcs += means(0) + nearest_block(0) + "  " + ret + "      }\n";
     }
     for (size_t j = 0; j < N && !blended; ++j) {
-      std::string blk;
-      const std::vector<std::string> cx = mean_coefs(j);  // E q_j(rp + U) in powers of rp
-      blk += "        acc = " + horner(cx, "rp") + ";\n";
+      std::string blk = means(j);
       if (p.nside == 0) blk += nearest_block(j);
       // Candidates: left breaks lo_j, lo_{j-1}, ...; right breaks hi_j, ...
       for (int side = -1; side <= 1 && p.nside > 0; side += 2) {
         for (int n = 0; n < p.nside; ++n) {
           const auto [idx, P] = slot(j, side, n);  // break type and position relative to this period
-          const Break& b = br[idx];
-          if (b.e.empty() && !b.delta) continue;
-          std::vector<std::string> et;
-          for (size_t k = 0; k < b.e.size(); ++k) {
-            const std::string t = coef_text(b.e[k]);
-            et.push_back(t.empty() ? "" : t + " * j" + std::to_string(k));
+          size_t ne = 0;
+          bool any_delta = false, no_j0 = true;
+          std::string terms;
+          for (size_t ci = 0; ci < C; ++ci) {
+            const Break& b = brs[ci][idx];
+            ne = std::max(ne, b.e.size());
+            any_delta |= b.delta;
+            std::vector<std::string> et;
+            for (size_t k = 0; k < b.e.size(); ++k) {
+              const std::string t = coef_text(b.e[k]);
+              et.push_back(t.empty() ? "" : t + " * j" + std::to_string(k));
+            }
+            no_j0 &= et.empty() || et[0].empty();
+            std::string term = horner(et, side > 0 ? "sigma" : "(-sigma)");
+            if (term != "T(0)")
+              terms += "          " + accn(ci) + (side > 0 ? " += " : " -= ") + term + ";\n";
+            if (b.delta) terms += "          " + accn(ci) + " += " + coef_text(chs[ci]->delta) + " * ph;\n";
           }
+          if (ne == 0 && !any_delta) continue;
           blk += "        {  // break at " + sym::print(P, sym::Lang::Text) + "\n";
           blk += "          const T d = (" + lit(P.to_double()) + " + base) - r;  // exact near the break\n";
           blk += std::string("          const T t = detail::min2(") + (side > 0 ? "d" : "-d") +
                  " * inv, detail::tail_cut<T>());\n";
-          blk += j_chain(b.e.size(), b.delta, "          ", !et.empty() && et[0].empty());
-          std::string term = horner(et, side > 0 ? "sigma" : "(-sigma)");
-          if (term != "T(0)")
-            blk += std::string("          acc ") + (side > 0 ? "+" : "-") + "= " + term + ";\n";
-          if (b.delta) blk += "          acc += " + coef_text(sp.delta) + " * ph;\n";
+          blk += j_chain(ne, any_delta, "          ", no_j0) + terms;
           blk += "        }\n";
         }
       }
@@ -574,7 +631,8 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
     if (uses("rp")) o += "      const T rp = r - base;  // in [0, T]; distances below use the exact r\n";
     if (uses("inv")) o += "      const T inv = T(1) / sigma;\n";
     if (uses("s2")) o += "      const T s2 = sigma * sigma;\n";
-    o += "      T acc;\n" + pcs;
+    for (size_t ci = 0; ci < C; ++ci) o += "      T " + accn(ci) + ";\n";
+    o += pcs;
     o += ret + "    }\n";
     // Fourier regime.
     const size_t fourier_at = o.size();
@@ -609,22 +667,25 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
     // f_{k-4} for f = cos(k theta), sin(k theta) (from f_{-1}, f_1 and f_0, f_2), and damp_k =
     // q^(k^2) = damp_{k-2} r_{k-2}, r_k = q^(4k+4) = r_{k-2} q^8.
     auto harmonics = [&](int K, const std::string& in) {
-      std::vector<std::pair<std::string, std::string>> ab(K + 1);
+      std::vector<std::vector<std::pair<std::string, std::string>>> abs(
+          C, std::vector<std::pair<std::string, std::string>>(K + 1));
       int lastC = 0, lastS = 0;
-      for (int k = 1; k <= K; ++k) {
-        const ex sgn = (k % 2) ? -1 : 1;
-        ab[k].first = coef_text(sp.ak.subs(lst{kk == k, pk == sgn}));
-        ab[k].second = coef_text(sp.bk.subs(lst{kk == k, pk == sgn}));
-        if (!ab[k].first.empty()) lastC = k;
-        if (!ab[k].second.empty()) lastS = k;
-      }
+      for (size_t ci = 0; ci < C; ++ci)
+        for (int k = 1; k <= K; ++k) {
+          const ex sgn = (k % 2) ? -1 : 1;
+          auto& ab = abs[ci];
+          ab[k].first = coef_text(chs[ci]->ak.subs(lst{kk == k, pk == sgn}));
+          ab[k].second = coef_text(chs[ci]->bk.subs(lst{kk == k, pk == sgn}));
+          if (!ab[k].first.empty()) lastC = std::max(lastC, k);
+          if (!ab[k].second.empty()) lastS = std::max(lastS, k);
+        }
       const int last = std::max(lastC, lastS);
       std::string b;
       b += in + "const T q2 = detail::at_least(q * q, " + TN + ");\n";
       b += in + "const T q4 = detail::at_least(q2 * q2, " + TN + ");\n";
       b += in + "const T q8 = detail::at_least(q4 * q4, " + TN + ");\n";
       if (last >= 2) b += in + "const T C2 = T(2) - T(4) * s1 * s1;\n";
-      std::string acc[2];
+      std::vector<std::array<std::string, 2>> acc(C);  // per channel, odd and even k
       for (int k = 1; k <= last; ++k) {
         const std::string Ks = std::to_string(k), K2 = std::to_string(k - 2), K4 = std::to_string(k - 4);
         const bool nc = k <= lastC, ns = k <= lastS;
@@ -656,17 +717,25 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
                  " * q8, " + TN + ");\n";
           b += in + "const T d_" + Ks + " = detail::at_least(d_" + K2 + " * " + rprev + ", " + TN + ");\n";
         }
-        std::string t;
-        if (!ab[k].first.empty()) t = ab[k].first + " * c_" + Ks;
-        if (!ab[k].second.empty()) t += (t.empty() ? "" : " + ") + ab[k].second + " * s_" + Ks;
-        if (!t.empty()) acc[k % 2] += (acc[k % 2].empty() ? "d_" : " + d_") + Ks + " * (" + t + ")";
+        for (size_t ci = 0; ci < C; ++ci) {
+          const auto& ab = abs[ci];
+          std::string t;
+          if (!ab[k].first.empty()) t = ab[k].first + " * c_" + Ks;
+          if (!ab[k].second.empty()) t += (t.empty() ? "" : " + ") + ab[k].second + " * s_" + Ks;
+          auto& a = acc[ci][k % 2];
+          if (!t.empty()) a += (a.empty() ? "d_" : " + d_") + Ks + " * (" + t + ")";
+        }
       }
-      const std::string a0 = coef_text(sp.a0);
-      b += in + "const T acc = " + (a0.empty() ? std::string("T(0)") : a0);
-      for (int par : {1, 0})
-        if (!acc[par].empty()) b += " + (" + acc[par] + ")";
-      b += ";\n";
-      b += in + "return " + sp.lead + "acc;\n";
+      std::vector<std::string> vals(C);
+      for (size_t ci = 0; ci < C; ++ci) {
+        const std::string a0 = coef_text(chs[ci]->a0);
+        b += in + "const T " + accn(ci) + " = " + (a0.empty() ? std::string("T(0)") : a0);
+        for (int par : {1, 0})
+          if (!acc[ci][par].empty()) b += " + (" + acc[ci][par] + ")";
+        b += ";\n";
+        vals[ci] = accn(ci);
+      }
+      b += in + "return " + result(vals) + ";\n";
       return drop_unused(b);
     };
     // Wider kernels need fewer terms: each tier returns with its own K (its sigma bound from the

@@ -20,6 +20,13 @@ struct GaussPeriodicSpec {
   GiNaC::ex break_extra;                  // added in the break regime only (Fourier: inside a0)
   std::string y = "x";                    // argument
   std::string lead;                       // "rest + " or ""
+  // More outputs of the same pass (one piece only: fract and its combinations): each further
+  // channel's c, a0, ak, bk, coef_bound, delta and break_extra (its period, lo, y and lead are
+  // unused). The breaks, the normal table lookups and the Fourier chains are shared; `finish` is the
+  // C++ expression returned instead of lead + acc, with @0 for the first channel's value and @1, @2
+  // for the next ones'.
+  std::vector<GaussPeriodicSpec> more;
+  std::string finish;
 };
 
 // Statements that return the entry for float and double when the spec fits (dyadic period and

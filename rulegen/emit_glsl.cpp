@@ -2,6 +2,7 @@
 #include <sstream>
 
 #include "emit_common.hpp"
+#include "emit_stat_pairs.hpp"
 
 namespace bl::rulegen {
 using sym::Lang;
@@ -57,6 +58,8 @@ void emit_glsl(const sym::Catalog& cat, const std::vector<Derived>& ds, const st
       g << "float " << d.glsl_name() << "_right(float x, float sigma) {\n"
         << body_half_line(d, Lang::Glsl) << "}\n\n";
   }
+  g << "// ---- one-pass (mean, variance) entries (rulegen/emit_stat_pairs.hpp) ----\n\n";
+  for (const StatPair& p : stat_pairs(ds)) g << stat_pair_definition(p, Lang::Glsl);
   write_file(out_dir + "/bandlimit.glsl", g.str());
 }
 

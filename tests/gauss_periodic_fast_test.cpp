@@ -126,7 +126,7 @@ std::vector<double> emitted_sigma_bounds() {
   std::set<double> out;
   const std::regex fn(
       "\\nT gaussian_(fract|fract_sq|square|square_sq|triangle|triangle_sq|floor|floor_sq|ceil|"
-      "ceil_sq|trunc|trunc_sq)_raw\\(");
+      "ceil_sq|trunc|trunc_sq)_raw\\(|\\nstat<T> gaussian_(fract|floor|ceil)_stat\\(");
   const std::regex bound("sigma (<|<=|>=) T\\(([0-9.e+-]+)\\)");
   for (auto it = std::sregex_iterator(all.begin(), all.end(), fn); it != std::sregex_iterator(); ++it) {
     const size_t from = static_cast<size_t>(it->position());
@@ -238,6 +238,78 @@ TEST(GaussPeriodicFast, TruncSqNaNLeavesTheBreakLoop) {
     EXPECT_TRUE(std::isnan(bl::detail::gen::gaussian_trunc_sq<double>(NAN, s))) << s;
     EXPECT_TRUE(std::isnan(bl::detail::gen::gaussian_trunc_sq<float>(NAN, float(s)))) << s;
   }
+}
+
+// The one-pass stat entries (rulegen/emit_stat_pairs.hpp): {E f, Var f} against the same
+// truncated-normal sums for f and f^2, Var = E f^2 - (E f)^2 formed in long double. Bound: the mean
+// as the entries' (tol max(1, |E f|)), the variance within tol max(1, E f^2) (it is a difference of
+// two such values; the compiler shifts floor's argument into [0, 1) so E f^2 stays O(1) there).
+struct StatCase {
+  std::string name;
+  Pieces f, f2;
+  bl::stat<float> (*ef)(float, float);
+  bl::stat<double> (*ed)(double, double);
+  bool huge_x;
+};
+
+std::vector<StatCase> stat_cases() {
+  namespace g = bl::gaussian;
+  auto one = [](LD c0, LD c1, LD c2) { return std::vector<Pc>{{0, 1, c0, c1, c2}}; };
+  return {
+      {"fract_stat", [=](long) { return one(0, 1, 0); }, [=](long) { return one(0, 0, 1); }, g::fract_stat,
+       g::fract_stat, true},
+      {"floor_stat", [=](long m) { return one(m, 0, 0); }, [=](long m) { return one(LD(m) * m, 0, 0); },
+       g::floor_stat, g::floor_stat, false},
+      {"ceil_stat", [=](long m) { return one(m + 1, 0, 0); },
+       [=](long m) { return one(LD(m + 1) * (m + 1), 0, 0); }, g::ceil_stat, g::ceil_stat, false},
+  };
+}
+
+template <class R>
+void check_stat(const StatCase& e, bl::stat<R> (*fn)(R, R), double tol) {
+  int bad = 0;
+  std::vector<R> x_all = xs<R>(e.huge_x);
+  for (R x : {R(7.3), R(-12.5), R(40.7)}) x_all.push_back(x);  // floor away from 0 (E f^2 ~ 1e3)
+  for (R x : x_all)
+    for (R s : sigmas<R>()) {
+      const bl::stat<R> v = fn(x, s);
+      const LD m = reference(e.f, 1, LD(x), LD(s)), m2 = reference(e.f2, 1, LD(x), LD(s));
+      const LD var = m2 - m * m;
+      const double em = std::fabs(double(LD(v.mean) - m)) / std::max(1.0, std::fabs(double(m)));
+      const double ev = std::fabs(double(LD(v.var) - var)) / std::max(1.0, double(m2));
+      if (!(em <= tol && ev <= tol && v.var >= 0) && bad++ < 5)
+        ADD_FAILURE() << e.name << (sizeof(R) == 4 ? " float" : " double") << " x=" << double(x)
+                      << " sigma=" << double(s) << ": {" << double(v.mean) << ", " << double(v.var)
+                      << "} vs {" << double(m) << ", " << double(var) << "}";
+    }
+  EXPECT_EQ(bad, 0) << e.name;
+}
+
+TEST(GaussPeriodicFast, StatEntriesDoubleWithin1e9) {
+  for (const StatCase& e : stat_cases()) check_stat<double>(e, e.ed, 1e-9);
+}
+TEST(GaussPeriodicFast, StatEntriesFloatWithin2e5) {
+  for (const StatCase& e : stat_cases()) check_stat<float>(e, e.ef, 2e-5);
+}
+
+// NaN and negative sigma give NaN moments; NaN x NaN moments; sigma = 0 the plain value, variance 0.
+TEST(GaussPeriodicFast, StatEntriesBadInput) {
+  for (const StatCase& e : stat_cases()) {
+    for (double s : {-1.0, double(NAN)}) {
+      const auto d = e.ed(0.3, s);
+      EXPECT_TRUE(std::isnan(d.mean) && std::isnan(d.var)) << e.name << " sigma " << s;
+      const auto f = e.ef(0.3f, float(s));
+      EXPECT_TRUE(std::isnan(f.mean) && std::isnan(f.var)) << e.name << " sigma " << s;
+    }
+    for (double s : {0.0, 0.01, 0.3, 3.0}) {
+      EXPECT_TRUE(std::isnan(e.ed(NAN, s).mean)) << e.name << " sigma " << s;
+      EXPECT_TRUE(std::isnan(e.ef(NAN, float(s)).mean)) << e.name << " sigma " << s;
+    }
+    const auto z = e.ed(2.25, 0.0);
+    EXPECT_EQ(z.var, 0.0) << e.name;
+  }
+  EXPECT_EQ(bl::gaussian::floor_stat(2.25, 0.0).mean, 2.0);
+  EXPECT_EQ(bl::gaussian::ceil_stat(2.25f, 0.0f).mean, 3.0f);
 }
 
 }  // namespace

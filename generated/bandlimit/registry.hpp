@@ -301,5 +301,16 @@ const Entry<T>* entries(int* count) {
   return e;
 }
 
+template <class T>
+const RuleEntry<T>* stat_entries(int* count) {
+  static const RuleEntry<T> e[] = {
+      {&kAtomics[21], "stat", "gaussian", "one pass", "bl::gaussian::fract_stat", "bl_gaussian_fract_stat", &detail::gen::gaussian_fract_stat<T>},
+      {&kAtomics[25], "stat", "gaussian", "one pass", "bl::gaussian::floor_stat", "bl_gaussian_floor_stat", &detail::gen::gaussian_floor_stat<T>},
+      {&kAtomics[26], "stat", "gaussian", "one pass", "bl::gaussian::ceil_stat", "bl_gaussian_ceil_stat", &detail::gen::gaussian_ceil_stat<T>},
+  };
+  *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
+  return e;
+}
+
 }  // namespace registry
 }  // namespace bl

@@ -173,5 +173,11 @@ T min2(T a, T b) {
   return b < a ? b : a;
 }
 
+// The stat entries' return (their GLSL twin is vec2(mean, var)).
+template <class T>
+stat<T> make_stat(T mean, T var) {
+  return {mean, var};
+}
+
 }  // namespace detail
 }  // namespace bl

@@ -87,6 +87,13 @@ std::vector<Function> build() {
   add_table(d, n, 1, false, [](Function& f, auto fn) { f.f1 = fn; });
   const auto* rc = bl::registry::clamped_rule_entries<float>(&n);
   add_table(rc, n, 2, true, [](Function& f, auto fn) { f.s2 = fn; });
+  const auto* st = bl::registry::stat_entries<float>(&n);
+  add_table(st, n, 2, true, [](Function& f, auto fn) { f.s2 = fn; });
+  for (int i = 0; i < n; ++i) {
+    const std::string name = st[i].cpp, mean = name.substr(0, name.size() - 5);  // less "_stat"
+    if (!seen.count(mean)) throw std::logic_error("generated table: " + name + " without " + mean);
+    out[seen.at(name)].mean_entry = seen.at(mean);
+  }
   return out;
 }
 
@@ -113,6 +120,10 @@ std::string plain_name(const std::string& atomic) {
 
 std::string kernel_name(const std::string& kernel, const std::string& atomic, bool squared) {
   return "bl::" + kernel + "::" + atomic + (squared ? "_sq" : "");
+}
+
+std::string stat_name(const std::string& kernel, const std::string& atomic) {
+  return "bl::" + kernel + "::" + atomic + "_stat";
 }
 
 }  // namespace bl::compiler

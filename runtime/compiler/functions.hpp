@@ -14,6 +14,9 @@ struct Function {
   std::string glsl;   // GLSL name
   int arity = 1;      // 1..6 float arguments
   bool stat = false;  // returns bl::stat<float> / vec2 (mean, var)
+  // A one-pass stat entry (bl::gaussian::fract_stat): the index of its mean's own entry
+  // (bl::gaussian::fract), which a program calls instead when it reads no variance; else -1.
+  int mean_entry = -1;
   // Exactly one pointer is set, by arity and stat.
   float (*f1)(float) = nullptr;
   float (*f2)(float, float) = nullptr;
@@ -30,5 +33,7 @@ int find_function(const std::string& cpp_name);  // -1 when the table has no suc
 std::string plain_name(const std::string& atomic);  // bl::plain::sin
 std::string kernel_name(const std::string& kernel, const std::string& atomic,
                         bool squared);  // bl::gaussian::sin_sq
+// {E f, Var f} from one pass (rulegen/emit_stat_pairs.hpp): bl::gaussian::fract_stat.
+std::string stat_name(const std::string& kernel, const std::string& atomic);
 
 }  // namespace bl::compiler

@@ -200,8 +200,8 @@ CostModel calibrate_evaluator(const CalibrationOptions& opt,
     Inst inst;
     inst.op = fns[f].stat ? LOp::CallStat : LOp::Call;
     inst.fn = static_cast<int>(f);
-    // Stat rules take (mean, variance) pairs; kernel functions take (x, sd).
-    const auto a = calibration_args(fns[f].arity, fns[f].stat);
+    // Stat rules take (mean, variance) pairs; kernel and stat entries take (x, sd).
+    const auto a = calibration_args(fns[f].arity, fns[f].stat && !CostModel::sigma_entry(fns[f]));
     for (std::size_t j = 0; j < a.size(); ++j) inst.arg[j] = a[j];
     const double ns = time_inst(base, inst, -1, in, opt);
     m.fn_ns[fns[f].cpp] = ns;

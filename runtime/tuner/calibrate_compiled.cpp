@@ -135,7 +135,7 @@ std::string source(const std::vector<int>& fns) {
   const auto& all = compiler::functions();
   for (int f : fns) {
     const compiler::Function& F = all[f];
-    const std::vector<int> args = calibration_args(F.arity, F.stat);
+    const std::vector<int> args = calibration_args(F.arity, F.stat && !CostModel::sigma_entry(F));
     os << "// " << F.cpp << "\n";
     if (F.stat)
       kernel_def(os, "bl_fn" + std::to_string(f),
@@ -343,14 +343,14 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
   for (int f : fns) {
     const compiler::Function& F = all[f];
     const std::string sym = "bl_fn" + std::to_string(f);
-    const int inputs = distinct(calibration_args(F.arity, F.stat));
+    const int inputs = distinct(calibration_args(F.arity, F.stat && !CostModel::sigma_entry(F)));
     const double alone = time(sym, in, main_opt);
     record(F.cpp, net(alone, inputs), true);
     // Spill: the call among kSpillVals live values, less the call alone and the values alone.
     const double among = time("bl_sp" + std::to_string(f), in, main_opt);
     m.fn_spill_ns[F.cpp] = std::max(0.0, (among - alone - (sp_base - loop)) / kSpillVals);
     double lat = time("bl_lat" + std::to_string(f), in, main_opt);
-    if (calibration_args(F.arity, F.stat).size() >= 2)
+    if (calibration_args(F.arity, F.stat && !CostModel::sigma_entry(F)).size() >= 2)
       lat = std::max(lat, time("bl_lat" + std::to_string(f) + "_1", in, main_opt));
     m.fn_lat_ns[F.cpp] = std::max(0.01, lat - lat_base);
     // The pair's extra over its f entry alone (both kernels read the same inputs).
@@ -363,7 +363,7 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
     }
     if (CostModel::atomic_of(F.cpp).empty()) continue;
     std::vector<double> per;
-    if (F.arity == 2 && !F.stat) {  // kernel entry f(x, sigma): every (|x|, sigma) band pair
+    if (CostModel::sigma_entry(F)) {  // kernel or stat entry f(x, sigma): every (|x|, sigma) band pair
       for (const Arrays& a : joint) per.push_back(net(time(sym, a, band_opt), inputs));
     } else {
       per.push_back(m.fn_ns[F.cpp]);

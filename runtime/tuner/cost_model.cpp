@@ -87,12 +87,18 @@ std::string CostModel::atomic_of(const std::string& cpp) {
     if (cpp.rfind(prefix, 0) != 0) continue;
     std::string a = cpp.substr(prefix.size());
     // f^2 entries: "fract_sq" is fract's (an atomic named *_sq would have a plain entry of that name)
-    if (a.size() > 3 && a.compare(a.size() - 3, 3, "_sq") == 0 &&
-        compiler::find_function("bl::plain::" + a) < 0)
-      a.resize(a.size() - 3);
+    for (const std::string suffix : {"_sq", "_stat"})  // f^2 and {E f, Var f} entries: f's
+      if (a.size() > suffix.size() && a.compare(a.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+          compiler::find_function("bl::plain::" + a) < 0)
+        a.resize(a.size() - suffix.size());
     return a;
   }
   return "";
+}
+
+bool CostModel::sigma_entry(const compiler::Function& f) {
+  if (f.arity != 2 || f.cpp.rfind("bl::plain::", 0) == 0 || atomic_of(f.cpp).empty()) return false;
+  return !f.stat || (f.cpp.size() > 5 && f.cpp.compare(f.cpp.size() - 5, 5, "_stat") == 0);
 }
 
 int CostModel::square_sibling(int fn) {

@@ -29,8 +29,12 @@ struct CostModel {
   static int sigma_band_of(double sigma);
   static double sigma_band_scale(int band);
   // The atomic whose argument a function's first parameter is ("fract" for bl::plain::fract,
-  // bl::gaussian::fract and bl::box::fract_sq), "" for rule functions (their arguments are moments).
+  // bl::gaussian::fract, bl::box::fract_sq and bl::gaussian::fract_stat), "" for rule functions
+  // (their arguments are moments).
   static std::string atomic_of(const std::string& cpp_name);
+  // A kernel entry f(x, sigma) or a one-pass stat entry f_stat(x, sigma): timed and profiled over
+  // the (|x|, sigma) bands (rule functions take (mean, sd) of their own kind).
+  static bool sigma_entry(const compiler::Function& f);
 
   std::string machine;              // CPU model string the numbers were measured on
   std::string method = "compiled";  // "compiled" (-O3 via bl::jit) or "evaluator" (fallback)

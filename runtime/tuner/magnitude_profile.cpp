@@ -60,10 +60,10 @@ std::map<std::string, std::vector<double>> joint_profile(const compiler::Program
   q.outputs.clear();
   q.output_names.clear();
   for (const compiler::Inst& in : smoothed.insts) {
-    if (in.op != compiler::LOp::Call) continue;
+    if (in.op != compiler::LOp::Call && in.op != compiler::LOp::CallStat) continue;
     const compiler::Function& f = compiler::functions()[in.fn];
+    if (!CostModel::sigma_entry(f)) continue;
     const std::string a = CostModel::atomic_of(f.cpp);
-    if (a.empty() || f.arity != 2 || f.stat || f.cpp.rfind("bl::plain::", 0) == 0) continue;
     q.outputs.push_back(in.arg[0]);
     q.outputs.push_back(in.arg[1]);
     q.output_names.push_back(a + ".x");

@@ -235,6 +235,36 @@ TEST(Compiler, IndicatorVarianceIsMeanTimesOneMinusMean) {
   EXPECT_EQ(n_ind, 3);  // step, square, pulse30
 }
 
+// A Gaussian fract node whose variance a later rule reads takes both moments from the one-pass
+// entry bl::gaussian::fract_stat (no fract_sq call); one whose variance nothing reads calls
+// bl::gaussian::fract alone. Values: the closed form of sin(3 F), F ~ (m, v) with m and v from the
+// separate double entries fract and fract_sq (another emitted plan than the stat entry's).
+TEST(Compiler, StatEntryServesMeanAndVarianceTogether) {
+  auto names = [](const compiler::Program& p) {
+    std::set<std::string> out;
+    for (int fi : p.used_functions()) out.insert(compiler::functions()[static_cast<std::size_t>(fi)].cpp);
+    return out;
+  };
+  const ir::Graph g = one_input([](dsl::Var u) { return dsl::sin(dsl::fract(u) * 3.0); });
+  const compiler::Program p =
+      compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
+  EXPECT_TRUE(names(p).count("bl::gaussian::fract_stat"));
+  EXPECT_FALSE(names(p).count("bl::gaussian::fract_sq"));
+  EXPECT_FALSE(names(p).count("bl::gaussian::fract"));
+  for (float mu : {-0.3f, 0.0f, 0.05f, 0.4f, 7.99f})
+    for (float s : {0.01f, 0.2f, 1.0f}) {
+      const double m = bl::gaussian::fract(double(mu), double(s));
+      const double v = bl::gaussian::fract_sq(double(mu), double(s)) - m * m;
+      EXPECT_NEAR(run1(g, "gaussian", mu, s), std::exp(-9 * v / 2) * std::sin(3 * m), 2e-6) << mu << " " << s;
+    }
+  const ir::Graph mean_only = one_input([](dsl::Var u) { return dsl::fract(u); });
+  const compiler::Program q =
+      compiler::lower(mean_only, compiler::uniform_schedule(mean_only, rules::parse_rule("gaussian")));
+  EXPECT_TRUE(names(q).count("bl::gaussian::fract"));
+  EXPECT_FALSE(names(q).count("bl::gaussian::fract_stat"));
+  EXPECT_NEAR(run1(mean_only, "gaussian", 0.95f, 0.1f), bl::gaussian::fract(0.95, 0.1), 1e-6);
+}
+
 TEST(Compiler, DeadCodeIsRemoved) {
   const auto count = [](const compiler::Program& p, compiler::LOp op) {
     int n = 0;

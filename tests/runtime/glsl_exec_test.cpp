@@ -149,6 +149,59 @@ TEST(GlslExec, GaussianPeriodicStraightLine) {
   EXPECT_GT(checked, 2000);
 }
 
+// The one-pass stat entries' GLSL ({E f, Var f} as vec2, rulegen/emit_stat_pairs.hpp, two channels
+// of the same straight-line plan) against the C++ double stat entries: mean within 2e-5 max(1, |E f|),
+// variance within 2e-5 max(1, E f^2), at and beside the breaks, across the plans' hand-overs (the
+// emitted comments: 0.09 / 0.18 for fract and floor) and at the generic fallback (sigma 1e-31).
+TEST(GlslExec, GaussianStatEntries) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  int n = 0;
+  const auto* e = bl::registry::stat_entries<double>(&n);
+  ASSERT_GE(n, 3);
+  const std::vector<float> xs = {-1000.25f, -3.75f, -1.0f,  -1e-6f, 0.0f,  1e-6f,
+                                 0.25f,     0.5f,   0.999f, 1.0f,   2.75f, 37.5f};
+  const std::vector<float> ss = {1e-31f, 1e-6f, 1e-3f, 0.05f, 0.09f, 0.093f, 0.15f, 0.18f,
+                                 0.19f,  0.24f, 0.25f, 0.33f, 0.5f,  1.0f,   3.0f,  30.0f};
+  const int nx = static_cast<int>(xs.size()), ns = static_cast<int>(ss.size());
+  auto list = [](const std::vector<float>& v) {
+    std::ostringstream o;
+    o.precision(9);
+    for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << std::showpoint << v[i];
+    return o.str();
+  };
+  std::vector<std::string> fns;
+  std::string calls;
+  for (int r = 0; r < n; ++r) {
+    fns.push_back(e[r].glsl);
+    calls += "  " + std::string(r ? "else " : "") + "if (row == " + std::to_string(r) + ") v = " + e[r].glsl +
+             "(x, s);\n";
+  }
+  const std::string src = "#version 450\n" + compiler::glsl_library_slice(fns) + "const float xs[" +
+                          std::to_string(nx) + "] = float[](" + list(xs) + ");\nconst float ss[" +
+                          std::to_string(ns) + "] = float[](" + list(ss) +
+                          ");\nout vec4 o;\nvoid main() {\n  int k = int(gl_FragCoord.x), row = "
+                          "int(gl_FragCoord.y);\n  float x = xs[k % " +
+                          std::to_string(nx) + "], s = ss[k / " + std::to_string(nx) +
+                          "];\n  vec2 v = vec2(0.0);\n" + calls + "  o = vec4(v, 0.0, 1.0);\n}\n";
+  const gl::Program prog = ctx.compile(src);
+  const std::vector<float> px = ctx.render(prog, nx * ns, n);
+  int checked = 0;
+  for (int r = 0; r < n; ++r)
+    for (int k = 0; k < nx * ns; ++k) {
+      const float x = xs[k % nx], s = ss[k / nx];
+      const bl::stat<double> want = e[r].fn(x, s);
+      const double m2 = want.var + want.mean * want.mean;
+      const std::size_t at = 4 * (static_cast<std::size_t>(r) * nx * ns + k);
+      EXPECT_NEAR(px[at], want.mean, 2e-5 * std::max(1.0, std::fabs(want.mean)))
+          << fns[r] << " x=" << x << " s=" << s;
+      EXPECT_NEAR(px[at + 1], want.var, 2e-5 * std::max(1.0, m2)) << fns[r] << " x=" << x << " s=" << s;
+      ++checked;
+    }
+  EXPECT_EQ(checked, n * nx * ns);
+}
+
 // The Gaussian piecewise entries' GLSL (straight-line per break, the piece table built only for
 // sigma = 0 and the generic wide-kernel code) against the C++ double table: at and beside the breaks
 // (0, +-1 for saturate/smoothstep), far out, and across the hand-over to the generic code at the
