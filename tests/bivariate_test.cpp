@@ -180,6 +180,44 @@ TEST(Rule2, LogModeIsTheQuadraticRoot) {
     }
 }
 
+// Rule 2 in float (closed forms run in float where the variance's factors are in float's range,
+// the rest in double) against the double entry at the same float inputs, over hard inputs: mu at 0,
+// tiny, huge and both signs, sigma from 0 to 1e6. Bound: blverify's float bound 2e-5 (mean relative
+// to max(1, |mean|), variance relative to itself where it is a normal float); NaN where double has it.
+TEST(Rule2, FloatWithin2e5OfDouble) {
+  int nr = 0;
+  const auto* rd = bl::registry::rule2_entries<double>(&nr);
+  const auto* rf = bl::registry::rule2_entries<float>(&nr);
+  std::vector<float> mus = {0.0f};
+  for (float m : {1e-30f, 1e-6f, 0.01f, 0.3f, 0.999f, 1.0f, 1.57f, 3.0f, 30.0f, 1e3f, 1e5f, 1e10f}) {
+    mus.push_back(m);
+    mus.push_back(-m);
+  }
+  const std::vector<float> sigmas = {0.0f, 1e-30f, 1e-12f, 1e-6f, 1e-3f, 0.05f,
+                                     0.3f, 1.0f,   3.0f,   30.0f, 1e3f,  1e6f};
+  for (int i = 0; i < nr; ++i) {
+    int bad = 0, compared = 0;
+    for (float mu : mus)
+      for (float s : sigmas) {
+        const bl::stat<double> d = rd[i].fn(mu, s);
+        const bl::stat<float> f = rf[i].fn(mu, s);
+        if (std::isnan(d.mean) || std::isnan(d.var)) {
+          bad += !(std::isnan(f.mean) || std::isnan(f.var));
+          continue;
+        }
+        bool ok =
+            std::fabs(f.mean - d.mean) <= 2e-5 * std::max(1.0, std::fabs(d.mean)) || std::fabs(d.mean) > 3e38;
+        if (d.var >= 1e-37 && d.var <= 3e38) ok &= std::fabs(f.var - d.var) <= 2e-5 * d.var;
+        ++compared;
+        if (!ok && bad++ < 4)
+          ADD_FAILURE() << rd[i].cpp << " mu=" << mu << " sigma=" << s << ": float {" << f.mean << ", "
+                        << f.var << "} double {" << d.mean << ", " << d.var << "}";
+      }
+    EXPECT_EQ(bad, 0) << rd[i].cpp;
+    EXPECT_GT(compared, 100) << rd[i].cpp;
+  }
+}
+
 TEST(Rules, FloatAndDoubleAgreeAndRegistriesAreComplete) {
   int nb = 0, nr = 0, nbf = 0, nrf = 0;
   const auto* bd = bl::registry::binary_entries<double>(&nb);
