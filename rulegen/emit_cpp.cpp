@@ -205,9 +205,11 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
   }
   r << "  };\n  *count = static_cast<int>(sizeof(e) / sizeof(e[0]));\n  return e;\n}\n\n";
   // The one-pass (mean, variance) entries (emit_stat_pairs.hpp).
-  r << "template <class T>\nconst RuleEntry<T>* stat_entries(int* count) {\n  static const RuleEntry<T> e[] "
-       "= "
-       "{\n";
+  r << "template <class T>\nconst RuleEntry<T>* stat_entries(int* count) {\n";
+  if (pairs.empty())  // no zero-length array
+    r << "  *count = 0;\n  return nullptr;\n}\n\n}  // namespace registry\n}  // namespace bl\n";
+  if (pairs.empty()) return write_file(out_dir + "/bandlimit/registry.hpp", r.str());
+  r << "  static const RuleEntry<T> e[] = {\n";
   for (const StatPair& p : pairs) {
     size_t ai = 0;
     for (size_t i = 0; i < cat.atomics.size(); ++i)

@@ -1,5 +1,6 @@
 // blverify: verifies every entry of a generated table (any tree `rulegen emit` wrote, without
-// rebuilding blverify: tree_loader.hpp) against independent quadrature references, and (--published) the published tables of Dorn et al. 2015 and Yang & Barnes 2018.
+// rebuilding blverify: tree_loader.hpp) against independent quadrature references, and (--published) the
+// published tables of Dorn et al. 2015 and Yang & Barnes 2018.
 //
 //   blverify [--generated DIR] [--record] [--only NAME]... [--threads N] [--report FILE.md] [--verbose]
 //   blverify --published [--report FILE.md]
@@ -7,7 +8,6 @@
 // stdout is deterministic (registry order, errors rounded to 2 digits); progress and the total
 // time go to stderr. Exit status: 0 all pass, 1 an entry failed (named on stderr), 2 usage/setup.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -22,9 +22,10 @@
 #include "manifest_record.hpp"
 #include "published_tables.hpp"
 #include "reference_mp.hpp"
-#include "rules_check.hpp"
 #include "registry_view.hpp"
 #include "report.hpp"
+#include "rules_check.hpp"
+#include "stat_check.hpp"
 #include "tree_loader.hpp"
 #include "verify_entry.hpp"
 
@@ -59,10 +60,11 @@ int main(int argc, char** argv) {
   bool record = false, published = false, verbose = false, no_mp = false;
   std::vector<std::string> only;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  app.add_option("--generated", generated,
-                 "generated tree to verify (any `rulegen emit` output): its manifest.json is read (and written by "
-                 "--record); its registry is the plugin CMake built when the tree is the one blverify was built "
-                 "against, else compiled at run time and cached by content hash (tree_loader.hpp)");
+  app.add_option(
+      "--generated", generated,
+      "generated tree to verify (any `rulegen emit` output): its manifest.json is read (and written by "
+      "--record); its registry is the plugin CMake built when the tree is the one blverify was built "
+      "against, else compiled at run time and cached by content hash (tree_loader.hpp)");
   app.add_flag("--record", record, "write each entry's verification record into manifest.json");
   app.add_option("--only", only, "verify only entries whose C++ name or atomic matches (repeatable)");
   app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1u, 256u));
@@ -71,7 +73,8 @@ int main(int argc, char** argv) {
   app.add_flag("--verbose", verbose, "details for every entry");
   app.add_flag("--no-mp", no_mp, "no 50-digit references (faster, for development)");
   bool rules_only = false;
-  app.add_flag("--rules-only", rules_only, "only the checks of the bivariate rules and Rule 2 (rules_check.hpp)");
+  app.add_flag("--rules-only", rules_only,
+               "only the checks of the bivariate rules and Rule 2 (rules_check.hpp)");
   CLI11_PARSE(app, argc, argv);
   {
     std::string why;
@@ -177,8 +180,17 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "blverify: recorded %zu entries in %s\n", out.size(), manifest.c_str());
     }
   }
-  if (only.empty() && blv::rules_compiled_in()) rc = blv::run_rule_checks(manifest, record, rc);  // issue 3 rules
+  if (only.empty() && blv::rules_compiled_in())
+    rc = blv::run_rule_checks(manifest, record, rc);                                 // issue 3 rules
   if (only.empty()) rc = std::max(rc, blv::clamped::run(manifest, record, stdout));  // rules_clamped.hpp
+  if (only.empty()) {  // the one-pass stat entries (rulegen/emit_stat_pairs.hpp)
+    const std::vector<blv::StatView> stats = blv::load_stats(&error);
+    if (!error.empty()) {
+      std::fprintf(stderr, "blverify: %s\n", error.c_str());
+      rc = std::max(rc, 2);
+    }
+    rc = std::max(rc, blv::run_stat_checks(entries, stats, opt, stdout));
+  }
   std::fprintf(stderr, "blverify: %zu entries in %.1f s (%u threads)\n", out.size(),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), n);
   return rc;

@@ -14,7 +14,9 @@
 
 namespace blv {
 
-bool registry_compiled_in() { return BLV_HAVE_REGISTRY != 0; }
+bool registry_compiled_in() {
+  return BLV_HAVE_REGISTRY != 0;
+}
 
 #if BLV_HAVE_REGISTRY
 std::vector<EntryView> load_registry(std::string* error) {
@@ -23,7 +25,8 @@ std::vector<EntryView> load_registry(std::string* error) {
   const bl::registry::Entry<double>* ed = bl::registry::entries<double>(&nd);
   const bl::registry::Entry<float>* ef = bl::registry::entries<float>(&nf);
   if (nd != nf) {
-    *error = "registry: " + std::to_string(nd) + " double entries but " + std::to_string(nf) + " float entries";
+    *error =
+        "registry: " + std::to_string(nd) + " double entries but " + std::to_string(nf) + " float entries";
     return out;
   }
   for (int i = 0; i < nd; ++i) {
@@ -33,7 +36,8 @@ std::vector<EntryView> load_registry(std::string* error) {
     v.index = i;
     v.cpp = d.cpp ? d.cpp : "";
     if (!f.cpp || v.cpp != f.cpp) {
-      *error = "registry entry " + std::to_string(i) + " (" + v.cpp + ") differs between the float and double instantiations";
+      *error = "registry entry " + std::to_string(i) + " (" + v.cpp +
+               ") differs between the float and double instantiations";
       return {};
     }
     v.glsl = d.glsl ? d.glsl : "";
@@ -71,9 +75,44 @@ std::vector<EntryView> load_registry(std::string* error) {
   }
   return out;
 }
+std::vector<StatView> load_stats(std::string* error) {
+  std::vector<StatView> out;
+  int nd = 0, nf = 0;
+  const bl::registry::RuleEntry<double>* sd = bl::registry::stat_entries<double>(&nd);
+  const bl::registry::RuleEntry<float>* sf = bl::registry::stat_entries<float>(&nf);
+  if (nd != nf) {
+    *error = "registry: " + std::to_string(nd) + " double stat entries but " + std::to_string(nf) + " float";
+    return {};
+  }
+  for (int i = 0; i < nd; ++i) {
+    StatView v;
+    v.cpp = sd[i].cpp;
+    const std::string base = v.cpp.substr(0, v.cpp.size() - 5);  // less "_stat"
+    v.f_cpp = base;
+    v.f2_cpp = base + "_sq";
+    auto fd = sd[i].fn;
+    auto ff = sf[i].fn;
+    v.eval_d = [fd](double x, double s, double* m, double* var) {
+      const bl::stat<double> r = fd(x, s);
+      *m = r.mean, *var = r.var;
+    };
+    v.eval_f = [ff](float x, float s, float* m, float* var) {
+      const bl::stat<float> r = ff(x, s);
+      *m = r.mean, *var = r.var;
+    };
+    out.push_back(std::move(v));
+  }
+  return out;
+}
 #else
+std::vector<StatView> load_stats(std::string* error) {
+  *error = "blverify was built without generated/bandlimit/registry.hpp";
+  return {};
+}
 std::vector<EntryView> load_registry(std::string* error) {
-  *error = "blverify was built without generated/bandlimit/registry.hpp: run `rulegen emit`, then rebuild (cmake --build build)";
+  *error =
+      "blverify was built without generated/bandlimit/registry.hpp: run `rulegen emit`, then rebuild (cmake "
+      "--build build)";
   return {};
 }
 #endif

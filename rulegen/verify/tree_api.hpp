@@ -14,7 +14,7 @@
 namespace blv {
 
 // Bumped whenever TreeApi or the types it passes change (a cached plugin of another ABI is rebuilt).
-constexpr int kTreeAbi = 2;
+constexpr int kTreeAbi = 3;
 
 struct TreeApi {
   int abi;
@@ -28,6 +28,7 @@ struct TreeApi {
   std::vector<RuleCheck> (*check_bivariate)();
   std::vector<RuleCheck> (*check_rule2)();
   int (*clamped_run)(const std::string& manifest_path, bool record, std::FILE* out);
+  std::vector<StatView> (*load_stats)(std::string* error);
 };
 
 }  // namespace blv

@@ -125,6 +125,13 @@ std::vector<EntryView> load_registry(std::string* error) {
   }
   return g_api->load_registry(error);
 }
+std::vector<StatView> load_stats(std::string* error) {
+  if (!g_api) {
+    *error = "no generated tree loaded (--generated DIR)";
+    return {};
+  }
+  return g_api->load_stats(error);
+}
 bool mp_registry_matches(const std::vector<EntryView>& entries, std::string* error) {
   return g_api && g_api->mp_registry_matches(entries, error);
 }

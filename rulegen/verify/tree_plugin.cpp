@@ -11,6 +11,6 @@ extern "C" __attribute__((visibility("default"))) const blv::TreeApi* blv_tree_a
   static const blv::TreeApi api{blv::kTreeAbi,       BLVERIFY_TREE_HASH,        &blv::registry_compiled_in,
                                 &blv::load_registry, &blv::mp_registry_matches, &blv::mp_warm_up,
                                 &blv::mp_check,      &blv::rules_compiled_in,   &blv::check_bivariate,
-                                &blv::check_rule2,   &blv::clamped::run};
+                                &blv::check_rule2,   &blv::clamped::run,        &blv::load_stats};
   return &api;
 }

@@ -44,16 +44,16 @@ std::string at(double x, double s) {
   return buf;
 }
 
-// Double cannot decide the reference to well within `bound` when the quadrature's own error
-// estimate is large (1e-12 for the double bound, as specified), when cancellation makes its rounding
-// error large (eps * integral of |integrand|), or when g moves too much under one ulp of its
-// argument (next to a pole whose position is not a double).
+}  // namespace
+
 bool undecided(const Ref& r, double bound) {
   const double m = std::fmax(1.0, std::fabs(r.value));
   const double est = bound <= 1e-9 ? 1e-12 : bound * 1e-2;
   const double tol = bound * 1e-2;
   return !(r.err <= est * m) || !(4 * DBL_EPSILON * r.l1 <= tol * m) || !(r.sens <= tol * m);
 }
+
+namespace {
 
 struct Checker {
   const EntryView& e;
@@ -94,7 +94,8 @@ std::set<std::pair<double, double>> mp_selection(const Spec& sp, bool moment) {
     for (auto p : {std::pair<double, double>{b + 1e-9, 1e-8}, {b - 1e-4, 1e-4}, {b, 0.01}})
       if (sp.in_domain(p.first) && sp.singular_distance(p.first) > 0) sel.insert(p);
   }
-  const std::pair<double, double> ordinary[] = {{0.25, 0.3}, {-1.5, 1}, {3.7, 0.1}, {1.5, 0.01}, {0.5, 3}, {10, 1}};
+  const std::pair<double, double> ordinary[] = {{0.25, 0.3}, {-1.5, 1}, {3.7, 0.1},
+                                                {1.5, 0.01}, {0.5, 3},  {10, 1}};
   int n = 0;
   for (auto p : ordinary) {
     if (n >= 2) break;
@@ -123,7 +124,8 @@ EntryResult verify_entry(const EntryView& e, const VerifyOptions& opt) {
   const bool moment = e.rule == "moment";
 
   if (!e.kernel_known) ck.problem("unknown kernel '" + e.kernel + "'");
-  if (e.compact && e.spec.kernel == Kernel::Gaussian) ck.problem("compact flag on a Gaussian entry: not defined");
+  if (e.compact && e.spec.kernel == Kernel::Gaussian)
+    ck.problem("compact flag on a Gaussian entry: not defined");
   if (!e.smoothed_d || !e.smoothed_f || !e.spec.plain) ck.problem("missing function pointer");
   if (res.problem_count) {
     res.status = "fail";
@@ -147,10 +149,13 @@ EntryResult verify_entry(const EntryView& e, const VerifyOptions& opt) {
         return edge ? !(std::isnan(v) || v == sp.g(xx)) : !std::isnan(v);
       };
       double v = e.smoothed_d(x, s);
-      if (bad(x, v)) ck.problem("returns " + std::to_string(v) + " outside the domain (expected NaN)" + at(x, s));
+      if (bad(x, v))
+        ck.problem("returns " + std::to_string(v) + " outside the domain (expected NaN)" + at(x, s));
       if (!sp.in_domain(xf)) {
         float vf = e.smoothed_f(xf, sf);
-        if (bad(xf, vf)) ck.problem("float returns " + std::to_string(vf) + " outside the domain (expected NaN)" + at(xf, sf));
+        if (bad(xf, vf))
+          ck.problem("float returns " + std::to_string(vf) + " outside the domain (expected NaN)" +
+                     at(xf, sf));
       }
       continue;
     }
@@ -170,7 +175,8 @@ EntryResult verify_entry(const EntryView& e, const VerifyOptions& opt) {
     // 50 digits help with precision, not with resolution: when double quadrature did not even
     // converge to 1e-8 of its own scale (an oscillation it cannot resolve), Gauss-Kronrod would
     // grind to its depth.
-    const bool converged = r.err <= 1e-8 * std::fmax(r.l1, std::fmax(1.0, std::fabs(r.value)));  // vs its own scale
+    const bool converged =
+        r.err <= 1e-8 * std::fmax(r.l1, std::fmax(1.0, std::fabs(r.value)));  // vs its own scale
     bool have_mp = false;
     if (opt.use_mp && (selected || undec) && converged) {
       if (res.mp_points >= opt.mp_cap) {
@@ -199,7 +205,8 @@ EntryResult verify_entry(const EntryView& e, const VerifyOptions& opt) {
     double v = e.smoothed_d(x, s);
     if (!std::isfinite(v)) {
       ++res.points;
-      ck.problem("double result " + std::to_string(v) + " where the reference is " + std::to_string(ref) + at(x, s));
+      ck.problem("double result " + std::to_string(v) + " where the reference is " + std::to_string(ref) +
+                 at(x, s));
     } else {
       double rel = std::fabs(v - ref) / std::fmax(1.0, std::fabs(ref));
       if (undec && !have_mp && rel > opt.bound_double) {
@@ -251,7 +258,8 @@ EntryResult verify_entry(const EntryView& e, const VerifyOptions& opt) {
     ++res.float_points;
     float vf = e.smoothed_f(xf, sf);
     if (!std::isfinite(vf)) {
-      ck.problem("float result " + std::to_string(vf) + " where the reference is " + std::to_string(rf) + at(xf, sf));
+      ck.problem("float result " + std::to_string(vf) + " where the reference is " + std::to_string(rf) +
+                 at(xf, sf));
     } else {
       double rel = std::fabs(static_cast<double>(vf) - rf) / std::fmax(1.0, std::fabs(rf));
       if (rel > opt.bound_float) ++res.over_float;
