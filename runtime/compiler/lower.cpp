@@ -256,6 +256,14 @@ class Lowering {
     const int inv_n = k(1.0f / static_cast<float>(r.samples));
     Val v;
     v.mean = mul(sum, inv_n);
+    if (ys.size() == 2) {
+      // ((y0 - m)^2 + (y1 - m)^2) / 2 = ((y0 - y1) / 2)^2: one difference, and the sd |y0 - y1| / 2
+      // without a sqrt where a later rule reads it.
+      const int d = mul(sub(ys[0], ys[1]), k(0.5f));
+      v.var = sq(d);
+      v.sd = absolute(d);
+      return v;
+    }
     // The sample variance from deviations, not E[y^2] - E[y]^2: that cancels in float for a value
     // far from 0 (y ~ 25, sd 1e-5 reported sd ~ 6e-3; found by the convergence test on value noise).
     int dev = -1;

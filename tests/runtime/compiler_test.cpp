@@ -203,6 +203,10 @@ TEST(Compiler, SingleNodeRulesAgreeWithClosedForms) {
   // Monte Carlo with antithetic samples is exact on a linear node; "none" is the plain value.
   const ir::Graph g_lin = one_input([](dsl::Var u) { return u * 3.0 + 1.0; });
   EXPECT_NEAR(run1(g_lin, "mc4", 0.25f, 0.3f), 1.75, 1e-6);
+  // mc2: samples at mean +- sd (antithetic, moment-matched): the linear node's sd 3 s is |y0 - y1| / 2,
+  // which sin's samples read: sin(3 mu + 1 +- 3 s) average to sin(3 mu + 1) cos(3 s).
+  const ir::Graph g_lin_sin = one_input([](dsl::Var u) { return dsl::sin(u * 3.0 + 1.0); });
+  EXPECT_NEAR(run1(g_lin_sin, "mc2", 0.25f, 0.3f), std::sin(1.75) * std::cos(0.9), 1e-6);
   EXPECT_NEAR(run1(g_sin, "none", 0.25f, 0.3f), std::sin(0.75), 1e-6);
 }
 
