@@ -64,6 +64,30 @@ TEST(GlslExec, MatchesTheCppRenderer) {
 // atomics: the GLSL print of the same description as the C++ one, executed, against the double
 // table, at and beside breaks, on both sides of the periodic reduction's sign and across the
 // hand-over widths (tent: the wide regime from sigma = 0.82).
+// One fragment shader for a grid of calls: row r calls fns[r](x, s), pixel k of it at (xs[k % nx],
+// ss[k / nx]); `value` is the call's GLSL type ("float" or "vec2") and `out` the vec4 written.
+std::string grid_shader(const std::vector<std::string>& fns, const std::vector<float>& xs,
+                        const std::vector<float>& ss, const std::string& value, const std::string& out) {
+  auto list = [](const std::vector<float>& v) {
+    std::ostringstream o;
+    o.precision(9);
+    for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << std::showpoint << v[i];
+    return o.str();
+  };
+  const std::string nx = std::to_string(xs.size());
+  std::string calls;
+  for (std::size_t r = 0; r < fns.size(); ++r)
+    calls += "  " + std::string(r ? "else " : "") + "if (row == " + std::to_string(r) + ") v = " + fns[r] +
+             "(x, s);\n";
+  return "#version 450\n" + compiler::glsl_library_slice(fns) + "const float xs[" + nx + "] = float[](" +
+         list(xs) + ");\nconst float ss[" + std::to_string(ss.size()) + "] = float[](" + list(ss) +
+         ");\nout vec4 o;\nvoid main() {\n  int k = int(gl_FragCoord.x), row = int(gl_FragCoord.y);\n  float "
+         "x = "
+         "xs[k % " +
+         nx + "], s = ss[k / " + nx + "];\n  " + value + " v = " + value + "(0.0);\n" + calls +
+         "  o = " + out + ";\n}\n";
+}
+
 // Runs every registry entry of `kernels` and `names` (convolutions of f and f^2) in GLSL at every
 // (x, sigma) of the grid, one shader and one draw (compiling per entry took 20 s on llvmpipe: row r
 // evaluates entry r, pixel k of it (xs[k % nx], ss[k / nx])), against the C++ double table.
@@ -75,12 +99,6 @@ int check_entries(gl::Context& ctx, const std::vector<std::string>& kernels,
   const auto* e = bl::registry::entries<double>(&n);
   int checked = 0;
   const int nx = static_cast<int>(xs.size()), ns = static_cast<int>(ss.size());
-  auto list = [](const std::vector<float>& v) {
-    std::ostringstream o;
-    o.precision(9);
-    for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << std::showpoint << v[i];
-    return o.str();
-  };
   std::vector<int> picked;
   std::vector<std::string> fns;
   for (int i = 0; i < n; ++i) {
@@ -91,18 +109,7 @@ int check_entries(gl::Context& ctx, const std::vector<std::string>& kernels,
     fns.push_back(e[i].glsl);
   }
   const int rows = static_cast<int>(picked.size());
-  std::string calls;
-  for (int r = 0; r < rows; ++r)
-    calls += "  " + std::string(r ? "else " : "") + "if (row == " + std::to_string(r) + ") v = " + fns[r] +
-             "(x, s);\n";
-  const std::string src = "#version 450\n" + compiler::glsl_library_slice(fns) + "const float xs[" +
-                          std::to_string(nx) + "] = float[](" + list(xs) + ");\nconst float ss[" +
-                          std::to_string(ns) + "] = float[](" + list(ss) +
-                          ");\nout vec4 o;\nvoid main() {\n  int k = int(gl_FragCoord.x), row = "
-                          "int(gl_FragCoord.y);\n  float x = xs[k % " +
-                          std::to_string(nx) + "], s = ss[k / " + std::to_string(nx) +
-                          "];\n  float v = 0.0;\n" + calls + "  o = vec4(v);\n}\n";
-  const gl::Program prog = ctx.compile(src);
+  const gl::Program prog = ctx.compile(grid_shader(fns, xs, ss, "float", "vec4(v)"));
   const std::vector<float> px = ctx.render(prog, nx * ns, rows);  // row 0 = top
   for (int r = 0; r < rows; ++r)
     for (int k = 0; k < nx * ns; ++k) {
@@ -165,27 +172,9 @@ TEST(GlslExec, GaussianStatEntries) {
   const std::vector<float> ss = {1e-31f, 1e-6f, 1e-3f, 0.05f, 0.09f, 0.093f, 0.15f, 0.18f,
                                  0.19f,  0.24f, 0.25f, 0.33f, 0.5f,  1.0f,   3.0f,  30.0f};
   const int nx = static_cast<int>(xs.size()), ns = static_cast<int>(ss.size());
-  auto list = [](const std::vector<float>& v) {
-    std::ostringstream o;
-    o.precision(9);
-    for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << std::showpoint << v[i];
-    return o.str();
-  };
   std::vector<std::string> fns;
-  std::string calls;
-  for (int r = 0; r < n; ++r) {
-    fns.push_back(e[r].glsl);
-    calls += "  " + std::string(r ? "else " : "") + "if (row == " + std::to_string(r) + ") v = " + e[r].glsl +
-             "(x, s);\n";
-  }
-  const std::string src = "#version 450\n" + compiler::glsl_library_slice(fns) + "const float xs[" +
-                          std::to_string(nx) + "] = float[](" + list(xs) + ");\nconst float ss[" +
-                          std::to_string(ns) + "] = float[](" + list(ss) +
-                          ");\nout vec4 o;\nvoid main() {\n  int k = int(gl_FragCoord.x), row = "
-                          "int(gl_FragCoord.y);\n  float x = xs[k % " +
-                          std::to_string(nx) + "], s = ss[k / " + std::to_string(nx) +
-                          "];\n  vec2 v = vec2(0.0);\n" + calls + "  o = vec4(v, 0.0, 1.0);\n}\n";
-  const gl::Program prog = ctx.compile(src);
+  for (int r = 0; r < n; ++r) fns.push_back(e[r].glsl);
+  const gl::Program prog = ctx.compile(grid_shader(fns, xs, ss, "vec2", "vec4(v, 0.0, 1.0)"));
   const std::vector<float> px = ctx.render(prog, nx * ns, n);
   int checked = 0;
   for (int r = 0; r < n; ++r)
