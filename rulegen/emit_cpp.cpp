@@ -47,6 +47,13 @@ std::string dbl(double v) {
 
 std::string atomic_info_initializer(const sym::Atomic* a);
 
+// a's row in kAtomics (the catalog's order; the raw moments' row, after them, for null).
+size_t atomic_row(const sym::Catalog& cat, const sym::Atomic* a) {
+  for (size_t i = 0; i < cat.atomics.size(); ++i)
+    if (&cat.atomics[i] == a) return i;
+  return cat.atomics.size();
+}
+
 void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std::string& out_dir) {
   const std::string tdir = BL_TEMPLATES_DIR;
   write_file(out_dir + "/bandlimit/support.hpp", read_file(tdir + "/support.hpp"));
@@ -180,9 +187,7 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
   r << "    " << atomic_info_initializer(nullptr) << ",  // raw moments E[(x+U)^n]\n};\n\n";
   r << "template <class T>\nconst Entry<T>* entries(int* count) {\n  static const Entry<T> e[] = {\n";
   for (const auto& d : ds) {
-    size_t ai = cat.atomics.size();
-    for (size_t i = 0; i < cat.atomics.size(); ++i)
-      if (&cat.atomics[i] == d.atomic) ai = i;
+    const size_t ai = atomic_row(cat, d.atomic);
     const bool compact = d.body == Body::Antiderivative && !d.atomic->singular.empty();
     std::string smoothed, plain;
     if (d.rule == "moment") {
@@ -206,20 +211,17 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
   r << "  };\n  *count = static_cast<int>(sizeof(e) / sizeof(e[0]));\n  return e;\n}\n\n";
   // The one-pass (mean, variance) entries (emit_stat_pairs.hpp).
   r << "template <class T>\nconst RuleEntry<T>* stat_entries(int* count) {\n";
-  if (pairs.empty())  // no zero-length array
-    r << "  *count = 0;\n  return nullptr;\n}\n\n}  // namespace registry\n}  // namespace bl\n";
-  if (pairs.empty()) return write_file(out_dir + "/bandlimit/registry.hpp", r.str());
-  r << "  static const RuleEntry<T> e[] = {\n";
-  for (const StatPair& p : pairs) {
-    size_t ai = 0;
-    for (size_t i = 0; i < cat.atomics.size(); ++i)
-      if (&cat.atomics[i] == p.f->atomic) ai = i;
-    r << "      {&kAtomics[" << ai
-      << "], \"stat\", \"gaussian\", \"one pass\", \"bl::gaussian::" << p.f->atomic_name << "_stat\", \"bl_"
-      << p.name() << "\", &detail::gen::" << p.name() << "<T>},\n";
+  if (pairs.empty()) {  // no zero-length array
+    r << "  *count = 0;\n  return nullptr;\n}\n\n";
+  } else {
+    r << "  static const RuleEntry<T> e[] = {\n";
+    for (const StatPair& p : pairs)
+      r << "      {&kAtomics[" << atomic_row(cat, p.f->atomic) << "], \"stat\", \"gaussian\", \"one pass\", "
+        << "\"bl::gaussian::" << p.f->atomic_name << "_stat\", \"bl_" << p.name()
+        << "\", &detail::gen::" << p.name() << "<T>},\n";
+    r << "  };\n  *count = static_cast<int>(sizeof(e) / sizeof(e[0]));\n  return e;\n}\n\n";
   }
-  r << "  };\n  *count = static_cast<int>(sizeof(e) / sizeof(e[0]));\n  return e;\n}\n\n"
-    << "}  // namespace registry\n}  // namespace bl\n";
+  r << "}  // namespace registry\n}  // namespace bl\n";
   write_file(out_dir + "/bandlimit/registry.hpp", r.str());
 }
 

@@ -30,6 +30,10 @@ std::vector<int> calibration_args(int arity, bool spread_is_var) {
   return a;
 }
 
+std::vector<int> calibration_args(const compiler::Function& f) {
+  return calibration_args(f.arity, f.stat && !CostModel::sigma_entry(f));
+}
+
 namespace {
 
 // Inputs: slot 0 and 1 hold values in [0.05, 3] (positive so log, sqrt and 1/x stay finite) with
@@ -200,8 +204,7 @@ CostModel calibrate_evaluator(const CalibrationOptions& opt,
     Inst inst;
     inst.op = fns[f].stat ? LOp::CallStat : LOp::Call;
     inst.fn = static_cast<int>(f);
-    // Stat rules take (mean, variance) pairs; kernel and stat entries take (x, sd).
-    const auto a = calibration_args(fns[f].arity, fns[f].stat && !CostModel::sigma_entry(fns[f]));
+    const auto a = calibration_args(fns[f]);
     for (std::size_t j = 0; j < a.size(); ++j) inst.arg[j] = a[j];
     const double ns = time_inst(base, inst, -1, in, opt);
     m.fn_ns[fns[f].cpp] = ns;

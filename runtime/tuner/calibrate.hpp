@@ -29,6 +29,8 @@ struct CalibrationOptions {
 // The input arrays an instruction of `arity` operands reads in both calibrations: (mean, spread)
 // pairs (arrays 0/2 means, 1/3 sds, 5 a variance when spread_is_var), then a small value (4).
 std::vector<int> calibration_args(int arity, bool spread_is_var);
+// A function's: stat rules read (mean, variance) pairs, kernel and stat entries (x, sd).
+std::vector<int> calibration_args(const compiler::Function& f);
 
 // Measures a fresh model for this machine (cpu_model()). `progress` (optional) gets each name.
 // Method::Compiled falls back to the evaluator (and says so on stderr) when the compiler is missing.

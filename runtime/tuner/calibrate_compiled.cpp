@@ -135,7 +135,7 @@ std::string source(const std::vector<int>& fns) {
   const auto& all = compiler::functions();
   for (int f : fns) {
     const compiler::Function& F = all[f];
-    const std::vector<int> args = calibration_args(F.arity, F.stat && !CostModel::sigma_entry(F));
+    const std::vector<int> args = calibration_args(F);
     os << "// " << F.cpp << "\n";
     if (F.stat)
       kernel_def(os, "bl_fn" + std::to_string(f),
@@ -343,15 +343,15 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
   for (int f : fns) {
     const compiler::Function& F = all[f];
     const std::string sym = "bl_fn" + std::to_string(f);
-    const int inputs = distinct(calibration_args(F.arity, F.stat && !CostModel::sigma_entry(F)));
+    const std::vector<int> args = calibration_args(F);
+    const int inputs = distinct(args);
     const double alone = time(sym, in, main_opt);
     record(F.cpp, net(alone, inputs), true);
     // Spill: the call among kSpillVals live values, less the call alone and the values alone.
     const double among = time("bl_sp" + std::to_string(f), in, main_opt);
     m.fn_spill_ns[F.cpp] = std::max(0.0, (among - alone - (sp_base - loop)) / kSpillVals);
     double lat = time("bl_lat" + std::to_string(f), in, main_opt);
-    if (calibration_args(F.arity, F.stat && !CostModel::sigma_entry(F)).size() >= 2)
-      lat = std::max(lat, time("bl_lat" + std::to_string(f) + "_1", in, main_opt));
+    if (args.size() >= 2) lat = std::max(lat, time("bl_lat" + std::to_string(f) + "_1", in, main_opt));
     m.fn_lat_ns[F.cpp] = std::max(0.01, lat - lat_base);
     // The pair's extra over its f entry alone (both kernels read the same inputs).
     if (const int sib = CostModel::square_sibling(f); sib >= 0 && std::count(fns.begin(), fns.end(), sib)) {

@@ -98,7 +98,7 @@ std::string CostModel::atomic_of(const std::string& cpp) {
 
 bool CostModel::sigma_entry(const compiler::Function& f) {
   if (f.arity != 2 || f.cpp.rfind("bl::plain::", 0) == 0 || atomic_of(f.cpp).empty()) return false;
-  return !f.stat || (f.cpp.size() > 5 && f.cpp.compare(f.cpp.size() - 5, 5, "_stat") == 0);
+  return !f.stat || f.mean_entry >= 0;
 }
 
 int CostModel::square_sibling(int fn) {
