@@ -542,6 +542,13 @@ std::string origin_dispatch(const Derived& d, const Syntax& s, int integrals,
 
 }  // namespace
 
+int atomic_index(const sym::Catalog& cat, const sym::Atomic* a) {
+  if (!a) return static_cast<int>(cat.atomics.size());
+  for (size_t i = 0; i < cat.atomics.size(); ++i)
+    if (&cat.atomics[i] == a) return static_cast<int>(i);
+  throw std::runtime_error("atomic not in the catalog");
+}
+
 GaussPeriodicSpec periodic_spec(const Derived& d) {
   GaussPeriodicSpec sp;
   if (!GiNaC::is_a<GiNaC::numeric>(d.period)) return sp;

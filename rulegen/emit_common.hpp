@@ -66,6 +66,10 @@ struct FusablePair {
 };
 FusablePair fusable_pair(const std::string& atomic, const std::vector<Derived>* ds);
 
+// a's row in the registry's kAtomics (the catalog's order; null: the raw moments' row after them).
+// Throws for an atomic of another catalog.
+int atomic_index(const sym::Catalog& cat, const sym::Atomic* a);
+
 std::string read_file(const std::string& path);
 // Writes only if the content changed; creates parent directories.
 void write_file(const std::string& path, const std::string& content);

@@ -47,13 +47,6 @@ std::string dbl(double v) {
 
 std::string atomic_info_initializer(const sym::Atomic* a);
 
-// a's row in kAtomics (the catalog's order; the raw moments' row, after them, for null).
-size_t atomic_row(const sym::Catalog& cat, const sym::Atomic* a) {
-  for (size_t i = 0; i < cat.atomics.size(); ++i)
-    if (&cat.atomics[i] == a) return i;
-  return cat.atomics.size();
-}
-
 void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std::string& out_dir) {
   const std::string tdir = BL_TEMPLATES_DIR;
   write_file(out_dir + "/bandlimit/support.hpp", read_file(tdir + "/support.hpp"));
@@ -187,7 +180,7 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
   r << "    " << atomic_info_initializer(nullptr) << ",  // raw moments E[(x+U)^n]\n};\n\n";
   r << "template <class T>\nconst Entry<T>* entries(int* count) {\n  static const Entry<T> e[] = {\n";
   for (const auto& d : ds) {
-    const size_t ai = atomic_row(cat, d.atomic);
+    const int ai = atomic_index(cat, d.atomic);
     const bool compact = d.body == Body::Antiderivative && !d.atomic->singular.empty();
     std::string smoothed, plain;
     if (d.rule == "moment") {
@@ -216,7 +209,8 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
   } else {
     r << "  static const RuleEntry<T> e[] = {\n";
     for (const StatPair& p : pairs)
-      r << "      {&kAtomics[" << atomic_row(cat, p.f->atomic) << "], \"stat\", \"gaussian\", \"one pass\", "
+      r << "      {&kAtomics[" << atomic_index(cat, p.f->atomic)
+        << "], \"stat\", \"gaussian\", \"one pass\", "
         << "\"bl::gaussian::" << p.f->atomic_name << "_stat\", \"bl_" << p.name()
         << "\", &detail::gen::" << p.name() << "<T>},\n";
     r << "  };\n  *count = static_cast<int>(sizeof(e) / sizeof(e[0]));\n  return e;\n}\n\n";

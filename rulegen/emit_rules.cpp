@@ -472,9 +472,7 @@ std::string cpp_mode(const sym::Catalog& cat, const std::vector<ModeFit>& fits) 
        "rule2_entries(int* count) {\n"
     << "  static const RuleEntry<T> e[] = {\n";
   for (const auto& f : fits) {
-    size_t ai = 0;
-    while (ai < cat.atomics.size() && &cat.atomics[ai] != f.atomic) ++ai;
-    o << "      {&kAtomics[" << ai << "], \"rule2\", \"gaussian\", \"" << f.method
+    o << "      {&kAtomics[" << atomic_index(cat, f.atomic) << "], \"rule2\", \"gaussian\", \"" << f.method
       << "\", \"bl::rule2::" << f.atomic->name << "\", \"bl_rule2_" << f.atomic->name
       << "\", &detail::gen_rule2::" << f.atomic->name << "<T>},\n";
   }

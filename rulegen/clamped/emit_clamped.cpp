@@ -54,12 +54,6 @@ std::string piece_table(const std::string& name, const std::vector<sym::PolyPiec
   return out;
 }
 
-int atomic_index(const sym::Catalog& cat, const sym::Atomic* a) {
-  for (size_t i = 0; i < cat.atomics.size(); ++i)
-    if (&cat.atomics[i] == a) return static_cast<int>(i);
-  throw std::runtime_error("atomic not in the catalog");
-}
-
 namespace {
 
 const char* kBanner =

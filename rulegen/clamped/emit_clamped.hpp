@@ -25,7 +25,6 @@ struct Output {
 std::string lit(double v, sym::Lang lang);  // shortest round-trip literal, T(...) in C++
 std::string bound(const sym::Bound& b, sym::Lang lang);
 std::string piece_table(const std::string& name, const std::vector<sym::PolyPiece>& ps, sym::Lang lang);
-int atomic_index(const sym::Catalog& cat, const sym::Atomic* a);
 
 void emit_derivatives(const sym::Catalog& cat, const std::vector<sym::Derived>& ds, Output& out);
 void emit_rules(const sym::Catalog& cat, const std::vector<sym::Derived>& ds, Output& out);
