@@ -39,9 +39,13 @@ const float BL_TAIL_CUT = 9.0;       // tail_cut<float>(): a break beyond 9 sd i
 bool bl_is_inf(float v) { return abs(v) >= BL_INF; }
 
 // Highest index with a nonzero coefficient (loops stop there: no 0 * overflow).
+// Loops here and below run a constant trip count with the bound as a guard, so a GPU compiler can
+// unroll them and keep every array in registers (NVIDIA rejects large inlined programs whose arrays
+// are indexed at run time: C5041, docs/gpu_timing.md).
 int bl_degree(float c[8]) {
-  int d = 7;
-  while (d > 0 && c[d] == 0.0) d -= 1;
+  int d = 0;
+  for (int k = 1; k < 8; ++k)
+    if (c[k] != 0.0) d = k;
   return d;
 }
 
@@ -55,8 +59,9 @@ float bl_poly(float c[8], float t) {
 // Taylor coefficients g[k] = q^(k)(t0)/k! by repeated synthetic division.
 void bl_taylor_shift(float c[8], int deg, float t0, out float g[8]) {
   for (int k = 0; k < 8; ++k) g[k] = c[k];
-  for (int i = 0; i < deg; ++i)
-    for (int j = deg - 1; j >= i; --j) g[j] += t0 * g[j + 1];
+  for (int i = 0; i < 7; ++i)
+    for (int j = 6; j >= 0; --j)
+      if (i < deg && j >= i && j < deg) g[j] += t0 * g[j + 1];
 }
 
 // erfc with relative error < 1.2e-7 on the whole line (Numerical Recipes' Chebyshev fit of
@@ -181,35 +186,30 @@ float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float h
     float hw = (hi - lo) / (2.0 * sigma);
     float cz = (dl + dh) / (2.0 * sigma);
     if (hw <= 1.0 && abs(cz) * hw <= 10.0) {
-      float gx[10];
-      float gw[10];
-      gx[0] = 0.076526521133497338;
-      gx[1] = 0.22778585114164507;
-      gx[2] = 0.37370608871541955;
-      gx[3] = 0.51086700195082713;
-      gx[4] = 0.63605368072651502;
-      gx[5] = 0.7463319064601508;
-      gx[6] = 0.83911697182221878;
-      gx[7] = 0.91223442825132595;
-      gx[8] = 0.96397192727791381;
-      gx[9] = 0.99312859918509488;
-      gw[0] = 0.15275338713072584;
-      gw[1] = 0.14917298647260374;
-      gw[2] = 0.14209610931838204;
-      gw[3] = 0.13168863844917664;
-      gw[4] = 0.11819453196151841;
-      gw[5] = 0.10193011981724044;
-      gw[6] = 0.083276741576704755;
-      gw[7] = 0.062672048334109068;
-      gw[8] = 0.040601429800386939;
-      gw[9] = 0.017614007139152118;
+      // 20-point Gauss-Legendre, the 10 node pairs written out (no node arrays).
       float mid = 0.5 * (lo + hi);
       float hr = 0.5 * (hi - lo);
       float s = 0.0;
-      for (int i = 0; i < 10; ++i) {
-        s += gw[i] * (bl_poly(c, mid + hr * gx[i]) * bl_phi(cz + hw * gx[i]) +
-                      bl_poly(c, mid - hr * gx[i]) * bl_phi(cz - hw * gx[i]));
-      }
+      s += 0.15275338713072584 * (bl_poly(c, mid + hr * 0.076526521133497338) * bl_phi(cz + hw * 0.076526521133497338) +
+                  bl_poly(c, mid - hr * 0.076526521133497338) * bl_phi(cz - hw * 0.076526521133497338));
+      s += 0.14917298647260374 * (bl_poly(c, mid + hr * 0.22778585114164507) * bl_phi(cz + hw * 0.22778585114164507) +
+                  bl_poly(c, mid - hr * 0.22778585114164507) * bl_phi(cz - hw * 0.22778585114164507));
+      s += 0.14209610931838204 * (bl_poly(c, mid + hr * 0.37370608871541955) * bl_phi(cz + hw * 0.37370608871541955) +
+                  bl_poly(c, mid - hr * 0.37370608871541955) * bl_phi(cz - hw * 0.37370608871541955));
+      s += 0.13168863844917664 * (bl_poly(c, mid + hr * 0.51086700195082713) * bl_phi(cz + hw * 0.51086700195082713) +
+                  bl_poly(c, mid - hr * 0.51086700195082713) * bl_phi(cz - hw * 0.51086700195082713));
+      s += 0.11819453196151841 * (bl_poly(c, mid + hr * 0.63605368072651502) * bl_phi(cz + hw * 0.63605368072651502) +
+                  bl_poly(c, mid - hr * 0.63605368072651502) * bl_phi(cz - hw * 0.63605368072651502));
+      s += 0.10193011981724044 * (bl_poly(c, mid + hr * 0.7463319064601508) * bl_phi(cz + hw * 0.7463319064601508) +
+                  bl_poly(c, mid - hr * 0.7463319064601508) * bl_phi(cz - hw * 0.7463319064601508));
+      s += 0.083276741576704755 * (bl_poly(c, mid + hr * 0.83911697182221878) * bl_phi(cz + hw * 0.83911697182221878) +
+                  bl_poly(c, mid - hr * 0.83911697182221878) * bl_phi(cz - hw * 0.83911697182221878));
+      s += 0.062672048334109068 * (bl_poly(c, mid + hr * 0.91223442825132595) * bl_phi(cz + hw * 0.91223442825132595) +
+                  bl_poly(c, mid - hr * 0.91223442825132595) * bl_phi(cz - hw * 0.91223442825132595));
+      s += 0.040601429800386939 * (bl_poly(c, mid + hr * 0.96397192727791381) * bl_phi(cz + hw * 0.96397192727791381) +
+                  bl_poly(c, mid - hr * 0.96397192727791381) * bl_phi(cz - hw * 0.96397192727791381));
+      s += 0.017614007139152118 * (bl_poly(c, mid + hr * 0.99312859918509488) * bl_phi(cz + hw * 0.99312859918509488) +
+                  bl_poly(c, mid - hr * 0.99312859918509488) * bl_phi(cz - hw * 0.99312859918509488));
       return hw * s;
     }
   }
@@ -225,7 +225,8 @@ float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float h
     bl_upper_moments(-a, deg, Ua);
     bl_upper_moments(b, deg, Ub);
     float m[8];
-    for (int k = 0; k <= deg; ++k) {
+    for (int k = 0; k < 8; ++k) {
+      if (k > deg) break;
       m[k] = (k == 0) ? 1.0 : ((k == 1) ? 0.0 : float(k - 1) * m[k - 2]);
       float ik = m[k] - (((k & 1) == 1) ? -Ua[k] : Ua[k]) - Ub[k];
       if (g[k] != 0.0) sum += g[k] * sk * ik;
@@ -236,7 +237,8 @@ float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float h
   if (a >= 0.0) {
     bl_upper_moments(a, deg, Ua);
     bl_upper_moments(b, deg, Ub);
-    for (int k = 0; k <= deg; ++k) {
+    for (int k = 0; k < 8; ++k) {
+      if (k > deg) break;
       if (g[k] != 0.0) sum += g[k] * sk * (Ua[k] - Ub[k]);
       if (k < deg) sk *= sigma;
     }
@@ -244,7 +246,8 @@ float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float h
   }
   bl_upper_moments(-b, deg, Ub);
   bl_upper_moments(-a, deg, Ua);
-  for (int k = 0; k <= deg; ++k) {
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
     float ik = Ub[k] - Ua[k];
     if (g[k] != 0.0) sum += g[k] * sk * (((k & 1) == 1) ? -ik : ik);
     if (k < deg) sk *= sigma;
@@ -265,7 +268,8 @@ float bl_box_core(float xq, float h, float dl, float dh, float lo, float hi, flo
   float S = 1.0;
   float ak = 1.0;
   float mean = c[0];
-  for (int k = 1; k <= deg; ++k) {
+  for (int k = 1; k < 8; ++k) {
+    if (k > deg) break;
     ak *= a;
     S = b * S + ak;
     mean += c[k] * S / float(k + 1);
@@ -281,7 +285,8 @@ float bl_tent_side(float c[8], int deg, float t0, float G, float L, float w, boo
   float gam = G / w;
   float sum = 0.0;
   float Lk = 1.0;
-  for (int k = 0; k <= deg; ++k) {
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
     if (g[k] != 0.0) {
       float term = g[k] * Lk * (gam / float(k + 1) - ell / float(k + 2));
       sum += (left && (k & 1) == 1) ? -term : term;
@@ -2555,13 +2560,11 @@ float bl_gaussian_abs_raw(float x, float sigma) {
   }
   return acc;
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_nan();  // not reached: sigma > 0 returned above
+  if (sigma == (0.0)) {
+    if (x < 0.0) return ((-1.0)) * x;
+    return (1.0) * x;
+  }
+  return bl_nan();  // not reached: sigma >= 0 returned above
 }
 
 float bl_gaussian_abs(float x, float sigma) {
@@ -2694,13 +2697,11 @@ float bl_gaussian_sign_raw(float x, float sigma) {
   }
   return acc;
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_nan();  // not reached: sigma > 0 returned above
+  if (sigma == (0.0)) {
+    if (x < 0.0) return (-1.0);
+    return 1.0;
+  }
+  return bl_nan();  // not reached: sigma >= 0 returned above
 }
 
 float bl_gaussian_sign(float x, float sigma) {
@@ -2837,13 +2838,11 @@ float bl_gaussian_step_raw(float x, float sigma) {
   }
   return acc;
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_nan();  // not reached: sigma > 0 returned above
+  if (sigma == (0.0)) {
+    if (x < 0.0) return (0.0);
+    return 1.0;
+  }
+  return bl_nan();  // not reached: sigma >= 0 returned above
 }
 
 float bl_gaussian_step(float x, float sigma) {
@@ -2872,13 +2871,11 @@ float bl_gaussian_step_sq_raw(float x, float sigma) {
   }
   return acc;
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_nan();  // not reached: sigma > 0 returned above
+  if (sigma == (0.0)) {
+    if (x < 0.0) return (0.0);
+    return 1.0;
+  }
+  return bl_nan();  // not reached: sigma >= 0 returned above
 }
 
 float bl_gaussian_step_sq(float x, float sigma) {
@@ -3065,12 +3062,16 @@ float bl_gaussian_saturate_raw(float x, float sigma) {
   }
   return acc;
   }
+  if (sigma == (0.0)) {
+    if (x < 0.0) return (0.0);
+    if (x < 1.0) return (1.0) * x;
+    return 1.0;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
   return bl_gauss_pw(x, sigma, 3, p);
 }
 
@@ -3117,12 +3118,16 @@ float bl_gaussian_saturate_sq_raw(float x, float sigma) {
   }
   return acc;
   }
+  if (sigma == (0.0)) {
+    if (x < 0.0) return (0.0);
+    if (x < 1.0) return ((1.0) * x) * x;
+    return 1.0;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
   return bl_gauss_pw(x, sigma, 3, p);
 }
 
@@ -3357,12 +3362,16 @@ float bl_gaussian_smoothstep_raw(float x, float sigma) {
   }
   return acc;
   }
+  if (sigma == (0.0)) {
+    if (x < 0.0) return (0.0);
+    if (x < 1.0) return ((((-2.0)) * x + 3.0) * x) * x;
+    return 1.0;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
   return bl_gauss_pw(x, sigma, 3, p);
 }
 
@@ -3417,12 +3426,16 @@ float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
   }
   return acc;
   }
+  if (sigma == (0.0)) {
+    if (x < 0.0) return (0.0);
+    if (x < 1.0) return ((((((4.0) * x + (-12.0)) * x + 9.0) * x) * x) * x) * x;
+    return 1.0;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
       BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
   return bl_gauss_pw(x, sigma, 3, p);
 }
 
@@ -5012,12 +5025,20 @@ float bl_gaussian_fract_raw(float x, float sigma) {
     float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1) + d_3 * ((-0.1061032953945969) * s_3) + d_5 * ((-0.06366197723675814) * s_5)) + (d_2 * ((-0.15915494309189535) * s_2) + d_4 * ((-0.07957747154594767) * s_4));
     return acc;
   }
+  if (sigma == (0.0)) {
+  float r = bl_reduce_signed(x, 1.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    return r;
+  }
+  float t = r + 1.0;
+  return t;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   float s = sigma / period;
   if (s >= (0.08357381802701377)) {
     int K = int(floor((1.0370742988786399) / s));
@@ -5224,12 +5245,20 @@ float bl_gaussian_fract_sq_raw(float x, float sigma) {
     float acc = (0.3333333333333333) + (d_1 * ((0.10132118364233778) * c_1 + (-0.3183098861837907) * s_1) + d_3 * ((0.011257909293593086) * c_3 + (-0.1061032953945969) * s_3) + d_5 * ((0.004052847345693511) * c_5 + (-0.06366197723675814) * s_5)) + (d_2 * ((0.025330295910584444) * c_2 + (-0.15915494309189535) * s_2) + d_4 * ((0.006332573977646111) * c_4 + (-0.07957747154594767) * s_4));
     return acc;
   }
+  if (sigma == (0.0)) {
+  float r = bl_reduce_signed(x, 1.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    return (r*r);
+  }
+  float t = r + 1.0;
+  return (t*t);
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 1, p);
   float s = sigma / period;
   if (s >= (0.08357381802701377)) {
     int K = int(floor((1.0370742988786399) / s));
@@ -5713,12 +5742,22 @@ float bl_gaussian_triangle_raw(float x, float sigma) {
     float acc = (0.5) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3) + d_5 * ((-0.016211389382774045) * c_5) + d_7 * ((-0.008271117032027573) * c_7) + d_9 * ((-0.005003515241596927) * c_9));
     return acc;
   }
+  if (sigma == (0.0)) {
+  float r = bl_reduce_signed(x, 2.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    if (r < 1.0) return r;
+    return ((-r) + 2.0);
+  }
+  float t = r + 2.0;
+  if (r < (-1.0)) return t;
+  return ((-t) + 2.0);
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
     int K = int(floor((1.0725509182905828) / s));
@@ -5972,12 +6011,22 @@ float bl_gaussian_triangle_sq_raw(float x, float sigma) {
     float acc = (0.3333333333333333) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3) + d_5 * ((-0.016211389382774045) * c_5) + d_7 * ((-0.008271117032027573) * c_7) + d_9 * ((-0.005003515241596927) * c_9)) + (d_2 * ((0.10132118364233778) * c_2) + d_4 * ((0.025330295910584444) * c_4) + d_6 * ((0.011257909293593086) * c_6) + d_8 * ((0.006332573977646111) * c_8));
     return acc;
   }
+  if (sigma == (0.0)) {
+  float r = bl_reduce_signed(x, 2.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    if (r < 1.0) return (r*r);
+    return (((-4.0)*r) + (r*r) + 4.0);
+  }
+  float t = r + 2.0;
+  if (r < (-1.0)) return (t*t);
+  return (((-4.0)*t) + (t*t) + 4.0);
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(1.0, 2.0, float[8](4.0, (-4.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
     int K = int(floor((1.0725509182905828) / s));
@@ -6472,12 +6521,21 @@ float bl_gaussian_square_raw(float x, float sigma) {
     float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3) + d_5 * ((0.12732395447351627) * s_5) + d_7 * ((0.09094568176679733) * s_7) + d_9 * ((0.07073553026306459) * s_9));
     return acc;
   }
+  if (sigma == (0.0)) {
+  float r = bl_reduce_signed(x, 1.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    if (r < (1.0/2.0)) return 1.0;
+    return 0.0;
+  }
+  if (r < (-1.0/2.0)) return 1.0;
+  return 0.0;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
     int K = int(floor((1.0725509182905828) / s));
@@ -6694,12 +6752,21 @@ float bl_gaussian_square_sq_raw(float x, float sigma) {
     float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3) + d_5 * ((0.12732395447351627) * s_5) + d_7 * ((0.09094568176679733) * s_7) + d_9 * ((0.07073553026306459) * s_9));
     return acc;
   }
+  if (sigma == (0.0)) {
+  float r = bl_reduce_signed(x, 1.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    if (r < (1.0/2.0)) return 1.0;
+    return 0.0;
+  }
+  if (r < (-1.0/2.0)) return 1.0;
+  return 0.0;
+  }
   BlPiece p[4] = BlPiece[4](
       BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  if (sigma == (0.0)) return bl_periodic_eval(x, period, 2, p);
   float s = sigma / period;
   if (s >= (0.03785605326894285)) {
     int K = int(floor((1.0725509182905828) / s));

@@ -275,10 +275,19 @@ std::string body_gauss_pw(const Derived& d, const Syntax& s) {
     out += "    }\n  }\n";
   }
   if (!glsl) return out + "  return acc;\n";
-  out += "  return acc;\n  }\n" + piece_table(s, "p", ps) + "  if (sigma == " + s.dbl(0) + ") return " +
-         s.helper("pw_eval") + "(x, " + P + ");\n";
-  return out + (n > 2 ? "  return " + s.helper("gauss_pw") + "(x, sigma, " + P + ");\n"
-                      : "  return " + s.nan() + ";  // not reached: sigma > 0 returned above\n");
+  // sigma = 0: f itself piece by piece (right-continuous, as pw_eval) without the table, which a GPU
+  // would build in local memory at every call site (NVIDIA refuses a large program's many copies:
+  // C5041, docs/gpu_timing.md); only the generic gauss_pw past thr still reads one.
+  out += "  return acc;\n  }\n  if (sigma == " + s.dbl(0) + ") {\n";
+  for (size_t i = 0; i < n; ++i) {
+    std::vector<std::string> cs;
+    for (const GiNaC::numeric& c : ps[i].c) cs.push_back(coef(s, c));
+    const std::string ret = "return " + horner(s, cs, "x") + ";\n";
+    out += i + 1 < n ? "    if (x < " + s.bound(ps[i].hi) + ") " + ret : "    " + ret;
+  }
+  out += "  }\n";
+  return out + (n > 2 ? piece_table(s, "p", ps) + "  return " + s.helper("gauss_pw") + "(x, sigma, " + P + ");\n"
+                      : "  return " + s.nan() + ";  // not reached: sigma >= 0 returned above\n");
 }
 
 std::string body_piecewise(const Derived& d, const Syntax& s) {
@@ -574,6 +583,17 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
   if (fast_first) {
     out += s.decl("period", s.ex(d.period)) + guard_sigma(s) +
            (s.cpp() ? gauss_periodic_fast_cpp(periodic_spec(d)) : gauss_periodic_fast_glsl(periodic_spec(d)));
+    if (!s.cpp()) {
+      // GLSL, sigma = 0: f itself in straight lines; the table below is read only by the generic
+      // image sum (sigma < 1e-30), not built on the way to f (see body_gauss_pw: C5041).
+      std::vector<std::pair<GiNaC::ex, GiNaC::ex>> pieces;
+      for (const PolyPiece& pc : d.pieces) {
+        GiNaC::ex f = 0;
+        for (size_t k = 0; k < pc.c.size(); ++k) f += pc.c[k] * GiNaC::pow(sym::var_x(), static_cast<int>(k));
+        pieces.emplace_back(pc.hi.value, f);
+      }
+      out += "  if (sigma == " + s.dbl(0) + ") {\n" + periodic_straight(d.period, pieces, s.lang, true) + "  }\n";
+    }
     out += piece_table(s, "p", d.pieces);
   } else {
     out += piece_table(s, "p", d.pieces);
@@ -588,7 +608,7 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
   if (!d.origins.empty()) {
     out += "  if (sigma == " + s.dbl(0) + ") {\n" + origin_dispatch(d, s, 0, plain) + "  return " +
            plain("x", "p") + ";\n  }\n";
-  } else {
+  } else if (s.cpp() || !fast_first) {  // (GLSL fast_first: returned above)
     out += "  if (sigma == " + s.dbl(0) + ") return " + plain("x", "p") + ";\n";
   }
   if (d.kernel != Kernel::Gaussian) {

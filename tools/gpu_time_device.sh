@@ -11,7 +11,7 @@ out="$1"
 shards="${2:-14}"
 compile_seconds="${3:-1000000000}"
 shard_seconds="${4:-0}"  # timeout(1): 0 = no limit
-carry=build/gpu_carry
+carry="${CARRY:-build/gpu_carry}"  # another pack: CARRY=build/gpu_carry_before
 export LD_LIBRARY_PATH="$carry/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv,noheader 2>/dev/null || true
 mkdir -p "$out"

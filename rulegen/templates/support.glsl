@@ -33,9 +33,13 @@ const float BL_TAIL_CUT = 9.0;       // tail_cut<float>(): a break beyond 9 sd i
 bool bl_is_inf(float v) { return abs(v) >= BL_INF; }
 
 // Highest index with a nonzero coefficient (loops stop there: no 0 * overflow).
+// Loops here and below run a constant trip count with the bound as a guard, so a GPU compiler can
+// unroll them and keep every array in registers (NVIDIA rejects large inlined programs whose arrays
+// are indexed at run time: C5041, docs/gpu_timing.md).
 int bl_degree(float c[8]) {
-  int d = 7;
-  while (d > 0 && c[d] == 0.0) d -= 1;
+  int d = 0;
+  for (int k = 1; k < 8; ++k)
+    if (c[k] != 0.0) d = k;
   return d;
 }
 
@@ -49,8 +53,9 @@ float bl_poly(float c[8], float t) {
 // Taylor coefficients g[k] = q^(k)(t0)/k! by repeated synthetic division.
 void bl_taylor_shift(float c[8], int deg, float t0, out float g[8]) {
   for (int k = 0; k < 8; ++k) g[k] = c[k];
-  for (int i = 0; i < deg; ++i)
-    for (int j = deg - 1; j >= i; --j) g[j] += t0 * g[j + 1];
+  for (int i = 0; i < 7; ++i)
+    for (int j = 6; j >= 0; --j)
+      if (i < deg && j >= i && j < deg) g[j] += t0 * g[j + 1];
 }
 
 // erfc with relative error < 1.2e-7 on the whole line (Numerical Recipes' Chebyshev fit of
@@ -175,35 +180,30 @@ float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float h
     float hw = (hi - lo) / (2.0 * sigma);
     float cz = (dl + dh) / (2.0 * sigma);
     if (hw <= 1.0 && abs(cz) * hw <= 10.0) {
-      float gx[10];
-      float gw[10];
-      gx[0] = 0.076526521133497338;
-      gx[1] = 0.22778585114164507;
-      gx[2] = 0.37370608871541955;
-      gx[3] = 0.51086700195082713;
-      gx[4] = 0.63605368072651502;
-      gx[5] = 0.7463319064601508;
-      gx[6] = 0.83911697182221878;
-      gx[7] = 0.91223442825132595;
-      gx[8] = 0.96397192727791381;
-      gx[9] = 0.99312859918509488;
-      gw[0] = 0.15275338713072584;
-      gw[1] = 0.14917298647260374;
-      gw[2] = 0.14209610931838204;
-      gw[3] = 0.13168863844917664;
-      gw[4] = 0.11819453196151841;
-      gw[5] = 0.10193011981724044;
-      gw[6] = 0.083276741576704755;
-      gw[7] = 0.062672048334109068;
-      gw[8] = 0.040601429800386939;
-      gw[9] = 0.017614007139152118;
+      // 20-point Gauss-Legendre, the 10 node pairs written out (no node arrays).
       float mid = 0.5 * (lo + hi);
       float hr = 0.5 * (hi - lo);
       float s = 0.0;
-      for (int i = 0; i < 10; ++i) {
-        s += gw[i] * (bl_poly(c, mid + hr * gx[i]) * bl_phi(cz + hw * gx[i]) +
-                      bl_poly(c, mid - hr * gx[i]) * bl_phi(cz - hw * gx[i]));
-      }
+      s += 0.15275338713072584 * (bl_poly(c, mid + hr * 0.076526521133497338) * bl_phi(cz + hw * 0.076526521133497338) +
+                  bl_poly(c, mid - hr * 0.076526521133497338) * bl_phi(cz - hw * 0.076526521133497338));
+      s += 0.14917298647260374 * (bl_poly(c, mid + hr * 0.22778585114164507) * bl_phi(cz + hw * 0.22778585114164507) +
+                  bl_poly(c, mid - hr * 0.22778585114164507) * bl_phi(cz - hw * 0.22778585114164507));
+      s += 0.14209610931838204 * (bl_poly(c, mid + hr * 0.37370608871541955) * bl_phi(cz + hw * 0.37370608871541955) +
+                  bl_poly(c, mid - hr * 0.37370608871541955) * bl_phi(cz - hw * 0.37370608871541955));
+      s += 0.13168863844917664 * (bl_poly(c, mid + hr * 0.51086700195082713) * bl_phi(cz + hw * 0.51086700195082713) +
+                  bl_poly(c, mid - hr * 0.51086700195082713) * bl_phi(cz - hw * 0.51086700195082713));
+      s += 0.11819453196151841 * (bl_poly(c, mid + hr * 0.63605368072651502) * bl_phi(cz + hw * 0.63605368072651502) +
+                  bl_poly(c, mid - hr * 0.63605368072651502) * bl_phi(cz - hw * 0.63605368072651502));
+      s += 0.10193011981724044 * (bl_poly(c, mid + hr * 0.7463319064601508) * bl_phi(cz + hw * 0.7463319064601508) +
+                  bl_poly(c, mid - hr * 0.7463319064601508) * bl_phi(cz - hw * 0.7463319064601508));
+      s += 0.083276741576704755 * (bl_poly(c, mid + hr * 0.83911697182221878) * bl_phi(cz + hw * 0.83911697182221878) +
+                  bl_poly(c, mid - hr * 0.83911697182221878) * bl_phi(cz - hw * 0.83911697182221878));
+      s += 0.062672048334109068 * (bl_poly(c, mid + hr * 0.91223442825132595) * bl_phi(cz + hw * 0.91223442825132595) +
+                  bl_poly(c, mid - hr * 0.91223442825132595) * bl_phi(cz - hw * 0.91223442825132595));
+      s += 0.040601429800386939 * (bl_poly(c, mid + hr * 0.96397192727791381) * bl_phi(cz + hw * 0.96397192727791381) +
+                  bl_poly(c, mid - hr * 0.96397192727791381) * bl_phi(cz - hw * 0.96397192727791381));
+      s += 0.017614007139152118 * (bl_poly(c, mid + hr * 0.99312859918509488) * bl_phi(cz + hw * 0.99312859918509488) +
+                  bl_poly(c, mid - hr * 0.99312859918509488) * bl_phi(cz - hw * 0.99312859918509488));
       return hw * s;
     }
   }
@@ -219,7 +219,8 @@ float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float h
     bl_upper_moments(-a, deg, Ua);
     bl_upper_moments(b, deg, Ub);
     float m[8];
-    for (int k = 0; k <= deg; ++k) {
+    for (int k = 0; k < 8; ++k) {
+      if (k > deg) break;
       m[k] = (k == 0) ? 1.0 : ((k == 1) ? 0.0 : float(k - 1) * m[k - 2]);
       float ik = m[k] - (((k & 1) == 1) ? -Ua[k] : Ua[k]) - Ub[k];
       if (g[k] != 0.0) sum += g[k] * sk * ik;
@@ -230,7 +231,8 @@ float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float h
   if (a >= 0.0) {
     bl_upper_moments(a, deg, Ua);
     bl_upper_moments(b, deg, Ub);
-    for (int k = 0; k <= deg; ++k) {
+    for (int k = 0; k < 8; ++k) {
+      if (k > deg) break;
       if (g[k] != 0.0) sum += g[k] * sk * (Ua[k] - Ub[k]);
       if (k < deg) sk *= sigma;
     }
@@ -238,7 +240,8 @@ float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float h
   }
   bl_upper_moments(-b, deg, Ub);
   bl_upper_moments(-a, deg, Ua);
-  for (int k = 0; k <= deg; ++k) {
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
     float ik = Ub[k] - Ua[k];
     if (g[k] != 0.0) sum += g[k] * sk * (((k & 1) == 1) ? -ik : ik);
     if (k < deg) sk *= sigma;
@@ -259,7 +262,8 @@ float bl_box_core(float xq, float h, float dl, float dh, float lo, float hi, flo
   float S = 1.0;
   float ak = 1.0;
   float mean = c[0];
-  for (int k = 1; k <= deg; ++k) {
+  for (int k = 1; k < 8; ++k) {
+    if (k > deg) break;
     ak *= a;
     S = b * S + ak;
     mean += c[k] * S / float(k + 1);
@@ -275,7 +279,8 @@ float bl_tent_side(float c[8], int deg, float t0, float G, float L, float w, boo
   float gam = G / w;
   float sum = 0.0;
   float Lk = 1.0;
-  for (int k = 0; k <= deg; ++k) {
+  for (int k = 0; k < 8; ++k) {
+    if (k > deg) break;
     if (g[k] != 0.0) {
       float term = g[k] * Lk * (gam / float(k + 1) - ell / float(k + 2));
       sum += (left && (k & 1) == 1) ? -term : term;

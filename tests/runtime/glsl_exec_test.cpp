@@ -156,6 +156,24 @@ TEST(GlslExec, GaussianPeriodicStraightLine) {
   EXPECT_GT(checked, 2000);
 }
 
+// The Gaussian piecewise entries (straight-line break sums up to the narrowest piece's width, the
+// generic per-piece sum past it) and every Gaussian piecewise and periodic entry at sigma = 0, where
+// the GLSL returns f piece by piece without the piece table (a GPU builds such a table in local
+// memory at every call site: NVIDIA's C5041, docs/gpu_timing.md): against the C++ double table at,
+// beside and between the breaks, and across the hand-over (sigma 1 for saturate, 0.5 for abs).
+TEST(GlslExec, GaussianPiecewiseAndSigmaZero) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  const int checked = check_entries(
+      ctx, {"gaussian"},
+      {"abs", "sign", "step", "saturate", "smoothstep", "pulse30", "fract", "square", "triangle", "floor", "ceil",
+       "trunc"},
+      {-1000.25f, -3.75f, -1.0f, -0.5f, -1e-6f, 0.0f, 1e-6f, 0.25f, 0.3f, 0.5f, 0.999f, 1.0f, 1.5f, 2.75f, 37.5f},
+      {0.0f, 1e-3f, 0.1f, 0.499f, 0.501f, 0.999f, 1.001f, 1.5f, 3.0f, 30.0f}, 2e-5);
+  EXPECT_GT(checked, 3000);
+}
+
 // The one-pass stat entries' GLSL ({E f, Var f} as vec2, rulegen/emit_stat_pairs.hpp, two channels
 // of the same straight-line plan) against the C++ double stat entries: mean within 2e-5 max(1, |E f|),
 // variance within 2e-5 max(1, E f^2), at and beside the breaks, across the plans' hand-overs (the
