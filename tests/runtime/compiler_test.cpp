@@ -269,6 +269,38 @@ TEST(Compiler, StatEntryServesMeanAndVarianceTogether) {
   EXPECT_NEAR(run1(mean_only, "gaussian", 0.95f, 0.1f), bl::gaussian::fract(0.95, 0.1), 1e-6);
 }
 
+// floor(u + 1/2) - floor(u) (a checkerboard's pulse) under one kernel at one width is one smoothed
+// square wave, 1 - square(u): its mean equals the difference of the table's two smoothed floors (the
+// reference), its variance is the indicator's m (1 - m), and no floor entry is called.
+TEST(Compiler, FloorPairPulseIsOneSquareWave) {
+  auto names = [](const compiler::Program& p) {
+    std::set<std::string> out;
+    for (int fi : p.used_functions()) out.insert(compiler::functions()[static_cast<std::size_t>(fi)].cpp);
+    return out;
+  };
+  const ir::Graph pulse = one_input([](dsl::Var u) { return dsl::floor(u + 0.5) - dsl::floor(u); });
+  const ir::Graph neg = one_input([](dsl::Var u) { return dsl::floor(u) - dsl::floor(u + 0.5); });
+  const ir::Graph wave = one_input([](dsl::Var u) { return dsl::sin((dsl::floor(u + 0.5) - dsl::floor(u)) * 3.0); });
+  using Entry = double (*)(double, double);
+  const std::vector<std::pair<std::string, Entry>> kernels = {
+      {"gaussian", [](double x, double s) { return bl::gaussian::floor(x, s); }},
+      {"box", [](double x, double s) { return bl::box::floor(x, s); }},
+      {"tent", [](double x, double s) { return bl::tent::floor(x, s); }}};
+  for (const auto& [rule, floor_entry] : kernels) {
+    const compiler::Program p = compiler::lower(pulse, compiler::uniform_schedule(pulse, rules::parse_rule(rule)));
+    EXPECT_TRUE(names(p).count("bl::" + rule + "::square")) << rule;
+    EXPECT_FALSE(names(p).count("bl::" + rule + "::floor")) << rule;
+    for (float mu : {-3.75f, -0.5f, 0.0f, 0.3f, 0.5f, 0.74f, 40.7f})
+      for (float s : {0.01f, 0.2f, 0.6f}) {
+        const double m = floor_entry(double(mu) + 0.5, double(s)) - floor_entry(double(mu), double(s));
+        EXPECT_NEAR(run1(pulse, rule, mu, s), m, 2e-5) << rule << " " << mu << " " << s;
+        EXPECT_NEAR(run1(neg, rule, mu, s), -m, 2e-5) << rule << " " << mu << " " << s;
+        if (rule == "gaussian")  // sin of N(m, v): e^{-9 v / 2} sin(3 m), v = m (1 - m)
+          EXPECT_NEAR(run1(wave, rule, mu, s), std::exp(-4.5 * m * (1 - m)) * std::sin(3 * m), 3e-5) << mu << " " << s;
+      }
+  }
+}
+
 TEST(Compiler, DeadCodeIsRemoved) {
   const auto count = [](const compiler::Program& p, compiler::LOp op) {
     int n = 0;
