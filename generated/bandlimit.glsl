@@ -5314,6 +5314,23 @@ float bl_box_fract_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * (((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
@@ -5405,6 +5422,25 @@ float bl_box_fract_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * ((((-1.0))) * u + ((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * ((((-1.0))) * u + ((-1.0)));
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
@@ -5472,6 +5508,23 @@ float bl_tent_fract_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
@@ -5573,6 +5626,25 @@ float bl_tent_fract_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * v * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * v * ((((-1.0/3.0))) * u + ((-1.0/2.0)));
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-2.0) : (-1.0)) - r;
     float L = hw + d;
@@ -6084,6 +6156,33 @@ float bl_box_triangle_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.9)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-2.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * (((1.0)) * u);
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * ((((-1.0))) * u);
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (0.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * (((1.0)) * u);
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
@@ -6188,6 +6287,17 @@ float bl_box_triangle_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.9)) {  // only the breaks it reaches
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * ((((-2.0))) * u);
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
@@ -6248,6 +6358,33 @@ float bl_tent_triangle_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.9)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-2.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = -l;
+    float v = l * sc * ik;
+    acc -= v * v * ((((1.0/3.0))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * ((((-1.0/3.0))) * u);
+  }
+  {  // break at 2 (r >= 0)
+    float d = (neg ? (0.0) : (2.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float u = l;
+    float v = l * sc * ik;
+    acc += v * v * ((((1.0/3.0))) * u);
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
@@ -6362,6 +6499,17 @@ float bl_tent_triangle_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.9)) {  // only the breaks it reaches
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (-1.0) : (1.0)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float u = (d > (0.0) ? l : -l);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * ((((-2.0/3.0))) * u);
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     float d = (neg ? (-3.0) : (-1.0)) - r;
     float L = hw + d;
@@ -6824,6 +6972,30 @@ float bl_box_square_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+    return acc;
+  }
   {  // break at -3/2 (r >= 0)
     float d = (neg ? (-2.5) : (-1.5)) - r;
     float L = hw + d;
@@ -6950,6 +7122,30 @@ float bl_box_square_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+    return acc;
+  }
   {  // break at -3/2 (r >= 0)
     float d = (neg ? (-2.5) : (-1.5)) - r;
     float L = hw + d;
@@ -7049,6 +7245,30 @@ float bl_tent_square_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+    return acc;
+  }
   {  // break at -3/2 (r >= 0)
     float d = (neg ? (-2.5) : (-1.5)) - r;
     float L = hw + d;
@@ -7185,6 +7405,30 @@ float bl_tent_square_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
+  }
+  {  // break at 1/2 (r >= 0)
+    float d = (neg ? (-0.5) : (0.5)) - r;
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+    return acc;
+  }
   {  // break at -3/2 (r >= 0)
     float d = (neg ? (-2.5) : (-1.5)) - r;
     float L = hw + d;
@@ -7502,6 +7746,37 @@ float bl_box_pulse30_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+    return acc;
+  }
   {  // break at -17/10 (r >= 0)
     float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw + d;
@@ -7628,6 +7903,37 @@ float bl_box_pulse30_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * ((1.0));
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * (((-1.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * ((1.0));
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * (((-1.0)));
+  }
+    return acc;
+  }
   {  // break at -17/10 (r >= 0)
     float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw + d;
@@ -7727,6 +8033,37 @@ float bl_tent_pulse30_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+    return acc;
+  }
   {  // break at -17/10 (r >= 0)
     float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw + d;
@@ -7863,6 +8200,37 @@ float bl_tent_pulse30_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    float d = (neg ? (-1.0) : (0.0)) - r;
+    float L = hw + d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc -= v * v * (((1.0/2.0)));
+  }
+  {  // break at 3/10 (r >= 0)
+    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float L = hw - abs(d);
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += (d > (0.0) ? v : -v) * v * (((-1.0/2.0)));
+  }
+  {  // break at 1 (r >= 0)
+    float d = (neg ? (0.0) : (1.0)) - r;
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((1.0/2.0)));
+  }
+  {  // break at 13/10 (r >= 0)
+    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float L = hw - d;
+    float l = L > (0.0) ? L : (0.0);
+    float v = l * sc * ik;
+    acc += v * v * (((-1.0/2.0)));
+  }
+    return acc;
+  }
   {  // break at -17/10 (r >= 0)
     float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw + d;

@@ -337,6 +337,16 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   // Tiny kernels: an exact power-of-two rescale of the offsets keeps 1/(width) finite.
   out += s.decl("sc", "hw < " + s.dbl(1e-30) + " ? " + s.dbl(std::ldexp(1.0, 100)) + " : " + s.dbl(1));
   out += s.decl("ik", s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + " * sc)");
+  // Pixel-sized kernels (half-width up to 0.45 periods: box sigma <= 0.26 T, tent 0.18 T) reach only
+  // the breaks within (-0.45 T, 1.45 T) of t in [0, T); every other term has L <= -0.05 T, so l = 0 and
+  // it adds exactly 0: skipping them changes no value (box square: 3 breaks instead of 9, fract 2 of 5).
+  const numeric reach = exact_value(0.45) * T;
+  std::vector<Candidate> near;
+  for (const Candidate& c : cands)
+    if (c.B > -reach && c.B < T + reach) near.push_back(c);
+  if (near.size() < cands.size() && 0.45 < K)
+    out += "  if (hw <= " + s.dbl(0.45 * Td) + ") {  // only the breaks it reaches\n" +
+           jump_terms(s, d.kernel, near, T) + "    return acc;\n  }\n";
   return out + jump_terms(s, d.kernel, cands, T) + "  return acc;\n";
 }
 

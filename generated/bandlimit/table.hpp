@@ -5677,6 +5677,23 @@ T box_fract_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * (((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -5775,6 +5792,25 @@ T box_fract_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * ((((T(-1)))) * u + ((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * ((((T(-1)))) * u + ((T(-1))));
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -5847,6 +5883,23 @@ T tent_fract_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -5953,6 +6006,25 @@ T tent_fract_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -6798,6 +6870,33 @@ T box_triangle_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.9)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * (((T(1))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * ((((T(-1)))) * u);
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(0.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * (((T(1))) * u);
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -6913,6 +7012,17 @@ T box_triangle_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.9)) {  // only the breaks it reaches
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * ((((T(-2)))) * u);
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -6979,6 +7089,33 @@ T tent_triangle_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.9)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-2.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = -l;
+    const T v = l * sc * ik;
+    acc -= v * v * ((((T(1)/T(3)))) * u);
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * ((((T(-1)/T(3)))) * u);
+  }
+  {  // break at 2 (r >= 0)
+    const T d = (neg ? T(0.0) : T(2.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = l;
+    const T v = l * sc * ik;
+    acc += v * v * ((((T(1)/T(3)))) * u);
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -7103,6 +7240,17 @@ T tent_triangle_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.9)) {  // only the breaks it reaches
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * ((((T(-2)/T(3)))) * u);
+  }
+    return acc;
+  }
   {  // break at -1 (r >= 0)
     const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
@@ -7849,6 +7997,30 @@ T box_square_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+    return acc;
+  }
   {  // break at -3/2 (r >= 0)
     const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
@@ -7985,6 +8157,30 @@ T box_square_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+    return acc;
+  }
   {  // break at -3/2 (r >= 0)
     const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
@@ -8089,6 +8285,30 @@ T tent_square_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+    return acc;
+  }
   {  // break at -3/2 (r >= 0)
     const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
@@ -8234,6 +8454,30 @@ T tent_square_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
+  }
+  {  // break at 1/2 (r >= 0)
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+    return acc;
+  }
   {  // break at -3/2 (r >= 0)
     const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
@@ -8573,6 +8817,37 @@ T box_pulse30_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+    return acc;
+  }
   {  // break at -17/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
@@ -8709,6 +8984,37 @@ T box_pulse30_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * ((T(1)));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * ((T(1)));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * (((T(-1))));
+  }
+    return acc;
+  }
   {  // break at -17/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
@@ -8814,6 +9120,37 @@ T tent_pulse30_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+    return acc;
+  }
   {  // break at -17/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
@@ -8960,6 +9297,37 @@ T tent_pulse30_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.45)) {  // only the breaks it reaches
+  {  // break at 0 (r >= 0)
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
+    const T L = hw + d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc -= v * v * (((T(1)/T(2))));
+  }
+  {  // break at 3/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
+  }
+  {  // break at 1 (r >= 0)
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(1)/T(2))));
+  }
+  {  // break at 13/10 (r >= 0)
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T L = hw - d;
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * sc * ik;
+    acc += v * v * (((T(-1)/T(2))));
+  }
+    return acc;
+  }
   {  // break at -17/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
