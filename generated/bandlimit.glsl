@@ -2560,10 +2560,7 @@ float bl_gaussian_abs_raw(float x, float sigma) {
   }
   return acc;
   }
-  if (sigma == (0.0)) {
-    if (x < 0.0) return ((-1.0)) * x;
-    return (1.0) * x;
-  }
+  if (sigma == (0.0)) return (x < 0.0 ? (((-1.0))) * x : ((1.0)) * x);
   return bl_nan();  // not reached: sigma >= 0 returned above
 }
 
@@ -2697,10 +2694,7 @@ float bl_gaussian_sign_raw(float x, float sigma) {
   }
   return acc;
   }
-  if (sigma == (0.0)) {
-    if (x < 0.0) return (-1.0);
-    return 1.0;
-  }
+  if (sigma == (0.0)) return (x < 0.0 ? ((-1.0)) : (1.0));
   return bl_nan();  // not reached: sigma >= 0 returned above
 }
 
@@ -2838,10 +2832,7 @@ float bl_gaussian_step_raw(float x, float sigma) {
   }
   return acc;
   }
-  if (sigma == (0.0)) {
-    if (x < 0.0) return (0.0);
-    return 1.0;
-  }
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (1.0));
   return bl_nan();  // not reached: sigma >= 0 returned above
 }
 
@@ -2871,10 +2862,7 @@ float bl_gaussian_step_sq_raw(float x, float sigma) {
   }
   return acc;
   }
-  if (sigma == (0.0)) {
-    if (x < 0.0) return (0.0);
-    return 1.0;
-  }
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (1.0));
   return bl_nan();  // not reached: sigma >= 0 returned above
 }
 
@@ -3062,11 +3050,7 @@ float bl_gaussian_saturate_raw(float x, float sigma) {
   }
   return acc;
   }
-  if (sigma == (0.0)) {
-    if (x < 0.0) return (0.0);
-    if (x < 1.0) return (1.0) * x;
-    return 1.0;
-  }
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? ((1.0)) * x : (1.0)));
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -3118,11 +3102,7 @@ float bl_gaussian_saturate_sq_raw(float x, float sigma) {
   }
   return acc;
   }
-  if (sigma == (0.0)) {
-    if (x < 0.0) return (0.0);
-    if (x < 1.0) return ((1.0) * x) * x;
-    return 1.0;
-  }
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((1.0)) * x) * x : (1.0)));
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
@@ -3362,11 +3342,7 @@ float bl_gaussian_smoothstep_raw(float x, float sigma) {
   }
   return acc;
   }
-  if (sigma == (0.0)) {
-    if (x < 0.0) return (0.0);
-    if (x < 1.0) return ((((-2.0)) * x + 3.0) * x) * x;
-    return 1.0;
-  }
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((((-2.0))) * x + (3.0)) * x) * x : (1.0)));
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
@@ -3426,11 +3402,7 @@ float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
   }
   return acc;
   }
-  if (sigma == (0.0)) {
-    if (x < 0.0) return (0.0);
-    if (x < 1.0) return ((((((4.0) * x + (-12.0)) * x + 9.0) * x) * x) * x) * x;
-    return 1.0;
-  }
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((((((4.0)) * x + ((-12.0))) * x + (9.0)) * x) * x) * x) * x : (1.0)));
   BlPiece p[4] = BlPiece[4](
       BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
       BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),

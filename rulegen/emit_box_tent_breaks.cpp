@@ -40,6 +40,9 @@ using sym::PolyPiece;
 // break sum is used for: its terms, and so its rounding, scale with it (float: 32 * 1e-7 << 2e-5).
 constexpr double kMaxGrowth = 32;
 
+// Half-width (in periods) up to which a periodic break sum takes only the breaks it can reach.
+constexpr double kNearReach = 0.45;
+
 std::string coef(const Syntax& s, const GiNaC::ex& v) {
   return v.is_zero() ? std::string() : "(" + s.ex(v) + ")";
 }
@@ -168,21 +171,6 @@ std::string jump_terms(const Syntax& s, Kernel k, const std::vector<Candidate>& 
   return out;
 }
 
-// A straight-line chain "r < hi_0 ? p_0(r) : r < hi_1 ? ... : p_last(r)" over pieces on [0, T).
-std::string piece_chain(const Syntax& s, const std::vector<PolyPiece>& ps, const std::string& v) {
-  std::string out;
-  for (size_t i = 0; i < ps.size(); ++i) {
-    std::vector<std::string> c;
-    for (const auto& x : ps[i].c) c.push_back(coef(s, x));
-    const std::string p = horner(s, c, v);
-    if (i + 1 < ps.size())
-      out += "(" + v + " < " + s.bound(ps[i].hi) + " ? " + p + " : ";
-    else
-      out += p + std::string(ps.size() - 1, ')');
-  }
-  return out;
-}
-
 bool is_pow2(const numeric& T) {
   const double pd = T.to_double();
   int e = 0;
@@ -217,8 +205,8 @@ std::string wide_regime(const sym::Derived& d, const Syntax& s) {
     return v;
   };
   if (box) {
-    out += "    return ((n2 - n1) * " + s.num(at_T(d.P1)) + " + (" + piece_chain(s, d.P1, "r2") + " - " +
-           piece_chain(s, d.P1, "r1") + ")) / (" + s.dbl(2) + " * hw);\n";
+    out += "    return ((n2 - n1) * " + s.num(at_T(d.P1)) + " + (" + piece_chain(d.P1, "r2", s.lang) + " - " +
+           piece_chain(d.P1, "r1", s.lang) + ")) / (" + s.dbl(2) + " * hw);\n";
     return out;
   }
   // Tent: every term divided by w^2 as it is formed (q^2 and w^2 overflow float past w ~ 1e19).
@@ -227,8 +215,8 @@ std::string wide_regime(const sym::Derived& d, const Syntax& s) {
   out += "  " + s.decl("g1", "period * s1 * ((n1 - " + s.dbl(1) + ") * iw) * " + s.dbl(0.5));
   out += "  " + s.decl("g2", "period * s2w * ((n2 - " + s.dbl(1) + ") * iw) * " + s.dbl(0.5));
   out += "    return " + s.num(at_T(d.P1)) + " * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + " +
-         s.num(at_T(d.P2)) + " * iw * (s2w + s1) + ((" + piece_chain(s, d.P2, "r2") + " + " +
-         piece_chain(s, d.P2, "r1") + ") - " + s.dbl(2) + " * " + piece_chain(s, d.P2, "t") +
+         s.num(at_T(d.P2)) + " * iw * (s2w + s1) + ((" + piece_chain(d.P2, "r2", s.lang) + " + " +
+         piece_chain(d.P2, "r1", s.lang) + ") - " + s.dbl(2) + " * " + piece_chain(d.P2, "t", s.lang) +
          ") * iw * iw;\n";
   return out;
 }
@@ -340,12 +328,12 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   // Pixel-sized kernels (half-width up to 0.45 periods: box sigma <= 0.26 T, tent 0.18 T) reach only
   // the breaks within (-0.45 T, 1.45 T) of t in [0, T); every other term has L <= -0.05 T, so l = 0 and
   // it adds exactly 0: skipping them changes no value (box square: 3 breaks instead of 9, fract 2 of 5).
-  const numeric reach = exact_value(0.45) * T;
+  const numeric reach = exact_value(kNearReach) * T;
   std::vector<Candidate> near;
   for (const Candidate& c : cands)
     if (c.B > -reach && c.B < T + reach) near.push_back(c);
-  if (near.size() < cands.size() && 0.45 < K)
-    out += "  if (hw <= " + s.dbl(0.45 * Td) + ") {  // only the breaks it reaches\n" +
+  if (near.size() < cands.size() && kNearReach < K)
+    out += "  if (hw <= " + s.dbl(kNearReach * Td) + ") {  // only the breaks it reaches\n" +
            jump_terms(s, d.kernel, near, T) + "    return acc;\n  }\n";
   return out + jump_terms(s, d.kernel, cands, T) + "  return acc;\n";
 }

@@ -278,14 +278,7 @@ std::string body_gauss_pw(const Derived& d, const Syntax& s) {
   // sigma = 0: f itself piece by piece (right-continuous, as pw_eval) without the table, which a GPU
   // would build in local memory at every call site (NVIDIA refuses a large program's many copies:
   // C5041, docs/gpu_timing.md); only the generic gauss_pw past thr still reads one.
-  out += "  return acc;\n  }\n  if (sigma == " + s.dbl(0) + ") {\n";
-  for (size_t i = 0; i < n; ++i) {
-    std::vector<std::string> cs;
-    for (const GiNaC::numeric& c : ps[i].c) cs.push_back(coef(s, c));
-    const std::string ret = "return " + horner(s, cs, "x") + ";\n";
-    out += i + 1 < n ? "    if (x < " + s.bound(ps[i].hi) + ") " + ret : "    " + ret;
-  }
-  out += "  }\n";
+  out += "  return acc;\n  }\n  if (sigma == " + s.dbl(0) + ") return " + piece_chain(ps, "x", s.lang) + ";\n";
   return out + (n > 2 ? piece_table(s, "p", ps) + "  return " + s.helper("gauss_pw") + "(x, sigma, " + P + ");\n"
                       : "  return " + s.nan() + ";  // not reached: sigma >= 0 returned above\n");
 }
@@ -1338,6 +1331,21 @@ std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
       break;
   }
   return (s.cpp() ? "  BL_MATH_USING\n" : "") + b;
+}
+
+std::string piece_chain(const std::vector<PolyPiece>& ps, const std::string& v, Lang lang) {
+  const Syntax s{lang};
+  std::string out;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    std::vector<std::string> cs;
+    for (const auto& x : ps[i].c) cs.push_back(x.is_zero() ? std::string() : "(" + s.ex(x) + ")");
+    const std::string p = horner(s, cs, v);
+    if (i + 1 < ps.size())
+      out += "(" + v + " < " + s.bound(ps[i].hi) + " ? " + p + " : ";
+    else
+      out += p + std::string(ps.size() - 1, ')');
+  }
+  return out;
 }
 
 // f(x - P floor(x/P)) piece by piece on the exact signed remainder r (as periodic_eval: a negative r

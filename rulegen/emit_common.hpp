@@ -49,6 +49,9 @@ inline bool has_half_line(const Derived& d) {
 }
 // Body of the plain (unsmoothed) function f(x).
 std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lang lang);
+// A straight-line chain "v < hi_0 ? p_0(v) : v < hi_1 ? ... : p_last(v)" over sorted pieces
+// (right-continuous at the breaks, as pw_eval), one expression.
+std::string piece_chain(const std::vector<sym::PolyPiece>& ps, const std::string& v, Lang lang);
 // A periodic function of x given on one period [0, P) by pieces (hi_i, f_i(sym::var_x())), as
 // straight-line statements on the exact signed remainder r (periodic_eval's piece choice). With
 // nan_guard a NaN r (x NaN or infinite) is returned as is (constant pieces would hide it).

@@ -354,7 +354,7 @@ class Lowering {
   // floor(y + 1/2) - floor(y) = 1 - square(y) (1 where fract(y) >= 1/2: a checkerboard's or a
   // stripe's pulse). Both floors smoothed by one kernel at one width: one smoothed square wave
   // instead of two smoothed floors (calibrated float: gaussian floor 10.9 ns + the plain floor of
-  // its shift, twice, against square 12.1; box 5.7 x 2 against 10.6). The mean is the floors'
+  // its shift, twice, against square 12.1; box 5.7 x 2 against 8.0). The mean is the floors'
   // difference exactly (the expectation is linear); the variance is the indicator's p (1 - p), where
   // two floors would need their correlation (under a None rule the node keeps no variance).
   bool floor_pulse(const ir::Node& n, const Rule& r, Val& out) {
@@ -372,9 +372,8 @@ class Lowering {
     if (ya.base < 0 || ya.base != yb.base || ya.beta != yb.beta) return false;
     const double d = ya.alpha - yb.alpha;  // +1/2: floor(y + 1/2) - floor(y); -1/2: the negation
     if (d != 0.5 && d != -0.5) return false;
-    Val& y = vals_[d > 0 ? g_.node(n.b).a : g_.node(n.a).a];
-    const std::string kern = kernel_for(ra.kind == Kind::Gaussian ? "gaussian" : ra.kind == Kind::Box ? "box" : "tent",
-                                        "square");
+    Val& y = vals_[d > 0 ? g_.node(n.b).a : g_.node(n.a).a];  // the floor of the lower argument
+    const std::string kern = kernel_for(rules::kind_name(ra.kind), "square");
     const int p = call(kernel_name(kern, "square", false), {y.mean, scaled_sd(y, ra)});
     const int pulse = sub(k(1), p);
     out.mean = d > 0 ? pulse : op(LOp::Neg, pulse);
