@@ -2,6 +2,7 @@
 // native shader; dead code is gone; single-node rules agree with closed forms from the literature.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -280,14 +281,16 @@ TEST(Compiler, FloorPairPulseIsOneSquareWave) {
   };
   const ir::Graph pulse = one_input([](dsl::Var u) { return dsl::floor(u + 0.5) - dsl::floor(u); });
   const ir::Graph neg = one_input([](dsl::Var u) { return dsl::floor(u) - dsl::floor(u + 0.5); });
-  const ir::Graph wave = one_input([](dsl::Var u) { return dsl::sin((dsl::floor(u + 0.5) - dsl::floor(u)) * 3.0); });
+  const ir::Graph wave =
+      one_input([](dsl::Var u) { return dsl::sin((dsl::floor(u + 0.5) - dsl::floor(u)) * 3.0); });
   using Entry = double (*)(double, double);
   const std::vector<std::pair<std::string, Entry>> kernels = {
       {"gaussian", [](double x, double s) { return bl::gaussian::floor(x, s); }},
       {"box", [](double x, double s) { return bl::box::floor(x, s); }},
       {"tent", [](double x, double s) { return bl::tent::floor(x, s); }}};
   for (const auto& [rule, floor_entry] : kernels) {
-    const compiler::Program p = compiler::lower(pulse, compiler::uniform_schedule(pulse, rules::parse_rule(rule)));
+    const compiler::Program p =
+        compiler::lower(pulse, compiler::uniform_schedule(pulse, rules::parse_rule(rule)));
     EXPECT_TRUE(names(p).count("bl::" + rule + "::square")) << rule;
     EXPECT_FALSE(names(p).count("bl::" + rule + "::floor")) << rule;
     for (float mu : {-3.75f, -0.5f, 0.0f, 0.3f, 0.5f, 0.74f, 40.7f})
@@ -296,7 +299,77 @@ TEST(Compiler, FloorPairPulseIsOneSquareWave) {
         EXPECT_NEAR(run1(pulse, rule, mu, s), m, 2e-5) << rule << " " << mu << " " << s;
         EXPECT_NEAR(run1(neg, rule, mu, s), -m, 2e-5) << rule << " " << mu << " " << s;
         if (rule == "gaussian")  // sin of N(m, v): e^{-9 v / 2} sin(3 m), v = m (1 - m)
-          EXPECT_NEAR(run1(wave, rule, mu, s), std::exp(-4.5 * m * (1 - m)) * std::sin(3 * m), 3e-5) << mu << " " << s;
+          EXPECT_NEAR(run1(wave, rule, mu, s), std::exp(-4.5 * m * (1 - m)) * std::sin(3 * m), 3e-5)
+              << mu << " " << s;
+      }
+  }
+}
+
+// E[1{fract(Y) in [lo, hi]}] for Y = mu + sigma Z under a unit-variance kernel, from the kernel's CDF
+// over the intervals [k + lo, k + hi] (independent of the table's fract entries).
+double window_reference(const std::string& kernel, double mu, double sigma, double lo, double hi) {
+  auto cdf = [&](double t) {  // P(Z <= t)
+    if (kernel == "gaussian") return 0.5 * std::erfc(-t / std::sqrt(2.0));
+    if (kernel == "box") {
+      const double h = std::sqrt(3.0);
+      return std::clamp((t + h) / (2 * h), 0.0, 1.0);
+    }
+    const double w = std::sqrt(6.0);  // tent: half-width sqrt(6)
+    if (t <= -w) return 0.0;
+    if (t >= w) return 1.0;
+    return t <= 0 ? 0.5 * (w + t) * (w + t) / (w * w) : 1 - 0.5 * (w - t) * (w - t) / (w * w);
+  };
+  double p = 0;
+  for (long k = static_cast<long>(std::floor(mu - 12 * sigma)) - 1;
+       k <= static_cast<long>(std::ceil(mu + 12 * sigma)) + 1; ++k)
+    p += cdf((k + hi - mu) / sigma) - cdf((k + lo - mu) / sigma);
+  return p;
+}
+
+// step(fract(y) - lo) * step(hi - fract(y)) (either order, and the second pair of a left-to-right
+// chain of four) is the indicator of fract(y) in [lo, hi]: two mean-only fract calls under the steps'
+// kernel, no step left; its mean is the indicator's exact mean under that kernel.
+TEST(Compiler, FractWindowIsTwoFracts) {
+  auto names = [](const compiler::Program& p) {
+    std::set<std::string> out;
+    for (int fi : p.used_functions()) out.insert(compiler::functions()[static_cast<std::size_t>(fi)].cpp);
+    return out;
+  };
+  const double lo = 0.06, hi = 0.94;
+  const ir::Graph win = one_input([&](dsl::Var u) {
+    const dsl::Var f = dsl::fract(u);
+    return dsl::step(f - lo) * dsl::step(hi - f);
+  });
+  const ir::Graph rev = one_input([&](dsl::Var u) {
+    const dsl::Var f = dsl::fract(u * 2.0);
+    return dsl::step(0.7 - f) * dsl::step(f - 0.2);
+  });
+  ir::Graph chain;
+  {
+    dsl::Tracer t(chain);
+    const dsl::Var u = dsl::Var::input("u", true), v = dsl::Var::input("v", true);
+    const dsl::Var fu = dsl::fract(u), fv = dsl::fract(v);
+    chain.add_output(
+        "r", (dsl::step(fu - lo) * dsl::step(hi - fu) * dsl::step(fv - lo) * dsl::step(hi - fv)).id());
+  }
+  for (const std::string rule : {"gaussian", "box", "tent"}) {
+    const compiler::Program p =
+        compiler::lower(win, compiler::uniform_schedule(win, rules::parse_rule(rule)));
+    EXPECT_TRUE(names(p).count("bl::" + rule + "::fract")) << rule;
+    EXPECT_FALSE(names(p).count("bl::" + rule + "::step")) << rule;
+    const compiler::Program pc =
+        compiler::lower(chain, compiler::uniform_schedule(chain, rules::parse_rule(rule)));
+    EXPECT_FALSE(names(pc).count("bl::" + rule + "::step")) << rule;
+    for (float mu : {-3.03f, -0.5f, 0.0f, 0.05f, 0.06f, 0.3f, 0.95f, 40.7f})
+      for (float s : {0.001f, 0.01f, 0.05f, 0.2f, 0.6f}) {
+        const double m = window_reference(rule, mu, s, lo, hi);
+        EXPECT_NEAR(run1(win, rule, mu, s), m, 2e-5) << rule << " " << mu << " " << s;
+        EXPECT_NEAR(run1(rev, rule, mu, s), window_reference(rule, 2.0 * mu, 2.0 * s, 0.2, 0.7), 2e-5)
+            << rule << " " << mu << " " << s;
+        const float mv = 0.3f * mu + 0.11f, sv = 0.5f * s;
+        const double mc = m * window_reference(rule, mv, sv, lo, hi);
+        EXPECT_NEAR(testing::run_one_pixel(pc, {mu, mv}, {s, sv}, {0, 0}, {0, 0}), mc, 3e-5)
+            << rule << " " << mu << " " << s;
       }
   }
 }
