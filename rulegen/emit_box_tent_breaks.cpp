@@ -132,33 +132,10 @@ std::string offset_decl(const Syntax& s, const std::string& name, const numeric&
   const auto [h0, l0] = split_text(s, B);
   if (shift.is_zero()) return s.decl(name, l0.empty() ? h0 + " - r" : "(" + h0 + " - r) + " + l0);
   const auto [h1, l1] = split_text(s, B - shift);
-  if (s.cpp()) {
-    // Arithmetic on nf (1 when neg, else 0) instead of a select: GCC turned the selects into
-    // branches, mispredicted wherever the pattern aliases. Exact: B, B - shift and shift exact in
-    // float and double make h0 - nf shift exactly h1; otherwise one product of each pair is 0.
-    const auto [hs, ls] = split_text(s, shift);
-    if (l0.empty() && l1.empty() && ls.empty()) return s.decl(name, "(" + h0 + " - nf * " + hs + ") - r");
-    auto pick = [](const std::string& a1, const std::string& a0) {
-      return "(nf * " + (a1.empty() ? std::string("0") : a1) + " + pf * " +
-             (a0.empty() ? std::string("0") : a0) + ")";
-    };
-    std::string v = pick(h1, h0) + " - r";
-    if (!l0.empty() || !l1.empty()) v = "(" + v + ") + " + pick(l1, l0);
-    return s.decl(name, v);
-  }
   std::string v = "(neg ? " + h1 + " : " + h0 + ") - r";
   if (!l0.empty() || !l1.empty())
     v = "(" + v + ") + (neg ? " + (l1.empty() ? s.dbl(0) : l1) + " : " + (l0.empty() ? s.dbl(0) : l0) + ")";
   return s.decl(name, v);
-}
-
-// max(L, 0) and (d > 0 ? v : -v) as the C++ helpers pos and sign_gt0 (no compare for GCC to turn
-// into a branch; both exact), as selects in GLSL (GPUs select).
-std::string positive_part(const Syntax& s, const std::string& L) {
-  return s.cpp() ? "detail::pos(" + L + ")" : L + " > " + s.dbl(0) + " ? " + L + " : " + s.dbl(0);
-}
-std::string sign_of_d(const Syntax& s, const std::string& v) {
-  return s.cpp() ? "detail::sign_gt0(" + v + ", d)" : "(d > " + s.dbl(0) + " ? " + v + " : -" + v + ")";
 }
 
 // The jump terms of the candidates: acc += J_b (see the file comment). `hw`: the half-width h or w,
@@ -174,8 +151,8 @@ std::string jump_terms(const Syntax& s, Kernel k, const std::vector<Candidate>& 
     out += "  " + offset_decl(s, "d", c.B, shift);
     const std::string L = c.side < 0 ? "hw + d" : (c.side > 0 ? "hw - d" : "hw - abs(d)");
     out += "  " + s.decl("L", L);
-    out += "  " + s.decl("l", positive_part(s, "L"));
-    std::string u = c.side < 0 ? "-l" : (c.side > 0 ? "l" : sign_of_d(s, "l"));
+    out += "  " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
+    std::string u = c.side < 0 ? "-l" : (c.side > 0 ? "l" : "(d > " + s.dbl(0) + " ? l : -l)");
     if (c.e.size() > 1) out += "  " + s.decl("u", u);
     std::vector<std::string> pc;
     for (size_t j = 0; j < c.e.size(); ++j)
@@ -188,7 +165,7 @@ std::string jump_terms(const Syntax& s, Kernel k, const std::vector<Candidate>& 
     if (c.side != 0)
       out += std::string("    acc ") + (c.side < 0 ? "-" : "+") + "= v" + vk + " * (" + P + ");\n";
     else
-      out += "    acc += " + sign_of_d(s, "v") + vk + " * (" + P + ");\n";
+      out += "    acc += (d > " + s.dbl(0) + " ? v : -v)" + vk + " * (" + P + ");\n";
     out += "  }\n";
   }
   return out;
@@ -316,16 +293,9 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   out += "  if (!(sigma >= " + s.dbl(0) + ")) return " + s.nan() + ";  // sigma < 0 or NaN\n";
   const std::string reduce =
       s.cpp() && is_pow2(T) ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
-  if (s.cpp()) {
-    // + 0 turns -0 (x a negative multiple of the period) into +0, so that nf = (r < 0) exactly.
-    out += s.decl("r", reduce + "(x, period) + T(0)");
-    out += s.decl("nf", "detail::neg01(r)") + s.decl("pf", "T(1) - nf");
-    out += s.decl("t", "r + nf * period");
-  } else {
-    out += s.decl("r", reduce + "(x, period)");
-    out += "  bool neg = r < " + s.dbl(0) + ";\n";
-    out += s.decl("t", "neg ? r + period : r");
-  }
+  out += s.decl("r", reduce + "(x, period)");
+  out += std::string("  ") + (s.cpp() ? "const bool" : "bool") + " neg = r < " + s.dbl(0) + ";\n";
+  out += s.decl("t", "neg ? r + period : r");
   const bool box = d.kernel == Kernel::Box;
   out += s.decl("hw", (box ? (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3")
                            : (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")) +
@@ -365,10 +335,7 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   if (near.size() < cands.size() && kNearReach < K)
     out += "  if (hw <= " + s.dbl(kNearReach * Td) + ") {  // only the breaks it reaches\n" +
            jump_terms(s, d.kernel, near, T) + "    return acc;\n  }\n";
-  out += jump_terms(s, d.kernel, cands, T) + "  return acc;\n";
-  const std::string pf_decl = s.decl("pf", "T(1) - nf");
-  if (s.cpp() && out.find("pf * ") == std::string::npos) out.erase(out.find(pf_decl), pf_decl.size());
-  return out;
+  return out + jump_terms(s, d.kernel, cands, T) + "  return acc;\n";
 }
 
 namespace {
@@ -538,7 +505,7 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
     out += "      {  // break at n0 + " + std::to_string(j) + "\n";
     out += "      " + s.decl("n", "n0 + " + J) + "      " + s.decl("d", "n - x");
     out += "      " + s.decl("L", j <= 0 ? "hw + d" : "hw - d");
-    out += "      " + s.decl("l", positive_part(s, "L"));
+    out += "      " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
     if (uses_u) out += "      " + s.decl("u", j <= 0 ? "-l" : "l");
     const std::string P = horner(s, pc, "u");
     // Static sides: u = +-l, the tent's (u/w)(l/w) = +-(l/w)^2.

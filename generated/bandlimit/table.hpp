@@ -2318,10 +2318,10 @@ T box_abs_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * (((T(1))) * u);
+      acc += (d > T(0.0) ? v : -v) * (((T(1))) * u);
     }
       return acc;
     }
@@ -2375,10 +2375,10 @@ T tent_abs_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * ((((T(1)/T(3)))) * u);
+      acc += (d > T(0.0) ? v : -v) * v * ((((T(1)/T(3)))) * u);
     }
       return acc;
     }
@@ -2484,9 +2484,9 @@ T box_sign_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
+      const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * ((T(2)));
+      acc += (d > T(0.0) ? v : -v) * ((T(2)));
     }
       return acc;
     }
@@ -2542,9 +2542,9 @@ T tent_sign_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
+      const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * ((T(1)));
+      acc += (d > T(0.0) ? v : -v) * v * ((T(1)));
     }
       return acc;
     }
@@ -2671,9 +2671,9 @@ T box_step_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
+      const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * ((T(1)));
+      acc += (d > T(0.0) ? v : -v) * ((T(1)));
     }
       return acc;
     }
@@ -2711,9 +2711,9 @@ T box_step_sq_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
+      const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * ((T(1)));
+      acc += (d > T(0.0) ? v : -v) * ((T(1)));
     }
       return acc;
     }
@@ -2752,9 +2752,9 @@ T tent_step_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
+      const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * (((T(1)/T(2))));
+      acc += (d > T(0.0) ? v : -v) * v * (((T(1)/T(2))));
     }
       return acc;
     }
@@ -2793,9 +2793,9 @@ T tent_step_sq_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
+      const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * (((T(1)/T(2))));
+      acc += (d > T(0.0) ? v : -v) * v * (((T(1)/T(2))));
     }
       return acc;
     }
@@ -2948,18 +2948,18 @@ T box_saturate_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * ((((T(1)/T(2)))) * u);
+      acc += (d > T(0.0) ? v : -v) * ((((T(1)/T(2)))) * u);
     }
     {  // break at 1
       const T d = T(1.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * ((((T(-1)/T(2)))) * u);
+      acc += (d > T(0.0) ? v : -v) * ((((T(-1)/T(2)))) * u);
     }
       return acc;
     }
@@ -3001,18 +3001,18 @@ T box_saturate_sq_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * (((((T(1)/T(3)))) * u) * u);
+      acc += (d > T(0.0) ? v : -v) * (((((T(1)/T(3)))) * u) * u);
     }
     {  // break at 1
       const T d = T(1.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * (((((T(-1)/T(3)))) * u + ((T(-1)))) * u);
+      acc += (d > T(0.0) ? v : -v) * (((((T(-1)/T(3)))) * u + ((T(-1)))) * u);
     }
       return acc;
     }
@@ -3053,18 +3053,18 @@ T tent_saturate_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * ((((T(1)/T(6)))) * u);
+      acc += (d > T(0.0) ? v : -v) * v * ((((T(1)/T(6)))) * u);
     }
     {  // break at 1
       const T d = T(1.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * ((((T(-1)/T(6)))) * u);
+      acc += (d > T(0.0) ? v : -v) * v * ((((T(-1)/T(6)))) * u);
     }
       return acc;
     }
@@ -3106,18 +3106,18 @@ T tent_saturate_sq_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * (((((T(1)/T(12)))) * u) * u);
+      acc += (d > T(0.0) ? v : -v) * v * (((((T(1)/T(12)))) * u) * u);
     }
     {  // break at 1
       const T d = T(1.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * (((((T(-1)/T(12)))) * u + ((T(-1)/T(3)))) * u);
+      acc += (d > T(0.0) ? v : -v) * v * (((((T(-1)/T(12)))) * u + ((T(-1)/T(3)))) * u);
     }
       return acc;
     }
@@ -3319,18 +3319,18 @@ T box_smoothstep_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * ((((((T(-1)/T(2)))) * u + (T(1))) * u) * u);
+      acc += (d > T(0.0) ? v : -v) * ((((((T(-1)/T(2)))) * u + (T(1))) * u) * u);
     }
     {  // break at 1
       const T d = T(1.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * ((((((T(1)/T(2)))) * u + (T(1))) * u) * u);
+      acc += (d > T(0.0) ? v : -v) * ((((((T(1)/T(2)))) * u + (T(1))) * u) * u);
     }
       return acc;
     }
@@ -3372,18 +3372,18 @@ T box_smoothstep_sq_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * (((((((((T(4)/T(7)))) * u + ((T(-2)))) * u + ((T(9)/T(5)))) * u) * u) * u) * u);
+      acc += (d > T(0.0) ? v : -v) * (((((((((T(4)/T(7)))) * u + ((T(-2)))) * u + ((T(9)/T(5)))) * u) * u) * u) * u);
     }
     {  // break at 1
       const T d = T(1.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * (((((((((T(-4)/T(7)))) * u + ((T(-2)))) * u + ((T(-9)/T(5)))) * u + (T(1))) * u + (T(2))) * u) * u);
+      acc += (d > T(0.0) ? v : -v) * (((((((((T(-4)/T(7)))) * u + ((T(-2)))) * u + ((T(-9)/T(5)))) * u + (T(1))) * u + (T(2))) * u) * u);
     }
       return acc;
     }
@@ -3426,18 +3426,18 @@ T tent_smoothstep_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * ((((((T(-1)/T(10)))) * u + ((T(1)/T(4)))) * u) * u);
+      acc += (d > T(0.0) ? v : -v) * v * ((((((T(-1)/T(10)))) * u + ((T(1)/T(4)))) * u) * u);
     }
     {  // break at 1
       const T d = T(1.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * ((((((T(1)/T(10)))) * u + ((T(1)/T(4)))) * u) * u);
+      acc += (d > T(0.0) ? v : -v) * v * ((((((T(1)/T(10)))) * u + ((T(1)/T(4)))) * u) * u);
     }
       return acc;
     }
@@ -3480,18 +3480,18 @@ T tent_smoothstep_sq_raw(T x, T sigma) {
     {  // break at 0
       const T d = T(0.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * (((((((((T(1)/T(14)))) * u + ((T(-2)/T(7)))) * u + ((T(3)/T(10)))) * u) * u) * u) * u);
+      acc += (d > T(0.0) ? v : -v) * v * (((((((((T(1)/T(14)))) * u + ((T(-2)/T(7)))) * u + ((T(3)/T(10)))) * u) * u) * u) * u);
     }
     {  // break at 1
       const T d = T(1.0) - r;
       const T L = hw - abs(d);
-      const T l = detail::pos(L);
-      const T u = detail::sign_gt0(l, d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T u = (d > T(0.0) ? l : -l);
       const T v = l * sc * ik;
-      acc += detail::sign_gt0(v, d) * v * (((((((((T(-1)/T(14)))) * u + ((T(-2)/T(7)))) * u + ((T(-3)/T(10)))) * u + ((T(1)/T(5)))) * u + ((T(1)/T(2)))) * u) * u);
+      acc += (d > T(0.0) ? v : -v) * v * (((((((((T(-1)/T(14)))) * u + ((T(-2)/T(7)))) * u + ((T(-3)/T(10)))) * u + ((T(1)/T(5)))) * u + ((T(1)/T(2)))) * u) * u);
     }
       return acc;
     }
@@ -5662,9 +5662,9 @@ T box_fract_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -5679,46 +5679,46 @@ T box_fract_raw(T x, T sigma) {
   const T ik = T(1.0) / (T(2.0) * hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
     return acc;
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
@@ -5776,9 +5776,9 @@ T box_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -5794,17 +5794,17 @@ T box_fract_sq_raw(T x, T sigma) {
   const T ik = T(1.0) / (T(2.0) * hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * ((((T(-1)))) * u + ((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * ((((T(-1)))) * u + ((T(-1))));
@@ -5812,33 +5812,33 @@ T box_fract_sq_raw(T x, T sigma) {
     return acc;
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * ((((T(-1)))) * u + ((T(-1))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * ((((T(-1)))) * u + ((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * ((((T(-1)))) * u + ((T(-1))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * ((((T(-1)))) * u + ((T(-1))));
@@ -5863,9 +5863,9 @@ T tent_fract_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -5885,46 +5885,46 @@ T tent_fract_raw(T x, T sigma) {
   const T ik = T(1.0) / (hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
     return acc;
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
@@ -5985,9 +5985,9 @@ T tent_fract_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -6008,17 +6008,17 @@ T tent_fract_sq_raw(T x, T sigma) {
   const T ik = T(1.0) / (hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
@@ -6026,33 +6026,33 @@ T tent_fract_sq_raw(T x, T sigma) {
     return acc;
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * v * ((((T(-1)/T(3)))) * u + ((T(-1)/T(2))));
@@ -6854,9 +6854,9 @@ T box_triangle_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
     T n1;
@@ -6865,32 +6865,32 @@ T box_triangle_raw(T x, T sigma) {
     const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * T(1) + ((r2 < T(1) ? ((((T(1)/T(2)))) * r2) * r2 : ((((T(-1)/T(2)))) * r2 + (T(2))) * r2 + ((T(-1)))) - (r1 < T(1) ? ((((T(1)/T(2)))) * r1) * r1 : ((((T(-1)/T(2)))) * r1 + (T(2))) * r1 + ((T(-1)))))) / (T(2.0) * hw);
   }
-  const T db1 = (T(1.0) - nf * T(2.0)) - r;
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
   T acc = (db1 > T(0.0) ? (((T(1)))) * t : ((((T(-1))))) * t + ((T(2))));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
   if (hw <= T(0.9)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-2.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * (((T(1))) * u);
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
-    const T u = detail::sign_gt0(l, d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * ((((T(-1)))) * u);
+    acc += (d > T(0.0) ? v : -v) * ((((T(-1)))) * u);
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(0.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * (((T(1))) * u);
@@ -6898,41 +6898,41 @@ T box_triangle_raw(T x, T sigma) {
     return acc;
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * ((((T(-1)))) * u);
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-2.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * (((T(1))) * u);
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
-    const T u = detail::sign_gt0(l, d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * ((((T(-1)))) * u);
+    acc += (d > T(0.0) ? v : -v) * ((((T(-1)))) * u);
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(0.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * (((T(1))) * u);
   }
   {  // break at 3 (r >= 0)
-    const T d = (T(3.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * ((((T(-1)))) * u);
@@ -6995,9 +6995,9 @@ T box_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
     T n1;
@@ -7007,42 +7007,42 @@ T box_triangle_sq_raw(T x, T sigma) {
     return ((n2 - n1) * (T(2)/T(3)) + ((r2 < T(1) ? (((((T(1)/T(3)))) * r2) * r2) * r2 : (((((T(1)/T(3)))) * r2 + ((T(-2)))) * r2 + (T(4))) * r2 + ((T(-2)))) - (r1 < T(1) ? (((((T(1)/T(3)))) * r1) * r1) * r1 : (((((T(1)/T(3)))) * r1 + ((T(-2)))) * r1 + (T(4))) * r1 + ((T(-2)))))) / (T(2.0) * hw);
   }
   const T s2 = sigma * sigma;
-  const T db1 = (T(1.0) - nf * T(2.0)) - r;
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
   T acc = (db1 > T(0.0) ? ((((T(1)))) * t) * t + (((T(1))) * s2) : ((((T(1)))) * t + (((T(-4))))) * t + (((T(1))) * s2 + (T(4))));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
   if (hw <= T(0.9)) {  // only the breaks it reaches
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
-    const T u = detail::sign_gt0(l, d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * ((((T(-2)))) * u);
+    acc += (d > T(0.0) ? v : -v) * ((((T(-2)))) * u);
   }
     return acc;
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * ((((T(-2)))) * u);
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
-    const T u = detail::sign_gt0(l, d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * ((((T(-2)))) * u);
+    acc += (d > T(0.0) ? v : -v) * ((((T(-2)))) * u);
   }
   {  // break at 3 (r >= 0)
-    const T d = (T(3.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * ((((T(-2)))) * u);
@@ -7068,9 +7068,9 @@ T tent_triangle_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
     T n1;
@@ -7084,32 +7084,32 @@ T tent_triangle_raw(T x, T sigma) {
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
     return T(1) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + T(1) * iw * (s2w + s1) + (((r2 < T(1) ? (((((T(1)/T(6)))) * r2) * r2) * r2 : (((((T(-1)/T(6)))) * r2 + (T(1))) * r2 + ((T(-1)))) * r2 + ((T(1)/T(3)))) + (r1 < T(1) ? (((((T(1)/T(6)))) * r1) * r1) * r1 : (((((T(-1)/T(6)))) * r1 + (T(1))) * r1 + ((T(-1)))) * r1 + ((T(1)/T(3))))) - T(2.0) * (t < T(1) ? (((((T(1)/T(6)))) * t) * t) * t : (((((T(-1)/T(6)))) * t + (T(1))) * t + ((T(-1)))) * t + ((T(1)/T(3))))) * iw * iw;
   }
-  const T db1 = (T(1.0) - nf * T(2.0)) - r;
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
   T acc = (db1 > T(0.0) ? (((T(1)))) * t : ((((T(-1))))) * t + ((T(2))));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
   if (hw <= T(0.9)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-2.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * v * ((((T(1)/T(3)))) * u);
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
-    const T u = detail::sign_gt0(l, d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * ((((T(-1)/T(3)))) * u);
+    acc += (d > T(0.0) ? v : -v) * v * ((((T(-1)/T(3)))) * u);
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(0.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * v * ((((T(1)/T(3)))) * u);
@@ -7117,41 +7117,41 @@ T tent_triangle_raw(T x, T sigma) {
     return acc;
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * v * ((((T(-1)/T(3)))) * u);
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-2.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * v * ((((T(1)/T(3)))) * u);
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
-    const T u = detail::sign_gt0(l, d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * ((((T(-1)/T(3)))) * u);
+    acc += (d > T(0.0) ? v : -v) * v * ((((T(-1)/T(3)))) * u);
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(0.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * v * ((((T(1)/T(3)))) * u);
   }
   {  // break at 3 (r >= 0)
-    const T d = (T(3.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * v * ((((T(-1)/T(3)))) * u);
@@ -7218,9 +7218,9 @@ T tent_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 1.00 periods each side
     T n1;
@@ -7235,42 +7235,42 @@ T tent_triangle_sq_raw(T x, T sigma) {
     return (T(2)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(2)/T(3)) * iw * (s2w + s1) + (((r2 < T(1) ? ((((((T(1)/T(12)))) * r2) * r2) * r2) * r2 : ((((((T(1)/T(12)))) * r2 + ((T(-2)/T(3)))) * r2 + (T(2))) * r2 + ((T(-2)))) * r2 + ((T(2)/T(3)))) + (r1 < T(1) ? ((((((T(1)/T(12)))) * r1) * r1) * r1) * r1 : ((((((T(1)/T(12)))) * r1 + ((T(-2)/T(3)))) * r1 + (T(2))) * r1 + ((T(-2)))) * r1 + ((T(2)/T(3))))) - T(2.0) * (t < T(1) ? ((((((T(1)/T(12)))) * t) * t) * t) * t : ((((((T(1)/T(12)))) * t + ((T(-2)/T(3)))) * t + (T(2))) * t + ((T(-2)))) * t + ((T(2)/T(3))))) * iw * iw;
   }
   const T s2 = sigma * sigma;
-  const T db1 = (T(1.0) - nf * T(2.0)) - r;
+  const T db1 = (neg ? T(-1.0) : T(1.0)) - r;
   T acc = (db1 > T(0.0) ? ((((T(1)))) * t) * t + (((T(1))) * s2) : ((((T(1)))) * t + (((T(-4))))) * t + (((T(1))) * s2 + (T(4))));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
   if (hw <= T(0.9)) {  // only the breaks it reaches
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
-    const T u = detail::sign_gt0(l, d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * ((((T(-2)/T(3)))) * u);
+    acc += (d > T(0.0) ? v : -v) * v * ((((T(-2)/T(3)))) * u);
   }
     return acc;
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-3.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = -l;
     const T v = l * sc * ik;
     acc -= v * v * ((((T(-2)/T(3)))) * u);
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(-1.0) : T(1.0)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
-    const T u = detail::sign_gt0(l, d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T u = (d > T(0.0) ? l : -l);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * ((((T(-2)/T(3)))) * u);
+    acc += (d > T(0.0) ? v : -v) * v * ((((T(-2)/T(3)))) * u);
   }
   {  // break at 3 (r >= 0)
-    const T d = (T(3.0) - nf * T(2.0)) - r;
+    const T d = (neg ? T(1.0) : T(3.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T u = l;
     const T v = l * sc * ik;
     acc += v * v * ((((T(-2)/T(3)))) * u);
@@ -7981,9 +7981,9 @@ T box_square_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -7992,95 +7992,95 @@ T box_square_raw(T x, T sigma) {
     const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? ((T(1))) * r2 : ((T(1)/T(2)))) - (r1 < (T(1)/T(2)) ? ((T(1))) * r1 : ((T(1)/T(2)))))) / (T(2.0) * hw);
   }
-  const T db1 = (T(0.5) - nf * T(1.0)) - r;
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
   T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at 1/2 (r >= 0)
-    const T d = (T(0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * (((T(-1))));
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
     return acc;
   }
   {  // break at -3/2 (r >= 0)
-    const T d = (T(-1.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at -1/2 (r >= 0)
-    const T d = (T(-0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at 1/2 (r >= 0)
-    const T d = (T(0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * (((T(-1))));
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
   {  // break at 3/2 (r >= 0)
-    const T d = (T(1.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
   {  // break at 5/2 (r >= 0)
-    const T d = (T(2.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
@@ -8141,9 +8141,9 @@ T box_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -8152,95 +8152,95 @@ T box_square_sq_raw(T x, T sigma) {
     const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? ((T(1))) * r2 : ((T(1)/T(2)))) - (r1 < (T(1)/T(2)) ? ((T(1))) * r1 : ((T(1)/T(2)))))) / (T(2.0) * hw);
   }
-  const T db1 = (T(0.5) - nf * T(1.0)) - r;
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
   T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at 1/2 (r >= 0)
-    const T d = (T(0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * (((T(-1))));
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
     return acc;
   }
   {  // break at -3/2 (r >= 0)
-    const T d = (T(-1.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at -1/2 (r >= 0)
-    const T d = (T(-0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at 1/2 (r >= 0)
-    const T d = (T(0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * (((T(-1))));
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
   {  // break at 3/2 (r >= 0)
-    const T d = (T(1.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
   {  // break at 5/2 (r >= 0)
-    const T d = (T(2.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
@@ -8264,9 +8264,9 @@ T tent_square_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -8280,95 +8280,95 @@ T tent_square_raw(T x, T sigma) {
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
     return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(1)/T(2)))) * r2 + ((T(-1)/T(8)))) + (r1 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(1)/T(2)))) * r1 + ((T(-1)/T(8))))) - T(2.0) * (t < (T(1)/T(2)) ? ((((T(1)/T(2)))) * t) * t : (((T(1)/T(2)))) * t + ((T(-1)/T(8))))) * iw * iw;
   }
-  const T db1 = (T(0.5) - nf * T(1.0)) - r;
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
   T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 1/2 (r >= 0)
-    const T d = (T(0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * (((T(-1)/T(2))));
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
     return acc;
   }
   {  // break at -3/2 (r >= 0)
-    const T d = (T(-1.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at -1/2 (r >= 0)
-    const T d = (T(-0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 1/2 (r >= 0)
-    const T d = (T(0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * (((T(-1)/T(2))));
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 3/2 (r >= 0)
-    const T d = (T(1.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 5/2 (r >= 0)
-    const T d = (T(2.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
@@ -8433,9 +8433,9 @@ T tent_square_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -8449,95 +8449,95 @@ T tent_square_sq_raw(T x, T sigma) {
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
     return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(1)/T(2)))) * r2 + ((T(-1)/T(8)))) + (r1 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(1)/T(2)))) * r1 + ((T(-1)/T(8))))) - T(2.0) * (t < (T(1)/T(2)) ? ((((T(1)/T(2)))) * t) * t : (((T(1)/T(2)))) * t + ((T(-1)/T(8))))) * iw * iw;
   }
-  const T db1 = (T(0.5) - nf * T(1.0)) - r;
+  const T db1 = (neg ? T(-0.5) : T(0.5)) - r;
   T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 1/2 (r >= 0)
-    const T d = (T(0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * (((T(-1)/T(2))));
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
     return acc;
   }
   {  // break at -3/2 (r >= 0)
-    const T d = (T(-1.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at -1/2 (r >= 0)
-    const T d = (T(-0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 1/2 (r >= 0)
-    const T d = (T(0.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-0.5) : T(0.5)) - r;
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * (((T(-1)/T(2))));
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 3/2 (r >= 0)
-    const T d = (T(1.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.5) : T(1.5)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 5/2 (r >= 0)
-    const T d = (T(2.5) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.5) : T(2.5)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
@@ -8801,10 +8801,9 @@ T box_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T pf = T(1) - nf;
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -8813,102 +8812,102 @@ T box_pulse30_raw(T x, T sigma) {
     const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? ((T(1))) * r2 : ((T(3)/T(10)))) - (r1 < (T(3)/T(10)) ? ((T(1))) * r1 : ((T(3)/T(10)))))) / (T(2.0) * hw);
   }
-  const T db1 = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
   T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at 3/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * (((T(-1))));
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
   {  // break at 13/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) + pf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
     return acc;
   }
   {  // break at -17/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) + pf * (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at -7/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) + pf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at 3/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * (((T(-1))));
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
   {  // break at 13/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) + pf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
   {  // break at 23/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) + pf * (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
@@ -8969,10 +8968,9 @@ T box_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T pf = T(1) - nf;
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -8981,102 +8979,102 @@ T box_pulse30_sq_raw(T x, T sigma) {
     const T r2 = detail::reduce_period_pow2(t + hw, period, n2);
     return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? ((T(1))) * r2 : ((T(3)/T(10)))) - (r1 < (T(3)/T(10)) ? ((T(1))) * r1 : ((T(3)/T(10)))))) / (T(2.0) * hw);
   }
-  const T db1 = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
   T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at 3/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * (((T(-1))));
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
   {  // break at 13/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) + pf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
     return acc;
   }
   {  // break at -17/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) + pf * (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at -7/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) + pf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * (((T(-1))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * ((T(1)));
   }
   {  // break at 3/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * (((T(-1))));
+    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
   {  // break at 13/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) + pf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
   }
   {  // break at 23/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) + pf * (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * (((T(-1))));
   }
@@ -9101,10 +9099,9 @@ T tent_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T pf = T(1) - nf;
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -9118,102 +9115,102 @@ T tent_pulse30_raw(T x, T sigma) {
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
     return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(3)/T(10)))) * r2 + ((T(-9)/T(200)))) + (r1 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(3)/T(10)))) * r1 + ((T(-9)/T(200))))) - T(2.0) * (t < (T(3)/T(10)) ? ((((T(1)/T(2)))) * t) * t : (((T(3)/T(10)))) * t + ((T(-9)/T(200))))) * iw * iw;
   }
-  const T db1 = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
   T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 3/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * (((T(-1)/T(2))));
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 13/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) + pf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
     return acc;
   }
   {  // break at -17/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) + pf * (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at -7/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) + pf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 3/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * (((T(-1)/T(2))));
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 13/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) + pf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 23/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) + pf * (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
@@ -9279,10 +9276,9 @@ T tent_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  const T r = detail::reduce_signed_pow2(x, period) + T(0);
-  const T nf = detail::neg01(r);
-  const T pf = T(1) - nf;
-  const T t = r + nf * period;
+  const T r = detail::reduce_signed_pow2(x, period);
+  const bool neg = r < T(0.0);
+  const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
     T n1;
@@ -9296,102 +9292,102 @@ T tent_pulse30_sq_raw(T x, T sigma) {
     const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
     return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(3)/T(10)))) * r2 + ((T(-9)/T(200)))) + (r1 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(3)/T(10)))) * r1 + ((T(-9)/T(200))))) - T(2.0) * (t < (T(3)/T(10)) ? ((((T(1)/T(2)))) * t) * t : (((T(3)/T(10)))) * t + ((T(-9)/T(200))))) * iw * iw;
   }
-  const T db1 = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+  const T db1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
   T acc = (db1 > T(0.0) ? ((T(1))) : T(0.0));
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 3/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * (((T(-1)/T(2))));
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 13/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) + pf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
     return acc;
   }
   {  // break at -17/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) + pf * (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at -1 (r >= 0)
-    const T d = (T(-1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at -7/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) + pf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(-1)/T(2))));
   }
   {  // break at 0 (r >= 0)
-    const T d = (T(0.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc -= v * v * (((T(1)/T(2))));
   }
   {  // break at 3/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) + pf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
     const T L = hw - abs(d);
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
-    acc += detail::sign_gt0(v, d) * v * (((T(-1)/T(2))));
+    acc += (d > T(0.0) ? v : -v) * v * (((T(-1)/T(2))));
   }
   {  // break at 1 (r >= 0)
-    const T d = (T(1.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(0.0) : T(1.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 13/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) + pf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
   {  // break at 2 (r >= 0)
-    const T d = (T(2.0) - nf * T(1.0)) - r;
+    const T d = (neg ? T(1.0) : T(2.0)) - r;
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(1)/T(2))));
   }
   {  // break at 23/10 (r >= 0)
-    const T d = ((nf * (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) + pf * (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (nf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) + pf * (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
+    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
-    const T l = detail::pos(L);
+    const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * v * (((T(-1)/T(2))));
   }
@@ -9918,7 +9914,7 @@ T box_floor(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((T(1)));
       }
@@ -9926,7 +9922,7 @@ T box_floor(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((T(1)));
       }
@@ -9934,7 +9930,7 @@ T box_floor(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((T(1)));
       }
@@ -9942,7 +9938,7 @@ T box_floor(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((T(1)));
       }
@@ -9970,7 +9966,7 @@ T box_floor_sq_raw(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((((T(-1)) + (T(2)*n))));
       }
@@ -9978,7 +9974,7 @@ T box_floor_sq_raw(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((((T(-1)) + (T(2)*n))));
       }
@@ -9986,7 +9982,7 @@ T box_floor_sq_raw(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((((T(-1)) + (T(2)*n))));
       }
@@ -9994,7 +9990,7 @@ T box_floor_sq_raw(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((((T(-1)) + (T(2)*n))));
       }
@@ -10029,7 +10025,7 @@ T tent_floor(T x, T sigma) {
         const T n = n0 + T(-2.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10037,7 +10033,7 @@ T tent_floor(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10045,7 +10041,7 @@ T tent_floor(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10053,7 +10049,7 @@ T tent_floor(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10061,7 +10057,7 @@ T tent_floor(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10069,7 +10065,7 @@ T tent_floor(T x, T sigma) {
         const T n = n0 + T(3.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10097,7 +10093,7 @@ T tent_floor_sq_raw(T x, T sigma) {
         const T n = n0 + T(-2.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
       }
@@ -10105,7 +10101,7 @@ T tent_floor_sq_raw(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
       }
@@ -10113,7 +10109,7 @@ T tent_floor_sq_raw(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
       }
@@ -10121,7 +10117,7 @@ T tent_floor_sq_raw(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
       }
@@ -10129,7 +10125,7 @@ T tent_floor_sq_raw(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
       }
@@ -10137,7 +10133,7 @@ T tent_floor_sq_raw(T x, T sigma) {
         const T n = n0 + T(3.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
       }
@@ -10667,7 +10663,7 @@ T box_ceil(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((T(1)));
       }
@@ -10675,7 +10671,7 @@ T box_ceil(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((T(1)));
       }
@@ -10683,7 +10679,7 @@ T box_ceil(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((T(1)));
       }
@@ -10691,7 +10687,7 @@ T box_ceil(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((T(1)));
       }
@@ -10719,7 +10715,7 @@ T box_ceil_sq_raw(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((((T(2)*n) + T(1))));
       }
@@ -10727,7 +10723,7 @@ T box_ceil_sq_raw(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((((T(2)*n) + T(1))));
       }
@@ -10735,7 +10731,7 @@ T box_ceil_sq_raw(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((((T(2)*n) + T(1))));
       }
@@ -10743,7 +10739,7 @@ T box_ceil_sq_raw(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((((T(2)*n) + T(1))));
       }
@@ -10778,7 +10774,7 @@ T tent_ceil(T x, T sigma) {
         const T n = n0 + T(-2.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10786,7 +10782,7 @@ T tent_ceil(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10794,7 +10790,7 @@ T tent_ceil(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10802,7 +10798,7 @@ T tent_ceil(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10810,7 +10806,7 @@ T tent_ceil(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10818,7 +10814,7 @@ T tent_ceil(T x, T sigma) {
         const T n = n0 + T(3.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((T(1)) * (T(1)/T(2)));
       }
@@ -10846,7 +10842,7 @@ T tent_ceil_sq_raw(T x, T sigma) {
         const T n = n0 + T(-2.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
       }
@@ -10854,7 +10850,7 @@ T tent_ceil_sq_raw(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
       }
@@ -10862,7 +10858,7 @@ T tent_ceil_sq_raw(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
       }
@@ -10870,7 +10866,7 @@ T tent_ceil_sq_raw(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
       }
@@ -10878,7 +10874,7 @@ T tent_ceil_sq_raw(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
       }
@@ -10886,7 +10882,7 @@ T tent_ceil_sq_raw(T x, T sigma) {
         const T n = n0 + T(3.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
       }
@@ -12268,7 +12264,7 @@ T box_trunc(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
       }
@@ -12276,7 +12272,7 @@ T box_trunc(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
       }
@@ -12284,7 +12280,7 @@ T box_trunc(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
       }
@@ -12292,7 +12288,7 @@ T box_trunc(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
       }
@@ -12322,7 +12318,7 @@ T box_trunc_sq_raw(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
       }
@@ -12330,7 +12326,7 @@ T box_trunc_sq_raw(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
       }
@@ -12338,7 +12334,7 @@ T box_trunc_sq_raw(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
       }
@@ -12346,7 +12342,7 @@ T box_trunc_sq_raw(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
       }
@@ -12385,7 +12381,7 @@ T tent_trunc(T x, T sigma) {
         const T n = n0 + T(-2.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
       }
@@ -12393,7 +12389,7 @@ T tent_trunc(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
       }
@@ -12401,7 +12397,7 @@ T tent_trunc(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
       }
@@ -12409,7 +12405,7 @@ T tent_trunc(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
       }
@@ -12417,7 +12413,7 @@ T tent_trunc(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
       }
@@ -12425,7 +12421,7 @@ T tent_trunc(T x, T sigma) {
         const T n = n0 + T(3.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
       }
@@ -12455,7 +12451,7 @@ T tent_trunc_sq_raw(T x, T sigma) {
         const T n = n0 + T(-2.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
       }
@@ -12463,7 +12459,7 @@ T tent_trunc_sq_raw(T x, T sigma) {
         const T n = n0 + T(-1.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
       }
@@ -12471,7 +12467,7 @@ T tent_trunc_sq_raw(T x, T sigma) {
         const T n = n0 + T(0.0);
         const T d = n - x;
         const T L = hw + d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc -= v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
       }
@@ -12479,7 +12475,7 @@ T tent_trunc_sq_raw(T x, T sigma) {
         const T n = n0 + T(1.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
       }
@@ -12487,7 +12483,7 @@ T tent_trunc_sq_raw(T x, T sigma) {
         const T n = n0 + T(2.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
       }
@@ -12495,7 +12491,7 @@ T tent_trunc_sq_raw(T x, T sigma) {
         const T n = n0 + T(3.0);
         const T d = n - x;
         const T L = hw - d;
-        const T l = detail::pos(L);
+        const T l = L > T(0.0) ? L : T(0.0);
         const T v = l * sc * ik;
         acc += v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
       }

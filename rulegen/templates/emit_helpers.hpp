@@ -168,26 +168,6 @@ T sgn(T x) {
   return x > T(0) ? T(1) : (x < T(0) ? T(-1) : T(0));
 }
 
-// The narrow break sums' selects without a compare (GCC compiled `L > 0 ? L : 0` and friends into
-// branches, mispredicted on every other pixel where a pattern aliases): max(L, 0) as (L + |L|) / 2,
-// exact (2L or 0, halved); 1 where r < 0 else 0, for r != -0; v where d > 0, else -v (d = +-0
-// included: -(0 - d) is -0 for both zeros).
-template <class T>
-T pos(T L) {
-  using std::fabs;
-  return T(0.5) * (L + fabs(L));
-}
-template <class T>
-T neg01(T r) {
-  using std::copysign;
-  return T(0.5) - copysign(T(0.5), r);
-}
-template <class T>
-T sign_gt0(T v, T d) {
-  using std::copysign;
-  return copysign(v, -(T(0) - d));
-}
-
 template <class T>
 T min2(T a, T b) {
   return b < a ? b : a;
