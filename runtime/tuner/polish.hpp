@@ -1,8 +1,8 @@
-// Greedy descent from a search-front point: single-gene rule changes that lower the model time while
-// the sample error stays at most the point's own. The genetic search stops after 20 generations
-// with fronts that still hold such moves (quadratic_sine_none's point at MSAA-16's error kept
-// smoothing nodes whose plain rule costs less and changes nothing visible); finalize polishes the
-// points it reads the speed-up at MSAA-16's error from.
+// Greedy descent from a search-front point: single-gene rule changes (and joint changes of the gene
+// pairs the compiler fuses, below) that lower the model time while the sample error stays at most the
+// point's own. The genetic search stops after 20 generations with fronts that still hold such moves
+// (quadratic_sine_none's point at MSAA-16's error kept smoothing nodes whose plain rule costs less and
+// changes nothing visible); finalize polishes the points it reads the speed-up at MSAA-16's error from.
 #pragma once
 
 #include "tuner/genetic.hpp"
@@ -21,5 +21,11 @@ struct PolishOptions {
 // cheaper ones in order of model time and takes the first whose error is <= limit (the start's own
 // error when limit < 0).
 Point polish(const SceneTuner& t, const Point& start, double limit = -1, const PolishOptions& opt = {});
+
+// Gene pairs the compiler fuses only when both carry one kernel and width (a floor pair's pulse,
+// floor(y + 1/2) - floor(y); a fract window's two steps, also as the second pair of a product chain):
+// a single-gene move breaks the fusion, so it cannot move the pair to another kernel (checkerboard's
+// pulses stayed Gaussian where box ones cost 8 ns less). polish also moves each pair to one rule.
+std::vector<std::pair<int, int>> fused_gene_pairs(const Problem& prob);
 
 }  // namespace bl::tuner

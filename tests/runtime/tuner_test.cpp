@@ -9,6 +9,7 @@
 #include "compiler/functions.hpp"
 #include "compiler/lower.hpp"
 #include "image/metrics.hpp"
+#include "ir/atomics.hpp"
 #include "render/render.hpp"
 #include "shaders/shader.hpp"
 #include "tuner/calibrate.hpp"
@@ -556,6 +557,55 @@ TEST(Polish, LowersTheTimeWithinTheErrorLimit) {
   const Objectives again = t.evaluate(t.schedule(kept.genome));
   EXPECT_EQ(again.time, kept.obj.time);
   EXPECT_EQ(again.error, kept.obj.error);
+}
+
+// The gene pairs polish moves together are the ones the compiler fuses: checkerboard's two floor
+// pairs (floor(u + 0.5) - floor(u), the same in v) and bricks' two fract windows (the second one the
+// tail of the product chain step * step * step * step), nothing else.
+TEST(Polish, FusedPairsAreTheFloorPulsesAndTheFractWindows) {
+  auto pairs_of = [](const char* shader, const ir::Graph& g) {
+    Problem prob;
+    prob.graph = &g;
+    prob.space = SearchSpace::build(g);
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const auto& [a, b] : fused_gene_pairs(prob)) {
+      const ir::Node &na = g.node(prob.space.genes[a]), &nb = g.node(prob.space.genes[b]);
+      EXPECT_EQ(na.op, ir::Op::Call) << shader;
+      EXPECT_EQ(nb.op, ir::Op::Call) << shader;
+      out.emplace_back(ir::atomic_name(na.atomic), ir::atomic_name(nb.atomic));
+    }
+    return out;
+  };
+  shaders::Effects fx;
+  const ir::Graph cb = shaders::trace(shaders::find_shader("checkerboard"), fx);
+  const auto cp = pairs_of("checkerboard", cb);
+  ASSERT_EQ(cp.size(), 2u);
+  for (const auto& [a, b] : cp) EXPECT_TRUE(a == "floor" && b == "floor");
+  const ir::Graph br = shaders::trace(shaders::find_shader("bricks"), fx);
+  Problem prob;
+  prob.graph = &br;
+  prob.space = SearchSpace::build(br);
+  const auto bp = fused_gene_pairs(prob);
+  ASSERT_EQ(bp.size(), 2u);
+  std::set<int> steps;
+  for (const auto& [a, b] : bp)
+    for (int gene : {a, b}) {
+      const ir::Node& n = br.node(prob.space.genes[gene]);
+      EXPECT_EQ(std::string(ir::atomic_name(n.atomic)), "step");
+      steps.insert(gene);
+    }
+  EXPECT_EQ(steps.size(), 4u);  // the four mortar steps, each in one pair
+  // Each window's two steps read one fract (through a subtraction with the edge).
+  for (const auto& [a, b] : bp) {
+    auto fract_of = [&](int gene) {
+      const ir::Node& arg = br.node(br.node(prob.space.genes[gene]).a);
+      for (int j : {arg.a, arg.b})
+        if (j >= 0 && br.node(j).op == ir::Op::Call) return j;
+      return -1;
+    };
+    EXPECT_GE(fract_of(a), 0);
+    EXPECT_EQ(fract_of(a), fract_of(b));
+  }
 }
 
 TEST(Search, ResumeFromCheckpointReproducesTheFront) {
