@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <random>
 #include <string>
 #include <utility>
@@ -226,6 +227,75 @@ class GraphFacts {
     if (aff[i].base >= 0 && aff[i].base != i) return root[aff[i].base];
     if (n.op == ir::Op::Call) return root[n.a];
     return i;
+  }
+
+  // ---- pairs of nodes the lowering smooths as one function of their common argument ----
+  // The structure only: the lowering also asks both nodes for one smoothing kernel at one width and
+  // a random argument, and the tuner's polish moves each pair to one rule together.
+  bool is_call(int j, const char* atomic) const {
+    return j >= 0 && g.node(j).op == ir::Op::Call && std::string(ir::atomic_name(g.node(j).atomic)) == atomic;
+  }
+
+  // floor(y + 1/2) - floor(y) at Sub node i (sign +1: 1 where fract(y) >= 1/2), or its negation
+  // floor(y) - floor(y + 1/2) (sign -1); `lower` is the floor of y, `upper` that of y + 1/2.
+  struct FloorPulse {
+    int lower = -1, upper = -1, sign = 0;
+  };
+  std::optional<FloorPulse> floor_pulse(int i) const {
+    const ir::Node& n = g.node(i);
+    if (n.op != ir::Op::Sub || !is_call(n.a, "floor") || !is_call(n.b, "floor")) return std::nullopt;
+    const Affine &ya = aff[g.node(n.a).a], &yb = aff[g.node(n.b).a];
+    if (ya.base < 0 || ya.base != yb.base || ya.beta != yb.beta) return std::nullopt;
+    const double d = ya.alpha - yb.alpha;
+    if (d != 0.5 && d != -0.5) return std::nullopt;
+    return d > 0 ? FloorPulse{n.b, n.a, 1} : FloorPulse{n.a, n.b, -1};
+  }
+
+  // step(fract(y) - lo) * step(hi - fract(y)), 0 < lo < hi < 1, either order, at Mul node i: the two
+  // steps, the fract, and `other` the remaining factor when the pair is the tail of a product chain
+  // ((other * a) * b; -1 when the node is the pair's own product). The direct pair first, then the
+  // chain's, in a fixed order.
+  struct FractWindow {
+    int a = -1, b = -1, other = -1, fract = -1;
+    double lo = 0, hi = 0;
+  };
+  std::vector<FractWindow> fract_windows(int i) const {
+    std::vector<FractWindow> out;
+    const ir::Node& n = g.node(i);
+    if (n.op != ir::Op::Mul) return out;
+    auto pair = [&](int ja, int jb, int other) {
+      int fa = -1, fb = -1, da = 0, db = 0;
+      double ca = 0, cb = 0;
+      auto edge = [&](int j, int* fract, double* c, int* dir) {
+        if (!is_call(j, "step")) return false;
+        const Affine& e = aff[g.node(j).a];
+        if (e.base < 0 || (e.beta != 1 && e.beta != -1) || !is_call(e.base, "fract")) return false;
+        *fract = e.base;
+        *c = e.beta > 0 ? -e.alpha : e.alpha;
+        *dir = e.beta > 0 ? 1 : -1;
+        return true;
+      };
+      if (!edge(ja, &fa, &ca, &da) || !edge(jb, &fb, &cb, &db) || fa != fb || da == db) return;
+      const double lo = da > 0 ? ca : cb, hi = da > 0 ? cb : ca;
+      if (0 < lo && lo < hi && hi < 1) out.push_back({ja, jb, other, fa, lo, hi});
+    };
+    pair(n.a, n.b, -1);
+    for (const auto [inner, last] : {std::pair{n.a, n.b}, std::pair{n.b, n.a}}) {
+      if (g.node(inner).op != ir::Op::Mul) continue;
+      const ir::Node& m = g.node(inner);
+      for (const auto [q, a] : {std::pair{m.a, m.b}, std::pair{m.b, m.a}}) pair(a, last, q);
+    }
+    return out;
+  }
+
+  // Every such pair of the graph (floor pulses and fract windows), by node, in node order.
+  std::vector<std::pair<int, int>> fused_pairs() const {
+    std::vector<std::pair<int, int>> out;
+    for (int i = 0; i < g.size(); ++i) {
+      if (const auto fp = floor_pulse(i)) out.emplace_back(fp->lower, fp->upper);
+      for (const FractWindow& w : fract_windows(i)) out.emplace_back(w.a, w.b);
+    }
+    return out;
   }
 
   // ---- integer-valued nodes as small discrete distributions ----

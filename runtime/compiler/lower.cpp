@@ -175,13 +175,9 @@ class Lowering {
       if (a >= 0) args.push_back(&vals_[a]);
     bool random = false;
     for (Val* a : args) random = random || a->var >= 0;
-    if (n.op == Op::Sub && random && r.kind != Kind::MonteCarlo && !facts_.lattice_boundary(i)) {
+    if (random && r.kind != Kind::MonteCarlo && !facts_.lattice_boundary(i)) {
       Val pv;
-      if (floor_pulse(n, r, pv)) return pv;
-    }
-    if (n.op == Op::Mul && random && r.kind != Kind::MonteCarlo && !facts_.lattice_boundary(i)) {
-      Val pv;
-      if (fract_window(n, r, pv)) return pv;
+      if (floor_pulse(i, r, pv) || fract_window(i, r, pv)) return pv;
     }
     if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
     if (r.kind != Kind::MonteCarlo && facts_.lattice_boundary(i)) return lattice_mixture(i, r);
@@ -355,32 +351,33 @@ class Lowering {
     }
   }
 
+  // The two nodes of a fused pair (GraphFacts::floor_pulse, fract_windows) must each be smoothed by a
+  // kernel (gaussian, box or tent) with a random argument, and both by one kernel at one width.
+  bool kernel_smoothed(int j) {
+    const Kind kj = s_.at(j).kind;
+    return (kj == Kind::Gaussian || kj == Kind::Box || kj == Kind::Tent) && !facts_.lattice_boundary(j) &&
+           vals_[g_.node(j).a].var >= 0;
+  }
+  bool one_kernel(int a, int b) {
+    return kernel_smoothed(a) && kernel_smoothed(b) && s_.at(a).kind == s_.at(b).kind &&
+           s_.at(a).sigma_scale == s_.at(b).sigma_scale;
+  }
+
   // floor(y + 1/2) - floor(y) = 1 - square(y) (1 where fract(y) >= 1/2: a checkerboard's or a
   // stripe's pulse). Both floors smoothed by one kernel at one width: one smoothed square wave
   // instead of two smoothed floors (calibrated float: gaussian floor 10.9 ns + the plain floor of
   // its shift, twice, against square 12.1; box 5.7 x 2 against 8.0). The mean is the floors'
   // difference exactly (the expectation is linear); the variance is the indicator's p (1 - p), where
   // two floors would need their correlation (under a None rule the node keeps no variance).
-  bool floor_pulse(const ir::Node& n, const Rule& r, Val& out) {
-    auto smoothed_floor = [&](int j) {
-      if (j < 0 || g_.node(j).op != Op::Call || std::string(ir::atomic_name(g_.node(j).atomic)) != "floor")
-        return false;
-      const Kind kj = s_.at(j).kind;
-      return (kj == Kind::Gaussian || kj == Kind::Box || kj == Kind::Tent) && !facts_.lattice_boundary(j) &&
-             vals_[g_.node(j).a].var >= 0;
-    };
-    if (!smoothed_floor(n.a) || !smoothed_floor(n.b)) return false;
-    const Rule &ra = s_.at(n.a), &rb = s_.at(n.b);
-    if (ra.kind != rb.kind || ra.sigma_scale != rb.sigma_scale) return false;
-    const Affine &ya = facts_.aff[g_.node(n.a).a], &yb = facts_.aff[g_.node(n.b).a];
-    if (ya.base < 0 || ya.base != yb.base || ya.beta != yb.beta) return false;
-    const double d = ya.alpha - yb.alpha;  // +1/2: floor(y + 1/2) - floor(y); -1/2: the negation
-    if (d != 0.5 && d != -0.5) return false;
-    Val& y = vals_[d > 0 ? g_.node(n.b).a : g_.node(n.a).a];  // the floor of the lower argument
-    const std::string kern = kernel_for(rules::kind_name(ra.kind), "square");
-    const int p = call(kernel_name(kern, "square", false), {y.mean, scaled_sd(y, ra)});
+  bool floor_pulse(int i, const Rule& r, Val& out) {
+    const auto fp = facts_.floor_pulse(i);
+    if (!fp || !one_kernel(fp->lower, fp->upper)) return false;
+    const Rule& rf = s_.at(fp->lower);
+    Val& y = vals_[g_.node(fp->lower).a];
+    const std::string kern = kernel_for(rules::kind_name(rf.kind), "square");
+    const int p = call(kernel_name(kern, "square", false), {y.mean, scaled_sd(y, rf)});
     const int pulse = sub(k(1), p);
-    out.mean = d > 0 ? pulse : op(LOp::Neg, pulse);
+    out.mean = fp->sign > 0 ? pulse : op(LOp::Neg, pulse);
     out.var = r.kind == Kind::None ? -1 : op(LOp::NonNeg, mul(p, pulse));
     return true;
   }
@@ -394,66 +391,30 @@ class Lowering {
   // A product chain written left to right (step(fx - lo) * step(hi - fx) * step(fy - lo) * step(hi - fy),
   // a brick's inside) puts the second pair in two nodes: ((Q * A) * B) with A, B one window is fused
   // here as Q * window, Q and the window independent (the variance of a product of independent values).
-  bool fract_window(const ir::Node& n, const Rule& r, Val& out) {
-    if (window_pair(n.a, n.b, r, out)) return true;
-    for (const auto [inner, other] : {std::pair{n.a, n.b}, std::pair{n.b, n.a}}) {
-      const ir::Node& m = g_.node(inner);
-      if (m.op != Op::Mul) continue;
-      for (const auto [q, a] : {std::pair{m.a, m.b}, std::pair{m.b, m.a}}) {
-        Val w;
-        if (!window_pair(a, other, r, w)) continue;
-        const Val& x = vals_[q];
-        out.mean = mul(x.mean, w.mean);
-        if (r.kind == Kind::None) {
-          out.var = -1;
-        } else {
-          const int vw = mul(w.var, sq(x.mean));  // Var(XW) = Vx Vw + Vx mw^2 + Vw mx^2
-          out.var = x.var < 0 ? vw : add(mul(x.var, add(w.var, sq(w.mean))), vw);
-        }
+  bool fract_window(int i, const Rule& r, Val& out) {
+    for (const GraphFacts::FractWindow& w : facts_.fract_windows(i)) {
+      if (!one_kernel(w.a, w.b) || vals_[g_.node(w.fract).a].var < 0) continue;
+      const Rule& rs = s_.at(w.a);
+      Val& y = vals_[g_.node(w.fract).a];
+      const std::string fr = kernel_name(kernel_for(rules::kind_name(rs.kind), "fract"), "fract", false);
+      const int s = scaled_sd(y, rs);
+      const int below = call(fr, {sub(y.mean, k(static_cast<float>(w.lo))), s});
+      const int above = call(fr, {sub(y.mean, k(static_cast<float>(w.hi))), s});
+      const int p = add(sub(k(static_cast<float>(w.hi - w.lo)), below), above);
+      const int pvar = r.kind == Kind::None ? -1 : op(LOp::NonNeg, mul(p, sub(k(1), p)));
+      if (w.other < 0) {
+        out = Val{p, pvar};
         return true;
       }
+      const Val& x = vals_[w.other];
+      out = Val{mul(x.mean, p), -1};
+      if (r.kind != Kind::None) {
+        const int vw = mul(pvar, sq(x.mean));  // Var(XW) = Vx Vw + Vx mw^2 + Vw mx^2
+        out.var = x.var < 0 ? vw : add(mul(x.var, add(pvar, sq(p))), vw);
+      }
+      return true;
     }
     return false;
-  }
-
-  bool window_pair(int ja, int jb, const Rule& r, Val& out) {
-    struct Edge {
-      int fract = -1;  // the fract node the step reads
-      double c = 0;    // the edge
-      int dir = 0;     // +1: step(fract - c), -1: step(c - fract)
-    };
-    auto edge = [&](int j, Edge& e) {
-      if (j < 0 || g_.node(j).op != Op::Call || std::string(ir::atomic_name(g_.node(j).atomic)) != "step")
-        return false;
-      const Kind kj = s_.at(j).kind;
-      if ((kj != Kind::Gaussian && kj != Kind::Box && kj != Kind::Tent) || facts_.lattice_boundary(j) ||
-          vals_[g_.node(j).a].var < 0)
-        return false;
-      const Affine& a = facts_.aff[g_.node(j).a];
-      if (a.base < 0 || (a.beta != 1 && a.beta != -1)) return false;
-      const ir::Node& f = g_.node(a.base);
-      if (f.op != Op::Call || std::string(ir::atomic_name(f.atomic)) != "fract" || vals_[f.a].var < 0)
-        return false;
-      e = Edge{a.base, a.beta > 0 ? -a.alpha : a.alpha, a.beta > 0 ? 1 : -1};
-      return true;
-    };
-    Edge ea, eb;
-    if (!edge(ja, ea) || !edge(jb, eb) || ea.fract != eb.fract || ea.dir == eb.dir) return false;
-    const Rule &ra = s_.at(ja), &rb = s_.at(jb);
-    if (ra.kind != rb.kind || ra.sigma_scale != rb.sigma_scale) return false;
-    const double lo = ea.dir > 0 ? ea.c : eb.c, hi = ea.dir > 0 ? eb.c : ea.c;
-    if (!(0 < lo && lo < hi && hi < 1)) return false;
-    Val& y = vals_[g_.node(ea.fract).a];
-    const std::string kern = kernel_for(rules::kind_name(ra.kind), "fract");
-    const std::string fr = kernel_name(kern, "fract", false);
-    const int s = scaled_sd(y, ra);
-    const int below = call(fr, {sub(y.mean, k(static_cast<float>(lo))), s});
-    const int above = call(fr, {sub(y.mean, k(static_cast<float>(hi))), s});
-    const int p = add(sub(k(static_cast<float>(hi - lo)), below), above);
-    out.mean = p;
-    out.var = r.kind == Kind::None ? -1 : op(LOp::NonNeg, mul(p, sub(k(1), p)));
-    out.sd = -1;
-    return true;
   }
 
   // fract of N(m, s^2) reported as the side of the nearest jump that holds most of the kernel: the

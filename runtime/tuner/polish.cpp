@@ -3,66 +3,22 @@
 
 #include <algorithm>
 #include <map>
-#include <string>
 #include <utility>
 #include <vector>
 
-#include "ir/atomics.hpp"
+#include "compiler/graph_facts.hpp"
 
 namespace bl::tuner {
 
-namespace {
-
-bool is_call(const ir::Graph& g, int n, const char* atomic) {
-  return n >= 0 && g.node(n).op == ir::Op::Call && std::string(ir::atomic_name(g.node(n).atomic)) == atomic;
-}
-
-// The node a value is an affine function of through constant adds, subtracts and scales (itself
-// when it is none of those): the compiler fuses floors of one base, steps of one fract.
-int affine_base(const ir::Graph& g, int n) {
-  auto cst = [&](int j) { return j >= 0 && g.node(j).op == ir::Op::Const; };
-  for (;;) {
-    const ir::Node& x = g.node(n);
-    const bool affine = x.op == ir::Op::Add || x.op == ir::Op::Sub || x.op == ir::Op::Mul;
-    if (affine && cst(x.b) && !cst(x.a)) {
-      n = x.a;
-    } else if (affine && cst(x.a) && !cst(x.b)) {
-      n = x.b;
-    } else if (x.op == ir::Op::Neg) {
-      n = x.a;
-    } else {
-      return n;
-    }
-  }
-}
-
-}  // namespace
-
 std::vector<std::pair<int, int>> fused_gene_pairs(const Problem& prob) {
-  const ir::Graph& g = *prob.graph;
   std::map<int, int> gene_of;  // graph node -> gene
   for (int k = 0; k < prob.space.size(); ++k) gene_of[prob.space.genes[k]] = k;
   std::vector<std::pair<int, int>> out;
-  auto add = [&](int a, int b) {
-    const int base = affine_base(g, g.node(a).a);
-    if (base != affine_base(g, g.node(b).a)) return;
-    if (is_call(g, a, "step") && !is_call(g, base, "fract")) return;  // a window reads one fract
+  for (const auto& [a, b] : compiler::GraphFacts(*prob.graph).fused_pairs()) {
     const auto ia = gene_of.find(a), ib = gene_of.find(b);
-    if (ia == gene_of.end() || ib == gene_of.end() || a == b) return;
+    if (ia == gene_of.end() || ib == gene_of.end() || a == b) continue;
     const std::pair<int, int> p{std::min(ia->second, ib->second), std::max(ia->second, ib->second)};
     if (std::find(out.begin(), out.end(), p) == out.end()) out.push_back(p);
-  };
-  for (int n = 0; n < g.size(); ++n) {
-    const ir::Node& x = g.node(n);
-    if (x.op == ir::Op::Sub && is_call(g, x.a, "floor") && is_call(g, x.b, "floor")) add(x.a, x.b);
-    if (x.op != ir::Op::Mul) continue;
-    if (is_call(g, x.a, "step") && is_call(g, x.b, "step")) add(x.a, x.b);
-    // The second pair of a left-to-right product chain, (Q * A) * B.
-    for (const auto [inner, other] : {std::pair{x.a, x.b}, std::pair{x.b, x.a}}) {
-      if (inner < 0 || g.node(inner).op != ir::Op::Mul || !is_call(g, other, "step")) continue;
-      for (int a : {g.node(inner).a, g.node(inner).b})
-        if (is_call(g, a, "step")) add(a, other);
-    }
   }
   return out;
 }
