@@ -288,6 +288,30 @@ class GraphFacts {
     return out;
   }
 
+  // step(fract(y) - c) (dir +1: 1 where fract(y) >= c) or step(c - fract(y)) (dir -1) at Step node i:
+  // a stripe's or a grid line's edge (GLSL step(c, fract(y)) and step(fract(y), c)). The edge c is
+  // a constant in (0, 1) (edge -1) or node `edge` (a duty cycle that varies over the surface; the
+  // lowering asks its range to lie in [0, 1]).
+  struct FractStep {
+    int fract = -1, dir = 0, edge = -1;
+    double c = 0;
+  };
+  std::optional<FractStep> fract_step(int i) const {
+    if (!is_call(i, "step")) return std::nullopt;
+    const int arg = g.node(i).a;
+    const Affine& e = aff[arg];
+    if (e.base >= 0 && (e.beta == 1 || e.beta == -1) && is_call(e.base, "fract")) {
+      const double c = e.beta > 0 ? -e.alpha : e.alpha;
+      if (!(0 < c && c < 1)) return std::nullopt;
+      return FractStep{e.base, e.beta > 0 ? 1 : -1, -1, c};
+    }
+    const ir::Node& d = g.node(arg);
+    if (d.op != ir::Op::Sub || d.a == d.b) return std::nullopt;
+    if (is_call(d.a, "fract") && g.node(d.b).op != ir::Op::Const) return FractStep{d.a, 1, d.b, 0};
+    if (is_call(d.b, "fract") && g.node(d.a).op != ir::Op::Const) return FractStep{d.b, -1, d.a, 0};
+    return std::nullopt;
+  }
+
   // Every such pair of the graph (floor pulses and fract windows), by node, in node order.
   std::vector<std::pair<int, int>> fused_pairs() const {
     std::vector<std::pair<int, int>> out;

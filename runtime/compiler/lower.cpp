@@ -177,7 +177,7 @@ class Lowering {
     for (Val* a : args) random = random || a->var >= 0;
     if (random && r.kind != Kind::MonteCarlo && !facts_.lattice_boundary(i)) {
       Val pv;
-      if (floor_pulse(i, r, pv) || fract_window(i, r, pv)) return pv;
+      if (floor_pulse(i, r, pv) || fract_window(i, r, pv) || fract_step(i, r, pv)) return pv;
     }
     if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
     if (r.kind != Kind::MonteCarlo && facts_.lattice_boundary(i)) return lattice_mixture(i, r);
@@ -415,6 +415,36 @@ class Lowering {
       return true;
     }
     return false;
+  }
+
+  // step(c - fract(y)), 0 <= c <= 1, the indicator of fract(y) <= c, equals c - fract(y) + fract(y - c)
+  // for almost every y (step(fract(y) - c) is one minus it). The step smoothed by a kernel with a
+  // random argument: the indicator's mean under that kernel on y from two mean-only fract entries,
+  // where the step alone reads fract's variance and smooths as if fract(y) were unimodal (it is not
+  // next to fract's jump); the variance is the indicator's p (1 - p). Exact for a constant edge; an
+  // edge node (its range inside [0, 1]) enters through its mean and y - c's variance (Var y + Var c,
+  // the two taken as independent).
+  bool fract_step(int i, const Rule& r, Val& out) {
+    const auto fs = facts_.fract_step(i);
+    if (!fs || !kernel_smoothed(i) || vals_[g_.node(fs->fract).a].var < 0) return false;
+    if (fs->edge >= 0 && !(ranges_[fs->edge].lo >= 0 && ranges_[fs->edge].hi <= 1)) return false;
+    Val& y = vals_[g_.node(fs->fract).a];
+    const std::string fr = kernel_name(kernel_for(rules::kind_name(r.kind), "fract"), "fract", false);
+    const int at = call(fr, {y.mean, scaled_sd(y, r)});
+    int c = -1, shifted = -1;
+    if (fs->edge < 0) {
+      c = k(static_cast<float>(fs->c));
+      shifted = call(fr, {sub(y.mean, c), scaled_sd(y, r)});
+    } else {
+      const Val& e = vals_[fs->edge];
+      c = e.mean;
+      Val d{sub(y.mean, c), e.var < 0 ? y.var : add(y.var, e.var)};
+      shifted = call(fr, {d.mean, scaled_sd(d, r)});
+    }
+    const int below = add(sub(c, at), shifted);  // P(fract(y) <= c)
+    const int p = fs->dir < 0 ? below : sub(k(1), below);
+    out = Val{p, op(LOp::NonNeg, mul(p, sub(k(1), p)))};
+    return true;
   }
 
   // fract of N(m, s^2) reported as the side of the nearest jump that holds most of the kernel: the

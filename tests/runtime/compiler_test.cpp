@@ -374,6 +374,86 @@ TEST(Compiler, FractWindowIsTwoFracts) {
   }
 }
 
+// step(c - fract(y)) = c - fract(y) + fract(y - c) a.e. (and step(fract(y) - c) one minus it): a lone
+// step of a fract under a kernel is two mean-only fract calls, its mean the indicator's exact mean.
+TEST(Compiler, FractStepIsTwoFracts) {
+  const ir::Graph below = one_input([](dsl::Var u) { return dsl::step(0.1 - dsl::fract(u)); });
+  const ir::Graph above = one_input([](dsl::Var u) { return dsl::step(dsl::fract(u * 3.0 + 0.25) - 0.7); });
+  for (const std::string rule : {"gaussian", "box", "tent"}) {
+    for (const ir::Graph* g : {&below, &above}) {
+      const compiler::Program p =
+          compiler::lower(*g, compiler::uniform_schedule(*g, rules::parse_rule(rule)));
+      int fracts = 0, steps = 0;
+      for (int fi : p.used_functions()) {
+        const std::string& n = compiler::functions()[static_cast<std::size_t>(fi)].cpp;
+        fracts += n == "bl::" + rule + "::fract";
+        steps += n.find("step") != std::string::npos;
+      }
+      EXPECT_EQ(fracts, 1) << rule;  // one entry, called twice
+      EXPECT_EQ(steps, 0) << rule;
+    }
+    for (float mu : {-3.03f, -0.5f, 0.0f, 0.05f, 0.1f, 0.3f, 0.95f, 40.7f})
+      for (float s : {0.001f, 0.01f, 0.05f, 0.2f, 0.6f, 3.0f}) {
+        EXPECT_NEAR(run1(below, rule, mu, s), window_reference(rule, mu, s, 0.0, 0.1), 2e-5)
+            << rule << " " << mu << " " << s;
+        EXPECT_NEAR(run1(above, rule, mu, s), window_reference(rule, 3.0 * mu + 0.25, 3.0 * s, 0.7, 1.0),
+                    3e-5)
+            << rule << " " << mu << " " << s;
+      }
+  }
+}
+
+// A duty cycle that varies over the surface (GLSL step(fract(s), width)): the edge node enters by its
+// mean and y - c's variance. With the edge's input at sd 0 the edge is a constant at each pixel and the
+// mean exact; with sd > 0 it is close to the expectation over both inputs (quadrature here); an edge
+// whose range leaves [0, 1] is not fused (the identity needs 0 <= c <= 1).
+TEST(Compiler, FractStepWithAVaryingEdge) {
+  auto graph = [](double base, double amp) {
+    ir::Graph g;
+    dsl::Tracer t(g);
+    const dsl::Var u = dsl::Var::input("u", true), v = dsl::Var::input("v", true);
+    const dsl::Var width = base + amp * dsl::sin(v);
+    g.add_output("r", dsl::step(width - dsl::fract(u)).id());
+    return g;
+  };
+  auto uses_step = [](const compiler::Program& p) {
+    for (int fi : p.used_functions())
+      if (compiler::functions()[static_cast<std::size_t>(fi)].cpp.find("step") != std::string::npos)
+        return true;
+    return false;
+  };
+  const ir::Graph g = graph(0.35, 0.25), wide = graph(0.5, 0.8);
+  for (const std::string rule : {"gaussian", "box", "tent"}) {
+    const compiler::Program p = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule(rule)));
+    EXPECT_FALSE(uses_step(p)) << rule;
+    EXPECT_TRUE(uses_step(compiler::lower(wide, compiler::uniform_schedule(wide, rules::parse_rule(rule)))))
+        << rule;
+    for (float mu : {-3.03f, 0.05f, 0.3f, 0.95f, 40.7f})
+      for (float mv : {-1.0f, 0.2f, 2.0f})
+        for (float s : {0.001f, 0.05f, 0.6f}) {
+          const double c = 0.35 + 0.25 * std::sin(static_cast<double>(mv));
+          EXPECT_NEAR(testing::run_one_pixel(p, {mu, mv}, {s, 0.0f}, {0, 0}, {0, 0}),
+                      window_reference(rule, mu, s, 0.0, c), 3e-5)
+              << rule << " " << mu << " " << mv << " " << s;
+        }
+  }
+  // sd 0.1 on v under the Gaussian rule: the expectation over v (midpoint rule on +-8 sd).
+  const compiler::Program p =
+      compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
+  for (float mu : {0.05f, 0.3f, 0.62f})
+    for (float s : {0.01f, 0.1f}) {
+      const float mv = 0.2f, sv = 0.1f;
+      double ref = 0, wsum = 0;
+      for (int j = -800; j < 800; ++j) {
+        const double z = (j + 0.5) / 100.0, w = std::exp(-0.5 * z * z);
+        ref += w * window_reference("gaussian", mu, s, 0.0, 0.35 + 0.25 * std::sin(mv + sv * z));
+        wsum += w;
+      }
+      EXPECT_NEAR(testing::run_one_pixel(p, {mu, mv}, {s, sv}, {0, 0}, {0, 0}), ref / wsum, 2e-4)
+          << mu << " " << s;
+    }
+}
+
 TEST(Compiler, DeadCodeIsRemoved) {
   const auto count = [](const compiler::Program& p, compiler::LOp op) {
     int n = 0;
