@@ -288,8 +288,9 @@ class GraphFacts {
     return out;
   }
 
-  // step(fract(y) - c) (dir +1: 1 where fract(y) >= c) or step(c - fract(y)) (dir -1) at Step node i:
-  // a stripe's or a grid line's edge (GLSL step(c, fract(y)) and step(fract(y), c)). The edge c is
+  // step(fract(y) - c) (dir +1: 1 where fract(y) >= c) or step(c - fract(y)) (dir -1) at Step node i,
+  // or less(c, fract(y)) (+1) and less(fract(y), c) (-1) at Less node i: a stripe's or a grid line's
+  // edge (GLSL step(c, fract(y)), step(fract(y), c), fract(y) < c). The edge c is
   // a constant in (0, 1) (edge -1) or node `edge` (a duty cycle that varies over the surface; the
   // lowering asks its range to lie in [0, 1]).
   struct FractStep {
@@ -297,6 +298,19 @@ class GraphFacts {
     double c = 0;
   };
   std::optional<FractStep> fract_step(int i) const {
+    const ir::Node& n = g.node(i);
+    if (n.op == ir::Op::Less) {  // less(fract(y), c): dir -1; less(c, fract(y)): dir +1
+      auto edge = [&](int j, int fract, int dir) -> std::optional<FractStep> {
+        if (j == fract) return std::nullopt;
+        if (g.node(j).op != ir::Op::Const) return FractStep{fract, dir, j, 0};
+        const double c = g.node(j).value;
+        if (!(0 < c && c < 1)) return std::nullopt;
+        return FractStep{fract, dir, -1, c};
+      };
+      if (is_call(n.a, "fract")) return edge(n.b, n.a, -1);
+      if (is_call(n.b, "fract")) return edge(n.a, n.b, 1);
+      return std::nullopt;
+    }
     if (!is_call(i, "step")) return std::nullopt;
     const int arg = g.node(i).a;
     const Affine& e = aff[arg];

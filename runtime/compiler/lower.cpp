@@ -418,7 +418,8 @@ class Lowering {
   }
 
   // step(c - fract(y)), 0 <= c <= 1, the indicator of fract(y) <= c, equals c - fract(y) + fract(y - c)
-  // for almost every y (step(fract(y) - c) is one minus it). The step smoothed by a kernel with a
+  // for almost every y (step(fract(y) - c) is one minus it; less(fract(y), c) and less(c, fract(y))
+  // are the same indicators). The step smoothed by a kernel with a
   // random argument: the indicator's mean under that kernel on y from two mean-only fract entries,
   // where the step alone reads fract's variance and smooths as if fract(y) were unimodal (it is not
   // next to fract's jump); the variance is the indicator's p (1 - p). Exact for a constant edge; an
@@ -426,7 +427,9 @@ class Lowering {
   // the two taken as independent).
   bool fract_step(int i, const Rule& r, Val& out) {
     const auto fs = facts_.fract_step(i);
-    if (!fs || !kernel_smoothed(i) || vals_[g_.node(fs->fract).a].var < 0) return false;
+    if (!fs || (r.kind != Kind::Gaussian && r.kind != Kind::Box && r.kind != Kind::Tent) ||
+        facts_.lattice_boundary(i) || vals_[g_.node(fs->fract).a].var < 0)
+      return false;
     if (fs->edge >= 0 && !(ranges_[fs->edge].lo >= 0 && ranges_[fs->edge].hi <= 1)) return false;
     Val& y = vals_[g_.node(fs->fract).a];
     const std::string fr = kernel_name(kernel_for(rules::kind_name(r.kind), "fract"), "fract", false);

@@ -379,8 +379,11 @@ TEST(Compiler, FractWindowIsTwoFracts) {
 TEST(Compiler, FractStepIsTwoFracts) {
   const ir::Graph below = one_input([](dsl::Var u) { return dsl::step(0.1 - dsl::fract(u)); });
   const ir::Graph above = one_input([](dsl::Var u) { return dsl::step(dsl::fract(u * 3.0 + 0.25) - 0.7); });
+  const ir::Graph less_below = one_input([](dsl::Var u) { return dsl::less(dsl::fract(u), dsl::Var(0.1)); });
+  const ir::Graph less_above =
+      one_input([](dsl::Var u) { return dsl::less(dsl::Var(0.7), dsl::fract(u * 3.0 + 0.25)); });
   for (const std::string rule : {"gaussian", "box", "tent"}) {
-    for (const ir::Graph* g : {&below, &above}) {
+    for (const ir::Graph* g : {&below, &above, &less_below, &less_above}) {
       const compiler::Program p =
           compiler::lower(*g, compiler::uniform_schedule(*g, rules::parse_rule(rule)));
       int fracts = 0, steps = 0;
@@ -397,6 +400,11 @@ TEST(Compiler, FractStepIsTwoFracts) {
         EXPECT_NEAR(run1(below, rule, mu, s), window_reference(rule, mu, s, 0.0, 0.1), 2e-5)
             << rule << " " << mu << " " << s;
         EXPECT_NEAR(run1(above, rule, mu, s), window_reference(rule, 3.0 * mu + 0.25, 3.0 * s, 0.7, 1.0),
+                    3e-5)
+            << rule << " " << mu << " " << s;
+        EXPECT_NEAR(run1(less_below, rule, mu, s), window_reference(rule, mu, s, 0.0, 0.1), 2e-5)
+            << rule << " " << mu << " " << s;
+        EXPECT_NEAR(run1(less_above, rule, mu, s), window_reference(rule, 3.0 * mu + 0.25, 3.0 * s, 0.7, 1.0),
                     3e-5)
             << rule << " " << mu << " " << s;
       }
