@@ -269,9 +269,9 @@ class GraphFacts {
       auto edge = [&](int j, int* fract, double* c, int* dir) {
         if (!is_call(j, "step")) return false;
         const Affine& e = aff[g.node(j).a];
-        if (e.base < 0 || (e.beta != 1 && e.beta != -1) || !is_call(e.base, "fract")) return false;
+        if (e.base < 0 || !(e.beta != 0) || !is_call(e.base, "fract")) return false;
         *fract = e.base;
-        *c = e.beta > 0 ? -e.alpha : e.alpha;
+        *c = -e.alpha / e.beta;  // beta fract + alpha >= 0: fract >= c (beta > 0) or <= c (beta < 0)
         *dir = e.beta > 0 ? 1 : -1;
         return true;
       };
@@ -296,6 +296,7 @@ class GraphFacts {
   struct FractStep {
     int fract = -1, dir = 0, edge = -1;
     double c = 0;
+    double period = 1;  // `fract` is mod(x, period) = period fract(x / period) (constant edges only)
   };
   std::optional<FractStep> fract_step(int i) const {
     const ir::Node& n = g.node(i);
@@ -314,10 +315,15 @@ class GraphFacts {
     if (!is_call(i, "step")) return std::nullopt;
     const int arg = g.node(i).a;
     const Affine& e = aff[arg];
-    if (e.base >= 0 && (e.beta == 1 || e.beta == -1) && is_call(e.base, "fract")) {
-      const double c = e.beta > 0 ? -e.alpha : e.alpha;
+    if (e.base >= 0 && e.beta != 0 && is_call(e.base, "fract")) {
+      const double c = -e.alpha / e.beta;  // as in fract_windows
       if (!(0 < c && c < 1)) return std::nullopt;
       return FractStep{e.base, e.beta > 0 ? 1 : -1, -1, c};
+    }
+    if (e.base >= 0 && e.beta != 0 && g.node(e.base).op == ir::Op::Mod && g.node(e.base).value != 0) {
+      const double P = g.node(e.base).value, c = -e.alpha / (e.beta * P);  // on fract(x / P)
+      if (!(0 < c && c < 1)) return std::nullopt;
+      return FractStep{e.base, e.beta * P > 0 ? 1 : -1, -1, c, P};
     }
     const ir::Node& d = g.node(arg);
     if (d.op != ir::Op::Sub || d.a == d.b) return std::nullopt;

@@ -431,7 +431,11 @@ class Lowering {
         facts_.lattice_boundary(i) || vals_[g_.node(fs->fract).a].var < 0)
       return false;
     if (fs->edge >= 0 && !(ranges_[fs->edge].lo >= 0 && ranges_[fs->edge].hi <= 1)) return false;
-    Val& y = vals_[g_.node(fs->fract).a];
+    Val y = vals_[g_.node(fs->fract).a];
+    if (fs->period != 1) {  // mod(x, P) = P fract(x / P)
+      const float ip = static_cast<float>(1 / fs->period);
+      y = Val{mul(y.mean, k(ip)), mul(y.var, k(ip * ip))};
+    }
     const std::string fr = kernel_name(kernel_for(rules::kind_name(r.kind), "fract"), "fract", false);
     const int at = call(fr, {y.mean, scaled_sd(y, r)});
     int c = -1, shifted = -1;

@@ -380,10 +380,14 @@ TEST(Compiler, FractStepIsTwoFracts) {
   const ir::Graph below = one_input([](dsl::Var u) { return dsl::step(0.1 - dsl::fract(u)); });
   const ir::Graph above = one_input([](dsl::Var u) { return dsl::step(dsl::fract(u * 3.0 + 0.25) - 0.7); });
   const ir::Graph less_below = one_input([](dsl::Var u) { return dsl::less(dsl::fract(u), dsl::Var(0.1)); });
+  // 0.5 - 5 fract(u) >= 0: fract(u) <= 0.1 (an edge scaled with fract, as mod(y, c) = c fract(y / c))
+  const ir::Graph scaled = one_input([](dsl::Var u) { return dsl::step(0.5 - dsl::fract(u) * 5.0); });
+  // mod(u, 2) >= 1.4: fract(u / 2) >= 0.7 (GLSL step(1.4, mod(u, 2.0)))
+  const ir::Graph modded = one_input([](dsl::Var u) { return dsl::step(dsl::mod(u, 2.0) - 1.4); });
   const ir::Graph less_above =
       one_input([](dsl::Var u) { return dsl::less(dsl::Var(0.7), dsl::fract(u * 3.0 + 0.25)); });
   for (const std::string rule : {"gaussian", "box", "tent"}) {
-    for (const ir::Graph* g : {&below, &above, &less_below, &less_above}) {
+    for (const ir::Graph* g : {&below, &above, &less_below, &less_above, &scaled, &modded}) {
       const compiler::Program p =
           compiler::lower(*g, compiler::uniform_schedule(*g, rules::parse_rule(rule)));
       int fracts = 0, steps = 0;
@@ -403,6 +407,10 @@ TEST(Compiler, FractStepIsTwoFracts) {
                     3e-5)
             << rule << " " << mu << " " << s;
         EXPECT_NEAR(run1(less_below, rule, mu, s), window_reference(rule, mu, s, 0.0, 0.1), 2e-5)
+            << rule << " " << mu << " " << s;
+        EXPECT_NEAR(run1(scaled, rule, mu, s), window_reference(rule, mu, s, 0.0, 0.1), 2e-5)
+            << rule << " " << mu << " " << s;
+        EXPECT_NEAR(run1(modded, rule, mu, s), window_reference(rule, 0.5 * mu, 0.5 * s, 0.7, 1.0), 2e-5)
             << rule << " " << mu << " " << s;
         EXPECT_NEAR(run1(less_above, rule, mu, s), window_reference(rule, 3.0 * mu + 0.25, 3.0 * s, 0.7, 1.0),
                     3e-5)
