@@ -419,6 +419,20 @@ TEST(Compiler, FractStepIsTwoFracts) {
   }
 }
 
+// GLSL fract(y) < c ? a : b: the select's condition is a Bernoulli node whose p is the fract step's
+// exact mean, so the select's mean is exact too.
+TEST(Compiler, SelectOnAFractEdgeIsExact) {
+  const ir::Graph g = one_input([](dsl::Var u) {
+    return dsl::select(dsl::less(dsl::fract(u), dsl::Var(0.3)), dsl::Var(2.0), dsl::Var(5.0));
+  });
+  for (const std::string rule : {"gaussian", "box", "tent"})
+    for (float mu : {-3.03f, 0.05f, 0.3f, 0.95f, 40.7f})
+      for (float s : {0.001f, 0.05f, 0.6f}) {
+        const double p = window_reference(rule, mu, s, 0.0, 0.3);
+        EXPECT_NEAR(run1(g, rule, mu, s), 5.0 - 3.0 * p, 1e-4) << rule << " " << mu << " " << s;
+      }
+}
+
 // A duty cycle that varies over the surface (GLSL step(fract(s), width)): the edge node enters by its
 // mean and y - c's variance. With the edge's input at sd 0 the edge is a constant at each pixel and the
 // mean exact; with sd > 0 it is close to the expectation over both inputs (quadrature here); an edge
