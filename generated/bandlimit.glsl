@@ -6944,6 +6944,14 @@ float bl_box_square_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.25)) {  // one break in reach, the nearest: a pulse train
+    float o0 = (neg ? (-1.0) : (0.0)) - r;
+    float o1 = (neg ? (-0.5) : (0.5)) - r;
+    float o2 = (neg ? (0.0) : (1.0)) - r;
+    float ln = hw - min(min(abs(o0), abs(o1)), abs(o2));
+    float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
+    return acc + (1.0 - (2.0) * acc) * vn;
+  }
   if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
@@ -7094,6 +7102,14 @@ float bl_box_square_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.25)) {  // one break in reach, the nearest: a pulse train
+    float o0 = (neg ? (-1.0) : (0.0)) - r;
+    float o1 = (neg ? (-0.5) : (0.5)) - r;
+    float o2 = (neg ? (0.0) : (1.0)) - r;
+    float ln = hw - min(min(abs(o0), abs(o1)), abs(o2));
+    float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
+    return acc + (1.0 - (2.0) * acc) * vn;
+  }
   if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
@@ -7217,6 +7233,14 @@ float bl_tent_square_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.25)) {  // one break in reach, the nearest: a pulse train
+    float o0 = (neg ? (-1.0) : (0.0)) - r;
+    float o1 = (neg ? (-0.5) : (0.5)) - r;
+    float o2 = (neg ? (0.0) : (1.0)) - r;
+    float ln = hw - min(min(abs(o0), abs(o1)), abs(o2));
+    float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
+    return acc + (1.0 - (2.0) * acc) * vn * vn * (0.5);
+  }
   if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
@@ -7377,6 +7401,14 @@ float bl_tent_square_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.25)) {  // one break in reach, the nearest: a pulse train
+    float o0 = (neg ? (-1.0) : (0.0)) - r;
+    float o1 = (neg ? (-0.5) : (0.5)) - r;
+    float o2 = (neg ? (0.0) : (1.0)) - r;
+    float ln = hw - min(min(abs(o0), abs(o1)), abs(o2));
+    float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
+    return acc + (1.0 - (2.0) * acc) * vn * vn * (0.5);
+  }
   if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
@@ -7718,6 +7750,15 @@ float bl_box_pulse30_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.15)) {  // one break in reach, the nearest: a pulse train
+    float o0 = (neg ? (-1.0) : (0.0)) - r;
+    float o1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float o2 = (neg ? (0.0) : (1.0)) - r;
+    float o3 = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float ln = hw - min(min(min(abs(o0), abs(o1)), abs(o2)), abs(o3));
+    float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
+    return acc + (1.0 - (2.0) * acc) * vn;
+  }
   if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
@@ -7875,6 +7916,15 @@ float bl_box_pulse30_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / ((2.0) * hw * sc);
+  if (hw <= (0.15)) {  // one break in reach, the nearest: a pulse train
+    float o0 = (neg ? (-1.0) : (0.0)) - r;
+    float o1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float o2 = (neg ? (0.0) : (1.0)) - r;
+    float o3 = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float ln = hw - min(min(min(abs(o0), abs(o1)), abs(o2)), abs(o3));
+    float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
+    return acc + (1.0 - (2.0) * acc) * vn;
+  }
   if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
@@ -8005,6 +8055,15 @@ float bl_tent_pulse30_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.15)) {  // one break in reach, the nearest: a pulse train
+    float o0 = (neg ? (-1.0) : (0.0)) - r;
+    float o1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float o2 = (neg ? (0.0) : (1.0)) - r;
+    float o3 = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float ln = hw - min(min(min(abs(o0), abs(o1)), abs(o2)), abs(o3));
+    float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
+    return acc + (1.0 - (2.0) * acc) * vn * vn * (0.5);
+  }
   if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
@@ -8172,6 +8231,15 @@ float bl_tent_pulse30_sq_raw(float x, float sigma) {
   if (sigma == (0.0)) return acc;
   float sc = hw < (1e-30) ? (1.2676506002282294e+30) : (1.0);
   float ik = (1.0) / (hw * sc);
+  if (hw <= (0.15)) {  // one break in reach, the nearest: a pulse train
+    float o0 = (neg ? (-1.0) : (0.0)) - r;
+    float o1 = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
+    float o2 = (neg ? (0.0) : (1.0)) - r;
+    float o3 = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
+    float ln = hw - min(min(min(abs(o0), abs(o1)), abs(o2)), abs(o3));
+    float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
+    return acc + (1.0 - (2.0) * acc) * vn * vn * (0.5);
+  }
   if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;

@@ -332,6 +332,41 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   std::vector<Candidate> near;
   for (const Candidate& c : cands)
     if (c.B > -reach && c.B < T + reach) near.push_back(c);
+  // A pulse train (f constant on each piece, two values a and b: square, pulse30) under a kernel
+  // narrower than half the smallest gap between its breaks: at most one break is in reach, the
+  // nearest, and past it f takes its other value a + b - acc, so mean = acc + (a + b - 2 acc) F with F
+  // the kernel's mass past that break (box l / 2h, tent l^2 / 2w^2, l = max(h - |d|, 0), d its exact
+  // offset). One term where the break sum takes every near break (box square: 3); on
+  // checkerboard_none's two box squares the compiled frame went 13.9 -> 12.0 ns/px.
+  {
+    std::vector<numeric> vals;
+    bool constant = true;
+    for (const auto& p : ps) {
+      if (p.c.size() > 1) constant = false;
+      const numeric v = p.c.empty() ? numeric(0) : p.c[0];
+      if (std::find(vals.begin(), vals.end(), v) == vals.end()) vals.push_back(v);
+    }
+    if (constant && vals.size() == 2 && near.size() >= 3 && !jumps.empty()) {
+      std::vector<double> at;
+      for (const auto& j : jumps) at.push_back(j.first.to_double());
+      std::sort(at.begin(), at.end());
+      double gap = Td - at.back() + at.front();
+      for (size_t j = 0; j + 1 < at.size(); ++j) gap = std::min(gap, at[j + 1] - at[j]);
+      const double reach = std::min(0.5 * gap, kNearReach * Td);
+      out += "  if (hw <= " + s.dbl(reach) + ") {  // one break in reach, the nearest: a pulse train\n";
+      std::string dmin;
+      for (size_t j = 0; j < near.size(); ++j) {
+        const std::string o = "o" + std::to_string(j);
+        out += "  " + offset_decl(s, o, near[j].B, T);
+        dmin = j == 0 ? "abs(" + o + ")" : s.min(dmin, "abs(" + o + ")");
+      }
+      out += "  " + s.decl("ln", "hw - " + dmin);
+      out += "  " + s.decl("vn", "(ln > " + s.dbl(0) + " ? ln : " + s.dbl(0) + ") * sc * ik");
+      const std::string F = box ? "vn" : "vn * vn * " + s.dbl(0.5);
+      out +=
+          "    return acc + (" + s.num(vals[0] + vals[1]) + " - " + s.dbl(2) + " * acc) * " + F + ";\n  }\n";
+    }
+  }
   if (near.size() < cands.size() && kNearReach < K)
     out += "  if (hw <= " + s.dbl(kNearReach * Td) + ") {  // only the breaks it reaches\n" +
            jump_terms(s, d.kernel, near, T) + "    return acc;\n  }\n";

@@ -7997,6 +7997,14 @@ T box_square_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.25)) {  // one break in reach, the nearest: a pulse train
+    const T o0 = (neg ? T(-1.0) : T(0.0)) - r;
+    const T o1 = (neg ? T(-0.5) : T(0.5)) - r;
+    const T o2 = (neg ? T(0.0) : T(1.0)) - r;
+    const T ln = hw - detail::min2(detail::min2(abs(o0), abs(o1)), abs(o2));
+    const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
+    return acc + (T(1) - T(2.0) * acc) * vn;
+  }
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
@@ -8157,6 +8165,14 @@ T box_square_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.25)) {  // one break in reach, the nearest: a pulse train
+    const T o0 = (neg ? T(-1.0) : T(0.0)) - r;
+    const T o1 = (neg ? T(-0.5) : T(0.5)) - r;
+    const T o2 = (neg ? T(0.0) : T(1.0)) - r;
+    const T ln = hw - detail::min2(detail::min2(abs(o0), abs(o1)), abs(o2));
+    const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
+    return acc + (T(1) - T(2.0) * acc) * vn;
+  }
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
@@ -8285,6 +8301,14 @@ T tent_square_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.25)) {  // one break in reach, the nearest: a pulse train
+    const T o0 = (neg ? T(-1.0) : T(0.0)) - r;
+    const T o1 = (neg ? T(-0.5) : T(0.5)) - r;
+    const T o2 = (neg ? T(0.0) : T(1.0)) - r;
+    const T ln = hw - detail::min2(detail::min2(abs(o0), abs(o1)), abs(o2));
+    const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
+    return acc + (T(1) - T(2.0) * acc) * vn * vn * T(0.5);
+  }
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
@@ -8454,6 +8478,14 @@ T tent_square_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.25)) {  // one break in reach, the nearest: a pulse train
+    const T o0 = (neg ? T(-1.0) : T(0.0)) - r;
+    const T o1 = (neg ? T(-0.5) : T(0.5)) - r;
+    const T o2 = (neg ? T(0.0) : T(1.0)) - r;
+    const T ln = hw - detail::min2(detail::min2(abs(o0), abs(o1)), abs(o2));
+    const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
+    return acc + (T(1) - T(2.0) * acc) * vn * vn * T(0.5);
+  }
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
@@ -8817,6 +8849,15 @@ T box_pulse30_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.15)) {  // one break in reach, the nearest: a pulse train
+    const T o0 = (neg ? T(-1.0) : T(0.0)) - r;
+    const T o1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T o2 = (neg ? T(0.0) : T(1.0)) - r;
+    const T o3 = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T ln = hw - detail::min2(detail::min2(detail::min2(abs(o0), abs(o1)), abs(o2)), abs(o3));
+    const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
+    return acc + (T(1) - T(2.0) * acc) * vn;
+  }
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
@@ -8984,6 +9025,15 @@ T box_pulse30_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (T(2.0) * hw * sc);
+  if (hw <= T(0.15)) {  // one break in reach, the nearest: a pulse train
+    const T o0 = (neg ? T(-1.0) : T(0.0)) - r;
+    const T o1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T o2 = (neg ? T(0.0) : T(1.0)) - r;
+    const T o3 = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T ln = hw - detail::min2(detail::min2(detail::min2(abs(o0), abs(o1)), abs(o2)), abs(o3));
+    const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
+    return acc + (T(1) - T(2.0) * acc) * vn;
+  }
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
@@ -9120,6 +9170,15 @@ T tent_pulse30_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.15)) {  // one break in reach, the nearest: a pulse train
+    const T o0 = (neg ? T(-1.0) : T(0.0)) - r;
+    const T o1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T o2 = (neg ? T(0.0) : T(1.0)) - r;
+    const T o3 = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T ln = hw - detail::min2(detail::min2(detail::min2(abs(o0), abs(o1)), abs(o2)), abs(o3));
+    const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
+    return acc + (T(1) - T(2.0) * acc) * vn * vn * T(0.5);
+  }
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
@@ -9297,6 +9356,15 @@ T tent_pulse30_sq_raw(T x, T sigma) {
   if (sigma == T(0.0)) return acc;
   const T sc = hw < T(1e-30) ? T(1.2676506002282294e+30) : T(1.0);
   const T ik = T(1.0) / (hw * sc);
+  if (hw <= T(0.15)) {  // one break in reach, the nearest: a pulse train
+    const T o0 = (neg ? T(-1.0) : T(0.0)) - r;
+    const T o1 = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
+    const T o2 = (neg ? T(0.0) : T(1.0)) - r;
+    const T o3 = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
+    const T ln = hw - detail::min2(detail::min2(detail::min2(abs(o0), abs(o1)), abs(o2)), abs(o3));
+    const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
+    return acc + (T(1) - T(2.0) * acc) * vn * vn * T(0.5);
+  }
   if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
