@@ -6930,7 +6930,7 @@ float bl_box_square_raw(float x, float sigma) {
   bool neg = r < (0.0);
   float t = neg ? r + period : r;
   float hw = BL_SQRT3 * sigma;
-  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= (0.45))) {  // support wider than 0.45 periods each side
     vec2 r1_q = bl_reduce_period(t - hw, period);
     float r1 = r1_q.x;
     float n1 = r1_q.y;
@@ -6952,7 +6952,6 @@ float bl_box_square_raw(float x, float sigma) {
     float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
     return acc + (1.0 - (2.0) * acc) * vn;
   }
-  if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
@@ -6973,71 +6972,6 @@ float bl_box_square_raw(float x, float sigma) {
     float l = L > (0.0) ? L : (0.0);
     float v = l * sc * ik;
     acc += v * ((1.0));
-  }
-    return acc;
-  }
-  {  // break at -3/2 (r >= 0)
-    float d = (neg ? (-2.5) : (-1.5)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * (((-1.0)));
-  }
-  {  // break at -1 (r >= 0)
-    float d = (neg ? (-2.0) : (-1.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * ((1.0));
-  }
-  {  // break at -1/2 (r >= 0)
-    float d = (neg ? (-1.5) : (-0.5)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * (((-1.0)));
-  }
-  {  // break at 0 (r >= 0)
-    float d = (neg ? (-1.0) : (0.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * ((1.0));
-  }
-  {  // break at 1/2 (r >= 0)
-    float d = (neg ? (-0.5) : (0.5)) - r;
-    float L = hw - abs(d);
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += (d > (0.0) ? v : -v) * (((-1.0)));
-  }
-  {  // break at 1 (r >= 0)
-    float d = (neg ? (0.0) : (1.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * ((1.0));
-  }
-  {  // break at 3/2 (r >= 0)
-    float d = (neg ? (0.5) : (1.5)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * (((-1.0)));
-  }
-  {  // break at 2 (r >= 0)
-    float d = (neg ? (1.0) : (2.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * ((1.0));
-  }
-  {  // break at 5/2 (r >= 0)
-    float d = (neg ? (1.5) : (2.5)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * (((-1.0)));
   }
   return acc;
 }
@@ -7088,7 +7022,7 @@ float bl_box_square_sq_raw(float x, float sigma) {
   bool neg = r < (0.0);
   float t = neg ? r + period : r;
   float hw = BL_SQRT3 * sigma;
-  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= (0.45))) {  // support wider than 0.45 periods each side
     vec2 r1_q = bl_reduce_period(t - hw, period);
     float r1 = r1_q.x;
     float n1 = r1_q.y;
@@ -7110,7 +7044,6 @@ float bl_box_square_sq_raw(float x, float sigma) {
     float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
     return acc + (1.0 - (2.0) * acc) * vn;
   }
-  if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
@@ -7131,71 +7064,6 @@ float bl_box_square_sq_raw(float x, float sigma) {
     float l = L > (0.0) ? L : (0.0);
     float v = l * sc * ik;
     acc += v * ((1.0));
-  }
-    return acc;
-  }
-  {  // break at -3/2 (r >= 0)
-    float d = (neg ? (-2.5) : (-1.5)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * (((-1.0)));
-  }
-  {  // break at -1 (r >= 0)
-    float d = (neg ? (-2.0) : (-1.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * ((1.0));
-  }
-  {  // break at -1/2 (r >= 0)
-    float d = (neg ? (-1.5) : (-0.5)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * (((-1.0)));
-  }
-  {  // break at 0 (r >= 0)
-    float d = (neg ? (-1.0) : (0.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * ((1.0));
-  }
-  {  // break at 1/2 (r >= 0)
-    float d = (neg ? (-0.5) : (0.5)) - r;
-    float L = hw - abs(d);
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += (d > (0.0) ? v : -v) * (((-1.0)));
-  }
-  {  // break at 1 (r >= 0)
-    float d = (neg ? (0.0) : (1.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * ((1.0));
-  }
-  {  // break at 3/2 (r >= 0)
-    float d = (neg ? (0.5) : (1.5)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * (((-1.0)));
-  }
-  {  // break at 2 (r >= 0)
-    float d = (neg ? (1.0) : (2.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * ((1.0));
-  }
-  {  // break at 5/2 (r >= 0)
-    float d = (neg ? (1.5) : (2.5)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * (((-1.0)));
   }
   return acc;
 }
@@ -7736,7 +7604,7 @@ float bl_box_pulse30_raw(float x, float sigma) {
   bool neg = r < (0.0);
   float t = neg ? r + period : r;
   float hw = BL_SQRT3 * sigma;
-  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= (0.45))) {  // support wider than 0.45 periods each side
     vec2 r1_q = bl_reduce_period(t - hw, period);
     float r1 = r1_q.x;
     float n1 = r1_q.y;
@@ -7759,7 +7627,6 @@ float bl_box_pulse30_raw(float x, float sigma) {
     float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
     return acc + (1.0 - (2.0) * acc) * vn;
   }
-  if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
@@ -7783,71 +7650,6 @@ float bl_box_pulse30_raw(float x, float sigma) {
   }
   {  // break at 13/10 (r >= 0)
     float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * (((-1.0)));
-  }
-    return acc;
-  }
-  {  // break at -17/10 (r >= 0)
-    float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * (((-1.0)));
-  }
-  {  // break at -1 (r >= 0)
-    float d = (neg ? (-2.0) : (-1.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * ((1.0));
-  }
-  {  // break at -7/10 (r >= 0)
-    float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * (((-1.0)));
-  }
-  {  // break at 0 (r >= 0)
-    float d = (neg ? (-1.0) : (0.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * ((1.0));
-  }
-  {  // break at 3/10 (r >= 0)
-    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
-    float L = hw - abs(d);
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += (d > (0.0) ? v : -v) * (((-1.0)));
-  }
-  {  // break at 1 (r >= 0)
-    float d = (neg ? (0.0) : (1.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * ((1.0));
-  }
-  {  // break at 13/10 (r >= 0)
-    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * (((-1.0)));
-  }
-  {  // break at 2 (r >= 0)
-    float d = (neg ? (1.0) : (2.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * ((1.0));
-  }
-  {  // break at 23/10 (r >= 0)
-    float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float v = l * sc * ik;
@@ -7902,7 +7704,7 @@ float bl_box_pulse30_sq_raw(float x, float sigma) {
   bool neg = r < (0.0);
   float t = neg ? r + period : r;
   float hw = BL_SQRT3 * sigma;
-  if (!(hw <= (2.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= (0.45))) {  // support wider than 0.45 periods each side
     vec2 r1_q = bl_reduce_period(t - hw, period);
     float r1 = r1_q.x;
     float n1 = r1_q.y;
@@ -7925,7 +7727,6 @@ float bl_box_pulse30_sq_raw(float x, float sigma) {
     float vn = (ln > (0.0) ? ln : (0.0)) * sc * ik;
     return acc + (1.0 - (2.0) * acc) * vn;
   }
-  if (hw <= (0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     float d = (neg ? (-1.0) : (0.0)) - r;
     float L = hw + d;
@@ -7949,71 +7750,6 @@ float bl_box_pulse30_sq_raw(float x, float sigma) {
   }
   {  // break at 13/10 (r >= 0)
     float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * (((-1.0)));
-  }
-    return acc;
-  }
-  {  // break at -17/10 (r >= 0)
-    float d = ((neg ? (-2.700000047683716) : (-1.7000000476837158)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * (((-1.0)));
-  }
-  {  // break at -1 (r >= 0)
-    float d = (neg ? (-2.0) : (-1.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * ((1.0));
-  }
-  {  // break at -7/10 (r >= 0)
-    float d = ((neg ? (-1.7000000476837158) : (-0.699999988079071)) - r) + (neg ? (4.7683716530855236e-08) : (-1.1920929132713809e-08));
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * (((-1.0)));
-  }
-  {  // break at 0 (r >= 0)
-    float d = (neg ? (-1.0) : (0.0)) - r;
-    float L = hw + d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc -= v * ((1.0));
-  }
-  {  // break at 3/10 (r >= 0)
-    float d = ((neg ? (-0.699999988079071) : (0.30000001192092896)) - r) + (neg ? (-1.1920929132713809e-08) : (-1.1920929132713809e-08));
-    float L = hw - abs(d);
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += (d > (0.0) ? v : -v) * (((-1.0)));
-  }
-  {  // break at 1 (r >= 0)
-    float d = (neg ? (0.0) : (1.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * ((1.0));
-  }
-  {  // break at 13/10 (r >= 0)
-    float d = ((neg ? (0.30000001192092896) : (1.2999999523162842)) - r) + (neg ? (-1.1920929132713809e-08) : (4.7683716530855236e-08));
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * (((-1.0)));
-  }
-  {  // break at 2 (r >= 0)
-    float d = (neg ? (1.0) : (2.0)) - r;
-    float L = hw - d;
-    float l = L > (0.0) ? L : (0.0);
-    float v = l * sc * ik;
-    acc += v * ((1.0));
-  }
-  {  // break at 23/10 (r >= 0)
-    float d = ((neg ? (1.2999999523162842) : (2.299999952316284)) - r) + (neg ? (4.7683716530855236e-08) : (4.7683716530855236e-08));
     float L = hw - d;
     float l = L > (0.0) ? L : (0.0);
     float v = l * sc * ik;

@@ -7985,7 +7985,7 @@ T box_square_raw(T x, T sigma) {
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
-  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= T(0.45))) {  // support wider than 0.45 periods each side
     T n1;
     const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
@@ -8005,7 +8005,6 @@ T box_square_raw(T x, T sigma) {
     const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
     return acc + (T(1) - T(2.0) * acc) * vn;
   }
-  if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
@@ -8026,71 +8025,6 @@ T box_square_raw(T x, T sigma) {
     const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
-  }
-    return acc;
-  }
-  {  // break at -3/2 (r >= 0)
-    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * (((T(-1))));
-  }
-  {  // break at -1 (r >= 0)
-    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * ((T(1)));
-  }
-  {  // break at -1/2 (r >= 0)
-    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * (((T(-1))));
-  }
-  {  // break at 0 (r >= 0)
-    const T d = (neg ? T(-1.0) : T(0.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * ((T(1)));
-  }
-  {  // break at 1/2 (r >= 0)
-    const T d = (neg ? T(-0.5) : T(0.5)) - r;
-    const T L = hw - abs(d);
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
-  }
-  {  // break at 1 (r >= 0)
-    const T d = (neg ? T(0.0) : T(1.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * ((T(1)));
-  }
-  {  // break at 3/2 (r >= 0)
-    const T d = (neg ? T(0.5) : T(1.5)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * (((T(-1))));
-  }
-  {  // break at 2 (r >= 0)
-    const T d = (neg ? T(1.0) : T(2.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * ((T(1)));
-  }
-  {  // break at 5/2 (r >= 0)
-    const T d = (neg ? T(1.5) : T(2.5)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * (((T(-1))));
   }
   return acc;
 }
@@ -8153,7 +8087,7 @@ T box_square_sq_raw(T x, T sigma) {
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
-  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= T(0.45))) {  // support wider than 0.45 periods each side
     T n1;
     const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
@@ -8173,7 +8107,6 @@ T box_square_sq_raw(T x, T sigma) {
     const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
     return acc + (T(1) - T(2.0) * acc) * vn;
   }
-  if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
@@ -8194,71 +8127,6 @@ T box_square_sq_raw(T x, T sigma) {
     const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
     acc += v * ((T(1)));
-  }
-    return acc;
-  }
-  {  // break at -3/2 (r >= 0)
-    const T d = (neg ? T(-2.5) : T(-1.5)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * (((T(-1))));
-  }
-  {  // break at -1 (r >= 0)
-    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * ((T(1)));
-  }
-  {  // break at -1/2 (r >= 0)
-    const T d = (neg ? T(-1.5) : T(-0.5)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * (((T(-1))));
-  }
-  {  // break at 0 (r >= 0)
-    const T d = (neg ? T(-1.0) : T(0.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * ((T(1)));
-  }
-  {  // break at 1/2 (r >= 0)
-    const T d = (neg ? T(-0.5) : T(0.5)) - r;
-    const T L = hw - abs(d);
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
-  }
-  {  // break at 1 (r >= 0)
-    const T d = (neg ? T(0.0) : T(1.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * ((T(1)));
-  }
-  {  // break at 3/2 (r >= 0)
-    const T d = (neg ? T(0.5) : T(1.5)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * (((T(-1))));
-  }
-  {  // break at 2 (r >= 0)
-    const T d = (neg ? T(1.0) : T(2.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * ((T(1)));
-  }
-  {  // break at 5/2 (r >= 0)
-    const T d = (neg ? T(1.5) : T(2.5)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * (((T(-1))));
   }
   return acc;
 }
@@ -8837,7 +8705,7 @@ T box_pulse30_raw(T x, T sigma) {
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
-  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= T(0.45))) {  // support wider than 0.45 periods each side
     T n1;
     const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
@@ -8858,7 +8726,6 @@ T box_pulse30_raw(T x, T sigma) {
     const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
     return acc + (T(1) - T(2.0) * acc) * vn;
   }
-  if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
@@ -8882,71 +8749,6 @@ T box_pulse30_raw(T x, T sigma) {
   }
   {  // break at 13/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * (((T(-1))));
-  }
-    return acc;
-  }
-  {  // break at -17/10 (r >= 0)
-    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * (((T(-1))));
-  }
-  {  // break at -1 (r >= 0)
-    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * ((T(1)));
-  }
-  {  // break at -7/10 (r >= 0)
-    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * (((T(-1))));
-  }
-  {  // break at 0 (r >= 0)
-    const T d = (neg ? T(-1.0) : T(0.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * ((T(1)));
-  }
-  {  // break at 3/10 (r >= 0)
-    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
-    const T L = hw - abs(d);
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
-  }
-  {  // break at 1 (r >= 0)
-    const T d = (neg ? T(0.0) : T(1.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * ((T(1)));
-  }
-  {  // break at 13/10 (r >= 0)
-    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * (((T(-1))));
-  }
-  {  // break at 2 (r >= 0)
-    const T d = (neg ? T(1.0) : T(2.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * ((T(1)));
-  }
-  {  // break at 23/10 (r >= 0)
-    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
@@ -9013,7 +8815,7 @@ T box_pulse30_sq_raw(T x, T sigma) {
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
   const T hw = detail::k_sqrt3<T>() * sigma;
-  if (!(hw <= T(2.0))) {  // support wider than 2.00 periods each side
+  if (!(hw <= T(0.45))) {  // support wider than 0.45 periods each side
     T n1;
     const T r1 = detail::reduce_period_pow2(t - hw, period, n1);
     T n2;
@@ -9034,7 +8836,6 @@ T box_pulse30_sq_raw(T x, T sigma) {
     const T vn = (ln > T(0.0) ? ln : T(0.0)) * sc * ik;
     return acc + (T(1) - T(2.0) * acc) * vn;
   }
-  if (hw <= T(0.45)) {  // only the breaks it reaches
   {  // break at 0 (r >= 0)
     const T d = (neg ? T(-1.0) : T(0.0)) - r;
     const T L = hw + d;
@@ -9058,71 +8859,6 @@ T box_pulse30_sq_raw(T x, T sigma) {
   }
   {  // break at 13/10 (r >= 0)
     const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * (((T(-1))));
-  }
-    return acc;
-  }
-  {  // break at -17/10 (r >= 0)
-    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-2.700000047683716) : T(-2.7)) : (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * (((T(-1))));
-  }
-  {  // break at -1 (r >= 0)
-    const T d = (neg ? T(-2.0) : T(-1.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * ((T(1)));
-  }
-  {  // break at -7/10 (r >= 0)
-    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-1.7000000476837158) : T(-1.7)) : (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)));
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * (((T(-1))));
-  }
-  {  // break at 0 (r >= 0)
-    const T d = (neg ? T(-1.0) : T(0.0)) - r;
-    const T L = hw + d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc -= v * ((T(1)));
-  }
-  {  // break at 3/10 (r >= 0)
-    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(-0.699999988079071) : T(-0.7)) : (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)));
-    const T L = hw - abs(d);
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += (d > T(0.0) ? v : -v) * (((T(-1))));
-  }
-  {  // break at 1 (r >= 0)
-    const T d = (neg ? T(0.0) : T(1.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * ((T(1)));
-  }
-  {  // break at 13/10 (r >= 0)
-    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(0.30000001192092896) : T(0.3)) : (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(-1.1920929132713809e-08) : T(1.1102230246251566e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)));
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * (((T(-1))));
-  }
-  {  // break at 2 (r >= 0)
-    const T d = (neg ? T(1.0) : T(2.0)) - r;
-    const T L = hw - d;
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * sc * ik;
-    acc += v * ((T(1)));
-  }
-  {  // break at 23/10 (r >= 0)
-    const T d = ((neg ? (sizeof(T) < sizeof(double) ? T(1.2999999523162842) : T(1.3)) : (sizeof(T) < sizeof(double) ? T(2.299999952316284) : T(2.3))) - r) + (neg ? (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(-4.4408920985006264e-17)) : (sizeof(T) < sizeof(double) ? T(4.7683716530855236e-08) : T(1.7763568394002506e-16)));
     const T L = hw - d;
     const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * sc * ik;
