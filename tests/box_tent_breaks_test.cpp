@@ -116,10 +116,23 @@ std::vector<Case> cases() {
                        1e6 + 0.5,
                        -1e6 - 0.25};
   // 1e-40: float's subnormal range (the rescale by 2^100); 2/sqrt3, 2/sqrt6, 3/sqrt6: where box and
-  // tent hand over from the break sum (2 and 3 units each side) to the wide regime.
-  const double ss[] = {
-      1e-40, 1e-35, 1e-31, 1e-12, 1e-3, 0.3, 2 / std::sqrt(3.0), 2 / std::sqrt(6.0), 3 / std::sqrt(6.0),
-      2.5,   40};
+  // tent hand over from the break sum (2 and 3 units each side) to the wide regime; 0.25/sqrt3,
+  // 0.25/sqrt6: where square's one-break regime ends (half its gap), 0.45/sqrt3: where the box
+  // square hands over to the wide regime (and the near-break sums end).
+  const double ss[] = {1e-40,
+                       1e-35,
+                       1e-31,
+                       1e-12,
+                       1e-3,
+                       0.25 / std::sqrt(3.0),
+                       0.25 / std::sqrt(6.0),
+                       0.3,
+                       0.45 / std::sqrt(3.0),
+                       2 / std::sqrt(3.0),
+                       2 / std::sqrt(6.0),
+                       3 / std::sqrt(6.0),
+                       2.5,
+                       40};
   for (double x : xs)
     for (double s : ss) {
       out.push_back({x, s});

@@ -77,6 +77,13 @@ TEST(GlslInclude, ChangedEntriesMatchTheCppTable) {
         [](double x, double s) { return bl::gaussian::abs(x, s); },
         [](double x, double s) { return bl::gaussian::laplace(x, s); },
         [](double x, double s) { return bl::gaussian::exp_ramp_sq(x, s); }}},
+      // Pulse trains' one-break regime and the box's antiderivative difference past 0.45 periods
+      // (stop 26): sigma 0.01-1 spans both, x hits the breaks of square (multiples of 1/2).
+      {{"bl_box_square", "bl_tent_square", "bl_box_pulse30", "bl_tent_pulse30_sq"},
+       {[](double x, double s) { return bl::box::square(x, s); },
+        [](double x, double s) { return bl::tent::square(x, s); },
+        [](double x, double s) { return bl::box::pulse30(x, s); },
+        [](double x, double s) { return bl::tent::pulse30_sq(x, s); }}},
       {{"bl_gaussian_saturate", "bl_gaussian_step", "bl_gaussian_exp_decay", "bl_gaussian_smoothstep"},
        {[](double x, double s) { return bl::gaussian::saturate(x, s); },
         [](double x, double s) { return bl::gaussian::step(x, s); },
