@@ -87,11 +87,10 @@ int main(int argc, char** argv) {
                             m.compiled_ns, m.model_ns / m.compiled_ns);
               plain_lines.push_back(line);
             }
-          }
-          if (prog && m.model_ns > 0 && m.compiled_ns > 0)
             for (std::size_t w = 0; w < alts.size(); ++w)
               window_err[w].push_back(
                   std::fabs(std::max(m.msaa, 1) * alts[w].cost(*prog) / m.compiled_ns - 1));
+          }
         }
       const tuner::ModelAccuracy a = tuner::model_accuracy(r);
       scenes_within += a.median <= tuner::kModelTolerance;

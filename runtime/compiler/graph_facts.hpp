@@ -266,13 +266,13 @@ class GraphFacts {
     auto pair = [&](int ja, int jb, int other) {
       int fa = -1, fb = -1, da = 0, db = 0;
       double ca = 0, cb = 0;
-      auto edge = [&](int j, int* fract, double* c, int* dir) {
+      auto edge = [&](int j, int* fract, double* c, int* dir) {  // a step at a constant edge of a fract
         if (!is_call(j, "step")) return false;
-        const Affine& e = aff[g.node(j).a];
-        if (e.base < 0 || !(e.beta != 0) || !is_call(e.base, "fract")) return false;
-        *fract = e.base;
-        *c = -e.alpha / e.beta;  // beta fract + alpha >= 0: fract >= c (beta > 0) or <= c (beta < 0)
-        *dir = e.beta > 0 ? 1 : -1;
+        const auto fs = fract_step(j);
+        if (!fs || fs->edge >= 0 || fs->period != 1) return false;
+        *fract = fs->fract;
+        *c = fs->c;
+        *dir = fs->dir;
         return true;
       };
       if (!edge(ja, &fa, &ca, &da) || !edge(jb, &fb, &cb, &db) || fa != fb || da == db) return;
@@ -316,7 +316,7 @@ class GraphFacts {
     const int arg = g.node(i).a;
     const Affine& e = aff[arg];
     if (e.base >= 0 && e.beta != 0 && is_call(e.base, "fract")) {
-      const double c = -e.alpha / e.beta;  // as in fract_windows
+      const double c = -e.alpha / e.beta;  // beta fract + alpha >= 0: fract >= c (beta > 0) or <= c (< 0)
       if (!(0 < c && c < 1)) return std::nullopt;
       return FractStep{e.base, e.beta > 0 ? 1 : -1, -1, c};
     }

@@ -351,13 +351,15 @@ class Lowering {
     }
   }
 
-  // The two nodes of a fused pair (GraphFacts::floor_pulse, fract_windows) must each be smoothed by a
-  // kernel (gaussian, box or tent) with a random argument, and both by one kernel at one width.
-  bool kernel_smoothed(int j) {
+  // A node the fusions below may smooth as part of a function of its argument: its rule is a kernel
+  // (gaussian, box or tent) and it is no lattice boundary. The two nodes of a fused pair
+  // (GraphFacts::floor_pulse, fract_windows) must each be so with a random argument, and both be
+  // smoothed by one kernel at one width.
+  bool kernel_rule(int j) {
     const Kind kj = s_.at(j).kind;
-    return (kj == Kind::Gaussian || kj == Kind::Box || kj == Kind::Tent) && !facts_.lattice_boundary(j) &&
-           vals_[g_.node(j).a].var >= 0;
+    return (kj == Kind::Gaussian || kj == Kind::Box || kj == Kind::Tent) && !facts_.lattice_boundary(j);
   }
+  bool kernel_smoothed(int j) { return kernel_rule(j) && vals_[g_.node(j).a].var >= 0; }
   bool one_kernel(int a, int b) {
     return kernel_smoothed(a) && kernel_smoothed(b) && s_.at(a).kind == s_.at(b).kind &&
            s_.at(a).sigma_scale == s_.at(b).sigma_scale;
@@ -384,8 +386,9 @@ class Lowering {
 
   // step(fract(y) - lo) * step(hi - fract(y)), 0 < lo < hi < 1 (either order): the indicator of
   // fract(y) in [lo, hi], a brick's or a tile's inside, equals (hi - lo) - fract(y - lo) + fract(y - hi)
-  // for every y. Both steps smoothed by one kernel at one width: the indicator's exact mean under that
-  // kernel on y from two mean-only fract entries (calibrated float: box 2 x 5.75 ns, tent 2 x 6.5),
+  // for every y (fract_interval). Both steps smoothed by one kernel at one width: the indicator's exact
+  // mean under that kernel on y from two mean-only fract entries (calibrated float: box 2 x 5.75 ns,
+  // tent 2 x 6.5),
   // where the steps alone read fract's variance (gaussian fract_stat 17.5) and multiply two smoothed
   // steps as if independent; the variance is the indicator's p (1 - p).
   // A product chain written left to right (step(fx - lo) * step(hi - fx) * step(fy - lo) * step(hi - fy),
@@ -398,10 +401,10 @@ class Lowering {
       Val& y = vals_[g_.node(w.fract).a];
       const std::string fr = kernel_name(kernel_for(rules::kind_name(rs.kind), "fract"), "fract", false);
       const int s = scaled_sd(y, rs);
-      const int below = call(fr, {sub(y.mean, k(static_cast<float>(w.lo))), s});
-      const int above = call(fr, {sub(y.mean, k(static_cast<float>(w.hi))), s});
-      const int p = add(sub(k(static_cast<float>(w.hi - w.lo)), below), above);
-      const int pvar = r.kind == Kind::None ? -1 : op(LOp::NonNeg, mul(p, sub(k(1), p)));
+      const int y_lo = sub(y.mean, k(static_cast<float>(w.lo)));
+      const int y_hi = sub(y.mean, k(static_cast<float>(w.hi)));
+      const int p = fract_interval(fr, k(static_cast<float>(w.hi - w.lo)), y_lo, s, y_hi, s);
+      const int pvar = r.kind == Kind::None ? -1 : indicator_var(p);
       if (w.other < 0) {
         out = Val{p, pvar};
         return true;
@@ -419,17 +422,15 @@ class Lowering {
 
   // step(c - fract(y)), 0 <= c <= 1, the indicator of fract(y) <= c, equals c - fract(y) + fract(y - c)
   // for almost every y (step(fract(y) - c) is one minus it; less(fract(y), c) and less(c, fract(y))
-  // are the same indicators). The step smoothed by a kernel with a
-  // random argument: the indicator's mean under that kernel on y from two mean-only fract entries,
-  // where the step alone reads fract's variance and smooths as if fract(y) were unimodal (it is not
-  // next to fract's jump); the variance is the indicator's p (1 - p). Exact for a constant edge; an
-  // edge node (its range inside [0, 1]) enters through its mean and y - c's variance (Var y + Var c,
-  // the two taken as independent).
+  // are the same indicators). The step smoothed by a kernel with a random argument: the indicator's
+  // mean under that kernel on y from two mean-only fract entries (fract_interval), where the step
+  // alone reads fract's variance and smooths as if fract(y) were unimodal (it is not next to fract's
+  // jump); the variance is the indicator's p (1 - p). Exact for a constant edge; an edge node (its
+  // range inside [0, 1]) enters through its mean and y - c's variance (Var y + Var c, the two taken
+  // as independent).
   bool fract_step(int i, const Rule& r, Val& out) {
     const auto fs = facts_.fract_step(i);
-    if (!fs || (r.kind != Kind::Gaussian && r.kind != Kind::Box && r.kind != Kind::Tent) ||
-        facts_.lattice_boundary(i) || vals_[g_.node(fs->fract).a].var < 0)
-      return false;
+    if (!fs || !kernel_rule(i) || vals_[g_.node(fs->fract).a].var < 0) return false;
     if (fs->edge >= 0 && !(ranges_[fs->edge].lo >= 0 && ranges_[fs->edge].hi <= 1)) return false;
     Val y = vals_[g_.node(fs->fract).a];
     if (fs->period != 1) {  // mod(x, P) = P fract(x / P)
@@ -437,22 +438,27 @@ class Lowering {
       y = Val{mul(y.mean, k(ip)), mul(y.var, k(ip * ip))};
     }
     const std::string fr = kernel_name(kernel_for(rules::kind_name(r.kind), "fract"), "fract", false);
-    const int at = call(fr, {y.mean, scaled_sd(y, r)});
-    int c = -1, shifted = -1;
-    if (fs->edge < 0) {
-      c = k(static_cast<float>(fs->c));
-      shifted = call(fr, {sub(y.mean, c), scaled_sd(y, r)});
-    } else {
-      const Val& e = vals_[fs->edge];
-      c = e.mean;
-      Val d{sub(y.mean, c), e.var < 0 ? y.var : add(y.var, e.var)};
-      shifted = call(fr, {d.mean, scaled_sd(d, r)});
-    }
-    const int below = add(sub(c, at), shifted);  // P(fract(y) <= c)
+    // fract(y) in [0, c]: y - c's sd is y's for a constant edge, sqrt(Var y + Var c) for an edge node.
+    const Val* e = fs->edge < 0 ? nullptr : &vals_[fs->edge];
+    const int c = e ? e->mean : k(static_cast<float>(fs->c));
+    const int sd_y = scaled_sd(y, r);
+    Val d{sub(y.mean, c), e && e->var >= 0 ? add(y.var, e->var) : y.var};
+    const int sd_d = e ? scaled_sd(d, r) : sd_y;
+    const int below = fract_interval(fr, c, y.mean, sd_y, d.mean, sd_d);
     const int p = fs->dir < 0 ? below : sub(k(1), below);
-    out = Val{p, op(LOp::NonNeg, mul(p, sub(k(1), p)))};
+    out = Val{p, indicator_var(p)};
     return true;
   }
+
+  // The kernel's mean of the indicator of fract(y) in [lo, hi] (0 <= lo <= hi <= 1, width = hi - lo):
+  // width - fract(y - lo) + fract(y - hi) for every y, from two mean-only fract entries `fr` at
+  // (y - lo, its sd) and (y - hi, its sd).
+  int fract_interval(const std::string& fr, int width, int y_lo, int sd_lo, int y_hi, int sd_hi) {
+    const int at_lo = call(fr, {y_lo, sd_lo});
+    const int at_hi = call(fr, {y_hi, sd_hi});
+    return add(sub(width, at_lo), at_hi);
+  }
+  int indicator_var(int p) { return op(LOp::NonNeg, mul(p, sub(k(1), p))); }
 
   // fract of N(m, s^2) reported as the side of the nearest jump that holds most of the kernel: the
   // moments of a normal truncated at the jump (the 2018 smoothing code's "probabilistic" fract, with
