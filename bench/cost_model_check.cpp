@@ -111,7 +111,8 @@ int main(int argc, char** argv) {
         "compiled |\n"
         "|---|---|---|---|---|---|\n");
     for (const std::string& l : plain_lines) std::printf("%s\n", l.c_str());
-    std::printf("\nwindow_ns %.1f (calibrated); the same points at other windows:\n", cm.window_ns);
+    std::printf("\nwindow_ns %.1f (%s; the calibration kernel's %.1f); the same points at other windows:\n",
+                cm.window_ns, cm.window_fit_programs > 0 ? "fitted" : "calibrated", cm.window_kernel_ns);
     for (std::size_t w = 0; w < window_factors.size(); ++w) {
       const std::vector<double>& e = window_err[w];
       const long in = std::count_if(e.begin(), e.end(), [](double v) { return v <= tuner::kModelTolerance; });

@@ -8,6 +8,7 @@
 //     (writes report.md, front.csv, result.json and front/<label>.glsl|.hpp per front point;
 //      blrender SCENE --schedule out/tune/checkerboard_none/front.csv:front02 renders one)
 //   bltune --suite scenes/suite --out out/tune           # every scene + summary.md
+//   bltune --fit-window scenes/suite                     # refit the cost model's out-of-order window
 //   mpirun -np 2 bltune_mpi --suite scenes/suite --out out/tune   # scenes x restarts over ranks
 //
 // Built twice from this file: bltune, and bltune_mpi (BL_TUNER_MPI) where MPI exists.
@@ -27,6 +28,7 @@
 #include "tuner/report.hpp"
 #include "tuner/result_json.hpp"
 #include "tuner/scene_tuner.hpp"
+#include "tuner/window_fit.hpp"
 
 #ifdef BL_TUNER_MPI
 #include <mpi.h>
@@ -145,6 +147,54 @@ int run_single(const Config& c, const CostModel& cm) {
   return complete ? 0 : 3;
 }
 
+// The JSON scene files of `dir` whose name contains `only`, sorted.
+std::vector<std::string> scene_files(const std::string& dir, const std::string& only = "") {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".json" && e.path().filename().string().find(only) != std::string::npos)
+      out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  if (out.empty()) throw std::invalid_argument("no scene matches in " + dir);
+  return out;
+}
+
+// Fits cm's out-of-order window on the compiled plain programs of every scene in `dir`
+// (window_fit.hpp), prints each program and the fit, and saves the model.
+void fit_and_save_window(const Config& c, const std::string& dir, CostModel& cm) {
+  std::printf("fitting the cost model's out-of-order window on the compiled plain programs of %s\n",
+              dir.c_str());
+  std::printf(
+      "| scene | throughput ns | critical path ns | compiled ns | model ns (%.1f) |\n|---|---|---|---|---|\n",
+      cm.window_ns);
+  const std::vector<std::string> files = scene_files(dir);
+  if (files.size() < 3) {
+    std::printf("window not fitted: %s has %zu scene(s), the fit needs 3 (the calibrated %.1f ns stays)\n",
+                dir.c_str(), files.size(), cm.window_ns);
+    return;
+  }
+  std::vector<WindowSample> samples;
+  for (const std::string& path : files) {
+    const SceneTuner t(load(c, path), cm, c.tune);
+    samples.push_back(measure_plain(t, c.fin.jit, c.fin.trials));
+    const WindowSample& w = samples.back();
+    std::printf("| %s | %.1f | %.1f | %.1f | %.1f |\n", w.name.c_str(), w.throughput_ns, w.path_ns,
+                w.measured_ns, CostModel::latency_bound(w.throughput_ns, w.path_ns, cm.window_ns));
+    std::fflush(stdout);
+  }
+  const WindowFit f = fit_window(samples, cm.window_ns);
+  std::printf(
+      "window %.1f ns (was %.1f): mean |log(model/compiled)| %.3f (was %.3f), %d of %zu within 25%% (was "
+      "%d)%s\n",
+      f.window_ns, cm.window_ns, f.mean_abs_log, f.previous_mean_abs_log, f.within, samples.size(),
+      f.previous_within, f.lower_bound_only ? "; every program prices as its throughput: a lower bound" : "");
+  cm.window_ns = f.window_ns;
+  cm.window_fit_programs = static_cast<int>(samples.size());
+  cm.window_fit_source = dir;
+  save_cost_model(c.cost_model, cm);
+  std::printf("saved %s\n", c.cost_model.c_str());
+  std::fflush(stdout);
+}
+
 #ifdef BL_TUNER_MPI
 // Strings from every rank to rank 0 (rank order).
 std::vector<std::string> gather(const std::string& mine, int rank, int size) {
@@ -258,7 +308,7 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &c.size);
 #endif
   CLI::App app{"bltune: genetic search for the time/error Pareto front of rule assignments"};
-  std::string scene_path, suite_dir, rules_csv, only;
+  std::string scene_path, suite_dir, rules_csv, only, fit_dir;
   bool calibrate_only = false, glsl = false, no_glsl = false, no_rho = false;
   SearchOptions& so = c.tune.search;
   app.add_option("scene", scene_path, "scene file (JSON)");
@@ -271,6 +321,9 @@ int main(int argc, char** argv) {
   app.add_option("--cost-model", c.cost_model,
                  "cost model JSON (calibrated and saved when this machine lacks one)");
   app.add_flag("--calibrate", calibrate_only, "recalibrate the cost model, print the table, and exit");
+  app.add_option("--fit-window", fit_dir,
+                 "fit the cost model's out-of-order window on the compiled plain programs of this "
+                 "directory's scenes, save it, and exit (--suite does it first when the model has no fit)");
   std::string calibration = "compiled";
   app.add_option("--calibration", calibration,
                  "what the cost model times: compiled (the emitted C++, -O3; default) or evaluator (quick, "
@@ -328,15 +381,11 @@ int main(int argc, char** argv) {
       c.tune.estimate_rho = !no_rho;
       if (!rules_csv.empty()) c.tune.rules = split(rules_csv, ',');
       if (!suite_dir.empty()) {
-        for (const auto& e : std::filesystem::directory_iterator(suite_dir))
-          if (e.path().extension() == ".json" && e.path().filename().string().find(only) != std::string::npos)
-            c.scene_paths.push_back(e.path().string());
-        std::sort(c.scene_paths.begin(), c.scene_paths.end());
-        if (c.scene_paths.empty()) throw std::invalid_argument("no scene matches in " + suite_dir);
+        c.scene_paths = scene_files(suite_dir, only);
       } else if (!scene_path.empty()) {
         c.scene_paths.push_back(scene_path);
-      } else {
-        throw std::invalid_argument("give a scene file, --suite DIR or --calibrate");
+      } else if (fit_dir.empty()) {
+        throw std::invalid_argument("give a scene file, --suite DIR, --fit-window DIR or --calibrate");
       }
       if (c.size > 1 && so.threads == 0)
         so.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / c.size);
@@ -346,12 +395,16 @@ int main(int argc, char** argv) {
         cm = load_or_calibrate(c.cost_model, true,
                                calibration == "evaluator" ? CalibrationOptions::Method::Evaluator
                                                           : CalibrationOptions::Method::Compiled);
+      // A suite fits the window on all its scenes (not only those --only picks) once per calibration.
+      if (c.rank == 0 && !fit_dir.empty()) fit_and_save_window(c, fit_dir, cm);
+      if (c.rank == 0 && !suite_dir.empty() && cm.window_fit_programs == 0 && cm.method == "compiled")
+        fit_and_save_window(c, suite_dir, cm);
 #ifdef BL_TUNER_MPI
       MPI_Barrier(MPI_COMM_WORLD);
       if (c.rank != 0) cm = load_cost_model(c.cost_model, cpu_model());
-      rc = run_mpi(c, cm);
+      if (!c.scene_paths.empty()) rc = run_mpi(c, cm);
 #else
-      rc = run_single(c, cm);
+      if (!c.scene_paths.empty()) rc = run_single(c, cm);
 #endif
     }
   } catch (const std::exception& e) {

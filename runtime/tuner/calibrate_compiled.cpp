@@ -328,6 +328,7 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
     const double lat = std::max(0.01, time("bl_win_lat", in, main_opt) - lat_base);
     const double chain = net(time("bl_win_chain", in, main_opt), 2);
     m.window_ns = chain > 8 * thr * 1.05 ? (8 * lat) * (8 * thr) / chain : 1e9;
+    m.window_kernel_ns = m.window_ns;
     if (progress) progress("window", m.window_ns);
   }
   for (const auto& op : kOps)

@@ -143,10 +143,13 @@ double CostModel::function_cost(int fn) const {
   return ns;
 }
 
+double CostModel::latency_bound(double t, double path, double window) {
+  if (!(window > 0) || path <= t) return t;
+  return std::max(t, path * std::min(1.0, t / window));
+}
+
 double CostModel::cost(const compiler::Program& p) const {
-  const double t = throughput(p), path = critical_path(p);
-  if (!(window_ns > 0) || path <= t) return t;
-  return std::max(t, path * std::min(1.0, t / window_ns));
+  return latency_bound(throughput(p), critical_path(p), window_ns);
 }
 
 double CostModel::critical_path(const compiler::Program& p) const {
@@ -331,6 +334,9 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
   cm.op_ns = m.at("ops").get<std::map<std::string, double>>();
   cm.fn_ns = m.at("functions").get<std::map<std::string, double>>();
   cm.window_ns = m.value("window_ns", 0.0);
+  cm.window_kernel_ns = m.value("window_kernel_ns", cm.window_ns);
+  cm.window_fit_programs = m.value("window_fit_programs", 0);
+  cm.window_fit_source = m.value("window_fit_source", std::string());
   cm.kernels = m.value("kernels", 0);
   if (m.contains("op_latency")) cm.op_lat_ns = m.at("op_latency").get<std::map<std::string, double>>();
   if (m.contains("function_latency"))
@@ -359,6 +365,9 @@ void save_cost_model(const std::string& path, const CostModel& m) {
                               {"op_latency", m.op_lat_ns},
                               {"function_latency", m.fn_lat_ns},
                               {"window_ns", m.window_ns},
+                              {"window_kernel_ns", m.window_kernel_ns},
+                              {"window_fit_programs", m.window_fit_programs},
+                              {"window_fit_source", m.window_fit_source},
                               {"kernels", m.kernels},
                               {"function_spill", m.fn_spill_ns},
                               {"function_pair", m.fn_pair_ns}};

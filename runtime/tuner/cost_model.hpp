@@ -69,8 +69,15 @@ struct CostModel {
   // The f entry of an f^2 kernel entry (bl::tent::sin for bl::tent::sin_sq), -1 for others.
   static int square_sibling(int fn);
   // The out-of-order window in ns of throughput work: a program of throughput T and critical path
-  // L overlaps max(1, window / T) pixels, so it costs max(T, L x min(1, T / window)).
+  // L overlaps max(1, window / T) pixels, so it costs max(T, L x min(1, T / window)) (latency_bound).
+  // The calibration measures it on one kernel (8 chained libm sin calls per pixel: window_kernel_ns);
+  // bltune --fit-window replaces it by the window that best prices compiled plain programs of real
+  // scenes (window_fit.hpp), which overlap more pixels than that kernel does.
   double window_ns = 0;
+  double window_kernel_ns = 0;    // the calibration kernel's window (kept when window_ns is fitted)
+  int window_fit_programs = 0;    // > 0: window_ns was fitted on that many measured programs
+  std::string window_fit_source;  // what they were (the scene directory)
+  static double latency_bound(double throughput, double path, double window);
   // Not saved, set per scene (magnitude_profile): per atomic, the share of calls per |x| band
   // (band_share, from the plain program) and per (|x|, sigma) band pair (joint_share, from the
   // all-Gaussian program); rows sum to 1. Without a row: band 0 (and the calibration's default

@@ -22,6 +22,7 @@
 #include "tuner/polish.hpp"
 #include "tuner/report.hpp"
 #include "tuner/scene_tuner.hpp"
+#include "tuner/window_fit.hpp"
 
 using namespace bl;
 using namespace bl::tuner;
@@ -239,6 +240,56 @@ TEST(CostModel, FormulaOnAHandBuiltModel) {
   m.op_ns.erase("output");
   EXPECT_DOUBLE_EQ(m.throughput(p), 118 - 1.5);
   EXPECT_NE(m.missing().find("output"), std::string::npos);  // a compiled model needs it
+}
+
+// The window fit: times made by hand under a 50 ns window (T = 20, L = 100: 100 x 20 / 50 = 40;
+// T = 30, L = 60: 36; T = 50, L = 200: the chain, 200; T = 5, L = 80: 8; T = 10, L = 40:
+// throughput, 10) give back 50 ns within one grid step (2^(1/16)); at 26 ns only c prices within 25%
+// (76.9 vs 40, 60 vs 36 (T > 26: the whole chain), 15.4 vs 8, 15.4 vs 10). The fields survive the
+// file.
+TEST(CostModel, WindowFitRecoversTheWindowThatMadeTheTimes) {
+  const std::vector<WindowSample> s = {
+      {"a", 20, 100, 40}, {"b", 30, 60, 36}, {"c", 50, 200, 200}, {"d", 5, 80, 8}, {"e", 10, 40, 10}};
+  const WindowFit f = fit_window(s, 26);
+  EXPECT_NEAR(f.window_ns, 50, 50 * (std::exp2(1.0 / 16) - 1));
+  EXPECT_LT(f.mean_abs_log, 0.03);
+  EXPECT_EQ(f.within, 5);
+  EXPECT_EQ(f.previous_within, 1);
+  EXPECT_NEAR(f.previous_mean_abs_log,
+              (std::log(100 * 20 / 26.0 / 40) + std::log(60 / 36.0) + 0 + std::log(80 * 5 / 26.0 / 8) +
+               std::log(40 * 10 / 26.0 / 10)) /
+                  5,
+              1e-12);
+  EXPECT_FALSE(f.lower_bound_only);
+  // Programs timed at their throughput: the smallest window that prices them so (b: 90 x 20 / w <=
+  // 20 from w = 90, i.e. 4 x 2^(72/16) = 90.5), flagged as a lower bound.
+  const WindowFit t = fit_window({{"a", 10, 50, 10}, {"b", 20, 90, 20}, {"c", 5, 30, 5}}, 26);
+  EXPECT_TRUE(t.lower_bound_only);
+  EXPECT_DOUBLE_EQ(t.mean_abs_log, 0);
+  EXPECT_NEAR(t.window_ns, 4 * std::exp2(72 / 16.0), 1e-9);
+  // Too few programs, or a program without a time, is an error naming the culprit.
+  EXPECT_THROW(fit_window({s[0], s[1]}, 26), std::invalid_argument);
+  try {
+    fit_window({s[0], s[1], {"broken_scene", 10, 20, 0}}, 26);
+    ADD_FAILURE() << "a zero measured time was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("broken_scene"), std::string::npos) << e.what();
+  }
+  CostModel m;
+  m.machine = "window-fit-test";
+  m.window_ns = f.window_ns;
+  m.window_kernel_ns = 26;
+  m.window_fit_programs = 5;
+  m.window_fit_source = "scenes/suite";
+  const std::string path = (std::filesystem::temp_directory_path() / "bl_window_fit_test.json").string();
+  std::filesystem::remove(path);
+  save_cost_model(path, m);
+  const CostModel l = load_cost_model(path, m.machine);
+  EXPECT_DOUBLE_EQ(l.window_ns, f.window_ns);
+  EXPECT_DOUBLE_EQ(l.window_kernel_ns, 26);
+  EXPECT_EQ(l.window_fit_programs, 5);
+  EXPECT_EQ(l.window_fit_source, "scenes/suite");
+  std::filesystem::remove(path);
 }
 
 // The spill term: a call costs fn_spill_ns per value live across it (placed before it, read after it
