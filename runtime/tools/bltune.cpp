@@ -9,6 +9,7 @@
 //      blrender SCENE --schedule out/tune/checkerboard_none/front.csv:front02 renders one)
 //   bltune --suite scenes/suite --out out/tune           # every scene + summary.md
 //   bltune --fit-window scenes/suite                     # refit the cost model's out-of-order window
+//   bltune --summarize out/tune                          # summary.md/csv again from <scene>/result.json
 //   mpirun -np 2 bltune_mpi --suite scenes/suite --out out/tune   # scenes x restarts over ranks
 //
 // Built twice from this file: bltune, and bltune_mpi (BL_TUNER_MPI) where MPI exists.
@@ -195,6 +196,30 @@ void fit_and_save_window(const Config& c, const std::string& dir, CostModel& cm)
   std::fflush(stdout);
 }
 
+// DIR/summary.md and summary.csv from the result.json of every scene directory under DIR (after
+// scenes were retuned one at a time with --only).
+int summarize(const std::string& dir) {
+  std::vector<std::filesystem::path> scenes;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (std::filesystem::exists(e.path() / "result.json")) scenes.push_back(e.path());
+  std::sort(scenes.begin(), scenes.end());
+  if (scenes.empty()) throw std::invalid_argument("no <scene>/result.json under " + dir);
+  std::vector<SceneResult> results;
+  for (const auto& d : scenes) {
+    std::ifstream in(d / "result.json");
+    std::ostringstream text;
+    text << in.rdbuf();
+    try {
+      results.push_back(result_from_json(text.str()));
+    } catch (const std::exception& e) {
+      throw std::runtime_error((d / "result.json").string() + ": " + e.what());
+    }
+  }
+  write_suite_summary(results, dir);
+  std::printf("wrote %s/summary.md and summary.csv over %zu scene(s)\n", dir.c_str(), results.size());
+  return 0;
+}
+
 #ifdef BL_TUNER_MPI
 // Strings from every rank to rank 0 (rank order).
 std::vector<std::string> gather(const std::string& mine, int rank, int size) {
@@ -308,7 +333,7 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &c.size);
 #endif
   CLI::App app{"bltune: genetic search for the time/error Pareto front of rule assignments"};
-  std::string scene_path, suite_dir, rules_csv, only, fit_dir;
+  std::string scene_path, suite_dir, rules_csv, only, fit_dir, summary_dir;
   bool calibrate_only = false, glsl = false, no_glsl = false, no_rho = false;
   SearchOptions& so = c.tune.search;
   app.add_option("scene", scene_path, "scene file (JSON)");
@@ -321,6 +346,8 @@ int main(int argc, char** argv) {
   app.add_option("--cost-model", c.cost_model,
                  "cost model JSON (calibrated and saved when this machine lacks one)");
   app.add_flag("--calibrate", calibrate_only, "recalibrate the cost model, print the table, and exit");
+  app.add_option("--summarize", summary_dir,
+                 "write DIR/summary.md and summary.csv from DIR/<scene>/result.json, and exit");
   app.add_option("--fit-window", fit_dir,
                  "fit the cost model's out-of-order window on the compiled plain programs of this "
                  "directory's scenes, save it, and exit (--suite does it first when the model has no fit)");
@@ -364,7 +391,9 @@ int main(int argc, char** argv) {
   }
   int rc = 0;
   try {
-    if (calibrate_only) {
+    if (!summary_dir.empty()) {
+      if (c.rank == 0) rc = summarize(summary_dir);
+    } else if (calibrate_only) {
       if (c.rank == 0) {
         CalibrationOptions co;
         co.method = calibration == "evaluator" ? CalibrationOptions::Method::Evaluator

@@ -39,6 +39,19 @@ struct ModelAccuracy {
 };
 ModelAccuracy model_accuracy(const SceneResult& r);
 
+// What a speed-up of `factor` over MSAA-16 at its error, by the model (issue 13's count), still
+// needs: the fastest front point at <= MSAA-16's error and the share of its model time to cut, and
+// the lowest-error point among those at >= factor x less model time and the share of its error to
+// cut. A cut <= 0 means that side is already there.
+struct TenfoldGap {
+  double msaa16_error = NAN;
+  int at_error = -1;       // front index, -1 when no point reaches MSAA-16's error
+  double time_cut = NAN;   // 1 - (MSAA-16 model time / factor) / its model time
+  int at_time = -1;        // front index, -1 when no point is that fast
+  double error_cut = NAN;  // 1 - MSAA-16's error / its error
+};
+TenfoldGap tenfold_gap(const SceneResult& r, double factor = 10);
+
 // Writes dir/summary.md and dir/summary.csv over the scenes.
 void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& dir);
 

@@ -470,6 +470,39 @@ TEST(Report, ModelAccuracyNamesThePointsOutsideTheTolerance) {
   EXPECT_EQ(a.outside, (std::vector<std::string>{"front01 (0.60)", "msaa4 (1.30)"}));
 }
 
+// What 10x still needs, by hand: MSAA-16 costs 100 ns at error 0.03, so 10x is 10 ns. The fastest
+// point at its error costs 12 ns (cut 1 - 10/12); among the points at <= 10 ns the most accurate has
+// 0.033 (cut 1 - 0.03/0.033). A scene already there has no cut on either side; one whose points are
+// all too slow or too coarse has no point on that side.
+TEST(Report, TenfoldGapSaysWhatToCut) {
+  auto point = [](double model, double error, int msaa = 0) {
+    Measured m;
+    m.model_ns = model;
+    m.error = error;
+    m.msaa = msaa;
+    return m;
+  };
+  SceneResult r;
+  r.baselines = {point(6.25, 0.1), point(100, 0.03, 16)};
+  r.front = {point(5, 0.10), point(8, 0.035), point(9.5, 0.033), point(12, 0.025), point(20, 0.02)};
+  TenfoldGap g = tenfold_gap(r);
+  EXPECT_EQ(g.at_error, 3);
+  EXPECT_NEAR(g.time_cut, 1 - 10.0 / 12, 1e-12);
+  EXPECT_EQ(g.at_time, 2);
+  EXPECT_NEAR(g.error_cut, 1 - 0.03 / 0.033, 1e-12);
+  r.front[2].error = 0.029;  // now at 10x and at MSAA-16's error
+  g = tenfold_gap(r);
+  EXPECT_EQ(g.at_error, 2);
+  EXPECT_LE(g.time_cut, 0);
+  EXPECT_LE(g.error_cut, 0);
+  r.front = {point(20, 0.04), point(30, 0.035)};
+  g = tenfold_gap(r);
+  EXPECT_EQ(g.at_error, -1);
+  EXPECT_EQ(g.at_time, -1);
+  r.baselines.pop_back();  // no MSAA-16 baseline: nothing to say
+  EXPECT_TRUE(std::isnan(tenfold_gap(r).msaa16_error));
+}
+
 // Compiled calibration of a few entries: every x function gets a cost per magnitude band, and the
 // scene's band shares weight them (the weighted sum computed here by hand).
 TEST(CostModel, CompiledCalibrationHasBandsAndTheProfileWeightsThem) {
