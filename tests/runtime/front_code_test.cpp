@@ -74,6 +74,25 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
       " --no-glsl > " +
       (work / "bltune.log").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << read((work / "bltune.log").string());
+  {  // A suite fits the model's window on its plain programs first (once: the model now has it).
+    const std::string log = read((work / "bltune.log").string());
+    EXPECT_NE(log.find("fitting the cost model's out-of-order window"), std::string::npos) << log;
+    const tuner::CostModel cm = tuner::load_cost_model((work / "cost.json").string(), tuner::cpu_model());
+    EXPECT_GE(cm.window_fit_programs, 3);
+    EXPECT_GT(cm.window_ns, 0);
+  }
+  {  // --summarize rebuilds the suite summary from the scenes' result.json; an empty directory is an error.
+    fs::remove(fs::path(out) / "summary.md");
+    const std::string sum =
+        std::string(BLTUNE) + " --summarize " + out + " > " + (work / "sum.log").string() + " 2>&1";
+    ASSERT_EQ(std::system(sum.c_str()), 0) << read((work / "sum.log").string());
+    EXPECT_NE(read(out + "/summary.md").find("What >= 10x"), std::string::npos);
+    fs::create_directories(work / "empty");
+    const std::string bad = std::string(BLTUNE) + " --summarize " + (work / "empty").string() + " > " +
+                            (work / "bad.log").string() + " 2>&1";
+    EXPECT_NE(std::system(bad.c_str()), 0);
+    EXPECT_NE(read((work / "bad.log").string()).find("no <scene>/result.json under"), std::string::npos);
+  }
 
   phase("bltune");
   const auto av = gl::Context::availability();
@@ -134,9 +153,10 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
         // 1728 values over 1e-3, worst 1.1e-3).
         bool plain_nodes = false;
         for (int n = 0; n < g.size(); ++n)
-          plain_nodes = plain_nodes || ((l.schedule[n].kind == rules::Kind::None ||
-                                         l.schedule[n].kind == rules::Kind::MonteCarlo) &&
-                                        g.node(n).op != ir::Op::Const && g.node(n).op != ir::Op::Input);
+          plain_nodes =
+              plain_nodes ||
+              ((l.schedule[n].kind == rules::Kind::None || l.schedule[n].kind == rules::Kind::MonteCarlo) &&
+               g.node(n).op != ir::Op::Const && g.node(n).op != ir::Op::Input);
         const gl::Program compiled = ctx->compile(frag);
         for (const render::Frame& f : render::frames(s)) {
           const Image cpu = render::render_smoothed(s, f, p);
