@@ -18,6 +18,7 @@
 #include "tuner/report.hpp"
 #include "tuner/result_json.hpp"
 #include "tuner/scene_tuner.hpp"
+#include "tuner/window_fit.hpp"
 
 using namespace bl;
 namespace fs = std::filesystem;
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
     const std::vector<double> window_factors = {0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0};
     std::vector<std::vector<double>> window_err(window_factors.size());
     std::vector<std::string> plain_lines;
+    std::vector<tuner::WindowSample> measured;  // every non-MSAA point: the window fitted on all of them
     std::printf(
         "| scene | points | median model/compiled | median abs(model/compiled - 1) | worst | within 25%% |\n"
         "|---|---|---|---|---|---|\n");
@@ -78,6 +80,9 @@ int main(int argc, char** argv) {
               t.lower(compiler::load_schedule((d / "front.csv").string() + ":" + label, t.graph()).schedule);
           m.model_ns = prog ? std::max(m.msaa, 1) * t.cost_model().cost(*prog) : -1;
           if (m.model_ns > 0 && m.compiled_ns > 0) {
+            if (m.msaa == 0)
+              measured.push_back({r.scene + ":" + m.label, t.cost_model().throughput(*prog),
+                                  t.cost_model().critical_path(*prog), m.compiled_ns});
             ratio.push_back(m.model_ns / m.compiled_ns);
             all.push_back(std::fabs(ratio.back() - 1));
             if (m.label == "plain") {
@@ -118,6 +123,16 @@ int main(int argc, char** argv) {
       const long in = std::count_if(e.begin(), e.end(), [](double v) { return v <= tuner::kModelTolerance; });
       std::printf("  %5.1f ns: median abs(model/compiled - 1) %.3f, %.0f%% within 25%%\n",
                   window_factors[w] * cm.window_ns, median(e), 100.0 * in / e.size());
+    }
+    // A cross-check of bltune --fit-window (plain programs only): the window that best prices every
+    // measured program, smoothed ones included.
+    if (measured.size() >= 3) {
+      const tuner::WindowFit f = tuner::fit_window(measured, cm.window_ns);
+      std::printf(
+          "the window fitted on all %zu measured non-MSAA programs: %.1f ns (mean abs(log(model/compiled))"
+          " %.3f, %d within 25%%; at the model's %.1f ns: %.3f, %d)\n",
+          measured.size(), f.window_ns, f.mean_abs_log, f.within, cm.window_ns, f.previous_mean_abs_log,
+          f.previous_within);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cost_model_check: %s\n", e.what());
