@@ -11,8 +11,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "compiler/schedule_csv.hpp"
 #include "tuner/report.hpp"
@@ -59,10 +57,7 @@ int main(int argc, char** argv) {
         "| scene | points | median model/compiled | median abs(model/compiled - 1) | worst | within 25%% |\n"
         "|---|---|---|---|---|---|\n");
     for (const fs::path& d : dirs) {
-      std::ifstream in(d / "result.json");
-      std::ostringstream text;
-      text << in.rdbuf();
-      tuner::SceneResult r = tuner::result_from_json(text.str());
+      tuner::SceneResult r = tuner::load_result((d / "result.json").string());
       const scene::Scene s = scene::load_scene((scenes / (r.scene + ".json")).string());
       const tuner::SceneTuner t(s, cm, opt);
       std::vector<tuner::CostModel> alts;  // the scene's model (its magnitude profile) at other windows

@@ -162,17 +162,17 @@ std::vector<std::string> scene_files(const std::string& dir, const std::string& 
 // Fits cm's out-of-order window on the compiled plain programs of every scene in `dir`
 // (window_fit.hpp), prints each program and the fit, and saves the model.
 void fit_and_save_window(const Config& c, const std::string& dir, CostModel& cm) {
-  std::printf("fitting the cost model's out-of-order window on the compiled plain programs of %s\n",
-              dir.c_str());
-  std::printf(
-      "| scene | throughput ns | critical path ns | compiled ns | model ns (%.1f) |\n|---|---|---|---|---|\n",
-      cm.window_ns);
   const std::vector<std::string> files = scene_files(dir);
   if (files.size() < 3) {
     std::printf("window not fitted: %s has %zu scene(s), the fit needs 3 (the calibrated %.1f ns stays)\n",
                 dir.c_str(), files.size(), cm.window_ns);
     return;
   }
+  std::printf("fitting the cost model's out-of-order window on the compiled plain programs of %s\n",
+              dir.c_str());
+  std::printf(
+      "| scene | throughput ns | critical path ns | compiled ns | model ns (%.1f) |\n|---|---|---|---|---|\n",
+      cm.window_ns);
   std::vector<WindowSample> samples;
   for (const std::string& path : files) {
     const SceneTuner t(load(c, path), cm, c.tune);
@@ -205,16 +205,7 @@ int summarize(const std::string& dir) {
   std::sort(scenes.begin(), scenes.end());
   if (scenes.empty()) throw std::invalid_argument("no <scene>/result.json under " + dir);
   std::vector<SceneResult> results;
-  for (const auto& d : scenes) {
-    std::ifstream in(d / "result.json");
-    std::ostringstream text;
-    text << in.rdbuf();
-    try {
-      results.push_back(result_from_json(text.str()));
-    } catch (const std::exception& e) {
-      throw std::runtime_error((d / "result.json").string() + ": " + e.what());
-    }
-  }
+  for (const auto& d : scenes) results.push_back(load_result((d / "result.json").string()));
   write_suite_summary(results, dir);
   std::printf("wrote %s/summary.md and summary.csv over %zu scene(s)\n", dir.c_str(), results.size());
   return 0;

@@ -87,26 +87,40 @@ std::vector<Speedup> speedups(const SceneResult& r) {
   return out;
 }
 
-TenfoldGap tenfold_gap(const SceneResult& r, double factor) {
+namespace {
+
+// The speed-up at MSAA-16's error (msaa 0 when the scene has no MSAA-16 baseline).
+Speedup speedup16(const SceneResult& r) {
+  for (const Speedup& s : speedups(r))
+    if (s.msaa == 16) return s;
+  return {};
+}
+
+TenfoldGap tenfold_gap(const SceneResult& r, const Speedup& s16, double factor) {
   TenfoldGap g;
   const Measured* m16 = nullptr;
   for (const Measured& b : r.baselines)
     if (b.msaa == 16) m16 = &b;
   if (!m16 || !(m16->model_ns > 0)) return g;
   g.msaa16_error = m16->error;
+  // The fastest point at its error is the one the speed-up is read from: it must reach `factor`.
+  g.at_error = s16.front_index;
+  if (g.at_error >= 0) g.time_cut = 1 - s16.model / factor;
   const double budget = m16->model_ns / factor;
   for (std::size_t i = 0; i < r.front.size(); ++i) {
     const Measured& m = r.front[i];
-    if (g.at_error < 0 && m.error <= m16->error) {  // sorted by model time: the first is the fastest
-      g.at_error = static_cast<int>(i);
-      g.time_cut = 1 - budget / m.model_ns;
-    }
     if (m.model_ns <= budget && (g.at_time < 0 || m.error < r.front[g.at_time].error)) {
       g.at_time = static_cast<int>(i);
       g.error_cut = 1 - m16->error / m.error;
     }
   }
   return g;
+}
+
+}  // namespace
+
+TenfoldGap tenfold_gap(const SceneResult& r, double factor) {
+  return tenfold_gap(r, speedup16(r), factor);
 }
 
 void write_scene_report(const SceneResult& r, const std::string& dir) {
@@ -235,12 +249,13 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
         "error "
         "(model / measured speed-up) | >= 10x | model vs compiled (median / worst) "
         "|\n|---|---|---|---|---|---|---|---|---|\n";
+  // Beside it, where each scene stands against >= 10x by the model: what to cut, time or error.
+  std::ostringstream gaps;
+  auto pct = [](double cut) { return cut <= 0 ? std::string("none") : fmt("%.0f%%", 100 * cut); };
   for (const SceneResult& r : rs) {
     double best = INFINITY;
     for (const Measured& m : r.front) best = std::min(best, m.error);
-    Speedup s16;
-    for (const Speedup& s : speedups(r))
-      if (s.msaa == 16) s16 = s;
+    const Speedup s16 = speedup16(r);
     const bool ten = s16.front_index >= 0 && s16.model >= 10;
     const ModelAccuracy acc = model_accuracy(r);
     md << "| " << r.scene << " | " << r.nodes << " | " << fmt("%.1f", r.search_seconds) << " | "
@@ -254,34 +269,28 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
     csv << r.scene << "," << r.nodes << "," << r.search_seconds << "," << r.finalize_seconds << ","
         << r.front.size() << "," << s16.msaa_error << "," << best << "," << s16.model << "," << s16.measured
         << "," << (ten ? 1 : 0) << "," << acc.median << "," << acc.worst << "\n";
-  }
-  // Where each scene stands against >= 10x by the model: what to cut, time or error, and where.
-  md << "\n## What >= 10x (model) at MSAA-16's error still needs\n\n"
-        "Either side closes the gap: the model time of the fastest point at MSAA-16's error, or the "
-        "error of the most accurate point already at >= 10x less model time (its measured speed-up in "
-        "brackets).\n\n"
-        "| scene | fastest point at MSAA-16's error | model time to cut | most accurate point at >= 10x | "
-        "its error / MSAA-16's | error to cut |\n|---|---|---|---|---|---|\n";
-  auto pct = [](double cut) { return cut <= 0 ? std::string("none") : fmt("%.0f%%", 100 * cut); };
-  for (const SceneResult& r : rs) {
-    const TenfoldGap g = tenfold_gap(r);
-    Speedup s16;
-    for (const Speedup& s : speedups(r))
-      if (s.msaa == 16) s16 = s;
-    md << "| " << r.scene << " | "
-       << (g.at_error < 0 ? std::string("none") : r.front[g.at_error].label + fmt(" (%.1fx)", s16.model))
-       << " | " << (g.at_error < 0 ? std::string("-") : pct(g.time_cut)) << " | ";
+    const TenfoldGap g = tenfold_gap(r, s16, 10);
+    gaps << "| " << r.scene << " | "
+         << (g.at_error < 0 ? std::string("none") : r.front[g.at_error].label + fmt(" (%.1fx)", s16.model))
+         << " | " << (g.at_error < 0 ? std::string("-") : pct(g.time_cut)) << " | ";
     if (g.at_time < 0) {
-      md << "none | - | - |\n";
+      gaps << "none | - | - |\n";
       continue;
     }
     const Measured& m = r.front[g.at_time];
     double measured = NAN;
     for (const Measured& b : r.baselines)
       if (b.msaa == 16 && b.compiled_ms > 0 && m.compiled_ms > 0) measured = b.compiled_ms / m.compiled_ms;
-    md << m.label << (std::isfinite(measured) ? fmt(" (%.1fx measured)", measured) : std::string()) << " | "
-       << fmt("%.2f", m.error / g.msaa16_error) << " | " << pct(g.error_cut) << " |\n";
+    gaps << m.label << (std::isfinite(measured) ? fmt(" (%.1fx measured)", measured) : std::string()) << " | "
+         << fmt("%.2f", m.error / g.msaa16_error) << " | " << pct(g.error_cut) << " |\n";
   }
+  md << "\n## What >= 10x (model) at MSAA-16's error still needs\n\n"
+        "Either side closes the gap: the model time of the fastest point at MSAA-16's error, or the "
+        "error of the most accurate point already at >= 10x less model time (its measured speed-up in "
+        "brackets).\n\n"
+        "| scene | fastest point at MSAA-16's error | model time to cut | most accurate point at >= 10x | "
+        "its error / MSAA-16's | error to cut |\n|---|---|---|---|---|---|\n"
+     << gaps.str();
 }
 
 }  // namespace bl::tuner

@@ -1,8 +1,11 @@
 #include "tuner/result_json.hpp"
 
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
 
 namespace bl::tuner {
 
@@ -96,6 +99,18 @@ SceneResult result_from_json(const std::string& text) {
   for (const json& m : j.at("front")) r.front.push_back(from(m));
   for (const json& m : j.at("baselines")) r.baselines.push_back(from(m));
   return r;
+}
+
+SceneResult load_result(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return result_from_json(text.str());
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
 }
 
 }  // namespace bl::tuner

@@ -10,5 +10,8 @@ namespace bl::tuner {
 
 std::string result_to_json(const SceneResult& r);
 SceneResult result_from_json(const std::string& text);
+// A result.json file read back; throws std::runtime_error naming the file when it is unreadable or
+// malformed.
+SceneResult load_result(const std::string& path);
 
 }  // namespace bl::tuner
