@@ -2601,14 +2601,19 @@ float bl_box_abs_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_box_pw(x, sigma, 2, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (((-1.0))) * x : ((1.0)) * x);
+  float wide = 0.0;
+  float hk = BL_SQRT3 * sigma;
+  {
+    float dl = -1e30 - x, dh = 0.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, -1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  {
+    float dl = 0.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_box_abs(float x, float sigma) {
@@ -2648,14 +2653,19 @@ float bl_tent_abs_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_tent_pw(x, sigma, 2, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (((-1.0))) * x : ((1.0)) * x);
+  float wide = 0.0;
+  float hk = BL_SQRT6 * sigma;
+  {
+    float dl = -1e30 - x, dh = 0.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, -1e30, 0.0, float[8](0.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  {
+    float dl = 0.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 0.0, 1e30, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_tent_abs(float x, float sigma) {
@@ -2736,14 +2746,19 @@ float bl_box_sign_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_box_pw(x, sigma, 2, p);
+  if (sigma == (0.0)) return (x < 0.0 ? ((-1.0)) : (1.0));
+  float wide = 0.0;
+  float hk = BL_SQRT3 * sigma;
+  {
+    float dl = -1e30 - x, dh = 0.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, -1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  {
+    float dl = 0.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_box_sign(float x, float sigma) {
@@ -2784,14 +2799,19 @@ float bl_tent_sign_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_tent_pw(x, sigma, 2, p);
+  if (sigma == (0.0)) return (x < 0.0 ? ((-1.0)) : (1.0));
+  float wide = 0.0;
+  float hk = BL_SQRT6 * sigma;
+  {
+    float dl = -1e30 - x, dh = 0.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, -1e30, 0.0, float[8]((-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  {
+    float dl = 0.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_tent_sign(float x, float sigma) {
@@ -2892,14 +2912,15 @@ float bl_box_step_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_box_pw(x, sigma, 2, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (1.0));
+  float wide = 0.0;
+  float hk = BL_SQRT3 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_box_step(float x, float sigma) {
@@ -2928,14 +2949,15 @@ float bl_box_step_sq_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_box_pw(x, sigma, 2, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (1.0));
+  float wide = 0.0;
+  float hk = BL_SQRT3 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_box_step_sq(float x, float sigma) {
@@ -2964,14 +2986,15 @@ float bl_tent_step_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_tent_pw(x, sigma, 2, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (1.0));
+  float wide = 0.0;
+  float hk = BL_SQRT6 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_tent_step(float x, float sigma) {
@@ -3000,14 +3023,15 @@ float bl_tent_step_sq_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 2, p);
-  return bl_tent_pw(x, sigma, 2, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (1.0));
+  float wide = 0.0;
+  float hk = BL_SQRT6 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 0.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_tent_step_sq(float x, float sigma) {
@@ -3051,12 +3075,10 @@ float bl_gaussian_saturate_raw(float x, float sigma) {
   return acc;
   }
   if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? ((1.0)) * x : (1.0)));
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_gauss_pw(x, sigma, 3, p);
+  float wide = 0.0;
+  wide += bl_gauss_core(x, sigma, 0.0 - x, 1.0 - x, 0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  wide += bl_gauss_core(x, sigma, 1.0 - x, 1e30 - x, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  return wide;
 }
 
 float bl_gaussian_saturate(float x, float sigma) {
@@ -3103,12 +3125,10 @@ float bl_gaussian_saturate_sq_raw(float x, float sigma) {
   return acc;
   }
   if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((1.0)) * x) * x : (1.0)));
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_gauss_pw(x, sigma, 3, p);
+  float wide = 0.0;
+  wide += bl_gauss_core(x, sigma, 0.0 - x, 1.0 - x, 0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  wide += bl_gauss_core(x, sigma, 1.0 - x, 1e30 - x, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  return wide;
 }
 
 float bl_gaussian_saturate_sq(float x, float sigma) {
@@ -3147,14 +3167,19 @@ float bl_box_saturate_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_box_pw(x, sigma, 3, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? ((1.0)) * x : (1.0)));
+  float wide = 0.0;
+  float hk = BL_SQRT3 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  {
+    float dl = 1.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_box_saturate(float x, float sigma) {
@@ -3194,14 +3219,19 @@ float bl_box_saturate_sq_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_box_pw(x, sigma, 3, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((1.0)) * x) * x : (1.0)));
+  float wide = 0.0;
+  float hk = BL_SQRT3 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  {
+    float dl = 1.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_box_saturate_sq(float x, float sigma) {
@@ -3240,14 +3270,19 @@ float bl_tent_saturate_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_tent_pw(x, sigma, 3, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? ((1.0)) * x : (1.0)));
+  float wide = 0.0;
+  float hk = BL_SQRT6 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  {
+    float dl = 1.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_tent_saturate(float x, float sigma) {
@@ -3287,14 +3322,19 @@ float bl_tent_saturate_sq_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_tent_pw(x, sigma, 3, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((1.0)) * x) * x : (1.0)));
+  float wide = 0.0;
+  float hk = BL_SQRT6 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  {
+    float dl = 1.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_tent_saturate_sq(float x, float sigma) {
@@ -3343,12 +3383,10 @@ float bl_gaussian_smoothstep_raw(float x, float sigma) {
   return acc;
   }
   if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((((-2.0))) * x + (3.0)) * x) * x : (1.0)));
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_gauss_pw(x, sigma, 3, p);
+  float wide = 0.0;
+  wide += bl_gauss_core(x, sigma, 0.0 - x, 1.0 - x, 0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0));
+  wide += bl_gauss_core(x, sigma, 1.0 - x, 1e30 - x, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  return wide;
 }
 
 float bl_gaussian_smoothstep(float x, float sigma) {
@@ -3403,12 +3441,10 @@ float bl_gaussian_smoothstep_sq_raw(float x, float sigma) {
   return acc;
   }
   if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((((((4.0)) * x + ((-12.0))) * x + (9.0)) * x) * x) * x) * x : (1.0)));
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  return bl_gauss_pw(x, sigma, 3, p);
+  float wide = 0.0;
+  wide += bl_gauss_core(x, sigma, 0.0 - x, 1.0 - x, 0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0));
+  wide += bl_gauss_core(x, sigma, 1.0 - x, 1e30 - x, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  return wide;
 }
 
 float bl_gaussian_smoothstep_sq(float x, float sigma) {
@@ -3448,14 +3484,19 @@ float bl_box_smoothstep_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_box_pw(x, sigma, 3, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((((-2.0))) * x + (3.0)) * x) * x : (1.0)));
+  float wide = 0.0;
+  float hk = BL_SQRT3 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0));
+  }
+  {
+    float dl = 1.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_box_smoothstep(float x, float sigma) {
@@ -3495,14 +3536,19 @@ float bl_box_smoothstep_sq_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_box_pw(x, sigma, 3, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((((((4.0)) * x + ((-12.0))) * x + (9.0)) * x) * x) * x) * x : (1.0)));
+  float wide = 0.0;
+  float hk = BL_SQRT3 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0));
+  }
+  {
+    float dl = 1.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_box_core(x, hk, dl, dh, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_box_smoothstep_sq(float x, float sigma) {
@@ -3542,14 +3588,19 @@ float bl_tent_smoothstep_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_tent_pw(x, sigma, 3, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((((-2.0))) * x + (3.0)) * x) * x : (1.0)));
+  float wide = 0.0;
+  float hk = BL_SQRT6 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 0.0, 1.0, float[8](0.0, 0.0, 3.0, (-2.0), 0.0, 0.0, 0.0, 0.0));
+  }
+  {
+    float dl = 1.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_tent_smoothstep(float x, float sigma) {
@@ -3589,14 +3640,19 @@ float bl_tent_smoothstep_sq_raw(float x, float sigma) {
       return acc;
     }
   }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(-1e30, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0)),
-      BlPiece(1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
-  if (sigma == (0.0)) return bl_pw_eval(x, 3, p);
-  return bl_tent_pw(x, sigma, 3, p);
+  if (sigma == (0.0)) return (x < 0.0 ? (0.0) : (x < 1.0 ? (((((((4.0)) * x + ((-12.0))) * x + (9.0)) * x) * x) * x) * x : (1.0)));
+  float wide = 0.0;
+  float hk = BL_SQRT6 * sigma;
+  {
+    float dl = 0.0 - x, dh = 1.0 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 0.0, 1.0, float[8](0.0, 0.0, 0.0, 0.0, 9.0, (-12.0), 4.0, 0.0));
+  }
+  {
+    float dl = 1.0 - x, dh = 1e30 - x;
+    if (dh > -hk && dl < hk) wide += bl_tent_core(x, hk, dl, dh, 1.0, 1e30, float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0));
+  }
+  return wide;
 }
 
 float bl_tent_smoothstep_sq(float x, float sigma) {
@@ -4904,7 +4960,8 @@ float bl_gaussian_fract_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1875: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.334 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1875), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.18746015382974018)) {
@@ -4997,7 +5054,7 @@ float bl_gaussian_fract_raw(float x, float sigma) {
     float acc = (0.5) + (d_1 * ((-0.3183098861837907) * s_1) + d_3 * ((-0.1061032953945969) * s_3) + d_5 * ((-0.06366197723675814) * s_5)) + (d_2 * ((-0.15915494309189535) * s_2) + d_4 * ((-0.07957747154594767) * s_4));
     return acc;
   }
-  if (sigma == (0.0)) {
+  // sigma == 0
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
   if (!(r < (0.0))) {
@@ -5005,38 +5062,6 @@ float bl_gaussian_fract_raw(float x, float sigma) {
   }
   float t = r + 1.0;
   return t;
-  }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.08357381802701377)) {
-    int K = int(floor((1.0370742988786399) / s));
-    float xr = x - period * floor(x / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (1.0/2.0);
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      acc += damp * ((-(1.0/(bl_pi()))*(1.0/(kf))) * sk);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return acc;
-  }
-  return bl_gauss_periodic_image(x, sigma, period, 1, p, (1.0));
 }
 
 float bl_gaussian_fract(float x, float sigma) {
@@ -5105,7 +5130,8 @@ float bl_gaussian_fract_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1865: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.361 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1865), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.1865228530605915)) {
@@ -5217,7 +5243,7 @@ float bl_gaussian_fract_sq_raw(float x, float sigma) {
     float acc = (0.3333333333333333) + (d_1 * ((0.10132118364233778) * c_1 + (-0.3183098861837907) * s_1) + d_3 * ((0.011257909293593086) * c_3 + (-0.1061032953945969) * s_3) + d_5 * ((0.004052847345693511) * c_5 + (-0.06366197723675814) * s_5)) + (d_2 * ((0.025330295910584444) * c_2 + (-0.15915494309189535) * s_2) + d_4 * ((0.006332573977646111) * c_4 + (-0.07957747154594767) * s_4));
     return acc;
   }
-  if (sigma == (0.0)) {
+  // sigma == 0
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
   if (!(r < (0.0))) {
@@ -5225,38 +5251,6 @@ float bl_gaussian_fract_sq_raw(float x, float sigma) {
   }
   float t = r + 1.0;
   return (t*t);
-  }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.08357381802701377)) {
-    int K = int(floor((1.0370742988786399) / s));
-    float xr = x - period * floor(x / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (1.0/3.0);
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      acc += damp * (((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * ck + (-(1.0/(bl_pi()))*(1.0/(kf))) * sk);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return acc;
-  }
-  return bl_gauss_periodic_image(x, sigma, period, 1, p, (1.0));
 }
 
 float bl_gaussian_fract_sq(float x, float sigma) {
@@ -5664,7 +5658,8 @@ float bl_gaussian_triangle_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.2055: the 1 nearest break(s) on each side (the dropped ones lie beyond 4.867 sd; below 0.1055 the nearest one alone, the others beyond 4.74 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.1027), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.20545118674910237)) {
@@ -5786,7 +5781,7 @@ float bl_gaussian_triangle_raw(float x, float sigma) {
     float acc = (0.5) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3) + d_5 * ((-0.016211389382774045) * c_5) + d_7 * ((-0.008271117032027573) * c_7) + d_9 * ((-0.005003515241596927) * c_9));
     return acc;
   }
-  if (sigma == (0.0)) {
+  // sigma == 0
   float r = bl_reduce_signed(x, 2.0);
   if (r != r) return r;
   if (!(r < (0.0))) {
@@ -5796,39 +5791,6 @@ float bl_gaussian_triangle_raw(float x, float sigma) {
   float t = r + 2.0;
   if (r < (-1.0)) return t;
   return ((-t) + 2.0);
-  }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](2.0, (-1.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.03785605326894285)) {
-    int K = int(floor((1.0725509182905828) / s));
-    float xr = x - period * floor(x / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (1.0/2.0);
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      acc += damp * ((2.0*((-1.0) + pk)*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) * ck);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return acc;
-  }
-  return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
 float bl_gaussian_triangle(float x, float sigma) {
@@ -5898,7 +5860,8 @@ float bl_gaussian_triangle_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1994: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.016 sd; below 0.1024 the nearest one alone, the others beyond 4.885 sd: their tails sum to <= tol); else 9 Fourier terms (tail <= tol for sigma/T >= 0.09968), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.1993641836359492)) {
@@ -6055,7 +6018,7 @@ float bl_gaussian_triangle_sq_raw(float x, float sigma) {
     float acc = (0.3333333333333333) + (d_1 * ((-0.4052847345693511) * c_1) + d_3 * ((-0.04503163717437234) * c_3) + d_5 * ((-0.016211389382774045) * c_5) + d_7 * ((-0.008271117032027573) * c_7) + d_9 * ((-0.005003515241596927) * c_9)) + (d_2 * ((0.10132118364233778) * c_2) + d_4 * ((0.025330295910584444) * c_4) + d_6 * ((0.011257909293593086) * c_6) + d_8 * ((0.006332573977646111) * c_8));
     return acc;
   }
-  if (sigma == (0.0)) {
+  // sigma == 0
   float r = bl_reduce_signed(x, 2.0);
   if (r != r) return r;
   if (!(r < (0.0))) {
@@ -6065,39 +6028,6 @@ float bl_gaussian_triangle_sq_raw(float x, float sigma) {
   float t = r + 2.0;
   if (r < (-1.0)) return (t*t);
   return (((-4.0)*t) + (t*t) + 4.0);
-  }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, 1.0, float[8](0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(1.0, 2.0, float[8](4.0, (-4.0), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.03785605326894285)) {
-    int K = int(floor((1.0725509182905828) / s));
-    float xr = x - period * floor(x / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (1.0/3.0);
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      acc += damp * ((4.0*(1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))*pk) * ck);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return acc;
-  }
-  return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
 float bl_gaussian_triangle_sq(float x, float sigma) {
@@ -6521,7 +6451,8 @@ float bl_gaussian_square_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.09339361644125409)) {
@@ -6641,7 +6572,7 @@ float bl_gaussian_square_raw(float x, float sigma) {
     float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3) + d_5 * ((0.12732395447351627) * s_5) + d_7 * ((0.09094568176679733) * s_7) + d_9 * ((0.07073553026306459) * s_9));
     return acc;
   }
-  if (sigma == (0.0)) {
+  // sigma == 0
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
   if (!(r < (0.0))) {
@@ -6650,39 +6581,6 @@ float bl_gaussian_square_raw(float x, float sigma) {
   }
   if (r < (-1.0/2.0)) return 1.0;
   return 0.0;
-  }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.03785605326894285)) {
-    int K = int(floor((1.0725509182905828) / s));
-    float xr = x - period * floor(x / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (1.0/2.0);
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      acc += damp * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * sk);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return acc;
-  }
-  return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
 float bl_gaussian_square(float x, float sigma) {
@@ -6752,7 +6650,8 @@ float bl_gaussian_square_sq_raw(float x, float sigma) {
   if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.09339: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.354 sd; below 0.04676 the nearest one alone, the others beyond 5.346 sd: their tails sum to <= tol); else 10 Fourier terms (tail <= tol for sigma/T >= 0.09339), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354, 5 from 0.157, 8 from 0.1047.
     float r = bl_reduce_signed_pow2(x, period);  // exact, in (-T, T)
     if (sigma < (0.09339361644125409)) {
@@ -6872,7 +6771,7 @@ float bl_gaussian_square_sq_raw(float x, float sigma) {
     float acc = (0.5) + (d_1 * ((0.6366197723675814) * s_1) + d_3 * ((0.2122065907891938) * s_3) + d_5 * ((0.12732395447351627) * s_5) + d_7 * ((0.09094568176679733) * s_7) + d_9 * ((0.07073553026306459) * s_9));
     return acc;
   }
-  if (sigma == (0.0)) {
+  // sigma == 0
   float r = bl_reduce_signed(x, 1.0);
   if (r != r) return r;
   if (!(r < (0.0))) {
@@ -6881,39 +6780,6 @@ float bl_gaussian_square_sq_raw(float x, float sigma) {
   }
   if (r < (-1.0/2.0)) return 1.0;
   return 0.0;
-  }
-  BlPiece p[4] = BlPiece[4](
-      BlPiece(0.0, (1.0/2.0), float[8](1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece((1.0/2.0), 1.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-      BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.03785605326894285)) {
-    int K = int(floor((1.0725509182905828) / s));
-    float xr = x - period * floor(x / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (1.0/2.0);
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      float pk = (k % 2 == 1) ? (-1.0) : (1.0);
-      acc += damp * ((-((-1.0) + pk)*(1.0/(bl_pi()))*(1.0/(kf))) * sk);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return acc;
-  }
-  return bl_gauss_periodic_image(x, sigma, period, 2, p, (1.0));
 }
 
 float bl_gaussian_square_sq(float x, float sigma) {
@@ -8147,7 +8013,8 @@ float bl_gaussian_floor_sq_raw(float x, float sigma) {
   float period = 1.0;
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4963, 2 from 0.3309, 3 from 0.2482.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.17829525136613786)) {
@@ -8262,42 +8129,14 @@ float bl_gaussian_floor_sq_raw(float x, float sigma) {
     float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (((((-1.0)/(5.0))*((1.0)/(BL_PI))) + (((-1.0)/(5.0))*((1.0)/(BL_PI))*lam))) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (((((-1.0)/(4.0))*((1.0)/(BL_PI))) + (((-1.0)/(4.0))*((1.0)/(BL_PI))*lam))) * s_4));
     return rest + acc;
   }
-  BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.08106660348620336)) {
-    int K = int(floor((1.084802204626763) / s));
-    float xr = y - period * floor(y / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (((1.0/2.0)*lam) + (1.0/3.0));
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      acc += damp * ((((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) + (4.0*(sigma*sigma))) * ck + ((-(1.0/(bl_pi()))*(1.0/(kf))) + (-(1.0/(bl_pi()))*(1.0/(kf))*lam)) * sk);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return rest + acc;
+  // sigma == 0
+  float r = bl_reduce_signed(y, 1.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    return rest + ((lam*r) + (r*r));
   }
-  float yr = bl_reduce_signed(y, period);
-  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
-  float th = (0.0);
-  if (sigma > (0.0)) {
-    for (float m = floor((yr - R) / period); m <= floor((yr + R) / period); m += (1.0)) {
-      float t = (yr - m * period) / sigma;
-      th += exp((-0.5) * t * t);
-    }
-  }
-  return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (3.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
+  float t = r + 1.0;
+  return rest + ((lam*t) + (t*t));
 }
 
 float bl_gaussian_floor_sq(float x, float sigma) {
@@ -8609,7 +8448,8 @@ float bl_gaussian_ceil_sq_raw(float x, float sigma) {
   float period = 1.0;
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4963, 2 from 0.3309, 3 from 0.2482.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.17829525136613786)) {
@@ -8724,42 +8564,14 @@ float bl_gaussian_ceil_sq_raw(float x, float sigma) {
     float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (((((-1.0)/(5.0))*((1.0)/(BL_PI))) + (((-1.0)/(5.0))*((1.0)/(BL_PI))*lam))) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (((((-1.0)/(4.0))*((1.0)/(BL_PI))) + (((-1.0)/(4.0))*((1.0)/(BL_PI))*lam))) * s_4));
     return rest + acc;
   }
-  BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.08106660348620336)) {
-    int K = int(floor((1.084802204626763) / s));
-    float xr = y - period * floor(y / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (((1.0/2.0)*lam) + (1.0/3.0));
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      acc += damp * ((((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) + (4.0*(sigma*sigma))) * ck + ((-(1.0/(bl_pi()))*(1.0/(kf))) + (-(1.0/(bl_pi()))*(1.0/(kf))*lam)) * sk);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return rest + acc;
+  // sigma == 0
+  float r = bl_reduce_signed(y, 1.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    return rest + ((lam*r) + (r*r));
   }
-  float yr = bl_reduce_signed(y, period);
-  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
-  float th = (0.0);
-  if (sigma > (0.0)) {
-    for (float m = floor((yr - R) / period); m <= floor((yr + R) / period); m += (1.0)) {
-      float t = (yr - m * period) / sigma;
-      th += exp((-0.5) * t * t);
-    }
-  }
-  return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (3.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
+  float t = r + 1.0;
+  return rest + ((lam*t) + (t*t));
 }
 
 float bl_gaussian_ceil_sq(float x, float sigma) {
@@ -9085,7 +8897,8 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
   float period = 1.0;
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4963, 2 from 0.3309, 3 from 0.2482.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.17829525136613786)) {
@@ -9200,42 +9013,14 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
     float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (((((-1.0)/(5.0))*((1.0)/(BL_PI))) + (((-1.0)/(5.0))*((1.0)/(BL_PI))*lam))) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (((((-1.0)/(4.0))*((1.0)/(BL_PI))) + (((-1.0)/(4.0))*((1.0)/(BL_PI))*lam))) * s_4));
     return rest + acc;
   }
-  BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.08106660348620336)) {
-    int K = int(floor((1.084802204626763) / s));
-    float xr = y - period * floor(y / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (((1.0/2.0)*lam) + (1.0/3.0));
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      acc += damp * ((((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) + (4.0*(sigma*sigma))) * ck + ((-(1.0/(bl_pi()))*(1.0/(kf))) + (-(1.0/(bl_pi()))*(1.0/(kf))*lam)) * sk);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return rest + acc;
+  // sigma == 0
+  float r = bl_reduce_signed(y, 1.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    return rest + ((lam*r) + (r*r));
   }
-  float yr = bl_reduce_signed(y, period);
-  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
-  float th = (0.0);
-  if (sigma > (0.0)) {
-    for (float m = floor((yr - R) / period); m <= floor((yr + R) / period); m += (1.0)) {
-      float t = (yr - m * period) / sigma;
-      th += exp((-0.5) * t * t);
-    }
-  }
-  return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (3.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
+  float t = r + 1.0;
+  return rest + ((lam*t) + (t*t));
   }
   if (x + Rf < (0.0)) {
   float rest = ((2.0*x) + (sigma*sigma) + (x*x) + 1.0);
@@ -9244,7 +9029,8 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
   float period = 1.0;
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4995, 2 from 0.333, 3 from 0.2498.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.17829525136613786)) {
@@ -9359,42 +9145,14 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
     float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (((((-1.0)/(5.0))*((1.0)/(BL_PI))) + (((-1.0)/(5.0))*((1.0)/(BL_PI))*lam))) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (((((-1.0)/(4.0))*((1.0)/(BL_PI))) + (((-1.0)/(4.0))*((1.0)/(BL_PI))*lam))) * s_4));
     return rest + acc;
   }
-  BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.08106660348620336)) {
-    int K = int(floor((1.0906546478299144) / s));
-    float xr = y - period * floor(y / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (((1.0/2.0)*lam) + (1.0/3.0));
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      acc += damp * ((((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) + (4.0*(sigma*sigma))) * ck + ((-(1.0/(bl_pi()))*(1.0/(kf))) + (-(1.0/(bl_pi()))*(1.0/(kf))*lam)) * sk);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return rest + acc;
+  // sigma == 0
+  float r = bl_reduce_signed(y, 1.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    return rest + ((lam*r) + (r*r));
   }
-  float yr = bl_reduce_signed(y, period);
-  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
-  float th = (0.0);
-  if (sigma > (0.0)) {
-    for (float m = floor((yr - R) / period); m <= floor((yr + R) / period); m += (1.0)) {
-      float t = (yr - m * period) / sigma;
-      th += exp((-0.5) * t * t);
-    }
-  }
-  return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (5.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
+  float t = r + 1.0;
+  return rest + ((lam*t) + (t*t));
   }
   {  // near 0: the break sum (see the emitter's comment)
       if (sigma >= (0.25) && sigma <= (3.0)) {  // even f: g~(|x|) + h's breaks n = 0, -1, ... (all left of |x|)
@@ -9451,7 +9209,8 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
   float period = 1.0;
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1783: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.609 sd; below 0.09017 the nearest one alone, the others beyond 5.545 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1783), 1 from 0.4995, 2 from 0.333, 3 from 0.2498.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.17829525136613786)) {
@@ -9566,42 +9325,14 @@ float bl_gaussian_trunc_sq_raw(float x, float sigma) {
     float acc = (((((1.0)/(2.0))*lam) + ((1.0)/(3.0)))) + (d_1 * (((((1.0)/(BL_PI*BL_PI)) + ((4.0)*(sigma*sigma)))) * c_1 + (((-((1.0)/(BL_PI))) + (-((1.0)/(BL_PI))*lam))) * s_1) + d_3 * ((((((1.0)/(9.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_3 + (((((-1.0)/(3.0))*((1.0)/(BL_PI))) + (((-1.0)/(3.0))*((1.0)/(BL_PI))*lam))) * s_3) + d_5 * ((((((1.0)/(25.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_5 + (((((-1.0)/(5.0))*((1.0)/(BL_PI))) + (((-1.0)/(5.0))*((1.0)/(BL_PI))*lam))) * s_5)) + (d_2 * ((((((1.0)/(4.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_2 + (((((-1.0)/(2.0))*((1.0)/(BL_PI))) + (((-1.0)/(2.0))*((1.0)/(BL_PI))*lam))) * s_2) + d_4 * ((((((1.0)/(16.0))*((1.0)/(BL_PI*BL_PI))) + ((4.0)*(sigma*sigma)))) * c_4 + (((((-1.0)/(4.0))*((1.0)/(BL_PI))) + (((-1.0)/(4.0))*((1.0)/(BL_PI))*lam))) * s_4));
     return rest + acc;
   }
-  BlPiece p[4] = BlPiece[4](BlPiece(0.0, 1.0, float[8](0.0, lam, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)), BlPiece(0.0, 0.0, float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
-  float s = sigma / period;
-  if (s >= (0.08106660348620336)) {
-    int K = int(floor((1.0906546478299144) / s));
-    float xr = y - period * floor(y / period);
-    float w1 = (2.0) * bl_pi() / period;
-    float c1 = cos(w1 * xr);
-    float s1 = sin(w1 * xr);
-    float q = exp((-2.0) * bl_pi() * bl_pi() * s * s);
-    float q2 = q * q;
-    float ck = c1;
-    float sk = s1;
-    float ratio = q;
-    float damp = q;
-    float acc = (((1.0/2.0)*lam) + (1.0/3.0));
-    for (int k = 1; k <= K; ++k) {
-      float kf = float(k);
-      acc += damp * ((((1.0/(bl_pi()*bl_pi()))*(1.0/(kf*kf))) + (4.0*(sigma*sigma))) * ck + ((-(1.0/(bl_pi()))*(1.0/(kf))) + (-(1.0/(bl_pi()))*(1.0/(kf))*lam)) * sk);
-      float cn = ck * c1 - sk * s1;
-      sk = sk * c1 + ck * s1;
-      ck = cn;
-      ratio *= q2;
-      damp *= ratio;
-    }
-    return rest + acc;
+  // sigma == 0
+  float r = bl_reduce_signed(y, 1.0);
+  if (r != r) return r;
+  if (!(r < (0.0))) {
+    return rest + ((lam*r) + (r*r));
   }
-  float yr = bl_reduce_signed(y, period);
-  float R = bl_image_z((1.0), BL_SERIES_TOL) * sigma;
-  float th = (0.0);
-  if (sigma > (0.0)) {
-    for (float m = floor((yr - R) / period); m <= floor((yr + R) / period); m += (1.0)) {
-      float t = (yr - m * period) / sigma;
-      th += exp((-0.5) * t * t);
-    }
-  }
-  return rest + bl_gauss_periodic_image(y, sigma, period, 1, p, (5.0)) + (-2.0) * sigma * sigma + 2.0 * (0.3989422804014327) * sigma * th;
+  float t = r + 1.0;
+  return rest + ((lam*t) + (t*t));
 }
 
 float bl_gaussian_trunc_sq(float x, float sigma) {
@@ -10566,7 +10297,8 @@ vec2 bl_gaussian_fract_stat(float x, float sigma) {
   float period = 1.0;
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1865: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.361 sd; below 0.09339 the nearest one alone, the others beyond 5.354 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1865), 1 from 0.4708, 2 from 0.3139, 3 from 0.2354.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.1865228530605915)) {
@@ -10699,7 +10431,8 @@ vec2 bl_gaussian_floor_stat(float x, float sigma) {
   float period = 1.0;
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1801: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.553 sd; below 0.09154 the nearest one alone, the others beyond 5.462 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1801), 1 from 0.492, 2 from 0.328, 3 from 0.246.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.1800916657318127)) {
@@ -10835,7 +10568,8 @@ vec2 bl_gaussian_ceil_stat(float x, float sigma) {
   float period = 1.0;
   // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break
   // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.
-  if (sigma >= 1e-30) {
+  if (sigma > 0.0) {
+    sigma = max(sigma, 1.17549435e-38);
     // float (tolerance 1e-07): sigma < 0.1801: the 1 nearest break(s) on each side (the dropped ones lie beyond 5.553 sd; below 0.09154 the nearest one alone, the others beyond 5.462 sd: their tails sum to <= tol); else 5 Fourier terms (tail <= tol for sigma/T >= 0.1801), 1 from 0.492, 2 from 0.328, 3 from 0.246.
     float r = bl_reduce_signed_pow2(y, period);  // exact, in (-T, T)
     if (sigma < (0.1800916657318127)) {

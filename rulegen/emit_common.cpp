@@ -34,15 +34,18 @@ std::string plain_impl_name(const std::string& atomic) {
 
 namespace {
 
+// A piece's 8 coefficients, lowest first, as a comma-separated list.
+std::string piece_coeffs(const Syntax& s, const PolyPiece& p) {
+  std::string c;
+  for (int k = 0; k < 8; ++k) {
+    const GiNaC::ex v = k < static_cast<int>(p.c.size()) ? GiNaC::ex(p.c[k]) : GiNaC::ex(0);
+    c += (k ? ", " : "") + s.num(v);
+  }
+  return c;
+}
+
 std::string piece_table(const Syntax& s, const std::string& name, const std::vector<PolyPiece>& ps) {
-  auto coeffs = [&](const PolyPiece& p) {
-    std::string c;
-    for (int k = 0; k < 8; ++k) {
-      const GiNaC::ex v = k < static_cast<int>(p.c.size()) ? GiNaC::ex(p.c[k]) : GiNaC::ex(0);
-      c += (k ? ", " : "") + s.num(v);
-    }
-    return c;
-  };
+  auto coeffs = [&](const PolyPiece& p) { return piece_coeffs(s, p); };
   if (ps.size() > 4) throw std::runtime_error("more than 4 pieces: the GLSL runtime takes at most 4");
   std::string out;
   if (s.cpp()) {
@@ -64,6 +67,34 @@ std::string piece_table(const Syntax& s, const std::string& name, const std::vec
     out += i < 3 ? ",\n" : ");\n";
   }
   return out;
+}
+
+// GLSL, sigma > 0 past the straight-line block: the generic per-piece sum of support.glsl
+// (bl_gauss_pw / bl_box_pw / bl_tent_pw: the same cores, conditions and order) written out piece by
+// piece with its bounds and coefficients as literals. A piece table would be a local array, which
+// NVIDIA's driver keeps in local memory and reserves per inlined call site whether or not it runs:
+// fire_bumps' all-Gaussian program drew at 25 ns/px with the tables and 3.6 without
+// (docs/gpu_timing.md, stop 28).
+std::string pieces_written_out(const Syntax& s, Kernel kernel, const std::vector<PolyPiece>& ps) {
+  std::string out = "  float wide = 0.0;\n";
+  if (kernel == Kernel::Box) out += "  float hk = BL_SQRT3 * sigma;\n";
+  if (kernel == Kernel::Tent) out += "  float hk = BL_SQRT6 * sigma;\n";
+  for (const PolyPiece& p : ps) {
+    bool zero = true;  // f = 0 on the piece: every core returns 0 there
+    for (const auto& ck : p.c) zero = zero && ck.is_zero();
+    if (zero) continue;
+    const std::string lo = s.bound(p.lo), hi = s.bound(p.hi), c = "float[8](" + piece_coeffs(s, p) + ")";
+    if (kernel == Kernel::Gaussian) {
+      out += "  wide += bl_gauss_core(x, sigma, " + lo + " - x, " + hi + " - x, " + lo + ", " + hi + ", " +
+             c + ");\n";
+      continue;
+    }
+    const std::string core = kernel == Kernel::Box ? "bl_box_core" : "bl_tent_core";
+    out += "  {\n    float dl = " + lo + " - x, dh = " + hi + " - x;\n";
+    out += "    if (dh > -hk && dl < hk) wide += " + core + "(x, hk, dl, dh, " + lo + ", " + hi + ", " + c +
+           ");\n  }\n";
+  }
+  return out + "  return wide;\n";
 }
 
 // A table of exp-polynomial terms (detail::ExpTerm / BlExpTerm); GLSL takes at most 8.
@@ -201,8 +232,8 @@ std::string body_gauss_pw(const Derived& d, const Syntax& s) {
     if (i > 0 && i + 1 < n) wmin = std::min(wmin, ps[i].hi.to_double() - ps[i].lo.to_double());
   }
   // GLSL: the straight-line block first, as `if (sigma > 0 [&& sigma <= thr]) { ... return acc; }`,
-  // and the piece table after it (only sigma = 0 and the generic gauss_pw read it): a GPU keeps such
-  // an array in local memory, so it is built only where it is read.
+  // then f itself at sigma = 0 and the generic sum written out per piece (no piece table: a GPU
+  // keeps such an array in local memory, see pieces_written_out).
   const bool glsl = !s.cpp();
   std::string out;
   if (glsl) {
@@ -275,16 +306,20 @@ std::string body_gauss_pw(const Derived& d, const Syntax& s) {
     out += "    }\n  }\n";
   }
   if (!glsl) return out + "  return acc;\n";
-  // sigma = 0: f itself piece by piece (right-continuous, as pw_eval) without the table, which a GPU
-  // would build in local memory at every call site (NVIDIA refuses a large program's many copies:
-  // C5041, docs/gpu_timing.md); only the generic gauss_pw past thr still reads one.
-  out += "  return acc;\n  }\n  if (sigma == " + s.dbl(0) + ") return " + piece_chain(ps, "x", s.lang) + ";\n";
-  return out + (n > 2 ? piece_table(s, "p", ps) + "  return " + s.helper("gauss_pw") + "(x, sigma, " + P + ");\n"
+  // sigma = 0: f itself piece by piece (right-continuous, as pw_eval); past thr the pieces written
+  // out. No table: a GPU would build one in local memory at every call site (NVIDIA refused a large
+  // program's many copies, C5041, and drew slowly where it took them, docs/gpu_timing.md).
+  out +=
+      "  return acc;\n  }\n  if (sigma == " + s.dbl(0) + ") return " + piece_chain(ps, "x", s.lang) + ";\n";
+  return out + (n > 2 ? pieces_written_out(s, Kernel::Gaussian, ps)
                       : "  return " + s.nan() + ";  // not reached: sigma >= 0 returned above\n");
 }
 
 std::string body_piecewise(const Derived& d, const Syntax& s) {
   if (d.kernel == Kernel::Gaussian) return body_gauss_pw(d, s);
+  if (!s.cpp())  // sigma = 0: f piece by piece; else the pieces written out (no table)
+    return guard_sigma(s) + "  if (sigma == " + s.dbl(0) + ") return " + piece_chain(d.pieces, "x", s.lang) +
+           ";\n" + pieces_written_out(s, d.kernel, d.pieces);
   const std::string P = pieces_arg(s, "p", d.pieces.size());
   std::string call = d.kernel == Kernel::Gaussian ? "gauss_pw"
                      : d.kernel == Kernel::Box    ? "box_pw"
@@ -577,15 +612,16 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
     out += s.decl("period", s.ex(d.period)) + guard_sigma(s) +
            (s.cpp() ? gauss_periodic_fast_cpp(periodic_spec(d)) : gauss_periodic_fast_glsl(periodic_spec(d)));
     if (!s.cpp()) {
-      // GLSL, sigma = 0: f itself in straight lines; the table below is read only by the generic
-      // image sum (sigma < 1e-30), not built on the way to f (see body_gauss_pw: C5041).
+      // GLSL: the straight-line block took every sigma > 0, so what is left is sigma = 0: f itself in
+      // straight lines, and no piece table or generic code (local memory on a GPU, see
+      // gauss_periodic_fast).
       std::vector<std::pair<GiNaC::ex, GiNaC::ex>> pieces;
       for (const PolyPiece& pc : d.pieces) {
         GiNaC::ex f = 0;
         for (size_t k = 0; k < pc.c.size(); ++k) f += pc.c[k] * GiNaC::pow(sym::var_x(), static_cast<int>(k));
         pieces.emplace_back(pc.hi.value, f);
       }
-      out += "  if (sigma == " + s.dbl(0) + ") {\n" + periodic_straight(d.period, pieces, s.lang, true) + "  }\n";
+      return out + "  // sigma == 0\n" + periodic_straight(d.period, pieces, s.lang, true);
     }
     out += piece_table(s, "p", d.pieces);
   } else {
@@ -721,7 +757,15 @@ std::string fused_periodic(const Derived& d, const FusedTerms& f, const FusableP
     fast = s.cpp() ? gauss_periodic_fast_cpp(sp) : gauss_periodic_fast_glsl(sp);
   }
   // The straight-line regimes before the piece table, which only the generic code reads (a GPU
-  // keeps such an array in local memory, a CPU builds it on the stack on every call).
+  // keeps such an array in local memory, a CPU builds it on the stack on every call). GLSL: the
+  // straight-line block takes every sigma > 0 (gauss_periodic_fast), so sigma = 0 is left: h itself
+  // in straight lines, no table and no generic code.
+  if (!s.cpp() && !fast.empty() && A.pieces[0].lo.value.is_zero()) {
+    GiNaC::ex h = 0;
+    for (int k = 0; k < 8; ++k) h += hc[k].expand() * GiNaC::pow(sym::var_x(), k);
+    return out + fast + "  // sigma == 0\n" +
+           periodic_straight(T, {{A.pieces[0].hi.value, h}}, s.lang, true, "y", lead);
+  }
   out += fast + table;
   out += fourier_branch(dd, s, 0, s.ex(dd.a0),
                         "damp * (" + s.ex(dd.ak) + " * cos(th) + " + s.ex(dd.bk) + " * sin(th))",
@@ -1352,7 +1396,7 @@ std::string piece_chain(const std::vector<PolyPiece>& ps, const std::string& v, 
 // picks its piece against hi - P, so a jump just below a period boundary stays on its side). C++
 // reduces without fmod when P is a power of two (exact there).
 std::string periodic_straight(const GiNaC::ex& P, const std::vector<std::pair<GiNaC::ex, GiNaC::ex>>& pieces,
-                              Lang lang, bool nan_guard) {
+                              Lang lang, bool nan_guard, const std::string& arg, const std::string& lead) {
   const Syntax s{lang};
   const GiNaC::symbol r("r"), t("t");
   bool pow2 = false;
@@ -1363,21 +1407,21 @@ std::string periodic_straight(const GiNaC::ex& P, const std::vector<std::pair<Gi
   }
   const std::string T = s.cpp() ? "const T" : "float";  // GLSL ES: const needs a constant
   const std::string reduce = s.cpp() && pow2 ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
-  std::string out = "  " + T + " r = " + reduce + "(x, " + s.ex(P) + ");\n";
+  std::string out = "  " + T + " r = " + reduce + "(" + arg + ", " + s.ex(P) + ");\n";
   if (nan_guard) out += "  if (r != r) return r;\n";
   auto f_at = [&](size_t i, const GiNaC::symbol& v) {
     return s.ex(pieces[i].second.subs(sym::var_x() == v));
   };
   out += "  if (!(r < " + s.dbl(0) + ")) {\n";
   for (size_t i = 0; i + 1 < pieces.size(); ++i)
-    out += "    if (r < " + s.ex(pieces[i].first) + ") return " + f_at(i, r) + ";\n";
-  out += "    return " + f_at(pieces.size() - 1, r) + ";\n  }\n";
+    out += "    if (r < " + s.ex(pieces[i].first) + ") return " + lead + f_at(i, r) + ";\n";
+  out += "    return " + lead + f_at(pieces.size() - 1, r) + ";\n  }\n";
   bool uses_x = false;
   for (const auto& pc : pieces) uses_x = uses_x || pc.second.has(sym::var_x());
   if (uses_x) out += "  " + T + " t = r + " + s.ex(P) + ";\n";
   for (size_t i = 0; i + 1 < pieces.size(); ++i)
-    out += "  if (r < " + s.ex(pieces[i].first - P) + ") return " + f_at(i, t) + ";\n";
-  return out + "  return " + f_at(pieces.size() - 1, t) + ";\n";
+    out += "  if (r < " + s.ex(pieces[i].first - P) + ") return " + lead + f_at(i, t) + ";\n";
+  return out + "  return " + lead + f_at(pieces.size() - 1, t) + ";\n";
 }
 
 // A periodic plain function as straight-line code: the plain function is the baseline every ratio

@@ -54,9 +54,12 @@ std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lan
 std::string piece_chain(const std::vector<sym::PolyPiece>& ps, const std::string& v, Lang lang);
 // A periodic function of x given on one period [0, P) by pieces (hi_i, f_i(sym::var_x())), as
 // straight-line statements on the exact signed remainder r (periodic_eval's piece choice). With
-// nan_guard a NaN r (x NaN or infinite) is returned as is (constant pieces would hide it).
+// nan_guard a NaN r (x NaN or infinite) is returned as is (constant pieces would hide it). `arg`:
+// the variable reduced (x, or y where the caller mirrored it); `lead`: printed before each returned
+// piece ("rest + ").
 std::string periodic_straight(const GiNaC::ex& P, const std::vector<std::pair<GiNaC::ex, GiNaC::ex>>& pieces,
-                              Lang lang, bool nan_guard);
+                              Lang lang, bool nan_guard, const std::string& arg = "x",
+                              const std::string& lead = "");
 
 // The straight-line plan's input (emit_gauss_periodic.hpp) of a Gaussian periodic entry (an empty
 // spec when its period or breaks are not numbers).

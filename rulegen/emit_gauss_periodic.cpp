@@ -765,8 +765,13 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
     out +=
         "  // Straight-line form (rulegen/emit_gauss_periodic.cpp, the C++ entry's float regimes): break\n";
     out += "  // regime sum_k e_k (+-sigma)^k J_k(t) per candidate break, Fourier regime unrolled.\n";
-    out += "  if (sigma >= 1e-30) {\n" + header(pf, "float", kTolFloat) + glsl_spelling(regimes(pf, true)) +
-           "  }\n";
+    // Every sigma > 0 (C++ hands sigma < 1e-30 to the generic image sum): a GLSL function that keeps
+    // the generic code behind this block holds its piece tables in local memory, and NVIDIA's driver
+    // reserves that per inlined call whether or not it runs (docs/gpu_timing.md, stop 28: 12 such
+    // calls made a 1.5 ns/px shader 41 ns/px). A subnormal sigma is taken as FLT_MIN, which keeps
+    // 1/sigma finite; the two differ only within 9 FLT_MIN of a break.
+    out += "  if (sigma > 0.0) {\n    sigma = max(sigma, 1.17549435e-38);\n" +
+           header(pf, "float", kTolFloat) + glsl_spelling(regimes(pf, true)) + "  }\n";
     return out;
   }
   out += "  // Straight-line form (float, double): break regime sum_k e_k (+-sigma)^k J_k(t) per candidate\n";

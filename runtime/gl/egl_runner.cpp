@@ -235,6 +235,7 @@ Program Context::compile(const std::string& fragment_source) {
   const GLuint program = glCreateProgram();
   glAttachShader(program, vs);
   glAttachShader(program, fs);
+  glProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);  // program_binary()
   glLinkProgram(program);
   glDeleteShader(vs);
   glDeleteShader(fs);
@@ -265,6 +266,20 @@ Program Context::compile(const std::string& fragment_source) {
   }
   check_gl("linking the program");
   return Program(owner_, program);
+}
+
+std::string Context::program_binary(const Program& program) {
+  detail::make_current(impl_->egl);
+  GLint length = 0;
+  glGetProgramiv(program.id_, GL_PROGRAM_BINARY_LENGTH, &length);
+  if (length <= 0) return {};
+  std::string bytes(static_cast<size_t>(length), '\0');
+  GLenum format = 0;
+  GLsizei written = 0;
+  glGetProgramBinary(program.id_, length, &written, &format, bytes.data());
+  check_gl("glGetProgramBinary");
+  bytes.resize(static_cast<size_t>(written));
+  return bytes;
 }
 
 void Context::draw(const Program& program, int width, int height, const std::vector<Uniform>& uniforms) {

@@ -111,6 +111,11 @@ class Context {
   // output. Throws ShaderError on compile/link failure.
   Program compile(const std::string& fragment_source);
 
+  // The driver's binary of a linked program (glGetProgramBinary; its format is the driver's own).
+  // NVIDIA's holds the assembly it generated as text: instruction counts and local-memory arrays
+  // ("lmem") read from it say why a shader is slow. Empty where the driver offers no binary.
+  std::string program_binary(const Program& program);
+
   // RGBA32F pixels, width * height * 4 floats, row 0 = top (see the file comment).
   std::vector<float> render(const Program& program, int width, int height,
                             const std::vector<Uniform>& uniforms = {});

@@ -7,19 +7,20 @@
 //                                                   then time them holding OUT/.timing.lock, so
 //                                                   compiles run in parallel and timings never overlap
 //   blgpu_time PACK --out OUT --merge               join OUT/shard_*.json into the report
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <sys/file.h>
-#include <unistd.h>
 
 #include "gl/egl_runner.hpp"
 #include "gpu_timing/gpu_report.hpp"
@@ -76,8 +77,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // Best of 3 timings, each of enough draws to last ~budget_ms (one of 2 draws when a draw is longer).
-double time_program(gl::Context& ctx, const gl::Program& prog, int w, int h, const std::vector<gl::Uniform>& u,
-                    double budget_ms) {
+double time_program(gl::Context& ctx, const gl::Program& prog, int w, int h,
+                    const std::vector<gl::Uniform>& u, double budget_ms) {
   const double first = ctx.time_ms(prog, w, h, u, 2);
   if (first > budget_ms) return first;  // a slow program: 2 draws say enough, and more would cost seconds
   const int reps = static_cast<int>(std::clamp(budget_ms / std::max(first, 1e-3), 3.0, 500.0));
@@ -129,7 +130,8 @@ class FileLock {
 
 // Compiles and times this shard's jobs; returns the shard's records.
 json run_shard(const fs::path& pack, const json& manifest, const fs::path& out, int shard, int shards,
-               const std::string& only, double budget_ms, double compile_seconds, std::string& renderer) {
+               const std::string& only, double budget_ms, double compile_seconds, const fs::path& binaries,
+               std::string& renderer) {
   std::vector<Job> jobs;
   int index = 0;
   const json& scenes = manifest.at("scenes");
@@ -147,8 +149,8 @@ json run_shard(const fs::path& pack, const json& manifest, const fs::path& out, 
   std::size_t compiled = 0;
   for (Job& j : jobs) {  // compiles: in parallel across shards
     if (seconds_since(start) > compile_seconds) {
-      std::fprintf(stderr, "[shard %d] compile time (%.0f s) spent: %zu of %zu programs left untimed\n", shard,
-                   compile_seconds, jobs.size() - compiled, jobs.size());
+      std::fprintf(stderr, "[shard %d] compile time (%.0f s) spent: %zu of %zu programs left untimed\n",
+                   shard, compile_seconds, jobs.size() - compiled, jobs.size());
       break;
     }
     ++compiled;
@@ -157,6 +159,8 @@ json run_shard(const fs::path& pack, const json& manifest, const fs::path& out, 
       const auto t0 = std::chrono::steady_clock::now();
       j.program = ctx.compile(read_text(pack / j.entry.at("frag").get<std::string>()));
       j.time.compile_ms = 1e3 * seconds_since(t0);
+      if (!binaries.empty())
+        write_text(binaries / (scene + "__" + j.time.label + ".bin"), ctx.program_binary(j.program));
     } catch (const gl::Error& e) {
       j.time.failure = e.what();
       std::fprintf(stderr, "blgpu_time: %s/%s: %s\n", scene.c_str(), j.time.label.c_str(), e.what());
@@ -241,7 +245,7 @@ void merge(const json& manifest, const fs::path& out, const std::vector<json>& s
 
 int main(int argc, char** argv) {
   CLI::App app{"blgpu_time: a blgpu_pack pack timed on this machine's OpenGL driver"};
-  std::string pack, out, only, shard_text = "0/1";
+  std::string pack, out, only, binaries, shard_text = "0/1";
   double budget_ms = 40, compile_seconds = 1e9;
   bool merge_only = false;
   app.add_option("pack", pack, "the directory blgpu_pack wrote (manifest.json)")->required();
@@ -251,6 +255,9 @@ int main(int argc, char** argv) {
   app.add_flag("--merge", merge_only, "only join OUT/shard_*.json into gpu_times.json and report.md");
   app.add_option("--compile-seconds", compile_seconds,
                  "stop compiling new programs after this long and time those compiled (a time-limited GPU)");
+  app.add_option("--binaries", binaries,
+                 "also write each program's driver binary to DIR/<scene>__<label>.bin (NVIDIA's holds its "
+                 "assembly as text: instruction counts, local memory)");
   app.add_option("--budget-ms", budget_ms, "draw time per timing run (3 runs per program)")
       ->check(CLI::Range(1.0, 10000.0));
   CLI11_PARSE(app, argc, argv);
@@ -263,7 +270,8 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--shard " + shard_text + ": expected K/N with 0 <= K < N");
     if (!merge_only) {
       std::string renderer;
-      run_shard(pack, manifest, out, shard, shards, only, budget_ms, compile_seconds, renderer);
+      if (!binaries.empty()) fs::create_directories(binaries);
+      run_shard(pack, manifest, out, shard, shards, only, budget_ms, compile_seconds, binaries, renderer);
       if (shards > 1) return 0;  // the caller merges when every shard is done
     }
     std::vector<json> files;

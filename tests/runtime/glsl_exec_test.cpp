@@ -165,13 +165,35 @@ TEST(GlslExec, GaussianPiecewiseAndSigmaZero) {
   const auto av = gl::Context::availability();
   if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
   gl::Context ctx;
-  const int checked = check_entries(
-      ctx, {"gaussian"},
-      {"abs", "sign", "step", "saturate", "smoothstep", "pulse30", "fract", "square", "triangle", "floor", "ceil",
-       "trunc"},
-      {-1000.25f, -3.75f, -1.0f, -0.5f, -1e-6f, 0.0f, 1e-6f, 0.25f, 0.3f, 0.5f, 0.999f, 1.0f, 1.5f, 2.75f, 37.5f},
-      {0.0f, 1e-3f, 0.1f, 0.499f, 0.501f, 0.999f, 1.001f, 1.5f, 3.0f, 30.0f}, 2e-5);
+  const int checked =
+      check_entries(ctx, {"gaussian"},
+                    {"abs", "sign", "step", "saturate", "smoothstep", "pulse30", "fract", "square",
+                     "triangle", "floor", "ceil", "trunc"},
+                    {-1000.25f, -3.75f, -1.0f, -0.5f, -1e-6f, 0.0f, 1e-6f, 0.25f, 0.3f, 0.5f, 0.999f, 1.0f,
+                     1.5f, 2.75f, 37.5f},
+                    {0.0f, 1e-3f, 0.1f, 0.499f, 0.501f, 0.999f, 1.001f, 1.5f, 3.0f, 30.0f}, 2e-5);
   EXPECT_GT(checked, 3000);
+}
+
+// The Gaussian periodic entries below sigma = 1e-30, where the C++ float entries hand over to the
+// generic image sum and the GLSL keeps the straight-line block (no piece table: a GPU holds one in
+// local memory per call site, docs/gpu_timing.md): at the breaks and a few sigma beside them, where
+// the kernel still matters, against the C++ double table. A subnormal sigma (1e-39) is taken as
+// FLT_MIN wide (a driver may also flush it to 0); away from the breaks (0, 0.3, 0.5, 1 and their
+// periods) either must give f itself, never 0 * inf.
+TEST(GlslExec, GaussianPeriodicTinySigma) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  const std::vector<std::string> names = {"fract", "square", "triangle", "pulse30", "floor", "ceil", "trunc"};
+  int checked = check_entries(ctx, {"gaussian"}, names,
+                              {-1.0f, -2e-36f, -1e-36f, 0.0f, 1e-37f, 1e-36f, 3e-36f, 1.0f, 0.5f, 37.5f},
+                              {1e-36f, 2e-36f}, 2e-5);
+  checked += check_entries(ctx, {"gaussian"}, names, {-1.0f, -1e-31f, 0.0f, 1e-31f, 0.5f, 1.0f, 2.75f},
+                           {1e-31f, 3e-31f}, 2e-5);
+  checked +=
+      check_entries(ctx, {"gaussian"}, names, {-3.7f, -0.2f, 0.2f, 0.4f, 0.7f, 1.6f, 37.4f}, {1e-39f}, 2e-5);
+  EXPECT_GT(checked, 250);
 }
 
 // The one-pass stat entries' GLSL ({E f, Var f} as vec2, rulegen/emit_stat_pairs.hpp, two channels
