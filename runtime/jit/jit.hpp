@@ -19,9 +19,12 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The flags when neither Options::flags nor $BL_JIT_FLAGS gives them.
+inline constexpr const char* kDefaultFlags = "-O3 -fno-math-errno -march=native -std=c++17";
+
 struct Options {
-  std::string compiler;  // empty: $BL_JIT_CXX, else $CXX, else "g++"
-  std::vector<std::string> flags;         // empty: $BL_JIT_FLAGS (split at spaces), else -O3 -fno-math-errno -std=c++17
+  std::string compiler;                   // empty: $BL_JIT_CXX, else $CXX, else "g++"
+  std::vector<std::string> flags;         // empty: $BL_JIT_FLAGS (split at spaces), else kDefaultFlags
   std::vector<std::string> include_dirs;  // empty: the source tree's generated/ and runtime/
   std::string cache_dir;                  // empty: $BL_JIT_CACHE, else "build/jit_cache"
 };
@@ -58,5 +61,7 @@ bool compiler_available(const Options& opt = {});
 
 // Options with every default filled in (compiler, include dirs, cache dir).
 Options resolved(const Options& opt);
+// The resolved flags as one line (what a cost model records: times depend on them).
+std::string flags_text(const Options& opt = {});
 
 }  // namespace bl::jit

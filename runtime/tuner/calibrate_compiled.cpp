@@ -264,6 +264,7 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
   CostModel m;
   m.machine = cpu_model();
   m.method = "compiled";
+  m.jit_flags = jit::flags_text(opt.jit);
   auto wanted = [&](const std::string& name) {
     return opt.only.empty() || name.find(opt.only) != std::string::npos;
   };

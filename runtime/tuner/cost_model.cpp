@@ -338,6 +338,7 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
   cm.window_fit_programs = m.value("window_fit_programs", 0);
   cm.window_fit_source = m.value("window_fit_source", std::string());
   cm.kernels = m.value("kernels", 0);
+  cm.jit_flags = m.value("jit_flags", std::string());
   if (m.contains("op_latency")) cm.op_lat_ns = m.at("op_latency").get<std::map<std::string, double>>();
   if (m.contains("function_latency"))
     cm.fn_lat_ns = m.at("function_latency").get<std::map<std::string, double>>();
@@ -369,6 +370,7 @@ void save_cost_model(const std::string& path, const CostModel& m) {
                               {"window_fit_programs", m.window_fit_programs},
                               {"window_fit_source", m.window_fit_source},
                               {"kernels", m.kernels},
+                              {"jit_flags", m.jit_flags},
                               {"function_spill", m.fn_spill_ns},
                               {"function_pair", m.fn_pair_ns}};
   const std::filesystem::path p(path);

@@ -38,6 +38,7 @@ struct CostModel {
 
   std::string machine;              // CPU model string the numbers were measured on
   std::string method = "compiled";  // "compiled" (-O3 via bl::jit) or "evaluator" (fallback)
+  std::string jit_flags;            // compiled: the JIT flags the kernels were built with
   // Version of the compiled calibration's kernels; a file measured with other kernels is
   // recalibrated (1: vectorized loops, which made straight-line entries 4x too cheap; 2: scalar
   // loops shaped like a program's, with the per-output cost; 3: the spill cost of values live across

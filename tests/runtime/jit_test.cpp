@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
 #include "compiler/lower.hpp"
@@ -49,6 +50,18 @@ TEST(Jit, CompilesLoadsAndHitsTheCacheTheSecondTime) {
   EXPECT_NE(jit::cache_key(src, o2), jit::cache_key(src, opts(cache)));
   EXPECT_FALSE(jit::compile(src, o2)->from_cache());
   EXPECT_THROW(first->symbol("bl_absent"), jit::Error);
+}
+
+// The flags a cost model records: the options' own, else $BL_JIT_FLAGS, else the default, which
+// targets the host (floorf is a library call on x86-64's baseline).
+TEST(Jit, FlagsTextIsWhatCompilesThePrograms) {
+  jit::Options o;
+  o.flags = {"-O2", "-std=c++17"};
+  EXPECT_EQ(jit::flags_text(o), "-O2 -std=c++17");
+  if (!std::getenv("BL_JIT_FLAGS")) {
+    EXPECT_EQ(jit::flags_text(), jit::kDefaultFlags);
+    EXPECT_NE(std::string(jit::kDefaultFlags).find("-march=native"), std::string::npos);
+  }
 }
 
 TEST(Jit, CompileErrorNamesTheFileAndShowsTheCompilerOutput) {

@@ -281,6 +281,7 @@ TEST(CostModel, WindowFitRecoversTheWindowThatMadeTheTimes) {
   m.window_kernel_ns = 26;
   m.window_fit_programs = 5;
   m.window_fit_source = "scenes/suite";
+  m.jit_flags = "-O3 -march=native";
   const std::string path = (std::filesystem::temp_directory_path() / "bl_window_fit_test.json").string();
   std::filesystem::remove(path);
   save_cost_model(path, m);
@@ -289,6 +290,7 @@ TEST(CostModel, WindowFitRecoversTheWindowThatMadeTheTimes) {
   EXPECT_DOUBLE_EQ(l.window_kernel_ns, 26);
   EXPECT_EQ(l.window_fit_programs, 5);
   EXPECT_EQ(l.window_fit_source, "scenes/suite");
+  EXPECT_EQ(l.jit_flags, "-O3 -march=native");  // load_or_calibrate recalibrates when they change
   std::filesystem::remove(path);
 }
 
