@@ -112,8 +112,8 @@ Options resolved(const Options& opt) {
     // -fno-math-errno: emitted code never reads errno, and without it GCC may not merge two exp
     // calls of one argument (a smoothed sin node's mean and variance share e^{-sigma^2/2}).
     // -march=native: the program runs where it is compiled, as a renderer's JIT targets its host. On
-    // x86-64's baseline (SSE2) floorf is a library call: plain floor 1.17 -> 0.50 ns, box square
-    // 6.4 -> 4.3 ns with the host's roundss (docs/tuning.md, stop 28).
+    // x86-64's baseline (SSE2) floorf is a library call: plain floor 1.17 -> 0.48 ns, box square
+    // 6.4 -> 4.2 ns with the host's roundss (docs/tuning.md, stop 28).
     std::istringstream in(env_or("BL_JIT_FLAGS", kDefaultFlags));
     for (std::string f; in >> f;) o.flags.push_back(f);
   }

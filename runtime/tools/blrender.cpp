@@ -1,6 +1,6 @@
 // blrender: render a scene plain, with MSAA, smoothed by a compiled rule assignment, and as ground
 // truth; write PNG images, error heatmaps and a report (RMS in display space, PSNR, SSIM, and times:
-// the emitted C++ compiled with -O3 at run time (bl::jit), next to the batch evaluator's).
+// the emitted C++ compiled with -O3 -march=native at run time (bl::jit), next to the batch evaluator's).
 //
 //   blrender scenes/suite/checkerboard_none.json --rules gaussian --msaa 16 --out out/checker
 //   blrender scenes/suite/checkerboard_none.json --schedule out/tune/front.csv:front02   # a tuned point

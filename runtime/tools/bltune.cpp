@@ -1,7 +1,7 @@
 // bltune: the autoscheduler. Genetic search over per-node rule assignments for the Pareto front of
 // time (calibrated cost model) against error (RMS in display space vs the cached ground truth),
-// Nelder-Mead on sd factors, measured timings (the emitted C++ compiled with -O3 at run time; GLSL
-// with --glsl) and reports against MSAA.
+// Nelder-Mead on sd factors, measured timings (the emitted C++ compiled with -O3 -march=native at run time;
+// GLSL with --glsl) and reports against MSAA.
 //
 //   bltune --calibrate                                   # print (and save) the cost model table
 //   bltune scenes/suite/checkerboard_none.json --out out/tune/checkerboard_none

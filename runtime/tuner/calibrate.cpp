@@ -246,7 +246,7 @@ CostModel load_or_calibrate(const std::string& path, bool verbose, CalibrationOp
       throw std::runtime_error("cost model " + path + " has no latencies");
     if (m.method == "compiled" && m.kernels != CostModel::kKernels)
       throw std::runtime_error("cost model " + path + " was timed with older calibration kernels");
-    // The same program costs another time under other flags (-march=native: floor 0.50 against
+    // The same program costs another time under other flags (-march=native: floor 0.48 against
     // 1.17 ns), and fronts and speed-ups are measured with today's.
     if (m.method == "compiled" && m.jit_flags != jit::flags_text(opt.jit))
       throw std::runtime_error("cost model " + path + " was timed with JIT flags '" + m.jit_flags +

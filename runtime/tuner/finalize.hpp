@@ -1,5 +1,5 @@
 // After the search: Nelder-Mead on the front points, errors on full images, timings of the emitted
-// code (the emitted C++ compiled with -O3 at run time, the time the reports quote; the batch
+// code (the emitted C++ compiled with -O3 -march=native at run time, the time the reports quote; the batch
 // evaluator; GLSL on the OpenGL driver only when asked), the baselines (plain, MSAA 2..32, all-Dorn,
 // all-adaptive-Gaussian) and images of chosen variants.
 #pragma once

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "jit/jit.hpp"
+
 namespace bl::tuner {
 
 namespace {
@@ -182,7 +184,9 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
      << " distinct candidates), finalize " << fmt("%.1f", r.finalize_seconds) << " s.\n\n"
      << (plotted ? "![Pareto front](pareto.png)\n\n" : "(gnuplot not found: no plot)\n\n")
      << "Times: *model* = cost model (ns per pixel, calibrated on compiled code); *compiled* = the emitted "
-        "C++ compiled with -O3 at run time, one thread, over frame 0's pixel inputs (ns per pixel; ms per "
+        "C++ compiled at run time (`"
+     << jit::flags_text()
+     << "`), one thread, over frame 0's pixel inputs (ns per pixel; ms per "
         "frame), the time the speed-ups quote"
      << (r.compiled_note.empty()
              ? ""
