@@ -616,11 +616,7 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
       // straight lines, and no piece table or generic code (local memory on a GPU, see
       // gauss_periodic_fast).
       std::vector<std::pair<GiNaC::ex, GiNaC::ex>> pieces;
-      for (const PolyPiece& pc : d.pieces) {
-        GiNaC::ex f = 0;
-        for (size_t k = 0; k < pc.c.size(); ++k) f += pc.c[k] * GiNaC::pow(sym::var_x(), static_cast<int>(k));
-        pieces.emplace_back(pc.hi.value, f);
-      }
+      for (const PolyPiece& pc : d.pieces) pieces.emplace_back(pc.hi.value, poly_in_x(pc.c));
       return out + "  // sigma == 0\n" + periodic_straight(d.period, pieces, s.lang, true);
     }
     out += piece_table(s, "p", d.pieces);
@@ -761,10 +757,8 @@ std::string fused_periodic(const Derived& d, const FusedTerms& f, const FusableP
   // straight-line block takes every sigma > 0 (gauss_periodic_fast), so sigma = 0 is left: h itself
   // in straight lines, no table and no generic code.
   if (!s.cpp() && !fast.empty() && A.pieces[0].lo.value.is_zero()) {
-    GiNaC::ex h = 0;
-    for (int k = 0; k < 8; ++k) h += hc[k].expand() * GiNaC::pow(sym::var_x(), k);
     return out + fast + "  // sigma == 0\n" +
-           periodic_straight(T, {{A.pieces[0].hi.value, h}}, s.lang, true, "y", lead);
+           periodic_straight(T, {{A.pieces[0].hi.value, poly_in_x(hc).expand()}}, s.lang, true, "y", lead);
   }
   out += fast + table;
   out += fourier_branch(dd, s, 0, s.ex(dd.a0),

@@ -52,6 +52,13 @@ std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lan
 // A straight-line chain "v < hi_0 ? p_0(v) : v < hi_1 ? ... : p_last(v)" over sorted pieces
 // (right-continuous at the breaks, as pw_eval), one expression.
 std::string piece_chain(const std::vector<sym::PolyPiece>& ps, const std::string& v, Lang lang);
+// sum_k c[k] x^k in sym::var_x(), lowest coefficient first (numeric or symbolic coefficients).
+template <class C>
+GiNaC::ex poly_in_x(const std::vector<C>& c) {
+  GiNaC::ex f = 0;
+  for (size_t k = 0; k < c.size(); ++k) f += GiNaC::ex(c[k]) * GiNaC::pow(sym::var_x(), static_cast<int>(k));
+  return f;
+}
 // A periodic function of x given on one period [0, P) by pieces (hi_i, f_i(sym::var_x())), as
 // straight-line statements on the exact signed remainder r (periodic_eval's piece choice). With
 // nan_guard a NaN r (x NaN or infinite) is returned as is (constant pieces would hide it). `arg`:

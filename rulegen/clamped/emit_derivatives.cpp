@@ -35,9 +35,7 @@ std::string periodic_derivative(const Derivative& d, Lang lang) {
       pieces.back().first = pc.hi.value;
       continue;
     }
-    GiNaC::ex f = 0;
-    for (size_t k = 0; k < pc.c.size(); ++k) f += pc.c[k] * GiNaC::pow(sym::var_x(), static_cast<int>(k));
-    pieces.emplace_back(pc.hi.value, f);
+    pieces.emplace_back(pc.hi.value, poly_in_x(pc.c));
     last = &pc.c;
   }
   return periodic_straight(d.period, pieces, lang, true);
