@@ -10,6 +10,12 @@ set -euo pipefail
 dir="$1"
 times="${2:-}"
 [ -d "$dir" ] || { echo "gpu_binary_stats.sh: $dir: no such folder" >&2; exit 2; }
+# ns/px per "<scene>__<label>", read from the JSON once.
+declare -A ns_of=()
+if [ -n "$times" ]; then
+  while read -r key ns; do ns_of["$key"]="$ns"; done < <(python3 -c 'import json,sys
+for p in json.load(open(sys.argv[1]))["programs"]: print("%s__%s %.3f" % (p["scene"], p["label"], p["gpu_ns_per_pixel"]))' "$times")
+fi
 printf '%-40s %8s %8s %10s\n' program lmem lines "ns/px"
 for f in "$dir"/*.bin; do
   name="$(basename "$f" .bin)"
@@ -19,12 +25,5 @@ for f in "$dir"/*.bin; do
     lmem="${lmem:-0}"
     lines="$(wc -l <<<"$asm")"
   fi
-  ns="-"
-  if [ -n "$times" ]; then
-    scene="${name%%__*}" label="${name#*__}"
-    ns="$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1]))["programs"]
-print(next(("%.3f" % p["gpu_ns_per_pixel"] for p in d if p["scene"]==sys.argv[2] and p["label"]==sys.argv[3]), "-"))' \
-      "$times" "$scene" "$label")"
-  fi
-  printf '%-40s %8s %8s %10s\n' "$name" "$lmem" "$lines" "$ns"
+  printf '%-40s %8s %8s %10s\n' "$name" "$lmem" "$lines" "${ns_of[$name]:--}"
 done | sort -k2,2nr
