@@ -378,6 +378,104 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   return out + jump_terms(s, d.kernel, cands, T) + "  return acc;\n";
 }
 
+// Pixel-sized kernels on a periodic f whose breaks are m = 1 or 2 per period, g = T/m apart with g
+// a power of two (fract, square, triangle and their squares): with half-width at most g/2 only the
+// nearest break, j g with j = rint(x/g), is in reach, and x = j g + d with d = x - j g exact (x/g
+// and j g are exact, Sterbenz for the difference), so the piece and the side of the break come from
+// d's sign without a reduction by the period (the general body's fabs, divide, floor and copysign,
+// and its compares against every near break). The mean is then the break sum with one term, exact
+// like the general body; its rounding is that of l = h - |d| and of the piece's polynomial at
+// t = b + d (rounded by eps T for the piece left of b = 0). C++ only: the entry keeps the general
+// body out of line (BL_NOINLINE) so this path inlines into the shader; the GLSL keeps one body.
+std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& general) {
+  if (d.kernel == Kernel::Gaussian || d.body != sym::Body::PeriodicTable || d.pieces.empty()) return "";
+  if (!GiNaC::is_a<numeric>(d.period)) return "";
+  const Syntax s{sym::Lang::Cpp};
+  const auto& ps = d.pieces;
+  const size_t m = ps.size();
+  if (m < 1 || m > 2) return "";
+  const numeric T = GiNaC::ex_to<numeric>(d.period);
+  const numeric g = T / numeric(static_cast<long>(m));
+  if (!is_pow2(T) || !is_pow2(g)) return "";
+  for (size_t i = 0; i < m; ++i) {
+    if (!GiNaC::is_a<numeric>(ps[i].lo.value) || !GiNaC::is_a<numeric>(ps[i].hi.value)) return "";
+    if (GiNaC::ex_to<numeric>(ps[i].lo.value) != g * numeric(static_cast<long>(i))) return "";
+  }
+  // Jump polynomial at b_i (about b_i): q_i(b_i + u) - q_{i-1}(b_i + u), q_{-1}(t) = q_{m-1}(T + t).
+  std::vector<std::vector<numeric>> e(m);
+  for (size_t i = 0; i < m; ++i) {
+    const numeric b = g * numeric(static_cast<long>(i));
+    e[i] = minus(shifted(ps[i].c, b), shifted(ps[i == 0 ? m - 1 : i - 1].c, i == 0 ? T : b));
+    if (e[i].empty()) return "";  // not a break: the pieces would not alternate with j's parity
+  }
+  const bool box = d.kernel == Kernel::Box;
+  std::string out;
+  out += s.decl("hw", std::string(box ? "detail::k_sqrt3<T>()" : "detail::k_sqrt6<T>()") + " * sigma");
+  // NaN, sigma <= 0, tiny (1/width past float's range), wide, or |x| where x/g overflows: general.
+  const bool scaled = g != 1;
+  out += "  if (hw >= " + s.dbl(1e-30) + " && hw <= " + s.num(g / 2) +
+         (scaled && g < 1 ? " && abs(x) <= " + s.dbl(1e30) : std::string()) +
+         ") {  // one break in reach, the nearest\n";
+  const std::string gs = s.num(g);
+  // Two independent chains (the entry's latency is what a shader waits for): the piece holding x
+  // from k = floor(u), the offset to the nearest break from j = rint(u). They agree: j = k when
+  // d >= 0, k + 1 when d < 0.
+  out += "  " + s.decl("u", scaled ? "x * " + s.num(numeric(1) / g) : "x");
+  out += "  " + s.decl("k", "floor(u)");
+  out += "  " + s.decl("j", "rint(u)");
+  out += "  " + s.decl("d", scaled ? "(u - j) * " + gs : "u - j");
+  out += "  " + s.decl("L", "hw - abs(d)");
+  out += "  " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
+  out +=
+      "  " + s.decl("v", "l * (" + s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + "))");
+  // F: the kernel's mass past the break (box l / 2h, tent l^2 / 2w^2).
+  const std::string vk = box ? "" : " * v";
+  if (m == 2)
+    out += "  " + s.decl("par", "k - " + s.dbl(2) + " * floor(k * " + s.dbl(0.5) + ")");  // x's piece
+  int maxdeg = 0;
+  for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
+  if (maxdeg == 0) {
+    // A pulse train: past the break f takes the other piece's value.
+    const std::string c0 = s.num(ps[0].c.empty() ? numeric(0) : ps[0].c[0]);
+    const std::string c1 = s.num(ps[1].c.empty() ? numeric(0) : ps[1].c[0]);
+    out += "  " + s.decl("a", "par > " + s.dbl(0.5) + " ? " + c1 + " : " + c0);
+    out += "  " + s.decl("b", "par > " + s.dbl(0.5) + " ? " + c0 + " : " + c1);
+    out += "    return a + (b - a) * v" + (box ? std::string() : " * v * " + s.dbl(0.5)) + ";\n  }\n";
+    return out + "  return " + general + "<T>(x, sigma);\n";
+  }
+  if (maxdeg >= 2) out += "  " + s.decl("s2", "sigma * sigma");
+  out += "  " + s.decl("t", scaled ? "(u - k) * " + gs : "u - k");  // x's offset into its piece
+  out += "  " + s.decl("sg", "d >= " + s.dbl(0) + " ? " + s.dbl(-1) + " : " + s.dbl(1));  // +1: b right of x
+  auto jump_poly = [&](size_t i) {
+    std::vector<std::string> pc;
+    for (size_t k = 0; k < e[i].size(); ++k)
+      pc.push_back(coef(s, e[i][k] / (box ? numeric(static_cast<long>(k + 1))
+                                          : numeric(static_cast<long>((k + 1) * (k + 2))))));
+    return horner(s, pc, "w");
+  };
+  std::string base, P;
+  if (m == 1) {
+    base = kernel_mean(s, d.kernel, ps[0].c, "t");
+    P = jump_poly(0);
+  } else {
+    // Piece 1 starts at g: its polynomial at g + t.
+    out += "  " + s.decl("t1", gs + " + t");
+    base = "(par > " + s.dbl(0.5) + " ? " + kernel_mean(s, d.kernel, ps[1].c, "t1") + " : " +
+           kernel_mean(s, d.kernel, ps[0].c, "t") + ")";
+    const std::string p0 = jump_poly(0), p1 = jump_poly(1);
+    if (p0 == p1) {
+      P = p0;
+    } else {  // the break's parity: x's piece's own break (d >= 0) or the next one
+      out += "  " + s.decl("pj", "d >= " + s.dbl(0) + " ? par : " + s.dbl(1) + " - par");
+      P = "(pj > " + s.dbl(0.5) + " ? " + p1 + " : " + p0 + ")";
+    }
+  }
+  if (P.find('w') != std::string::npos) out += "  " + s.decl("w", "sg * l");
+  out += "    return " + base + " + sg * v" + vk + " * (" + P + ");\n  }\n";
+  out += "  return " + general + "<T>(x, sigma);\n";
+  return out;
+}
+
 namespace {
 
 // The polynomial f(x) on [n, n+1) of a staircase combination (floor, ceil, trunc: poly(x) plus
@@ -502,8 +600,6 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   out += "  " + s.decl("hw", (box ? (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3")
                                   : (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")) +
                                  std::string(" * sigma"));
-  out += "    if (sigma > " + s.dbl(0) + " && hw <= " + s.dbl(K) + ") {\n";
-  out += "    " + s.decl("n0", "floor(x)") + "    " + s.decl("y", "x - n0");
   // Base: f(n0 + v) on [n0, n0+1), coefficients in v.
   std::string base;
   bool s2 = false;
@@ -518,18 +614,10 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
     else
       base += m + std::string(st->z.size(), ')');
   }
-  if (s2) out += "    " + s.decl("s2", "sigma * sigma");
-  out += "    " + s.T() + " acc = " + base + ";\n";
-  out +=
-      "    " + s.decl("sc", "hw < " + s.dbl(1e-30) + " ? " + s.dbl(std::ldexp(1.0, 100)) + " : " + s.dbl(1));
-  out += "    " + s.decl("ik", s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + " * sc)");
   int maxdeg = 0;
-  {
-    const GiNaC::symbol u("u");
-    for (const auto& p : st->piece) maxdeg = std::max(maxdeg, p.degree(x));
-  }
-  for (int j = 1 - K; j <= K; ++j) {
-    const std::string J = s.dbl(j);
+  for (const auto& p : st->piece) maxdeg = std::max(maxdeg, p.degree(x));
+  // P(u) of the break n (its region's jump coefficients), Horner in u; uses_u when P reads u.
+  auto jump_poly = [&](bool& uses_u) {
     std::vector<std::string> pc;
     for (int k = 0; k <= maxdeg; ++k) {
       const std::string e = region_chain(s, *st, n, static_cast<size_t>(k));
@@ -540,14 +628,46 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
       const long den = box ? k + 1 : (k + 1) * (k + 2);
       pc.push_back(den == 1 ? e : e + " * " + s.num(numeric(1, den)));
     }
-    bool uses_u = false;
+    uses_u = false;
     for (size_t k = 1; k < pc.size(); ++k) uses_u = uses_u || !pc[k].empty();
+    return horner(s, pc, "u");
+  };
+  if (s.cpp()) {
+    // Pixel-sized kernels (half-width <= 1/2): only the nearest integer n = rint(x) is in reach, at
+    // the exact offset d = n - x; one term instead of 2K, and no scale for tiny widths (from 1e-30).
+    out += "    if (hw >= " + s.dbl(1e-30) + " && hw <= " + s.dbl(0.5) +
+           ") {  // one break in reach, the nearest\n";
+    out += "    " + s.decl("n0", "floor(x)") + "    " + s.decl("y", "x - n0");
+    if (s2) out += "    " + s.decl("s2", "sigma * sigma");
+    out += "    " + s.decl("n", "rint(x)") + "    " + s.decl("d", "n - x");
+    out +=
+        "    " + s.decl("sg", "d > " + s.dbl(0) + " ? " + s.dbl(1) + " : " + s.dbl(-1));  // +1: n right of x
+    out += "    " + s.decl("L", "hw - abs(d)");
+    out += "    " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
+    bool uses_u = false;
+    const std::string P = jump_poly(uses_u);
+    if (uses_u) out += "    " + s.decl("u", "sg * l");
+    out += "    " +
+           s.decl("v", "l * (" + s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + "))");
+    out += "        return " + base + " + sg * " + (box ? "v" : "v * v") + " * (" + P + ");\n    }\n";
+    // The general block below declares its own n0, y.
+  }
+  out += "    if (sigma > " + s.dbl(0) + " && hw <= " + s.dbl(K) + ") {\n";
+  out += "    " + s.decl("n0", "floor(x)") + "    " + s.decl("y", "x - n0");
+  if (s2) out += "    " + s.decl("s2", "sigma * sigma");
+  out += "    " + s.T() + " acc = " + base + ";\n";
+  out +=
+      "    " + s.decl("sc", "hw < " + s.dbl(1e-30) + " ? " + s.dbl(std::ldexp(1.0, 100)) + " : " + s.dbl(1));
+  out += "    " + s.decl("ik", s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + " * sc)");
+  for (int j = 1 - K; j <= K; ++j) {
+    const std::string J = s.dbl(j);
+    bool uses_u = false;
+    const std::string P = jump_poly(uses_u);
     out += "      {  // break at n0 + " + std::to_string(j) + "\n";
     out += "      " + s.decl("n", "n0 + " + J) + "      " + s.decl("d", "n - x");
     out += "      " + s.decl("L", j <= 0 ? "hw + d" : "hw - d");
     out += "      " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
     if (uses_u) out += "      " + s.decl("u", j <= 0 ? "-l" : "l");
-    const std::string P = horner(s, pc, "u");
     // Static sides: u = +-l, the tent's (u/w)(l/w) = +-(l/w)^2.
     out += "      " + s.decl("v", "l * sc * ik");
     out += std::string("        acc ") + (j <= 0 ? "-" : "+") + "= " + (box ? "v" : "v * v") + " * (" + P +

@@ -17,6 +17,11 @@ namespace bl::rulegen {
 // apply (Gaussian kernel, or polynomials whose extension over a period would cancel).
 std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang);
 
+// C++ only: for a box or tent PeriodicTable entry with one or two equally spaced breaks per period
+// (a power-of-two spacing), the body of an entry that takes pixel-sized kernels by the nearest break
+// alone and calls `general` (the full body, kept out of line) for the rest; "" where it does not apply.
+std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& general);
+
 // For a box or tent Combination entry of a staircase (floor, ceil, trunc and their squares):
 // statements that return the break sum when the kernel spans at most a few steps, else fall through
 // (prepend them to the combination body); "" where the form does not apply.
@@ -29,7 +34,8 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
 // Gaussian trunc/trunc^2 near 0, narrow kernels: a straight-line break sum ("" where it does not apply).
 std::string gauss_staircase_near(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds);
 // Gaussian staircases at any x, narrow kernels: the nearest breaks' Phic sum ("" where it does not apply).
-std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang, const std::vector<sym::Derived>* ds);
+std::string gauss_staircase_narrow(const sym::Derived& d, sym::Lang lang,
+                                   const std::vector<sym::Derived>* ds);
 
 std::string box_tent_piecewise_narrow(const sym::Derived& d, sym::Lang lang);
 

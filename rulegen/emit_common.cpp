@@ -1337,6 +1337,11 @@ std::string range_clamp(const Derived& d, Lang lang) {
     return std::string(name);
   };
   const std::string lo_s = lo ? bound(*lo, "lo") : "", hi_s = hi ? bound(*hi, "hi") : "";
+  if (s.cpp()) {  // one expression: compilers make it min/max (NaN passes), the early returns a branch
+    std::string v = hi ? "(v > " + hi_s + " ? " + hi_s + " : v)" : "v";
+    if (lo) v = "v < " + lo_s + " ? " + lo_s + " : " + v;
+    return out + "  return " + v + ";\n";
+  }
   if (lo) out += "  if (v < " + lo_s + ") return " + lo_s + ";\n";
   if (hi) out += "  if (v > " + hi_s + ") return " + hi_s + ";\n";
   return out + "  return v;\n";

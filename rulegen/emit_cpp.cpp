@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "emit_box_tent_breaks.hpp"
 #include "emit_common.hpp"
 #include "emit_normal_table.hpp"
 #include "emit_stat_pairs.hpp"
@@ -109,13 +110,20 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
         << impl_name(d) << "_diff(T x, T hh) {\n"
         << diff_body(d, Lang::Cpp) << "}\n\n";
     const std::string clamp = range_clamp(d, Lang::Cpp);
+    std::string main_body = body(d, Lang::Cpp, &ds);
+    if (const std::string hot = box_tent_periodic_hot(d, impl_name(d) + "_general"); !hot.empty()) {
+      t << "// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.\n"
+        << "template <class T>\nBL_NOINLINE T " << impl_name(d) << "_general(T x, T sigma) {\n"
+        << main_body << "}\n\n";
+      main_body = "  BL_MATH_USING\n" + hot;
+    }
     if (clamp.empty()) {
       t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
-        << body(d, Lang::Cpp, &ds) << "}\n\n";
+        << main_body << "}\n\n";
     } else {
       t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d)
         << "_raw(T x, T sigma) {\n"
-        << body(d, Lang::Cpp, &ds) << "}\n\n"
+        << main_body << "}\n\n"
         << "// The entry above, kept inside the range of the true value (rounding can leave it).\n"
         << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n  const T v = " << impl_name(d)
         << "_raw<T>(x, sigma);\n"

@@ -114,14 +114,25 @@ std::vector<Case> cases() {
                        -3.7,
                        37.5,
                        1e6 + 0.5,
-                       -1e6 - 0.25};
+                       -1e6 - 0.25,
+                       -1e-9,        // the nearest break (0) far beyond a tiny kernel, x just left of it
+                       8388607.75,   // 2^23 - 1/4: float's last quarter steps
+                       16777215.0};  // 2^24 - 1: an odd integer, float's last one
   // 1e-40: float's subnormal range (the rescale by 2^100); 2/sqrt3, 2/sqrt6, 3/sqrt6: where box and
   // tent hand over from the break sum (2 and 3 units each side) to the wide regime; 0.25/sqrt3,
   // 0.25/sqrt6: where square's one-break regime ends (half its gap), 0.45/sqrt3: where the box
   // square hands over to the wide regime (and the near-break sums end).
+  // 1e-30/sqrt3, 1e-30/sqrt6, 0.5/sqrt3, 0.5/sqrt6: the ends of the pixel-sized path (one break in
+  // reach: half-width from 1e-30 to half the gap between breaks, 1/4 for square, 1/2 for fract,
+  // triangle and the staircases).
   const double ss[] = {1e-40,
                        1e-35,
                        1e-31,
+                       1e-30 / std::sqrt(3.0),
+                       1e-30 / std::sqrt(6.0),
+                       0.01,
+                       0.5 / std::sqrt(3.0),
+                       0.5 / std::sqrt(6.0),
                        1e-12,
                        1e-3,
                        0.25 / std::sqrt(3.0),
@@ -139,7 +150,7 @@ std::vector<Case> cases() {
       out.push_back({x, std::nextafter(s, 0.0)});
       out.push_back({x, std::nextafter(s, 10.0)});
     }
-  for (double s : {1e-40, 1e-31, 1e-12})  // a tiny kernel a fraction of its width from a break
+  for (double s : {1e-40, 1e-31, 1e-12, 0.01})  // a kernel a fraction of its width from a break
     for (double a : {-0.9, -0.5, -0.1, 0.1, 0.5, 0.9}) out.push_back({a * s, s});
   return out;
 }

@@ -878,9 +878,7 @@ T gaussian_sin_raw(T x, T sigma) {
 template <class T>
 T gaussian_sin(T x, T sigma) {
   const T v = gaussian_sin_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 //   (((-1/2)*cos((2*x))*exp(((-2)*(sigma)^(2)))) + (1/2))
@@ -895,9 +893,7 @@ T gaussian_sin_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_sin_sq(T x, T sigma) {
   const T v = gaussian_sin_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (sin(x)*sinc(((3)^((1/2))*sigma)))
@@ -912,9 +908,7 @@ T box_sin_raw(T x, T sigma) {
 template <class T>
 T box_sin(T x, T sigma) {
   const T v = box_sin_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 //   (((-1/2)*cos((2*x))*sinc((2*(3)^((1/2))*sigma))) + (1/2))
@@ -929,9 +923,7 @@ T box_sin_sq_raw(T x, T sigma) {
 template <class T>
 T box_sin_sq(T x, T sigma) {
   const T v = box_sin_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   ((sinc(((1/2)*(6)^((1/2))*sigma)))^(2)*sin(x))
@@ -946,9 +938,7 @@ T tent_sin_raw(T x, T sigma) {
 template <class T>
 T tent_sin(T x, T sigma) {
   const T v = tent_sin_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 //   (((-1/2)*(sinc(((6)^((1/2))*sigma)))^(2)*cos((2*x))) + (1/2))
@@ -963,9 +953,7 @@ T tent_sin_sq_raw(T x, T sigma) {
 template <class T>
 T tent_sin_sq(T x, T sigma) {
   const T v = tent_sin_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (cos(x)*exp(((-1/2)*(sigma)^(2))))
@@ -980,9 +968,7 @@ T gaussian_cos_raw(T x, T sigma) {
 template <class T>
 T gaussian_cos(T x, T sigma) {
   const T v = gaussian_cos_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 //   (((1/2)*cos((2*x))*exp(((-2)*(sigma)^(2)))) + (1/2))
@@ -997,9 +983,7 @@ T gaussian_cos_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_cos_sq(T x, T sigma) {
   const T v = gaussian_cos_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (cos(x)*sinc(((3)^((1/2))*sigma)))
@@ -1014,9 +998,7 @@ T box_cos_raw(T x, T sigma) {
 template <class T>
 T box_cos(T x, T sigma) {
   const T v = box_cos_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 //   (((1/2)*cos((2*x))*sinc((2*(3)^((1/2))*sigma))) + (1/2))
@@ -1031,9 +1013,7 @@ T box_cos_sq_raw(T x, T sigma) {
 template <class T>
 T box_cos_sq(T x, T sigma) {
   const T v = box_cos_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   ((sinc(((1/2)*(6)^((1/2))*sigma)))^(2)*cos(x))
@@ -1048,9 +1028,7 @@ T tent_cos_raw(T x, T sigma) {
 template <class T>
 T tent_cos(T x, T sigma) {
   const T v = tent_cos_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 //   (((1/2)*(sinc(((6)^((1/2))*sigma)))^(2)*cos((2*x))) + (1/2))
@@ -1065,9 +1043,7 @@ T tent_cos_sq_raw(T x, T sigma) {
 template <class T>
 T tent_cos_sq(T x, T sigma) {
   const T v = tent_cos_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   exp((((1/2)*(sigma)^(2)) + x))
@@ -1082,8 +1058,7 @@ T gaussian_exp_raw(T x, T sigma) {
 template <class T>
 T gaussian_exp(T x, T sigma) {
   const T v = gaussian_exp_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   exp(((2*(sigma)^(2)) + (2*x)))
@@ -1098,8 +1073,7 @@ T gaussian_exp_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_exp_sq(T x, T sigma) {
   const T v = gaussian_exp_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   exp_sinhc(x, ((3)^((1/2))*sigma))
@@ -1114,8 +1088,7 @@ T box_exp_raw(T x, T sigma) {
 template <class T>
 T box_exp(T x, T sigma) {
   const T v = box_exp_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   exp_sinhc((2*x), (2*(3)^((1/2))*sigma))
@@ -1130,8 +1103,7 @@ T box_exp_sq_raw(T x, T sigma) {
 template <class T>
 T box_exp_sq(T x, T sigma) {
   const T v = box_exp_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   exp_sinhc2(x, ((1/2)*(6)^((1/2))*sigma))
@@ -1146,8 +1118,7 @@ T tent_exp_raw(T x, T sigma) {
 template <class T>
 T tent_exp(T x, T sigma) {
   const T v = tent_exp_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   exp_sinhc2((2*x), ((6)^((1/2))*sigma))
@@ -1162,8 +1133,7 @@ T tent_exp_sq_raw(T x, T sigma) {
 template <class T>
 T tent_exp_sq(T x, T sigma) {
   const T v = tent_exp_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   prod0(sinh(x), exp(((1/2)*(sigma)^(2))))
@@ -1186,8 +1156,7 @@ T gaussian_sinh_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_sinh_sq(T x, T sigma) {
   const T v = gaussian_sinh_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   prod0(sinh(x), sinhc(((3)^((1/2))*sigma)))
@@ -1210,8 +1179,7 @@ T box_sinh_sq_raw(T x, T sigma) {
 template <class T>
 T box_sinh_sq(T x, T sigma) {
   const T v = box_sinh_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   prod0(sinh(x), (sinhc(((1/2)*(6)^((1/2))*sigma)))^(2))
@@ -1234,8 +1202,7 @@ T tent_sinh_sq_raw(T x, T sigma) {
 template <class T>
 T tent_sinh_sq(T x, T sigma) {
   const T v = tent_sinh_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (cosh(x)*exp(((1/2)*(sigma)^(2))))
@@ -1250,8 +1217,7 @@ T gaussian_cosh_raw(T x, T sigma) {
 template <class T>
 T gaussian_cosh(T x, T sigma) {
   const T v = gaussian_cosh_raw<T>(x, sigma);
-  if (v < T(1)) return T(1);
-  return v;
+  return v < T(1) ? T(1) : v;
 }
 
 //   (((1/2)*cosh((2*x))*exp((2*(sigma)^(2)))) + (1/2))
@@ -1266,8 +1232,7 @@ T gaussian_cosh_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_cosh_sq(T x, T sigma) {
   const T v = gaussian_cosh_sq_raw<T>(x, sigma);
-  if (v < T(1)) return T(1);
-  return v;
+  return v < T(1) ? T(1) : v;
 }
 
 //   (cosh(x)*sinhc(((3)^((1/2))*sigma)))
@@ -1282,8 +1247,7 @@ T box_cosh_raw(T x, T sigma) {
 template <class T>
 T box_cosh(T x, T sigma) {
   const T v = box_cosh_raw<T>(x, sigma);
-  if (v < T(1)) return T(1);
-  return v;
+  return v < T(1) ? T(1) : v;
 }
 
 //   (((1/2)*cosh((2*x))*sinhc((2*(3)^((1/2))*sigma))) + (1/2))
@@ -1298,8 +1262,7 @@ T box_cosh_sq_raw(T x, T sigma) {
 template <class T>
 T box_cosh_sq(T x, T sigma) {
   const T v = box_cosh_sq_raw<T>(x, sigma);
-  if (v < T(1)) return T(1);
-  return v;
+  return v < T(1) ? T(1) : v;
 }
 
 //   ((sinhc(((1/2)*(6)^((1/2))*sigma)))^(2)*cosh(x))
@@ -1314,8 +1277,7 @@ T tent_cosh_raw(T x, T sigma) {
 template <class T>
 T tent_cosh(T x, T sigma) {
   const T v = tent_cosh_raw<T>(x, sigma);
-  if (v < T(1)) return T(1);
-  return v;
+  return v < T(1) ? T(1) : v;
 }
 
 //   (((1/2)*(sinhc(((6)^((1/2))*sigma)))^(2)*cosh((2*x))) + (1/2))
@@ -1330,8 +1292,7 @@ T tent_cosh_sq_raw(T x, T sigma) {
 template <class T>
 T tent_cosh_sq(T x, T sigma) {
   const T v = tent_cosh_sq_raw<T>(x, sigma);
-  if (v < T(1)) return T(1);
-  return v;
+  return v < T(1) ? T(1) : v;
 }
 
 //   ((sigma)^(2) + (x)^(2))
@@ -1346,8 +1307,7 @@ T gaussian_pow2_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow2(T x, T sigma) {
   const T v = gaussian_pow2_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((3*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
@@ -1362,8 +1322,7 @@ T gaussian_pow2_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow2_sq(T x, T sigma) {
   const T v = gaussian_pow2_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((sigma)^(2) + (x)^(2))
@@ -1378,8 +1337,7 @@ T box_pow2_raw(T x, T sigma) {
 template <class T>
 T box_pow2(T x, T sigma) {
   const T v = box_pow2_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((9/5)*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
@@ -1394,8 +1352,7 @@ T box_pow2_sq_raw(T x, T sigma) {
 template <class T>
 T box_pow2_sq(T x, T sigma) {
   const T v = box_pow2_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((sigma)^(2) + (x)^(2))
@@ -1410,8 +1367,7 @@ T tent_pow2_raw(T x, T sigma) {
 template <class T>
 T tent_pow2(T x, T sigma) {
   const T v = tent_pow2_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((12/5)*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
@@ -1426,8 +1382,7 @@ T tent_pow2_sq_raw(T x, T sigma) {
 template <class T>
 T tent_pow2_sq(T x, T sigma) {
   const T v = tent_pow2_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((3*(sigma)^(2)*x) + (x)^(3))
@@ -1451,8 +1406,7 @@ T gaussian_pow3_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow3_sq(T x, T sigma) {
   const T v = gaussian_pow3_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((3*(sigma)^(2)*x) + (x)^(3))
@@ -1476,8 +1430,7 @@ T box_pow3_sq_raw(T x, T sigma) {
 template <class T>
 T box_pow3_sq(T x, T sigma) {
   const T v = box_pow3_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((3*(sigma)^(2)*x) + (x)^(3))
@@ -1501,8 +1454,7 @@ T tent_pow3_sq_raw(T x, T sigma) {
 template <class T>
 T tent_pow3_sq(T x, T sigma) {
   const T v = tent_pow3_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((3*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
@@ -1517,8 +1469,7 @@ T gaussian_pow4_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow4(T x, T sigma) {
   const T v = gaussian_pow4_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((105*(sigma)^(8)) + (210*(sigma)^(4)*(x)^(4)) + (28*(sigma)^(2)*(x)^(6)) +
@@ -1534,8 +1485,7 @@ T gaussian_pow4_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow4_sq(T x, T sigma) {
   const T v = gaussian_pow4_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((9/5)*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
@@ -1550,8 +1500,7 @@ T box_pow4_raw(T x, T sigma) {
 template <class T>
 T box_pow4(T x, T sigma) {
   const T v = box_pow4_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((108*(sigma)^(6)*(x)^(2)) + (126*(sigma)^(4)*(x)^(4)) + (28*(sigma)^(2)*(x)^(6)) +
@@ -1567,8 +1516,7 @@ T box_pow4_sq_raw(T x, T sigma) {
 template <class T>
 T box_pow4_sq(T x, T sigma) {
   const T v = box_pow4_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((12/5)*(sigma)^(4)) + (6*(sigma)^(2)*(x)^(2)) + (x)^(4))
@@ -1583,8 +1531,7 @@ T tent_pow4_raw(T x, T sigma) {
 template <class T>
 T tent_pow4(T x, T sigma) {
   const T v = tent_pow4_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((144/5)*(sigma)^(8)) + (168*(sigma)^(4)*(x)^(4)) + (216*(sigma)^(6)*(x)^(2)) +
@@ -1600,8 +1547,7 @@ T tent_pow4_sq_raw(T x, T sigma) {
 template <class T>
 T tent_pow4_sq(T x, T sigma) {
   const T v = tent_pow4_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((10*(sigma)^(2)*(x)^(3)) + (15*(sigma)^(4)*x) + (x)^(5))
@@ -1626,8 +1572,7 @@ T gaussian_pow5_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow5_sq(T x, T sigma) {
   const T v = gaussian_pow5_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((10*(sigma)^(2)*(x)^(3)) + (9*(sigma)^(4)*x) + (x)^(5))
@@ -1652,8 +1597,7 @@ T box_pow5_sq_raw(T x, T sigma) {
 template <class T>
 T box_pow5_sq(T x, T sigma) {
   const T v = box_pow5_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((10*(sigma)^(2)*(x)^(3)) + (12*(sigma)^(4)*x) + (x)^(5))
@@ -1678,8 +1622,7 @@ T tent_pow5_sq_raw(T x, T sigma) {
 template <class T>
 T tent_pow5_sq(T x, T sigma) {
   const T v = tent_pow5_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((15*(sigma)^(2)*(x)^(4)) + (15*(sigma)^(6)) + (45*(sigma)^(4)*(x)^(2)) + (x)^(6))
@@ -1694,8 +1637,7 @@ T gaussian_pow6_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow6(T x, T sigma) {
   const T v = gaussian_pow6_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((10395*(sigma)^(12)) + (13860*(sigma)^(6)*(x)^(6)) + (1485*(sigma)^(4)*(x)^(8)) +
@@ -1712,8 +1654,7 @@ T gaussian_pow6_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow6_sq(T x, T sigma) {
   const T v = gaussian_pow6_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((27/7)*(sigma)^(6)) + (15*(sigma)^(2)*(x)^(4)) + (27*(sigma)^(4)*(x)^(2)) + (x)^(6))
@@ -1728,8 +1669,7 @@ T box_pow6_raw(T x, T sigma) {
 template <class T>
 T box_pow6(T x, T sigma) {
   const T v = box_pow6_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((729/13)*(sigma)^(12)) + (1458*(sigma)^(10)*(x)^(2)) + (3564*(sigma)^(6)*(x)^(6)) +
@@ -1746,8 +1686,7 @@ T box_pow6_sq_raw(T x, T sigma) {
 template <class T>
 T box_pow6_sq(T x, T sigma) {
   const T v = box_pow6_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((54/7)*(sigma)^(6)) + (15*(sigma)^(2)*(x)^(4)) + (36*(sigma)^(4)*(x)^(2)) + (x)^(6))
@@ -1762,8 +1701,7 @@ T tent_pow6_raw(T x, T sigma) {
 template <class T>
 T tent_pow6(T x, T sigma) {
   const T v = tent_pow6_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((46656/91)*(sigma)^(12)) + (1188*(sigma)^(4)*(x)^(8)) + (14256*(sigma)^(8)*(x)^(4)) +
@@ -1780,8 +1718,7 @@ T tent_pow6_sq_raw(T x, T sigma) {
 template <class T>
 T tent_pow6_sq(T x, T sigma) {
   const T v = tent_pow6_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((105*(sigma)^(4)*(x)^(3)) + (105*(sigma)^(6)*x) + (21*(sigma)^(2)*(x)^(5)) + (x)^(7))
@@ -1807,8 +1744,7 @@ T gaussian_pow7_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow7_sq(T x, T sigma) {
   const T v = gaussian_pow7_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((21*(sigma)^(2)*(x)^(5)) + (27*(sigma)^(6)*x) + (63*(sigma)^(4)*(x)^(3)) + (x)^(7))
@@ -1834,8 +1770,7 @@ T box_pow7_sq_raw(T x, T sigma) {
 template <class T>
 T box_pow7_sq(T x, T sigma) {
   const T v = box_pow7_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((21*(sigma)^(2)*(x)^(5)) + (54*(sigma)^(6)*x) + (84*(sigma)^(4)*(x)^(3)) + (x)^(7))
@@ -1862,8 +1797,7 @@ T tent_pow7_sq_raw(T x, T sigma) {
 template <class T>
 T tent_pow7_sq(T x, T sigma) {
   const T v = tent_pow7_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((105*(sigma)^(8)) + (210*(sigma)^(4)*(x)^(4)) + (28*(sigma)^(2)*(x)^(6)) +
@@ -1879,8 +1813,7 @@ T gaussian_pow8_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow8(T x, T sigma) {
   const T v = gaussian_pow8_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((120*(sigma)^(2)*(x)^(14)) + (120120*(sigma)^(6)*(x)^(10)) + (1351350*(sigma)^(8)*(x)^(8)) +
@@ -1897,8 +1830,7 @@ T gaussian_pow8_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_pow8_sq(T x, T sigma) {
   const T v = gaussian_pow8_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((108*(sigma)^(6)*(x)^(2)) + (126*(sigma)^(4)*(x)^(4)) + (28*(sigma)^(2)*(x)^(6)) +
@@ -1914,8 +1846,7 @@ T box_pow8_raw(T x, T sigma) {
 template <class T>
 T box_pow8(T x, T sigma) {
   const T v = box_pow8_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((6561/17)*(sigma)^(16)) + (102060*(sigma)^(12)*(x)^(4)) + (115830*(sigma)^(8)*(x)^(8)) +
@@ -1932,8 +1863,7 @@ T box_pow8_sq_raw(T x, T sigma) {
 template <class T>
 T box_pow8_sq(T x, T sigma) {
   const T v = box_pow8_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((144/5)*(sigma)^(8)) + (168*(sigma)^(4)*(x)^(4)) + (216*(sigma)^(6)*(x)^(2)) +
@@ -1949,8 +1879,7 @@ T tent_pow8_raw(T x, T sigma) {
 template <class T>
 T tent_pow8(T x, T sigma) {
   const T v = tent_pow8_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((186624/17)*(sigma)^(16)) + (120*(sigma)^(2)*(x)^(14)) + (279936*(sigma)^(14)*(x)^(2)) +
@@ -1967,8 +1896,7 @@ T tent_pow8_sq_raw(T x, T sigma) {
 template <class T>
 T tent_pow8_sq(T x, T sigma) {
   const T v = tent_pow8_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
@@ -1997,8 +1925,7 @@ template <class T>
 T gaussian_xexp(T x, T sigma) {
   const T v = gaussian_xexp_raw<T>(x, sigma);
   static const T lo = (-exp((T(-1))));
-  if (v < lo) return lo;
-  return v;
+  return v < lo ? lo : v;
 }
 
 //   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
@@ -2027,8 +1954,7 @@ T gaussian_xexp_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_xexp_sq(T x, T sigma) {
   const T v = gaussian_xexp_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
@@ -2081,8 +2007,7 @@ template <class T>
 T box_xexp(T x, T sigma) {
   const T v = box_xexp_raw<T>(x, sigma);
   static const T lo = (-exp((T(-1))));
-  if (v < lo) return lo;
-  return v;
+  return v < lo ? lo : v;
 }
 
 //   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
@@ -2135,8 +2060,7 @@ T box_xexp_sq_raw(T x, T sigma) {
 template <class T>
 T box_xexp_sq(T x, T sigma) {
   const T v = box_xexp_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
@@ -2190,8 +2114,7 @@ template <class T>
 T tent_xexp(T x, T sigma) {
   const T v = tent_xexp_raw<T>(x, sigma);
   static const T lo = (-exp((T(-1))));
-  if (v < lo) return lo;
-  return v;
+  return v < lo ? lo : v;
 }
 
 //   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
@@ -2245,8 +2168,7 @@ T tent_xexp_sq_raw(T x, T sigma) {
 template <class T>
 T tent_xexp_sq(T x, T sigma) {
   const T v = tent_xexp_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((-2)*Phi((-(sigma)^((-1))*x))*x) + (2*phi((-(sigma)^((-1))*x))*sigma) + x) [Phi, phi:
@@ -2282,8 +2204,7 @@ T gaussian_abs_raw(T x, T sigma) {
 template <class T>
 T gaussian_abs(T x, T sigma) {
   const T v = gaussian_abs_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((sigma)^(2) + (x)^(2))
@@ -2298,8 +2219,7 @@ T gaussian_abs_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_abs_sq(T x, T sigma) {
   const T v = gaussian_abs_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {((-1/2)*(t)^(2)) on [-inf, 0);
@@ -2339,8 +2259,7 @@ T box_abs_raw(T x, T sigma) {
 template <class T>
 T box_abs(T x, T sigma) {
   const T v = box_abs_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((sigma)^(2) + (x)^(2))
@@ -2355,8 +2274,7 @@ T box_abs_sq_raw(T x, T sigma) {
 template <class T>
 T box_abs_sq(T x, T sigma) {
   const T v = box_abs_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {((-1/6)*(t)^(3)) on [-inf, 0);
@@ -2396,8 +2314,7 @@ T tent_abs_raw(T x, T sigma) {
 template <class T>
 T tent_abs(T x, T sigma) {
   const T v = tent_abs_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   ((sigma)^(2) + (x)^(2))
@@ -2412,8 +2329,7 @@ T tent_abs_sq_raw(T x, T sigma) {
 template <class T>
 T tent_abs_sq(T x, T sigma) {
   const T v = tent_abs_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (((-2)*Phi((-(sigma)^((-1))*x))) + 1) [Phi, phi: standard normal CDF and density]
@@ -2447,9 +2363,7 @@ T gaussian_sign_raw(T x, T sigma) {
 template <class T>
 T gaussian_sign(T x, T sigma) {
   const T v = gaussian_sign_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 //   1
@@ -2464,9 +2378,7 @@ T gaussian_sign_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_sign_sq(T x, T sigma) {
   const T v = gaussian_sign_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {(-t) on [-inf, 0); t on [0, inf)}
@@ -2504,9 +2416,7 @@ T box_sign_raw(T x, T sigma) {
 template <class T>
 T box_sign(T x, T sigma) {
   const T v = box_sign_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 //   1
@@ -2521,9 +2431,7 @@ T box_sign_sq_raw(T x, T sigma) {
 template <class T>
 T box_sign_sq(T x, T sigma) {
   const T v = box_sign_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {((-1/2)*(t)^(2)) on [-inf, 0);
@@ -2562,9 +2470,7 @@ T tent_sign_raw(T x, T sigma) {
 template <class T>
 T tent_sign(T x, T sigma) {
   const T v = tent_sign_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 //   1
@@ -2579,9 +2485,7 @@ T tent_sign_sq_raw(T x, T sigma) {
 template <class T>
 T tent_sign_sq(T x, T sigma) {
   const T v = tent_sign_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   ((-Phi((-(sigma)^((-1))*x))) + 1) [Phi, phi: standard normal CDF and density]
@@ -2615,9 +2519,7 @@ T gaussian_step_raw(T x, T sigma) {
 template <class T>
 T gaussian_step(T x, T sigma) {
   const T v = gaussian_step_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   ((-Phi((-(sigma)^((-1))*x))) + 1) [Phi, phi: standard normal CDF and density]
@@ -2651,9 +2553,7 @@ T gaussian_step_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_step_sq(T x, T sigma) {
   const T v = gaussian_step_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); t on [0, inf)}
@@ -2691,9 +2591,7 @@ T box_step_raw(T x, T sigma) {
 template <class T>
 T box_step(T x, T sigma) {
   const T v = box_step_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); t on [0, inf)}
@@ -2731,9 +2629,7 @@ T box_step_sq_raw(T x, T sigma) {
 template <class T>
 T box_step_sq(T x, T sigma) {
   const T v = box_step_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0); ((1/2)*(t)^(2))
@@ -2772,9 +2668,7 @@ T tent_step_raw(T x, T sigma) {
 template <class T>
 T tent_step(T x, T sigma) {
   const T v = tent_step_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0); ((1/2)*(t)^(2))
@@ -2813,9 +2707,7 @@ T tent_step_sq_raw(T x, T sigma) {
 template <class T>
 T tent_step_sq(T x, T sigma) {
   const T v = tent_step_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   ((-Phi((-((-1) + x)*(sigma)^((-1))))) + (-Phi((-(sigma)^((-1))*x))*x) + (-phi((-((-1) +
@@ -2867,9 +2759,7 @@ T gaussian_saturate_raw(T x, T sigma) {
 template <class T>
 T gaussian_saturate(T x, T sigma) {
   const T v = gaussian_saturate_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (((sigma)^(2)*Phi((-((-1) + x)*(sigma)^((-1))))) + ((x)^(2)*Phi((-((-1) +
@@ -2926,9 +2816,7 @@ T gaussian_saturate_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_saturate_sq(T x, T sigma) {
   const T v = gaussian_saturate_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); ((1/2)*(t)^(2)) on [0, 1);
@@ -2978,9 +2866,7 @@ T box_saturate_raw(T x, T sigma) {
 template <class T>
 T box_saturate(T x, T sigma) {
   const T v = box_saturate_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); ((1/3)*(t)^(3)) on [0, 1);
@@ -3031,9 +2917,7 @@ T box_saturate_sq_raw(T x, T sigma) {
 template <class T>
 T box_saturate_sq(T x, T sigma) {
   const T v = box_saturate_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0); ((1/6)*(t)^(3))
@@ -3083,9 +2967,7 @@ T tent_saturate_raw(T x, T sigma) {
 template <class T>
 T tent_saturate(T x, T sigma) {
   const T v = tent_saturate_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0); ((1/12)*(t)^(4))
@@ -3136,9 +3018,7 @@ T tent_saturate_sq_raw(T x, T sigma) {
 template <class T>
 T tent_saturate_sq(T x, T sigma) {
   const T v = tent_saturate_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (((-2)*(x)^(2)*phi((-(sigma)^((-1))*x))*sigma) + ((-2)*(x)^(3)*Phi((-((-1) +
@@ -3202,9 +3082,7 @@ T gaussian_smoothstep_raw(T x, T sigma) {
 template <class T>
 T gaussian_smoothstep(T x, T sigma) {
   const T v = gaussian_smoothstep_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (((-108)*(sigma)^(3)*(x)^(2)*phi((-(sigma)^((-1))*x))) +
@@ -3296,9 +3174,7 @@ T gaussian_smoothstep_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_smoothstep_sq(T x, T sigma) {
   const T v = gaussian_smoothstep_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); (((-1/2)*(t)^(4)) + (t)^(3))
@@ -3349,9 +3225,7 @@ T box_smoothstep_raw(T x, T sigma) {
 template <class T>
 T box_smoothstep(T x, T sigma) {
   const T v = box_smoothstep_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F(x+h) - F(x-h))/(2h), h = sqrt(3) sigma, F = {0 on [-inf, 0); (((-2)*(t)^(6)) +
@@ -3402,9 +3276,7 @@ T box_smoothstep_sq_raw(T x, T sigma) {
 template <class T>
 T box_smoothstep_sq(T x, T sigma) {
   const T v = box_smoothstep_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0);
@@ -3456,9 +3328,7 @@ T tent_smoothstep_raw(T x, T sigma) {
 template <class T>
 T tent_smoothstep(T x, T sigma) {
   const T v = tent_smoothstep_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F2(x+w) - 2 F2(x) + F2(x-w))/w^2, w = sqrt(6) sigma, F2 = {0 on [-inf, 0); (((-2/7)*(t)^(7))
@@ -3510,9 +3380,7 @@ T tent_smoothstep_sq_raw(T x, T sigma) {
 template <class T>
 T tent_smoothstep_sq(T x, T sigma) {
   const T v = tent_smoothstep_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
@@ -3570,9 +3438,7 @@ T gaussian_laplace_raw(T x, T sigma) {
 template <class T>
 T gaussian_laplace(T x, T sigma) {
   const T v = gaussian_laplace_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
@@ -3630,9 +3496,7 @@ T gaussian_laplace_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_laplace_sq(T x, T sigma) {
   const T v = gaussian_laplace_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
@@ -3699,9 +3563,7 @@ T box_laplace_raw(T x, T sigma) {
 template <class T>
 T box_laplace(T x, T sigma) {
   const T v = box_laplace_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
@@ -3768,9 +3630,7 @@ T box_laplace_sq_raw(T x, T sigma) {
 template <class T>
 T box_laplace_sq(T x, T sigma) {
   const T v = box_laplace_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
@@ -3935,9 +3795,7 @@ T tent_laplace_raw(T x, T sigma) {
 template <class T>
 T tent_laplace(T x, T sigma) {
   const T v = tent_laplace_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
@@ -4102,9 +3960,7 @@ T tent_laplace_sq_raw(T x, T sigma) {
 template <class T>
 T tent_laplace_sq(T x, T sigma) {
   const T v = tent_laplace_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
@@ -4144,9 +4000,7 @@ T gaussian_exp_decay_raw(T x, T sigma) {
 template <class T>
 T gaussian_exp_decay(T x, T sigma) {
   const T v = gaussian_exp_decay_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
@@ -4186,9 +4040,7 @@ T gaussian_exp_decay_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_exp_decay_sq(T x, T sigma) {
   const T v = gaussian_exp_decay_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
@@ -4235,9 +4087,7 @@ T box_exp_decay_raw(T x, T sigma) {
 template <class T>
 T box_exp_decay(T x, T sigma) {
   const T v = box_exp_decay_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
@@ -4284,9 +4134,7 @@ T box_exp_decay_sq_raw(T x, T sigma) {
 template <class T>
 T box_exp_decay_sq(T x, T sigma) {
   const T v = box_exp_decay_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
@@ -4382,9 +4230,7 @@ T tent_exp_decay_raw(T x, T sigma) {
 template <class T>
 T tent_exp_decay(T x, T sigma) {
   const T v = tent_exp_decay_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
@@ -4480,9 +4326,7 @@ T tent_exp_decay_sq_raw(T x, T sigma) {
 template <class T>
 T tent_exp_decay_sq(T x, T sigma) {
   const T v = tent_exp_decay_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
@@ -4524,9 +4368,7 @@ template <class T>
 T gaussian_exp_ramp(T x, T sigma) {
   const T v = gaussian_exp_ramp_raw<T>(x, sigma);
   static const T hi = exp((T(-1)));
-  if (v < T(0)) return T(0);
-  if (v > hi) return hi;
-  return v;
+  return v < T(0) ? T(0) : (v > hi ? hi : v);
 }
 
 //   sum over terms of e^(a (x - ref) + a^2 sigma^2/2) int q(s) phi((s - s_mu)/sigma)/sigma ds
@@ -4569,9 +4411,7 @@ template <class T>
 T gaussian_exp_ramp_sq(T x, T sigma) {
   const T v = gaussian_exp_ramp_sq_raw<T>(x, sigma);
   static const T hi = exp((T(-2)));
-  if (v < T(0)) return T(0);
-  if (v > hi) return hi;
-  return v;
+  return v < T(0) ? T(0) : (v > hi ? hi : v);
 }
 
 //   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
@@ -4639,9 +4479,7 @@ template <class T>
 T box_exp_ramp(T x, T sigma) {
   const T v = box_exp_ramp_raw<T>(x, sigma);
   static const T hi = exp((T(-1)));
-  if (v < T(0)) return T(0);
-  if (v > hi) return hi;
-  return v;
+  return v < T(0) ? T(0) : (v > hi ? hi : v);
 }
 
 //   sum over terms of (1/2h) int q(s) e^(a s) ds over the term's interval cap [x-h, x+h], h =
@@ -4711,9 +4549,7 @@ template <class T>
 T box_exp_ramp_sq(T x, T sigma) {
   const T v = box_exp_ramp_sq_raw<T>(x, sigma);
   static const T hi = exp((T(-2)));
-  if (v < T(0)) return T(0);
-  if (v > hi) return hi;
-  return v;
+  return v < T(0) ? T(0) : (v > hi ? hi : v);
 }
 
 //   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
@@ -4816,9 +4652,7 @@ template <class T>
 T tent_exp_ramp(T x, T sigma) {
   const T v = tent_exp_ramp_raw<T>(x, sigma);
   static const T hi = exp((T(-1)));
-  if (v < T(0)) return T(0);
-  if (v > hi) return hi;
-  return v;
+  return v < T(0) ? T(0) : (v > hi ? hi : v);
 }
 
 //   sum over terms of int q(s) e^(a s) (w - |t - x|)/w^2 over the term's interval cap [x-w, x+w],
@@ -4925,9 +4759,7 @@ template <class T>
 T tent_exp_ramp_sq(T x, T sigma) {
   const T v = tent_exp_ramp_sq_raw<T>(x, sigma);
   static const T hi = exp((T(-2)));
-  if (v < T(0)) return T(0);
-  if (v > hi) return hi;
-  return v;
+  return v < T(0) ? T(0) : (v > hi ? hi : v);
 }
 
 //   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
@@ -5231,9 +5063,7 @@ T gaussian_fract_raw(T x, T sigma) {
 template <class T>
 T gaussian_fract(T x, T sigma) {
   const T v = gaussian_fract_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -5649,16 +5479,12 @@ T gaussian_fract_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_fract_sq(T x, T sigma) {
   const T v = gaussian_fract_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
-//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
-//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/2)*(t)^(2)) on [0, 1)}, F_p2 =
-//   {((1/6)*(t)^(3)) on [0, 1)}
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T box_fract_raw(T x, T sigma) {
+BL_NOINLINE T box_fract_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -5725,13 +5551,33 @@ T box_fract_raw(T x, T sigma) {
   return acc;
 }
 
+//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/2)*(t)^(2)) on [0, 1)}, F_p2 =
+//   {((1/6)*(t)^(3)) on [0, 1)}
+template <class T>
+T box_fract_raw(T x, T sigma) {
+  BL_MATH_USING
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (hw >= T(1e-30) && hw <= (T(1)/T(2))) {  // one break in reach, the nearest
+    const T u = x;
+    const T k = floor(u);
+    const T j = rint(u);
+    const T d = u - j;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * (T(1.0) / (T(2.0) * hw));
+    const T t = u - k;
+    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    return (((T(1)))) * t + sg * v * (((T(-1))));
+  }
+  return box_fract_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T box_fract(T x, T sigma) {
   const T v = box_fract_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -5768,11 +5614,9 @@ T box_fract_right(T x, T sigma) {
   return detail::box_periodic_right(x, hw, period, p, p1);
 }
 
-//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
-//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/3)*(t)^(3)) on [0, 1)}, F_p2 =
-//   {((1/12)*(t)^(4)) on [0, 1)}
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T box_fract_sq_raw(T x, T sigma) {
+BL_NOINLINE T box_fract_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -5846,20 +5690,40 @@ T box_fract_sq_raw(T x, T sigma) {
   return acc;
 }
 
+//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/3)*(t)^(3)) on [0, 1)}, F_p2 =
+//   {((1/12)*(t)^(4)) on [0, 1)}
+template <class T>
+T box_fract_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (hw >= T(1e-30) && hw <= (T(1)/T(2))) {  // one break in reach, the nearest
+    const T u = x;
+    const T k = floor(u);
+    const T j = rint(u);
+    const T d = u - j;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * (T(1.0) / (T(2.0) * hw));
+    const T s2 = sigma * sigma;
+    const T t = u - k;
+    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    const T w = sg * l;
+    return ((((T(1)))) * t) * t + (((T(1))) * s2) + sg * v * ((((T(-1)))) * w + ((T(-1))));
+  }
+  return box_fract_sq_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T box_fract_sq(T x, T sigma) {
   const T v = box_fract_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
-//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
-//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/2)*(t)^(2)) on [0,
-//   1)}, F_p2 = {((1/6)*(t)^(3)) on [0, 1)}
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T tent_fract_raw(T x, T sigma) {
+BL_NOINLINE T tent_fract_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -5931,13 +5795,33 @@ T tent_fract_raw(T x, T sigma) {
   return acc;
 }
 
+//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/2)*(t)^(2)) on [0,
+//   1)}, F_p2 = {((1/6)*(t)^(3)) on [0, 1)}
+template <class T>
+T tent_fract_raw(T x, T sigma) {
+  BL_MATH_USING
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (hw >= T(1e-30) && hw <= (T(1)/T(2))) {  // one break in reach, the nearest
+    const T u = x;
+    const T k = floor(u);
+    const T j = rint(u);
+    const T d = u - j;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * (T(1.0) / (hw));
+    const T t = u - k;
+    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    return (((T(1)))) * t + sg * v * v * (((T(-1)/T(2))));
+  }
+  return tent_fract_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T tent_fract(T x, T sigma) {
   const T v = tent_fract_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -5977,11 +5861,9 @@ T tent_fract_right(T x, T sigma) {
   return detail::tent_periodic_right(x, hw, period, p, p1, p2);
 }
 
-//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
-//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/3)*(t)^(3)) on [0,
-//   1)}, F_p2 = {((1/12)*(t)^(4)) on [0, 1)}
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T tent_fract_sq_raw(T x, T sigma) {
+BL_NOINLINE T tent_fract_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -6060,13 +5942,35 @@ T tent_fract_sq_raw(T x, T sigma) {
   return acc;
 }
 
+//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/3)*(t)^(3)) on [0,
+//   1)}, F_p2 = {((1/12)*(t)^(4)) on [0, 1)}
+template <class T>
+T tent_fract_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (hw >= T(1e-30) && hw <= (T(1)/T(2))) {  // one break in reach, the nearest
+    const T u = x;
+    const T k = floor(u);
+    const T j = rint(u);
+    const T d = u - j;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * (T(1.0) / (hw));
+    const T s2 = sigma * sigma;
+    const T t = u - k;
+    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    const T w = sg * l;
+    return ((((T(1)))) * t) * t + (((T(1))) * s2) + sg * v * v * ((((T(-1)/T(3)))) * w + ((T(-1)/T(2))));
+  }
+  return tent_fract_sq_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T tent_fract_sq(T x, T sigma) {
   const T v = tent_fract_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
@@ -6381,9 +6285,7 @@ T gaussian_triangle_raw(T x, T sigma) {
 template <class T>
 T gaussian_triangle(T x, T sigma) {
   const T v = gaussian_triangle_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -6840,17 +6742,12 @@ T gaussian_triangle_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_triangle_sq(T x, T sigma) {
   const T v = gaussian_triangle_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
-//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
-//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 2, F_p = {((1/2)*(t)^(2)) on [0, 1);
-//   (((-1/2)*(t)^(2)) + (-1) + (2*t)) on [1, 2)}, F_p2 = {((1/6)*(t)^(3)) on [0, 1);
-//   (((-1/6)*(t)^(3)) + (-t) + (1/3) + (t)^(2)) on [1, 2)}
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T box_triangle_raw(T x, T sigma) {
+BL_NOINLINE T box_triangle_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -6940,13 +6837,38 @@ T box_triangle_raw(T x, T sigma) {
   return acc;
 }
 
+//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 2, F_p = {((1/2)*(t)^(2)) on [0, 1);
+//   (((-1/2)*(t)^(2)) + (-1) + (2*t)) on [1, 2)}, F_p2 = {((1/6)*(t)^(3)) on [0, 1);
+//   (((-1/6)*(t)^(3)) + (-t) + (1/3) + (t)^(2)) on [1, 2)}
+template <class T>
+T box_triangle_raw(T x, T sigma) {
+  BL_MATH_USING
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (hw >= T(1e-30) && hw <= (T(1)/T(2))) {  // one break in reach, the nearest
+    const T u = x;
+    const T k = floor(u);
+    const T j = rint(u);
+    const T d = u - j;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * (T(1.0) / (T(2.0) * hw));
+    const T par = k - T(2.0) * floor(k * T(0.5));
+    const T t = u - k;
+    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    const T t1 = T(1) + t;
+    const T pj = d >= T(0.0) ? par : T(1.0) - par;
+    const T w = sg * l;
+    return (par > T(0.5) ? ((((T(-1))))) * t1 + ((T(2))) : (((T(1)))) * t) + sg * v * ((pj > T(0.5) ? (((T(-1)))) * w : ((T(1))) * w));
+  }
+  return box_triangle_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T box_triangle(T x, T sigma) {
   const T v = box_triangle_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -7054,17 +6976,12 @@ T box_triangle_sq_raw(T x, T sigma) {
 template <class T>
 T box_triangle_sq(T x, T sigma) {
   const T v = box_triangle_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
-//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
-//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 2, F_p = {((1/2)*(t)^(2)) on [0, 1);
-//   (((-1/2)*(t)^(2)) + (-1) + (2*t)) on [1, 2)}, F_p2 = {((1/6)*(t)^(3)) on [0, 1);
-//   (((-1/6)*(t)^(3)) + (-t) + (1/3) + (t)^(2)) on [1, 2)}
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T tent_triangle_raw(T x, T sigma) {
+BL_NOINLINE T tent_triangle_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -7159,13 +7076,38 @@ T tent_triangle_raw(T x, T sigma) {
   return acc;
 }
 
+//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 2, F_p = {((1/2)*(t)^(2)) on [0, 1);
+//   (((-1/2)*(t)^(2)) + (-1) + (2*t)) on [1, 2)}, F_p2 = {((1/6)*(t)^(3)) on [0, 1);
+//   (((-1/6)*(t)^(3)) + (-t) + (1/3) + (t)^(2)) on [1, 2)}
+template <class T>
+T tent_triangle_raw(T x, T sigma) {
+  BL_MATH_USING
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (hw >= T(1e-30) && hw <= (T(1)/T(2))) {  // one break in reach, the nearest
+    const T u = x;
+    const T k = floor(u);
+    const T j = rint(u);
+    const T d = u - j;
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * (T(1.0) / (hw));
+    const T par = k - T(2.0) * floor(k * T(0.5));
+    const T t = u - k;
+    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    const T t1 = T(1) + t;
+    const T pj = d >= T(0.0) ? par : T(1.0) - par;
+    const T w = sg * l;
+    return (par > T(0.5) ? ((((T(-1))))) * t1 + ((T(2))) : (((T(1)))) * t) + sg * v * v * ((pj > T(0.5) ? (((T(-1)/T(3)))) * w : (((T(1)/T(3)))) * w));
+  }
+  return tent_triangle_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T tent_triangle(T x, T sigma) {
   const T v = tent_triangle_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -7282,9 +7224,7 @@ T tent_triangle_sq_raw(T x, T sigma) {
 template <class T>
 T tent_triangle_sq(T x, T sigma) {
   const T v = tent_triangle_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
@@ -7595,9 +7535,7 @@ T gaussian_square_raw(T x, T sigma) {
 template <class T>
 T gaussian_square(T x, T sigma) {
   const T v = gaussian_square_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -7968,16 +7906,12 @@ T gaussian_square_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_square_sq(T x, T sigma) {
   const T v = gaussian_square_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
-//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
-//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on [(1/2),
-//   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T box_square_raw(T x, T sigma) {
+BL_NOINLINE T box_square_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -8029,13 +7963,34 @@ T box_square_raw(T x, T sigma) {
   return acc;
 }
 
+//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on [(1/2),
+//   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
+template <class T>
+T box_square_raw(T x, T sigma) {
+  BL_MATH_USING
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (hw >= T(1e-30) && hw <= (T(1)/T(4)) && abs(x) <= T(1e+30)) {  // one break in reach, the nearest
+    const T u = x * T(2);
+    const T k = floor(u);
+    const T j = rint(u);
+    const T d = (u - j) * (T(1)/T(2));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * (T(1.0) / (T(2.0) * hw));
+    const T par = k - T(2.0) * floor(k * T(0.5));
+    const T a = par > T(0.5) ? T(0) : T(1);
+    const T b = par > T(0.5) ? T(1) : T(0);
+    return a + (b - a) * v;
+  }
+  return box_square_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T box_square(T x, T sigma) {
   const T v = box_square_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -8075,11 +8030,9 @@ T box_square_right(T x, T sigma) {
   return detail::box_periodic_right(x, hw, period, p, p1);
 }
 
-//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
-//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on [(1/2),
-//   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T box_square_sq_raw(T x, T sigma) {
+BL_NOINLINE T box_square_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -8131,20 +8084,39 @@ T box_square_sq_raw(T x, T sigma) {
   return acc;
 }
 
+//   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
+//   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on [(1/2),
+//   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
+template <class T>
+T box_square_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const T hw = detail::k_sqrt3<T>() * sigma;
+  if (hw >= T(1e-30) && hw <= (T(1)/T(4)) && abs(x) <= T(1e+30)) {  // one break in reach, the nearest
+    const T u = x * T(2);
+    const T k = floor(u);
+    const T j = rint(u);
+    const T d = (u - j) * (T(1)/T(2));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * (T(1.0) / (T(2.0) * hw));
+    const T par = k - T(2.0) * floor(k * T(0.5));
+    const T a = par > T(0.5) ? T(0) : T(1);
+    const T b = par > T(0.5) ? T(1) : T(0);
+    return a + (b - a) * v;
+  }
+  return box_square_sq_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T box_square_sq(T x, T sigma) {
   const T v = box_square_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
-//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
-//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on
-//   [(1/2), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T tent_square_raw(T x, T sigma) {
+BL_NOINLINE T tent_square_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -8267,13 +8239,34 @@ T tent_square_raw(T x, T sigma) {
   return acc;
 }
 
+//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on
+//   [(1/2), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
+template <class T>
+T tent_square_raw(T x, T sigma) {
+  BL_MATH_USING
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (hw >= T(1e-30) && hw <= (T(1)/T(4)) && abs(x) <= T(1e+30)) {  // one break in reach, the nearest
+    const T u = x * T(2);
+    const T k = floor(u);
+    const T j = rint(u);
+    const T d = (u - j) * (T(1)/T(2));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * (T(1.0) / (hw));
+    const T par = k - T(2.0) * floor(k * T(0.5));
+    const T a = par > T(0.5) ? T(0) : T(1);
+    const T b = par > T(0.5) ? T(1) : T(0);
+    return a + (b - a) * v * v * T(0.5);
+  }
+  return tent_square_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T tent_square(T x, T sigma) {
   const T v = tent_square_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -8317,11 +8310,9 @@ T tent_square_right(T x, T sigma) {
   return detail::tent_periodic_right(x, hw, period, p, p1, p2);
 }
 
-//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
-//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on
-//   [(1/2), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T tent_square_sq_raw(T x, T sigma) {
+BL_NOINLINE T tent_square_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -8444,13 +8435,34 @@ T tent_square_sq_raw(T x, T sigma) {
   return acc;
 }
 
+//   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
+//   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on
+//   [(1/2), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
+template <class T>
+T tent_square_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  const T hw = detail::k_sqrt6<T>() * sigma;
+  if (hw >= T(1e-30) && hw <= (T(1)/T(4)) && abs(x) <= T(1e+30)) {  // one break in reach, the nearest
+    const T u = x * T(2);
+    const T k = floor(u);
+    const T j = rint(u);
+    const T d = (u - j) * (T(1)/T(2));
+    const T L = hw - abs(d);
+    const T l = L > T(0.0) ? L : T(0.0);
+    const T v = l * (T(1.0) / (hw));
+    const T par = k - T(2.0) * floor(k * T(0.5));
+    const T a = par > T(0.5) ? T(0) : T(1);
+    const T b = par > T(0.5) ? T(1) : T(0);
+    return a + (b - a) * v * v * T(0.5);
+  }
+  return tent_square_sq_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T tent_square_sq(T x, T sigma) {
   const T v = tent_square_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (3/10) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)),
@@ -8535,9 +8547,7 @@ T gaussian_pulse30_raw(T x, T sigma) {
 template <class T>
 T gaussian_pulse30(T x, T sigma) {
   const T v = gaussian_pulse30_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -8688,9 +8698,7 @@ T gaussian_pulse30_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_pulse30_sq(T x, T sigma) {
   const T v = gaussian_pulse30_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F(x+h) - F(x-h))/(2h), F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 + (x-qT)q) +
@@ -8761,9 +8769,7 @@ T box_pulse30_raw(T x, T sigma) {
 template <class T>
 T box_pulse30(T x, T sigma) {
   const T v = box_pulse30_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -8871,9 +8877,7 @@ T box_pulse30_sq_raw(T x, T sigma) {
 template <class T>
 T box_pulse30_sq(T x, T sigma) {
   const T v = box_pulse30_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   (F2(x+w) - 2F2(x) + F2(x-w))/w^2, F(x) = q F_p(T) + F_p(x - qT), F2(x) = F_p(T)(T(q-1)q/2 +
@@ -9016,9 +9020,7 @@ T tent_pulse30_raw(T x, T sigma) {
 template <class T>
 T tent_pulse30(T x, T sigma) {
   const T v = tent_pulse30_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // E[U f(x+U)] (first kernel moment), used by x f(x) terms such as those of floor^2.
@@ -9202,9 +9204,7 @@ T tent_pulse30_sq_raw(T x, T sigma) {
 template <class T>
 T tent_pulse30_sq(T x, T sigma) {
   const T v = tent_pulse30_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 //   x + (-1) * fract~(x) [~: the same kernel's smoothed atomic]
@@ -9698,8 +9698,7 @@ T gaussian_floor_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_floor_sq(T x, T sigma) {
   const T v = gaussian_floor_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   x + (-1) * fract~(x) [~: the same kernel's smoothed atomic]
@@ -9708,6 +9707,17 @@ T box_floor(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt3<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (T(2.0) * hw));
+        return ((n0)) + sg * v * ((T(1)));
+    }
     if (sigma > T(0.0) && hw <= T(2.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -9760,6 +9770,17 @@ T box_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt3<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (T(2.0) * hw));
+        return (((n0*n0))) + sg * v * ((((T(-1)) + (T(2)*n))));
+    }
     if (sigma > T(0.0) && hw <= T(2.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -9809,8 +9830,7 @@ T box_floor_sq_raw(T x, T sigma) {
 template <class T>
 T box_floor_sq(T x, T sigma) {
   const T v = box_floor_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   x + (-1) * fract~(x) [~: the same kernel's smoothed atomic]
@@ -9819,6 +9839,17 @@ T tent_floor(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (hw));
+        return ((n0)) + sg * v * v * ((T(1)) * (T(1)/T(2)));
+    }
     if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -9887,6 +9918,17 @@ T tent_floor_sq_raw(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (hw));
+        return (((n0*n0))) + sg * v * v * ((((T(-1)) + (T(2)*n))) * (T(1)/T(2)));
+    }
     if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -9952,8 +9994,7 @@ T tent_floor_sq_raw(T x, T sigma) {
 template <class T>
 T tent_floor_sq(T x, T sigma) {
   const T v = tent_floor_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   x + 1 * fract~(-x) [~: the same kernel's smoothed atomic]
@@ -10447,8 +10488,7 @@ T gaussian_ceil_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_ceil_sq(T x, T sigma) {
   const T v = gaussian_ceil_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   x + 1 * fract~(-x) [~: the same kernel's smoothed atomic]
@@ -10457,6 +10497,17 @@ T box_ceil(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt3<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (T(2.0) * hw));
+        return (((T(1) + n0))) + sg * v * ((T(1)));
+    }
     if (sigma > T(0.0) && hw <= T(2.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -10509,6 +10560,17 @@ T box_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt3<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (T(2.0) * hw));
+        return ((((T(2)*n0) + (n0*n0) + T(1)))) + sg * v * ((((T(2)*n) + T(1))));
+    }
     if (sigma > T(0.0) && hw <= T(2.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -10558,8 +10620,7 @@ T box_ceil_sq_raw(T x, T sigma) {
 template <class T>
 T box_ceil_sq(T x, T sigma) {
   const T v = box_ceil_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   x + 1 * fract~(-x) [~: the same kernel's smoothed atomic]
@@ -10568,6 +10629,17 @@ T tent_ceil(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (hw));
+        return (((T(1) + n0))) + sg * v * v * ((T(1)) * (T(1)/T(2)));
+    }
     if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -10636,6 +10708,17 @@ T tent_ceil_sq_raw(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (hw));
+        return ((((T(2)*n0) + (n0*n0) + T(1)))) + sg * v * v * ((((T(2)*n) + T(1))) * (T(1)/T(2)));
+    }
     if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -10701,8 +10784,7 @@ T tent_ceil_sq_raw(T x, T sigma) {
 template <class T>
 T tent_ceil_sq(T x, T sigma) {
   const T v = tent_ceil_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (1 + x) + (-1) * fract~(x) + (-1) * step~(x) [~: the same kernel's smoothed atomic]
@@ -12048,8 +12130,7 @@ T gaussian_trunc_sq_raw(T x, T sigma) {
 template <class T>
 T gaussian_trunc_sq(T x, T sigma) {
   const T v = gaussian_trunc_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (1 + x) + (-1) * fract~(x) + (-1) * step~(x) [~: the same kernel's smoothed atomic]
@@ -12058,6 +12139,17 @@ T box_trunc(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt3<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (T(2.0) * hw));
+        return (n0 < T(0.0) ? (((T(1) + n0))) : ((n0))) + sg * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))));
+    }
     if (sigma > T(0.0) && hw <= T(2.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -12112,6 +12204,17 @@ T box_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt3<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (T(2.0) * hw));
+        return (n0 < T(0.0) ? ((((T(2)*n0) + (n0*n0) + T(1)))) : (((n0*n0)))) + sg * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))));
+    }
     if (sigma > T(0.0) && hw <= T(2.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -12165,8 +12268,7 @@ T box_trunc_sq_raw(T x, T sigma) {
 template <class T>
 T box_trunc_sq(T x, T sigma) {
   const T v = box_trunc_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 //   (1 + x) + (-1) * fract~(x) + (-1) * step~(x) [~: the same kernel's smoothed atomic]
@@ -12175,6 +12277,17 @@ T tent_trunc(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (hw));
+        return (n0 < T(0.0) ? (((T(1) + n0))) : ((n0))) + sg * v * v * ((n < T(0.0) ? (T(1)) : n == T(0.0) ? T(0.0) : (T(1))) * (T(1)/T(2)));
+    }
     if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -12245,6 +12358,17 @@ T tent_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
+    if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
+      const T n0 = floor(x);
+      const T y = x - n0;
+      const T n = rint(x);
+      const T d = n - x;
+      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T L = hw - abs(d);
+      const T l = L > T(0.0) ? L : T(0.0);
+      const T v = l * (T(1.0) / (hw));
+        return (n0 < T(0.0) ? ((((T(2)*n0) + (n0*n0) + T(1)))) : (((n0*n0)))) + sg * v * v * ((n < T(0.0) ? (((T(2)*n) + T(1))) : n == T(0.0) ? T(0.0) : (((T(-1)) + (T(2)*n)))) * (T(1)/T(2)));
+    }
     if (sigma > T(0.0) && hw <= T(3.0)) {
       const T n0 = floor(x);
       const T y = x - n0;
@@ -12314,8 +12438,7 @@ T tent_trunc_sq_raw(T x, T sigma) {
 template <class T>
 T tent_trunc_sq(T x, T sigma) {
   const T v = tent_trunc_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12403,8 +12526,7 @@ T box_tan_sq_raw(T x, T sigma) {
 template <class T>
 T box_tan_sq(T x, T sigma) {
   const T v = box_tan_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12500,8 +12622,7 @@ T tent_tan_sq_raw(T x, T sigma) {
 template <class T>
 T tent_tan_sq(T x, T sigma) {
   const T v = tent_tan_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12543,9 +12664,7 @@ T box_tanh_raw(T x, T sigma) {
 template <class T>
 T box_tanh(T x, T sigma) {
   const T v = box_tanh_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12586,9 +12705,7 @@ T box_tanh_sq_raw(T x, T sigma) {
 template <class T>
 T box_tanh_sq(T x, T sigma) {
   const T v = box_tanh_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12634,9 +12751,7 @@ T tent_tanh_raw(T x, T sigma) {
 template <class T>
 T tent_tanh(T x, T sigma) {
   const T v = tent_tanh_raw<T>(x, sigma);
-  if (v < (T(-1))) return (T(-1));
-  if (v > T(1)) return T(1);
-  return v;
+  return v < (T(-1)) ? (T(-1)) : (v > T(1) ? T(1) : v);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12681,9 +12796,7 @@ T tent_tanh_sq_raw(T x, T sigma) {
 template <class T>
 T tent_tanh_sq(T x, T sigma) {
   const T v = tent_tanh_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  if (v > T(1)) return T(1);
-  return v;
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12765,8 +12878,7 @@ T box_log_sq_raw(T x, T sigma) {
 template <class T>
 T box_log_sq(T x, T sigma) {
   const T v = box_log_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12855,8 +12967,7 @@ T tent_log_sq_raw(T x, T sigma) {
 template <class T>
 T tent_log_sq(T x, T sigma) {
   const T v = tent_log_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12899,8 +13010,7 @@ T box_sqrt_raw(T x, T sigma) {
 template <class T>
 T box_sqrt(T x, T sigma) {
   const T v = box_sqrt_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12943,8 +13053,7 @@ T box_sqrt_sq_raw(T x, T sigma) {
 template <class T>
 T box_sqrt_sq(T x, T sigma) {
   const T v = box_sqrt_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -12990,8 +13099,7 @@ T tent_sqrt_raw(T x, T sigma) {
 template <class T>
 T tent_sqrt(T x, T sigma) {
   const T v = tent_sqrt_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -13037,8 +13145,7 @@ T tent_sqrt_sq_raw(T x, T sigma) {
 template <class T>
 T tent_sqrt_sq(T x, T sigma) {
   const T v = tent_sqrt_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -13115,8 +13222,7 @@ T box_inv_sq_raw(T x, T sigma) {
 template <class T>
 T box_inv_sq(T x, T sigma) {
   const T v = box_inv_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -13199,8 +13305,7 @@ T tent_inv_sq_raw(T x, T sigma) {
 template <class T>
 T tent_inv_sq(T x, T sigma) {
   const T v = tent_inv_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -13242,8 +13347,7 @@ T box_inv2_raw(T x, T sigma) {
 template <class T>
 T box_inv2(T x, T sigma) {
   const T v = box_inv2_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -13283,8 +13387,7 @@ T box_inv2_sq_raw(T x, T sigma) {
 template <class T>
 T box_inv2_sq(T x, T sigma) {
   const T v = box_inv2_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -13329,8 +13432,7 @@ T tent_inv2_raw(T x, T sigma) {
 template <class T>
 T tent_inv2(T x, T sigma) {
   const T v = tent_inv2_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 // Taylor series of the entry below in its half-width hh.
@@ -13373,8 +13475,7 @@ T tent_inv2_sq_raw(T x, T sigma) {
 template <class T>
 T tent_inv2_sq(T x, T sigma) {
   const T v = tent_inv2_sq_raw<T>(x, sigma);
-  if (v < T(0)) return T(0);
-  return v;
+  return v < T(0) ? T(0) : v;
 }
 
 template <class T>

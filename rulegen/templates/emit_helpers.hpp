@@ -9,17 +9,28 @@
 #define BL_MATH_USING \
   using std::abs;     \
   using std::atan;    \
+  using std::copysign; \
   using std::cos;     \
   using std::cosh;    \
   using std::exp;     \
   using std::expm1;   \
   using std::floor;   \
   using std::log;     \
+  using std::rint;    \
   using std::sin;     \
   using std::sinh;    \
   using std::sqrt;    \
   using std::tan;     \
   using std::tanh;
+
+// The general body of an entry whose pixel-sized path is inlined into the shader stays a call.
+#if defined(__GNUC__) || defined(__clang__)
+#define BL_NOINLINE __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define BL_NOINLINE __declspec(noinline)
+#else
+#define BL_NOINLINE
+#endif
 
 namespace bl {
 
