@@ -438,14 +438,17 @@ std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& gene
     // A pulse train: past the break f takes the other piece's value.
     const std::string c0 = s.num(ps[0].c.empty() ? numeric(0) : ps[0].c[0]);
     const std::string c1 = s.num(ps[1].c.empty() ? numeric(0) : ps[1].c[0]);
-    out += "  " + s.decl("a", "par > " + s.dbl(0.5) + " ? " + c1 + " : " + c0);
-    out += "  " + s.decl("b", "par > " + s.dbl(0.5) + " ? " + c0 + " : " + c1);
+    // Blends with weights par and 1 - par in {0, 1} (exact): a select here becomes a branch on par.
+    out += "  " + s.decl("a", "par * " + c1 + " + (" + s.dbl(1) + " - par) * " + c0);
+    out += "  " + s.decl("b", "par * " + c0 + " + (" + s.dbl(1) + " - par) * " + c1);
     out += "    return a + (b - a) * v" + (box ? std::string() : " * v * " + s.dbl(0.5)) + ";\n  }\n";
     return out + "  return " + general + "<T>(x, sigma);\n";
   }
   if (maxdeg >= 2) out += "  " + s.decl("s2", "sigma * sigma");
   out += "  " + s.decl("t", scaled ? "(u - k) * " + gs : "u - k");  // x's offset into its piece
-  out += "  " + s.decl("sg", "d >= " + s.dbl(0) + " ? " + s.dbl(-1) + " : " + s.dbl(1));  // +1: b right of x
+  // +1: the break right of x (j = k + 1), -1: x at or right of it (j = k); arithmetic, not a compare
+  // (a select on the side becomes a branch).
+  out += "  " + s.decl("sg", s.dbl(2) + " * (j - k) - " + s.dbl(1));
   auto jump_poly = [&](size_t i) {
     std::vector<std::string> pc;
     for (size_t k = 0; k < e[i].size(); ++k)
@@ -460,14 +463,14 @@ std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& gene
   } else {
     // Piece 1 starts at g: its polynomial at g + t.
     out += "  " + s.decl("t1", gs + " + t");
-    base = "(par > " + s.dbl(0.5) + " ? " + kernel_mean(s, d.kernel, ps[1].c, "t1") + " : " +
-           kernel_mean(s, d.kernel, ps[0].c, "t") + ")";
+    base = "(par * (" + kernel_mean(s, d.kernel, ps[1].c, "t1") + ") + (" + s.dbl(1) + " - par) * (" +
+           kernel_mean(s, d.kernel, ps[0].c, "t") + "))";
     const std::string p0 = jump_poly(0), p1 = jump_poly(1);
     if (p0 == p1) {
       P = p0;
     } else {  // the break's parity: x's piece's own break (d >= 0) or the next one
-      out += "  " + s.decl("pj", "d >= " + s.dbl(0) + " ? par : " + s.dbl(1) + " - par");
-      P = "(pj > " + s.dbl(0.5) + " ? " + p1 + " : " + p0 + ")";
+      out += "  " + s.decl("pj", "par + (j - k) * (" + s.dbl(1) + " - " + s.dbl(2) + " * par)");
+      P = "(pj * (" + p1 + ") + (" + s.dbl(1) + " - pj) * (" + p0 + "))";
     }
   }
   if (P.find('w') != std::string::npos) out += "  " + s.decl("w", "sg * l");
@@ -640,8 +643,8 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
     out += "    " + s.decl("n0", "floor(x)") + "    " + s.decl("y", "x - n0");
     if (s2) out += "    " + s.decl("s2", "sigma * sigma");
     out += "    " + s.decl("n", "rint(x)") + "    " + s.decl("d", "n - x");
-    out +=
-        "    " + s.decl("sg", "d > " + s.dbl(0) + " ? " + s.dbl(1) + " : " + s.dbl(-1));  // +1: n right of x
+    // +1: n right of x (n = n0 + 1), -1: x at or right of n (n = n0); arithmetic, not a branch.
+    out += "    " + s.decl("sg", s.dbl(2) + " * (n - n0) - " + s.dbl(1));
     out += "    " + s.decl("L", "hw - abs(d)");
     out += "    " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
     bool uses_u = false;

@@ -5567,7 +5567,7 @@ T box_fract_raw(T x, T sigma) {
     const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * (T(1.0) / (T(2.0) * hw));
     const T t = u - k;
-    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    const T sg = T(2.0) * (j - k) - T(1.0);
     return (((T(1)))) * t + sg * v * (((T(-1))));
   }
   return box_fract_general<T>(x, sigma);
@@ -5707,7 +5707,7 @@ T box_fract_sq_raw(T x, T sigma) {
     const T v = l * (T(1.0) / (T(2.0) * hw));
     const T s2 = sigma * sigma;
     const T t = u - k;
-    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    const T sg = T(2.0) * (j - k) - T(1.0);
     const T w = sg * l;
     return ((((T(1)))) * t) * t + (((T(1))) * s2) + sg * v * ((((T(-1)))) * w + ((T(-1))));
   }
@@ -5811,7 +5811,7 @@ T tent_fract_raw(T x, T sigma) {
     const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * (T(1.0) / (hw));
     const T t = u - k;
-    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    const T sg = T(2.0) * (j - k) - T(1.0);
     return (((T(1)))) * t + sg * v * v * (((T(-1)/T(2))));
   }
   return tent_fract_general<T>(x, sigma);
@@ -5959,7 +5959,7 @@ T tent_fract_sq_raw(T x, T sigma) {
     const T v = l * (T(1.0) / (hw));
     const T s2 = sigma * sigma;
     const T t = u - k;
-    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    const T sg = T(2.0) * (j - k) - T(1.0);
     const T w = sg * l;
     return ((((T(1)))) * t) * t + (((T(1))) * s2) + sg * v * v * ((((T(-1)/T(3)))) * w + ((T(-1)/T(2))));
   }
@@ -6855,11 +6855,11 @@ T box_triangle_raw(T x, T sigma) {
     const T v = l * (T(1.0) / (T(2.0) * hw));
     const T par = k - T(2.0) * floor(k * T(0.5));
     const T t = u - k;
-    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    const T sg = T(2.0) * (j - k) - T(1.0);
     const T t1 = T(1) + t;
-    const T pj = d >= T(0.0) ? par : T(1.0) - par;
+    const T pj = par + (j - k) * (T(1.0) - T(2.0) * par);
     const T w = sg * l;
-    return (par > T(0.5) ? ((((T(-1))))) * t1 + ((T(2))) : (((T(1)))) * t) + sg * v * ((pj > T(0.5) ? (((T(-1)))) * w : ((T(1))) * w));
+    return (par * (((((T(-1))))) * t1 + ((T(2)))) + (T(1.0) - par) * ((((T(1)))) * t)) + sg * v * ((pj * ((((T(-1)))) * w) + (T(1.0) - pj) * (((T(1))) * w)));
   }
   return box_triangle_general<T>(x, sigma);
 }
@@ -7094,11 +7094,11 @@ T tent_triangle_raw(T x, T sigma) {
     const T v = l * (T(1.0) / (hw));
     const T par = k - T(2.0) * floor(k * T(0.5));
     const T t = u - k;
-    const T sg = d >= T(0.0) ? T(-1.0) : T(1.0);
+    const T sg = T(2.0) * (j - k) - T(1.0);
     const T t1 = T(1) + t;
-    const T pj = d >= T(0.0) ? par : T(1.0) - par;
+    const T pj = par + (j - k) * (T(1.0) - T(2.0) * par);
     const T w = sg * l;
-    return (par > T(0.5) ? ((((T(-1))))) * t1 + ((T(2))) : (((T(1)))) * t) + sg * v * v * ((pj > T(0.5) ? (((T(-1)/T(3)))) * w : (((T(1)/T(3)))) * w));
+    return (par * (((((T(-1))))) * t1 + ((T(2)))) + (T(1.0) - par) * ((((T(1)))) * t)) + sg * v * v * ((pj * ((((T(-1)/T(3)))) * w) + (T(1.0) - pj) * ((((T(1)/T(3)))) * w)));
   }
   return tent_triangle_general<T>(x, sigma);
 }
@@ -7979,8 +7979,8 @@ T box_square_raw(T x, T sigma) {
     const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * (T(1.0) / (T(2.0) * hw));
     const T par = k - T(2.0) * floor(k * T(0.5));
-    const T a = par > T(0.5) ? T(0) : T(1);
-    const T b = par > T(0.5) ? T(1) : T(0);
+    const T a = par * T(0) + (T(1.0) - par) * T(1);
+    const T b = par * T(1) + (T(1.0) - par) * T(0);
     return a + (b - a) * v;
   }
   return box_square_general<T>(x, sigma);
@@ -8100,8 +8100,8 @@ T box_square_sq_raw(T x, T sigma) {
     const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * (T(1.0) / (T(2.0) * hw));
     const T par = k - T(2.0) * floor(k * T(0.5));
-    const T a = par > T(0.5) ? T(0) : T(1);
-    const T b = par > T(0.5) ? T(1) : T(0);
+    const T a = par * T(0) + (T(1.0) - par) * T(1);
+    const T b = par * T(1) + (T(1.0) - par) * T(0);
     return a + (b - a) * v;
   }
   return box_square_sq_general<T>(x, sigma);
@@ -8255,8 +8255,8 @@ T tent_square_raw(T x, T sigma) {
     const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * (T(1.0) / (hw));
     const T par = k - T(2.0) * floor(k * T(0.5));
-    const T a = par > T(0.5) ? T(0) : T(1);
-    const T b = par > T(0.5) ? T(1) : T(0);
+    const T a = par * T(0) + (T(1.0) - par) * T(1);
+    const T b = par * T(1) + (T(1.0) - par) * T(0);
     return a + (b - a) * v * v * T(0.5);
   }
   return tent_square_general<T>(x, sigma);
@@ -8451,8 +8451,8 @@ T tent_square_sq_raw(T x, T sigma) {
     const T l = L > T(0.0) ? L : T(0.0);
     const T v = l * (T(1.0) / (hw));
     const T par = k - T(2.0) * floor(k * T(0.5));
-    const T a = par > T(0.5) ? T(0) : T(1);
-    const T b = par > T(0.5) ? T(1) : T(0);
+    const T a = par * T(0) + (T(1.0) - par) * T(1);
+    const T b = par * T(1) + (T(1.0) - par) * T(0);
     return a + (b - a) * v * v * T(0.5);
   }
   return tent_square_sq_general<T>(x, sigma);
@@ -9712,7 +9712,7 @@ T box_floor(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (T(2.0) * hw));
@@ -9775,7 +9775,7 @@ T box_floor_sq_raw(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (T(2.0) * hw));
@@ -9844,7 +9844,7 @@ T tent_floor(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (hw));
@@ -9923,7 +9923,7 @@ T tent_floor_sq_raw(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (hw));
@@ -10502,7 +10502,7 @@ T box_ceil(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (T(2.0) * hw));
@@ -10565,7 +10565,7 @@ T box_ceil_sq_raw(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (T(2.0) * hw));
@@ -10634,7 +10634,7 @@ T tent_ceil(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (hw));
@@ -10713,7 +10713,7 @@ T tent_ceil_sq_raw(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (hw));
@@ -12144,7 +12144,7 @@ T box_trunc(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (T(2.0) * hw));
@@ -12209,7 +12209,7 @@ T box_trunc_sq_raw(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (T(2.0) * hw));
@@ -12282,7 +12282,7 @@ T tent_trunc(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (hw));
@@ -12363,7 +12363,7 @@ T tent_trunc_sq_raw(T x, T sigma) {
       const T y = x - n0;
       const T n = rint(x);
       const T d = n - x;
-      const T sg = d > T(0.0) ? T(1.0) : T(-1.0);
+      const T sg = T(2.0) * (n - n0) - T(1.0);
       const T L = hw - abs(d);
       const T l = L > T(0.0) ? L : T(0.0);
       const T v = l * (T(1.0) / (hw));
