@@ -790,6 +790,130 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
   return out;
 }
 
+// Pixel-sized kernels, C++: the nearest break alone, located by rint instead of the reduction by
+// the period (see box_tent_periodic_hot for the exact offset d and the piece from floor), for one
+// or two equally spaced breaks per period at a power-of-two spacing g, one channel and no delta.
+// Below sigma_0 (plan_for(tol, 0)'s test: every other break lies g/2 or more from x, their tails
+// summed <= tol, float 1e-7 and double 1e-13) the break regime's one term is the whole sum.
+std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& general) {
+  const size_t N = sp.lo.size();
+  if ((N != 1 && N != 2) || N != sp.c.size() || !sp.more.empty() || !sp.delta.is_zero()) return "";
+  if (!dyadic(sp.period) || sp.lo[0] != 0) return "";
+  const numeric T = sp.period, g = T / numeric(static_cast<long>(N));
+  auto pow2 = [](const numeric& v) {
+    int e = 0;
+    return v > 0 && std::frexp(v.to_double(), &e) == 0.5 && dyadic(v);
+  };
+  if (!pow2(T) || !pow2(g) || (N == 2 && sp.lo[1] != g)) return "";
+  // Jumps e_k about each break (q_{-1}(T + u) at 0).
+  const symbol u("u");
+  std::vector<Break> br(N);
+  for (size_t i = 0; i < N; ++i) {
+    const size_t pi = i == 0 ? N - 1 : i - 1;
+    const ex at_prev = i == 0 ? ex(T) + u : ex(sp.lo[i]) + u;
+    ex jump = 0;
+    for (size_t k = 0; k < sp.c[i].size(); ++k) jump += sp.c[i][k] * pow(sp.lo[i] + u, int(k));
+    for (size_t k = 0; k < sp.c[pi].size(); ++k) jump -= sp.c[pi][k] * pow(at_prev, int(k));
+    jump = jump.expand();
+    if (jump.is_zero()) return "";
+    for (int k = 0; k <= jump.degree(u); ++k) br[i].e.push_back(jump.coeff(u, k));
+  }
+  const double gd = g.to_double();
+  auto sigma_0 = [&](double tol) {
+    auto dropped = [&](double sig) {
+      double sum = 0;
+      for (int m = 0; m < 200; ++m) {
+        double b = 0;
+        for (const Break& x : br) b = std::max(b, break_bound(x, 0, sig, (0.5 * gd + m * gd) / sig));
+        sum += b;
+        if (b < 1e-30) break;
+      }
+      return 2 * sum;
+    };
+    double sig = T.to_double();
+    while (sig > 1e-4 * T.to_double() && !(dropped(sig) <= tol)) sig *= 0.995;
+    return sig;
+  };
+  const double sf = sigma_0(kTolFloat), sd = sigma_0(1e-13);
+  // E q(p + U) = sum_m p^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}, Horner in p and s2.
+  bool s2 = false;
+  auto mean = [&](size_t j, const std::string& p) {
+    const auto& c = sp.c[j];
+    std::vector<std::string> cx;
+    for (size_t m = 0; m < c.size(); ++m) {
+      std::vector<std::string> cs;
+      numeric df = 1;
+      for (size_t i = 0; m + 2 * i < c.size(); ++i) {
+        if (i > 0) df *= numeric(long(2 * i - 1)), s2 = true;
+        cs.push_back(coef_text(df * binomial(numeric(long(m + 2 * i)), numeric(long(2 * i))) * c[m + 2 * i]));
+      }
+      const std::string h = horner(cs, "s2");
+      cx.push_back(h == "T(0)" ? "" : "(" + h + ")");
+    }
+    return horner(cx, p);
+  };
+  bool constant = true;
+  for (const auto& c : sp.c) constant &= c.size() <= 1;
+  const std::string gl = lit(gd), y = "(" + sp.y + ")";
+  std::string o;
+  o += "  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {\n";
+  o += "    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < "
+       "sizeof(double) ? " +
+       lit(sf) + " : " + lit(sd) + ")" + (gd < 1 ? " && abs(" + sp.y + ") <= T(1e30)" : std::string()) +
+       ") {  // the nearest break alone\n";
+  o += "      const T u = " + (gd == 1 ? y : y + " * " + lit(1 / gd)) + ";\n";
+  o += "      const T k = floor(u);\n      const T j = rint(u);\n";
+  o += "      const T d = " + std::string(gd == 1 ? "u - j" : "(u - j) * " + gl) + ";  // exact\n";
+  o += "      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());\n";
+  if (N == 2) o += "      const T par = k - T(2) * floor(k * T(0.5));  // x's piece\n";
+  std::string value;
+  size_t ne = 0;
+  for (const Break& b : br) ne = std::max(ne, b.e.size());
+  if (constant) {  // a pulse train: the mass past the break takes the other piece's value
+    o += j_chain(1, false, "      ");
+    auto c0 = [&](size_t j) {
+      return sp.c[j].empty() ? std::string("T(0)") : lit(ex_to<numeric>(sp.c[j][0].evalf()).to_double());
+    };
+    o += "      const T a = par * " + c0(1) + " + (T(1) - par) * " + c0(0) + ";\n";
+    o += "      const T b = par * " + c0(0) + " + (T(1) - par) * " + c0(1) + ";\n";
+    value = "a + (b - a) * j0";
+  } else {
+    // +1: the break right of x (j = k + 1), -1: x at or right of it; 0/1 blends, no selects.
+    o += "      const T sg = T(2) * (j - k) - T(1);\n";
+    o += "      const T p = " + std::string(gd == 1 ? "u - k" : "(u - k) * " + gl) +
+         ";  // x's offset into its piece\n";
+    std::vector<std::string> et(ne);
+    bool no_j0 = true;
+    std::string base;
+    if (N == 1) {
+      base = mean(0, "p");
+      for (size_t k = 0; k < ne; ++k) {
+        const std::string c = k < br[0].e.size() ? coef_text(br[0].e[k]) : "";
+        et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
+      }
+    } else {
+      o += "      const T p1 = " + gl + " + p;\n";
+      o += "      const T pj = par + (j - k) * (T(1) - T(2) * par);  // the break's parity\n";
+      base = "(par * (" + mean(1, "p1") + ") + (T(1) - par) * (" + mean(0, "p") + "))";
+      for (size_t k = 0; k < ne; ++k) {
+        const std::string a = k < br[1].e.size() ? coef_text(br[1].e[k]) : "",
+                          b = k < br[0].e.size() ? coef_text(br[0].e[k]) : "";
+        const std::string c = a == b ? a
+                                     : "(pj * " + (a.empty() ? std::string("T(0)") : a) +
+                                           " + (T(1) - pj) * " + (b.empty() ? std::string("T(0)") : b) + ")";
+        et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
+      }
+    }
+    for (size_t k = 0; k < 1 && k < et.size(); ++k) no_j0 = et[k].empty();
+    o += j_chain(ne, false, "      ", no_j0);
+    if (s2) o += "      const T s2 = sigma * sigma;\n";
+    value = base + " + sg * (" + horner(et, "(sg * sigma)") + ")";
+  }
+  const std::string extra = coef_text(sp.break_extra);
+  o += "      return " + sp.lead + value + (extra.empty() ? "" : " + " + extra) + ";\n    }\n  }\n";
+  return o + "  return " + general + "<T>(x, sigma);\n";
+}
+
 std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {
   return gauss_periodic_fast(sp, Lang::Cpp);
 }

@@ -4762,12 +4762,9 @@ T tent_exp_ramp_sq(T x, T sigma) {
   return v < T(0) ? T(0) : (v > hi ? hi : v);
 }
 
-//   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
-//   = 0, b_k = (-(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier form for large sigma/T];
-//   image sum over periods of the Gaussian integral of the pieces {t on [0, 1)} [for small
-//   sigma/T]
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T gaussian_fract_raw(T x, T sigma) {
+BL_NOINLINE T gaussian_fract_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -5059,6 +5056,29 @@ T gaussian_fract_raw(T x, T sigma) {
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
 }
 
+//   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
+//   = 0, b_k = (-(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier form for large sigma/T];
+//   image sum over periods of the Gaussian integral of the pieces {t on [0, 1)} [for small
+//   sigma/T]
+template <class T>
+T gaussian_fract_raw(T x, T sigma) {
+  BL_MATH_USING
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.09339361644125409) : T(0.06708733218678724))) {  // the nearest break alone
+      const T u = (x);
+      const T k = floor(u);
+      const T j = rint(u);
+      const T d = u - j;  // exact
+      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
+      const T sg = T(2) * (j - k) - T(1);
+      const T p = u - k;  // x's offset into its piece
+      const T j0 = detail::normal_Phic(t);
+      return ((T(1.0))) * p + sg * (T(-1.0) * j0);
+    }
+  }
+  return gaussian_fract_general<T>(x, sigma);
+}
+
 // The entry above, kept inside the range of the true value (rounding can leave it).
 template <class T>
 T gaussian_fract(T x, T sigma) {
@@ -5123,12 +5143,9 @@ T gaussian_fract_right(T x, T sigma) {
   return detail::gauss_periodic_right(x, sigma, period, p, T(1.0), T(4.0), (T(1)/T(2)), cs);
 }
 
-//   (1/3) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
-//   = ((kf)^((-2))*(pi)^((-2))), b_k = (-(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier
-//   form for large sigma/T]; image sum over periods of the Gaussian integral of the pieces
-//   {(t)^(2) on [0, 1)} [for small sigma/T]
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T gaussian_fract_sq_raw(T x, T sigma) {
+BL_NOINLINE T gaussian_fract_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -5473,6 +5490,32 @@ T gaussian_fract_sq_raw(T x, T sigma) {
     return acc;
   }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+//   (1/3) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
+//   = ((kf)^((-2))*(pi)^((-2))), b_k = (-(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier
+//   form for large sigma/T]; image sum over periods of the Gaussian integral of the pieces
+//   {(t)^(2) on [0, 1)} [for small sigma/T]
+template <class T>
+T gaussian_fract_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.09339361644125409) : T(0.06708733218678724))) {  // the nearest break alone
+      const T u = (x);
+      const T k = floor(u);
+      const T j = rint(u);
+      const T d = u - j;  // exact
+      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
+      const T sg = T(2) * (j - k) - T(1);
+      const T p = u - k;  // x's offset into its piece
+      T ph, j0;
+      detail::normal_phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T s2 = sigma * sigma;
+      return (((T(1.0))) * p) * p + ((T(1.0)) * s2) + sg * ((T(-2.0) * j1) * (sg * sigma) + T(-1.0) * j0);
+    }
+  }
+  return gaussian_fract_sq_general<T>(x, sigma);
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -5973,12 +6016,9 @@ T tent_fract_sq(T x, T sigma) {
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
-//   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
-//   = (2*((-1) + pk)*(kf)^((-2))*(pi)^((-2))), b_k = 0 (pk = (-1)^k), T = 2 [Fourier form for
-//   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {t on [0, 1);
-//   ((-t) + 2) on [1, 2)} [for small sigma/T]
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T gaussian_triangle_raw(T x, T sigma) {
+BL_NOINLINE T gaussian_triangle_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -6279,6 +6319,32 @@ T gaussian_triangle_raw(T x, T sigma) {
     return acc;
   }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+//   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
+//   = (2*((-1) + pk)*(kf)^((-2))*(pi)^((-2))), b_k = 0 (pk = (-1)^k), T = 2 [Fourier form for
+//   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {t on [0, 1);
+//   ((-t) + 2) on [1, 2)} [for small sigma/T]
+template <class T>
+T gaussian_triangle_raw(T x, T sigma) {
+  BL_MATH_USING
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.10548200916383271) : T(0.07206635058261547))) {  // the nearest break alone
+      const T u = (x);
+      const T k = floor(u);
+      const T j = rint(u);
+      const T d = u - j;  // exact
+      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
+      const T par = k - T(2) * floor(k * T(0.5));  // x's piece
+      const T sg = T(2) * (j - k) - T(1);
+      const T p = u - k;  // x's offset into its piece
+      const T p1 = T(1.0) + p;
+      const T pj = par + (j - k) * (T(1) - T(2) * par);  // the break's parity
+      const T j1 = detail::normal_J1(t);
+      return (par * (((T(-1.0))) * p1 + (T(2.0))) + (T(1) - par) * (((T(1.0))) * p)) + sg * (((pj * T(-2.0) + (T(1) - pj) * T(2.0)) * j1) * (sg * sigma));
+    }
+  }
+  return gaussian_triangle_general<T>(x, sigma);
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -7227,12 +7293,9 @@ T tent_triangle_sq(T x, T sigma) {
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
-//   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
-//   = 0, b_k = (-((-1) + pk)*(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier form for
-//   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {1 on [0,
-//   (1/2)); 0 on [(1/2), 1)} [for small sigma/T]
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T gaussian_square_raw(T x, T sigma) {
+BL_NOINLINE T gaussian_square_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -7529,6 +7592,30 @@ T gaussian_square_raw(T x, T sigma) {
     return acc;
   }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+//   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
+//   = 0, b_k = (-((-1) + pk)*(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier form for
+//   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {1 on [0,
+//   (1/2)); 0 on [(1/2), 1)} [for small sigma/T]
+template <class T>
+T gaussian_square_raw(T x, T sigma) {
+  BL_MATH_USING
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.04676299685992172) : T(0.033423255248208356)) && abs(x) <= T(1e30)) {  // the nearest break alone
+      const T u = (x) * T(2.0);
+      const T k = floor(u);
+      const T j = rint(u);
+      const T d = (u - j) * T(0.5);  // exact
+      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
+      const T par = k - T(2) * floor(k * T(0.5));  // x's piece
+      const T j0 = detail::normal_Phic(t);
+      const T a = par * T(0.0) + (T(1) - par) * T(1.0);
+      const T b = par * T(1.0) + (T(1) - par) * T(0.0);
+      return a + (b - a) * j0;
+    }
+  }
+  return gaussian_square_general<T>(x, sigma);
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
@@ -7598,12 +7685,9 @@ T gaussian_square_right(T x, T sigma) {
   return detail::gauss_periodic_right(x, sigma, period, p, T(1.0), T(4.0), (T(1)/T(2)), cs);
 }
 
-//   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
-//   = 0, b_k = (-((-1) + pk)*(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier form for
-//   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {1 on [0,
-//   (1/2)); 0 on [(1/2), 1)} [for small sigma/T]
+// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.
 template <class T>
-T gaussian_square_sq_raw(T x, T sigma) {
+BL_NOINLINE T gaussian_square_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
@@ -7900,6 +7984,30 @@ T gaussian_square_sq_raw(T x, T sigma) {
     return acc;
   }
   return detail::gauss_periodic_image(x, sigma, period, p, T(1.0));
+}
+
+//   (1/2) + sum_k exp(-2 pi^2 k^2 sigma^2 / T^2) (a_k cos(2 pi k x/T) + b_k sin(2 pi k x/T)), a_k
+//   = 0, b_k = (-((-1) + pk)*(kf)^((-1))*(pi)^((-1))) (pk = (-1)^k), T = 1 [Fourier form for
+//   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {1 on [0,
+//   (1/2)); 0 on [(1/2), 1)} [for small sigma/T]
+template <class T>
+T gaussian_square_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.04676299685992172) : T(0.033423255248208356)) && abs(x) <= T(1e30)) {  // the nearest break alone
+      const T u = (x) * T(2.0);
+      const T k = floor(u);
+      const T j = rint(u);
+      const T d = (u - j) * T(0.5);  // exact
+      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
+      const T par = k - T(2) * floor(k * T(0.5));  // x's piece
+      const T j0 = detail::normal_Phic(t);
+      const T a = par * T(0.0) + (T(1) - par) * T(1.0);
+      const T b = par * T(1.0) + (T(1) - par) * T(0.0);
+      return a + (b - a) * j0;
+    }
+  }
+  return gaussian_square_sq_general<T>(x, sigma);
 }
 
 // The entry above, kept inside the range of the true value (rounding can leave it).
