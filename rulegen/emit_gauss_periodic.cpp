@@ -122,6 +122,24 @@ struct Break {
   bool delta = false;  // the spec's delta sits here (lo[0])
 };
 
+// Break i of pieces c over sp's period and starts: its position and the jump q_i(lo_i + u) -
+// q_{i-1}(lo_i + u) about it (q_{-1}(T + u) at i = 0) as coefficients of u^k, empty where the
+// pieces join with every derivative.
+Break break_of(const GaussPeriodicSpec& sp, const std::vector<std::vector<ex>>& c, size_t i) {
+  static const symbol u("u");
+  const size_t N = sp.lo.size(), pi = i == 0 ? N - 1 : i - 1;
+  const ex at_prev = i == 0 ? ex(sp.period) + u : ex(sp.lo[i]) + u;
+  ex jump = 0;
+  for (size_t k = 0; k < c[i].size(); ++k) jump += c[i][k] * pow(sp.lo[i] + u, int(k));
+  for (size_t k = 0; k < c[pi].size(); ++k) jump -= c[pi][k] * pow(at_prev, int(k));
+  jump = jump.expand();
+  Break b;
+  b.pos = sp.lo[i];
+  const int deg = jump.is_zero() ? -1 : jump.degree(u);
+  for (int k = 0; k <= deg; ++k) b.e.push_back(jump.coeff(u, k));
+  return b;
+}
+
 struct Plan {
   int nside = 1;       // break candidates on each side of x
   double sigma_b;      // break regime below, Fourier regime from here
@@ -240,24 +258,13 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
   double wmin = HUGE_VAL;
   for (size_t i = 0; i < N; ++i) wmin = std::min(wmin, (hi_of(i) - sp.lo[i]).to_double());
   // Break types: i at lo[i], jump q_i(lo_i + u) - q_{i-1}(lo_i + u) (q_{-1}(T + u) at i = 0).
-  const symbol u("u");
   std::vector<std::vector<Break>> brs(C, std::vector<Break>(N));  // per channel
   int maxdd = 0;
   for (size_t ci = 0; ci < C; ++ci)
     for (size_t i = 0; i < N; ++i) {
-      const auto& c = chs[ci]->c;
-      const size_t pi = i == 0 ? N - 1 : i - 1;
-      const ex at_prev = i == 0 ? ex(T) + u : ex(sp.lo[i]) + u;
-      ex jump = 0;
-      for (size_t k = 0; k < c[i].size(); ++k) jump += c[i][k] * pow(sp.lo[i] + u, int(k));
-      for (size_t k = 0; k < c[pi].size(); ++k) jump -= c[pi][k] * pow(at_prev, int(k));
-      jump = jump.expand();
-      Break& b = brs[ci][i];
-      b.pos = sp.lo[i];
+      Break& b = brs[ci][i] = break_of(sp, chs[ci]->c, i);
       b.delta = i == 0 && !chs[ci]->delta.is_zero();
-      const int deg = jump.is_zero() ? -1 : jump.degree(u);
-      for (int k = 0; k <= deg; ++k) b.e.push_back(jump.coeff(u, k));
-      maxdd = std::max(maxdd, deg);
+      maxdd = std::max(maxdd, static_cast<int>(b.e.size()) - 1);
     }
   const std::vector<Break>& br = brs[0];  // positions (the same in every channel); channel 0's jumps
   // Distance beyond the nside nearest breaks on a side: the narrowest run of nside pieces.
@@ -805,19 +812,9 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
     return v > 0 && std::frexp(v.to_double(), &e) == 0.5 && dyadic(v);
   };
   if (!pow2(T) || !pow2(g) || (N == 2 && sp.lo[1] != g)) return "";
-  // Jumps e_k about each break (q_{-1}(T + u) at 0).
-  const symbol u("u");
   std::vector<Break> br(N);
-  for (size_t i = 0; i < N; ++i) {
-    const size_t pi = i == 0 ? N - 1 : i - 1;
-    const ex at_prev = i == 0 ? ex(T) + u : ex(sp.lo[i]) + u;
-    ex jump = 0;
-    for (size_t k = 0; k < sp.c[i].size(); ++k) jump += sp.c[i][k] * pow(sp.lo[i] + u, int(k));
-    for (size_t k = 0; k < sp.c[pi].size(); ++k) jump -= sp.c[pi][k] * pow(at_prev, int(k));
-    jump = jump.expand();
-    if (jump.is_zero()) return "";
-    for (int k = 0; k <= jump.degree(u); ++k) br[i].e.push_back(jump.coeff(u, k));
-  }
+  for (size_t i = 0; i < N; ++i)
+    if ((br[i] = break_of(sp, sp.c, i)).e.empty()) return "";  // not a break: parity would not alternate
   const double gd = g.to_double();
   auto sigma_0 = [&](double tol) {
     auto dropped = [&](double sig) {
