@@ -804,7 +804,13 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
 // summed <= tol, float 1e-7 and double 1e-13) the break regime's one term is the whole sum.
 std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& general) {
   const size_t N = sp.lo.size();
-  if ((N != 1 && N != 2) || N != sp.c.size() || !sp.more.empty() || !sp.delta.is_zero()) return "";
+  // The channels of the pass (sp, then sp.more: one piece only, as in gauss_periodic_fast).
+  std::vector<const GaussPeriodicSpec*> chs{&sp};
+  for (const GaussPeriodicSpec& m : sp.more) chs.push_back(&m);
+  const size_t C = chs.size();
+  if ((N != 1 && N != 2) || (C > 1 && (N != 1 || sp.finish.empty()))) return "";
+  for (const GaussPeriodicSpec* ch : chs)
+    if (ch->c.size() != N || (N != 1 && !ch->delta.is_zero())) return "";
   if (!dyadic(sp.period) || sp.lo[0] != 0) return "";
   const numeric T = sp.period, g = T / numeric(static_cast<long>(N));
   auto pow2 = [](const numeric& v) {
@@ -812,16 +818,23 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
     return v > 0 && std::frexp(v.to_double(), &e) == 0.5 && dyadic(v);
   };
   if (!pow2(T) || !pow2(g) || (N == 2 && sp.lo[1] != g)) return "";
-  std::vector<Break> br(N);
-  for (size_t i = 0; i < N; ++i)
-    if ((br[i] = break_of(sp, sp.c, i)).e.empty()) return "";  // not a break: parity would not alternate
+  std::vector<std::vector<Break>> brs(C, std::vector<Break>(N));
+  for (size_t ci = 0; ci < C; ++ci)
+    for (size_t i = 0; i < N; ++i) {
+      brs[ci][i] = break_of(sp, chs[ci]->c, i);
+      brs[ci][i].delta = i == 0 && !chs[ci]->delta.is_zero();
+      // Not a break of the first channel: the pieces would not alternate with k's parity.
+      if (ci == 0 && brs[ci][i].e.empty() && !brs[ci][i].delta) return "";
+    }
   const double gd = g.to_double();
   auto sigma_0 = [&](double tol) {
     auto dropped = [&](double sig) {
       double sum = 0;
       for (int m = 0; m < 200; ++m) {
         double b = 0;
-        for (const Break& x : br) b = std::max(b, break_bound(x, 0, sig, (0.5 * gd + m * gd) / sig));
+        for (size_t ci = 0; ci < C; ++ci)
+          for (const Break& x : brs[ci])
+            b = std::max(b, break_bound(x, chs[ci]->delta, sig, (0.5 * gd + m * gd) / sig));
         sum += b;
         if (b < 1e-30) break;
       }
@@ -834,8 +847,7 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
   const double sf = sigma_0(kTolFloat), sd = sigma_0(1e-13);
   // E q(p + U) = sum_m p^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}, Horner in p and s2.
   bool s2 = false;
-  auto mean = [&](size_t j, const std::string& p) {
-    const auto& c = sp.c[j];
+  auto mean = [&](const std::vector<ex>& c, const std::string& p) {
     std::vector<std::string> cx;
     for (size_t m = 0; m < c.size(); ++m) {
       std::vector<std::string> cs;
@@ -849,7 +861,7 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
     }
     return horner(cx, p);
   };
-  bool constant = true;
+  bool constant = C == 1;
   for (const auto& c : sp.c) constant &= c.size() <= 1;
   const std::string gl = lit(gd), y = "(" + sp.y + ")";
   std::string o;
@@ -863,9 +875,11 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
   o += "      const T d = " + std::string(gd == 1 ? "u - j" : "(u - j) * " + gl) + ";  // exact\n";
   o += "      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());\n";
   if (N == 2) o += "      const T par = k - T(2) * floor(k * T(0.5));  // x's piece\n";
-  std::string value;
+  std::vector<std::string> vals(C);
   size_t ne = 0;
-  for (const Break& b : br) ne = std::max(ne, b.e.size());
+  bool any_delta = false;
+  for (size_t ci = 0; ci < C; ++ci)
+    for (const Break& b : brs[ci]) ne = std::max(ne, b.e.size()), any_delta |= b.delta;
   if (constant) {  // a pulse train: the mass past the break takes the other piece's value
     o += j_chain(1, false, "      ");
     auto c0 = [&](size_t j) {
@@ -873,41 +887,63 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
     };
     o += "      const T a = par * " + c0(1) + " + (T(1) - par) * " + c0(0) + ";\n";
     o += "      const T b = par * " + c0(0) + " + (T(1) - par) * " + c0(1) + ";\n";
-    value = "a + (b - a) * j0";
+    const std::string extra = coef_text(sp.break_extra);
+    vals[0] = "a + (b - a) * j0" + (extra.empty() ? "" : " + " + extra);
   } else {
     // +1: the break right of x (j = k + 1), -1: x at or right of it; 0/1 blends, no selects.
     o += "      const T sg = T(2) * (j - k) - T(1);\n";
     o += "      const T p = " + std::string(gd == 1 ? "u - k" : "(u - k) * " + gl) +
          ";  // x's offset into its piece\n";
-    std::vector<std::string> et(ne);
-    bool no_j0 = true;
-    std::string base;
-    if (N == 1) {
-      base = mean(0, "p");
-      for (size_t k = 0; k < ne; ++k) {
-        const std::string c = k < br[0].e.size() ? coef_text(br[0].e[k]) : "";
-        et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
-      }
-    } else {
+    if (N == 2) {
       o += "      const T p1 = " + gl + " + p;\n";
       o += "      const T pj = par + (j - k) * (T(1) - T(2) * par);  // the break's parity\n";
-      base = "(par * (" + mean(1, "p1") + ") + (T(1) - par) * (" + mean(0, "p") + "))";
-      for (size_t k = 0; k < ne; ++k) {
-        const std::string a = k < br[1].e.size() ? coef_text(br[1].e[k]) : "",
-                          b = k < br[0].e.size() ? coef_text(br[0].e[k]) : "";
-        const std::string c = a == b ? a
-                                     : "(pj * " + (a.empty() ? std::string("T(0)") : a) +
-                                           " + (T(1) - pj) * " + (b.empty() ? std::string("T(0)") : b) + ")";
-        et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
-      }
     }
-    for (size_t k = 0; k < 1 && k < et.size(); ++k) no_j0 = et[k].empty();
-    o += j_chain(ne, false, "      ", no_j0);
+    bool no_j0 = true;
+    for (size_t ci = 0; ci < C; ++ci) {
+      const auto& br = brs[ci];
+      std::vector<std::string> et(ne);
+      std::string base;
+      if (N == 1) {
+        base = mean(chs[ci]->c[0], "p");
+        for (size_t k = 0; k < ne; ++k) {
+          const std::string c = k < br[0].e.size() ? coef_text(br[0].e[k]) : "";
+          et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
+        }
+      } else {
+        base =
+            "(par * (" + mean(chs[ci]->c[1], "p1") + ") + (T(1) - par) * (" + mean(chs[ci]->c[0], "p") + "))";
+        for (size_t k = 0; k < ne; ++k) {
+          const std::string a = k < br[1].e.size() ? coef_text(br[1].e[k]) : "",
+                            b = k < br[0].e.size() ? coef_text(br[0].e[k]) : "";
+          const std::string c = a == b
+                                    ? a
+                                    : "(pj * " + (a.empty() ? std::string("T(0)") : a) + " + (T(1) - pj) * " +
+                                          (b.empty() ? std::string("T(0)") : b) + ")";
+          et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
+        }
+      }
+      no_j0 &= et.empty() || et[0].empty();
+      std::string v = base;
+      const std::string term = horner(et, "(sg * sigma)");
+      if (term != "T(0)") v += " + sg * (" + term + ")";
+      // theta's phi_sigma sum: the delta sits at the break (both neighbours of x are such breaks).
+      if (br[0].delta) v += " + " + coef_text(chs[ci]->delta) + " * ph";
+      const std::string extra = coef_text(chs[ci]->break_extra);
+      vals[ci] = extra.empty() ? v : v + " + " + extra;
+    }
+    o += j_chain(ne, any_delta, "      ", no_j0 && !any_delta);
     if (s2) o += "      const T s2 = sigma * sigma;\n";
-    value = base + " + sg * (" + horner(et, "(sg * sigma)") + ")";
   }
-  const std::string extra = coef_text(sp.break_extra);
-  o += "      return " + sp.lead + value + (extra.empty() ? "" : " + " + extra) + ";\n    }\n  }\n";
+  std::string ret = sp.lead + vals[0];
+  if (C > 1) {  // finish with @i replaced (at most 9 channels: @1 cannot clash with @10)
+    ret = sp.finish;
+    for (size_t ci = C; ci-- > 0;) {
+      const std::string at = "@" + std::to_string(ci);
+      for (size_t k = ret.find(at); k != std::string::npos; k = ret.find(at, k + 1))
+        ret.replace(k, at.size(), "(" + vals[ci] + ")");
+    }
+  }
+  o += "      return " + ret + ";\n    }\n  }\n";
   return o + "  return " + general + "<T>(x, sigma);\n";
 }
 

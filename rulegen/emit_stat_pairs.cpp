@@ -107,11 +107,14 @@ std::string stat_pair_definition(const StatPair& p, Lang lang) {
     throw std::logic_error("rulegen: the stat entry of " + p.f->atomic_name + " has no straight-line plan");
   const std::string f = p.f->atomic_name;
   std::string o;
+  // C++: pixel-sized sigma by the nearest break alone (gauss_periodic_hot), the full pass out of line.
+  const std::string hot = lang == Lang::Cpp ? gauss_periodic_hot(sp, p.name() + "_general") : "";
   if (lang == Lang::Cpp) {
     o += "// {E f(X), Var f(X)}, X ~ N(x, sigma^2), f = " + f +
          ", from one pass (rulegen/emit_stat_pairs.hpp); other types and\n"
          "// sigma below the fast regimes read the two entries.\n";
-    o += "template <class T>\nstat<T> " + p.name() + "(T x, T sigma) {\n  BL_MATH_USING\n";
+    o += "template <class T>\n" + std::string(hot.empty() ? "" : "BL_NOINLINE ") + "stat<T> " + p.name() +
+         (hot.empty() ? "" : "_general") + "(T x, T sigma) {\n  BL_MATH_USING\n";
     o += "  if (!(sigma >= T(0.0))) return detail::make_stat(detail::nan<T>(), detail::nan<T>());\n";
   } else {
     o += "vec2 bl_" + p.name() + "(float x, float sigma) {\n";
@@ -124,10 +127,14 @@ std::string stat_pair_definition(const StatPair& p, Lang lang) {
   const std::string m2 = lang == Lang::Cpp ? impl_name(*p.f2) + "<T>" : p.f2->glsl_name();
   o += s.decl("m", m + "(x, sigma)");
   o += s.decl("m2", m2 + "(x, sigma)");
-  if (lang == Lang::Cpp)
+  if (lang == Lang::Cpp) {
     o += "  return detail::make_stat(m, detail::at_least(m2 - m * m, T(0.0)));\n}\n\n";
-  else
+    if (!hot.empty())
+      o += "// The same, pixel-sized sigma inline.\ntemplate <class T>\nstat<T> " + p.name() +
+           "(T x, T sigma) {\n  BL_MATH_USING\n" + s.decl("y", p.s < 0 ? "-x" : "x") + hot + "}\n\n";
+  } else {
     o += "  return vec2(m, max(m2 - m * m, 0.0));\n}\n\n";
+  }
   return o;
 }
 

@@ -128,7 +128,8 @@ std::vector<double> emitted_sigma_bounds() {
   const std::regex fn(
       "\\n(BL_NOINLINE )?T "
       "gaussian_(fract|fract_sq|square|square_sq|triangle|triangle_sq|floor|floor_sq|ceil|"
-      "ceil_sq|trunc|trunc_sq)_(raw|general)\\(|\\nstat<T> gaussian_(fract|floor|ceil)_stat\\(");
+      "ceil_sq|trunc|trunc_sq)_(raw|general)\\(|\\n(BL_NOINLINE )?stat<T> "
+      "gaussian_(fract|floor|ceil)_stat(_general)?\\(");
   // "sigma < T(b)", or the pixel-sized path's per-type bound "sigma < (sizeof(T) < sizeof(double) ?
   // T(b_float) : T(b_double))".
   const std::regex bound(

@@ -13823,7 +13823,7 @@ T tent_moment(int n, T x, T sigma) {
 // {E f(X), Var f(X)}, X ~ N(x, sigma^2), f = fract, from one pass (rulegen/emit_stat_pairs.hpp); other types and
 // sigma below the fast regimes read the two entries.
 template <class T>
-stat<T> gaussian_fract_stat(T x, T sigma) {
+BL_NOINLINE stat<T> gaussian_fract_stat_general(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::make_stat(detail::nan<T>(), detail::nan<T>());
   const T y = x;
@@ -14166,10 +14166,34 @@ stat<T> gaussian_fract_stat(T x, T sigma) {
   return detail::make_stat(m, detail::at_least(m2 - m * m, T(0.0)));
 }
 
+// The same, pixel-sized sigma inline.
+template <class T>
+stat<T> gaussian_fract_stat(T x, T sigma) {
+  BL_MATH_USING
+  const T y = x;
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.09339361644125409) : T(0.06708733218678724))) {  // the nearest break alone
+      const T u = (y);
+      const T k = floor(u);
+      const T j = rint(u);
+      const T d = u - j;  // exact
+      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
+      const T sg = T(2) * (j - k) - T(1);
+      const T p = u - k;  // x's offset into its piece
+      T ph, j0;
+      detail::normal_phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T s2 = sigma * sigma;
+      return detail::make_stat(detail::at_least(detail::min2((((T(1.0))) * p + sg * (T(-1.0) * j0)), T(1.0)), T(0.0)), detail::at_least(((((T(1.0))) * p) * p + ((T(1.0)) * s2) + sg * ((T(-2.0) * j1) * (sg * sigma) + T(-1.0) * j0)) - (((T(1.0))) * p + sg * (T(-1.0) * j0)) * (((T(1.0))) * p + sg * (T(-1.0) * j0)), T(0.0)));
+    }
+  }
+  return gaussian_fract_stat_general<T>(x, sigma);
+}
+
 // {E f(X), Var f(X)}, X ~ N(x, sigma^2), f = floor, from one pass (rulegen/emit_stat_pairs.hpp); other types and
 // sigma below the fast regimes read the two entries.
 template <class T>
-stat<T> gaussian_floor_stat(T x, T sigma) {
+BL_NOINLINE stat<T> gaussian_floor_stat_general(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::make_stat(detail::nan<T>(), detail::nan<T>());
   const T y = x;
@@ -14518,10 +14542,34 @@ stat<T> gaussian_floor_stat(T x, T sigma) {
   return detail::make_stat(m, detail::at_least(m2 - m * m, T(0.0)));
 }
 
+// The same, pixel-sized sigma inline.
+template <class T>
+stat<T> gaussian_floor_stat(T x, T sigma) {
+  BL_MATH_USING
+  const T y = x;
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.09153970651645797) : T(0.0660860453679829))) {  // the nearest break alone
+      const T u = (y);
+      const T k = floor(u);
+      const T j = rint(u);
+      const T d = u - j;  // exact
+      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
+      const T sg = T(2) * (j - k) - T(1);
+      const T p = u - k;  // x's offset into its piece
+      T ph, j0;
+      detail::normal_phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T s2 = sigma * sigma;
+      return detail::make_stat(x + T(-1.0) * (((T(1.0))) * p + sg * (T(-1.0) * j0)), detail::at_least(((((T(1.0))) * p) * p + ((T(1.0)) * s2) + sg * ((T(-2.0) * j1) * (sg * sigma) + T(-1.0) * j0) + ((T(2)*sigma)) * ph + ((-(sigma*sigma)))) - (((T(1.0))) * p + sg * (T(-1.0) * j0)) * (((T(1.0))) * p + sg * (T(-1.0) * j0)), T(0.0)));
+    }
+  }
+  return gaussian_floor_stat_general<T>(x, sigma);
+}
+
 // {E f(X), Var f(X)}, X ~ N(x, sigma^2), f = ceil, from one pass (rulegen/emit_stat_pairs.hpp); other types and
 // sigma below the fast regimes read the two entries.
 template <class T>
-stat<T> gaussian_ceil_stat(T x, T sigma) {
+BL_NOINLINE stat<T> gaussian_ceil_stat_general(T x, T sigma) {
   BL_MATH_USING
   if (!(sigma >= T(0.0))) return detail::make_stat(detail::nan<T>(), detail::nan<T>());
   const T y = -x;
@@ -14868,6 +14916,30 @@ stat<T> gaussian_ceil_stat(T x, T sigma) {
   const T m = gaussian_ceil<T>(x, sigma);
   const T m2 = gaussian_ceil_sq<T>(x, sigma);
   return detail::make_stat(m, detail::at_least(m2 - m * m, T(0.0)));
+}
+
+// The same, pixel-sized sigma inline.
+template <class T>
+stat<T> gaussian_ceil_stat(T x, T sigma) {
+  BL_MATH_USING
+  const T y = -x;
+  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.09153970651645797) : T(0.0660860453679829))) {  // the nearest break alone
+      const T u = (y);
+      const T k = floor(u);
+      const T j = rint(u);
+      const T d = u - j;  // exact
+      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
+      const T sg = T(2) * (j - k) - T(1);
+      const T p = u - k;  // x's offset into its piece
+      T ph, j0;
+      detail::normal_phi_Phic(t, ph, j0);
+      const T j1 = ph - t * j0;
+      const T s2 = sigma * sigma;
+      return detail::make_stat(x + (((T(1.0))) * p + sg * (T(-1.0) * j0)), detail::at_least(((((T(1.0))) * p) * p + ((T(1.0)) * s2) + sg * ((T(-2.0) * j1) * (sg * sigma) + T(-1.0) * j0) + ((T(2)*sigma)) * ph + ((-(sigma*sigma)))) - (((T(1.0))) * p + sg * (T(-1.0) * j0)) * (((T(1.0))) * p + sg * (T(-1.0) * j0)), T(0.0)));
+    }
+  }
+  return gaussian_ceil_stat_general<T>(x, sigma);
 }
 
 }  // namespace gen
