@@ -43,6 +43,19 @@ constexpr double kMaxGrowth = 32;
 // Half-width (in periods) up to which a periodic break sum takes only the breaks it can reach.
 constexpr double kNearReach = 0.45;
 
+// The break sum's divisor of a jump coefficient e_j: box (j + 1), tent (j + 1)(j + 2).
+long jump_den(Kernel k, size_t j) {
+  const long a = static_cast<long>(j) + 1;
+  return k == Kernel::Box ? a : a * (a + 1);
+}
+
+// A kernel's mass past the nearest break at offset d (one break in reach): L, l = max(L, 0) and v =
+// l/2h (box) or l/w (tent), the box's mass being v and the tent's v^2/2. `in`: the indent.
+std::string nearest_mass(const Syntax& s, bool box, const std::string& in) {
+  return in + s.decl("L", "hw - abs(d)") + in + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0)) + in +
+         s.decl("v", "l * (" + s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + "))");
+}
+
 std::string coef(const Syntax& s, const GiNaC::ex& v) {
   return v.is_zero() ? std::string() : "(" + s.ex(v) + ")";
 }
@@ -155,9 +168,7 @@ std::string jump_terms(const Syntax& s, Kernel k, const std::vector<Candidate>& 
     std::string u = c.side < 0 ? "-l" : (c.side > 0 ? "l" : "(d > " + s.dbl(0) + " ? l : -l)");
     if (c.e.size() > 1) out += "  " + s.decl("u", u);
     std::vector<std::string> pc;
-    for (size_t j = 0; j < c.e.size(); ++j)
-      pc.push_back(coef(s, c.e[j] / (k == Kernel::Box ? numeric(static_cast<long>(j + 1))
-                                                      : numeric(static_cast<long>((j + 1) * (j + 2))))));
+    for (size_t j = 0; j < c.e.size(); ++j) pc.push_back(coef(s, c.e[j] / numeric(jump_den(k, j))));
     const std::string P = horner(s, pc, "u");
     // v = l/(2h) or l/w; the box's u/(2h) = +-v, the tent's (u/w)(l/w) = +-v^2.
     out += "  " + s.decl("v", "l * sc * ik");
@@ -424,10 +435,7 @@ std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& gene
   out += "  " + s.decl("k", "floor(u)");
   out += "  " + s.decl("j", "rint(u)");
   out += "  " + s.decl("d", scaled ? "(u - j) * " + gs : "u - j");
-  out += "  " + s.decl("L", "hw - abs(d)");
-  out += "  " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
-  out +=
-      "  " + s.decl("v", "l * (" + s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + "))");
+  out += nearest_mass(s, box, "  ");
   // F: the kernel's mass past the break (box l / 2h, tent l^2 / 2w^2).
   const std::string vk = box ? "" : " * v";
   if (m == 2)
@@ -451,9 +459,7 @@ std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& gene
   out += "  " + s.decl("sg", s.dbl(2) + " * (j - k) - " + s.dbl(1));
   auto jump_poly = [&](size_t i) {
     std::vector<std::string> pc;
-    for (size_t k = 0; k < e[i].size(); ++k)
-      pc.push_back(coef(s, e[i][k] / (box ? numeric(static_cast<long>(k + 1))
-                                          : numeric(static_cast<long>((k + 1) * (k + 2))))));
+    for (size_t k = 0; k < e[i].size(); ++k) pc.push_back(coef(s, e[i][k] / numeric(jump_den(d.kernel, k))));
     return horner(s, pc, "w");
   };
   std::string base, P;
@@ -619,8 +625,10 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   }
   int maxdeg = 0;
   for (const auto& p : st->piece) maxdeg = std::max(maxdeg, p.degree(x));
-  // P(u) of the break n (its region's jump coefficients), Horner in u; uses_u when P reads u.
-  auto jump_poly = [&](bool& uses_u) {
+  // P(u) of the break n (its region's jump coefficients, in the local n), Horner in u; the same text
+  // for every break; uses_u when P reads u.
+  bool uses_u = false;
+  const std::string P = [&] {
     std::vector<std::string> pc;
     for (int k = 0; k <= maxdeg; ++k) {
       const std::string e = region_chain(s, *st, n, static_cast<size_t>(k));
@@ -628,13 +636,12 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
         pc.push_back("");
         continue;
       }
-      const long den = box ? k + 1 : (k + 1) * (k + 2);
+      const long den = jump_den(d.kernel, static_cast<size_t>(k));
       pc.push_back(den == 1 ? e : e + " * " + s.num(numeric(1, den)));
     }
-    uses_u = false;
     for (size_t k = 1; k < pc.size(); ++k) uses_u = uses_u || !pc[k].empty();
     return horner(s, pc, "u");
-  };
+  }();
   if (s.cpp()) {
     // Pixel-sized kernels (half-width <= 1/2): only the nearest integer n = rint(x) is in reach, at
     // the exact offset d = n - x; one term instead of 2K, and no scale for tiny widths (from 1e-30).
@@ -645,13 +652,8 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
     out += "    " + s.decl("n", "rint(x)") + "    " + s.decl("d", "n - x");
     // +1: n right of x (n = n0 + 1), -1: x at or right of n (n = n0); arithmetic, not a branch.
     out += "    " + s.decl("sg", s.dbl(2) + " * (n - n0) - " + s.dbl(1));
-    out += "    " + s.decl("L", "hw - abs(d)");
-    out += "    " + s.decl("l", "L > " + s.dbl(0) + " ? L : " + s.dbl(0));
-    bool uses_u = false;
-    const std::string P = jump_poly(uses_u);
+    out += nearest_mass(s, box, "    ");
     if (uses_u) out += "    " + s.decl("u", "sg * l");
-    out += "    " +
-           s.decl("v", "l * (" + s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + "))");
     out += "        return " + base + " + sg * " + (box ? "v" : "v * v") + " * (" + P + ");\n    }\n";
     // The general block below declares its own n0, y.
   }
@@ -664,8 +666,6 @@ std::string box_tent_staircase_narrow(const sym::Derived& d, sym::Lang lang,
   out += "    " + s.decl("ik", s.dbl(1) + " / (" + (box ? s.dbl(2) + " * hw" : std::string("hw")) + " * sc)");
   for (int j = 1 - K; j <= K; ++j) {
     const std::string J = s.dbl(j);
-    bool uses_u = false;
-    const std::string P = jump_poly(uses_u);
     out += "      {  // break at n0 + " + std::to_string(j) + "\n";
     out += "      " + s.decl("n", "n0 + " + J) + "      " + s.decl("d", "n - x");
     out += "      " + s.decl("L", j <= 0 ? "hw + d" : "hw - d");

@@ -586,6 +586,18 @@ int atomic_index(const sym::Catalog& cat, const sym::Atomic* a) {
   throw std::runtime_error("atomic not in the catalog");
 }
 
+// A Gaussian periodic entry whose straight-line plan (gauss_periodic_fast) goes first: no phases or
+// origins (those keep the generic image sum).
+bool gauss_straight_first(const Derived& d) {
+  return d.kernel == Kernel::Gaussian && d.body == Body::PeriodicTable && d.phases.empty() &&
+         d.origins.empty();
+}
+
+std::string periodic_hot(const Derived& d, const std::string& general) {
+  if (d.kernel != Kernel::Gaussian) return box_tent_periodic_hot(d, general);
+  return gauss_straight_first(d) ? gauss_periodic_hot(periodic_spec(d), general) : "";
+}
+
 GaussPeriodicSpec periodic_spec(const Derived& d) {
   GaussPeriodicSpec sp;
   if (!GiNaC::is_a<GiNaC::numeric>(d.period)) return sp;
@@ -606,7 +618,7 @@ std::string body_periodic(const Derived& d, const Syntax& s) {
   // Gaussian: the straight-line regimes go before the piece table, which only sigma = 0 and the
   // generic code below read (a GPU keeps such an array in local memory; a CPU would build it on
   // the stack on every call).
-  const bool fast_first = d.kernel == Kernel::Gaussian && d.phases.empty() && d.origins.empty();
+  const bool fast_first = gauss_straight_first(d);
   std::string out;
   if (fast_first) {
     out += s.decl("period", s.ex(d.period)) + guard_sigma(s) +

@@ -71,6 +71,10 @@ std::string periodic_straight(const GiNaC::ex& P, const std::vector<std::pair<Gi
 // The straight-line plan's input (emit_gauss_periodic.hpp) of a Gaussian periodic entry (an empty
 // spec when its period or breaks are not numbers).
 GaussPeriodicSpec periodic_spec(const Derived& d);
+// C++ only: the body of a periodic entry that takes pixel-sized kernels by the nearest break
+// (box_tent_periodic_hot, gauss_periodic_hot) and calls `general` (its full body, out of line) for
+// the rest; "" for every other entry.
+std::string periodic_hot(const Derived& d, const std::string& general);
 // The Gaussian entries of a one-piece periodic atomic A (fract) and of A^2, when both were derived
 // with polynomial pieces of degree <= 1 (A) and <= 2 (A^2) and no interior break; both null else.
 struct FusablePair {

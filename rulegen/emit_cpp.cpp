@@ -5,9 +5,7 @@
 #include <set>
 #include <sstream>
 
-#include "emit_box_tent_breaks.hpp"
 #include "emit_common.hpp"
-#include "emit_gauss_periodic.hpp"
 #include "emit_normal_table.hpp"
 #include "emit_stat_pairs.hpp"
 
@@ -112,11 +110,7 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
         << diff_body(d, Lang::Cpp) << "}\n\n";
     const std::string clamp = range_clamp(d, Lang::Cpp);
     std::string main_body = body(d, Lang::Cpp, &ds);
-    std::string hot = box_tent_periodic_hot(d, impl_name(d) + "_general");
-    if (hot.empty() && d.kernel == sym::Kernel::Gaussian && d.body == sym::Body::PeriodicTable &&
-        d.phases.empty() && d.origins.empty())
-      hot = gauss_periodic_hot(periodic_spec(d), impl_name(d) + "_general");
-    if (!hot.empty()) {
+    if (const std::string hot = periodic_hot(d, impl_name(d) + "_general"); !hot.empty()) {
       t << "// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.\n"
         << "template <class T>\nBL_NOINLINE T " << impl_name(d) << "_general(T x, T sigma) {\n"
         << main_body << "}\n\n";

@@ -9,7 +9,6 @@
 #define BL_MATH_USING \
   using std::abs;     \
   using std::atan;    \
-  using std::copysign; \
   using std::cos;     \
   using std::cosh;    \
   using std::exp;     \
