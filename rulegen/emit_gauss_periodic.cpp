@@ -116,11 +116,34 @@ bool dyadic(const numeric& v) {
   return s.is_integer() && std::fabs(v.to_double()) < 1e6;
 }
 
+// v an exact power of two (dyadic, mantissa 1/2).
+bool power_of_two(const numeric& v) {
+  int e = 0;
+  return v > 0 && dyadic(v) && std::frexp(v.to_double(), &e) == 0.5;
+}
+
 struct Break {
   numeric pos;         // in [0, T)
   std::vector<ex> e;   // jump q_right - q_left about the break, coefficients of u^k
   bool delta = false;  // the spec's delta sits here (lo[0])
 };
+
+// E q(v + U), U ~ N(0, sigma^2) = sum_m v^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}: the
+// coefficient texts of v^m (Horner in s2 = sigma^2; "" where zero).
+std::vector<std::string> gauss_mean_coefs(const std::vector<ex>& c) {
+  std::vector<std::string> cx;
+  for (size_t m = 0; m < c.size(); ++m) {
+    std::vector<std::string> cs;
+    numeric df = 1;
+    for (size_t i = 0; m + 2 * i < c.size(); ++i) {
+      if (i > 0) df *= numeric(long(2 * i - 1));
+      cs.push_back(coef_text(df * binomial(numeric(long(m + 2 * i)), numeric(long(2 * i))) * c[m + 2 * i]));
+    }
+    const std::string h = horner(cs, "s2");
+    cx.push_back(h == "T(0)" ? "" : "(" + h + ")");
+  }
+  return cx;
+}
 
 // Break i of pieces c over sp's period and starts: its position and the jump q_i(lo_i + u) -
 // q_{i-1}(lo_i + u) about it (q_{-1}(T + u) at i = 0) as coefficients of u^k, empty where the
@@ -247,10 +270,7 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
     if (ch->c.size() != N) return "";
   auto accn = [](size_t ci) { return ci == 0 ? std::string("acc") : "acc" + std::to_string(ci); };
   double Pd = sp.period.to_double();
-  {
-    int e2 = 0;
-    if (!(Pd > 0) || std::frexp(Pd, &e2) != 0.5) return "";  // power of two: exact reduction
-  }
+  if (!power_of_two(sp.period)) return "";  // exact reduction
   for (const auto& l : sp.lo)
     if (!dyadic(l)) return "";
   const numeric T = sp.period;
@@ -416,23 +436,8 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
     if (blend) o += "        const T hr = T(0.5) * (sd + T(1)), hl = T(1) - hr;\n";
     return o + terms;
   };
-  // E q_j(rp + U) = sum_m rp^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}: the coefficient texts
-  // of rp^m (Horner in s2 = sigma^2).
-  auto mean_coefs = [&](size_t j, size_t ci = 0) {
-    const auto& c = chs[ci]->c[j];
-    std::vector<std::string> cx;
-    for (size_t m = 0; m < c.size(); ++m) {
-      std::vector<std::string> cs;
-      numeric df = 1;
-      for (size_t i = 0; m + 2 * i < c.size(); ++i) {
-        if (i > 0) df *= numeric(long(2 * i - 1));
-        cs.push_back(coef_text(df * binomial(numeric(long(m + 2 * i)), numeric(long(2 * i))) * c[m + 2 * i]));
-      }
-      const std::string h = horner(cs, "s2");
-      cx.push_back(h == "T(0)" ? "" : "(" + h + ")");
-    }
-    return cx;
-  };
+  // E q_j(rp + U): the coefficient texts of rp^m (gauss_mean_coefs).
+  auto mean_coefs = [&](size_t j, size_t ci = 0) { return gauss_mean_coefs(chs[ci]->c[j]); };
   // The candidate break of piece j in slot (side, n): its type and its position relative to the period.
   auto slot = [&](size_t j, int side, int n) {
     long idx = side < 0 ? long(j) - n : long(j) + 1 + n;
@@ -813,11 +818,7 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
     if (ch->c.size() != N || (N != 1 && !ch->delta.is_zero())) return "";
   if (!dyadic(sp.period) || sp.lo[0] != 0) return "";
   const numeric T = sp.period, g = T / numeric(static_cast<long>(N));
-  auto pow2 = [](const numeric& v) {
-    int e = 0;
-    return v > 0 && std::frexp(v.to_double(), &e) == 0.5 && dyadic(v);
-  };
-  if (!pow2(T) || !pow2(g) || (N == 2 && sp.lo[1] != g)) return "";
+  if (!power_of_two(T) || !power_of_two(g) || (N == 2 && sp.lo[1] != g)) return "";
   std::vector<std::vector<Break>> brs(C, std::vector<Break>(N));
   for (size_t ci = 0; ci < C; ++ci)
     for (size_t i = 0; i < N; ++i) {
@@ -845,21 +846,11 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
     return sig;
   };
   const double sf = sigma_0(kTolFloat), sd = sigma_0(1e-13);
-  // E q(p + U) = sum_m p^m sum_i (2i-1)!! C(m+2i, 2i) c_{m+2i} sigma^{2i}, Horner in p and s2.
+  // E q(p + U), Horner in p (gauss_mean_coefs) and s2.
   bool s2 = false;
   auto mean = [&](const std::vector<ex>& c, const std::string& p) {
-    std::vector<std::string> cx;
-    for (size_t m = 0; m < c.size(); ++m) {
-      std::vector<std::string> cs;
-      numeric df = 1;
-      for (size_t i = 0; m + 2 * i < c.size(); ++i) {
-        if (i > 0) df *= numeric(long(2 * i - 1)), s2 = true;
-        cs.push_back(coef_text(df * binomial(numeric(long(m + 2 * i)), numeric(long(2 * i))) * c[m + 2 * i]));
-      }
-      const std::string h = horner(cs, "s2");
-      cx.push_back(h == "T(0)" ? "" : "(" + h + ")");
-    }
-    return horner(cx, p);
+    s2 |= c.size() > 2;  // a sigma^2 term from degree 2 on
+    return horner(gauss_mean_coefs(c), p);
   };
   bool constant = C == 1;
   for (const auto& c : sp.c) constant &= c.size() <= 1;
