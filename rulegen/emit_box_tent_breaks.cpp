@@ -398,7 +398,7 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
 // like the general body; its rounding is that of l = h - |d| and of the piece's polynomial at
 // t = b + d (rounded by eps T for the piece left of b = 0). C++ only: the entry keeps the general
 // body out of line (BL_NOINLINE) so this path inlines into the shader; the GLSL keeps one body.
-std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& general) {
+std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& general, bool* in_range) {
   if (d.kernel == Kernel::Gaussian || d.body != sym::Body::PeriodicTable || d.pieces.empty()) return "";
   if (!GiNaC::is_a<numeric>(d.period)) return "";
   const Syntax s{sym::Lang::Cpp};
@@ -422,6 +422,34 @@ std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& gene
   const bool box = d.kernel == Kernel::Box;
   std::string out;
   out += s.decl("hw", std::string(box ? "detail::k_sqrt3<T>()" : "detail::k_sqrt6<T>()") + " * sigma");
+  int maxdeg = 0;
+  for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
+  if (maxdeg == 0) {
+    // A pulse train (m = 2: piece 0 on [0, g), piece 1 on [g, T); square): e = x - T rint(x / T) is
+    // exact and in [-g, g]; piece 0 holds x iff e >= 0, the nearest break is dn = min(|e|, g - |e|)
+    // away (exact: g - |e| is Sterbenz when it is the smaller), and piece 0's mass is
+    // 1/2 + copysign(1/2 - F, e), F the kernel's mass past that break. No floor and no parity blend:
+    // float box square 2.0 -> 1.3 ns per call (random inputs, sigma ~ 0.003).
+    const bool scaled_T = T != 1;
+    // NaN, sigma <= 0, tiny (1/width past float's range), wide, or x NaN or infinite: general.
+    out += "  if (hw >= " + s.dbl(1e-30) + " && hw <= " + s.num(g / 2) + " && abs(x) <= " + s.dbl(1e30) +
+           ") {  // one break in reach, the nearest\n";
+    const std::string xt = scaled_T ? "x * " + s.num(numeric(1) / T) : "x";
+    out += "  " + s.decl("e", scaled_T ? "(" + xt + " - rint(" + xt + ")) * " + s.num(T) : "x - rint(x)");
+    out += "  " + s.decl("ea", "abs(e)");
+    out += "  " + s.decl("L", "hw - detail::min2(ea, " + s.num(g) + " - ea)");
+    out += "  " + s.decl("v", "(L > " + s.dbl(0) + " ? L : " + s.dbl(0) + ") * (" + s.dbl(1) + " / (" +
+                                  (box ? s.dbl(2) + " * hw" : std::string("hw")) + "))");
+    const std::string F = box ? "v" : "v * v * " + s.dbl(0.5);
+    out += "  " + s.decl("p0", s.dbl(0.5) + " + copysign(" + s.dbl(0.5) + " - " + F + ", e)");
+    const numeric c0 = ps[0].c.empty() ? numeric(0) : ps[0].c[0], c1 = ps[1].c.empty() ? numeric(0) : ps[1].c[0];
+    std::string val = c0 - c1 == 1 ? std::string("p0") : s.num(c0 - c1) + " * p0";
+    if (!c1.is_zero()) val = s.num(c1) + " + " + val;
+    // p0 = 1/2 + copysign(1/2 - F, e) with F in [0, 1/2] rounds into [0, 1]: a 0/1 train needs no clamp.
+    if (in_range) *in_range = val == "p0";
+    out += "    return " + val + ";\n  }\n";
+    return out + "  return " + general + "<T>(x, sigma);\n";
+  }
   // NaN, sigma <= 0, tiny (1/width past float's range), wide, or |x| where x/g overflows: general.
   const bool scaled = g != 1;
   out += "  if (hw >= " + s.dbl(1e-30) + " && hw <= " + s.num(g / 2) +
@@ -440,18 +468,6 @@ std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& gene
   const std::string vk = box ? "" : " * v";
   if (m == 2)
     out += "  " + s.decl("par", "k - " + s.dbl(2) + " * floor(k * " + s.dbl(0.5) + ")");  // x's piece
-  int maxdeg = 0;
-  for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
-  if (maxdeg == 0) {
-    // A pulse train: past the break f takes the other piece's value.
-    const std::string c0 = s.num(ps[0].c.empty() ? numeric(0) : ps[0].c[0]);
-    const std::string c1 = s.num(ps[1].c.empty() ? numeric(0) : ps[1].c[0]);
-    // Blends with weights par and 1 - par in {0, 1} (exact): a select here becomes a branch on par.
-    out += "  " + s.decl("a", "par * " + c1 + " + (" + s.dbl(1) + " - par) * " + c0);
-    out += "  " + s.decl("b", "par * " + c0 + " + (" + s.dbl(1) + " - par) * " + c1);
-    out += "    return a + (b - a) * v" + (box ? std::string() : " * v * " + s.dbl(0.5)) + ";\n  }\n";
-    return out + "  return " + general + "<T>(x, sigma);\n";
-  }
   if (maxdeg >= 2) out += "  " + s.decl("s2", "sigma * sigma");
   out += "  " + s.decl("t", scaled ? "(u - k) * " + gs : "u - k");  // x's offset into its piece
   // +1: the break right of x (j = k + 1), -1: x at or right of it (j = k); arithmetic, not a compare

@@ -593,9 +593,10 @@ bool gauss_straight_first(const Derived& d) {
          d.origins.empty();
 }
 
-std::string periodic_hot(const Derived& d, const std::string& general) {
-  if (d.kernel != Kernel::Gaussian) return box_tent_periodic_hot(d, general);
-  return gauss_straight_first(d) ? gauss_periodic_hot(periodic_spec(d), general) : "";
+std::string periodic_hot(const Derived& d, const std::string& general, bool* in_range) {
+  if (in_range) *in_range = false;
+  if (d.kernel != Kernel::Gaussian) return box_tent_periodic_hot(d, general, in_range);
+  return gauss_straight_first(d) ? gauss_periodic_hot(periodic_spec(d), general, in_range) : "";
 }
 
 GaussPeriodicSpec periodic_spec(const Derived& d) {

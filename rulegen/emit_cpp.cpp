@@ -110,13 +110,24 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
         << diff_body(d, Lang::Cpp) << "}\n\n";
     const std::string clamp = range_clamp(d, Lang::Cpp);
     std::string main_body = body(d, Lang::Cpp, &ds);
-    if (const std::string hot = periodic_hot(d, impl_name(d) + "_general"); !hot.empty()) {
+    bool hot_in_range = false;
+    const std::string general = impl_name(d) + "_general";
+    if (const std::string hot = periodic_hot(d, general, &hot_in_range); !hot.empty()) {
       t << "// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.\n"
-        << "template <class T>\nBL_NOINLINE T " << impl_name(d) << "_general(T x, T sigma) {\n"
+        << "template <class T>\nBL_NOINLINE T " << general << "(T x, T sigma) {\n"
         << main_body << "}\n\n";
       main_body = "  BL_MATH_USING\n" + hot;
     }
-    if (clamp.empty()) {
+    if (hot_in_range && !clamp.empty()) {
+      // The pixel-sized path's values lie in the range already: only the general body's are clamped.
+      const std::string call = "  return " + general + "<T>(x, sigma);\n";
+      const size_t at = main_body.rfind(call);
+      if (at == std::string::npos || at + call.size() != main_body.size())
+        throw std::logic_error("emit_cpp: " + impl_name(d) + "'s pixel-sized path does not end in its general call");
+      main_body.replace(at, call.size(), "  const T v = " + general + "<T>(x, sigma);\n" + clamp);
+      t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
+        << main_body << "}\n\n";
+    } else if (clamp.empty()) {
       t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
         << main_body << "}\n\n";
     } else {

@@ -807,7 +807,7 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
 // or two equally spaced breaks per period at a power-of-two spacing g, one channel and no delta.
 // Below sigma_0 (plan_for(tol, 0)'s test: every other break lies g/2 or more from x, their tails
 // summed <= tol, float 1e-7 and double 1e-13) the break regime's one term is the whole sum.
-std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& general) {
+std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& general, bool* in_range) {
   const size_t N = sp.lo.size();
   // The channels of the pass (sp, then sp.more: one piece only, as in gauss_periodic_fast).
   std::vector<const GaussPeriodicSpec*> chs{&sp};
@@ -855,32 +855,48 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
   bool constant = C == 1;
   for (const auto& c : sp.c) constant &= c.size() <= 1;
   const std::string gl = lit(gd), y = "(" + sp.y + ")";
+  const std::string Tl = lit(T.to_double());
   std::string o;
   o += "  if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {\n";
   o += "    if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < "
        "sizeof(double) ? " +
        lit(sf) + " : " + lit(sd) + ")" + (gd < 1 ? " && abs(" + sp.y + ") <= T(1e30)" : std::string()) +
        ") {  // the nearest break alone\n";
+  std::vector<std::string> vals(C);
+  if (constant) {
+    // A pulse train (N = 2, piece 0 on [0, g), piece 1 on [g, T)): e = x - T rint(x / T) is exact and
+    // in [-g, g]; piece 0 holds x iff e >= 0, the nearest break is min(|e|, g - |e|) away (exact:
+    // g - |e| is Sterbenz when it is the smaller), and piece 0's mass is 1/2 + copysign(1/2 - F, e),
+    // F the tail past that break. No floor, no parity blend (box/tent: box_tent_periodic_hot).
+    o += "      const T e = " + std::string(T == 1 ? y + " - rint" + y : "(" + y + " * " + lit(1 / T.to_double()) +
+                                                                  " - rint(" + y + " * " + lit(1 / T.to_double()) +
+                                                                  ")) * " + Tl) +
+         ";  // exact, in [-g, g]\n";
+    o += "      const T ea = abs(e);\n";
+    o += "      const T t = detail::min2(detail::min2(ea, " + gl + " - ea) * (T(1) / sigma), detail::tail_cut<T>());\n";
+    o += j_chain(1, false, "      ");
+    auto c0 = [&](size_t j) { return sp.c[j].empty() ? numeric(0) : ex_to<numeric>(sp.c[j][0].evalf()); };
+    o += "      const T p0 = T(0.5) + std::copysign(T(0.5) - j0, e);  // piece 0's mass\n";
+    const numeric a = c0(1), b = c0(0) - c0(1);
+    std::string v = b == 1 ? std::string("p0") : lit(b.to_double()) + " * p0";
+    if (!a.is_zero()) v = lit(a.to_double()) + " + " + v;
+    const std::string extra = coef_text(sp.break_extra);
+    // p0 = 1/2 + copysign(1/2 - Phic, e) with Phic in [0, 1] rounds into [0, 1]: a 0/1 train needs no
+    // clamp.
+    if (in_range) *in_range = v == "p0" && extra.empty() && sp.lead.empty();
+    o += "      return " + sp.lead + v + (extra.empty() ? "" : " + " + extra) + ";\n    }\n  }\n";
+    return o + "  return " + general + "<T>(x, sigma);\n";
+  }
   o += "      const T u = " + (gd == 1 ? y : y + " * " + lit(1 / gd)) + ";\n";
   o += "      const T k = floor(u);\n      const T j = rint(u);\n";
   o += "      const T d = " + std::string(gd == 1 ? "u - j" : "(u - j) * " + gl) + ";  // exact\n";
   o += "      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());\n";
   if (N == 2) o += "      const T par = k - T(2) * floor(k * T(0.5));  // x's piece\n";
-  std::vector<std::string> vals(C);
   size_t ne = 0;
   bool any_delta = false;
   for (size_t ci = 0; ci < C; ++ci)
     for (const Break& b : brs[ci]) ne = std::max(ne, b.e.size()), any_delta |= b.delta;
-  if (constant) {  // a pulse train: the mass past the break takes the other piece's value
-    o += j_chain(1, false, "      ");
-    auto c0 = [&](size_t j) {
-      return sp.c[j].empty() ? std::string("T(0)") : lit(ex_to<numeric>(sp.c[j][0].evalf()).to_double());
-    };
-    o += "      const T a = par * " + c0(1) + " + (T(1) - par) * " + c0(0) + ";\n";
-    o += "      const T b = par * " + c0(0) + " + (T(1) - par) * " + c0(1) + ";\n";
-    const std::string extra = coef_text(sp.break_extra);
-    vals[0] = "a + (b - a) * j0" + (extra.empty() ? "" : " + " + extra);
-  } else {
+  {
     // +1: the break right of x (j = k + 1), -1: x at or right of it; 0/1 blends, no selects.
     o += "      const T sg = T(2) * (j - k) - T(1);\n";
     o += "      const T p = " + std::string(gd == 1 ? "u - k" : "(u - k) * " + gl) +

@@ -6,20 +6,21 @@
 
 // Unqualified math calls in generated code resolve to std:: for float/double and, by ADL, to the
 // multiprecision library's overloads when the verifier instantiates the table at 50 digits.
-#define BL_MATH_USING \
-  using std::abs;     \
-  using std::atan;    \
-  using std::cos;     \
-  using std::cosh;    \
-  using std::exp;     \
-  using std::expm1;   \
-  using std::floor;   \
-  using std::log;     \
-  using std::rint;    \
-  using std::sin;     \
-  using std::sinh;    \
-  using std::sqrt;    \
-  using std::tan;     \
+#define BL_MATH_USING  \
+  using std::abs;      \
+  using std::atan;     \
+  using std::copysign; \
+  using std::cos;      \
+  using std::cosh;     \
+  using std::exp;      \
+  using std::expm1;    \
+  using std::floor;    \
+  using std::log;      \
+  using std::rint;     \
+  using std::sin;      \
+  using std::sinh;     \
+  using std::sqrt;     \
+  using std::tan;      \
   using std::tanh;
 
 // The general body of an entry whose pixel-sized path is inlined into the shader stays a call.

@@ -7599,29 +7599,19 @@ BL_NOINLINE T gaussian_square_general(T x, T sigma) {
 //   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {1 on [0,
 //   (1/2)); 0 on [(1/2), 1)} [for small sigma/T]
 template <class T>
-T gaussian_square_raw(T x, T sigma) {
+T gaussian_square(T x, T sigma) {
   BL_MATH_USING
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
     if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.04676299685992172) : T(0.033423255248208356)) && abs(x) <= T(1e30)) {  // the nearest break alone
-      const T u = (x) * T(2.0);
-      const T k = floor(u);
-      const T j = rint(u);
-      const T d = (u - j) * T(0.5);  // exact
-      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
-      const T par = k - T(2) * floor(k * T(0.5));  // x's piece
+      const T e = (x) - rint(x);  // exact, in [-g, g]
+      const T ea = abs(e);
+      const T t = detail::min2(detail::min2(ea, T(0.5) - ea) * (T(1) / sigma), detail::tail_cut<T>());
       const T j0 = detail::normal_Phic(t);
-      const T a = par * T(0.0) + (T(1) - par) * T(1.0);
-      const T b = par * T(1.0) + (T(1) - par) * T(0.0);
-      return a + (b - a) * j0;
+      const T p0 = T(0.5) + std::copysign(T(0.5) - j0, e);  // piece 0's mass
+      return p0;
     }
   }
-  return gaussian_square_general<T>(x, sigma);
-}
-
-// The entry above, kept inside the range of the true value (rounding can leave it).
-template <class T>
-T gaussian_square(T x, T sigma) {
-  const T v = gaussian_square_raw<T>(x, sigma);
+  const T v = gaussian_square_general<T>(x, sigma);
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
@@ -7991,29 +7981,19 @@ BL_NOINLINE T gaussian_square_sq_general(T x, T sigma) {
 //   large sigma/T]; image sum over periods of the Gaussian integral of the pieces {1 on [0,
 //   (1/2)); 0 on [(1/2), 1)} [for small sigma/T]
 template <class T>
-T gaussian_square_sq_raw(T x, T sigma) {
+T gaussian_square_sq(T x, T sigma) {
   BL_MATH_USING
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
     if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.04676299685992172) : T(0.033423255248208356)) && abs(x) <= T(1e30)) {  // the nearest break alone
-      const T u = (x) * T(2.0);
-      const T k = floor(u);
-      const T j = rint(u);
-      const T d = (u - j) * T(0.5);  // exact
-      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
-      const T par = k - T(2) * floor(k * T(0.5));  // x's piece
+      const T e = (x) - rint(x);  // exact, in [-g, g]
+      const T ea = abs(e);
+      const T t = detail::min2(detail::min2(ea, T(0.5) - ea) * (T(1) / sigma), detail::tail_cut<T>());
       const T j0 = detail::normal_Phic(t);
-      const T a = par * T(0.0) + (T(1) - par) * T(1.0);
-      const T b = par * T(1.0) + (T(1) - par) * T(0.0);
-      return a + (b - a) * j0;
+      const T p0 = T(0.5) + std::copysign(T(0.5) - j0, e);  // piece 0's mass
+      return p0;
     }
   }
-  return gaussian_square_sq_general<T>(x, sigma);
-}
-
-// The entry above, kept inside the range of the true value (rounding can leave it).
-template <class T>
-T gaussian_square_sq(T x, T sigma) {
-  const T v = gaussian_square_sq_raw<T>(x, sigma);
+  const T v = gaussian_square_sq_general<T>(x, sigma);
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
@@ -8075,29 +8055,18 @@ BL_NOINLINE T box_square_general(T x, T sigma) {
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on [(1/2),
 //   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
 template <class T>
-T box_square_raw(T x, T sigma) {
+T box_square(T x, T sigma) {
   BL_MATH_USING
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (hw >= T(1e-30) && hw <= (T(1)/T(4)) && abs(x) <= T(1e+30)) {  // one break in reach, the nearest
-    const T u = x * T(2);
-    const T k = floor(u);
-    const T j = rint(u);
-    const T d = (u - j) * (T(1)/T(2));
-    const T L = hw - abs(d);
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * (T(1.0) / (T(2.0) * hw));
-    const T par = k - T(2.0) * floor(k * T(0.5));
-    const T a = par * T(0) + (T(1.0) - par) * T(1);
-    const T b = par * T(1) + (T(1.0) - par) * T(0);
-    return a + (b - a) * v;
+    const T e = x - rint(x);
+    const T ea = abs(e);
+    const T L = hw - detail::min2(ea, (T(1)/T(2)) - ea);
+    const T v = (L > T(0.0) ? L : T(0.0)) * (T(1.0) / (T(2.0) * hw));
+    const T p0 = T(0.5) + copysign(T(0.5) - v, e);
+    return p0;
   }
-  return box_square_general<T>(x, sigma);
-}
-
-// The entry above, kept inside the range of the true value (rounding can leave it).
-template <class T>
-T box_square(T x, T sigma) {
-  const T v = box_square_raw<T>(x, sigma);
+  const T v = box_square_general<T>(x, sigma);
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
@@ -8196,29 +8165,18 @@ BL_NOINLINE T box_square_sq_general(T x, T sigma) {
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on [(1/2),
 //   1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
 template <class T>
-T box_square_sq_raw(T x, T sigma) {
+T box_square_sq(T x, T sigma) {
   BL_MATH_USING
   const T hw = detail::k_sqrt3<T>() * sigma;
   if (hw >= T(1e-30) && hw <= (T(1)/T(4)) && abs(x) <= T(1e+30)) {  // one break in reach, the nearest
-    const T u = x * T(2);
-    const T k = floor(u);
-    const T j = rint(u);
-    const T d = (u - j) * (T(1)/T(2));
-    const T L = hw - abs(d);
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * (T(1.0) / (T(2.0) * hw));
-    const T par = k - T(2.0) * floor(k * T(0.5));
-    const T a = par * T(0) + (T(1.0) - par) * T(1);
-    const T b = par * T(1) + (T(1.0) - par) * T(0);
-    return a + (b - a) * v;
+    const T e = x - rint(x);
+    const T ea = abs(e);
+    const T L = hw - detail::min2(ea, (T(1)/T(2)) - ea);
+    const T v = (L > T(0.0) ? L : T(0.0)) * (T(1.0) / (T(2.0) * hw));
+    const T p0 = T(0.5) + copysign(T(0.5) - v, e);
+    return p0;
   }
-  return box_square_sq_general<T>(x, sigma);
-}
-
-// The entry above, kept inside the range of the true value (rounding can leave it).
-template <class T>
-T box_square_sq(T x, T sigma) {
-  const T v = box_square_sq_raw<T>(x, sigma);
+  const T v = box_square_sq_general<T>(x, sigma);
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
@@ -8351,29 +8309,18 @@ BL_NOINLINE T tent_square_general(T x, T sigma) {
 //   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on
 //   [(1/2), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
 template <class T>
-T tent_square_raw(T x, T sigma) {
+T tent_square(T x, T sigma) {
   BL_MATH_USING
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (hw >= T(1e-30) && hw <= (T(1)/T(4)) && abs(x) <= T(1e+30)) {  // one break in reach, the nearest
-    const T u = x * T(2);
-    const T k = floor(u);
-    const T j = rint(u);
-    const T d = (u - j) * (T(1)/T(2));
-    const T L = hw - abs(d);
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * (T(1.0) / (hw));
-    const T par = k - T(2.0) * floor(k * T(0.5));
-    const T a = par * T(0) + (T(1.0) - par) * T(1);
-    const T b = par * T(1) + (T(1.0) - par) * T(0);
-    return a + (b - a) * v * v * T(0.5);
+    const T e = x - rint(x);
+    const T ea = abs(e);
+    const T L = hw - detail::min2(ea, (T(1)/T(2)) - ea);
+    const T v = (L > T(0.0) ? L : T(0.0)) * (T(1.0) / (hw));
+    const T p0 = T(0.5) + copysign(T(0.5) - v * v * T(0.5), e);
+    return p0;
   }
-  return tent_square_general<T>(x, sigma);
-}
-
-// The entry above, kept inside the range of the true value (rounding can leave it).
-template <class T>
-T tent_square(T x, T sigma) {
-  const T v = tent_square_raw<T>(x, sigma);
+  const T v = tent_square_general<T>(x, sigma);
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
@@ -8547,29 +8494,18 @@ BL_NOINLINE T tent_square_sq_general(T x, T sigma) {
 //   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {t on [0, (1/2)); (1/2) on
 //   [(1/2), 1)}, F_p2 = {((1/2)*(t)^(2)) on [0, (1/2)); (((1/2)*t) + (-1/8)) on [(1/2), 1)}
 template <class T>
-T tent_square_sq_raw(T x, T sigma) {
+T tent_square_sq(T x, T sigma) {
   BL_MATH_USING
   const T hw = detail::k_sqrt6<T>() * sigma;
   if (hw >= T(1e-30) && hw <= (T(1)/T(4)) && abs(x) <= T(1e+30)) {  // one break in reach, the nearest
-    const T u = x * T(2);
-    const T k = floor(u);
-    const T j = rint(u);
-    const T d = (u - j) * (T(1)/T(2));
-    const T L = hw - abs(d);
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * (T(1.0) / (hw));
-    const T par = k - T(2.0) * floor(k * T(0.5));
-    const T a = par * T(0) + (T(1.0) - par) * T(1);
-    const T b = par * T(1) + (T(1.0) - par) * T(0);
-    return a + (b - a) * v * v * T(0.5);
+    const T e = x - rint(x);
+    const T ea = abs(e);
+    const T L = hw - detail::min2(ea, (T(1)/T(2)) - ea);
+    const T v = (L > T(0.0) ? L : T(0.0)) * (T(1.0) / (hw));
+    const T p0 = T(0.5) + copysign(T(0.5) - v * v * T(0.5), e);
+    return p0;
   }
-  return tent_square_sq_general<T>(x, sigma);
-}
-
-// The entry above, kept inside the range of the true value (rounding can leave it).
-template <class T>
-T tent_square_sq(T x, T sigma) {
-  const T v = tent_square_sq_raw<T>(x, sigma);
+  const T v = tent_square_sq_general<T>(x, sigma);
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
