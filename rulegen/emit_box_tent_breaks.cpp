@@ -438,15 +438,47 @@ std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& gene
     out += "  " + s.decl("e", scaled_T ? "(" + xt + " - rint(" + xt + ")) * " + s.num(T) : "x - rint(x)");
     out += "  " + s.decl("ea", "abs(e)");
     out += "  " + s.decl("L", "hw - detail::min2(ea, " + s.num(g) + " - ea)");
-    out += "  " + s.decl("v", "(L > " + s.dbl(0) + " ? L : " + s.dbl(0) + ") * (" + s.dbl(1) + " / (" +
+    out += "  " + s.decl("v", "detail::max0(L) * (" + s.dbl(1) + " / (" +
                                   (box ? s.dbl(2) + " * hw" : std::string("hw")) + "))");
     const std::string F = box ? "v" : "v * v * " + s.dbl(0.5);
     out += "  " + s.decl("p0", s.dbl(0.5) + " + copysign(" + s.dbl(0.5) + " - " + F + ", e)");
-    const numeric c0 = ps[0].c.empty() ? numeric(0) : ps[0].c[0], c1 = ps[1].c.empty() ? numeric(0) : ps[1].c[0];
+    const numeric c0 = ps[0].c.empty() ? numeric(0) : ps[0].c[0],
+                  c1 = ps[1].c.empty() ? numeric(0) : ps[1].c[0];
     std::string val = c0 - c1 == 1 ? std::string("p0") : s.num(c0 - c1) + " * p0";
     if (!c1.is_zero()) val = s.num(c1) + " + " + val;
     // p0 = 1/2 + copysign(1/2 - F, e) with F in [0, 1/2] rounds into [0, 1]: a 0/1 train needs no clamp.
     if (in_range) *in_range = val == "p0";
+    out += "    return " + val + ";\n  }\n";
+    return out + "  return " + general + "<T>(x, sigma);\n";
+  }
+  if (m == 1 && maxdeg == 1) {
+    // One linear piece q(t) = a + b t and one jump per period (fract): with e = x - T rint(x / T) exact
+    // in [-T/2, T/2], q's continuation from the break j T nearest x is a + b e everywhere right of
+    // it, and left of it the previous period adds b T: mean = a + b e + b T P(U < -e), for either
+    // sign of e (box: P = clamp(1/2 - e / 2h, 0, 1); tent: P = 1/2 - copysign(1/2 - F, e), F the
+    // mass past the break). No floor, no side: float box fract 1.34 -> ns per call (calibrated).
+    const numeric a = ps[0].c.empty() ? numeric(0) : ps[0].c[0],
+                  b = ps[0].c.size() > 1 ? ps[0].c[1] : numeric(0);
+    const bool scaled_T = T != 1;
+    out += "  if (hw >= " + s.dbl(1e-30) + " && hw <= " + s.num(g / 2) + " && abs(x) <= " + s.dbl(1e30) +
+           ") {  // one break in reach, the nearest\n";
+    const std::string xt = scaled_T ? "x * " + s.num(numeric(1) / T) : "x";
+    out += "  " + s.decl("e", scaled_T ? "(" + xt + " - rint(" + xt + ")) * " + s.num(T) : "x - rint(x)");
+    if (box) {
+      out += "  " + s.decl("q", s.dbl(0.5) + " - e * (" + s.dbl(1) + " / (" + s.dbl(2) + " * hw))");
+      out += "  " + s.decl("P", "detail::min1(detail::max0(q))");
+    } else {
+      out += "  " + s.decl("L", "hw - abs(e)");
+      out += "  " + s.decl("v", "detail::max0(L) * (" + s.dbl(1) + " / hw)");
+      out +=
+          "  " + s.decl("P", s.dbl(0.5) + " - copysign(" + s.dbl(0.5) + " - v * v * " + s.dbl(0.5) + ", e)");
+    }
+    std::string val = b == 1 ? std::string("e") : s.num(b) + " * e";
+    if (!a.is_zero()) val = s.num(a) + " + " + val;
+    val += b * T == 1 ? std::string(" + P") : " + " + s.num(b * T) + " * P";
+    // fract: e + P lies in [0, 1] by construction (e >= 0: P <= 1/2 - e / 2h rounds to <= 1/2; e < 0:
+    // P <= 1), so only the general call needs the range clamp.
+    if (in_range) *in_range = a.is_zero() && b == 1 && T == 1;
     out += "    return " + val + ";\n  }\n";
     return out + "  return " + general + "<T>(x, sigma);\n";
   }

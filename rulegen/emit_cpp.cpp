@@ -123,7 +123,8 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
       const std::string call = "  return " + general + "<T>(x, sigma);\n";
       const size_t at = main_body.rfind(call);
       if (at == std::string::npos || at + call.size() != main_body.size())
-        throw std::logic_error("emit_cpp: " + impl_name(d) + "'s pixel-sized path does not end in its general call");
+        throw std::logic_error("emit_cpp: " + impl_name(d) +
+                               "'s pixel-sized path does not end in its general call");
       main_body.replace(at, call.size(), "  const T v = " + general + "<T>(x, sigma);\n" + clamp);
       t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
         << main_body << "}\n\n";

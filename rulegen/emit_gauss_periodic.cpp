@@ -868,12 +868,14 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
     // in [-g, g]; piece 0 holds x iff e >= 0, the nearest break is min(|e|, g - |e|) away (exact:
     // g - |e| is Sterbenz when it is the smaller), and piece 0's mass is 1/2 + copysign(1/2 - F, e),
     // F the tail past that break. No floor, no parity blend (box/tent: box_tent_periodic_hot).
-    o += "      const T e = " + std::string(T == 1 ? y + " - rint" + y : "(" + y + " * " + lit(1 / T.to_double()) +
-                                                                  " - rint(" + y + " * " + lit(1 / T.to_double()) +
-                                                                  ")) * " + Tl) +
+    o += "      const T e = " +
+         std::string(T == 1 ? y + " - rint" + y
+                            : "(" + y + " * " + lit(1 / T.to_double()) + " - rint(" + y + " * " +
+                                  lit(1 / T.to_double()) + ")) * " + Tl) +
          ";  // exact, in [-g, g]\n";
     o += "      const T ea = abs(e);\n";
-    o += "      const T t = detail::min2(detail::min2(ea, " + gl + " - ea) * (T(1) / sigma), detail::tail_cut<T>());\n";
+    o += "      const T t = detail::min2(detail::min2(ea, " + gl +
+         " - ea) * (T(1) / sigma), detail::tail_cut<T>());\n";
     o += j_chain(1, false, "      ");
     auto c0 = [&](size_t j) { return sp.c[j].empty() ? numeric(0) : ex_to<numeric>(sp.c[j][0].evalf()); };
     o += "      const T p0 = T(0.5) + std::copysign(T(0.5) - j0, e);  // piece 0's mass\n";

@@ -5598,28 +5598,16 @@ BL_NOINLINE T box_fract_general(T x, T sigma) {
 //   F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/2)*(t)^(2)) on [0, 1)}, F_p2 =
 //   {((1/6)*(t)^(3)) on [0, 1)}
 template <class T>
-T box_fract_raw(T x, T sigma) {
+T box_fract(T x, T sigma) {
   BL_MATH_USING
   const T hw = detail::k_sqrt3<T>() * sigma;
-  if (hw >= T(1e-30) && hw <= (T(1)/T(2))) {  // one break in reach, the nearest
-    const T u = x;
-    const T k = floor(u);
-    const T j = rint(u);
-    const T d = u - j;
-    const T L = hw - abs(d);
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * (T(1.0) / (T(2.0) * hw));
-    const T t = u - k;
-    const T sg = T(2.0) * (j - k) - T(1.0);
-    return (((T(1)))) * t + sg * v * (((T(-1))));
+  if (hw >= T(1e-30) && hw <= (T(1)/T(2)) && abs(x) <= T(1e+30)) {  // one break in reach, the nearest
+    const T e = x - rint(x);
+    const T q = T(0.5) - e * (T(1.0) / (T(2.0) * hw));
+    const T P = detail::min1(detail::max0(q));
+    return e + P;
   }
-  return box_fract_general<T>(x, sigma);
-}
-
-// The entry above, kept inside the range of the true value (rounding can leave it).
-template <class T>
-T box_fract(T x, T sigma) {
-  const T v = box_fract_raw<T>(x, sigma);
+  const T v = box_fract_general<T>(x, sigma);
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
@@ -5842,28 +5830,17 @@ BL_NOINLINE T tent_fract_general(T x, T sigma) {
 //   (x-qT)q) + F_p2(T) q + F_p2(x - qT), q = floor(x/T), T = 1, F_p = {((1/2)*(t)^(2)) on [0,
 //   1)}, F_p2 = {((1/6)*(t)^(3)) on [0, 1)}
 template <class T>
-T tent_fract_raw(T x, T sigma) {
+T tent_fract(T x, T sigma) {
   BL_MATH_USING
   const T hw = detail::k_sqrt6<T>() * sigma;
-  if (hw >= T(1e-30) && hw <= (T(1)/T(2))) {  // one break in reach, the nearest
-    const T u = x;
-    const T k = floor(u);
-    const T j = rint(u);
-    const T d = u - j;
-    const T L = hw - abs(d);
-    const T l = L > T(0.0) ? L : T(0.0);
-    const T v = l * (T(1.0) / (hw));
-    const T t = u - k;
-    const T sg = T(2.0) * (j - k) - T(1.0);
-    return (((T(1)))) * t + sg * v * v * (((T(-1)/T(2))));
+  if (hw >= T(1e-30) && hw <= (T(1)/T(2)) && abs(x) <= T(1e+30)) {  // one break in reach, the nearest
+    const T e = x - rint(x);
+    const T L = hw - abs(e);
+    const T v = detail::max0(L) * (T(1.0) / hw);
+    const T P = T(0.5) - copysign(T(0.5) - v * v * T(0.5), e);
+    return e + P;
   }
-  return tent_fract_general<T>(x, sigma);
-}
-
-// The entry above, kept inside the range of the true value (rounding can leave it).
-template <class T>
-T tent_fract(T x, T sigma) {
-  const T v = tent_fract_raw<T>(x, sigma);
+  const T v = tent_fract_general<T>(x, sigma);
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
@@ -8062,7 +8039,7 @@ T box_square(T x, T sigma) {
     const T e = x - rint(x);
     const T ea = abs(e);
     const T L = hw - detail::min2(ea, (T(1)/T(2)) - ea);
-    const T v = (L > T(0.0) ? L : T(0.0)) * (T(1.0) / (T(2.0) * hw));
+    const T v = detail::max0(L) * (T(1.0) / (T(2.0) * hw));
     const T p0 = T(0.5) + copysign(T(0.5) - v, e);
     return p0;
   }
@@ -8172,7 +8149,7 @@ T box_square_sq(T x, T sigma) {
     const T e = x - rint(x);
     const T ea = abs(e);
     const T L = hw - detail::min2(ea, (T(1)/T(2)) - ea);
-    const T v = (L > T(0.0) ? L : T(0.0)) * (T(1.0) / (T(2.0) * hw));
+    const T v = detail::max0(L) * (T(1.0) / (T(2.0) * hw));
     const T p0 = T(0.5) + copysign(T(0.5) - v, e);
     return p0;
   }
@@ -8316,7 +8293,7 @@ T tent_square(T x, T sigma) {
     const T e = x - rint(x);
     const T ea = abs(e);
     const T L = hw - detail::min2(ea, (T(1)/T(2)) - ea);
-    const T v = (L > T(0.0) ? L : T(0.0)) * (T(1.0) / (hw));
+    const T v = detail::max0(L) * (T(1.0) / (hw));
     const T p0 = T(0.5) + copysign(T(0.5) - v * v * T(0.5), e);
     return p0;
   }
@@ -8501,7 +8478,7 @@ T tent_square_sq(T x, T sigma) {
     const T e = x - rint(x);
     const T ea = abs(e);
     const T L = hw - detail::min2(ea, (T(1)/T(2)) - ea);
-    const T v = (L > T(0.0) ? L : T(0.0)) * (T(1.0) / (hw));
+    const T v = detail::max0(L) * (T(1.0) / (hw));
     const T p0 = T(0.5) + copysign(T(0.5) - v * v * T(0.5), e);
     return p0;
   }

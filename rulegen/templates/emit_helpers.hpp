@@ -3,6 +3,9 @@
 
 #include <cmath>
 #include <limits>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 // Unqualified math calls in generated code resolve to std:: for float/double and, by ADL, to the
 // multiprecision library's overloads when the verifier instantiates the table at 50 digits.
@@ -183,6 +186,37 @@ template <class T>
 T min2(T a, T b) {
   return b < a ? b : a;
 }
+
+// max(v, 0) and min(v, 1) as the selects v > 0 ? v : 0 and v < 1 ? v : 1 (the same values, NaN
+// included: maxss/minss return their second operand then, as the selects do), without a branch:
+// GCC compiles such a select in a pixel-sized path to a conditional jump, mispredicted on the
+// random side of a break a pixel falls on (box fract 0.8 ns per call at |x| ~ 10, 1.4 at |x| ~ 1).
+template <class T>
+T max0(T v) {
+  return v > T(0) ? v : T(0);
+}
+template <class T>
+T min1(T v) {
+  return v < T(1) ? v : T(1);
+}
+#if defined(__SSE2__)
+template <>
+inline float max0<float>(float v) {
+  return _mm_cvtss_f32(_mm_max_ss(_mm_set_ss(v), _mm_setzero_ps()));
+}
+template <>
+inline double max0<double>(double v) {
+  return _mm_cvtsd_f64(_mm_max_sd(_mm_set_sd(v), _mm_setzero_pd()));
+}
+template <>
+inline float min1<float>(float v) {
+  return _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(v), _mm_set_ss(1.0f)));
+}
+template <>
+inline double min1<double>(double v) {
+  return _mm_cvtsd_f64(_mm_min_sd(_mm_set_sd(v), _mm_set_sd(1.0)));
+}
+#endif
 
 // The stat entries' return (their GLSL twin is vec2(mean, var)).
 template <class T>
