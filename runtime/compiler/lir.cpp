@@ -198,6 +198,9 @@ class Folder {
       case LOp::Sub:
         if (is_k(b, 0.0f)) return a;
         if (is_k(a, 0.0f)) return become(LOp::Neg, b);
+        // k - (k - x) -> x: a pulse's complement taken twice (checkerboard's 1 - ss of ss = 1 - square).
+        if (is_k(a) && code[b].op == LOp::Sub && is_k(code[b].arg[0]) && code[code[b].arg[0]].k == code[a].k)
+          return code[b].arg[1];
         break;
       case LOp::Mul:
         if (is_k(b, 1.0f)) return a;

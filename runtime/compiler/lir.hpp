@@ -65,11 +65,11 @@ struct Program {
 
 // Folding, common subexpression elimination and dead-code elimination (only what outputs need
 // survives, so variances no later rule consumes are never computed). Folding: constants (in float),
-// identities, x * 0 -> 0 (so a zero covariance or derivative term drops what feeds it; an
+// identities, k - (k - x) -> x, x * 0 -> 0 (so a zero covariance or derivative term drops what feeds it; an
 // infinite or NaN x no longer turns it into NaN), constant chains (x * k1) * k2 -> x * (k1 k2),
 // x / 2^n -> x * 2^-n, sqrt(k y) -> sqrt(k) sqrt(y) and sqrt(x^2) -> x for x >= 0 (a scaled
 // sd), NonNeg of a value known >= 0; a + b and b + a are one instruction. Values change by float rounding at
-// most (reassociated constant products, sqrt(k y)) for finite operands.
+// most (reassociated constant products, sqrt(k y), k - (k - x)) for finite operands.
 struct OptimizeOptions {
   // x * 0 -> 0. It differs from the naive program where x is infinite or NaN: there the naive
   // product is NaN, which a later NonNeg / Min / Max may turn into an arbitrary finite value (a

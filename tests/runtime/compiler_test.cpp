@@ -574,6 +574,44 @@ TEST(Compiler, FoldingKeepsValuesAndDropsWork) {
     }
 }
 
+// k - (k - x) folds to x (a complement taken twice), also when k - x has other uses; k' - (k - x)
+// with k' != k does not.
+TEST(Compiler, DoubleComplementFoldsToItsArgument) {
+  using compiler::LOp;
+  compiler::Program p;
+  p.input_count = 1;
+  p.input_names = {"u"};
+  auto put = [&](LOp op, int a = -1, int b = -1, float k = 0) {
+    compiler::Inst in;
+    in.op = op;
+    in.arg[0] = a;
+    in.arg[1] = b;
+    in.k = k;
+    p.insts.push_back(in);
+    return static_cast<int>(p.insts.size()) - 1;
+  };
+  const int m = put(LOp::InMean, 0), one = put(LOp::Const, -1, -1, 1), two = put(LOp::Const, -1, -1, 2);
+  const int c = put(LOp::Sub, one, m);
+  p.outputs = {put(LOp::Sub, one, c), c, put(LOp::Sub, two, c)};
+  p.output_names = {"a", "b", "c"};
+  const compiler::Program o = compiler::optimize(p);
+  EXPECT_EQ(o.insts[o.outputs[0]].op, LOp::InMean);
+  int subs = 0;
+  for (const auto& in : o.insts) subs += in.op == LOp::Sub;
+  EXPECT_EQ(subs, 2);  // 1 - u and 2 - (1 - u)
+  float u = 1e-9f, out[3];
+  std::vector<float*> ptr{&out[0], &out[1], &out[2]};
+  compiler::Batch b;
+  b.count = 1;
+  b.mean = {&u};
+  float sd = 0;
+  b.sd = {&sd};
+  compiler::Evaluator(o).run(b, ptr);
+  EXPECT_EQ(out[0], 1e-9f);  // the unfolded 1 - (1 - 1e-9) rounds to 0
+  EXPECT_EQ(out[1], 1.0f);
+  EXPECT_EQ(out[2], 1.0f);
+}
+
 TEST(Compiler, BadScheduleAndNamesAreReported) {
   const ir::Graph g = one_input([](dsl::Var u) { return dsl::sin(u); });
   EXPECT_THROW(compiler::lower(g, compiler::Schedule(1)), std::invalid_argument);
