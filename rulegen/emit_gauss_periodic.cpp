@@ -889,6 +889,33 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
     o += "      return " + sp.lead + v + (extra.empty() ? "" : " + " + extra) + ";\n    }\n  }\n";
     return o + "  return " + general + "<T>(x, sigma);\n";
   }
+  if (C == 1 && N == 1 && sp.c[0].size() <= 2 && sp.delta.is_zero()) {
+    // One linear piece a + b t and one jump per period (fract): with e = x - T rint(x / T) exact, the
+    // piece's continuation from the nearest break is a + b e on both sides and the previous period
+    // adds b T, so the mean is a + b e + b T P(U < -e), P = 1/2 - copysign(1/2 - Phic(|e| / sigma), e)
+    // (the other breaks' tails are what sigma_0 drops). No floor, no side (box_tent_periodic_hot).
+    auto coef = [&](size_t k) {
+      return k < sp.c[0].size() ? ex_to<numeric>(sp.c[0][k].evalf()) : numeric(0);
+    };
+    const numeric a = coef(0), b = coef(1);
+    const std::string it = lit(1 / T.to_double());
+    o += "      const T e = " +
+         std::string(T == 1 ? y + " - rint" + y : "(" + y + " * " + it + " - rint(" + y + " * " + it + ")) * " + Tl) +
+         ";  // exact, in [-T/2, T/2]\n";
+    o += "      const T t = detail::min2(abs(e) * (T(1) / sigma), detail::tail_cut<T>());\n";
+    o += j_chain(1, false, "      ");
+    o += "      const T P = T(0.5) - std::copysign(T(0.5) - j0, e);  // P(U < -e)\n";
+    std::string v = b == 1 ? std::string("e") : lit(b.to_double()) + " * e";
+    if (!a.is_zero()) v = lit(a.to_double()) + " + " + v;
+    const numeric bT = b * T;
+    v += bT == 1 ? std::string(" + P") : " + " + lit(bT.to_double()) + " * P";
+    const std::string extra = coef_text(sp.break_extra);
+    // fract: e + P lies in [0, 1] (e >= 0: P = Phic(e / sigma) <= 1/2 and tiny where e ~ 1/2; e < 0:
+    // P <= 1), so only the general call needs the range clamp.
+    if (in_range) *in_range = a.is_zero() && b == 1 && T == 1 && extra.empty() && sp.lead.empty();
+    o += "      return " + sp.lead + v + (extra.empty() ? "" : " + " + extra) + ";\n    }\n  }\n";
+    return o + "  return " + general + "<T>(x, sigma);\n";
+  }
   o += "      const T u = " + (gd == 1 ? y : y + " * " + lit(1 / gd)) + ";\n";
   o += "      const T k = floor(u);\n      const T j = rint(u);\n";
   o += "      const T d = " + std::string(gd == 1 ? "u - j" : "(u - j) * " + gl) + ";  // exact\n";

@@ -5061,28 +5061,18 @@ BL_NOINLINE T gaussian_fract_general(T x, T sigma) {
 //   image sum over periods of the Gaussian integral of the pieces {t on [0, 1)} [for small
 //   sigma/T]
 template <class T>
-T gaussian_fract_raw(T x, T sigma) {
+T gaussian_fract(T x, T sigma) {
   BL_MATH_USING
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
     if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.09339361644125409) : T(0.06708733218678724))) {  // the nearest break alone
-      const T u = (x);
-      const T k = floor(u);
-      const T j = rint(u);
-      const T d = u - j;  // exact
-      const T t = detail::min2(abs(d) * (T(1) / sigma), detail::tail_cut<T>());
-      const T sg = T(2) * (j - k) - T(1);
-      const T p = u - k;  // x's offset into its piece
+      const T e = (x) - rint(x);  // exact, in [-T/2, T/2]
+      const T t = detail::min2(abs(e) * (T(1) / sigma), detail::tail_cut<T>());
       const T j0 = detail::normal_Phic(t);
-      return ((T(1.0))) * p + sg * (T(-1.0) * j0);
+      const T P = T(0.5) - std::copysign(T(0.5) - j0, e);  // P(U < -e)
+      return e + P;
     }
   }
-  return gaussian_fract_general<T>(x, sigma);
-}
-
-// The entry above, kept inside the range of the true value (rounding can leave it).
-template <class T>
-T gaussian_fract(T x, T sigma) {
-  const T v = gaussian_fract_raw<T>(x, sigma);
+  const T v = gaussian_fract_general<T>(x, sigma);
   return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
 }
 
