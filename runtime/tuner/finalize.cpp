@@ -261,7 +261,8 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   const std::vector<int> picked = pick_front_points(front, opt.max_points, msaa_errors);
   for (int i : picked) refine_and_consider(front[i]);
   // The points the speed-up at MSAA-16's error is read from (its anchors), polished: single-gene
-  // changes that lower the model time at no more sample error (polish.hpp).
+  // changes that lower the model time at no more sample error (polish.hpp), and cheaper points moved
+  // down to that error (reach).
   if (opt.polish && e16 > 0) {
     // Each anchor (the cheapest point under m e16 for each margin m) may spend up to its margin.
     std::vector<Genome> polished;
@@ -273,6 +274,27 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
                    "finalize: %s: polished search point %d: %.2f -> %.2f ns/px, sample error %.5f -> %.5f\n",
                    s.name.c_str(), i, front[i].obj.time, q.obj.time, front[i].obj.error, q.obj.error);
       if (q.genome != front[i].genome &&
+          std::find(polished.begin(), polished.end(), q.genome) == polished.end()) {
+        polished.push_back(q.genome);
+        refine_and_consider(q);
+      }
+    }
+    // And from below: the most accurate point cheaper than each anchor (any point when none is
+    // under m e16) moved toward m e16 within the anchor's time (reach).
+    for (double m : kAnchorMargins) {
+      const int i = cheapest_under(front, m * e16);
+      const double budget = i < 0 ? std::numeric_limits<double>::infinity() : front[i].obj.time;
+      int j = -1;
+      for (int k = 0; k < static_cast<int>(front.size()); ++k)
+        if (front[k].obj.time < budget && (j < 0 || front[k].obj.error < front[j].obj.error)) j = k;
+      if (j < 0) continue;
+      const Point q = reach(t, front[j], m * e16, budget);
+      std::fprintf(
+          stderr,
+          "finalize: %s: reached from search point %d toward %.5f: %.2f -> %.2f ns/px (budget %.2f), "
+          "sample error %.5f -> %.5f\n",
+          s.name.c_str(), j, m * e16, front[j].obj.time, q.obj.time, budget, front[j].obj.error, q.obj.error);
+      if (q.obj.error <= m * e16 && q.obj.time < budget &&
           std::find(polished.begin(), polished.end(), q.genome) == polished.end()) {
         polished.push_back(q.genome);
         refine_and_consider(q);

@@ -23,39 +23,72 @@ std::vector<std::pair<int, int>> fused_gene_pairs(const Problem& prob) {
   return out;
 }
 
-Point polish(const SceneTuner& t, const Point& start, double limit, const PolishOptions& opt) {
+namespace {
+
+// Every single-gene change of g and every change of a fused pair to one rule, with its model time
+// (lowering and the cost model only, no pixels), kept when keep(time).
+template <class Keep>
+std::vector<std::pair<double, Genome>> moves(const SceneTuner& t, const Genome& g, Keep keep) {
   const Problem& prob = t.problem();
   const int rules = static_cast<int>(prob.palette.rules.size());
-  const std::vector<std::pair<int, int>> pairs = fused_gene_pairs(prob);
+  std::vector<std::pair<double, Genome>> out;
+  auto consider = [&](Genome x) {
+    const auto p = t.lower(t.schedule(x));
+    if (!p) return;
+    const double time = t.cost_model().cost(*p);
+    if (keep(time)) out.emplace_back(time, std::move(x));
+  };
+  for (int k = 0; k < prob.space.size(); ++k)
+    for (int r = 0; r < rules; ++r) {
+      if (r == g[k]) continue;
+      Genome x = g;
+      x[k] = static_cast<std::uint8_t>(r);
+      consider(std::move(x));
+    }
+  for (const auto& [ga, gb] : fused_gene_pairs(prob))
+    for (int r = 0; r < rules; ++r) {
+      if (r == g[ga] || r == g[gb]) continue;  // single-gene moves cover these
+      Genome x = g;
+      x[ga] = x[gb] = static_cast<std::uint8_t>(r);
+      consider(std::move(x));
+    }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  return out;
+}
+
+}  // namespace
+
+Point reach(const SceneTuner& t, const Point& start, double target, double budget, const PolishOptions& opt) {
+  Point cur = start;
+  int evals = 0;
+  for (int step = 0; step < opt.max_steps && evals < opt.max_evals && cur.obj.error > target; ++step) {
+    const auto cand = moves(t, cur.genome, [&](double time) { return time < budget; });
+    Point best = cur;
+    bool reached = false;
+    for (int k = 0; k < static_cast<int>(cand.size()) && k < opt.max_evals_per_step && evals < opt.max_evals;
+         ++k) {
+      const Objectives o = t.evaluate(t.schedule(cand[k].second));
+      ++evals;
+      if (o.error <= target) {  // the cheapest change that reaches the target
+        best = Point{cand[k].second, o};
+        reached = true;
+        break;
+      }
+      if (o.error < best.obj.error) best = Point{cand[k].second, o};
+    }
+    if (best.genome == cur.genome) break;
+    cur = best;
+    if (reached) break;
+  }
+  return cur;
+}
+
+Point polish(const SceneTuner& t, const Point& start, double limit, const PolishOptions& opt) {
   if (limit < 0) limit = start.obj.error;
   Point cur = start;
   int evals = 0;
   for (int step = 0; step < opt.max_steps && evals < opt.max_evals; ++step) {
-    // Model time of every single-gene change and every change of a fused pair to one rule (lowering
-    // and the cost model only).
-    std::vector<std::pair<double, Genome>> cheaper;
-    auto consider = [&](Genome x) {
-      const auto p = t.lower(t.schedule(x));
-      if (!p) return;
-      const double time = t.cost_model().cost(*p);
-      if (time < cur.obj.time) cheaper.emplace_back(time, std::move(x));
-    };
-    for (int g = 0; g < prob.space.size(); ++g)
-      for (int r = 0; r < rules; ++r) {
-        if (r == cur.genome[g]) continue;
-        Genome x = cur.genome;
-        x[g] = static_cast<std::uint8_t>(r);
-        consider(std::move(x));
-      }
-    for (const auto& [ga, gb] : pairs)
-      for (int r = 0; r < rules; ++r) {
-        if (r == cur.genome[ga] || r == cur.genome[gb]) continue;  // single-gene moves cover these
-        Genome x = cur.genome;
-        x[ga] = x[gb] = static_cast<std::uint8_t>(r);
-        consider(std::move(x));
-      }
-    std::stable_sort(cheaper.begin(), cheaper.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    const auto cheaper = moves(t, cur.genome, [&](double time) { return time < cur.obj.time; });
     bool moved = false;
     for (int k = 0;
          k < static_cast<int>(cheaper.size()) && k < opt.max_evals_per_step && evals < opt.max_evals; ++k) {

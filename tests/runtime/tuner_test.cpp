@@ -645,6 +645,45 @@ TEST(Polish, LowersTheTimeWithinTheErrorLimit) {
   EXPECT_EQ(again.error, kept.obj.error);
 }
 
+// The error side (reach): all-Gaussian (rho = const) with checkerboard's first floor pulse left
+// plain (a large error: one axis aliases) moved toward all-Gaussian's error within twice its time:
+// a lower error, under the budget, its objectives those of its genome; with a budget no change fits
+// (all-none's own time from all-none: every change costs more) the start comes back. (From all-none
+// no single change helps checkerboard: a floor is smoothed only when its argument carries a
+// variance, so the search's points, not all-none, are reach's starts.)
+TEST(Polish, ReachLowersTheErrorWithinTheTimeBudget) {
+  const std::string cache = temp_dir("cache_reach");
+  TuneOptions o = tiny_options(cache);
+  SceneTuner t(tiny_scene(), quick_model(), o);
+  const Palette& pal = t.problem().palette;
+  auto index_of = [&](const char* rule) {
+    const int r = static_cast<int>(std::find(pal.names.begin(), pal.names.end(), rule) - pal.names.begin());
+    EXPECT_LT(r, static_cast<int>(pal.names.size())) << rule;
+    return static_cast<std::uint8_t>(r);
+  };
+  auto point = [&](const Genome& g) { return Point{g, t.evaluate(t.schedule(g))}; };
+  const Point gauss = point(Genome(t.problem().space.size(), index_of("gaussian:rho=const")));
+  const auto pairs = fused_gene_pairs(t.problem());
+  ASSERT_FALSE(pairs.empty());
+  Genome g = gauss.genome;
+  g[pairs[0].first] = g[pairs[0].second] = index_of("none");
+  const Point start = point(g);
+  ASSERT_GT(start.obj.error, 1.5 * gauss.obj.error);
+  PolishOptions few;
+  few.max_steps = 4;
+  const double budget = 2 * gauss.obj.time;
+  const Point r = reach(t, start, gauss.obj.error, budget, few);
+  EXPECT_LT(r.obj.error, 0.8 * start.obj.error);
+  EXPECT_LT(r.obj.time, budget);
+  const Objectives again = t.evaluate(t.schedule(r.genome));
+  EXPECT_EQ(again.time, r.obj.time);
+  EXPECT_EQ(again.error, r.obj.error);
+  const Point none = point(Genome(t.problem().space.size(), index_of("none")));
+  const Point same = reach(t, none, gauss.obj.error, none.obj.time, few);
+  EXPECT_EQ(same.genome, none.genome);
+  EXPECT_EQ(same.obj.error, none.obj.error);
+}
+
 // The gene pairs polish moves together are the ones the compiler fuses: checkerboard's two floor
 // pairs (floor(u + 0.5) - floor(u), the same in v) and bricks' two fract windows (the second one the
 // tail of the product chain step * step * step * step), nothing else.
