@@ -900,7 +900,8 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
     const numeric a = coef(0), b = coef(1);
     const std::string it = lit(1 / T.to_double());
     o += "      const T e = " +
-         std::string(T == 1 ? y + " - rint" + y : "(" + y + " * " + it + " - rint(" + y + " * " + it + ")) * " + Tl) +
+         std::string(T == 1 ? y + " - rint" + y
+                            : "(" + y + " * " + it + " - rint(" + y + " * " + it + ")) * " + Tl) +
          ";  // exact, in [-T/2, T/2]\n";
     o += "      const T t = detail::min2(abs(e) * (T(1) / sigma), detail::tail_cut<T>());\n";
     o += j_chain(1, false, "      ");
