@@ -519,6 +519,17 @@ TEST(Compiler, DeadCodeIsRemoved) {
   EXPECT_EQ(count(calls_only, compiler::LOp::NonNeg), 0);
 }
 
+// Appends one instruction (args a, b; constant k) to a hand-built program; its index.
+int append(compiler::Program& p, compiler::LOp op, int a, int b, float k) {
+  compiler::Inst in;
+  in.op = op;
+  in.arg[0] = a;
+  in.arg[1] = b;
+  in.k = k;
+  p.insts.push_back(in);
+  return static_cast<int>(p.insts.size()) - 1;
+}
+
 // optimize() folds what the lowering writes naively: zero covariance and derivative terms (x * 0),
 // sqrt(k sd^2) of a scaled sd, constant chains, division by a power of two, a + b against b + a,
 // NonNeg of a sum of variances. The values are the closed form's (computed here in double).
@@ -527,15 +538,7 @@ TEST(Compiler, FoldingKeepsValuesAndDropsWork) {
   compiler::Program p;
   p.input_count = 1;
   p.input_names = {"u"};
-  auto put = [&](LOp op, int a = -1, int b = -1, float k = 0) {
-    compiler::Inst in;
-    in.op = op;
-    in.arg[0] = a;
-    in.arg[1] = b;
-    in.k = k;
-    p.insts.push_back(in);
-    return static_cast<int>(p.insts.size()) - 1;
-  };
+  auto put = [&](LOp op, int a = -1, int b = -1, float k = 0) { return append(p, op, a, b, k); };
   const int m = put(LOp::InMean, 0), s = put(LOp::InSd, 0);
   const int zero = put(LOp::Const, -1, -1, 0), four = put(LOp::Const, -1, -1, 4);
   const int scale = put(LOp::Const, -1, -1, 0.774f), half = put(LOp::Const, -1, -1, 0.5f);
@@ -581,15 +584,7 @@ TEST(Compiler, DoubleComplementFoldsToItsArgument) {
   compiler::Program p;
   p.input_count = 1;
   p.input_names = {"u"};
-  auto put = [&](LOp op, int a = -1, int b = -1, float k = 0) {
-    compiler::Inst in;
-    in.op = op;
-    in.arg[0] = a;
-    in.arg[1] = b;
-    in.k = k;
-    p.insts.push_back(in);
-    return static_cast<int>(p.insts.size()) - 1;
-  };
+  auto put = [&](LOp op, int a = -1, int b = -1, float k = 0) { return append(p, op, a, b, k); };
   const int m = put(LOp::InMean, 0), one = put(LOp::Const, -1, -1, 1), two = put(LOp::Const, -1, -1, 2);
   const int c = put(LOp::Sub, one, m);
   p.outputs = {put(LOp::Sub, one, c), c, put(LOp::Sub, two, c)};
