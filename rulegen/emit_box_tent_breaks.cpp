@@ -398,7 +398,8 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
 // like the general body; its rounding is that of l = h - |d| and of the piece's polynomial at
 // t = b + d (rounded by eps T for the piece left of b = 0). C++ only: the entry keeps the general
 // body out of line (BL_NOINLINE) so this path inlines into the shader; the GLSL keeps one body.
-std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& general, bool* in_range) {
+std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& general, const std::string& clamp,
+                                  bool* in_range) {
   if (d.kernel == Kernel::Gaussian || d.body != sym::Body::PeriodicTable || d.pieces.empty()) return "";
   if (!GiNaC::is_a<numeric>(d.period)) return "";
   const Syntax s{sym::Lang::Cpp};
@@ -424,66 +425,60 @@ std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& gene
   out += s.decl("hw", std::string(box ? "detail::k_sqrt3<T>()" : "detail::k_sqrt6<T>()") + " * sigma");
   int maxdeg = 0;
   for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
-  if (maxdeg == 0) {
-    // A pulse train (m = 2: piece 0 on [0, g), piece 1 on [g, T); square): e = x - T rint(x / T) is
-    // exact and in [-g, g]; piece 0 holds x iff e >= 0, the nearest break is dn = min(|e|, g - |e|)
-    // away (exact: g - |e| is Sterbenz when it is the smaller), and piece 0's mass is
-    // 1/2 + copysign(1/2 - F, e), F the kernel's mass past that break. No floor and no parity blend:
-    // calibrated float, |x| ~ 1, sigma ~ 0.003: box square 1.99 -> 1.07 ns per call, tent 2.23 ->
-    // 1.29. (The box's clamp(1/2 + copysign(dn, e) / 2h, 0, 1) has fewer operations but measured
-    // 1.20: a longer chain.)
+  // Two shapes need neither x's piece nor the side of the break (the floor and the blends below):
+  // - a pulse train (m = 2: piece 0 on [0, g), piece 1 on [g, T); square): e = x - T rint(x / T) is
+  //   exact and in [-g, g]; piece 0 holds x iff e >= 0, the nearest break is dn = min(|e|, g - |e|)
+  //   away (exact: g - |e| is Sterbenz when it is the smaller), and piece 0's mass is
+  //   1/2 + copysign(1/2 - F, e), F the kernel's mass past that break. Calibrated float, |x| ~ 1,
+  //   sigma ~ 0.003: box square 1.99 -> 1.07 ns per call, tent 2.23 -> 1.29. (The box's
+  //   clamp(1/2 + copysign(dn, e) / 2h, 0, 1) has fewer operations but measured 1.20: a longer chain.)
+  // - one linear piece q(t) = a + b t and one jump per period (fract): q's continuation from the break
+  //   nearest x is a + b e everywhere right of it, and left of it the previous period adds b T:
+  //   mean = a + b e + b T P(U < -e), for either sign of e (box: P = clamp(1/2 - e / 2h, 0, 1); tent:
+  //   P = 1/2 - copysign(1/2 - F, e)). Box fract 1.34 -> 0.91 ns per call (tent: 1.18).
+  const bool pulse = maxdeg == 0, linear = m == 1 && maxdeg == 1;
+  if (pulse || linear) {
     const bool scaled_T = T != 1;
     // NaN, sigma <= 0, tiny (1/width past float's range), wide, or x NaN or infinite: general.
     out += "  if (hw >= " + s.dbl(1e-30) + " && hw <= " + s.num(g / 2) + " && abs(x) <= " + s.dbl(1e30) +
            ") {  // one break in reach, the nearest\n";
     const std::string xt = scaled_T ? "x * " + s.num(numeric(1) / T) : "x";
     out += "  " + s.decl("e", scaled_T ? "(" + xt + " - rint(" + xt + ")) * " + s.num(T) : "x - rint(x)");
-    out += "  " + s.decl("ea", "abs(e)");
-    out += "  " + s.decl("L", "hw - detail::min2(ea, " + s.num(g) + " - ea)");
-    out += "  " + s.decl("v", "detail::max0(L) * (" + s.dbl(1) + " / (" +
-                                  (box ? s.dbl(2) + " * hw" : std::string("hw")) + "))");
-    const std::string F = box ? "v" : "v * v * " + s.dbl(0.5);
-    out += "  " + s.decl("p0", s.dbl(0.5) + " + copysign(" + s.dbl(0.5) + " - " + F + ", e)");
-    const numeric c0 = ps[0].c.empty() ? numeric(0) : ps[0].c[0],
-                  c1 = ps[1].c.empty() ? numeric(0) : ps[1].c[0];
-    std::string val = c0 - c1 == 1 ? std::string("p0") : s.num(c0 - c1) + " * p0";
-    if (!c1.is_zero()) val = s.num(c1) + " + " + val;
-    // p0 = 1/2 + copysign(1/2 - F, e) with F in [0, 1/2] rounds into [0, 1]: a 0/1 train needs no clamp.
-    if (in_range) *in_range = val == "p0";
-    out += "    return " + val + ";\n  }\n";
-    return out + "  return " + general + "<T>(x, sigma);\n";
-  }
-  if (m == 1 && maxdeg == 1) {
-    // One linear piece q(t) = a + b t and one jump per period (fract): with e = x - T rint(x / T) exact
-    // in [-T/2, T/2], q's continuation from the break j T nearest x is a + b e everywhere right of
-    // it, and left of it the previous period adds b T: mean = a + b e + b T P(U < -e), for either
-    // sign of e (box: P = clamp(1/2 - e / 2h, 0, 1); tent: P = 1/2 - copysign(1/2 - F, e), F the
-    // mass past the break). No floor, no side: calibrated float, |x| ~ 1, sigma ~ 0.003: box fract
-    // 1.34 -> 0.91 ns per call (tent: 1.18).
-    const numeric a = ps[0].c.empty() ? numeric(0) : ps[0].c[0],
-                  b = ps[0].c.size() > 1 ? ps[0].c[1] : numeric(0);
-    const bool scaled_T = T != 1;
-    out += "  if (hw >= " + s.dbl(1e-30) + " && hw <= " + s.num(g / 2) + " && abs(x) <= " + s.dbl(1e30) +
-           ") {  // one break in reach, the nearest\n";
-    const std::string xt = scaled_T ? "x * " + s.num(numeric(1) / T) : "x";
-    out += "  " + s.decl("e", scaled_T ? "(" + xt + " - rint(" + xt + ")) * " + s.num(T) : "x - rint(x)");
-    if (box) {
-      out += "  " + s.decl("q", s.dbl(0.5) + " - e * (" + s.dbl(1) + " / (" + s.dbl(2) + " * hw))");
-      out += "  " + s.decl("P", "detail::min1(detail::max0(q))");
+    std::string val;
+    if (pulse) {
+      out += "  " + s.decl("ea", "abs(e)");
+      out += "  " + s.decl("L", "hw - detail::min2(ea, " + s.num(g) + " - ea)");
+      out += "  " + s.decl("v", "detail::max0(L) * (" + s.dbl(1) + " / (" +
+                                    (box ? s.dbl(2) + " * hw" : std::string("hw")) + "))");
+      const std::string F = box ? "v" : "v * v * " + s.dbl(0.5);
+      out += "  " + s.decl("p0", s.dbl(0.5) + " + copysign(" + s.dbl(0.5) + " - " + F + ", e)");
+      const numeric c0 = ps[0].c.empty() ? numeric(0) : ps[0].c[0],
+                    c1 = ps[1].c.empty() ? numeric(0) : ps[1].c[0];
+      val = c0 - c1 == 1 ? std::string("p0") : s.num(c0 - c1) + " * p0";
+      if (!c1.is_zero()) val = s.num(c1) + " + " + val;
+      // p0 = 1/2 + copysign(1/2 - F, e) with F in [0, 1/2] rounds into [0, 1]: a 0/1 train is in range.
+      *in_range = val == "p0";
     } else {
-      out += "  " + s.decl("L", "hw - abs(e)");
-      out += "  " + s.decl("v", "detail::max0(L) * (" + s.dbl(1) + " / hw)");
-      out +=
-          "  " + s.decl("P", s.dbl(0.5) + " - copysign(" + s.dbl(0.5) + " - v * v * " + s.dbl(0.5) + ", e)");
+      const numeric a = ps[0].c.empty() ? numeric(0) : ps[0].c[0],
+                    b = ps[0].c.size() > 1 ? ps[0].c[1] : numeric(0);
+      if (box) {
+        out += "  " + s.decl("q", s.dbl(0.5) + " - e * (" + s.dbl(1) + " / (" + s.dbl(2) + " * hw))");
+        out += "  " + s.decl("P", "detail::min1(detail::max0(q))");
+      } else {
+        out += "  " + s.decl("L", "hw - abs(e)");
+        out += "  " + s.decl("v", "detail::max0(L) * (" + s.dbl(1) + " / hw)");
+        out += "  " +
+               s.decl("P", s.dbl(0.5) + " - copysign(" + s.dbl(0.5) + " - v * v * " + s.dbl(0.5) + ", e)");
+      }
+      val = b == 1 ? std::string("e") : s.num(b) + " * e";
+      if (!a.is_zero()) val = s.num(a) + " + " + val;
+      val += b * T == 1 ? std::string(" + P") : " + " + s.num(b * T) + " * P";
+      // fract: e + P lies in [0, 1] by construction (e >= 0: P <= 1/2 - e / 2h rounds to <= 1/2; e < 0:
+      // P <= 1).
+      *in_range = a.is_zero() && b == 1 && T == 1;
     }
-    std::string val = b == 1 ? std::string("e") : s.num(b) + " * e";
-    if (!a.is_zero()) val = s.num(a) + " + " + val;
-    val += b * T == 1 ? std::string(" + P") : " + " + s.num(b * T) + " * P";
-    // fract: e + P lies in [0, 1] by construction (e >= 0: P <= 1/2 - e / 2h rounds to <= 1/2; e < 0:
-    // P <= 1), so only the general call needs the range clamp.
-    if (in_range) *in_range = a.is_zero() && b == 1 && T == 1;
     out += "    return " + val + ";\n  }\n";
-    return out + "  return " + general + "<T>(x, sigma);\n";
+    return out + general_call(general, *in_range ? clamp : "");
   }
   // NaN, sigma <= 0, tiny (1/width past float's range), wide, or |x| where x/g overflows: general.
   const bool scaled = g != 1;
@@ -532,8 +527,7 @@ std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& gene
   }
   if (P.find('w') != std::string::npos) out += "  " + s.decl("w", "sg * l");
   out += "    return " + base + " + sg * v" + vk + " * (" + P + ");\n  }\n";
-  out += "  return " + general + "<T>(x, sigma);\n";
-  return out;
+  return out + general_call(general, "");
 }
 
 namespace {

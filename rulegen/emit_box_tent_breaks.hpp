@@ -20,8 +20,9 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang);
 // C++ only: for a box or tent PeriodicTable entry with one or two equally spaced breaks per period
 // (a power-of-two spacing), the body of an entry that takes pixel-sized kernels by the nearest break
 // alone and calls `general` (the full body, kept out of line) for the rest; "" where it does not apply.
-std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& general,
-                                  bool* in_range = nullptr);
+// `clamp` and *in_range: see periodic_hot (emit_common.hpp).
+std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& general, const std::string& clamp,
+                                  bool* in_range);
 
 // For a box or tent Combination entry of a staircase (floor, ceil, trunc and their squares):
 // statements that return the break sum when the kernel spans at most a few steps, else fall through

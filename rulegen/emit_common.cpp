@@ -593,10 +593,16 @@ bool gauss_straight_first(const Derived& d) {
          d.origins.empty();
 }
 
-std::string periodic_hot(const Derived& d, const std::string& general, bool* in_range) {
-  if (in_range) *in_range = false;
-  if (d.kernel != Kernel::Gaussian) return box_tent_periodic_hot(d, general, in_range);
-  return gauss_straight_first(d) ? gauss_periodic_hot(periodic_spec(d), general, in_range) : "";
+std::string periodic_hot(const Derived& d, const std::string& general, const std::string& clamp,
+                         bool* in_range) {
+  *in_range = false;
+  if (d.kernel != Kernel::Gaussian) return box_tent_periodic_hot(d, general, clamp, in_range);
+  return gauss_straight_first(d) ? gauss_periodic_hot(periodic_spec(d), general, clamp, in_range) : "";
+}
+
+std::string general_call(const std::string& general, const std::string& clamp) {
+  if (clamp.empty()) return "  return " + general + "<T>(x, sigma);\n";
+  return "  const T v = " + general + "<T>(x, sigma);\n" + clamp;
 }
 
 GaussPeriodicSpec periodic_spec(const Derived& d) {

@@ -73,10 +73,14 @@ std::string periodic_straight(const GiNaC::ex& P, const std::vector<std::pair<Gi
 GaussPeriodicSpec periodic_spec(const Derived& d);
 // C++ only: the body of a periodic entry that takes pixel-sized kernels by the nearest break
 // (box_tent_periodic_hot, gauss_periodic_hot) and calls `general` (its full body, out of line) for
-// the rest; "" for every other entry. *in_range (when given): every value the pixel-sized path returns
-// lies in the entry's range by construction (a 0/1 pulse train), so only the general call needs the
-// range clamp.
-std::string periodic_hot(const Derived& d, const std::string& general, bool* in_range = nullptr);
+// the rest; "" for every other entry. When every value the pixel-sized path returns lies in the
+// entry's range by construction (a 0/1 pulse train, fract), the body ends in the general call under
+// `clamp` (range_clamp's text) and *in_range is set: the entry needs no clamping wrapper.
+std::string periodic_hot(const Derived& d, const std::string& general, const std::string& clamp,
+                         bool* in_range);
+// The last statement of such a body: the general body's value, range-clamped by `clamp` (range_clamp's
+// text, reading v) unless it is empty.
+std::string general_call(const std::string& general, const std::string& clamp);
 // The Gaussian entries of a one-piece periodic atomic A (fract) and of A^2, when both were derived
 // with polynomial pieces of degree <= 1 (A) and <= 2 (A^2) and no interior break; both null else.
 struct FusablePair {

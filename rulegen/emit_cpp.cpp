@@ -112,23 +112,14 @@ void emit_cpp(const sym::Catalog& cat, const std::vector<Derived>& ds, const std
     std::string main_body = body(d, Lang::Cpp, &ds);
     bool hot_in_range = false;
     const std::string general = impl_name(d) + "_general";
-    if (const std::string hot = periodic_hot(d, general, &hot_in_range); !hot.empty()) {
+    if (const std::string hot = periodic_hot(d, general, clamp, &hot_in_range); !hot.empty()) {
       t << "// Every kernel width, out of line: the entry below takes pixel-sized kernels itself.\n"
         << "template <class T>\nBL_NOINLINE T " << general << "(T x, T sigma) {\n"
         << main_body << "}\n\n";
       main_body = "  BL_MATH_USING\n" + hot;
     }
-    if (hot_in_range && !clamp.empty()) {
-      // The pixel-sized path's values lie in the range already: only the general body's are clamped.
-      const std::string call = "  return " + general + "<T>(x, sigma);\n";
-      const size_t at = main_body.rfind(call);
-      if (at == std::string::npos || at + call.size() != main_body.size())
-        throw std::logic_error("emit_cpp: " + impl_name(d) +
-                               "'s pixel-sized path does not end in its general call");
-      main_body.replace(at, call.size(), "  const T v = " + general + "<T>(x, sigma);\n" + clamp);
-      t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
-        << main_body << "}\n\n";
-    } else if (clamp.empty()) {
+    // A pixel-sized path whose values lie in the range clamps only the general body's (its own text).
+    if (hot_in_range || clamp.empty()) {
       t << comment_block(d.formula, "") << "template <class T>\nT " << impl_name(d) << "(T x, T sigma) {\n"
         << main_body << "}\n\n";
     } else {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "derived.hpp"
+#include "emit_common.hpp"
 #include "emit_syntax.hpp"
 #include "kernels.hpp"
 #include "printer.hpp"
@@ -807,7 +808,8 @@ std::string gauss_periodic_fast(const GaussPeriodicSpec& sp, Lang lang) {
 // or two equally spaced breaks per period at a power-of-two spacing g, one channel and no delta.
 // Below sigma_0 (plan_for(tol, 0)'s test: every other break lies g/2 or more from x, their tails
 // summed <= tol, float 1e-7 and double 1e-13) the break regime's one term is the whole sum.
-std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& general, bool* in_range) {
+std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& general,
+                               const std::string& clamp, bool* in_range) {
   const size_t N = sp.lo.size();
   // The channels of the pass (sp, then sp.more: one piece only, as in gauss_periodic_fast).
   std::vector<const GaussPeriodicSpec*> chs{&sp};
@@ -862,61 +864,55 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
        "sizeof(double) ? " +
        lit(sf) + " : " + lit(sd) + ")" + (gd < 1 ? " && abs(" + sp.y + ") <= T(1e30)" : std::string()) +
        ") {  // the nearest break alone\n";
-  std::vector<std::string> vals(C);
-  if (constant) {
-    // A pulse train (N = 2, piece 0 on [0, g), piece 1 on [g, T)): e = x - T rint(x / T) is exact and
-    // in [-g, g]; piece 0 holds x iff e >= 0, the nearest break is min(|e|, g - |e|) away (exact:
-    // g - |e| is Sterbenz when it is the smaller), and piece 0's mass is 1/2 + copysign(1/2 - F, e),
-    // F the tail past that break. No floor, no parity blend (box/tent: box_tent_periodic_hot).
-    o += "      const T e = " +
-         std::string(T == 1 ? y + " - rint" + y
-                            : "(" + y + " * " + lit(1 / T.to_double()) + " - rint(" + y + " * " +
-                                  lit(1 / T.to_double()) + ")) * " + Tl) +
-         ";  // exact, in [-g, g]\n";
-    o += "      const T ea = abs(e);\n";
-    o += "      const T t = detail::min2(detail::min2(ea, " + gl +
-         " - ea) * (T(1) / sigma), detail::tail_cut<T>());\n";
-    o += j_chain(1, false, "      ");
-    auto c0 = [&](size_t j) { return sp.c[j].empty() ? numeric(0) : ex_to<numeric>(sp.c[j][0].evalf()); };
-    o += "      const T p0 = T(0.5) + std::copysign(T(0.5) - j0, e);  // piece 0's mass\n";
-    const numeric a = c0(1), b = c0(0) - c0(1);
-    std::string v = b == 1 ? std::string("p0") : lit(b.to_double()) + " * p0";
-    if (!a.is_zero()) v = lit(a.to_double()) + " + " + v;
-    const std::string extra = coef_text(sp.break_extra);
-    // p0 = 1/2 + copysign(1/2 - Phic, e) with Phic in [0, 1] rounds into [0, 1]: a 0/1 train needs no
-    // clamp.
-    if (in_range) *in_range = v == "p0" && extra.empty() && sp.lead.empty();
-    o += "      return " + sp.lead + v + (extra.empty() ? "" : " + " + extra) + ";\n    }\n  }\n";
-    return o + "  return " + general + "<T>(x, sigma);\n";
-  }
-  if (C == 1 && N == 1 && sp.c[0].size() <= 2 && sp.delta.is_zero()) {
-    // One linear piece a + b t and one jump per period (fract): with e = x - T rint(x / T) exact, the
-    // piece's continuation from the nearest break is a + b e on both sides and the previous period
-    // adds b T, so the mean is a + b e + b T P(U < -e), P = 1/2 - copysign(1/2 - Phic(|e| / sigma), e)
-    // (the other breaks' tails are what sigma_0 drops). No floor, no side (box_tent_periodic_hot).
-    auto coef = [&](size_t k) {
-      return k < sp.c[0].size() ? ex_to<numeric>(sp.c[0][k].evalf()) : numeric(0);
-    };
-    const numeric a = coef(0), b = coef(1);
+  // Two shapes need neither x's piece nor the side of the break (box_tent_periodic_hot for both):
+  // - a pulse train (constant: N = 2, piece 0 on [0, g), piece 1 on [g, T)): with e = x - T rint(x / T)
+  //   exact in [-g, g], piece 0 holds x iff e >= 0, the nearest break is min(|e|, g - |e|) away
+  //   (exact: g - |e| is Sterbenz when it is the smaller), and piece 0's mass is
+  //   1/2 + copysign(1/2 - Phic, e);
+  // - one linear piece a + b t and one jump per period (fract): the mean is a + b e + b T P(U < -e),
+  //   P = 1/2 - copysign(1/2 - Phic(|e| / sigma), e).
+  // (The other breaks' tails are what sigma_0 drops.)
+  const bool linear = C == 1 && N == 1 && sp.c[0].size() <= 2 && sp.delta.is_zero();
+  if (constant || linear) {
     const std::string it = lit(1 / T.to_double());
     o += "      const T e = " +
          std::string(T == 1 ? y + " - rint" + y
                             : "(" + y + " * " + it + " - rint(" + y + " * " + it + ")) * " + Tl) +
          ";  // exact, in [-T/2, T/2]\n";
-    o += "      const T t = detail::min2(abs(e) * (T(1) / sigma), detail::tail_cut<T>());\n";
-    o += j_chain(1, false, "      ");
-    o += "      const T P = T(0.5) - std::copysign(T(0.5) - j0, e);  // P(U < -e)\n";
-    std::string v = b == 1 ? std::string("e") : lit(b.to_double()) + " * e";
-    if (!a.is_zero()) v = lit(a.to_double()) + " + " + v;
-    const numeric bT = b * T;
-    v += bT == 1 ? std::string(" + P") : " + " + lit(bT.to_double()) + " * P";
+    auto coef = [&](size_t j, size_t k) {
+      return k < sp.c[j].size() ? ex_to<numeric>(sp.c[j][k].evalf()) : numeric(0);
+    };
+    std::string v;
+    bool ranged;
+    if (constant) {
+      o += "      const T ea = abs(e);\n";
+      o += "      const T t = detail::min2(detail::min2(ea, " + gl +
+           " - ea) * (T(1) / sigma), detail::tail_cut<T>());\n";
+      o += j_chain(1, false, "      ");
+      o += "      const T p0 = T(0.5) + std::copysign(T(0.5) - j0, e);  // piece 0's mass\n";
+      const numeric a = coef(1, 0), b = coef(0, 0) - coef(1, 0);
+      v = b == 1 ? std::string("p0") : lit(b.to_double()) + " * p0";
+      if (!a.is_zero()) v = lit(a.to_double()) + " + " + v;
+      // p0 = 1/2 + copysign(1/2 - Phic, e) with Phic in [0, 1] rounds into [0, 1].
+      ranged = v == "p0";
+    } else {
+      o += "      const T t = detail::min2(abs(e) * (T(1) / sigma), detail::tail_cut<T>());\n";
+      o += j_chain(1, false, "      ");
+      o += "      const T P = T(0.5) - std::copysign(T(0.5) - j0, e);  // P(U < -e)\n";
+      const numeric a = coef(0, 0), b = coef(0, 1), bT = b * T;
+      v = b == 1 ? std::string("e") : lit(b.to_double()) + " * e";
+      if (!a.is_zero()) v = lit(a.to_double()) + " + " + v;
+      v += bT == 1 ? std::string(" + P") : " + " + lit(bT.to_double()) + " * P";
+      // fract: e + P lies in [0, 1] (e >= 0: P = Phic(e / sigma) <= 1/2 and tiny where e ~ 1/2; e < 0:
+      // P <= 1).
+      ranged = a.is_zero() && b == 1 && T == 1;
+    }
     const std::string extra = coef_text(sp.break_extra);
-    // fract: e + P lies in [0, 1] (e >= 0: P = Phic(e / sigma) <= 1/2 and tiny where e ~ 1/2; e < 0:
-    // P <= 1), so only the general call needs the range clamp.
-    if (in_range) *in_range = a.is_zero() && b == 1 && T == 1 && extra.empty() && sp.lead.empty();
+    *in_range = ranged && extra.empty() && sp.lead.empty();
     o += "      return " + sp.lead + v + (extra.empty() ? "" : " + " + extra) + ";\n    }\n  }\n";
-    return o + "  return " + general + "<T>(x, sigma);\n";
+    return o + general_call(general, *in_range ? clamp : "");
   }
+  std::vector<std::string> vals(C);
   o += "      const T u = " + (gd == 1 ? y : y + " * " + lit(1 / gd)) + ";\n";
   o += "      const T k = floor(u);\n      const T j = rint(u);\n";
   o += "      const T d = " + std::string(gd == 1 ? "u - j" : "(u - j) * " + gl) + ";  // exact\n";
@@ -926,51 +922,48 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
   bool any_delta = false;
   for (size_t ci = 0; ci < C; ++ci)
     for (const Break& b : brs[ci]) ne = std::max(ne, b.e.size()), any_delta |= b.delta;
-  {
-    // +1: the break right of x (j = k + 1), -1: x at or right of it; 0/1 blends, no selects.
-    o += "      const T sg = T(2) * (j - k) - T(1);\n";
-    o += "      const T p = " + std::string(gd == 1 ? "u - k" : "(u - k) * " + gl) +
-         ";  // x's offset into its piece\n";
-    if (N == 2) {
-      o += "      const T p1 = " + gl + " + p;\n";
-      o += "      const T pj = par + (j - k) * (T(1) - T(2) * par);  // the break's parity\n";
-    }
-    bool no_j0 = true;
-    for (size_t ci = 0; ci < C; ++ci) {
-      const auto& br = brs[ci];
-      std::vector<std::string> et(ne);
-      std::string base;
-      if (N == 1) {
-        base = mean(chs[ci]->c[0], "p");
-        for (size_t k = 0; k < ne; ++k) {
-          const std::string c = k < br[0].e.size() ? coef_text(br[0].e[k]) : "";
-          et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
-        }
-      } else {
-        base =
-            "(par * (" + mean(chs[ci]->c[1], "p1") + ") + (T(1) - par) * (" + mean(chs[ci]->c[0], "p") + "))";
-        for (size_t k = 0; k < ne; ++k) {
-          const std::string a = k < br[1].e.size() ? coef_text(br[1].e[k]) : "",
-                            b = k < br[0].e.size() ? coef_text(br[0].e[k]) : "";
-          const std::string c = a == b
-                                    ? a
-                                    : "(pj * " + (a.empty() ? std::string("T(0)") : a) + " + (T(1) - pj) * " +
-                                          (b.empty() ? std::string("T(0)") : b) + ")";
-          et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
-        }
-      }
-      no_j0 &= et.empty() || et[0].empty();
-      std::string v = base;
-      const std::string term = horner(et, "(sg * sigma)");
-      if (term != "T(0)") v += " + sg * (" + term + ")";
-      // theta's phi_sigma sum: the delta sits at the break (both neighbours of x are such breaks).
-      if (br[0].delta) v += " + " + coef_text(chs[ci]->delta) + " * ph";
-      const std::string extra = coef_text(chs[ci]->break_extra);
-      vals[ci] = extra.empty() ? v : v + " + " + extra;
-    }
-    o += j_chain(ne, any_delta, "      ", no_j0 && !any_delta);
-    if (s2) o += "      const T s2 = sigma * sigma;\n";
+  // +1: the break right of x (j = k + 1), -1: x at or right of it; 0/1 blends, no selects.
+  o += "      const T sg = T(2) * (j - k) - T(1);\n";
+  o += "      const T p = " + std::string(gd == 1 ? "u - k" : "(u - k) * " + gl) +
+       ";  // x's offset into its piece\n";
+  if (N == 2) {
+    o += "      const T p1 = " + gl + " + p;\n";
+    o += "      const T pj = par + (j - k) * (T(1) - T(2) * par);  // the break's parity\n";
   }
+  bool no_j0 = true;
+  for (size_t ci = 0; ci < C; ++ci) {
+    const auto& br = brs[ci];
+    std::vector<std::string> et(ne);
+    std::string base;
+    if (N == 1) {
+      base = mean(chs[ci]->c[0], "p");
+      for (size_t k = 0; k < ne; ++k) {
+        const std::string c = k < br[0].e.size() ? coef_text(br[0].e[k]) : "";
+        et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
+      }
+    } else {
+      base =
+          "(par * (" + mean(chs[ci]->c[1], "p1") + ") + (T(1) - par) * (" + mean(chs[ci]->c[0], "p") + "))";
+      for (size_t k = 0; k < ne; ++k) {
+        const std::string a = k < br[1].e.size() ? coef_text(br[1].e[k]) : "",
+                          b = k < br[0].e.size() ? coef_text(br[0].e[k]) : "";
+        const std::string c = a == b ? a
+                                     : "(pj * " + (a.empty() ? std::string("T(0)") : a) +
+                                           " + (T(1) - pj) * " + (b.empty() ? std::string("T(0)") : b) + ")";
+        et[k] = c.empty() ? "" : c + " * j" + std::to_string(k);
+      }
+    }
+    no_j0 &= et.empty() || et[0].empty();
+    std::string v = base;
+    const std::string term = horner(et, "(sg * sigma)");
+    if (term != "T(0)") v += " + sg * (" + term + ")";
+    // theta's phi_sigma sum: the delta sits at the break (both neighbours of x are such breaks).
+    if (br[0].delta) v += " + " + coef_text(chs[ci]->delta) + " * ph";
+    const std::string extra = coef_text(chs[ci]->break_extra);
+    vals[ci] = extra.empty() ? v : v + " + " + extra;
+  }
+  o += j_chain(ne, any_delta, "      ", no_j0 && !any_delta);
+  if (s2) o += "      const T s2 = sigma * sigma;\n";
   std::string ret = sp.lead + vals[0];
   if (C > 1) {  // finish with @i replaced (at most 9 channels: @1 cannot clash with @10)
     ret = sp.finish;
@@ -981,7 +974,7 @@ std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& g
     }
   }
   o += "      return " + ret + ";\n    }\n  }\n";
-  return o + "  return " + general + "<T>(x, sigma);\n";
+  return o + general_call(general, "");
 }
 
 std::string gauss_periodic_fast_cpp(const GaussPeriodicSpec& sp) {

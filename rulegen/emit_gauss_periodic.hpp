@@ -39,8 +39,9 @@ std::string gauss_periodic_fast_glsl(const GaussPeriodicSpec& sp);
 // C++ only: the body of an entry that takes sigma below the nearest-break-alone bound by the break
 // nearest to x (located by rint, no reduction by the period) and calls `general` (the full body,
 // out of line) for the rest; "" where it does not apply (see emit_gauss_periodic.cpp).
+// `clamp` and *in_range: see periodic_hot (emit_common.hpp).
 std::string gauss_periodic_hot(const GaussPeriodicSpec& sp, const std::string& general,
-                               bool* in_range = nullptr);
+                               const std::string& clamp, bool* in_range);
 
 // The C++ text of a float regime (the straight-line break and Fourier forms here and in
 // emit_box_tent_breaks.cpp) respelled as GLSL: a fixed map over a closed vocabulary; anything C++

@@ -108,7 +108,10 @@ std::string stat_pair_definition(const StatPair& p, Lang lang) {
   const std::string f = p.f->atomic_name;
   std::string o;
   // C++: pixel-sized sigma by the nearest break alone (gauss_periodic_hot), the full pass out of line.
-  const std::string hot = lang == Lang::Cpp ? gauss_periodic_hot(sp, p.name() + "_general") : "";
+  // (Several channels: no path of it is claimed in range, so no clamp is passed.)
+  bool in_range = false;
+  const std::string hot =
+      lang == Lang::Cpp ? gauss_periodic_hot(sp, p.name() + "_general", "", &in_range) : "";
   if (lang == Lang::Cpp) {
     o += "// {E f(X), Var f(X)}, X ~ N(x, sigma^2), f = " + f +
          ", from one pass (rulegen/emit_stat_pairs.hpp); other types and\n"

@@ -7570,7 +7570,7 @@ T gaussian_square(T x, T sigma) {
   BL_MATH_USING
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
     if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.04676299685992172) : T(0.033423255248208356)) && abs(x) <= T(1e30)) {  // the nearest break alone
-      const T e = (x) - rint(x);  // exact, in [-g, g]
+      const T e = (x) - rint(x);  // exact, in [-T/2, T/2]
       const T ea = abs(e);
       const T t = detail::min2(detail::min2(ea, T(0.5) - ea) * (T(1) / sigma), detail::tail_cut<T>());
       const T j0 = detail::normal_Phic(t);
@@ -7952,7 +7952,7 @@ T gaussian_square_sq(T x, T sigma) {
   BL_MATH_USING
   if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
     if (sigma >= (sizeof(T) < sizeof(double) ? T(1e-30) : T(1e-300)) && sigma < (sizeof(T) < sizeof(double) ? T(0.04676299685992172) : T(0.033423255248208356)) && abs(x) <= T(1e30)) {  // the nearest break alone
-      const T e = (x) - rint(x);  // exact, in [-g, g]
+      const T e = (x) - rint(x);  // exact, in [-T/2, T/2]
       const T ea = abs(e);
       const T t = detail::min2(detail::min2(ea, T(0.5) - ea) * (T(1) / sigma), detail::tail_cut<T>());
       const T j0 = detail::normal_Phic(t);
