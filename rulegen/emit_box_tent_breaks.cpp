@@ -18,6 +18,7 @@
 #include "emit_box_tent_breaks.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -232,6 +233,64 @@ std::string wide_regime(const sym::Derived& d, const Syntax& s) {
   return out;
 }
 
+// The box wide regime without the signed reduction, for the two shapes box_tent_periodic_hot takes
+// without a floor (a pulse train c0 on [0, g), c1 on [g, T); one linear piece a + b t on [0, T); T and g
+// powers of two): the difference of the periodic antiderivative F(t) = n A + F_p(t - n T), n = floor(t /
+// T), A = F_p(T), at e +- h with e = x - T rint(x / T) (exact). Printed first in the general body (C++), so
+// half-widths past the hot path's one-break reach skip the reduction and the break logic: box square
+// and fract, float, sigma ~ 0.3, 3.7 -> 2.6 and 3.6 -> 2.1 ns per call (sorted random inputs, inlined
+// into a loop). Rounding: that of e +- h (eps h) and of the terms (O(A h / T + max|f| T)), divided by
+// 2h >= g: a few eps. "" for other shapes.
+std::string box_wide_first(const sym::Derived& d, const Syntax& s) {
+  if (d.kernel != Kernel::Box || !s.cpp() || !GiNaC::is_a<numeric>(d.period)) return "";
+  const auto& ps = d.pieces;
+  int maxdeg = 0;
+  for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
+  const bool pulse = ps.size() == 2 && maxdeg == 0, linear = ps.size() == 1 && maxdeg <= 1;
+  if (!pulse && !linear) return "";
+  const numeric T = GiNaC::ex_to<numeric>(d.period);
+  const numeric g = T / numeric(static_cast<long>(ps.size()));
+  if (!is_pow2(T) || !is_pow2(g)) return "";
+  for (size_t i = 0; i < ps.size(); ++i)
+    if (!GiNaC::is_a<numeric>(ps[i].lo.value) || GiNaC::ex_to<numeric>(ps[i].lo.value) != g * numeric(long(i)))
+      return "";
+  auto c = [&](size_t i, size_t k) { return ps[i].c.size() > k ? ps[i].c[k] : numeric(0); };
+  // F_p(r), r in [0, T), and A = F_p(T).
+  numeric A;
+  std::function<std::string(const std::string&)> Fp;
+  if (pulse) {
+    A = c(0, 0) * g + c(1, 0) * (T - g);
+    Fp = [&, c0 = c(0, 0), c1 = c(1, 0)](const std::string& r) {
+      std::string out;
+      if (!c0.is_zero()) out = (c0 == 1 ? "" : s.num(c0) + " * ") + s.min(r, s.num(g));
+      if (!c1.is_zero())
+        out += (out.empty() ? "" : " + ") + (c1 == 1 ? "" : s.num(c1) + " * ") + "detail::max0(" + r + " - " +
+               s.num(g) + ")";
+      return out.empty() ? s.dbl(0) : "(" + out + ")";
+    };
+  } else {
+    A = c(0, 0) * T + c(0, 1) * T * T / 2;
+    Fp = [&, a = c(0, 0), b = c(0, 1)](const std::string& r) {
+      std::string q = b.is_zero() ? "" : (b / 2 == 1 ? "" : s.num(b / 2) + " * ") + r + " * " + r;
+      if (!a.is_zero()) q = (a == 1 ? r : s.num(a) + " * " + r) + (q.empty() ? "" : " + " + q);
+      return q.empty() ? s.dbl(0) : "(" + q + ")";
+    };
+  }
+  const bool scaled = T != 1;
+  const std::string iT = s.num(numeric(1) / T);
+  std::string out = "  if (detail::k_sqrt3<T>() * sigma > " + s.num(g / 2) + " && detail::k_sqrt3<T>() * sigma <= " +
+                    s.dbl(1e30) + " && abs(x) <= " + s.dbl(1e30) + ") {  // wide: the antiderivatives' difference\n";
+  out += "  " + s.decl("hw", "detail::k_sqrt3<T>() * sigma");
+  out += "  " + s.decl("e", scaled ? "(x * " + iT + " - rint(x * " + iT + ")) * " + s.num(T) : "x - rint(x)");
+  out += "  " + s.decl("lo", "e - hw") + "  " + s.decl("hi", "e + hw");
+  out += "  " + s.decl("n1", scaled ? "floor(lo * " + iT + ")" : "floor(lo)");
+  out += "  " + s.decl("n2", scaled ? "floor(hi * " + iT + ")" : "floor(hi)");
+  out += "  " + s.decl("r1", scaled ? "(lo * " + iT + " - n1) * " + s.num(T) : "lo - n1");
+  out += "  " + s.decl("r2", scaled ? "(hi * " + iT + " - n2) * " + s.num(T) : "hi - n2");
+  return out + "    return ((n2 - n1) * " + s.num(A) + " + (" + Fp("r2") + " - " + Fp("r1") + ")) / (" + s.dbl(2) +
+         " * hw);\n  }\n";
+}
+
 }  // namespace
 
 // Periodic f, pieces q_i on [0, T). The point is reduced to the exact signed remainder r = fmod(x, T)
@@ -302,6 +361,7 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   std::string out;
   out += s.decl("period", s.num(T));
   out += "  if (!(sigma >= " + s.dbl(0) + ")) return " + s.nan() + ";  // sigma < 0 or NaN\n";
+  out += box_wide_first(d, s);
   const std::string reduce =
       s.cpp() && is_pow2(T) ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
   out += s.decl("r", reduce + "(x, period)");

@@ -5521,6 +5521,17 @@ BL_NOINLINE T box_fract_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt3<T>() * sigma > (T(1)/T(2)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide: the antiderivatives' difference
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    const T e = x - rint(x);
+    const T lo = e - hw;
+    const T hi = e + hw;
+    const T n1 = floor(lo);
+    const T n2 = floor(hi);
+    const T r1 = lo - n1;
+    const T r2 = hi - n2;
+    return ((n2 - n1) * (T(1)/T(2)) + (((T(1)/T(2)) * r2 * r2) - ((T(1)/T(2)) * r1 * r1))) / (T(2.0) * hw);
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -7970,6 +7981,17 @@ BL_NOINLINE T box_square_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt3<T>() * sigma > (T(1)/T(4)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide: the antiderivatives' difference
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    const T e = x - rint(x);
+    const T lo = e - hw;
+    const T hi = e + hw;
+    const T n1 = floor(lo);
+    const T n2 = floor(hi);
+    const T r1 = lo - n1;
+    const T r2 = hi - n2;
+    return ((n2 - n1) * (T(1)/T(2)) + ((detail::min2(r2, (T(1)/T(2)))) - (detail::min2(r1, (T(1)/T(2)))))) / (T(2.0) * hw);
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -8080,6 +8102,17 @@ BL_NOINLINE T box_square_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt3<T>() * sigma > (T(1)/T(4)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide: the antiderivatives' difference
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    const T e = x - rint(x);
+    const T lo = e - hw;
+    const T hi = e + hw;
+    const T n1 = floor(lo);
+    const T n2 = floor(hi);
+    const T r1 = lo - n1;
+    const T r2 = hi - n2;
+    return ((n2 - n1) * (T(1)/T(2)) + ((detail::min2(r2, (T(1)/T(2)))) - (detail::min2(r1, (T(1)/T(2)))))) / (T(2.0) * hw);
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
