@@ -18,8 +18,8 @@
 #include "emit_box_tent_breaks.hpp"
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -252,7 +252,8 @@ std::string box_wide_first(const sym::Derived& d, const Syntax& s) {
   const numeric g = T / numeric(static_cast<long>(ps.size()));
   if (!is_pow2(T) || !is_pow2(g)) return "";
   for (size_t i = 0; i < ps.size(); ++i)
-    if (!GiNaC::is_a<numeric>(ps[i].lo.value) || GiNaC::ex_to<numeric>(ps[i].lo.value) != g * numeric(long(i)))
+    if (!GiNaC::is_a<numeric>(ps[i].lo.value) ||
+        GiNaC::ex_to<numeric>(ps[i].lo.value) != g * numeric(long(i)))
       return "";
   auto c = [&](size_t i, size_t k) { return ps[i].c.size() > k ? ps[i].c[k] : numeric(0); };
   // F_p(r), r in [0, T), and A = F_p(T).
@@ -278,8 +279,9 @@ std::string box_wide_first(const sym::Derived& d, const Syntax& s) {
   }
   const bool scaled = T != 1;
   const std::string iT = s.num(numeric(1) / T);
-  std::string out = "  if (detail::k_sqrt3<T>() * sigma > " + s.num(g / 2) + " && detail::k_sqrt3<T>() * sigma <= " +
-                    s.dbl(1e30) + " && abs(x) <= " + s.dbl(1e30) + ") {  // wide: the antiderivatives' difference\n";
+  std::string out = "  if (detail::k_sqrt3<T>() * sigma > " + s.num(g / 2) +
+                    " && detail::k_sqrt3<T>() * sigma <= " + s.dbl(1e30) + " && abs(x) <= " + s.dbl(1e30) +
+                    ") {  // wide: the antiderivatives' difference\n";
   out += "  " + s.decl("hw", "detail::k_sqrt3<T>() * sigma");
   out += "  " + s.decl("e", scaled ? "(x * " + iT + " - rint(x * " + iT + ")) * " + s.num(T) : "x - rint(x)");
   out += "  " + s.decl("lo", "e - hw") + "  " + s.decl("hi", "e + hw");
@@ -287,8 +289,8 @@ std::string box_wide_first(const sym::Derived& d, const Syntax& s) {
   out += "  " + s.decl("n2", scaled ? "floor(hi * " + iT + ")" : "floor(hi)");
   out += "  " + s.decl("r1", scaled ? "(lo * " + iT + " - n1) * " + s.num(T) : "lo - n1");
   out += "  " + s.decl("r2", scaled ? "(hi * " + iT + " - n2) * " + s.num(T) : "hi - n2");
-  return out + "    return ((n2 - n1) * " + s.num(A) + " + (" + Fp("r2") + " - " + Fp("r1") + ")) / (" + s.dbl(2) +
-         " * hw);\n  }\n";
+  return out + "    return ((n2 - n1) * " + s.num(A) + " + (" + Fp("r2") + " - " + Fp("r1") + ")) / (" +
+         s.dbl(2) + " * hw);\n  }\n";
 }
 
 }  // namespace
