@@ -193,14 +193,21 @@ bool is_pow2(const numeric& T) {
 // antiderivatives on the reduced argument (support.hpp box_periodic/tent_periodic (b), straight-line
 // here). Every term is O(max|f|) or O(A w / T) (A = F_p(T)), so the division by the width loses
 // nothing; the rounding of t +- h (eps h) and of the reductions (at most eps T) is divided by 2h.
-std::string wide_regime(const sym::Derived& d, const Syntax& s) {
+// by_floor (C++, power-of-two T): n = floor(y / T) and r = y - n T without reduce_period_pow2's fix-up
+// of r rounded up to T: at r = T the last piece's antiderivatives give n A + F_p(T) = (n + 1) A + F_p(0)
+// (and the same for the second antiderivative), the value the fix-up would give.
+std::string wide_regime(const sym::Derived& d, const Syntax& s, bool by_floor = false) {
   const bool box = d.kernel == Kernel::Box;
   std::string out;
   // Power-of-two periods: no fmod (reduce_period_pow2; its rounding for -T < y < 0 is eps T, here
   // divided by a width above K periods).
   const std::string fn =
       is_pow2(GiNaC::ex_to<numeric>(d.period)) ? "detail::reduce_period_pow2" : "detail::reduce_period";
+  const std::string iT = s.num(numeric(1) / GiNaC::ex_to<numeric>(d.period));
   auto reduce = [&](const std::string& r, const std::string& q, const std::string& y) {
+    if (by_floor)
+      return "    const T " + q + " = floor((" + y + ") * " + iT + ");\n    const T " + r + " = (" + y +
+             ") - " + q + " * period;\n";
     if (s.cpp())
       return "    T " + q + ";\n    const T " + r + " = " + fn + "(" + y + ", period, " + q + ");\n";
     return "    vec2 " + r + "_q = bl_reduce_period(" + y + ", period);\n    float " + r + " = " + r +
@@ -233,64 +240,39 @@ std::string wide_regime(const sym::Derived& d, const Syntax& s) {
   return out;
 }
 
-// The box wide regime without the signed reduction, for the two shapes box_tent_periodic_hot takes
-// without a floor (a pulse train c0 on [0, g), c1 on [g, T); one linear piece a + b t on [0, T); T and g
-// powers of two): the difference of the periodic antiderivative F(t) = n A + F_p(t - n T), n = floor(t /
-// T), A = F_p(T), at e +- h with e = x - T rint(x / T) (exact). Printed first in the general body (C++), so
-// half-widths past the hot path's one-break reach skip the reduction and the break logic: box square
-// and fract, float, sigma ~ 0.3, 3.7 -> 2.6 and 3.6 -> 2.1 ns per call (sorted random inputs, inlined
-// into a loop). Rounding: that of e +- h (eps h) and of the terms (O(A h / T + max|f| T)), divided by
-// 2h >= g: a few eps. "" for other shapes.
-std::string box_wide_first(const sym::Derived& d, const Syntax& s) {
-  if (d.kernel != Kernel::Box || !s.cpp() || !GiNaC::is_a<numeric>(d.period)) return "";
+// Kernels past `from` (half-widths, in x units) take the wide regime first, before the general body's
+// signed reduction (C++, power-of-two T): t = x - T floor(x / T) in [0, T] and the antiderivatives'
+// differences with floor reductions (wide_regime by_floor). Box square and fract, float, sigma ~ 0.3:
+// calibrated 3.3 -> 2.4 and 3.2 -> 1.8 ns per call. Rounding: that of t -+ h (eps h) and of the terms,
+// divided by 2h (box) or h^2 (tent), h >= from: a few eps for from >= T / 4.
+std::string wide_first(const sym::Derived& d, const Syntax& s, const numeric& from) {
+  if (!s.cpp() || !GiNaC::is_a<numeric>(d.period) || !is_pow2(GiNaC::ex_to<numeric>(d.period))) return "";
+  const std::string k = d.kernel == Kernel::Box ? "detail::k_sqrt3<T>()" : "detail::k_sqrt6<T>()";
+  std::string out = "  if (" + k + " * sigma > " + s.num(from) + " && " + k + " * sigma <= " + s.dbl(1e30) +
+                    " && abs(x) <= " + s.dbl(1e30) + ") {  // wide, without the signed reduction\n";
+  out += "  " + s.decl("hw", k + " * sigma");
+  out += "  " +
+         s.decl("t", "x - period * floor(x * " + s.num(numeric(1) / GiNaC::ex_to<numeric>(d.period)) + ")");
+  return out + wide_regime(d, s, true) + "  }\n";
+}
+
+// The shapes box_tent_periodic_hot takes without a floor (a pulse train c0 on [0, g), c1 on [g, T); one
+// linear piece on [0, T); T and g powers of two): its reach g / 2, else 0.
+numeric hot_reach(const sym::Derived& d) {
+  if (!GiNaC::is_a<numeric>(d.period)) return 0;
   const auto& ps = d.pieces;
   int maxdeg = 0;
   for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
   const bool pulse = ps.size() == 2 && maxdeg == 0, linear = ps.size() == 1 && maxdeg <= 1;
-  if (!pulse && !linear) return "";
+  if (!pulse && !linear) return 0;
   const numeric T = GiNaC::ex_to<numeric>(d.period);
   const numeric g = T / numeric(static_cast<long>(ps.size()));
-  if (!is_pow2(T) || !is_pow2(g)) return "";
+  if (!is_pow2(T) || !is_pow2(g)) return 0;
   for (size_t i = 0; i < ps.size(); ++i)
     if (!GiNaC::is_a<numeric>(ps[i].lo.value) ||
         GiNaC::ex_to<numeric>(ps[i].lo.value) != g * numeric(long(i)))
-      return "";
-  auto c = [&](size_t i, size_t k) { return ps[i].c.size() > k ? ps[i].c[k] : numeric(0); };
-  // F_p(r), r in [0, T), and A = F_p(T).
-  numeric A;
-  std::function<std::string(const std::string&)> Fp;
-  if (pulse) {
-    A = c(0, 0) * g + c(1, 0) * (T - g);
-    Fp = [&, c0 = c(0, 0), c1 = c(1, 0)](const std::string& r) {
-      std::string out;
-      if (!c0.is_zero()) out = (c0 == 1 ? "" : s.num(c0) + " * ") + s.min(r, s.num(g));
-      if (!c1.is_zero())
-        out += (out.empty() ? "" : " + ") + (c1 == 1 ? "" : s.num(c1) + " * ") + "detail::max0(" + r + " - " +
-               s.num(g) + ")";
-      return out.empty() ? s.dbl(0) : "(" + out + ")";
-    };
-  } else {
-    A = c(0, 0) * T + c(0, 1) * T * T / 2;
-    Fp = [&, a = c(0, 0), b = c(0, 1)](const std::string& r) {
-      std::string q = b.is_zero() ? "" : (b / 2 == 1 ? "" : s.num(b / 2) + " * ") + r + " * " + r;
-      if (!a.is_zero()) q = (a == 1 ? r : s.num(a) + " * " + r) + (q.empty() ? "" : " + " + q);
-      return q.empty() ? s.dbl(0) : "(" + q + ")";
-    };
-  }
-  const bool scaled = T != 1;
-  const std::string iT = s.num(numeric(1) / T);
-  std::string out = "  if (detail::k_sqrt3<T>() * sigma > " + s.num(g / 2) +
-                    " && detail::k_sqrt3<T>() * sigma <= " + s.dbl(1e30) + " && abs(x) <= " + s.dbl(1e30) +
-                    ") {  // wide: the antiderivatives' difference\n";
-  out += "  " + s.decl("hw", "detail::k_sqrt3<T>() * sigma");
-  out += "  " + s.decl("e", scaled ? "(x * " + iT + " - rint(x * " + iT + ")) * " + s.num(T) : "x - rint(x)");
-  out += "  " + s.decl("lo", "e - hw") + "  " + s.decl("hi", "e + hw");
-  out += "  " + s.decl("n1", scaled ? "floor(lo * " + iT + ")" : "floor(lo)");
-  out += "  " + s.decl("n2", scaled ? "floor(hi * " + iT + ")" : "floor(hi)");
-  out += "  " + s.decl("r1", scaled ? "(lo * " + iT + " - n1) * " + s.num(T) : "lo - n1");
-  out += "  " + s.decl("r2", scaled ? "(hi * " + iT + " - n2) * " + s.num(T) : "hi - n2");
-  return out + "    return ((n2 - n1) * " + s.num(A) + " + (" + Fp("r2") + " - " + Fp("r1") + ")) / (" +
-         s.dbl(2) + " * hw);\n  }\n";
+      return 0;
+  return g / 2;
 }
 
 }  // namespace
@@ -363,7 +345,10 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   std::string out;
   out += s.decl("period", s.num(T));
   out += "  if (!(sigma >= " + s.dbl(0) + ")) return " + s.nan() + ";  // sigma < 0 or NaN\n";
-  out += box_wide_first(d, s);
+  // (pulse_train, wide_from: below; first_from: the hot path's reach where the entry has one, else the
+  // wide regime's start.)
+  const std::string first_at = "@WIDE_FIRST@";
+  out += first_at;
   const std::string reduce =
       s.cpp() && is_pow2(T) ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
   out += s.decl("r", reduce + "(x, period)");
@@ -387,6 +372,9 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   // break (box square: 9; calibrated float at sigma 0.1-1, 9.1 ns against 6.3 for the wide regime),
   // and its rounding, eps (h + T) / 2h, is at most ~2 eps there.
   const double wide_from = box && pulse_train ? std::min(K, kNearReach) : K;
+  const numeric hot = hot_reach(d);
+  out.replace(out.find(first_at), first_at.size(),
+              wide_first(d, s, hot.is_zero() ? exact_value(wide_from) * T : hot));
   out += "  if (!(hw <= " + s.dbl(wide_from * Td) + ")) {  // support wider than " +
          std::to_string(wide_from).substr(0, 4) + " periods each side\n" + wide_regime(d, s) + "  }\n";
 

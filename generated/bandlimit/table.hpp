@@ -5521,16 +5521,14 @@ BL_NOINLINE T box_fract_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (detail::k_sqrt3<T>() * sigma > (T(1)/T(2)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide: the antiderivatives' difference
+  if (detail::k_sqrt3<T>() * sigma > (T(1)/T(2)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
     const T hw = detail::k_sqrt3<T>() * sigma;
-    const T e = x - rint(x);
-    const T lo = e - hw;
-    const T hi = e + hw;
-    const T n1 = floor(lo);
-    const T n2 = floor(hi);
-    const T r1 = lo - n1;
-    const T r2 = hi - n2;
-    return ((n2 - n1) * (T(1)/T(2)) + (((T(1)/T(2)) * r2 * r2) - ((T(1)/T(2)) * r1 * r1))) / (T(2.0) * hw);
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    return ((n2 - n1) * (T(1)/T(2)) + (((((T(1)/T(2)))) * r2) * r2 - ((((T(1)/T(2)))) * r1) * r1)) / (T(2.0) * hw);
   }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
@@ -5652,6 +5650,15 @@ BL_NOINLINE T box_fract_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt3<T>() * sigma > T(2) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    return ((n2 - n1) * (T(1)/T(3)) + ((((((T(1)/T(3)))) * r2) * r2) * r2 - (((((T(1)/T(3)))) * r1) * r1) * r1)) / (T(2.0) * hw);
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -5759,6 +5766,20 @@ BL_NOINLINE T tent_fract_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt6<T>() * sigma > (T(1)/T(2)) && detail::k_sqrt6<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(1)/T(6)) * iw * (s2w + s1) + (((((((T(1)/T(6)))) * r2) * r2) * r2 + (((((T(1)/T(6)))) * r1) * r1) * r1) - T(2.0) * (((((T(1)/T(6)))) * t) * t) * t) * iw * iw;
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -5888,6 +5909,20 @@ BL_NOINLINE T tent_fract_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt6<T>() * sigma > T(2) && detail::k_sqrt6<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(1)/T(12)) * iw * (s2w + s1) + ((((((((T(1)/T(12)))) * r2) * r2) * r2) * r2 + ((((((T(1)/T(12)))) * r1) * r1) * r1) * r1) - T(2.0) * ((((((T(1)/T(12)))) * t) * t) * t) * t) * iw * iw;
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -6795,6 +6830,15 @@ BL_NOINLINE T box_triangle_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt3<T>() * sigma > T(2) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    const T t = x - period * floor(x * (T(1)/T(2)));
+    const T n1 = floor((t - hw) * (T(1)/T(2)));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * (T(1)/T(2)));
+    const T r2 = (t + hw) - n2 * period;
+    return ((n2 - n1) * T(1) + ((r2 < T(1) ? ((((T(1)/T(2)))) * r2) * r2 : ((((T(-1)/T(2)))) * r2 + (T(2))) * r2 + ((T(-1)))) - (r1 < T(1) ? ((((T(1)/T(2)))) * r1) * r1 : ((((T(-1)/T(2)))) * r1 + (T(2))) * r1 + ((T(-1)))))) / (T(2.0) * hw);
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -6961,6 +7005,15 @@ T box_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt3<T>() * sigma > T(2) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    const T t = x - period * floor(x * (T(1)/T(2)));
+    const T n1 = floor((t - hw) * (T(1)/T(2)));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * (T(1)/T(2)));
+    const T r2 = (t + hw) - n2 * period;
+    return ((n2 - n1) * (T(2)/T(3)) + ((r2 < T(1) ? (((((T(1)/T(3)))) * r2) * r2) * r2 : (((((T(1)/T(3)))) * r2 + ((T(-2)))) * r2 + (T(4))) * r2 + ((T(-2)))) - (r1 < T(1) ? (((((T(1)/T(3)))) * r1) * r1) * r1 : (((((T(1)/T(3)))) * r1 + ((T(-2)))) * r1 + (T(4))) * r1 + ((T(-2)))))) / (T(2.0) * hw);
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -7029,6 +7082,20 @@ BL_NOINLINE T tent_triangle_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt6<T>() * sigma > T(2) && detail::k_sqrt6<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    const T t = x - period * floor(x * (T(1)/T(2)));
+    const T n1 = floor((t - hw) * (T(1)/T(2)));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * (T(1)/T(2)));
+    const T r2 = (t + hw) - n2 * period;
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return T(1) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + T(1) * iw * (s2w + s1) + (((r2 < T(1) ? (((((T(1)/T(6)))) * r2) * r2) * r2 : (((((T(-1)/T(6)))) * r2 + (T(1))) * r2 + ((T(-1)))) * r2 + ((T(1)/T(3)))) + (r1 < T(1) ? (((((T(1)/T(6)))) * r1) * r1) * r1 : (((((T(-1)/T(6)))) * r1 + (T(1))) * r1 + ((T(-1)))) * r1 + ((T(1)/T(3))))) - T(2.0) * (t < T(1) ? (((((T(1)/T(6)))) * t) * t) * t : (((((T(-1)/T(6)))) * t + (T(1))) * t + ((T(-1)))) * t + ((T(1)/T(3))))) * iw * iw;
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -7204,6 +7271,20 @@ T tent_triangle_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(2);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt6<T>() * sigma > T(2) && detail::k_sqrt6<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    const T t = x - period * floor(x * (T(1)/T(2)));
+    const T n1 = floor((t - hw) * (T(1)/T(2)));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * (T(1)/T(2)));
+    const T r2 = (t + hw) - n2 * period;
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(2)/T(3)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(2)/T(3)) * iw * (s2w + s1) + (((r2 < T(1) ? ((((((T(1)/T(12)))) * r2) * r2) * r2) * r2 : ((((((T(1)/T(12)))) * r2 + ((T(-2)/T(3)))) * r2 + (T(2))) * r2 + ((T(-2)))) * r2 + ((T(2)/T(3)))) + (r1 < T(1) ? ((((((T(1)/T(12)))) * r1) * r1) * r1) * r1 : ((((((T(1)/T(12)))) * r1 + ((T(-2)/T(3)))) * r1 + (T(2))) * r1 + ((T(-2)))) * r1 + ((T(2)/T(3))))) - T(2.0) * (t < T(1) ? ((((((T(1)/T(12)))) * t) * t) * t) * t : ((((((T(1)/T(12)))) * t + ((T(-2)/T(3)))) * t + (T(2))) * t + ((T(-2)))) * t + ((T(2)/T(3))))) * iw * iw;
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -7981,16 +8062,14 @@ BL_NOINLINE T box_square_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (detail::k_sqrt3<T>() * sigma > (T(1)/T(4)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide: the antiderivatives' difference
+  if (detail::k_sqrt3<T>() * sigma > (T(1)/T(4)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
     const T hw = detail::k_sqrt3<T>() * sigma;
-    const T e = x - rint(x);
-    const T lo = e - hw;
-    const T hi = e + hw;
-    const T n1 = floor(lo);
-    const T n2 = floor(hi);
-    const T r1 = lo - n1;
-    const T r2 = hi - n2;
-    return ((n2 - n1) * (T(1)/T(2)) + ((detail::min2(r2, (T(1)/T(2)))) - (detail::min2(r1, (T(1)/T(2)))))) / (T(2.0) * hw);
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? ((T(1))) * r2 : ((T(1)/T(2)))) - (r1 < (T(1)/T(2)) ? ((T(1))) * r1 : ((T(1)/T(2)))))) / (T(2.0) * hw);
   }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
@@ -8102,16 +8181,14 @@ BL_NOINLINE T box_square_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
-  if (detail::k_sqrt3<T>() * sigma > (T(1)/T(4)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide: the antiderivatives' difference
+  if (detail::k_sqrt3<T>() * sigma > (T(1)/T(4)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
     const T hw = detail::k_sqrt3<T>() * sigma;
-    const T e = x - rint(x);
-    const T lo = e - hw;
-    const T hi = e + hw;
-    const T n1 = floor(lo);
-    const T n2 = floor(hi);
-    const T r1 = lo - n1;
-    const T r2 = hi - n2;
-    return ((n2 - n1) * (T(1)/T(2)) + ((detail::min2(r2, (T(1)/T(2)))) - (detail::min2(r1, (T(1)/T(2)))))) / (T(2.0) * hw);
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    return ((n2 - n1) * (T(1)/T(2)) + ((r2 < (T(1)/T(2)) ? ((T(1))) * r2 : ((T(1)/T(2)))) - (r1 < (T(1)/T(2)) ? ((T(1))) * r1 : ((T(1)/T(2)))))) / (T(2.0) * hw);
   }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
@@ -8186,6 +8263,20 @@ BL_NOINLINE T tent_square_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt6<T>() * sigma > (T(1)/T(4)) && detail::k_sqrt6<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(1)/T(2)))) * r2 + ((T(-1)/T(8)))) + (r1 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(1)/T(2)))) * r1 + ((T(-1)/T(8))))) - T(2.0) * (t < (T(1)/T(2)) ? ((((T(1)/T(2)))) * t) * t : (((T(1)/T(2)))) * t + ((T(-1)/T(8))))) * iw * iw;
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -8371,6 +8462,20 @@ BL_NOINLINE T tent_square_sq_general(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt6<T>() * sigma > (T(1)/T(4)) && detail::k_sqrt6<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(1)/T(2)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(3)/T(8)) * iw * (s2w + s1) + (((r2 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(1)/T(2)))) * r2 + ((T(-1)/T(8)))) + (r1 < (T(1)/T(2)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(1)/T(2)))) * r1 + ((T(-1)/T(8))))) - T(2.0) * (t < (T(1)/T(2)) ? ((((T(1)/T(2)))) * t) * t : (((T(1)/T(2)))) * t + ((T(-1)/T(8))))) * iw * iw;
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -8753,6 +8858,15 @@ T box_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt3<T>() * sigma > (T(8106479329266893)/T(18014398509481984)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? ((T(1))) * r2 : ((T(3)/T(10)))) - (r1 < (T(3)/T(10)) ? ((T(1))) * r1 : ((T(3)/T(10)))))) / (T(2.0) * hw);
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -8861,6 +8975,15 @@ T box_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt3<T>() * sigma > (T(8106479329266893)/T(18014398509481984)) && detail::k_sqrt3<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt3<T>() * sigma;
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    return ((n2 - n1) * (T(3)/T(10)) + ((r2 < (T(3)/T(10)) ? ((T(1))) * r2 : ((T(3)/T(10)))) - (r1 < (T(3)/T(10)) ? ((T(1))) * r1 : ((T(3)/T(10)))))) / (T(2.0) * hw);
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -8933,6 +9056,20 @@ T tent_pulse30_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt6<T>() * sigma > T(2) && detail::k_sqrt6<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(3)/T(10)))) * r2 + ((T(-9)/T(200)))) + (r1 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(3)/T(10)))) * r1 + ((T(-9)/T(200))))) - T(2.0) * (t < (T(3)/T(10)) ? ((((T(1)/T(2)))) * t) * t : (((T(3)/T(10)))) * t + ((T(-9)/T(200))))) * iw * iw;
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
@@ -9117,6 +9254,20 @@ T tent_pulse30_sq_raw(T x, T sigma) {
   BL_MATH_USING
   const T period = T(1);
   if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  if (detail::k_sqrt6<T>() * sigma > T(2) && detail::k_sqrt6<T>() * sigma <= T(1e+30) && abs(x) <= T(1e+30)) {  // wide, without the signed reduction
+    const T hw = detail::k_sqrt6<T>() * sigma;
+    const T t = x - period * floor(x * T(1));
+    const T n1 = floor((t - hw) * T(1));
+    const T r1 = (t - hw) - n1 * period;
+    const T n2 = floor((t + hw) * T(1));
+    const T r2 = (t + hw) - n2 * period;
+    const T iw = T(1.0) / hw;
+    const T s1 = n1 * iw;
+    const T s2w = n2 * iw;
+    const T g1 = period * s1 * ((n1 - T(1.0)) * iw) * T(0.5);
+    const T g2 = period * s2w * ((n2 - T(1.0)) * iw) * T(0.5);
+    return (T(3)/T(10)) * ((g2 + g1) + (r2 * iw * s2w + r1 * iw * s1)) + (T(51)/T(200)) * iw * (s2w + s1) + (((r2 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r2) * r2 : (((T(3)/T(10)))) * r2 + ((T(-9)/T(200)))) + (r1 < (T(3)/T(10)) ? ((((T(1)/T(2)))) * r1) * r1 : (((T(3)/T(10)))) * r1 + ((T(-9)/T(200))))) - T(2.0) * (t < (T(3)/T(10)) ? ((((T(1)/T(2)))) * t) * t : (((T(3)/T(10)))) * t + ((T(-9)/T(200))))) * iw * iw;
+  }
   const T r = detail::reduce_signed_pow2(x, period);
   const bool neg = r < T(0.0);
   const T t = neg ? r + period : r;
