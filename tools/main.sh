@@ -18,7 +18,7 @@ echo "[main] verifying every emitted formula against quadrature"
 # (docs/tuning/suite, bltune's defaults) whose error is at most MSAA 16's, next to plain and MSAA
 # 4/16, all as compiled C++ (and the point's GLSL on the GL driver).
 demo_scene=quadratic_sine_none
-demo_point=front06
+demo_point=front05
 echo "[main] rendering a demo scene: a tuned schedule vs plain and MSAA 4/16, ground truth (build/demo)"
 ./build/bin/blrender "scenes/suite/$demo_scene.json" --schedule "docs/tuning/suite/$demo_scene/front.csv:$demo_point" \
   --msaa 4 16 --glsl --out build/demo --cache build/truth_cache
