@@ -342,22 +342,7 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
     }
   std::sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) { return a.B < b.B; });
 
-  std::string out;
-  out += s.decl("period", s.num(T));
-  out += "  if (!(sigma >= " + s.dbl(0) + ")) return " + s.nan() + ";  // sigma < 0 or NaN\n";
-  // (pulse_train, wide_from: below; first_from: the hot path's reach where the entry has one, else the
-  // wide regime's start.)
-  const std::string first_at = "@WIDE_FIRST@";
-  out += first_at;
-  const std::string reduce =
-      s.cpp() && is_pow2(T) ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
-  out += s.decl("r", reduce + "(x, period)");
-  out += std::string("  ") + (s.cpp() ? "const bool" : "bool") + " neg = r < " + s.dbl(0) + ";\n";
-  out += s.decl("t", "neg ? r + period : r");
   const bool box = d.kernel == Kernel::Box;
-  out += s.decl("hw", (box ? (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3")
-                           : (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")) +
-                          std::string(" * sigma"));
   // A pulse train: f constant on each piece, two values (square, pulse30).
   std::vector<numeric> vals;
   bool constant = true;
@@ -372,9 +357,22 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   // break (box square: 9; calibrated float at sigma 0.1-1, 9.1 ns against 6.3 for the wide regime),
   // and its rounding, eps (h + T) / 2h, is at most ~2 eps there.
   const double wide_from = box && pulse_train ? std::min(K, kNearReach) : K;
+
+  std::string out;
+  out += s.decl("period", s.num(T));
+  out += "  if (!(sigma >= " + s.dbl(0) + ")) return " + s.nan() + ";  // sigma < 0 or NaN\n";
+  // C++: wide kernels first, without the signed reduction below: from the pixel-sized path's reach
+  // where the entry has one (box_tent_periodic_hot), else from the wide regime's start.
   const numeric hot = hot_reach(d);
-  out.replace(out.find(first_at), first_at.size(),
-              wide_first(d, s, hot.is_zero() ? exact_value(wide_from) * T : hot));
+  out += wide_first(d, s, hot.is_zero() ? exact_value(wide_from) * T : hot);
+  const std::string reduce =
+      s.cpp() && is_pow2(T) ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
+  out += s.decl("r", reduce + "(x, period)");
+  out += std::string("  ") + (s.cpp() ? "const bool" : "bool") + " neg = r < " + s.dbl(0) + ";\n";
+  out += s.decl("t", "neg ? r + period : r");
+  out += s.decl("hw", (box ? (s.cpp() ? "detail::k_sqrt3<T>()" : "BL_SQRT3")
+                           : (s.cpp() ? "detail::k_sqrt6<T>()" : "BL_SQRT6")) +
+                          std::string(" * sigma"));
   out += "  if (!(hw <= " + s.dbl(wide_from * Td) + ")) {  // support wider than " +
          std::to_string(wide_from).substr(0, 4) + " periods each side\n" + wide_regime(d, s) + "  }\n";
 
