@@ -12,31 +12,33 @@
 # build/cost_model.json (the calibration SUITE_DIR was tuned with: recalibrating between the runs
 # mixes the calibration's spread into the search's) and $BL_TRUTH_CACHE (default build/truth_cache).
 set -euo pipefail
-cd "$(dirname "$0")/.."
 if [ $# -lt 4 ]; then
   sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 fi
-suite=$1 out=$2 seeds=$3
+# Paths as the caller wrote them, before moving to the repository root.
+suite=$(realpath -m "$1") out=$(realpath -m "$2") seeds=$3
+cache=$(realpath -m "${BL_TRUTH_CACHE:-$(dirname "$0")/../build/truth_cache}")
 shift 3
-cache=${BL_TRUTH_CACHE:-build/truth_cache}
+cd "$(dirname "$0")/.."
 [ -x build/bin/bltune ] || { echo "seed_spread: build/bin/bltune missing (bash tools/build.sh)" >&2; exit 1; }
 mkdir -p "$out"
 # "| 16 | rms | point | 11.1x | 12.7x compiled |" -> "11.1 12.7"; "- -" when MSAA-16's error is not reached.
 at16() {
-  [ -f "$1" ] || { echo "seed_spread: $1 missing" >&2; exit 1; }
   awk -F'|' '/^\| 16 \|/ { m = $5; c = $6; gsub(/[ x]/, "", m); sub(/x.*/, "", c); gsub(/ /, "", c);
     if (m == "-" || m == "") { m = "-"; c = "-" } print m, c; found = 1; exit }
     END { if (!found) print "- -" }' "$1"
 }
 for s in "$@"; do
   [ -f "scenes/suite/$s.json" ] || { echo "seed_spread: no scene scenes/suite/$s.json" >&2; exit 1; }
+  [ -f "$suite/$s/report.md" ] || { echo "seed_spread: $suite/$s/report.md missing (not a suite output?)" >&2; exit 1; }
   for k in $seeds; do
     d="$out/${s}_s$k"
     [ -f "$d/report.md" ] && continue
     echo "[seed_spread] $s seed $k" >&2
     build/bin/bltune "scenes/suite/$s.json" --seed "$k" --out "$d" --cache "$cache" \
       --cost-model build/cost_model.json >"$d.log" 2>&1 || { echo "seed_spread: $s seed $k failed, see $d.log" >&2; exit 1; }
+    [ -f "$d/report.md" ] || { echo "seed_spread: $s seed $k wrote no report, see $d.log" >&2; exit 1; }
   done
 done
 echo "| scene | seed 1 | $(for k in $seeds; do printf 'seed %s | ' "$k"; done)median (model) | >= 10x |"
