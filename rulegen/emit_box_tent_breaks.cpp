@@ -255,23 +255,44 @@ std::string wide_first(const sym::Derived& d, const Syntax& s, const numeric& fr
   return out + wide_regime(d, s, true) + "  }\n";
 }
 
-// The shapes box_tent_periodic_hot takes without a floor (a pulse train c0 on [0, g), c1 on [g, T); one
-// linear piece on [0, T); T and g powers of two): its reach g / 2, else 0.
-numeric hot_reach(const sym::Derived& d) {
-  if (!GiNaC::is_a<numeric>(d.period)) return 0;
-  const auto& ps = d.pieces;
+int max_degree(const std::vector<PolyPiece>& ps) {
   int maxdeg = 0;
   for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
-  const bool pulse = ps.size() == 2 && maxdeg == 0, linear = ps.size() == 1 && maxdeg <= 1;
-  if (!pulse && !linear) return 0;
+  return maxdeg;
+}
+
+// The piece spacing g = T / m of an entry box_tent_periodic_hot takes (m = 1 or 2 pieces per period,
+// starting at the multiples of g, T and g powers of two, a jump at every piece start: else the pieces
+// would not alternate with the nearest break's parity), with the jump polynomials about each break
+// (q_i(b_i + u) - q_{i-1}(b_i + u), q_{-1}(t) = q_{m-1}(T + t)) in *jumps; nullopt for every other entry.
+std::optional<numeric> hot_spacing(const sym::Derived& d,
+                                   std::vector<std::vector<numeric>>* jumps = nullptr) {
+  if (!GiNaC::is_a<numeric>(d.period)) return std::nullopt;
+  const auto& ps = d.pieces;
+  const size_t m = ps.size();
+  if (m < 1 || m > 2) return std::nullopt;
   const numeric T = GiNaC::ex_to<numeric>(d.period);
-  const numeric g = T / numeric(static_cast<long>(ps.size()));
-  if (!is_pow2(T) || !is_pow2(g)) return 0;
-  for (size_t i = 0; i < ps.size(); ++i)
-    if (!GiNaC::is_a<numeric>(ps[i].lo.value) ||
-        GiNaC::ex_to<numeric>(ps[i].lo.value) != g * numeric(long(i)))
-      return 0;
-  return g / 2;
+  const numeric g = T / numeric(static_cast<long>(m));
+  if (!is_pow2(T) || !is_pow2(g)) return std::nullopt;
+  for (size_t i = 0; i < m; ++i) {
+    if (!GiNaC::is_a<numeric>(ps[i].lo.value) || !GiNaC::is_a<numeric>(ps[i].hi.value)) return std::nullopt;
+    if (GiNaC::ex_to<numeric>(ps[i].lo.value) != g * numeric(static_cast<long>(i))) return std::nullopt;
+  }
+  std::vector<std::vector<numeric>> e(m);
+  for (size_t i = 0; i < m; ++i) {
+    const numeric b = g * numeric(static_cast<long>(i));
+    e[i] = minus(shifted(ps[i].c, b), shifted(ps[i == 0 ? m - 1 : i - 1].c, i == 0 ? T : b));
+    if (e[i].empty()) return std::nullopt;
+  }
+  if (jumps) *jumps = std::move(e);
+  return g;
+}
+
+// Of those, the two shapes whose pixel-sized path needs no floor: a pulse train (two constant pieces;
+// one constant piece has no jump) or one linear piece.
+bool floor_free(const sym::Derived& d) {
+  const int maxdeg = max_degree(d.pieces);
+  return maxdeg == 0 || (d.pieces.size() == 1 && maxdeg == 1);
 }
 
 }  // namespace
@@ -362,8 +383,8 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
   out += "  if (!(sigma >= " + s.dbl(0) + ")) return " + s.nan() + ";  // sigma < 0 or NaN\n";
   // C++: wide kernels first, without the signed reduction below: from the pixel-sized path's reach
   // where the entry has one (box_tent_periodic_hot), else from the wide regime's start.
-  const numeric hot = hot_reach(d);
-  out += wide_first(d, s, hot.is_zero() ? exact_value(wide_from) * T : hot);
+  const std::optional<numeric> g_hot = hot_spacing(d);
+  out += wide_first(d, s, g_hot && floor_free(d) ? *g_hot / 2 : exact_value(wide_from) * T);
   const std::string reduce =
       s.cpp() && is_pow2(T) ? s.helper("reduce_signed_pow2") : s.helper("reduce_signed");
   out += s.decl("r", reduce + "(x, period)");
@@ -376,8 +397,7 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
          std::to_string(wide_from).substr(0, 4) + " periods each side\n" + wide_regime(d, s) + "  }\n";
 
   // The base: q_j(t + U) in mean, j picked by the interior breaks' offsets.
-  int maxdeg = 0;
-  for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
+  const int maxdeg = max_degree(ps);
   if (maxdeg >= 2) out += s.decl("s2", "sigma * sigma");
   std::string base;
   size_t opened = 0;
@@ -448,30 +468,17 @@ std::string box_tent_periodic_body(const sym::Derived& d, sym::Lang lang) {
 std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& general, const std::string& clamp,
                                   bool* in_range) {
   if (d.kernel == Kernel::Gaussian || d.body != sym::Body::PeriodicTable || d.pieces.empty()) return "";
-  if (!GiNaC::is_a<numeric>(d.period)) return "";
   const Syntax s{sym::Lang::Cpp};
   const auto& ps = d.pieces;
   const size_t m = ps.size();
-  if (m < 1 || m > 2) return "";
-  const numeric T = GiNaC::ex_to<numeric>(d.period);
-  const numeric g = T / numeric(static_cast<long>(m));
-  if (!is_pow2(T) || !is_pow2(g)) return "";
-  for (size_t i = 0; i < m; ++i) {
-    if (!GiNaC::is_a<numeric>(ps[i].lo.value) || !GiNaC::is_a<numeric>(ps[i].hi.value)) return "";
-    if (GiNaC::ex_to<numeric>(ps[i].lo.value) != g * numeric(static_cast<long>(i))) return "";
-  }
-  // Jump polynomial at b_i (about b_i): q_i(b_i + u) - q_{i-1}(b_i + u), q_{-1}(t) = q_{m-1}(T + t).
-  std::vector<std::vector<numeric>> e(m);
-  for (size_t i = 0; i < m; ++i) {
-    const numeric b = g * numeric(static_cast<long>(i));
-    e[i] = minus(shifted(ps[i].c, b), shifted(ps[i == 0 ? m - 1 : i - 1].c, i == 0 ? T : b));
-    if (e[i].empty()) return "";  // not a break: the pieces would not alternate with j's parity
-  }
+  std::vector<std::vector<numeric>> e;  // jump polynomials about each break
+  const std::optional<numeric> spacing = hot_spacing(d, &e);
+  if (!spacing) return "";
+  const numeric T = GiNaC::ex_to<numeric>(d.period), g = *spacing;
   const bool box = d.kernel == Kernel::Box;
   std::string out;
   out += s.decl("hw", std::string(box ? "detail::k_sqrt3<T>()" : "detail::k_sqrt6<T>()") + " * sigma");
-  int maxdeg = 0;
-  for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
+  const int maxdeg = max_degree(ps);
   // Two shapes need neither x's piece nor the side of the break (the floor and the blends below):
   // - a pulse train (m = 2: piece 0 on [0, g), piece 1 on [g, T); square): e = x - T rint(x / T) is
   //   exact and in [-g, g]; piece 0 holds x iff e >= 0, the nearest break is dn = min(|e|, g - |e|)
@@ -483,8 +490,8 @@ std::string box_tent_periodic_hot(const sym::Derived& d, const std::string& gene
   //   nearest x is a + b e everywhere right of it, and left of it the previous period adds b T:
   //   mean = a + b e + b T P(U < -e), for either sign of e (box: P = clamp(1/2 - e / 2h, 0, 1); tent:
   //   P = 1/2 - copysign(1/2 - F, e)). Box fract 1.34 -> 0.91 ns per call (tent: 1.18).
-  const bool pulse = maxdeg == 0, linear = m == 1 && maxdeg == 1;
-  if (pulse || linear) {
+  if (floor_free(d)) {
+    const bool pulse = maxdeg == 0;
     const bool scaled_T = T != 1;
     // NaN, sigma <= 0, tiny (1/width past float's range), wide, or x NaN or infinite: general.
     out += "  if (hw >= " + s.dbl(1e-30) + " && hw <= " + s.num(g / 2) + " && abs(x) <= " + s.dbl(1e30) +
@@ -1097,8 +1104,7 @@ std::string box_tent_piecewise_narrow(const sym::Derived& d, sym::Lang lang) {
                                  std::string(" * sigma"));
   out += "    if (sigma > " + s.dbl(0) + " && hw <= " + s.dbl(limit) + ") {\n";
   out += "    " + s.decl("r", "x");
-  int maxdeg = 0;
-  for (const auto& p : ps) maxdeg = std::max(maxdeg, static_cast<int>(p.c.size()) - 1);
+  const int maxdeg = max_degree(ps);
   if (maxdeg >= 2) out += "    " + s.decl("s2", "sigma * sigma");
   std::string base;
   for (size_t i = 0; i < N; ++i) {
