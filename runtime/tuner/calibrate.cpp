@@ -246,6 +246,10 @@ CostModel load_or_calibrate(const std::string& path, bool verbose, CalibrationOp
       throw std::runtime_error("cost model " + path + " has no latencies");
     if (m.method == "compiled" && m.kernels != CostModel::kKernels)
       throw std::runtime_error("cost model " + path + " was timed with older calibration kernels");
+    // The window is measured (and fitted) under the latency bound's norm: another norm, another window.
+    if (m.method == "compiled" && m.latency_norm != CostModel::kLatencyNorm)
+      throw std::runtime_error("cost model " + path + " prices latency with another norm (" +
+                               std::to_string(m.latency_norm) + ", 0 = max)");
     // The same program costs another time under other flags (-march=native: floor 0.48 against
     // 1.17 ns), and fronts and speed-ups are measured with today's.
     if (m.method == "compiled" && m.jit_flags != jit::flags_text(opt.jit))

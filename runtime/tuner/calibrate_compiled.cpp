@@ -329,12 +329,12 @@ CostModel calibrate_compiled(const CalibrationOptions& opt,
     if (wanted(op[0])) record(op[0], net(time(std::string("bl_op_") + op[0], in, main_opt), 2) / 16, false);
   const double lat_base = time("bl_latbase", in, main_opt);
   {
-    // Pixels in flight = window / (throughput cost per pixel): from time = L x T / window when the
-    // chain binds (T = 8 thr, L = 8 lat per pixel).
+    // Pixels in flight = window / (throughput cost per pixel): the window at which the latency
+    // bound prices the chained kernel as timed (T = 8 thr, L = 8 lat per pixel).
     const double thr = net(time("bl_win_thr", in, main_opt), 1);
     const double lat = std::max(0.01, time("bl_win_lat", in, main_opt) - lat_base);
     const double chain = net(time("bl_win_chain", in, main_opt), 2);
-    m.window_ns = chain > 8 * thr * 1.05 ? (8 * lat) * (8 * thr) / chain : 1e9;
+    m.window_ns = CostModel::window_for(8 * thr, 8 * lat, chain);
     m.window_kernel_ns = m.window_ns;
     if (progress) progress("window", m.window_ns);
   }

@@ -144,8 +144,16 @@ double CostModel::function_cost(int fn) const {
 }
 
 double CostModel::latency_bound(double t, double path, double window) {
-  if (!(window > 0) || path <= t) return t;
-  return std::max(t, path * std::min(1.0, t / window));
+  if (!(window > 0) || !(path > 0)) return t;
+  const double chain = path * std::min(1.0, t / window);
+  return std::pow(std::pow(t, kLatencyNorm) + std::pow(chain, kLatencyNorm), 1 / kLatencyNorm);
+}
+
+double CostModel::window_for(double t, double path, double measured) {
+  if (!(measured > t * 1.05) || !(path > 0)) return 1e9;
+  const double chain =
+      std::pow(std::pow(measured, kLatencyNorm) - std::pow(t, kLatencyNorm), 1 / kLatencyNorm);
+  return path * t / chain;
 }
 
 double CostModel::cost(const compiler::Program& p) const {
@@ -337,6 +345,7 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
   cm.window_kernel_ns = m.value("window_kernel_ns", cm.window_ns);
   cm.window_fit_programs = m.value("window_fit_programs", 0);
   cm.window_fit_source = m.value("window_fit_source", std::string());
+  cm.latency_norm = m.value("latency_norm", 0.0);
   cm.kernels = m.value("kernels", 0);
   cm.jit_flags = m.value("jit_flags", std::string());
   if (m.contains("op_latency")) cm.op_lat_ns = m.at("op_latency").get<std::map<std::string, double>>();
@@ -369,6 +378,7 @@ void save_cost_model(const std::string& path, const CostModel& m) {
                               {"window_kernel_ns", m.window_kernel_ns},
                               {"window_fit_programs", m.window_fit_programs},
                               {"window_fit_source", m.window_fit_source},
+                              {"latency_norm", m.latency_norm},
                               {"kernels", m.kernels},
                               {"jit_flags", m.jit_flags},
                               {"function_spill", m.fn_spill_ns},

@@ -70,7 +70,8 @@ struct CostModel {
   // The f entry of an f^2 kernel entry (bl::tent::sin for bl::tent::sin_sq), -1 for others.
   static int square_sibling(int fn);
   // The out-of-order window in ns of throughput work: a program of throughput T and critical path
-  // L overlaps max(1, window / T) pixels, so it costs max(T, L x min(1, T / window)) (latency_bound).
+  // L overlaps max(1, window / T) pixels, so its chain costs L' = L x min(1, T / window) per pixel
+  // and the program (T^k + L'^k)^(1/k), k = kLatencyNorm (latency_bound).
   // The calibration measures it on one kernel (8 chained libm sin calls per pixel: window_kernel_ns);
   // bltune --fit-window replaces it by the window that best prices compiled plain programs of real
   // scenes (window_fit.hpp), which overlap more pixels than that kernel does.
@@ -78,7 +79,19 @@ struct CostModel {
   double window_kernel_ns = 0;    // the calibration kernel's window (kept when window_ns is fitted)
   int window_fit_programs = 0;    // > 0: window_ns was fitted on that many measured programs
   std::string window_fit_source;  // what they were (the scene directory)
+  // A smooth max of T and L' rather than max(T, L'): a program whose throughput and chain are
+  // close is dearer than either (the chain's stalls and the issue slots compete; fire_bumps: T 237,
+  // L' 239, compiled 371 ns). k = 4 re-priced stop 31's 434 measured programs from median
+  // |model/compiled - 1| 0.119 (max) to 0.101 (k = 3: 0.107, 8: 0.116, 2: 0.143); with the scenes
+  // split in halves, k fitted on one half gained 2-13% on the other (docs/tuning.md, stop 31).
+  static constexpr double kLatencyNorm = 4;
+  // The norm the file's window was fitted or measured under (0: max, files before the p-norm);
+  // load_or_calibrate recalibrates a file whose norm is not kLatencyNorm.
+  double latency_norm = kLatencyNorm;
   static double latency_bound(double throughput, double path, double window);
+  // The window at which latency_bound(throughput, path, window) = measured (the inverse, for the
+  // calibration's chain kernel); 1e9 when the program runs at its throughput (within 5%).
+  static double window_for(double throughput, double path, double measured);
   // Not saved, set per scene (magnitude_profile): per atomic, the share of calls per |x| band
   // (band_share, from the plain program) and per (|x|, sigma) band pair (joint_share, from the
   // all-Gaussian program); rows sum to 1. Without a row: band 0 (and the calibration's default
@@ -88,7 +101,7 @@ struct CostModel {
   // ns per pixel of one call of function `fn` (index into compiler::functions()) under band_share.
   double function_cost(int fn) const;
 
-  // ns per pixel of p: max(T, L x min(1, T / window_ns)) with T the sum of per-instruction costs
+  // ns per pixel of p: latency_bound(T, L, window_ns) with T the sum of per-instruction costs
   // (plus the per-pixel overhead and the output stores) and L the critical path of latencies. Throws
   // std::out_of_range naming an op or function the model lacks.
   double cost(const compiler::Program& p) const;

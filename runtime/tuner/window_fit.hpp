@@ -33,8 +33,8 @@ struct WindowFit {
   // and the count within 25% (kModelTolerance).
   double mean_abs_log = 0, previous_mean_abs_log = 0;
   int within = 0, previous_within = 0;
-  // Every program prices as its throughput at the fitted window: any larger window fits as well,
-  // the samples only bound it from below.
+  // Every program prices within 0.1% of its throughput at the fitted window: any larger window fits
+  // as well, the samples only bound it from below.
   bool lower_bound_only = false;
 };
 
