@@ -7,8 +7,10 @@
 #
 #   tools/seed_spread.sh SUITE_DIR OUT_DIR "2 3" scene_a scene_b ...
 #
-# SUITE_DIR: a `bltune --suite` output (seed 1; its <scene>/report.md is read, not rerun); OUT_DIR gets
-# <scene>_s<seed>/ (a scene already there is not tuned again). Uses build/bin/bltune,
+# SUITE_DIR: a `bltune --suite` output (seed 1; its summary.csv is read, not rerun); OUT_DIR gets
+# s<seed>/<scene>/ and s<seed>/summary.csv (`bltune --summarize`; a scene already there is not tuned
+# again). Speed-ups are read from the summaries' speedup16_model / speedup16_measured columns (0: MSAA-16's
+# error not reached). Uses build/bin/bltune,
 # build/cost_model.json (the calibration SUITE_DIR was tuned with: recalibrating between the runs
 # mixes the calibration's spread into the search's) and $BL_TRUTH_CACHE (default build/truth_cache).
 set -euo pipefail
@@ -23,34 +25,42 @@ shift 3
 cd "$(dirname "$0")/.."
 [ -x build/bin/bltune ] || { echo "seed_spread: build/bin/bltune missing (bash tools/build.sh)" >&2; exit 1; }
 mkdir -p "$out"
-# "| 16 | rms | point | 11.1x | 12.7x compiled |" -> "11.1 12.7"; "- -" when MSAA-16's error is not reached.
+# "model measured" speed-ups at MSAA-16's error of scene $2 in summary.csv $1 (columns by name), "- -"
+# when not reached; an error when the scene has no row.
 at16() {
-  awk -F'|' '/^\| 16 \|/ { m = $5; c = $6; gsub(/[ x]/, "", m); sub(/x.*/, "", c); gsub(/ /, "", c);
-    if (m == "-" || m == "") { m = "-"; c = "-" } print m, c; found = 1; exit }
-    END { if (!found) print "- -" }' "$1"
+  awk -F, -v scene="$2" -v file="$1" '
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i
+              if (!col["speedup16_model"] || !col["speedup16_measured"]) { print "seed_spread: " file " has no speedup16 columns" > "/dev/stderr"; bad = 1; exit 1 } next }
+    $1 == scene { m = $col["speedup16_model"]; c = $col["speedup16_measured"]
+                  if (m + 0 > 0) printf "%.1f %.1f\n", m, c; else print "- -"; found = 1; exit }
+    END { if (!bad && !found) { print "seed_spread: no row for " scene " in " file > "/dev/stderr"; exit 1 } }' "$1"
 }
 for s in "$@"; do
   [ -f "scenes/suite/$s.json" ] || { echo "seed_spread: no scene scenes/suite/$s.json" >&2; exit 1; }
-  [ -f "$suite/$s/report.md" ] || { echo "seed_spread: $suite/$s/report.md missing (not a suite output?)" >&2; exit 1; }
+  [ -f "$suite/summary.csv" ] || { echo "seed_spread: $suite/summary.csv missing (not a suite output?)" >&2; exit 1; }
   for k in $seeds; do
-    d="$out/${s}_s$k"
-    [ -f "$d/report.md" ] && continue
+    d="$out/s$k/$s"
+    [ -f "$d/result.json" ] && continue
     echo "[seed_spread] $s seed $k" >&2
+    mkdir -p "$out/s$k"
     build/bin/bltune "scenes/suite/$s.json" --seed "$k" --out "$d" --cache "$cache" \
       --cost-model build/cost_model.json >"$d.log" 2>&1 || { echo "seed_spread: $s seed $k failed, see $d.log" >&2; exit 1; }
-    [ -f "$d/report.md" ] || { echo "seed_spread: $s seed $k wrote no report, see $d.log" >&2; exit 1; }
+    [ -f "$d/result.json" ] || { echo "seed_spread: $s seed $k wrote no result.json, see $d.log" >&2; exit 1; }
   done
+done
+for k in $seeds; do
+  build/bin/bltune --summarize "$out/s$k" >/dev/null || { echo "seed_spread: bltune --summarize $out/s$k failed" >&2; exit 1; }
 done
 echo "| scene | seed 1 | $(for k in $seeds; do printf 'seed %s | ' "$k"; done)median (model) | >= 10x |"
 echo "|---|---|$(for k in $seeds; do printf -- '---|'; done)---|---|"
 count=0
 for s in "$@"; do
   row="| $s |" vals=""
-  read -r m c < <(at16 "$suite/$s/report.md")
+  read -r m c < <(at16 "$suite/summary.csv" "$s") || exit 1
   row+=" ${m}x / ${c}x |"
   vals+="$m "
   for k in $seeds; do
-    read -r m c < <(at16 "$out/${s}_s$k/report.md")
+    read -r m c < <(at16 "$out/s$k/summary.csv" "$s") || exit 1
     row+=" ${m}x / ${c}x |"
     vals+="$m "
   done
