@@ -241,9 +241,23 @@ std::vector<int> CostModel::live_across(const compiler::Program& p) {
 }
 
 double CostModel::throughput(const compiler::Program& p) const {
+  return breakdown_throughput(p, nullptr);
+}
+
+CostModel::Breakdown CostModel::breakdown(const compiler::Program& p) const {
+  Breakdown b;
+  b.throughput_ns = breakdown_throughput(p, &b);
+  b.path_ns = critical_path(p);
+  b.chain_ns = window_ns > 0 ? b.path_ns * std::min(1.0, b.throughput_ns / window_ns) : 0;
+  b.cost_ns = latency_bound(b.throughput_ns, b.path_ns, window_ns);
+  return b;
+}
+
+double CostModel::breakdown_throughput(const compiler::Program& p, Breakdown* b) const {
   double ns = 0;
   if (const auto px = op_ns.find("pixel"); px != op_ns.end()) ns += px->second;
   if (const auto o = op_ns.find("output"); o != op_ns.end()) ns += o->second * p.outputs.size();
+  if (b) b->loop_ns = ns;
   const std::vector<int> live = fn_spill_ns.empty() ? std::vector<int>() : live_across(p);
   // Plain sin and cos of one argument: GCC emits one sincosf for the pair, so the cos costs only
   // kSincosExtra of its calibrated price and keeps nothing live of its own.
@@ -257,11 +271,18 @@ double CostModel::throughput(const compiler::Program& p) const {
   if (!fn_pair_ns.empty())
     for (const compiler::Inst& in : p.insts)
       if (in.op == LOp::Call) calls.push_back({in.fn, in.arg[0], in.arg[1]});
+  auto call = [&](const compiler::Inst& in, double price) {
+    ns += price;
+    if (!b) return;
+    Breakdown::Calls& c = b->functions[compiler::functions().at(in.fn).cpp];
+    ++c.count;
+    c.ns += price;
+  };
   for (std::size_t i = 0; i < p.insts.size(); ++i) {
     const compiler::Inst& in = p.insts[i];
     if (in.op == LOp::Call && in.fn == cos_fn &&
         std::find(sin_args.begin(), sin_args.end(), in.arg[0]) != sin_args.end()) {
-      ns += kSincosExtra * function_cost(in.fn);
+      call(in, kSincosExtra * function_cost(in.fn));
       continue;
     }
     if (in.op == LOp::Call && !calls.empty()) {
@@ -269,21 +290,28 @@ double CostModel::throughput(const compiler::Program& p) const {
       const auto pr = sib < 0 ? fn_pair_ns.end() : fn_pair_ns.find(compiler::functions().at(in.fn).cpp);
       if (pr != fn_pair_ns.end() && std::find(calls.begin(), calls.end(),
                                               std::array<int, 3>{sib, in.arg[0], in.arg[1]}) != calls.end()) {
-        ns += pr->second;
+        call(in, pr->second);
         continue;
       }
     }
     if (in.op == LOp::Call || in.op == LOp::CallStat) {
-      ns += function_cost(in.fn);
+      call(in, function_cost(in.fn));
       if (!live.empty())
-        if (const auto sp = fn_spill_ns.find(compiler::functions().at(in.fn).cpp); sp != fn_spill_ns.end())
-          ns += sp->second * std::min(live[i], kSpillRegs);
+        if (const auto sp = fn_spill_ns.find(compiler::functions().at(in.fn).cpp); sp != fn_spill_ns.end()) {
+          const double spill = sp->second * std::min(live[i], kSpillRegs);
+          ns += spill;
+          if (b) b->spill_ns += spill;
+        }
     } else {
       const auto it = op_ns.find(lop_name(in.op));
       if (it == op_ns.end())
         throw std::out_of_range(std::string("cost model (") + machine + ") has no entry for op " +
                                 lop_name(in.op) + ": recalibrate (bltune --calibrate)");
       ns += it->second;
+      if (b) {
+        ++b->ops;
+        b->ops_ns += it->second;
+      }
     }
   }
   return ns;

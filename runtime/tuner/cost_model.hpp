@@ -105,7 +105,20 @@ struct CostModel {
   // (plus the per-pixel overhead and the output stores) and L the critical path of latencies. Throws
   // std::out_of_range naming an op or function the model lacks.
   double cost(const compiler::Program& p) const;
-  double throughput(const compiler::Program& p) const;     // the sum alone (+ overhead)
+  double throughput(const compiler::Program& p) const;  // the sum alone (+ overhead)
+  // Where cost(p) goes (bltune --explain): the throughput's parts, which sum to throughput(p), and
+  // the latency bound's terms.
+  struct Breakdown {
+    struct Calls {
+      int count = 0;
+      double ns = 0;  // their price (a sincos cos, an f^2 entry beside its f: the pair's share)
+    };
+    std::map<std::string, Calls> functions;        // by C++ name
+    int ops = 0;                                   // inline instructions (every LOp but calls)
+    double ops_ns = 0, spill_ns = 0, loop_ns = 0;  // loop: per-pixel overhead and output stores
+    double throughput_ns = 0, path_ns = 0, chain_ns = 0, cost_ns = 0;  // chain: L' of latency_bound
+  };
+  Breakdown breakdown(const compiler::Program& p) const;
   double critical_path(const compiler::Program& p) const;  // the latency path alone (0 without latencies)
   // Per call instruction, the values (non-constant instructions) placed before it and read after it
   // or stored as outputs: what the call must keep across itself. Non-call instructions are placed as
@@ -120,6 +133,11 @@ struct CostModel {
   bool covers_all() const;
   // The names covers_all() misses (for messages).
   std::string missing() const;
+
+ private:
+  // throughput(p), and its parts into *b when b is given (one pass for both: the parts cannot drift
+  // from the sum).
+  double breakdown_throughput(const compiler::Program& p, Breakdown* b) const;
 };
 
 const char* lop_name(compiler::LOp op);

@@ -32,6 +32,18 @@ grep -q "inline void shade(" "$work/stripes_smooth.hpp"
 label=$(awk -F, '$1 == "front" { l = $2 } END { print l }' "$work/tune/front.csv")
 [ -n "$label" ] || { echo "no front point in front.csv"; exit 1; }
 ls "$work/tune/front/$label.glsl" "$work/tune/front/$label.hpp" > /dev/null
+# Where the point's model time goes: a table whose rows sum to the throughput, the point against plain.
+"$bltune" "$work/my/stripes.json" --explain "$work/tune/front.csv:$label" --cache "$work/cache" \
+  --cost-model "$work/cost.json" --calibration evaluator > "$work/explain.md" || { cat "$work/explain.md"; exit 1; }
+grep -q "^| \*\*throughput T\*\* | | " "$work/explain.md" || { cat "$work/explain.md"; exit 1; }
+awk -F'|' '/^\| (bl::|inline|values|pixel)/ { sum += $4 } /throughput T/ { t = $4 }
+  END { if (t <= 0 || sum < t - 0.02 * NR || sum > t + 0.02 * NR) { print "parts " sum " vs T " t; exit 1 } }' "$work/explain.md"
+grep -q "x plain, " "$work/explain.md"
+if "$bltune" "$work/my/stripes.json" --explain "$work/tune/front.csv:nosuchpoint" --cache "$work/cache" \
+  --cost-model "$work/cost.json" --calibration evaluator > /dev/null 2> "$work/err0.txt"; then
+  echo "--explain accepted an unknown label"; exit 1
+fi
+grep -q "nosuchpoint" "$work/err0.txt" || { cat "$work/err0.txt"; exit 1; }
 "$blrender" "$work/my/stripes.json" --schedule "$work/tune/front.csv:$label" --msaa 4 --out "$work/out_$label" \
   --cache "$work/cache" > "$work/render_$label.log"
 grep -q "| v0_t0.000 | $label |" "$work/out_$label/report.md" || { cat "$work/render_$label.log"; exit 1; }

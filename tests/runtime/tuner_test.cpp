@@ -244,6 +244,19 @@ TEST(CostModel, FormulaOnAHandBuiltModel) {
   EXPECT_DOUBLE_EQ(m.critical_path(p), 9 + 2 * 110);
   m.window_ns = 1e9;  // an unbounded window: throughput
   EXPECT_DOUBLE_EQ(m.cost(p), 118);
+  // The breakdown (bltune --explain): loop 1 + 3 x 0.5, arithmetic 2 x 0.25 + 2 + 3, the fract call 110.
+  const CostModel::Breakdown b = m.breakdown(p);
+  EXPECT_DOUBLE_EQ(b.loop_ns, 2.5);
+  EXPECT_EQ(b.ops, 4);
+  EXPECT_DOUBLE_EQ(b.ops_ns, 5.5);
+  EXPECT_DOUBLE_EQ(b.spill_ns, 0);
+  ASSERT_EQ(b.functions.size(), 1u);
+  EXPECT_EQ(b.functions.at("bl::plain::fract").count, 1);
+  EXPECT_DOUBLE_EQ(b.functions.at("bl::plain::fract").ns, 110);
+  EXPECT_DOUBLE_EQ(b.throughput_ns, 118);
+  EXPECT_DOUBLE_EQ(b.path_ns, 9 + 2 * 110);
+  EXPECT_DOUBLE_EQ(b.cost_ns, m.cost(p));
+  EXPECT_NEAR(b.chain_ns, 229 * 118 / 1e9, 1e-15);
   // MSAA n is n plain evaluations per pixel (finalize): the loop overhead is per sample too.
   m.op_ns.erase("output");
   EXPECT_DOUBLE_EQ(m.throughput(p), 118 - 1.5);
@@ -345,6 +358,8 @@ TEST(CostModel, SpillCostCountsTheValuesLiveAcrossACall) {
   EXPECT_DOUBLE_EQ(m.throughput(p), 15);
   m.fn_spill_ns = {{"bl::plain::fract", 0.5}};
   EXPECT_DOUBLE_EQ(m.throughput(p), 16);
+  EXPECT_DOUBLE_EQ(m.breakdown(p).spill_ns, 1);  // booked apart from the call's price
+  EXPECT_DOUBLE_EQ(m.breakdown(p).functions.at("bl::plain::fract").ns, 10);
   // More live values than kSpillRegs: only kSpillRegs are charged. The extras are read before the
   // call (by its argument's chain) and after it, so they cannot sink below it.
   compiler::Program q = p;
@@ -396,6 +411,11 @@ TEST(CostModel, SinAndCosOfOneArgumentCostOneSincos) {
   EXPECT_DOUBLE_EQ(m.throughput(p), 10 + CostModel::kSincosExtra * 8 + 8);
   p.insts[s].arg[0] = v;  // now sin(v) pairs with the second cos instead
   EXPECT_DOUBLE_EQ(m.throughput(p), 10 + 8 + CostModel::kSincosExtra * 8);
+  // The breakdown books the pair's cos at its share, under cos.
+  const CostModel::Breakdown b = m.breakdown(p);
+  EXPECT_EQ(b.functions.at("bl::plain::cos").count, 2);
+  EXPECT_DOUBLE_EQ(b.functions.at("bl::plain::cos").ns, 8 + CostModel::kSincosExtra * 8);
+  EXPECT_DOUBLE_EQ(b.functions.at("bl::plain::sin").ns, 10);
 }
 
 // A smoothed node calls its f entry and its f^2 entry on the same (mean, sd): rulegen writes sin^2 to
