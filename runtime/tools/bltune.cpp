@@ -214,39 +214,9 @@ void explain(const Config& c, const std::string& scene_path, const std::string& 
   const auto plain = t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule("none")));
   if (!p || !plain) throw std::runtime_error(spec + " does not lower on scene " + s.name);
   const CostModel& m = t.cost_model();
-  const CostModel::Breakdown b = m.breakdown(*p);
-  std::vector<std::pair<double, std::string>> rows;
-  for (const auto& [name, calls] : b.functions)
-    rows.emplace_back(calls.ns, "| " + name + " | " + std::to_string(calls.count) + " | ");
-  rows.emplace_back(b.ops_ns, "| inline arithmetic | " + std::to_string(b.ops) + " | ");
-  rows.emplace_back(b.spill_ns, "| values kept across calls (spill) | | ");
-  rows.emplace_back(b.loop_ns,
-                    "| pixel loop and " + std::to_string(p->outputs.size()) + " output stores | | ");
-  std::sort(rows.begin(), rows.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-  std::printf("# Model time of %s:%s on %s (cost model: %s, %s)\n\n", ls.file.c_str(), ls.label.c_str(),
-              s.name.c_str(), m.machine.c_str(), m.method.c_str());
-  std::printf("| part | calls | ns/px | share of T |\n|---|---|---|---|\n");
-  for (const auto& [ns, row] : rows)
-    std::printf("%s%.2f | %.0f%% |\n", row.c_str(), ns,
-                b.throughput_ns > 0 ? 100 * ns / b.throughput_ns : 0.0);
-  std::printf("| **throughput T** | | %.2f | 100%% |\n\n", b.throughput_ns);
-  if (m.window_ns > 0 && b.path_ns > 0)
-    std::printf(
-        "Latency: critical path L %.2f ns; with a %.1f ns out-of-order window the chain costs L' = L min(1, "
-        "T / "
-        "window) = %.2f ns per pixel; cost (T^%g + L'^%g)^(1/%g) = **%.2f ns/px**.\n\n",
-        b.path_ns, m.window_ns, b.chain_ns, CostModel::kLatencyNorm, CostModel::kLatencyNorm,
-        CostModel::kLatencyNorm, b.cost_ns);
-  else
-    std::printf("No latencies in this cost model (%s calibration): cost = T = **%.2f ns/px**.\n\n",
-                m.method.c_str(), b.cost_ns);
-  const double plain_ns = m.cost(*plain), vs16 = 16 * plain_ns / b.cost_ns;
-  std::printf(
-      "Plain program %.2f ns/px: this schedule costs %.2fx plain, %.1fx %s time than MSAA-16 (16 plain "
-      "programs, "
-      "%.1f ns/px). 10x less time than MSAA-16 at its error asks for at most 1.6x plain.\n",
-      plain_ns, b.cost_ns / plain_ns, vs16 >= 1 ? vs16 : 1 / vs16, vs16 >= 1 ? "less" : "more",
-      16 * plain_ns);
+  std::printf("# Model time of %s:%s on %s (cost model: %s, %s)\n\n%s", ls.file.c_str(), ls.label.c_str(),
+              s.name.c_str(), m.machine.c_str(), m.method.c_str(),
+              time_breakdown_markdown(m, *p, *plain).c_str());
 }
 
 // DIR/summary.md and summary.csv from the result.json of every scene directory under DIR (after

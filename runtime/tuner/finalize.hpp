@@ -42,6 +42,9 @@ struct SceneResult {
   std::vector<Measured> baselines;  // plain, msaa2..32, dorn, gaussian
   std::string gl_renderer;          // "" when GLSL was not timed
   std::string compiled_note;        // why compiled times are missing ("" when measured)
+  // Markdown: where the model time of the fastest front point at MSAA-16's error goes
+  // (time_breakdown_markdown, report.hpp); "" when no point reaches that error.
+  std::string anchor_breakdown;
 };
 
 struct FinalizeOptions {

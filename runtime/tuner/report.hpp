@@ -24,6 +24,14 @@ double measured_ms(const Measured& m);
 
 std::vector<Speedup> speedups(const SceneResult& r);
 
+// Where program p's model time goes under m (bltune --explain, and the report's point at MSAA-16's
+// error), in Markdown: each function's calls and price, inline arithmetic, values kept across calls
+// and the pixel loop, dearest first (rows sum to the throughput T); the latency chain and the cost;
+// then p against `plain`: MSAA-16 costs 16 plain programs, so 10x less time at its error asks for at
+// most 1.6x plain.
+std::string time_breakdown_markdown(const CostModel& m, const compiler::Program& p,
+                                    const compiler::Program& plain);
+
 // Writes dir/front.csv, dir/report.md and dir/pareto.png (the plot is skipped, with a line in the
 // Markdown, when gnuplot is missing).
 void write_scene_report(const SceneResult& r, const std::string& dir);

@@ -76,6 +76,7 @@ std::string result_to_json(const SceneResult& r) {
               {"rejected_nonfinite", r.rejected_nonfinite},
               {"gl_renderer", r.gl_renderer},
               {"compiled_note", r.compiled_note},
+              {"anchor_breakdown", r.anchor_breakdown},
               {"front", f},
               {"baselines", b}}
       .dump(1);
@@ -96,6 +97,7 @@ SceneResult result_from_json(const std::string& text) {
   r.rejected_nonfinite = j.value("rejected_nonfinite", -1L);
   r.gl_renderer = j.at("gl_renderer");
   r.compiled_note = j.value("compiled_note", std::string());
+  r.anchor_breakdown = j.value("anchor_breakdown", std::string());
   for (const json& m : j.at("front")) r.front.push_back(from(m));
   for (const json& m : j.at("baselines")) r.baselines.push_back(from(m));
   return r;

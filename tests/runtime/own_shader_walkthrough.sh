@@ -32,6 +32,10 @@ grep -q "inline void shade(" "$work/stripes_smooth.hpp"
 label=$(awk -F, '$1 == "front" { l = $2 } END { print l }' "$work/tune/front.csv")
 [ -n "$label" ] || { echo "no front point in front.csv"; exit 1; }
 ls "$work/tune/front/$label.glsl" "$work/tune/front/$label.hpp" > /dev/null
+# The report explains the point it reads the speed-up at MSAA-16's error from, when one reaches it.
+if grep -q "^| 16 | [0-9.]* | front" "$work/tune/report.md"; then
+  grep -q "^### Where front[0-9]*'s model time goes" "$work/tune/report.md" || { cat "$work/tune/report.md"; exit 1; }
+fi
 # Where the point's model time goes: a table whose rows sum to the throughput, the point against plain.
 "$bltune" "$work/my/stripes.json" --explain "$work/tune/front.csv:$label" --cache "$work/cache" \
   --cost-model "$work/cost.json" --calibration evaluator > "$work/explain.md" || { cat "$work/explain.md"; exit 1; }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "compiler/functions.hpp"
@@ -21,6 +22,7 @@
 #include "tuner/pixel_sample.hpp"
 #include "tuner/polish.hpp"
 #include "tuner/report.hpp"
+#include "tuner/result_json.hpp"
 #include "tuner/scene_tuner.hpp"
 #include "tuner/window_fit.hpp"
 
@@ -257,6 +259,13 @@ TEST(CostModel, FormulaOnAHandBuiltModel) {
   EXPECT_DOUBLE_EQ(b.path_ns, 9 + 2 * 110);
   EXPECT_DOUBLE_EQ(b.cost_ns, m.cost(p));
   EXPECT_NEAR(b.chain_ns, 229 * 118 / 1e9, 1e-15);
+  // Its Markdown (bltune --explain, the report's point at MSAA-16's error), the program against itself.
+  const std::string md = time_breakdown_markdown(m, p, p);
+  EXPECT_NE(md.find("| bl::plain::fract | 1 | 110.00 | 93% |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| inline arithmetic | 4 | 5.50 | 5% |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| **throughput T** | | 118.00 | 100% |"), std::string::npos) << md;
+  EXPECT_LT(md.find("bl::plain::fract"), md.find("inline arithmetic"));  // dearest first
+  EXPECT_NE(md.find("1.00x plain, 16.0x less time than MSAA-16"), std::string::npos) << md;
   // MSAA n is n plain evaluations per pixel (finalize): the loop overhead is per sample too.
   m.op_ns.erase("output");
   EXPECT_DOUBLE_EQ(m.throughput(p), 118 - 1.5);
@@ -281,11 +290,12 @@ TEST(CostModel, WindowFitRecoversTheWindowThatMadeTheTimes) {
   EXPECT_LT(f.mean_abs_log, 0.03);
   EXPECT_EQ(f.within, 5);
   EXPECT_EQ(f.previous_within, 1);
-  EXPECT_NEAR(f.previous_mean_abs_log,
-              (std::log(norm(20, 100 * 20 / 26.0) / norm(20, 40)) + std::log(norm(30, 60) / norm(30, 36)) + 0 +
-               std::log(norm(5, 80 * 5 / 26.0) / norm(5, 8)) + std::log(norm(10, 40 * 10 / 26.0) / norm(10, 8))) /
-                  5,
-              1e-12);
+  EXPECT_NEAR(
+      f.previous_mean_abs_log,
+      (std::log(norm(20, 100 * 20 / 26.0) / norm(20, 40)) + std::log(norm(30, 60) / norm(30, 36)) + 0 +
+       std::log(norm(5, 80 * 5 / 26.0) / norm(5, 8)) + std::log(norm(10, 40 * 10 / 26.0) / norm(10, 8))) /
+          5,
+      1e-12);
   EXPECT_FALSE(f.lower_bound_only);
   // Programs timed at their throughput: every wider window prices them closer, so the fit takes the
   // widest (4 x 2^8 = 1024 ns), flagged as a lower bound (the chains add under 0.1%).
@@ -317,7 +327,7 @@ TEST(CostModel, WindowFitRecoversTheWindowThatMadeTheTimes) {
   EXPECT_EQ(l.window_fit_programs, 5);
   EXPECT_EQ(l.window_fit_source, "scenes/suite");
   EXPECT_EQ(l.latency_norm, CostModel::kLatencyNorm);  // a file without it loads as 0 (max)
-  EXPECT_EQ(l.jit_flags, "-O3 -march=native");  // load_or_calibrate recalibrates when they change
+  EXPECT_EQ(l.jit_flags, "-O3 -march=native");         // load_or_calibrate recalibrates when they change
   std::filesystem::remove(path);
 }
 
@@ -504,6 +514,31 @@ TEST(Report, ModelAccuracyNamesThePointsOutsideTheTolerance) {
   EXPECT_NEAR(a.median, (0.1 + 0.3) / 2, 1e-12);  // sorted: 0, 0.1, 0.3, 0.4
   EXPECT_NEAR(a.worst, 0.4, 1e-12);
   EXPECT_EQ(a.outside, (std::vector<std::string>{"front01 (0.60)", "msaa4 (1.30)"}));
+}
+
+// The point at MSAA-16's error's time breakdown reaches report.md and survives result.json.
+TEST(Report, AnchorBreakdownIsReportedAndSaved) {
+  SceneResult r;
+  r.scene = "toy";
+  Measured plain;
+  plain.label = "plain";
+  plain.model_ns = 2;
+  plain.error = 0.1;
+  r.baselines = {plain};
+  Measured f = plain;
+  f.label = "front00";
+  r.front = {f};
+  r.anchor_breakdown = "### Where front00's model time goes\n\n| part | calls | ns/px | share of T |\n";
+  const std::string dir = temp_dir("anchor_report");
+  write_scene_report(r, dir);
+  std::ifstream in(dir + "/report.md");
+  const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find(r.anchor_breakdown), std::string::npos);
+  {
+    std::ofstream out(dir + "/result.json");
+    out << result_to_json(r);
+  }
+  EXPECT_EQ(load_result(dir + "/result.json").anchor_breakdown, r.anchor_breakdown);
 }
 
 // What 10x still needs, by hand: MSAA-16 costs 100 ns at error 0.03, so 10x is 10 ns. The fastest
