@@ -52,6 +52,7 @@ struct Config {
   TuneOptions tune;
   FinalizeOptions fin;
   bool search_only = false;
+  bool suite = false;                // --suite: every scene in OUT/<scene>, even when --only leaves one
   int image = 0, truth_samples = 0;  // overrides (quick runs, tests); 0 keeps the scene's
   int rank = 0, size = 1;
 };
@@ -114,8 +115,19 @@ SceneResult finish(const SceneTuner& t, const std::vector<Point>& front, double 
   return r;
 }
 
+int summarize(const std::string& dir);
+
+// After a run: a suite's summary over every OUT/<scene>/result.json (a scene retuned with --only
+// replaces its row, the others keep theirs); several scene files' over this run's.
+void write_summary(const Config& c, const std::vector<SceneResult>& results) {
+  if (c.suite)
+    summarize(c.out);
+  else if (results.size() > 1)
+    write_suite_summary(results, c.out);
+}
+
 std::string scene_dir(const Config& c, const scene::Scene& s) {
-  return c.scene_paths.size() == 1 ? c.out : c.out + "/" + s.name;
+  return c.scene_paths.size() == 1 && !c.suite ? c.out : c.out + "/" + s.name;
 }
 
 SearchOptions search_options(const Config& c, const scene::Scene& s) {
@@ -148,7 +160,7 @@ int run_single(const Config& c, const CostModel& cm) {
     }
     results.push_back(finish(t, r.front, secs, r.evaluations, c, scene_dir(c, s)));
   }
-  if (c.scene_paths.size() > 1 && !c.search_only && complete) write_suite_summary(results, c.out);
+  if (!c.search_only && complete) write_summary(c, results);
   return complete ? 0 : 3;
 }
 
@@ -219,8 +231,8 @@ void explain(const Config& c, const std::string& scene_path, const std::string& 
               time_breakdown_markdown(m, *p, *plain).c_str());
 }
 
-// DIR/summary.md and summary.csv from the result.json of every scene directory under DIR (after
-// scenes were retuned one at a time with --only).
+// DIR/summary.md and summary.csv from the result.json of every scene directory under DIR (a --suite
+// run, --only included, ends with it; by hand after copying scene directories together).
 int summarize(const std::string& dir) {
   std::vector<std::filesystem::path> scenes;
   for (const auto& e : std::filesystem::directory_iterator(dir))
@@ -326,12 +338,12 @@ int run_mpi(const Config& c, const CostModel& cm) {
     done.push_back({{"index", i}, {"result", result_to_json(r)}});
   }
   all = gather(done.dump(), c.rank, c.size);
-  if (c.rank == 0 && scenes.size() > 1 && !c.search_only) {
+  if (c.rank == 0 && !c.search_only) {
     std::vector<SceneResult> results(scenes.size());
     for (const std::string& s : all)
       for (const auto& d : nlohmann::json::parse(s))
         results[d.at("index").get<int>()] = result_from_json(d.at("result"));
-    write_suite_summary(results, c.out);
+    write_summary(c, results);
   }
   return 0;
 }
@@ -432,6 +444,7 @@ int main(int argc, char** argv) {
             "--explain FRONT.csv:LABEL needs the scene file the schedule was tuned on");
       if (!suite_dir.empty()) {
         c.scene_paths = scene_files(suite_dir, only);
+        c.suite = true;
       } else if (!scene_path.empty()) {
         c.scene_paths.push_back(scene_path);
       } else if (fit_dir.empty()) {
