@@ -349,14 +349,13 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     }
   }
   if (!gl.jit_error.empty()) res.compiled_note = gl.jit_error.substr(0, gl.jit_error.find('\n'));
-  for (const Speedup& sp : speedups(res))
-    if (sp.msaa == 16 && sp.front_index >= 0) {
-      const auto plain = t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule("none")));
-      res.anchor_breakdown =
-          "### Where " + res.front[sp.front_index].label +
-          "'s model time goes (the fastest point at MSAA-16's error)\n\n" +
-          time_breakdown_markdown(t.cost_model(), *t.lower(front_schedules[sp.front_index]), *plain);
-    }
+  if (const Speedup s16 = speedup16(res); s16.front_index >= 0) {
+    const auto plain = t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule("none")));
+    res.anchor_breakdown =
+        "### Where " + res.front[s16.front_index].label +
+        "'s model time goes (the fastest point at MSAA-16's error)\n\n" +
+        time_breakdown_markdown(t.cost_model(), *t.lower(front_schedules[s16.front_index]), *plain);
+  }
   res.finalize_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }

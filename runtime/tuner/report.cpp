@@ -89,14 +89,13 @@ std::vector<Speedup> speedups(const SceneResult& r) {
   return out;
 }
 
-namespace {
-
-// The speed-up at MSAA-16's error (msaa 0 when the scene has no MSAA-16 baseline).
 Speedup speedup16(const SceneResult& r) {
   for (const Speedup& s : speedups(r))
     if (s.msaa == 16) return s;
   return {};
 }
+
+namespace {
 
 TenfoldGap tenfold_gap(const SceneResult& r, const Speedup& s16, double factor) {
   TenfoldGap g;

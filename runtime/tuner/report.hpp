@@ -23,6 +23,8 @@ struct Speedup {
 double measured_ms(const Measured& m);
 
 std::vector<Speedup> speedups(const SceneResult& r);
+// The speed-up at MSAA-16's error (msaa 0 when the scene has no MSAA-16 baseline).
+Speedup speedup16(const SceneResult& r);
 
 // Where program p's model time goes under m (bltune --explain, and the report's point at MSAA-16's
 // error), in Markdown: each function's calls and price, inline arithmetic, values kept across calls
