@@ -24,9 +24,7 @@
 #include <sstream>
 #include <thread>
 
-#include "compiler/lower.hpp"
 #include "compiler/schedule_csv.hpp"
-#include "rules/rule.hpp"
 #include "tuner/calibrate.hpp"
 #include "tuner/checkpoint.hpp"
 #include "tuner/front_code.hpp"
@@ -223,7 +221,7 @@ void explain(const Config& c, const std::string& scene_path, const std::string& 
   const SceneTuner t(s, cm, opt);
   const compiler::LoadedSchedule ls = compiler::load_schedule(spec, t.graph());
   const auto p = t.lower(ls.schedule);
-  const auto plain = t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule("none")));
+  const auto plain = t.lower_plain();
   if (!p || !plain) throw std::runtime_error(spec + " does not lower on scene " + s.name);
   const CostModel& m = t.cost_model();
   std::printf("# Model time of %s:%s on %s (cost model: %s, %s)\n\n%s", ls.file.c_str(), ls.label.c_str(),

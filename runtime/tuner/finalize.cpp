@@ -214,8 +214,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
       if (fi == 0) msaa_frame0.push_back(img);
     }
     set_error(m, std::sqrt(sq / frames.size()));
-    measure(t, *t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule("none"))), gl, &m, n,
-            plain.eval_ms);
+    measure(t, *t.lower_plain(), gl, &m, n, plain.eval_ms);
     m.glsl_ms = plain.glsl_ms >= 0 ? n * plain.glsl_ms : -1;
     m.mix["none"] = 1;
     res.baselines.push_back(m);
@@ -350,7 +349,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   }
   if (!gl.jit_error.empty()) res.compiled_note = gl.jit_error.substr(0, gl.jit_error.find('\n'));
   if (const Speedup s16 = speedup16(res); s16.front_index >= 0) {
-    const auto plain = t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule("none")));
+    const auto plain = t.lower_plain();
     res.anchor_breakdown =
         "### Where " + res.front[s16.front_index].label +
         "'s model time goes (the fastest point at MSAA-16's error)\n\n" +

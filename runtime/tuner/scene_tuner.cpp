@@ -40,8 +40,7 @@ SceneTuner::SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOpt
     : scene_(s), graph_(shaders::trace(s.shader_def(), s.effects())), cm_(cm), opt_(opt) {
   sample_ = std::make_unique<PixelSample>(s, graph_, opt.cache_dir, opt.sample_pixels, opt.sample_seed);
   // Banded function costs follow this scene's argument magnitudes (observed on the plain program).
-  if (const auto plain = lower(compiler::uniform_schedule(graph_, rules::parse_rule("none"))))
-    cm_.band_share = magnitude_profile(*plain, *sample_);
+  if (const auto plain = lower_plain()) cm_.band_share = magnitude_profile(*plain, *sample_);
   if (const auto smoothed = lower(compiler::uniform_schedule(graph_, rules::parse_rule("gaussian"))))
     cm_.joint_share = joint_profile(*smoothed, *sample_);
   problem_.graph = &graph_;
@@ -55,6 +54,10 @@ SceneTuner::SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOpt
                 cm.machine.c_str(), model_digest(cm).c_str(), opt.sample_pixels,
                 static_cast<unsigned long long>(opt.sample_seed), opt.estimate_rho ? 1 : 0);
   problem_.key = key;
+}
+
+std::unique_ptr<compiler::Program> SceneTuner::lower_plain() const {
+  return lower(compiler::uniform_schedule(graph_, rules::parse_rule("none")));
 }
 
 std::unique_ptr<compiler::Program> SceneTuner::lower(const compiler::Schedule& s) const {

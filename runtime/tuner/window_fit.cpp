@@ -3,16 +3,14 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "compiler/lower.hpp"
 #include "jit/compiled_program.hpp"
 #include "render/compiled_frame.hpp"
-#include "rules/rule.hpp"
 #include "tuner/report.hpp"
 
 namespace bl::tuner {
 
 WindowSample measure_plain(const SceneTuner& t, const jit::Options& jit, int trials) {
-  const auto p = t.lower(compiler::uniform_schedule(t.graph(), rules::parse_rule("none")));
+  const auto p = t.lower_plain();
   if (!p) throw std::logic_error("the plain program of " + t.scene().name + " does not lower");
   const jit::CompiledProgram cp(*p, jit);
   const scene::Scene& s = t.scene();
