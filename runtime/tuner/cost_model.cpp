@@ -161,36 +161,56 @@ double CostModel::cost(const compiler::Program& p) const {
 }
 
 double CostModel::critical_path(const compiler::Program& p) const {
+  return trace_critical_path(p, nullptr);
+}
+
+double CostModel::trace_critical_path(const compiler::Program& p,
+                                      std::map<std::string, Breakdown::Calls>* path) const {
   if (fn_lat_ns.empty()) return 0;
-  std::vector<double> done(p.insts.size(), 0.0);
-  double longest = 0;
+  std::vector<double> done(p.insts.size(), 0.0), lat(p.insts.size(), 0.0);
+  std::vector<int> from(p.insts.size(), -1);  // the argument the instruction waited for last
+  int end = -1;
   for (std::size_t i = 0; i < p.insts.size(); ++i) {
     const compiler::Inst& in = p.insts[i];
     double start = 0;
     for (int a = 0; a < compiler::lop_arity(in); ++a)
       if (in.arg[a] >= 0 && in.op != LOp::InMean && in.op != LOp::InSd && in.op != LOp::InGradX &&
-          in.op != LOp::InGradY)
-        start = std::max(start, done[in.arg[a]]);
-    double lat = 0;
+          in.op != LOp::InGradY && done[in.arg[a]] > start) {
+        start = done[in.arg[a]];
+        from[i] = in.arg[a];
+      }
+    double l = 0;
     if (in.op == LOp::Call || in.op == LOp::CallStat) {
       const std::string& name = compiler::functions().at(in.fn).cpp;
-      const auto l = fn_lat_ns.find(name);
-      const auto t = fn_ns.find(name);
-      if (l != fn_lat_ns.end() && t != fn_ns.end() && t->second > 0)
-        lat = function_cost(in.fn) * l->second / t->second;
+      const auto fl = fn_lat_ns.find(name);
+      const auto ft = fn_ns.find(name);
+      if (fl != fn_lat_ns.end() && ft != fn_ns.end() && ft->second > 0)
+        l = function_cost(in.fn) * fl->second / ft->second;
       else
-        lat = function_cost(in.fn);
-    } else if (const auto l = op_lat_ns.find(lop_name(in.op)); l != op_lat_ns.end()) {
-      lat = l->second;
+        l = function_cost(in.fn);
+    } else if (const auto ol = op_lat_ns.find(lop_name(in.op)); ol != op_lat_ns.end()) {
+      l = ol->second;
     } else if (in.op == LOp::TexPlain || in.op == LOp::TexStat) {
-      lat = op_ns.at(lop_name(in.op));
+      l = op_ns.at(lop_name(in.op));
     } else if (in.op == LOp::Neg) {
-      lat = op_lat_ns.count("sub") ? op_lat_ns.at("sub") : 0;
+      l = op_lat_ns.count("sub") ? op_lat_ns.at("sub") : 0;
     }
-    done[i] = start + lat;
-    longest = std::max(longest, done[i]);
+    lat[i] = l;
+    done[i] = start + l;
+    if (end < 0 || done[i] > done[end]) end = static_cast<int>(i);
   }
-  return longest;
+  if (end < 0) return 0;
+  if (path)
+    for (int i = end; i >= 0; i = from[i]) {
+      if (lat[i] <= 0) continue;  // constants, inputs, free ops
+      const compiler::Inst& in = p.insts[i];
+      Breakdown::Calls& c =
+          (*path)[in.op == LOp::Call || in.op == LOp::CallStat ? compiler::functions().at(in.fn).cpp
+                                                               : std::string(lop_name(in.op))];
+      ++c.count;
+      c.ns += lat[i];
+    }
+  return done[end];
 }
 
 std::vector<int> CostModel::live_across(const compiler::Program& p) {
@@ -247,7 +267,7 @@ double CostModel::throughput(const compiler::Program& p) const {
 CostModel::Breakdown CostModel::breakdown(const compiler::Program& p) const {
   Breakdown b;
   b.throughput_ns = breakdown_throughput(p, &b);
-  b.path_ns = critical_path(p);
+  b.path_ns = trace_critical_path(p, &b.path);
   b.chain_ns = window_ns > 0 ? b.path_ns * std::min(1.0, b.throughput_ns / window_ns) : 0;
   b.cost_ns = latency_bound(b.throughput_ns, b.path_ns, window_ns);
   return b;

@@ -117,6 +117,9 @@ struct CostModel {
     int ops = 0;                                   // inline instructions (every LOp but calls)
     double ops_ns = 0, spill_ns = 0, loop_ns = 0;  // loop: per-pixel overhead and output stores
     double throughput_ns = 0, path_ns = 0, chain_ns = 0, cost_ns = 0;  // chain: L' of latency_bound
+    // The critical path's instructions by C++ function or op name: how many, and their latencies
+    // (they sum to path_ns). What a latency-bound program would have to shorten.
+    std::map<std::string, Calls> path;
   };
   Breakdown breakdown(const compiler::Program& p) const;
   double critical_path(const compiler::Program& p) const;  // the latency path alone (0 without latencies)
@@ -138,6 +141,8 @@ struct CostModel {
   // throughput(p), and its parts into *b when b is given (one pass for both: the parts cannot drift
   // from the sum).
   double breakdown_throughput(const compiler::Program& p, Breakdown* b) const;
+  // critical_path's one pass; with `path`, the path's instructions by name (Breakdown::path).
+  double trace_critical_path(const compiler::Program& p, std::map<std::string, Breakdown::Calls>* path) const;
 };
 
 const char* lop_name(compiler::LOp op);

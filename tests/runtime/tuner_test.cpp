@@ -259,6 +259,12 @@ TEST(CostModel, FormulaOnAHandBuiltModel) {
   EXPECT_DOUBLE_EQ(b.path_ns, 9 + 2 * 110);
   EXPECT_DOUBLE_EQ(b.cost_ns, m.cost(p));
   EXPECT_NEAR(b.chain_ns, 229 * 118 / 1e9, 1e-15);
+  // The critical path by name: u + v (4), the square (5), the fract (2 x 110); inputs cost nothing.
+  ASSERT_EQ(b.path.size(), 3u);
+  EXPECT_EQ(b.path.at("add").count, 1);
+  EXPECT_DOUBLE_EQ(b.path.at("add").ns, 4);
+  EXPECT_DOUBLE_EQ(b.path.at("mul").ns, 5);
+  EXPECT_DOUBLE_EQ(b.path.at("bl::plain::fract").ns, 220);
   // Its Markdown (bltune --explain, the report's point at MSAA-16's error), the program against itself.
   const std::string md = time_breakdown_markdown(m, p, p);
   EXPECT_NE(md.find("| bl::plain::fract | 1 | 110.00 | 93% |"), std::string::npos) << md;
@@ -266,6 +272,10 @@ TEST(CostModel, FormulaOnAHandBuiltModel) {
   EXPECT_NE(md.find("| **throughput T** | | 118.00 | 100% |"), std::string::npos) << md;
   EXPECT_LT(md.find("bl::plain::fract"), md.find("inline arithmetic"));  // dearest first
   EXPECT_NE(md.find("1.00x plain, 16.0x less time than MSAA-16"), std::string::npos) << md;
+  EXPECT_NE(md.find("The critical path: 3 instructions with a latency, bl::plain::fract x1 220.00 ns (96%), "
+                    "mul x1 5.00 ns (2%), add x1 4.00 ns (2%)."),
+            std::string::npos)
+      << md;
   // MSAA n is n plain evaluations per pixel (finalize): the loop overhead is per sample too.
   m.op_ns.erase("output");
   EXPECT_DOUBLE_EQ(m.throughput(p), 118 - 1.5);
