@@ -1,5 +1,6 @@
 #include "compiler/emit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -159,6 +160,46 @@ std::string emit_glsl(const Program& p, const std::string& name, const std::stri
   for (std::size_t o = 0; o < p.outputs.size(); ++o)
     os << "  bl_out[" << o << "] = t" << p.outputs[o] << ";\n";
   os << "}\n";
+  return os.str();
+}
+
+std::string emit_cpp_lod(const Program& near, const Program& far, float limit, const std::string& name,
+                         const std::string& comment) {
+  if (near.input_names != far.input_names || near.input_count != far.input_count ||
+      near.outputs.size() != far.outputs.size() || near.texture_names != far.texture_names)
+    throw std::invalid_argument(
+        "emit_cpp_lod: the near and far programs differ in their inputs, outputs or "
+        "textures (a footprint LOD pairs two schedules of one shader)");
+  if (!(limit >= 0) || !std::isfinite(limit))
+    throw std::invalid_argument("emit_cpp_lod: footprint limit " + std::to_string(limit) +
+                                " is not a finite number >= 0");
+  auto slot = [&](const char* in) {
+    const auto it = std::find(near.input_names.begin(), near.input_names.end(), in);
+    if (it == near.input_names.end())
+      throw std::invalid_argument(std::string("emit_cpp_lod: the programs have no input '") + in +
+                                  "' (the footprint is the larger of u's and v's sd)");
+    return static_cast<int>(it - near.input_names.begin());
+  };
+  const int u = slot("u"), v = slot("v");
+  std::string far_text = emit_cpp(far, name + "_far", comment);
+  const std::string once = "#pragma once\n";
+  if (const auto at = far_text.find(once); at != std::string::npos) far_text.erase(at, once.size());
+  const bool tex = near.uses_textures();
+  std::ostringstream os;
+  os << emit_cpp(near, name + "_near", comment) << "\n"
+     << far_text << "\nnamespace bl_shaders {\n\n"
+     << "// Footprint LOD: " << name << "_near where max(sd of u, sd of v) < " << float_literal_cpp(limit)
+     << ", " << name << "_far elsewhere.\n"
+     << "inline void " << name
+     << "(const float* bl_m, const float* bl_s, const float* bl_gx, const float* bl_gy, float* bl_out"
+     << (tex ? ", const bl::texture::Texture* const* bl_tex" : "") << ") {\n"
+     << "  const float bl_fp = bl_s[" << u << "] > bl_s[" << v << "] ? bl_s[" << u << "] : bl_s[" << v
+     << "];\n"
+     << "  if (bl_fp < " << float_literal_cpp(limit) << ")\n"
+     << "    " << name << "_near(bl_m, bl_s, bl_gx, bl_gy, bl_out" << (tex ? ", bl_tex" : "") << ");\n"
+     << "  else\n"
+     << "    " << name << "_far(bl_m, bl_s, bl_gx, bl_gy, bl_out" << (tex ? ", bl_tex" : "") << ");\n"
+     << "}\n\n}  // namespace bl_shaders\n";
   return os.str();
 }
 

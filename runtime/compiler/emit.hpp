@@ -15,6 +15,14 @@ namespace bl::compiler {
 // generated headers whose functions it calls. `comment` goes in the banner.
 std::string emit_cpp(const Program& p, const std::string& name, const std::string& comment = "");
 
+// A footprint-LOD pair (tuner/lod.hpp) as one C++ header: emit_cpp of each as <name>_near and
+// <name>_far, and <name> with the same signature, which runs the near one where the pixel's footprint,
+// max(bl_s[u], bl_s[v]) over the inputs named u and v, is below `limit` and the far one elsewhere.
+// Throws std::invalid_argument when the programs differ in inputs, outputs or textures, an input u or
+// v is missing, or the limit is not a finite number >= 0.
+std::string emit_cpp_lod(const Program& near, const Program& far, float limit, const std::string& name,
+                         const std::string& comment = "");
+
 // GLSL: the generated library functions the program calls (and what they call, nothing else),
 // then
 //   void <name>(in float bl_m[NI], in float bl_s[NI], in float bl_gx[NI], in float bl_gy[NI],

@@ -1,5 +1,7 @@
 #include "jit/compiled_program.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -7,14 +9,27 @@
 
 namespace bl::jit {
 
-std::string batch_source(const compiler::Program& p) {
-  std::string shader = compiler::emit_cpp(p, "shade", "compiled by bl::jit");
+namespace {
+
+// p's shader as function `name` of namespace bl_shaders, without its #pragma once (two may share a file).
+std::string shader_source(const compiler::Program& p, const std::string& name) {
+  std::string shader = compiler::emit_cpp(p, name, "compiled by bl::jit");
   const std::string once = "#pragma once\n";
   if (const auto at = shader.find(once); at != std::string::npos) shader.erase(at, once.size());
+  return shader;
+}
+
+// The shader call with this pixel's gathered inputs (im, is, igx, igy) into o.
+std::string call(const compiler::Program& p, const std::string& name) {
+  return "bl_shaders::" + name + "(im, is, igx, igy, o" +
+         (p.uses_textures() ? ", reinterpret_cast<const bl::texture::Texture* const*>(tex)" : "") + ");";
+}
+
+// bl_run: gathers each pixel's inputs (p's slots), runs `body` (which fills o), scatters o.
+std::string batch_loop(const compiler::Program& p, bool gradients, const std::string& body) {
   const int ni = std::max(1, p.input_count), no = static_cast<int>(p.outputs.size());
   std::ostringstream os;
-  os << shader << "\n"
-     << "// Batch entry point: struct-of-arrays inputs (per slot) -> outputs, one pixel at a time.\n"
+  os << "// Batch entry point: struct-of-arrays inputs (per slot) -> outputs, one pixel at a time.\n"
      << "extern \"C\" void bl_run(int n, const float* const* m, const float* const* s, const float* const* "
         "gx,\n"
      << "                       const float* const* gy, float* const* out, const void* const* tex) {\n"
@@ -25,12 +40,25 @@ std::string batch_source(const compiler::Program& p) {
      << "    float o[" << no << "];\n"
      << "    for (int k = 0; k < " << p.input_count << "; ++k) {\n"
      << "      im[k] = m[k][i];\n      is[k] = s[k][i];\n"
-     << (p.uses_gradients() ? "      igx[k] = gx[k][i];\n      igy[k] = gy[k][i];\n" : "") << "    }\n"
-     << "    bl_shaders::shade(im, is, igx, igy, o"
-     << (p.uses_textures() ? ", reinterpret_cast<const bl::texture::Texture* const*>(tex)" : "") << ");\n"
-     << "    for (int k = 0; k < " << no << "; ++k) out[k][i] = o[k];\n"
+     << (gradients ? "      igx[k] = gx[k][i];\n      igy[k] = gy[k][i];\n" : "") << "    }\n"
+     << body << "    for (int k = 0; k < " << no << "; ++k) out[k][i] = o[k];\n"
      << "  }\n}\n";
   return os.str();
+}
+
+}  // namespace
+
+std::string batch_source(const compiler::Program& p) {
+  return shader_source(p, "shade") + "\n" +
+         batch_loop(p, p.uses_gradients(), "    " + call(p, "shade") + "\n");
+}
+
+std::string lod_batch_source(const compiler::Program& near, const compiler::Program& far, float limit) {
+  std::string shader = compiler::emit_cpp_lod(near, far, limit, "shade", "compiled by bl::jit");
+  const std::string once = "#pragma once\n";
+  if (const auto at = shader.find(once); at != std::string::npos) shader.erase(at, once.size());
+  return shader + "\n" +
+         batch_loop(near, near.uses_gradients() || far.uses_gradients(), "    " + call(near, "shade") + "\n");
 }
 
 CompiledProgram::CompiledProgram(const compiler::Program& p, const Options& opt)
@@ -39,6 +67,16 @@ CompiledProgram::CompiledProgram(const compiler::Program& p, const Options& opt)
       textures_(static_cast<int>(p.texture_names.size())),
       gradients_(p.uses_gradients()),
       lib_(compile(batch_source(p), opt)) {
+  entry_ = reinterpret_cast<Entry>(lib_->symbol("bl_run"));
+}
+
+CompiledProgram::CompiledProgram(const compiler::Program& near, const compiler::Program& far, float limit,
+                                 const Options& opt)
+    : inputs_(near.input_count),
+      outputs_(static_cast<int>(near.outputs.size())),
+      textures_(static_cast<int>(near.texture_names.size())),
+      gradients_(near.uses_gradients() || far.uses_gradients()),
+      lib_(compile(lod_batch_source(near, far, limit), opt)) {
   entry_ = reinterpret_cast<Entry>(lib_->symbol("bl_run"));
 }
 

@@ -17,6 +17,7 @@
 #include "render/compiled_frame.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
+#include "tuner/lod.hpp"
 #include "tuner/polish.hpp"
 #include "tuner/report.hpp"
 
@@ -125,6 +126,74 @@ void measure(const SceneTuner& t, const compiler::Program& p, Timer& gl, Measure
       std::fprintf(stderr, "finalize: GLSL timing of %s failed: %s\n", m->label.c_str(), e.what());
     }
   }
+}
+
+// The fastest footprint-LOD pair of the measured front at MSAA-16's full error e16 (lod.hpp), kept
+// when it is faster by the model than every single front point at that error; its compiled time is
+// the pair in one loop (jit::CompiledProgram's LOD form).
+std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measured>& front,
+                                  const std::vector<compiler::Schedule>& schedules, double e16, Timer& gl) {
+  if (front.size() < 2) return std::nullopt;
+  const PixelSample& all = t.full_sample();
+  std::vector<std::unique_ptr<compiler::Program>> programs;
+  std::vector<std::vector<double>> sq;
+  std::vector<double> model_ns;
+  double single = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < front.size(); ++i) {
+    programs.push_back(t.lower(schedules[i]));
+    sq.push_back(all.pixel_sq(*programs.back()));
+    model_ns.push_back(front[i].model_ns);
+    if (front[i].error <= e16) single = std::min(single, front[i].model_ns);
+  }
+  const CostModel& cm = t.cost_model();
+  double dispatch = 0;  // the footprint's max and the branch's compare
+  for (const char* op : {"max", "less"})
+    if (const auto it = cm.op_ns.find(op); it != cm.op_ns.end()) dispatch += it->second;
+  // Candidates by the all-pixel prices, then each priced on its own pixels: the near program under
+  // the argument profile of the pixels below the limit, the far one above (cost_model_over).
+  const auto cands =
+      lod_candidates(sq, all.footprints(), model_ns, all.miss_sq(), all.count(), e16, dispatch, 64, 48);
+  std::map<float, std::pair<CostModel, CostModel>> priced;  // by limit: near and far pixels' models
+  LodChoice c;
+  for (LodChoice k : cands) {
+    auto it = priced.find(k.limit);
+    if (it == priced.end()) {
+      const PixelSample& smp = t.search_sample();
+      it = priced
+               .emplace(k.limit, std::make_pair(t.cost_model_over(smp.subset(k.limit, true)),
+                                                t.cost_model_over(smp.subset(k.limit, false))))
+               .first;
+    }
+    k.model_ns = k.near_share * it->second.first.cost(*programs[k.near]) +
+                 (1 - k.near_share) * it->second.second.cost(*programs[k.far]) + dispatch;
+    if (c.near < 0 || k.model_ns < c.model_ns) c = k;
+  }
+  if (c.near < 0 || !(c.model_ns < single)) return std::nullopt;
+  LodResult r;
+  r.near = front[c.near].label;
+  r.far = front[c.far].label;
+  r.limit = c.limit;
+  r.near_share = c.near_share;
+  r.model_ns = c.model_ns;
+  r.error = c.error;
+  if (gl.jit_error.empty()) {
+    try {
+      const jit::CompiledProgram cp(*programs[c.near], *programs[c.far], c.limit, gl.opt->jit);
+      const render::Frame f = render::frames(t.scene()).front();
+      r.compiled_ns = render::time_program(t.scene(), f, *programs[c.near], render::compiled_runner(cp), 0,
+                                           gl.opt->trials)
+                          .ns_per_pixel;
+    } catch (const jit::Error& e) {
+      gl.jit_error = e.what();
+    }
+  }
+  std::fprintf(
+      stderr,
+      "finalize: %s: footprint LOD %s below %.3g, %s above (%.0f%% of pixels near): %.2f ns/px model, "
+      "%.2f compiled, error %.5f (MSAA-16 %.5f)\n",
+      t.scene().name.c_str(), r.near.c_str(), r.limit, r.far.c_str(), 100 * r.near_share, r.model_ns,
+      r.compiled_ns, r.error, e16);
+  return r;
 }
 
 }  // namespace
@@ -315,6 +384,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     res.front[i].label = label;
     measure(t, *t.lower(front_schedules[i]), gl, &res.front[i]);
   }
+  if (e16 > 0) res.lod = find_lod(t, res.front, front_schedules, e16, gl);
   uniform("dorn", "dorn");
   uniform("gaussian", "gaussian");
   // Images of frame 0: truth | variant | MSAA of the nearest model time, for the fastest and the most

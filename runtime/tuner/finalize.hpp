@@ -5,6 +5,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,17 @@ struct Measured {
   std::map<std::string, double> mix;  // share of genes per rule family
 };
 
+// The fastest footprint-LOD pair of front points (tuner/lod.hpp) at MSAA-16's error, when it is
+// faster than every single front point there.
+struct LodResult {
+  std::string near, far;    // front labels
+  float limit = 0;          // footprint (max of sigma_u, sigma_v) where `far` takes over
+  double near_share = 0;    // share of the hit pixels (all frames) below it
+  double model_ns = 0;      // near_share T(near) + (1 - near_share) T(far) + the dispatch
+  double error = 0;         // RMS display, every pixel of every frame
+  double compiled_ns = -1;  // the pair compiled into one loop (jit), frame 0; -1 without a compiler
+};
+
 struct SceneResult {
   std::string scene;
   std::string graph_hash;  // compiler::graph_hash_text of the traced graph the schedules are for
@@ -45,6 +57,7 @@ struct SceneResult {
   // Markdown: where the model time of the fastest front point at MSAA-16's error goes
   // (time_breakdown_markdown, report.hpp); "" when no point reaches that error.
   std::string anchor_breakdown;
+  std::optional<LodResult> lod;  // none: no pair beats the single points at MSAA-16's error
 };
 
 struct FinalizeOptions {

@@ -32,6 +32,23 @@ int write_front_code(const SceneTuner& t, const SceneResult& r, const std::strin
     std::ofstream(out + "/" + m.label + ".hpp") << compiler::emit_cpp(*p, "shade", banner);
     ++n;
   }
+  if (r.lod) {  // the footprint-LOD pair as one C++ header (GLSL: not emitted yet)
+    auto program = [&](const std::string& label) {
+      for (const Measured& m : r.front)
+        if (m.label == label)
+          return t.lower(compiler::parse_schedule(t.graph(), m.schedule, "front point " + label));
+      throw std::logic_error("write_front_code: the footprint LOD names " + label + ", not a front point");
+    };
+    const auto near = program(r.lod->near), far = program(r.lod->far);
+    char banner[320];
+    std::snprintf(
+        banner, sizeof banner,
+        "bltune footprint LOD of scene %s: %s below footprint %.6g, %s above\n// measured: RMS %.5f "
+        "(every pixel of %d frame(s) vs ground truth), cost model %.1f ns/pixel",
+        t.scene().name.c_str(), r.lod->near.c_str(), r.lod->limit, r.lod->far.c_str(), r.lod->error, r.frames,
+        r.lod->model_ns);
+    std::ofstream(out + "/lod.hpp") << compiler::emit_cpp_lod(*near, *far, r.lod->limit, "shade", banner);
+  }
   return n;
 }
 

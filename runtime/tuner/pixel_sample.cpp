@@ -71,15 +71,60 @@ double PixelSample::error(const compiler::Program& p) const {
 }
 
 PixelSample::Score PixelSample::score(const compiler::Program& p) const {
+  Score score;
+  double sum = miss_sq();
+  for (double e : hit_sq(p, &score.counts)) sum += e;
+  score.rms = total_ > 0 ? std::sqrt(sum / (3.0 * total_)) : 0.0;
+  return score;
+}
+
+std::vector<double> PixelSample::pixel_sq(const compiler::Program& p) const {
+  PixelCounts unused;
+  return hit_sq(p, &unused);
+}
+
+double PixelSample::miss_sq() const {
+  double sum = 0;
+  for (const FrameData& d : frames_) sum += d.miss_sq;
+  return sum;
+}
+
+std::vector<float> PixelSample::footprints() const {
+  std::vector<float> fp;
+  for (const FrameData& d : frames_)
+    for (int i = 0; i < d.n; ++i) fp.push_back(std::max(d.hits.sigma_u[i], d.hits.sigma_v[i]));
+  return fp;
+}
+
+PixelSample PixelSample::subset(float limit, bool below) const {
+  PixelSample out;
+  out.scene_ = scene_;
+  out.range_ = range_;
+  for (const FrameData& d : frames_) {
+    FrameData e;
+    e.time = d.time;
+    std::vector<int> keep;
+    for (int i = 0; i < d.n; ++i)
+      if ((std::max(d.hits.sigma_u[i], d.hits.sigma_v[i]) < limit) == below) {
+        keep.push_back(i);
+        for (int c = 0; c < 3; ++c) e.truth.push_back(d.truth[3 * i + c]);
+      }
+    e.n = static_cast<int>(keep.size());
+    e.hits = d.hits.gather(keep);
+    out.total_ += e.n;
+    out.frames_.push_back(std::move(e));
+  }
+  return out;
+}
+
+std::vector<double> PixelSample::hit_sq(const compiler::Program& p, PixelCounts* counts) const {
   if (p.outputs.size() != 3)
     throw std::invalid_argument("PixelSample: the program has " + std::to_string(p.outputs.size()) +
                                 " outputs, a colour needs 3");
   compiler::Evaluator ev(p);
-  Score score;
-  double sum = 0;
+  std::vector<double> sq;
   for (std::size_t fi = 0; fi < frames_.size(); ++fi) {
     const FrameData& d = frames_[fi];
-    sum += d.miss_sq;
     if (d.n == 0) continue;
     render::Frame f;
     f.time = d.time;
@@ -89,18 +134,18 @@ PixelSample::Score PixelSample::score(const compiler::Program& p) const {
     ev.run(batch, {out[0].data(), out[1].data(), out[2].data()});
     for (int i = 0; i < d.n; ++i) {
       const float rgb[3] = {out[0][i], out[1][i], out[2][i]};
-      score.counts += check_pixel(rgb, range_);
-      float shown[3];  // the shade on the plane's share of the pixel (the horizon), as render_smoothed
-      for (int c = 0; c < 3; ++c)
-        shown[c] = static_cast<float>(render::covered(d.hits, i, rgb[c], scene_.background[c]));
-      for (int c = 0; c < 3; ++c) {
-        const double e = display_error(shown[c], d.truth[3 * i + c]);
-        sum += e * e;
+      *counts += check_pixel(rgb, range_);
+      double e2 = 0;
+      for (int c = 0; c < 3;
+           ++c) {  // the shade on the plane's share of the pixel (the horizon), as render_smoothed
+        const float shown = static_cast<float>(render::covered(d.hits, i, rgb[c], scene_.background[c]));
+        const double e = display_error(shown, d.truth[3 * i + c]);
+        e2 += e * e;
       }
+      sq.push_back(e2);
     }
   }
-  score.rms = total_ > 0 ? std::sqrt(sum / (3.0 * total_)) : 0.0;
-  return score;
+  return sq;
 }
 
 std::vector<std::vector<float>> PixelSample::outputs(const compiler::Program& p) const {

@@ -34,6 +34,18 @@ class PixelSample {
   // channel (such a schedule is infeasible, however few pixels it breaks).
   double error(const compiler::Program& p) const;
   int count() const { return total_; }
+  // Per sampled pixel hit by the camera (frame order, as outputs()): its squared display errors summed
+  // over the three channels, as score() sums them (a NaN/inf channel counts 1). score(p).rms =
+  // sqrt((miss_sq() + their sum) / (3 count())).
+  std::vector<double> pixel_sq(const compiler::Program& p) const;
+  double miss_sq() const;  // the sampled pixels the camera misses (sky), summed the same way
+  // The same pixels' footprints: the larger of sigma_u and sigma_v, the surface coordinates' sds
+  // (what a footprint-LOD program switches on; tuner/lod.hpp).
+  std::vector<float> footprints() const;
+  // The hit pixels whose footprint is below `limit` (below) or at or above it (!below), as a sample
+  // of their own: count() is their number, no missed pixels. For pricing a program on part of the
+  // image (SceneTuner::cost_model_over).
+  PixelSample subset(float limit, bool below) const;
   // p's outputs (any number) over the sampled hit pixels of all frames, concatenated in frame
   // order: out[k][i]. For inspecting values (magnitude_profile), not errors.
   std::vector<std::vector<float>> outputs(const compiler::Program& p) const;
@@ -42,6 +54,7 @@ class PixelSample {
   const ValueRange& range() const { return range_; }
 
  private:
+  PixelSample() = default;
   struct FrameData {
     double time = 0;
     int n = 0;                 // sampled pixels hit by the camera
@@ -53,6 +66,8 @@ class PixelSample {
   std::vector<FrameData> frames_;
   int total_ = 0;  // sampled pixels over all frames (hit or not)
   ValueRange range_;
+  // Per hit pixel (frame order) the summed squared error of p's shown colour; counts its checks.
+  std::vector<double> hit_sq(const compiler::Program& p, PixelCounts* counts) const;
 };
 
 }  // namespace bl::tuner

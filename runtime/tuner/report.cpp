@@ -120,6 +120,17 @@ TenfoldGap tenfold_gap(const SceneResult& r, const Speedup& s16, double factor) 
 
 }  // namespace
 
+LodSpeedup lod_speedup16(const SceneResult& r) {
+  LodSpeedup s;
+  if (!r.lod) return s;
+  for (const Measured& b : r.baselines)
+    if (b.msaa == 16) {
+      if (r.lod->model_ns > 0) s.model = b.model_ns / r.lod->model_ns;
+      if (r.lod->compiled_ns > 0 && b.compiled_ns > 0) s.measured = b.compiled_ns / r.lod->compiled_ns;
+    }
+  return s;
+}
+
 TenfoldGap tenfold_gap(const SceneResult& r, double factor) {
   return tenfold_gap(r, speedup16(r), factor);
 }
@@ -231,6 +242,23 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
       md << r.front[s.front_index].label << " | " << fmt("%.1fx", s.model) << " | "
          << fmt("%.1fx", s.measured) << (s.compiled ? " compiled" : " evaluator") << " |\n";
   }
+  md << "\n## Footprint LOD at MSAA-16's error\n\n"
+        "Two front points chosen per pixel by its footprint (the larger of sigma_u and sigma_v): the near "
+        "one "
+        "below the limit, the far one above, compiled into one loop (tuner/lod.hpp). The fastest pair at "
+        "MSAA-16's error is kept when it beats every single point there.\n\n";
+  if (r.lod) {
+    const LodSpeedup ls = lod_speedup16(r);
+    md << "| near | far | footprint limit | pixels near | model ns/px | compiled ns/px | RMS | speed-up "
+          "(model / measured) |\n|---|---|---|---|---|---|---|---|\n"
+       << "| " << r.lod->near << " | " << r.lod->far << " | " << fmt("%.4g", r.lod->limit) << " | "
+       << fmt("%.0f%%", 100 * r.lod->near_share) << " | " << fmt("%.2f", r.lod->model_ns) << " | "
+       << (r.lod->compiled_ns > 0 ? fmt("%.2f", r.lod->compiled_ns) : "-") << " | "
+       << fmt("%.5f", r.lod->error) << " | " << fmt("%.1fx", ls.model) << " / "
+       << (ls.measured > 0 ? fmt("%.1fx", ls.measured) : "-") << " |\n";
+  } else {
+    md << "None: no pair reaches MSAA-16's error faster than the fastest single point there.\n";
+  }
   const ModelAccuracy acc = model_accuracy(r);
   if (acc.points > 0)
     md << "\nCost model vs compiled code over " << acc.points
@@ -313,11 +341,14 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
   std::ofstream md(dir + "/summary.md"), csv(dir + "/summary.csv");
   csv << "scene,nodes,search_s,finalize_s,front_size,msaa16_error,best_error,speedup16_model,speedup16_"
          "measured,"
-         "reaches_10x,model_vs_compiled_median,model_vs_compiled_worst\n";
+         "reaches_10x,model_vs_compiled_median,model_vs_compiled_worst,lod_speedup16_model,lod_speedup16_"
+         "measured,reaches_10x_with_lod\n";
   md << "# Tuning summary\n\n| scene | nodes | search s | front | MSAA-16 RMS | best RMS | time at MSAA-16 "
         "error "
-        "(model / measured speed-up) | >= 10x | model vs compiled (median / worst) "
-        "|\n|---|---|---|---|---|---|---|---|---|\n";
+        "(model / measured speed-up) | >= 10x | model vs compiled (median / worst) | footprint LOD at "
+        "MSAA-16's error (model / measured) | >= 10x with LOD "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  int count_single = 0, count_lod = 0;
   // Beside it, where each scene stands against >= 10x by the model: what to cut, time or error.
   std::ostringstream gaps;
   auto pct = [](double cut) { return cut <= 0 ? std::string("none") : fmt("%.0f%%", 100 * cut); };
@@ -326,6 +357,10 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
     for (const Measured& m : r.front) best = std::min(best, m.error);
     const Speedup s16 = speedup16(r);
     const bool ten = s16.front_index >= 0 && s16.model >= 10;
+    const LodSpeedup ls = lod_speedup16(r);
+    const bool ten_lod = ten || ls.model >= 10;
+    count_single += ten;
+    count_lod += ten_lod;
     const ModelAccuracy acc = model_accuracy(r);
     md << "| " << r.scene << " | " << r.nodes << " | " << fmt("%.1f", r.search_seconds) << " | "
        << r.front.size() << " | " << fmt("%.5f", s16.msaa_error) << " | " << fmt("%.5f", best) << " | "
@@ -334,10 +369,15 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
        << " | " << (ten ? "yes" : "no") << " | "
        << (acc.points ? fmt("%.0f%%", 100 * acc.median) + " / " + fmt("%.0f%%", 100 * acc.worst)
                       : std::string("-"))
-       << " |\n";
+       << " | "
+       << (r.lod ? r.lod->near + " + " + r.lod->far + ": " + fmt("%.1fx", ls.model) + " / " +
+                       (ls.measured > 0 ? fmt("%.1fx", ls.measured) : std::string("-"))
+                 : std::string("-"))
+       << " | " << (ten_lod ? "yes" : "no") << " |\n";
     csv << r.scene << "," << r.nodes << "," << r.search_seconds << "," << r.finalize_seconds << ","
         << r.front.size() << "," << s16.msaa_error << "," << best << "," << s16.model << "," << s16.measured
-        << "," << (ten ? 1 : 0) << "," << acc.median << "," << acc.worst << "\n";
+        << "," << (ten ? 1 : 0) << "," << acc.median << "," << acc.worst << "," << ls.model << ","
+        << ls.measured << "," << (ten_lod ? 1 : 0) << "\n";
     const TenfoldGap g = tenfold_gap(r, s16, 10);
     gaps << "| " << r.scene << " | "
          << (g.at_error < 0 ? std::string("none") : r.front[g.at_error].label + fmt(" (%.1fx)", s16.model))
@@ -353,6 +393,10 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
     gaps << m.label << (std::isfinite(measured) ? fmt(" (%.1fx measured)", measured) : std::string()) << " | "
          << fmt("%.2f", m.error / g.msaa16_error) << " | " << pct(g.error_cut) << " |\n";
   }
+  md << "\n"
+     << count_single << " of " << rs.size()
+     << " scenes reach MSAA-16's error at >= 10x less model time with one program; " << count_lod
+     << " with a footprint-LOD pair of front points (tuner/lod.hpp) or one program.\n";
   md << "\n## What >= 10x (model) at MSAA-16's error still needs\n\n"
         "Either side closes the gap: the model time of the fastest point at MSAA-16's error, or the "
         "error of the most accurate point already at >= 10x less model time (its measured speed-up in "

@@ -23,6 +23,12 @@ struct Speedup {
 double measured_ms(const Measured& m);
 
 std::vector<Speedup> speedups(const SceneResult& r);
+// The footprint-LOD pair's speed-up at MSAA-16's error (SceneResult::lod): MSAA-16's time over the
+// pair's, by the model and measured (compiled; 0 when either time is missing). Both 0 without a pair.
+struct LodSpeedup {
+  double model = 0, measured = 0;
+};
+LodSpeedup lod_speedup16(const SceneResult& r);
 // The speed-up at MSAA-16's error (msaa 0 when the scene has no MSAA-16 baseline).
 Speedup speedup16(const SceneResult& r);
 

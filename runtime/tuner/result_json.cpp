@@ -77,6 +77,14 @@ std::string result_to_json(const SceneResult& r) {
               {"gl_renderer", r.gl_renderer},
               {"compiled_note", r.compiled_note},
               {"anchor_breakdown", r.anchor_breakdown},
+              {"lod", r.lod ? json{{"near", r.lod->near},
+                                   {"far", r.lod->far},
+                                   {"limit", r.lod->limit},
+                                   {"near_share", r.lod->near_share},
+                                   {"model_ns", r.lod->model_ns},
+                                   {"error", r.lod->error},
+                                   {"compiled_ns", r.lod->compiled_ns}}
+                            : json()},
               {"front", f},
               {"baselines", b}}
       .dump(1);
@@ -98,6 +106,18 @@ SceneResult result_from_json(const std::string& text) {
   r.gl_renderer = j.at("gl_renderer");
   r.compiled_note = j.value("compiled_note", std::string());
   r.anchor_breakdown = j.value("anchor_breakdown", std::string());
+  if (j.contains("lod") && !j.at("lod").is_null()) {
+    const json& l = j.at("lod");
+    LodResult lod;
+    lod.near = l.at("near");
+    lod.far = l.at("far");
+    lod.limit = l.at("limit");
+    lod.near_share = l.at("near_share");
+    lod.model_ns = l.at("model_ns");
+    lod.error = l.at("error");
+    lod.compiled_ns = l.at("compiled_ns");
+    r.lod = lod;
+  }
   for (const json& m : j.at("front")) r.front.push_back(from(m));
   for (const json& m : j.at("baselines")) r.baselines.push_back(from(m));
   return r;

@@ -40,9 +40,7 @@ SceneTuner::SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOpt
     : scene_(s), graph_(shaders::trace(s.shader_def(), s.effects())), cm_(cm), opt_(opt) {
   sample_ = std::make_unique<PixelSample>(s, graph_, opt.cache_dir, opt.sample_pixels, opt.sample_seed);
   // Banded function costs follow this scene's argument magnitudes (observed on the plain program).
-  if (const auto plain = lower_plain()) cm_.band_share = magnitude_profile(*plain, *sample_);
-  if (const auto smoothed = lower(compiler::uniform_schedule(graph_, rules::parse_rule("gaussian"))))
-    cm_.joint_share = joint_profile(*smoothed, *sample_);
+  cm_ = cost_model_over(*sample_);
   problem_.graph = &graph_;
   problem_.space = SearchSpace::build(graph_);
   problem_.palette = Palette::parse(opt.rules);
@@ -54,6 +52,16 @@ SceneTuner::SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOpt
                 cm.machine.c_str(), model_digest(cm).c_str(), opt.sample_pixels,
                 static_cast<unsigned long long>(opt.sample_seed), opt.estimate_rho ? 1 : 0);
   problem_.key = key;
+}
+
+CostModel SceneTuner::cost_model_over(const PixelSample& sample) const {
+  CostModel m = cm_;
+  m.band_share.clear();
+  m.joint_share.clear();
+  if (const auto plain = lower_plain()) m.band_share = magnitude_profile(*plain, sample);
+  if (const auto smoothed = lower(compiler::uniform_schedule(graph_, rules::parse_rule("gaussian"))))
+    m.joint_share = joint_profile(*smoothed, sample);
+  return m;
 }
 
 std::unique_ptr<compiler::Program> SceneTuner::lower_plain() const {
@@ -78,10 +86,14 @@ Objectives SceneTuner::evaluate(const compiler::Schedule& s) const {
 }
 
 PixelSample::Score SceneTuner::full_score(const compiler::Program& p) const {
+  return full_sample().score(p);
+}
+
+const PixelSample& SceneTuner::full_sample() const {
   // Built on first use: the search itself never needs all pixels.
   std::call_once(full_once_,
                  [&] { full_ = std::make_unique<PixelSample>(scene_, graph_, opt_.cache_dir, 0, 0); });
-  return full_->score(p);
+  return *full_;
 }
 
 compiler::Schedule SceneTuner::schedule(const Genome& x) const {

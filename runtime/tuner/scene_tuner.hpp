@@ -48,6 +48,14 @@ class SceneTuner {
   // RMS (display_error) and NaN/out-of-range pixel counts over every pixel of every frame.
   PixelSample::Score full_score(const compiler::Program& p) const;
   double full_error(const compiler::Program& p) const { return full_score(p).rms; }
+  const PixelSample& search_sample() const { return *sample_; }  // the search error's pixels
+  // Every pixel of every frame (what full_score measures on), built on first use.
+  const PixelSample& full_sample() const;
+  // The cost model with the argument profiles (band_share, joint_share) taken over `sample` instead
+  // of the scene's pixel sample: a program's price on part of the image (a footprint LOD's near or
+  // far pixels, whose arguments and sigmas differ: fire_none's far pixels cost its accurate program
+  // ~1.5x its all-pixel average).
+  CostModel cost_model_over(const PixelSample& sample) const;
   // Evaluations (distinct or not) that were infeasible because of NaN/inf on the sampled pixels.
   long nonfinite_rejections() const { return nonfinite_.load(); }
   const ValueRange& value_range() const { return sample_->range(); }

@@ -5,14 +5,17 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
+#include "camera/plane_batch.hpp"
 #include "compiler/lower.hpp"
 #include "jit/compiled_program.hpp"
 #include "render/compiled_frame.hpp"
+#include "render/frame.hpp"
 #include "render/jitter.hpp"
 #include "render/render.hpp"
 
@@ -129,6 +132,52 @@ TEST(CompiledProgram, EqualsTheEvaluatorPlainSmoothedAndMsaa) {
       }
     }
   }
+}
+
+// A footprint-LOD pair (tuner/lod.hpp) in one compiled loop: each pixel gets the near program's
+// colour where max(sigma_u, sigma_v) is below the limit and the far one's elsewhere, as the two
+// programs compiled alone give them; a limit at the median footprint uses both.
+TEST(CompiledProgram, FootprintLodPairPicksEachPixelsProgramByItsFootprint) {
+  const std::string cache = temp_cache("lod");
+  const scene::Scene s = small_scene("bricks_bumps");
+  const ir::Graph g = shaders::trace(shaders::find_shader(s.shader), s.effects());
+  const render::Frame f = render::frames(s).front();
+  const compiler::Program near = compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("none")));
+  const compiler::Program far =
+      compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
+  camera::PlaneBatch b;
+  camera::trace_plane(render::make_camera(s, f.view), render::footprint_options(s), b);
+  std::vector<float> fp;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (b.hit[i]) fp.push_back(std::max(b.sigma_u[i], b.sigma_v[i]));
+  ASSERT_GT(fp.size(), 10u);
+  std::nth_element(fp.begin(), fp.begin() + fp.size() / 2, fp.end());
+  const float limit = fp[fp.size() / 2];
+  const jit::CompiledProgram pair(near, far, limit, opts(cache));
+  const jit::CompiledProgram cn(near, opts(cache)), cf(far, opts(cache));
+  const Image img = render::render_program(s, f, near, render::compiled_runner(pair));
+  const Image in = render::render_program(s, f, near, render::compiled_runner(cn));
+  const Image ifar = render::render_program(s, f, far, render::compiled_runner(cf));
+  int near_px = 0, far_px = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * s.width + x;
+      if (!b.hit[i]) continue;
+      const bool is_near = std::max(b.sigma_u[i], b.sigma_v[i]) < limit;
+      (is_near ? near_px : far_px)++;
+      for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(img.at(x, y, c), (is_near ? in : ifar).at(x, y, c)) << x << " " << y;
+    }
+  EXPECT_GT(near_px, 0);
+  EXPECT_GT(far_px, 0);
+  // Programs that do not pair: different inputs (a scene without parallax) or a bad limit.
+  const scene::Scene flat = small_scene("bricks_none");
+  const ir::Graph gf = shaders::trace(shaders::find_shader(flat.shader), flat.effects());
+  const compiler::Program other =
+      compiler::lower(gf, compiler::uniform_schedule(gf, rules::parse_rule("none")));
+  EXPECT_THROW(jit::lod_batch_source(near, other, limit), std::invalid_argument);
+  EXPECT_THROW(jit::lod_batch_source(near, far, -1.0f), std::invalid_argument);
+  EXPECT_THROW(jit::lod_batch_source(near, far, NAN), std::invalid_argument);
 }
 
 // Values computed independently (Python, integer splitmix64 and math.log/cos/sin) from the

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <set>
 
 #include "compiler/functions.hpp"
@@ -17,6 +18,7 @@
 #include "tuner/checkpoint.hpp"
 #include "tuner/finalize.hpp"
 #include "tuner/genetic.hpp"
+#include "tuner/lod.hpp"
 #include "tuner/magnitude_profile.hpp"
 #include "tuner/pareto.hpp"
 #include "tuner/pixel_sample.hpp"
@@ -549,6 +551,66 @@ TEST(Report, AnchorBreakdownIsReportedAndSaved) {
     out << result_to_json(r);
   }
   EXPECT_EQ(load_result(dir + "/result.json").anchor_breakdown, r.anchor_breakdown);
+  EXPECT_FALSE(load_result(dir + "/result.json").lod);
+  EXPECT_NE(md.find("None: no pair reaches MSAA-16's error"), std::string::npos) << md;
+}
+
+// A footprint-LOD pair: its speed-ups at MSAA-16's error (MSAA-16: 160 ns model, 200 compiled; the
+// pair 10 and 25), its row in report.md and summary.md, and result.json keeps it.
+TEST(Report, FootprintLodIsReportedCountedAndSaved) {
+  SceneResult r;
+  r.scene = "toy";
+  Measured m16;
+  m16.label = "msaa16";
+  m16.msaa = 16;
+  m16.model_ns = 160;
+  m16.compiled_ns = 200;
+  m16.error = 0.03;
+  r.baselines = {m16};
+  Measured a;
+  a.label = "front00";
+  a.model_ns = 8;
+  a.error = 0.05;  // faster than 10x, too coarse
+  Measured b = a;
+  b.label = "front01";
+  b.model_ns = 40;
+  b.error = 0.02;  // accurate, 4x
+  r.front = {a, b};
+  LodResult lod;
+  lod.near = "front00";
+  lod.far = "front01";
+  lod.limit = 0.0125f;
+  lod.near_share = 0.75;
+  lod.model_ns = 10;
+  lod.error = 0.029;
+  lod.compiled_ns = 25;
+  r.lod = lod;
+  const LodSpeedup ls = lod_speedup16(r);
+  EXPECT_DOUBLE_EQ(ls.model, 16);
+  EXPECT_DOUBLE_EQ(ls.measured, 8);
+  const std::string dir = temp_dir("lod_report");
+  write_scene_report(r, dir);
+  std::ifstream in(dir + "/report.md");
+  const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("| front00 | front01 | 0.0125 | 75% | 10.00 | 25.00 | 0.02900 | 16.0x / 8.0x |"),
+            std::string::npos)
+      << md;
+  {
+    std::ofstream out(dir + "/result.json");
+    out << result_to_json(r);
+  }
+  const SceneResult back = load_result(dir + "/result.json");
+  ASSERT_TRUE(back.lod);
+  EXPECT_EQ(back.lod->far, "front01");
+  EXPECT_FLOAT_EQ(back.lod->limit, 0.0125f);
+  EXPECT_DOUBLE_EQ(back.lod->compiled_ns, 25);
+  write_suite_summary({r}, dir);
+  std::ifstream sin(dir + "/summary.md");
+  const std::string sm((std::istreambuf_iterator<char>(sin)), std::istreambuf_iterator<char>());
+  EXPECT_NE(sm.find("front00 + front01: 16.0x / 8.0x | yes |"), std::string::npos) << sm;
+  EXPECT_NE(sm.find("0 of 1 scenes reach MSAA-16's error at >= 10x less model time with one program; 1 with"),
+            std::string::npos)
+      << sm;
 }
 
 // What 10x still needs, by hand: MSAA-16 costs 100 ns at error 0.03, so 10x is 10 ns. The fastest
@@ -675,6 +737,90 @@ TEST(PixelSample, AllPixelsEqualRmsOfRenderSmoothed) {
   const PixelSample some(s, cache, 200, 1);
   EXPECT_EQ(some.count(), 200);
   EXPECT_NEAR(some.error(p), all.error(p), 0.5 * all.error(p));
+  // Per pixel (the footprint LOD's input): the errors sum back to the RMS, the footprints are the
+  // camera's sigma_u / sigma_v (both > 0, one per hit pixel), and rendering agrees pixel by pixel.
+  const std::vector<double> px = all.pixel_sq(p);
+  const std::vector<float> fp = all.footprints();
+  ASSERT_EQ(px.size(), fp.size());
+  double sum = all.miss_sq();
+  for (double e : px) sum += e;
+  EXPECT_NEAR(std::sqrt(sum / (3.0 * all.count())), all.error(p), 1e-12);
+  for (float f : fp) EXPECT_GT(f, 0);
+}
+
+// The footprint LOD (lod.hpp) on hand-made errors: pixels 0-1 are near (footprints 0.1, 0.2),
+// pixels 2-3 far (0.3, 0.4); the cheap program 0 is exact near and wrong far, program 1 the opposite.
+TEST(FootprintLod, PicksThePairAndLimitThatReachTheTargetFastest) {
+  const std::vector<float> fp = {0.3f, 0.1f, 0.4f, 0.2f};  // any order
+  const std::vector<std::vector<double>> sq = {{3, 0, 3, 0}, {0, 3, 0, 3}, {1, 1, 1, 1}};
+  const std::vector<double> t = {1, 10, 20};
+  // Exact (error 0): program 0 below 0.3, program 1 from 0.3 on; half the pixels each.
+  LodChoice c = fastest_lod(sq, fp, t, 0, 4, 0, 0.25, 4);
+  EXPECT_EQ(c.near, 0);
+  EXPECT_EQ(c.far, 1);
+  EXPECT_FLOAT_EQ(c.limit, 0.3f);
+  EXPECT_DOUBLE_EQ(c.near_share, 0.5);
+  EXPECT_DOUBLE_EQ(c.model_ns, 0.5 * 1 + 0.5 * 10 + 0.25);
+  EXPECT_DOUBLE_EQ(c.error, 0);
+  // Two sky pixels with squared error 6 and a looser target: rms = sqrt((6 + sum) / 18).
+  // Program 0 near (0) + program 2 far (1 + 1): sqrt(8 / 18) = 0.667 at 0.5 + 10 = 10.5, slower
+  // than 0 near + 1 far (sqrt(6 / 18) = 0.577 at 5.5); a target of 0.6 keeps the latter.
+  c = fastest_lod(sq, fp, t, 6, 6, 0.6, 0, 4);
+  EXPECT_EQ(c.near, 0);
+  EXPECT_EQ(c.far, 1);
+  EXPECT_NEAR(c.error, std::sqrt(6.0 / 18), 1e-15);
+  // Out of reach: no pair.
+  EXPECT_EQ(fastest_lod(sq, fp, t, 6, 6, 0.5, 0, 4).near, -1);
+  // Equal footprints stay on one side: with 0.1 and 0.3 twice, the only split is between them.
+  c = fastest_lod(sq, {0.3f, 0.1f, 0.3f, 0.1f}, t, 0, 4, 0, 0, 64);
+  EXPECT_EQ(c.near, 0);
+  EXPECT_FLOAT_EQ(c.limit, 0.3f);
+  EXPECT_THROW(fastest_lod({{1, 2}}, fp, {1}, 0, 4, 1, 0), std::invalid_argument);  // ragged
+  EXPECT_THROW(fastest_lod(sq, fp, {1, 2}, 0, 4, 1, 0), std::invalid_argument);     // times
+  EXPECT_THROW(fastest_lod(sq, fp, t, 0, 3, 1, 0), std::invalid_argument);          // pixels
+}
+
+// Against a direct evaluation of every pair and split on random errors (no prefix sums).
+TEST(FootprintLod, AgreesWithDirectEvaluation) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  const int n = 300, k = 5;
+  std::vector<float> fp(n);
+  for (float& f : fp) f = static_cast<float>(std::floor(u(rng) * 50) / 50);  // ties too
+  std::vector<std::vector<double>> sq(k, std::vector<double>(n));
+  std::vector<double> t(k);
+  for (int a = 0; a < k; ++a) {
+    t[a] = 1 + 3 * a;
+    for (int i = 0; i < n; ++i) sq[a][i] = u(rng) * (k - a) * (fp[i] + 0.2);
+  }
+  const double target = 0.7, miss = 5, d = 0.1;
+  const long pixels = 320;
+  const LodChoice c = fastest_lod(sq, fp, t, miss, pixels, target, d, 1000);  // > n: every split
+  ASSERT_GE(c.near, 0);
+  double share = 0, sum = miss;
+  for (int i = 0; i < n; ++i) {
+    const bool near = fp[i] < c.limit;
+    share += near;
+    sum += near ? sq[c.near][i] : sq[c.far][i];
+  }
+  EXPECT_NEAR(c.near_share, share / n, 1e-12);
+  EXPECT_NEAR(c.error, std::sqrt(sum / (3.0 * pixels)), 1e-12);
+  EXPECT_LE(c.error, target);
+  EXPECT_NEAR(c.model_ns, c.near_share * t[c.near] + (1 - c.near_share) * t[c.far] + d, 1e-12);
+  // No pair at any footprint limit is faster at the target.
+  const std::set<float> limits(fp.begin(), fp.end());
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b)
+      for (float lim : limits) {
+        if (a == b) continue;
+        double s2 = miss, sh = 0;
+        for (int i = 0; i < n; ++i) {
+          sh += fp[i] < lim;
+          s2 += fp[i] < lim ? sq[a][i] : sq[b][i];
+        }
+        const double time = sh / n * t[a] + (1 - sh / n) * t[b] + d;
+        if (std::sqrt(s2 / (3.0 * pixels)) <= target) EXPECT_GE(time, c.model_ns - 1e-12) << a << " " << b;
+      }
 }
 
 TEST(Search, DeterministicAcrossRunsAndThreadCounts) {
