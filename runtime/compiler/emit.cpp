@@ -143,13 +143,11 @@ std::string emit_cpp(const Program& p, const std::string& name, const std::strin
   return os.str();
 }
 
-std::string emit_glsl(const Program& p, const std::string& name, const std::string& comment) {
+namespace {
+
+// p as the GLSL function `name` (no library: the caller slices it for every function it emits).
+std::string glsl_function(const Program& p, const std::string& name) {
   std::ostringstream os;
-  os << banner(p, comment) << "\n";
-  std::vector<std::string> roots;
-  for (int f : p.used_functions()) roots.push_back(functions()[f].glsl);
-  os << glsl_library_slice(roots) << "\n";
-  if (p.uses_textures()) os << glsl_texture_library(p.texture_names.size()) << "\n";
   const int ni = std::max(1, p.input_count), no = static_cast<int>(p.outputs.size());
   os << "void " << name << "(in float bl_m[" << ni << "], in float bl_s[" << ni << "], in float bl_gx[" << ni
      << "], in float bl_gy[" << ni << "], out float bl_out[" << no << "]) {\n";
@@ -163,24 +161,66 @@ std::string emit_glsl(const Program& p, const std::string& name, const std::stri
   return os.str();
 }
 
-std::string emit_cpp_lod(const Program& near, const Program& far, float limit, const std::string& name,
-                         const std::string& comment) {
+// The generated library functions the programs call (and what they call), and the texture helpers.
+std::string glsl_prelude(const std::vector<const Program*>& ps) {
+  std::vector<std::string> roots;
+  for (const Program* p : ps)
+    for (int f : p->used_functions()) roots.push_back(functions()[f].glsl);
+  std::string out = glsl_library_slice(roots) + "\n";
+  if (ps.front()->uses_textures()) out += glsl_texture_library(ps.front()->texture_names.size()) + "\n";
+  return out;
+}
+
+// The input slots of u and v (a footprint LOD's footprint) after checking the pair: throws
+// std::invalid_argument naming `who` when the programs do not pair or the limit is not usable.
+std::pair<int, int> lod_slots(const Program& near, const Program& far, float limit, const char* who) {
   if (near.input_names != far.input_names || near.input_count != far.input_count ||
       near.outputs.size() != far.outputs.size() || near.texture_names != far.texture_names)
-    throw std::invalid_argument(
-        "emit_cpp_lod: the near and far programs differ in their inputs, outputs or "
-        "textures (a footprint LOD pairs two schedules of one shader)");
+    throw std::invalid_argument(std::string(who) +
+                                ": the near and far programs differ in their inputs, outputs or "
+                                "textures (a footprint LOD pairs two schedules of one shader)");
   if (!(limit >= 0) || !std::isfinite(limit))
-    throw std::invalid_argument("emit_cpp_lod: footprint limit " + std::to_string(limit) +
+    throw std::invalid_argument(std::string(who) + ": footprint limit " + std::to_string(limit) +
                                 " is not a finite number >= 0");
   auto slot = [&](const char* in) {
     const auto it = std::find(near.input_names.begin(), near.input_names.end(), in);
     if (it == near.input_names.end())
-      throw std::invalid_argument(std::string("emit_cpp_lod: the programs have no input '") + in +
+      throw std::invalid_argument(std::string(who) + ": the programs have no input '" + in +
                                   "' (the footprint is the larger of u's and v's sd)");
     return static_cast<int>(it - near.input_names.begin());
   };
-  const int u = slot("u"), v = slot("v");
+  return {slot("u"), slot("v")};
+}
+
+}  // namespace
+
+std::string emit_glsl(const Program& p, const std::string& name, const std::string& comment) {
+  return banner(p, comment) + "\n" + glsl_prelude({&p}) + glsl_function(p, name);
+}
+
+std::string emit_glsl_lod(const Program& near, const Program& far, float limit, const std::string& name,
+                          const std::string& comment) {
+  const auto [u, v] = lod_slots(near, far, limit, "emit_glsl_lod");
+  const int ni = std::max(1, near.input_count), no = static_cast<int>(near.outputs.size());
+  std::ostringstream os;
+  os << banner(near, comment) << "\n"
+     << glsl_prelude({&near, &far}) << glsl_function(near, name + "_near") << "\n"
+     << glsl_function(far, name + "_far") << "\n"
+     << "// Footprint LOD: " << name << "_near where max(sd of u, sd of v) < " << float_literal_glsl(limit)
+     << ", " << name << "_far elsewhere.\n"
+     << "void " << name << "(in float bl_m[" << ni << "], in float bl_s[" << ni << "], in float bl_gx[" << ni
+     << "], in float bl_gy[" << ni << "], out float bl_out[" << no << "]) {\n"
+     << "  if (max(bl_s[" << u << "], bl_s[" << v << "]) < " << float_literal_glsl(limit) << ")\n"
+     << "    " << name << "_near(bl_m, bl_s, bl_gx, bl_gy, bl_out);\n"
+     << "  else\n"
+     << "    " << name << "_far(bl_m, bl_s, bl_gx, bl_gy, bl_out);\n"
+     << "}\n";
+  return os.str();
+}
+
+std::string emit_cpp_lod(const Program& near, const Program& far, float limit, const std::string& name,
+                         const std::string& comment) {
+  const auto [u, v] = lod_slots(near, far, limit, "emit_cpp_lod");
   std::string far_text = emit_cpp(far, name + "_far", comment);
   const std::string once = "#pragma once\n";
   if (const auto at = far_text.find(once); at != std::string::npos) far_text.erase(at, once.size());

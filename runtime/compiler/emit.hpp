@@ -29,6 +29,10 @@ std::string emit_cpp_lod(const Program& near, const Program& far, float limit, c
 //               out float bl_out[NO])
 // No #version line: the includer supplies it (valid as 450 and 320 es).
 std::string emit_glsl(const Program& p, const std::string& name, const std::string& comment = "");
+// The footprint-LOD pair in GLSL: one library slice for both, <name>_near and <name>_far, and <name>
+// (emit_glsl's signature) choosing between them as emit_cpp_lod does; the same errors.
+std::string emit_glsl_lod(const Program& near, const Program& far, float limit, const std::string& name,
+                          const std::string& comment = "");
 
 std::string float_literal_cpp(float v);
 std::string float_literal_glsl(float v);

@@ -132,19 +132,44 @@ void measure(const SceneTuner& t, const compiler::Program& p, Timer& gl, Measure
 // when it is faster by the model than every single front point at that error; its compiled time is
 // the pair in one loop (jit::CompiledProgram's LOD form).
 std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measured>& front,
-                                  const std::vector<compiler::Schedule>& schedules, double e16, Timer& gl) {
-  if (front.size() < 2) return std::nullopt;
+                                  const std::vector<compiler::Schedule>& schedules,
+                                  const std::vector<Point>& search_front, double e16, Timer& gl) {
+  // The candidates: the measured front points, and the search's front points that are not among
+  // them (labelled searchNN by their place in the search front; many lie between the measured ones).
+  std::vector<std::string> labels, texts;
+  std::vector<compiler::Schedule> cand;
+  std::vector<double> model_ns;
+  for (std::size_t i = 0; i < front.size(); ++i) {
+    labels.push_back(front[i].label);
+    texts.push_back(front[i].schedule);
+    cand.push_back(schedules[i]);
+    model_ns.push_back(front[i].model_ns);
+  }
+  for (std::size_t i = 0; i < search_front.size(); ++i) {
+    const compiler::Schedule sch = t.schedule(search_front[i].genome);
+    const std::string text = compiler::schedule_to_text(t.graph(), sch);
+    if (std::find(texts.begin(), texts.end(), text) != texts.end() ||
+        !std::isfinite(search_front[i].obj.time))
+      continue;
+    char label[32];
+    std::snprintf(label, sizeof label, "search%02zu", i);
+    labels.push_back(label);
+    texts.push_back(text);
+    cand.push_back(sch);
+    model_ns.push_back(search_front[i].obj.time);
+  }
+  if (cand.size() < 2) return std::nullopt;
   const PixelSample& all = t.full_sample();
   std::vector<std::unique_ptr<compiler::Program>> programs;
   std::vector<std::vector<double>> sq;
-  std::vector<double> model_ns;
-  double single = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < front.size(); ++i) {
-    programs.push_back(t.lower(schedules[i]));
+  for (const compiler::Schedule& sch : cand) {
+    programs.push_back(t.lower(sch));
+    if (!programs.back()) return std::nullopt;  // front points lower; a table change would show here
     sq.push_back(all.pixel_sq(*programs.back()));
-    model_ns.push_back(front[i].model_ns);
-    if (front[i].error <= e16) single = std::min(single, front[i].model_ns);
   }
+  double single = std::numeric_limits<double>::infinity();
+  for (const Measured& m : front)
+    if (m.error <= e16) single = std::min(single, m.model_ns);
   const CostModel& cm = t.cost_model();
   double dispatch = 0;  // the footprint's max and the branch's compare
   for (const char* op : {"max", "less"})
@@ -170,8 +195,10 @@ std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measure
   }
   if (c.near < 0 || !(c.model_ns < single)) return std::nullopt;
   LodResult r;
-  r.near = front[c.near].label;
-  r.far = front[c.far].label;
+  r.near = labels[c.near];
+  r.far = labels[c.far];
+  r.near_schedule = texts[c.near];
+  r.far_schedule = texts[c.far];
   r.limit = c.limit;
   r.near_share = c.near_share;
   r.model_ns = c.model_ns;
@@ -384,7 +411,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     res.front[i].label = label;
     measure(t, *t.lower(front_schedules[i]), gl, &res.front[i]);
   }
-  if (e16 > 0) res.lod = find_lod(t, res.front, front_schedules, e16, gl);
+  if (e16 > 0) res.lod = find_lod(t, res.front, front_schedules, front, e16, gl);
   uniform("dorn", "dorn");
   uniform("gaussian", "gaussian");
   // Images of frame 0: truth | variant | MSAA of the nearest model time, for the fastest and the most

@@ -32,14 +32,15 @@ struct Measured {
   std::map<std::string, double> mix;  // share of genes per rule family
 };
 
-// The fastest footprint-LOD pair of front points (tuner/lod.hpp) at MSAA-16's error, when it is
-// faster than every single front point there.
+// The fastest footprint-LOD pair (tuner/lod.hpp) at MSAA-16's error, of the measured front points and
+// the search's front points, when it is faster by the model than every single measured point there.
 struct LodResult {
-  std::string near, far;    // front labels
-  float limit = 0;          // footprint (max of sigma_u, sigma_v) where `far` takes over
-  double near_share = 0;    // share of the hit pixels (all frames) below it
-  double model_ns = 0;      // near_share T(near) + (1 - near_share) T(far) + the dispatch
-  double error = 0;         // RMS display, every pixel of every frame
+  std::string near, far;  // front labels (frontNN), or searchNN: row NN of front_search.csv (not measured)
+  std::string near_schedule, far_schedule;  // their schedules (compiler::schedule_to_text)
+  float limit = 0;                          // footprint (max of sigma_u, sigma_v) where `far` takes over
+  double near_share = 0;                    // share of the hit pixels (all frames) below it
+  double model_ns = 0;                      // near_share T(near) + (1 - near_share) T(far) + the dispatch
+  double error = 0;                         // RMS display, every pixel of every frame
   double compiled_ns = -1;  // the pair compiled into one loop (jit), frame 0; -1 without a compiler
 };
 

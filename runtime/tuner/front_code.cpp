@@ -32,14 +32,14 @@ int write_front_code(const SceneTuner& t, const SceneResult& r, const std::strin
     std::ofstream(out + "/" + m.label + ".hpp") << compiler::emit_cpp(*p, "shade", banner);
     ++n;
   }
-  if (r.lod) {  // the footprint-LOD pair as one C++ header (GLSL: not emitted yet)
-    auto program = [&](const std::string& label) {
-      for (const Measured& m : r.front)
-        if (m.label == label)
-          return t.lower(compiler::parse_schedule(t.graph(), m.schedule, "front point " + label));
-      throw std::logic_error("write_front_code: the footprint LOD names " + label + ", not a front point");
+  if (r.lod) {  // the footprint-LOD pair as one function of each language
+    auto program = [&](const std::string& text, const std::string& label) {
+      auto p = t.lower(compiler::parse_schedule(t.graph(), text, "footprint LOD point " + label));
+      if (!p) throw std::logic_error("write_front_code: footprint LOD point " + label + " no longer lowers");
+      return p;
     };
-    const auto near = program(r.lod->near), far = program(r.lod->far);
+    const auto near = program(r.lod->near_schedule, r.lod->near),
+               far = program(r.lod->far_schedule, r.lod->far);
     char banner[320];
     std::snprintf(
         banner, sizeof banner,
@@ -48,6 +48,7 @@ int write_front_code(const SceneTuner& t, const SceneResult& r, const std::strin
         t.scene().name.c_str(), r.lod->near.c_str(), r.lod->limit, r.lod->far.c_str(), r.lod->error, r.frames,
         r.lod->model_ns);
     std::ofstream(out + "/lod.hpp") << compiler::emit_cpp_lod(*near, *far, r.lod->limit, "shade", banner);
+    std::ofstream(out + "/lod.glsl") << compiler::emit_glsl_lod(*near, *far, r.lod->limit, "shade", banner);
   }
   return n;
 }

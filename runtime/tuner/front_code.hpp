@@ -12,7 +12,8 @@ namespace bl::tuner {
 // function `shade` (compiler::emit_glsl / emit_cpp) of the schedule read back from its text (so what
 // is written is exactly what `blrender --schedule <dir>/front.csv:<label>` renders), with a banner
 // naming the scene, the graph, the measured error and the schedule. Returns the number of points.
-// With a footprint LOD (r.lod) also <dir>/front/lod.hpp: compiler::emit_cpp_lod of its two points.
+// With a footprint LOD (r.lod) also <dir>/front/lod.glsl and lod.hpp: compiler::emit_glsl_lod /
+// emit_cpp_lod of its two points.
 int write_front_code(const SceneTuner& t, const SceneResult& r, const std::string& dir);
 
 }  // namespace bl::tuner

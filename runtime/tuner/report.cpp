@@ -255,7 +255,10 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
        << fmt("%.0f%%", 100 * r.lod->near_share) << " | " << fmt("%.2f", r.lod->model_ns) << " | "
        << (r.lod->compiled_ns > 0 ? fmt("%.2f", r.lod->compiled_ns) : "-") << " | "
        << fmt("%.5f", r.lod->error) << " | " << fmt("%.1fx", ls.model) << " / "
-       << (ls.measured > 0 ? fmt("%.1fx", ls.measured) : "-") << " |\n";
+       << (ls.measured > 0 ? fmt("%.1fx", ls.measured) : "-") << " |\n\n"
+       << "Code: `front/lod.glsl`, `front/lod.hpp` (searchNN: row NN of front_search.csv, not measured on "
+          "its own). Schedules: near `"
+       << r.lod->near_schedule << "`; far `" << r.lod->far_schedule << "`.\n";
   } else {
     md << "None: no pair reaches MSAA-16's error faster than the fastest single point there.\n";
   }

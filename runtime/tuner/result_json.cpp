@@ -79,6 +79,8 @@ std::string result_to_json(const SceneResult& r) {
               {"anchor_breakdown", r.anchor_breakdown},
               {"lod", r.lod ? json{{"near", r.lod->near},
                                    {"far", r.lod->far},
+                                   {"near_schedule", r.lod->near_schedule},
+                                   {"far_schedule", r.lod->far_schedule},
                                    {"limit", r.lod->limit},
                                    {"near_share", r.lod->near_share},
                                    {"model_ns", r.lod->model_ns},
@@ -111,6 +113,8 @@ SceneResult result_from_json(const std::string& text) {
     LodResult lod;
     lod.near = l.at("near");
     lod.far = l.at("far");
+    lod.near_schedule = l.value("near_schedule", std::string());
+    lod.far_schedule = l.value("far_schedule", std::string());
     lod.limit = l.at("limit");
     lod.near_share = l.at("near_share");
     lod.model_ns = l.at("model_ns");

@@ -584,6 +584,8 @@ TEST(Report, FootprintLodIsReportedCountedAndSaved) {
   lod.model_ns = 10;
   lod.error = 0.029;
   lod.compiled_ns = 25;
+  lod.near_schedule = "0:none 1:none";
+  lod.far_schedule = "0:gaussian 1:tent";
   r.lod = lod;
   const LodSpeedup ls = lod_speedup16(r);
   EXPECT_DOUBLE_EQ(ls.model, 16);
@@ -604,6 +606,8 @@ TEST(Report, FootprintLodIsReportedCountedAndSaved) {
   EXPECT_EQ(back.lod->far, "front01");
   EXPECT_FLOAT_EQ(back.lod->limit, 0.0125f);
   EXPECT_DOUBLE_EQ(back.lod->compiled_ns, 25);
+  EXPECT_EQ(back.lod->far_schedule, "0:gaussian 1:tent");
+  EXPECT_NE(md.find("Schedules: near `0:none 1:none`; far `0:gaussian 1:tent`."), std::string::npos) << md;
   write_suite_summary({r}, dir);
   std::ifstream sin(dir + "/summary.md");
   const std::string sm((std::istreambuf_iterator<char>(sin)), std::istreambuf_iterator<char>());
