@@ -13,11 +13,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "compiler/lower.hpp"
 #include "compiler/schedule_csv.hpp"
+#include "compiler/schedule_text.hpp"
 #include "image/display.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
 #include "tuner/calibrate.hpp"
+#include "tuner/result_json.hpp"
 
 using namespace bl;
 namespace fs = std::filesystem;
@@ -102,7 +105,7 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
   else
     std::printf("no OpenGL driver (%s): GLSL compiled, not executed\n", av.reason.c_str());
 
-  int points = 0, scenes = 0;
+  int points = 0, scenes = 0, lods = 0;
   std::string cpp = "// every front point's header in one translation unit\n", es_files;
   for (const char* name : {"bricks_none", "checkerboard_none", "circles_none", "color_circles_none",
                            "fire_none", "quadratic_sine_none", "zigzag_none"}) {
@@ -114,8 +117,36 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
     const std::vector<std::string> labels = front_labels(csv);
     ASSERT_FALSE(labels.empty()) << csv;
     int files = 0;
-    for (const auto& e : fs::directory_iterator(dir + "/front")) files += e.path().extension() == ".glsl";
+    for (const auto& e : fs::directory_iterator(dir + "/front"))
+      files += e.path().extension() == ".glsl" && e.path().filename() != "lod.glsl";
     EXPECT_EQ(files, static_cast<int>(labels.size())) << "one .glsl per front point";
+    // A footprint-LOD pair (result.json's lod) comes as front/lod.glsl and lod.hpp: validated and
+    // compiled like the points (its near program's fragment main: both programs take the same inputs).
+    const tuner::SceneResult res = tuner::load_result(dir + "/result.json");
+    EXPECT_EQ(fs::exists(dir + "/front/lod.glsl"), res.lod.has_value());
+    EXPECT_EQ(fs::exists(dir + "/front/lod.hpp"), res.lod.has_value());
+    if (res.lod) {
+      const compiler::Program near =
+          compiler::lower(g, compiler::parse_schedule(g, res.lod->near_schedule, "lod near"));
+      const std::string glsl = read(dir + "/front/lod.glsl");
+      EXPECT_NE(glsl.find("footprint LOD of scene " + std::string(name)), std::string::npos);
+      const std::string base = (work / (std::string(name) + "_lod")).string();
+      std::ofstream(base + ".frag") << render::glsl_version_line("450") << glsl << "\n"
+                                    << render::glsl_fragment_main(near, "shade");
+      EXPECT_EQ(std::system(
+                    (std::string(GLSLANG_VALIDATOR) + " -l -S frag " + base + ".frag > " + base + ".log 2>&1")
+                        .c_str()),
+                0)
+          << read(base + ".log");
+      std::ofstream(base + "_es.frag") << render::glsl_version_line("320 es") << glsl << "\n"
+                                       << render::glsl_fragment_main(near, "shade");
+      es_files += " " + base + "_es.frag";
+      ++lods;
+      const std::string n = "shade_lod" + std::to_string(lods);
+      cpp += "#define shade " + n + "\n#define shade_near " + n + "_near\n#define shade_far " + n +
+             "_far\n#include \"" + dir +
+             "/front/lod.hpp\"\n#undef shade\n#undef shade_near\n#undef shade_far\n";
+    }
     ++scenes;
     for (const std::string& label : labels) {
       SCOPED_TRACE(label);
@@ -190,7 +221,7 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
                 (std::string(GLSLANG_VALIDATOR) + " -S frag" + es_files + " > " + es_log + " 2>&1").c_str()),
             0)
       << read(es_log);
-  std::printf("%d front points over %d scenes checked\n", points, scenes);
+  std::printf("%d front points and %d footprint-LOD pairs over %d scenes checked\n", points, lods, scenes);
   // The headers are self-contained: they compile against the generated library alone.
   const std::string tu = (work / "all_fronts.cpp").string();
   std::ofstream(tu) << cpp;
