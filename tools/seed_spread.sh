@@ -10,12 +10,13 @@
 # SUITE_DIR: a `bltune --suite` output (seed 1; its summary.csv is read, not rerun); OUT_DIR gets
 # s<seed>/<scene>/ and s<seed>/summary.csv (`bltune --summarize`; a scene already there is not tuned
 # again). Speed-ups are read from the summaries' speedup16_model / speedup16_measured columns (0: MSAA-16's
-# error not reached). Uses build/bin/bltune,
+# error not reached); with SPREAD_WITH_LOD=1, from the footprint-LOD pair's columns where it is faster
+# (lod_speedup16_model / _measured; docs/runtime.md "Footprint LOD"). Uses build/bin/bltune,
 # build/cost_model.json (the calibration SUITE_DIR was tuned with: recalibrating between the runs
 # mixes the calibration's spread into the search's) and $BL_TRUTH_CACHE (default build/truth_cache).
 set -euo pipefail
 if [ $# -lt 4 ]; then
-  sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 fi
 # Paths as the caller wrote them, before moving to the repository root.
@@ -28,10 +29,12 @@ mkdir -p "$out"
 # "model measured" speed-ups at MSAA-16's error of scene $2 in summary.csv $1 (columns by name), "- -"
 # when not reached; an error when the scene has no row.
 at16() {
-  awk -F, -v scene="$2" -v file="$1" '
+  awk -F, -v scene="$2" -v file="$1" -v lod="${SPREAD_WITH_LOD:-0}" '
     NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i
-              if (!col["speedup16_model"] || !col["speedup16_measured"]) { print "seed_spread: " file " has no speedup16 columns" > "/dev/stderr"; bad = 1; exit 1 } next }
+              if (!col["speedup16_model"] || !col["speedup16_measured"]) { print "seed_spread: " file " has no speedup16 columns" > "/dev/stderr"; bad = 1; exit 1 }
+              if (lod == 1 && !col["lod_speedup16_model"]) { print "seed_spread: " file " has no lod_speedup16 columns" > "/dev/stderr"; bad = 1; exit 1 } next }
     $1 == scene { m = $col["speedup16_model"]; c = $col["speedup16_measured"]
+                  if (lod == 1 && $col["lod_speedup16_model"] + 0 > m + 0) { m = $col["lod_speedup16_model"]; c = $col["lod_speedup16_measured"] }
                   if (m + 0 > 0) printf "%.1f %.1f\n", m, c; else print "- -"; found = 1; exit }
     END { if (!bad && !found) { print "seed_spread: no row for " scene " in " file > "/dev/stderr"; exit 1 } }' "$1"
 }
