@@ -182,7 +182,18 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
       << ")):(lab('dorn',8)) w p pt 11 ps 1.5 lc rgb '#2ca02c' t 'all Dorn', \\\n"
       << "  '' every ::1 u (lab('gaussian'," << c
       << ")):(lab('gaussian',8)) w p pt 13 ps 1.5 lc rgb '#ff7f0e' t "
-         "'all adaptive Gaussian'\n";
+         "'all adaptive Gaussian'";
+    // The footprint-LOD pair (not a row of front.csv): inline data, on the compiled panel when timed.
+    const double lod_x = !r.lod       ? -1
+                         : panel == 0 ? r.lod->model_ns
+                         : compiled   ? r.lod->compiled_ns * px * 1e-6
+                                      : -1;
+    if (lod_x > 0)
+      g << ", \\\n  '-' u 1:2 w p pt 15 ps 2 lc rgb '#9467bd' t 'footprint LOD (" << r.lod->near << " + "
+        << r.lod->far << ")'\n"
+        << lod_x << "," << r.lod->error << "\ne\n";  // the script reads comma-separated data
+    else
+      g << "\n";
   }
   g << "unset multiplot\n";
   const bool plotted = run_gnuplot(g.str());
