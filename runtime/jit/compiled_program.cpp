@@ -11,12 +11,11 @@ namespace bl::jit {
 
 namespace {
 
-// p's shader as function `name` of namespace bl_shaders, without its #pragma once (two may share a file).
-std::string shader_source(const compiler::Program& p, const std::string& name) {
-  std::string shader = compiler::emit_cpp(p, name, "compiled by bl::jit");
+// An emitted header as the start of a translation unit: without its #pragma once.
+std::string without_pragma_once(std::string header) {
   const std::string once = "#pragma once\n";
-  if (const auto at = shader.find(once); at != std::string::npos) shader.erase(at, once.size());
-  return shader;
+  if (const auto at = header.find(once); at != std::string::npos) header.erase(at, once.size());
+  return header;
 }
 
 // The shader call with this pixel's gathered inputs (im, is, igx, igy) into o.
@@ -49,15 +48,13 @@ std::string batch_loop(const compiler::Program& p, bool gradients, const std::st
 }  // namespace
 
 std::string batch_source(const compiler::Program& p) {
-  return shader_source(p, "shade") + "\n" +
+  return without_pragma_once(compiler::emit_cpp(p, "shade", "compiled by bl::jit")) + "\n" +
          batch_loop(p, p.uses_gradients(), "    " + call(p, "shade") + "\n");
 }
 
 std::string lod_batch_source(const compiler::Program& near, const compiler::Program& far, float limit) {
-  std::string shader = compiler::emit_cpp_lod(near, far, limit, "shade", "compiled by bl::jit");
-  const std::string once = "#pragma once\n";
-  if (const auto at = shader.find(once); at != std::string::npos) shader.erase(at, once.size());
-  return shader + "\n" +
+  return without_pragma_once(compiler::emit_cpp_lod(near, far, limit, "shade", "compiled by bl::jit")) +
+         "\n" +
          batch_loop(near, near.uses_gradients() || far.uses_gradients(), "    " + call(near, "shade") + "\n");
 }
 

@@ -22,14 +22,14 @@ std::vector<LodChoice> lod_candidates(const std::vector<std::vector<double>>& sq
                                       int limits, int keep) {
   const std::size_t programs = sq.size(), n = fp.size();
   if (model_ns.size() != programs)
-    throw std::invalid_argument("fastest_lod: " + std::to_string(programs) + " error rows for " +
+    throw std::invalid_argument("lod_candidates: " + std::to_string(programs) + " error rows for " +
                                 std::to_string(model_ns.size()) + " model times");
   for (const auto& row : sq)
     if (row.size() != n)
-      throw std::invalid_argument("fastest_lod: an error row has " + std::to_string(row.size()) +
+      throw std::invalid_argument("lod_candidates: an error row has " + std::to_string(row.size()) +
                                   " pixels, the footprints " + std::to_string(n));
   if (pixels <= 0 || static_cast<std::size_t>(pixels) < n || limits < 2)
-    throw std::invalid_argument("fastest_lod: " + std::to_string(pixels) + " pixels for " +
+    throw std::invalid_argument("lod_candidates: " + std::to_string(pixels) + " pixels for " +
                                 std::to_string(n) + " hit pixels, " + std::to_string(limits) + " limits");
   std::vector<LodChoice> out;
   if (n == 0) return out;

@@ -89,10 +89,19 @@ double PixelSample::miss_sq() const {
   return sum;
 }
 
+namespace {
+
+// Hit pixel i's footprint: what footprints() lists and subset() splits on.
+float footprint(const camera::PlaneBatch& b, int i) {
+  return std::max(b.sigma_u[i], b.sigma_v[i]);
+}
+
+}  // namespace
+
 std::vector<float> PixelSample::footprints() const {
   std::vector<float> fp;
   for (const FrameData& d : frames_)
-    for (int i = 0; i < d.n; ++i) fp.push_back(std::max(d.hits.sigma_u[i], d.hits.sigma_v[i]));
+    for (int i = 0; i < d.n; ++i) fp.push_back(footprint(d.hits, i));
   return fp;
 }
 
@@ -105,7 +114,7 @@ PixelSample PixelSample::subset(float limit, bool below) const {
     e.time = d.time;
     std::vector<int> keep;
     for (int i = 0; i < d.n; ++i)
-      if ((std::max(d.hits.sigma_u[i], d.hits.sigma_v[i]) < limit) == below) {
+      if ((footprint(d.hits, i) < limit) == below) {
         keep.push_back(i);
         for (int c = 0; c < 3; ++c) e.truth.push_back(d.truth[3 * i + c]);
       }
@@ -136,8 +145,8 @@ std::vector<double> PixelSample::hit_sq(const compiler::Program& p, PixelCounts*
       const float rgb[3] = {out[0][i], out[1][i], out[2][i]};
       *counts += check_pixel(rgb, range_);
       double e2 = 0;
-      for (int c = 0; c < 3;
-           ++c) {  // the shade on the plane's share of the pixel (the horizon), as render_smoothed
+      // The shade on the plane's share of the pixel (the horizon), as render_smoothed.
+      for (int c = 0; c < 3; ++c) {
         const float shown = static_cast<float>(render::covered(d.hits, i, rgb[c], scene_.background[c]));
         const double e = display_error(shown, d.truth[3 * i + c]);
         e2 += e * e;

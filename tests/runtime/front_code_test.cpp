@@ -107,6 +107,23 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
 
   int points = 0, scenes = 0, lods = 0;
   std::string cpp = "// every front point's header in one translation unit\n", es_files;
+  // A front file's function `shade` (of program p's signature) as a whole program: validated (-l:
+  // linked, so the entry point and every call resolve) in GLSL 450 now, and queued as 320 es (stricter
+  // on types) for one validator run over the suite below. Returns the 450 fragment shader.
+  auto validate = [&](const std::string& base, const std::string& glsl, const compiler::Program& p) {
+    const std::string frag =
+        render::glsl_version_line("450") + glsl + "\n" + render::glsl_fragment_main(p, "shade");
+    std::ofstream(base + ".frag") << frag;
+    EXPECT_EQ(
+        std::system((std::string(GLSLANG_VALIDATOR) + " -l -S frag " + base + ".frag > " + base + ".log 2>&1")
+                        .c_str()),
+        0)
+        << read(base + ".log");
+    std::ofstream(base + "_es.frag") << render::glsl_version_line("320 es") << glsl << "\n"
+                                     << render::glsl_fragment_main(p, "shade");
+    es_files += " " + base + "_es.frag";
+    return frag;
+  };
   for (const char* name : {"bricks_none", "checkerboard_none", "circles_none", "color_circles_none",
                            "fire_none", "quadratic_sine_none", "zigzag_none"}) {
     SCOPED_TRACE(name);
@@ -130,17 +147,7 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
           compiler::lower(g, compiler::parse_schedule(g, res.lod->near_schedule, "lod near"));
       const std::string glsl = read(dir + "/front/lod.glsl");
       EXPECT_NE(glsl.find("footprint LOD of scene " + std::string(name)), std::string::npos);
-      const std::string base = (work / (std::string(name) + "_lod")).string();
-      std::ofstream(base + ".frag") << render::glsl_version_line("450") << glsl << "\n"
-                                    << render::glsl_fragment_main(near, "shade");
-      EXPECT_EQ(std::system(
-                    (std::string(GLSLANG_VALIDATOR) + " -l -S frag " + base + ".frag > " + base + ".log 2>&1")
-                        .c_str()),
-                0)
-          << read(base + ".log");
-      std::ofstream(base + "_es.frag") << render::glsl_version_line("320 es") << glsl << "\n"
-                                       << render::glsl_fragment_main(near, "shade");
-      es_files += " " + base + "_es.frag";
+      validate((work / (std::string(name) + "_lod")).string(), glsl, near);
       ++lods;
       const std::string n = "shade_lod" + std::to_string(lods);
       cpp += "#define shade " + n + "\n#define shade_near " + n + "_near\n#define shade_far " + n +
@@ -157,20 +164,7 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
       EXPECT_NE(glsl.find("front point " + label + " of scene " + name), std::string::npos);
       EXPECT_NE(glsl.find(l.text), std::string::npos);
       EXPECT_NE(glsl.find("measured: RMS 0."), std::string::npos);
-      // As a whole program (-l: linked, so the entry point and every call resolve) in GLSL 450; as
-      // 320 es (stricter on types) below, all points of the suite in one validator run.
-      const std::string frag =
-          render::glsl_version_line("450") + glsl + "\n" + render::glsl_fragment_main(p, "shade");
-      const std::string base = (work / (std::string(name) + "_" + label)).string();
-      std::ofstream(base + ".frag") << frag;
-      EXPECT_EQ(std::system(
-                    (std::string(GLSLANG_VALIDATOR) + " -l -S frag " + base + ".frag > " + base + ".log 2>&1")
-                        .c_str()),
-                0)
-          << read(base + ".log");
-      std::ofstream(base + "_es.frag") << render::glsl_version_line("320 es") << glsl << "\n"
-                                       << render::glsl_fragment_main(p, "shade");
-      es_files += " " + base + "_es.frag";
+      const std::string frag = validate((work / (std::string(name) + "_" + label)).string(), glsl, p);
       if (ctx) {
         // Unsmoothed nodes evaluate discontinuities and large sin arguments plainly: there a float
         // rounding flips a few values (runtime_glsl_exec_test allows 1/33 over 1e-3 for "none";
