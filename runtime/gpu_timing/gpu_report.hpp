@@ -9,7 +9,9 @@
 namespace bl::gpu_timing {
 
 struct ProgramTime {
-  std::string label, kind;  // kind: "baseline" (plain, msaaN, uniform rules) or "front"
+  // kind: "baseline" (plain, msaaN, uniform rules), "front", or "lod" (bltune's footprint-LOD pair of
+  // two front programs chosen per fragment by its footprint, tuner/lod.hpp; at most one per scene)
+  std::string label, kind;
   int msaa = 0;             // samples per fragment (0: one evaluation)
   double error = 0;         // RMS vs truth as bltune measured it (CPU); may be +inf (infeasible)
   double compiled_ns = -1;  // bltune's compiled-C++ ns per pixel (< 0: not measured)
@@ -28,10 +30,13 @@ struct SceneTimes {
 struct SceneSummary {
   double plain_ns = -1, msaa16_ns = -1, gaussian_ns = -1;  // GPU ns per pixel
   double msaa16_error = -1;
-  std::string gpu_label;         // fastest front point on the GPU with error <= MSAA-16's ("" = none)
+  std::string gpu_label;  // fastest front point on the GPU with error <= MSAA-16's ("" = none)
   double gpu_ns = -1, gpu_speedup = -1;
-  std::string cpu_label;         // the same by bltune's compiled-C++ time
+  std::string cpu_label;  // the same by bltune's compiled-C++ time
   double cpu_speedup = -1;
+  // The footprint-LOD pair (kind "lod") when it reaches MSAA-16's error: its GPU ns per pixel and
+  // MSAA-16's time over its time on each clock (< 0: no pair, not timed, or not at that error).
+  double lod_ns = -1, lod_gpu_speedup = -1, lod_cpu_speedup = -1;
   double max_compile_ms = -1;
   int failures = 0;
 };

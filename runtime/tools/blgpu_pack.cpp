@@ -3,7 +3,8 @@
 // docs/gpu_timing.md). For each scene directory of a `bltune --suite` output: every front point's
 // smoothed shader, the plain shader, MSAA-n of it (n samples per fragment) and the uniform rules,
 // each as a complete fragment shader; the image is tiled so one draw fills a GPU with exactly the
-// scene's per-pixel work. manifest.json holds the uniforms of the scene's first frame and, per
+// scene's per-pixel work; the footprint-LOD pair (result.json "lod") as one more shader, lod.frag.
+// manifest.json holds the uniforms of the scene's first frame and, per
 // program, the error and compiled-C++ time bltune measured (the timing tool only adds GPU times).
 //
 //   blgpu_pack --suite docs/tuning/suite --scenes scenes/suite --out build/gpu_pack [--tile 10]
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "compiler/emit.hpp"
 #include "compiler/lower.hpp"
 #include "compiler/schedule_csv.hpp"
 #include "compiler/schedule_text.hpp"
@@ -77,10 +79,12 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
                 const fs::path& out, int tile, const Selection& sel) {
   const json result = read_json(result_dir / "result.json");
   const std::string name = result.at("scene").get<std::string>();
-  const fs::path scene_file = scene_override.empty() ? scenes_dir / (name + ".json") : fs::path(scene_override);
+  const fs::path scene_file =
+      scene_override.empty() ? scenes_dir / (name + ".json") : fs::path(scene_override);
   const scene::Scene s = scene::load_scene(scene_file.string());
   if (!s.texture_files.empty())
-    throw std::invalid_argument(scene_file.string() + ": textured scenes are not packed (no sampler uniforms)");
+    throw std::invalid_argument(scene_file.string() +
+                                ": textured scenes are not packed (no sampler uniforms)");
   const ir::Graph g = shaders::trace(s.shader_def(), s.effects());
   if (compiler::graph_hash_text(g) != result.at("graph_hash").get<std::string>())
     throw std::invalid_argument((result_dir / "result.json").string() + ": tuned for graph " +
@@ -93,7 +97,8 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
     const std::string label = row.at("label").get<std::string>();
     const int msaa = row.at("msaa").get<int>();
     // MSAA rows are the plain schedule run with n samples per fragment.
-    const compiler::Schedule sched = compiler::load_schedule(csv + ":" + (msaa > 0 ? "plain" : label), g).schedule;
+    const compiler::Schedule sched =
+        compiler::load_schedule(csv + ":" + (msaa > 0 ? "plain" : label), g).schedule;
     const compiler::Program p = compiler::lower(g, sched);
     render::FragmentOptions fo;
     fo.samples = msaa;
@@ -113,7 +118,8 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
   for (const json& b : result.at("baselines")) {
     if (b.at("msaa").get<int>() == 16) msaa16_error = b.at("error").get<double>();
     const std::string label = b.at("label");
-    if (sel.baselines.empty() || std::find(sel.baselines.begin(), sel.baselines.end(), label) != sel.baselines.end())
+    if (sel.baselines.empty() ||
+        std::find(sel.baselines.begin(), sel.baselines.end(), label) != sel.baselines.end())
       add(b, "baseline");
   }
   std::vector<json> fronts;
@@ -127,22 +133,50 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
     if (static_cast<int>(fronts.size()) > sel.fronts) fronts.resize(sel.fronts);
   }
   for (const json& f : fronts) add(f, "front");
+  // The footprint-LOD pair (bltune's result.json "lod": two front schedules and the footprint limit),
+  // as the fragment a renderer would run: both functions and the dispatcher of compiler::emit_glsl_lod.
+  if (const auto it = result.find("lod"); it != result.end() && !it->is_null()) {
+    const json& l = *it;
+    const std::string where = (result_dir / "result.json").string() + ": lod.";
+    const compiler::Program near = compiler::lower(
+        g, compiler::parse_schedule(g, l.at("near_schedule").get<std::string>(), where + "near_schedule"));
+    const compiler::Program far = compiler::lower(
+        g, compiler::parse_schedule(g, l.at("far_schedule").get<std::string>(), where + "far_schedule"));
+    const float limit = l.at("limit").get<float>();
+    render::FragmentOptions fo;
+    fo.tiled = true;
+    const std::string frag = name + "/lod.frag";
+    write_file(out / frag, render::glsl_version_line("450") +
+                               compiler::emit_glsl_lod(near, far, limit, "bl_shade",
+                                                       "scene " + name + ": footprint LOD " +
+                                                           l.at("near").get<std::string>() + " + " +
+                                                           l.at("far").get<std::string>()) +
+                               "\n" + render::glsl_fragment_main(near, "bl_shade", fo));
+    programs.push_back({{"label", "lod"},
+                        {"kind", "lod"},
+                        {"msaa", 0},
+                        {"error", l.at("error")},
+                        {"compiled_ns", l.value("compiled_ns", -1.0)},
+                        {"model_ns", l.value("model_ns", -1.0)},
+                        {"mix", json::object()},
+                        {"near", l.at("near")},
+                        {"far", l.at("far")},
+                        {"limit", limit},
+                        {"frag", frag}});
+  }
   json uniforms = json::array();
   for (const gl::Uniform& u : render::glsl_frame_uniforms(s, render::frames(s).front()))
     uniforms.push_back(uniform_json(u));
-  return {{"scene", name},
-          {"scene_width", s.width},
-          {"scene_height", s.height},
-          {"width", s.width * tile},
-          {"height", s.height * tile},
-          {"uniforms", uniforms},
+  return {{"scene", name},           {"scene_width", s.width},    {"scene_height", s.height},
+          {"width", s.width * tile}, {"height", s.height * tile}, {"uniforms", uniforms},
           {"programs", programs}};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"blgpu_pack: a tuned suite's GLSL (fronts, plain, MSAA-n, uniform rules) packed for blgpu_time"};
+  CLI::App app{
+      "blgpu_pack: a tuned suite's GLSL (fronts, plain, MSAA-n, uniform rules) packed for blgpu_time"};
   std::string suite = "docs/tuning/suite", scenes = "scenes/suite", scene_file, out, only;
   int tile = 10;
   Selection sel;
@@ -159,8 +193,9 @@ int main(int argc, char** argv) {
   app.add_option("--only", only, "pack only scenes whose name contains this");
   app.add_option("--baselines", sel.baselines, "pack only these baselines (plain, msaa16, gaussian, ...)")
       ->delimiter(',');
-  app.add_option("--fronts", sel.fronts,
-                 "pack only the N fastest front points (compiled C++) at MSAA-16's error (default: every point)");
+  app.add_option(
+      "--fronts", sel.fronts,
+      "pack only the N fastest front points (compiled C++) at MSAA-16's error (default: every point)");
   CLI11_PARSE(app, argc, argv);
   try {
     std::vector<fs::path> dirs;
@@ -171,11 +206,13 @@ int main(int argc, char** argv) {
       if (!scene_file.empty())
         throw std::invalid_argument("--scene names one scene, but " + suite + " has no result.json");
       for (const auto& e : fs::directory_iterator(suite))
-        if (fs::exists(e.path() / "result.json") && e.path().filename().string().find(only) != std::string::npos)
+        if (fs::exists(e.path() / "result.json") &&
+            e.path().filename().string().find(only) != std::string::npos)
           dirs.push_back(e.path());
     }
     if (dirs.empty())
-      throw std::invalid_argument(suite + ": no <scene>/result.json" + (only.empty() ? "" : " matching " + only));
+      throw std::invalid_argument(suite + ": no <scene>/result.json" +
+                                  (only.empty() ? "" : " matching " + only));
     std::sort(dirs.begin(), dirs.end());
     fs::create_directories(out);
     json manifest{{"suite", suite}, {"tile", tile}, {"scenes", json::array()}};

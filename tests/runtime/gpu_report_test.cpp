@@ -1,10 +1,10 @@
 // The GPU timing report's conclusions, on a hand-made table (numbers chosen so every answer is
 // worked out by hand below).
+#include "gpu_timing/gpu_report.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "gpu_timing/gpu_report.hpp"
 
 namespace bl::gpu_timing {
 namespace {
@@ -19,12 +19,12 @@ SceneTimes table() {
     t.compile_ms = 10;
     return t;
   };
-  s.programs = {p("plain", "baseline", 0, 0.10, 5, 0.5),       p("msaa16", "baseline", 16, 0.04, 80, 8.0),
-                p("gaussian", "baseline", 0, 0.03, 60, 2.0),   p("front00", "front", 0, 0.10, 5, 0.5),
-                p("front01", "front", 0, 0.05, 10, 0.6),       // misses MSAA-16's error
-                p("front02", "front", 0, 0.04, 20, 1.6),       // reaches it: GPU 8 / 1.6 = 5x, CPU 80 / 20 = 4x
-                p("front03", "front", 0, 0.02, 16, 2.0),       // reaches it, faster on the CPU: 80 / 16 = 5x
-                p("front04", "front", 0, INFINITY, 1, 0.1)};   // infeasible: never picked
+  s.programs = {p("plain", "baseline", 0, 0.10, 5, 0.5),     p("msaa16", "baseline", 16, 0.04, 80, 8.0),
+                p("gaussian", "baseline", 0, 0.03, 60, 2.0), p("front00", "front", 0, 0.10, 5, 0.5),
+                p("front01", "front", 0, 0.05, 10, 0.6),  // misses MSAA-16's error
+                p("front02", "front", 0, 0.04, 20, 1.6),  // reaches it: GPU 8 / 1.6 = 5x, CPU 80 / 20 = 4x
+                p("front03", "front", 0, 0.02, 16, 2.0),  // reaches it, faster on the CPU: 80 / 16 = 5x
+                p("front04", "front", 0, INFINITY, 1, 0.1)};  // infeasible: never picked
   s.programs[6].compile_ms = 250;
   return s;
 }
@@ -51,7 +51,8 @@ TEST(GpuReport, AFailedProgramIsCountedAndNeverPicked) {
   EXPECT_EQ(r.gpu_label, "front03");
   EXPECT_DOUBLE_EQ(r.gpu_speedup, 4.0);
   const std::string md = report_markdown({s}, "toy GPU", 10);
-  EXPECT_NE(md.find("| toy | 0.500 | 8.000 (16.0x) | 2.000 (4.0x) | front03 | 2.000 | 4.0x | 5.0x | 250 | 1 |"),
+  EXPECT_NE(md.find("| toy | 0.500 | 8.000 (16.0x) | 2.000 (4.0x) | front03 | 2.000 | 4.0x | 5.0x | - | - / "
+                    "- | 250 | 1 |"),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("1 program(s) failed"), std::string::npos);
@@ -65,6 +66,34 @@ TEST(GpuReport, NotReachedWhenNoFrontPointIsAsAccurate) {
   EXPECT_TRUE(r.gpu_label.empty());
   EXPECT_LT(r.gpu_speedup, 0);
   EXPECT_NE(report_markdown({s}, "toy GPU", 10).find("not reached"), std::string::npos);
+}
+
+// A footprint-LOD pair (kind "lod") is reported beside the single points, never picked as one, and
+// counted at >= 10x where it is faster than the best single point on that clock.
+TEST(GpuReport, TheLodPairIsReportedBesideTheFrontAndCountedWhereFaster) {
+  SceneTimes s = table();
+  ProgramTime lod;
+  lod.label = "lod", lod.kind = "lod", lod.error = 0.035, lod.compiled_ns = 7, lod.gpu_ms = 0.5;
+  s.programs.push_back(lod);  // GPU 8 / 0.5 = 16x, CPU 80 / 7 = 11.4x
+  const SceneSummary r = summarize(s);
+  EXPECT_EQ(r.gpu_label, "front02");  // the single points' pick is unchanged
+  EXPECT_DOUBLE_EQ(r.lod_ns, 0.5);
+  EXPECT_DOUBLE_EQ(r.lod_gpu_speedup, 16.0);
+  EXPECT_NEAR(r.lod_cpu_speedup, 80.0 / 7, 1e-12);
+  const std::string md = report_markdown({s}, "toy GPU", 10);
+  EXPECT_NE(md.find("| front02 | 1.600 | 5.0x | 5.0x | 0.500 | 16.0x / 11.4x | 250 | 0 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("speed-up at that error >= 10x on 0 (GPU) / 0 (CPU compiled)"), std::string::npos) << md;
+  EXPECT_NE(md.find("(1 scene(s) have one at MSAA-16's error): >= 10x on 1 (GPU) / 1 (CPU compiled)"),
+            std::string::npos)
+      << md;
+  // Less accurate than MSAA-16: no pair.
+  s.programs.back().error = 0.05;
+  const SceneSummary worse = summarize(s);
+  EXPECT_LT(worse.lod_ns, 0);
+  EXPECT_LT(worse.lod_gpu_speedup, 0);
+  EXPECT_LT(worse.lod_cpu_speedup, 0);
+  EXPECT_EQ(report_markdown({s}, "toy GPU", 10).find("With the footprint-LOD pair"), std::string::npos);
 }
 
 }  // namespace

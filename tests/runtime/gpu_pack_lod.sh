@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# blgpu_pack packs bltune's footprint-LOD pair (result.json "lod") as <scene>/lod.frag beside the
+# front points, and blgpu_time compiles, draws and reports it beside the single points (here on
+# whatever GL driver there is: llvmpipe in CI). The scene is the record's first with a pair.
+set -euo pipefail
+blgpu_pack=$1 blgpu_time=$2 root=$3 work=$4
+rm -rf "$work"
+mkdir -p "$work"
+scene=""
+for r in "$root"/docs/tuning/suite/*/result.json; do
+  if grep -q '"near_schedule"' "$r"; then
+    scene=$(basename "$(dirname "$r")")
+    break
+  fi
+done
+[ -n "$scene" ] || { echo "no scene of docs/tuning/suite has a footprint-LOD pair"; exit 1; }
+"$blgpu_pack" --suite "$root/docs/tuning/suite" --scenes "$root/scenes/suite" --only "$scene" --tile 1 \
+  --fronts 1 --baselines plain,msaa16 --out "$work/pack" > "$work/pack.log" 2>&1 || { cat "$work/pack.log"; exit 1; }
+# plain, MSAA-16, the fastest front point at MSAA-16's error and the pair.
+grep -q "1 scenes, 4 fragment shaders" "$work/pack.log" || { cat "$work/pack.log"; exit 1; }
+grep -q '"kind": "lod"' "$work/pack/manifest.json" || { echo "manifest.json has no lod entry"; exit 1; }
+for f in "void bl_shade_near(" "void bl_shade_far(" "void bl_shade(" "void main()"; do
+  grep -qF "$f" "$work/pack/$scene/lod.frag" || { echo "lod.frag lacks '$f'"; exit 1; }
+done
+"$blgpu_time" "$work/pack" --out "$work/gpu" --budget-ms 2 > "$work/gpu.log" 2> "$work/gpu.err" ||
+  { cat "$work/gpu.err"; exit 1; }
+report="$work/gpu/report.md"
+grep -q "0 program(s) failed" "$report" || { cat "$report"; exit 1; }
+# The pair's column (the 10th field of the scene's row) holds a time, the next its speed-ups.
+row=$(grep "^| $scene |" "$report") || { cat "$report"; exit 1; }
+echo "$row" | awk -F'|' '{ if ($10 !~ /^ [0-9]+\.[0-9]+ $/ || $11 !~ /x \/ [0-9.]+x/) exit 1 }' ||
+  { echo "no timed pair in: $row"; exit 1; }
+grep -q "^With the footprint-LOD pair where it is faster (1 scene(s)" "$report" || { cat "$report"; exit 1; }
+echo ok
