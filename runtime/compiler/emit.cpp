@@ -121,9 +121,9 @@ std::string float_literal_glsl(float v) {
   return digits(v);
 }
 
-std::string emit_cpp(const Program& p, const std::string& name, const std::string& comment) {
+std::string emit_cpp(const Program& p, const std::string& name, const std::string& comment, CppForm form) {
   std::ostringstream os;
-  os << banner(p, comment) << "#pragma once\n\n#include <cmath>\n\n";
+  os << banner(p, comment) << (form == CppForm::Header ? "#pragma once\n" : "") << "\n#include <cmath>\n\n";
   std::set<std::string> headers{"bandlimit/table.hpp"};
   for (int f : p.used_functions()) headers.insert(header_of(functions()[f].cpp));
   for (const auto& h : headers) os << "#include <" << h << ">\n";
@@ -219,15 +219,12 @@ std::string emit_glsl_lod(const Program& near, const Program& far, float limit, 
 }
 
 std::string emit_cpp_lod(const Program& near, const Program& far, float limit, const std::string& name,
-                         const std::string& comment) {
+                         const std::string& comment, CppForm form) {
   const auto [u, v] = lod_slots(near, far, limit, "emit_cpp_lod");
-  std::string far_text = emit_cpp(far, name + "_far", comment);
-  const std::string once = "#pragma once\n";
-  if (const auto at = far_text.find(once); at != std::string::npos) far_text.erase(at, once.size());
   const bool tex = near.uses_textures();
   std::ostringstream os;
-  os << emit_cpp(near, name + "_near", comment) << "\n"
-     << far_text << "\nnamespace bl_shaders {\n\n"
+  os << emit_cpp(near, name + "_near", comment, form) << "\n"
+     << emit_cpp(far, name + "_far", comment, CppForm::Source) << "\nnamespace bl_shaders {\n\n"
      << "// Footprint LOD: " << name << "_near where max(sd of u, sd of v) < " << float_literal_cpp(limit)
      << ", " << name << "_far elsewhere.\n"
      << "inline void " << name

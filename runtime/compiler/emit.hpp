@@ -13,7 +13,11 @@ namespace bl::compiler {
 // in namespace bl_shaders (bl_m/bl_s: per-input mean and sd; bl_gx/bl_gy: per-input screen
 // gradient, unused unless the program needs gradients; bl_out: the outputs). It includes only the
 // generated headers whose functions it calls. `comment` goes in the banner.
-std::string emit_cpp(const Program& p, const std::string& name, const std::string& comment = "");
+// Header: it starts with #pragma once (a file to include); Source: without it (the start of a
+// translation unit, as bl::jit compiles it with its pixel loop).
+enum class CppForm { Header, Source };
+std::string emit_cpp(const Program& p, const std::string& name, const std::string& comment = "",
+                     CppForm form = CppForm::Header);
 
 // A footprint-LOD pair (tuner/lod.hpp) as one C++ header: emit_cpp of each as <name>_near and
 // <name>_far, and <name> with the same signature, which runs the near one where the pixel's footprint,
@@ -21,7 +25,7 @@ std::string emit_cpp(const Program& p, const std::string& name, const std::strin
 // Throws std::invalid_argument when the programs differ in inputs, outputs or textures, an input u or
 // v is missing, or the limit is not a finite number >= 0.
 std::string emit_cpp_lod(const Program& near, const Program& far, float limit, const std::string& name,
-                         const std::string& comment = "");
+                         const std::string& comment = "", CppForm form = CppForm::Header);
 
 // GLSL: the generated library functions the program calls (and what they call, nothing else),
 // then

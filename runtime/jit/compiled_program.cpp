@@ -11,13 +11,6 @@ namespace bl::jit {
 
 namespace {
 
-// An emitted header as the start of a translation unit: without its #pragma once.
-std::string without_pragma_once(std::string header) {
-  const std::string once = "#pragma once\n";
-  if (const auto at = header.find(once); at != std::string::npos) header.erase(at, once.size());
-  return header;
-}
-
 // The shader call with this pixel's gathered inputs (im, is, igx, igy) into o.
 std::string call(const compiler::Program& p, const std::string& name) {
   return "bl_shaders::" + name + "(im, is, igx, igy, o" +
@@ -48,12 +41,12 @@ std::string batch_loop(const compiler::Program& p, bool gradients, const std::st
 }  // namespace
 
 std::string batch_source(const compiler::Program& p) {
-  return without_pragma_once(compiler::emit_cpp(p, "shade", "compiled by bl::jit")) + "\n" +
+  return compiler::emit_cpp(p, "shade", "compiled by bl::jit", compiler::CppForm::Source) + "\n" +
          batch_loop(p, p.uses_gradients(), "    " + call(p, "shade") + "\n");
 }
 
 std::string lod_batch_source(const compiler::Program& near, const compiler::Program& far, float limit) {
-  return without_pragma_once(compiler::emit_cpp_lod(near, far, limit, "shade", "compiled by bl::jit")) +
+  return compiler::emit_cpp_lod(near, far, limit, "shade", "compiled by bl::jit", compiler::CppForm::Source) +
          "\n" +
          batch_loop(near, near.uses_gradients() || far.uses_gradients(), "    " + call(near, "shade") + "\n");
 }
