@@ -39,6 +39,10 @@ std::string model_digest(const CostModel& cm) {  // recalibration invalidates ch
 SceneTuner::SceneTuner(const scene::Scene& s, const CostModel& cm, const TuneOptions& opt)
     : scene_(s), graph_(shaders::trace(s.shader_def(), s.effects())), cm_(cm), opt_(opt) {
   sample_ = std::make_unique<PixelSample>(s, graph_, opt.cache_dir, opt.sample_pixels, opt.sample_seed);
+  // The programs the argument profiles are read from, lowered once (finalize prices a footprint LOD's
+  // programs over up to ~100 pixel subsets).
+  profile_plain_ = lower_plain();
+  profile_gaussian_ = lower(compiler::uniform_schedule(graph_, rules::parse_rule("gaussian")));
   // Banded function costs follow this scene's argument magnitudes (observed on the plain program).
   cm_ = cost_model_over(*sample_);
   problem_.graph = &graph_;
@@ -58,9 +62,8 @@ CostModel SceneTuner::cost_model_over(const PixelSample& sample) const {
   CostModel m = cm_;
   m.band_share.clear();
   m.joint_share.clear();
-  if (const auto plain = lower_plain()) m.band_share = magnitude_profile(*plain, sample);
-  if (const auto smoothed = lower(compiler::uniform_schedule(graph_, rules::parse_rule("gaussian"))))
-    m.joint_share = joint_profile(*smoothed, sample);
+  if (profile_plain_) m.band_share = magnitude_profile(*profile_plain_, sample);
+  if (profile_gaussian_) m.joint_share = joint_profile(*profile_gaussian_, sample);
   return m;
 }
 

@@ -72,6 +72,9 @@ class SceneTuner {
   CostModel cm_;
   TuneOptions opt_;
   std::unique_ptr<PixelSample> sample_;
+  // The plain and all-Gaussian programs (nullptr where lowering lacks a function): cost_model_over's
+  // argument profiles (band_share, joint_share) come from them.
+  std::unique_ptr<compiler::Program> profile_plain_, profile_gaussian_;
   mutable std::once_flag full_once_;
   mutable std::unique_ptr<PixelSample> full_;
   mutable std::atomic<long> nonfinite_{0};
