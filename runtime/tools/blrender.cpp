@@ -17,6 +17,7 @@
 #include "compiler/emit.hpp"
 #include "compiler/lower.hpp"
 #include "compiler/schedule_csv.hpp"
+#include "compiler/supersample.hpp"
 #include "gl/egl_runner.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
@@ -56,6 +57,12 @@ int main(int argc, char** argv) {
                  "a tuned schedule instead of --rules: FRONT.csv:LABEL (bltune's front.csv, e.g. front02)")
       ->excludes(rules_opt);
   app.add_option("--msaa", msaa, "MSAA sample counts to render");
+  std::vector<int> supersample;
+  app.add_option(
+         "--supersample", supersample,
+         "sample counts of supersampling in the shader with a fixed stratified pattern (ssN: the plain "
+         "program at N offsets along the screen gradients, compiler/supersample.hpp)")
+      ->check(CLI::Range(1, 256));
   app.add_option("--out", out_dir, "output directory (PNG images, heatmaps, report.md, compiled shader)");
   app.add_option("--cache", cache_dir, "ground-truth cache directory (EXR); empty disables");
   app.add_flag("--glsl", glsl, "also render the emitted GLSL on the headless OpenGL driver and compare");
@@ -91,6 +98,14 @@ int main(int argc, char** argv) {
                    "blrender: compiled-code timing unavailable, images and times from the evaluator:\n%s\n",
                    e.what());
     }
+    // Stratified supersampling in the shader (ssN), compiled like the other programs.
+    std::vector<compiler::Program> ss_programs;
+    std::vector<std::unique_ptr<jit::CompiledProgram>> ss_compiled;
+    for (int n : supersample) {
+      ss_programs.push_back(compiler::supersample(plain, compiler::supersample_offsets(n, s.sigma_px)));
+      ss_compiled.push_back(jit_error.empty() ? std::make_unique<jit::CompiledProgram>(ss_programs.back(), jo)
+                                              : nullptr);
+    }
     std::ofstream report(out_dir + "/report.md");
     report
         << "# " << s.name << " (" << s.shader << ")\n\nDAG nodes: " << g.size() << ", lowered instructions ("
@@ -100,7 +115,8 @@ int main(int argc, char** argv) {
            "of "
         << trials << " trials: *compiled* = the emitted C++ (`shader.hpp`) built with -O3 at run time; "
         << "*evaluator* = the batch evaluator on the same inputs. MSAA n runs the plain program n times per "
-           "pixel at counter-based Gaussian-jittered positions. ns/px counts all samples of a pixel.\n\n"
+           "pixel at counter-based Gaussian-jittered positions; ssN runs it at N fixed stratified offsets "
+           "inside one shader call (compiler/supersample.hpp). ns/px counts all samples of a pixel.\n\n"
         << "RMS and PSNR on the unclamped display curve (values outside [0, 1] count with their distance, a "
            "NaN/inf channel as 1); NaN px / range px: pixels with a NaN or infinite channel / with a channel "
            "outside [0, 1] widened to the ground truth's range; min / max: the finite values (all "
@@ -176,6 +192,8 @@ int main(int argc, char** argv) {
       };
       variant("plain", plain, cplain.get(), 0);
       for (int n : msaa) variant("msaa" + std::to_string(n), plain, cplain.get(), n);
+      for (std::size_t k = 0; k < supersample.size(); ++k)
+        variant("ss" + std::to_string(supersample[k]), ss_programs[k], ss_compiled[k].get(), 0);
       const Image img = variant(rules_text, prog, cprog.get(), 0);
       if (ctx) {
         Image gimg;
