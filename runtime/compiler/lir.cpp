@@ -45,6 +45,16 @@ bool Program::uses_gradients() const {
   return false;
 }
 
+Program Program::interface_only() const {
+  Program out;
+  out.input_count = input_count;
+  out.input_names = input_names;
+  out.output_names = output_names;
+  out.texture_names = texture_names;
+  out.notes = notes;
+  return out;
+}
+
 std::vector<int> Program::used_functions() const {
   std::set<int> s;
   for (const Inst& in : insts)
@@ -272,12 +282,7 @@ Program optimize(const Program& p, const OptimizeOptions& opt) {
   for (int i = static_cast<int>(unique.size()) - 1; i >= 0; --i)
     if (live[i])
       for (int j = 0; j < lop_arity(unique[i]); ++j) live[unique[i].arg[j]] = 1;
-  Program out;
-  out.input_count = p.input_count;
-  out.input_names = p.input_names;
-  out.texture_names = p.texture_names;
-  out.output_names = p.output_names;
-  out.notes = p.notes;
+  Program out = p.interface_only();
   std::vector<int> pos(unique.size(), -1);
   for (std::size_t i = 0; i < unique.size(); ++i) {
     if (!live[i]) continue;

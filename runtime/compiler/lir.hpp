@@ -58,6 +58,9 @@ struct Program {
   std::vector<std::string> notes;          // rule substitutions made while lowering (for reports)
 
   bool uses_gradients() const;
+  // A program with no instructions and this one's interface: inputs, output names, textures, notes
+  // (what a pass that rebuilds the instructions starts from).
+  Program interface_only() const;
   bool uses_textures() const { return !texture_names.empty(); }
   bool pair_valued(int i) const { return insts[i].op == LOp::CallStat || insts[i].op == LOp::TexStat; }
   std::vector<int> used_functions() const;  // sorted indices into functions()

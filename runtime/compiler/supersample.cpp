@@ -47,12 +47,7 @@ Program supersample(const Program& plain, const std::vector<std::array<float, 2>
     if (in.op == LOp::InSd || in.op == LOp::InGradX || in.op == LOp::InGradY || in.op == LOp::CallStat ||
         in.op == LOp::TexStat)
       throw std::invalid_argument("supersample: the program is not plain (it reads sds, gradients or stats)");
-  Program out;
-  out.input_count = plain.input_count;
-  out.input_names = plain.input_names;
-  out.output_names = plain.output_names;
-  out.texture_names = plain.texture_names;
-  out.notes = plain.notes;
+  Program out = plain.interface_only();
   out.notes.push_back("supersampled: the plain program at " + std::to_string(offsets.size()) +
                       " offsets of the pixel, outputs averaged");
   auto emit = [&](const Inst& in) {
