@@ -85,7 +85,8 @@ LoadedSchedule load_schedule(const std::string& spec, const ir::Graph& g) {
       r.schedule = uniform_schedule(g, rules::parse_rule(r.text.substr(4)));
     } else if (f[c_kind] == "baseline" && r.text.rfind("plain x ", 0) == 0) {
       throw std::invalid_argument(where + " (" + r.label +
-                                  "): an MSAA baseline is not a schedule (render it with --msaa)");
+                                  "): a supersampling baseline is not a schedule (render it with blrender "
+                                  "--msaa N, or --supersample N for the stratified ssN)");
     } else {
       r.schedule = parse_schedule(g, r.text, where + " (" + r.label + ")");
     }

@@ -21,6 +21,7 @@
 #include "compiler/lower.hpp"
 #include "compiler/schedule_csv.hpp"
 #include "compiler/schedule_text.hpp"
+#include "compiler/supersample.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
 #include "scene/scene.hpp"
@@ -95,11 +96,14 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
   json programs = json::array();
   auto add = [&](const json& row, const std::string& kind) {
     const std::string label = row.at("label").get<std::string>();
-    const int msaa = row.at("msaa").get<int>();
-    // MSAA rows are the plain schedule run with n samples per fragment.
+    const int msaa = row.at("msaa").get<int>(), ss = row.value("supersample", 0);
+    // MSAA rows are the plain schedule run with n samples per fragment; ssN rows the plain program
+    // supersampled in the shader (compiler/supersample.hpp).
     const compiler::Schedule sched =
-        compiler::load_schedule(csv + ":" + (msaa > 0 ? "plain" : label), g).schedule;
-    const compiler::Program p = compiler::lower(g, sched);
+        compiler::load_schedule(csv + ":" + (msaa > 0 || ss > 0 ? "plain" : label), g).schedule;
+    const compiler::Program p = ss > 0 ? compiler::supersample(compiler::lower(g, sched),
+                                                               compiler::supersample_offsets(ss, s.sigma_px))
+                                       : compiler::lower(g, sched);
     render::FragmentOptions fo;
     fo.samples = msaa;
     fo.tiled = true;

@@ -9,6 +9,7 @@
 
 #include "compiler/lower.hpp"
 #include "compiler/schedule_text.hpp"
+#include "compiler/supersample.hpp"
 #include "gl/egl_runner.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
@@ -312,6 +313,22 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     set_error(m, std::sqrt(sq / frames.size()));
     measure(t, *t.lower_plain(), gl, &m, n, plain.eval_ms);
     m.glsl_ms = plain.glsl_ms >= 0 ? n * plain.glsl_ms : -1;
+    m.mix["none"] = 1;
+    res.baselines.push_back(m);
+  }
+  // Stratified supersampling in the shader (compiler/supersample.hpp): a fixed pattern, as GPU MSAA
+  // places its samples; 8 of them reach MSAA-16's error on every suite scene (docs/tuning.md, stop 34).
+  for (int n : kSupersampleBaselines) {
+    const compiler::Program ss =
+        compiler::supersample(*t.lower_plain(), compiler::supersample_offsets(n, s.sigma_px));
+    Measured m;
+    m.label = "ss" + std::to_string(n);
+    m.schedule = "plain x " + std::to_string(n) + " stratified samples in the shader";
+    m.supersample = n;
+    m.model_ns = t.cost_model().cost(ss);
+    m.search_error = std::numeric_limits<double>::quiet_NaN();
+    set_score(m, t.full_score(ss));
+    measure(t, ss, gl, &m);
     m.mix["none"] = 1;
     res.baselines.push_back(m);
   }

@@ -16,8 +16,12 @@ namespace bl::tuner {
 
 struct Measured {
   std::string label;
-  std::string schedule;     // compiler::schedule_to_text; "all RULE" or "plain x N ..." for baselines
-  int msaa = 0;             // MSAA sample count (baselines), 0 otherwise
+  std::string schedule;  // compiler::schedule_to_text; "all RULE" or "plain x N ..." for baselines
+  int msaa = 0;          // MSAA sample count (baselines), 0 otherwise
+  // ssN baselines: N, the plain program at N fixed stratified offsets inside the shader
+  // (compiler/supersample.hpp); 0 otherwise. The model cannot price them (it overlaps the samples'
+  // chains, which compiled per-pixel code does not): compare their compiled times.
+  int supersample = 0;
   double model_ns = 0;      // cost model, ns per pixel
   double search_error = 0;  // on the pixel sample (front points; NaN for baselines)
   double error = 0;         // RMS display (display_error), every pixel of every frame
@@ -60,6 +64,9 @@ struct SceneResult {
   std::string anchor_breakdown;
   std::optional<LodResult> lod;  // none: no pair beats the single points at MSAA-16's error
 };
+
+// The stratified supersampling baselines (ssN) finalize measures beside MSAA-N.
+constexpr int kSupersampleBaselines[] = {4, 8, 16};
 
 struct FinalizeOptions {
   bool glsl = false;    // time the GLSL when a driver exists (opt-in: llvmpipe compiles take minutes)

@@ -56,7 +56,7 @@ ModelAccuracy model_accuracy(const SceneResult& r) {
   ModelAccuracy a;
   for (const auto* list : {&r.front, &r.baselines})
     for (const Measured& m : *list)
-      if (m.compiled_ns > 0 && m.model_ns > 0) {
+      if (m.compiled_ns > 0 && m.model_ns > 0 && m.supersample == 0) {  // ssN: not priceable (finalize.hpp)
         const double ratio = m.model_ns / m.compiled_ns;
         e.push_back(std::fabs(ratio - 1));
         if (e.back() > kModelTolerance) a.outside.push_back(m.label + " (" + fmt("%.2f", ratio) + ")");
@@ -131,6 +131,27 @@ LodSpeedup lod_speedup16(const SceneResult& r) {
   return s;
 }
 
+StratifiedSpeedup stratified_speedup16(const SceneResult& r) {
+  StratifiedSpeedup out;
+  const Speedup s16 = speedup16(r);
+  if (s16.msaa != 16) return out;
+  double ours = s16.front_index >= 0 ? r.front[s16.front_index].compiled_ns : -1;
+  if (r.lod && r.lod->compiled_ns > 0 && r.lod->error <= s16.msaa_error &&
+      (ours <= 0 || r.lod->compiled_ns < ours))
+    ours = r.lod->compiled_ns;
+  const Measured* ss = nullptr;
+  for (const Measured& b : r.baselines)
+    if (b.supersample > 0 && b.error <= s16.msaa_error && b.compiled_ns > 0 &&
+        (ss == nullptr || b.compiled_ns < ss->compiled_ns))
+      ss = &b;
+  if (ss == nullptr || !(ours > 0)) return out;
+  out.label = ss->label;
+  out.ss_ns = ss->compiled_ns;
+  out.ours_ns = ours;
+  out.measured = ss->compiled_ns / ours;
+  return out;
+}
+
 TenfoldGap tenfold_gap(const SceneResult& r, double factor) {
   return tenfold_gap(r, speedup16(r), factor);
 }
@@ -163,6 +184,7 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
     << "front(c) = strcol(1) eq 'front' ? column(c) : NaN\n"
     << "lab(name, c) = strcol(2) eq name ? column(c) : NaN\n"
     << "msaa(c) = strcol(2)[1:4] eq 'msaa' ? column(c) : NaN\n"
+    << "ss(c) = strcol(1) eq 'baseline' && strcol(2)[1:2] eq 'ss' ? column(c) : NaN\n"
     << "set multiplot layout 1,2 title '" << r.scene
     << ": Pareto front vs MSAA, plain, all-Dorn, all-Gaussian'\n";
   for (int panel = 0; panel < 2; ++panel) {
@@ -175,7 +197,14 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
       << "'\n"
       << "plot f every ::1 u (front(" << c << ")):(front(8)) w lp pt 7 lc rgb '#d62728' t 'tuned front', \\\n"
       << "  '' every ::1 u (msaa(" << c << ")):(msaa(8)) w lp pt 5 lc rgb '#1f77b4' t 'MSAA 2..32', \\\n"
-      << "  '' every ::1 u (msaa(" << c << ")):(msaa(8)):2 w labels offset 0,1 notitle, \\\n"
+      << "  '' every ::1 u (msaa(" << c
+      << ")):(msaa(8)):2 w labels offset 0,1 notitle, \\\n"
+      // ssN on the measured panel only: the model cannot price it (finalize.hpp).
+      << (panel == 1 ? "  '' every ::1 u (ss(" + std::to_string(c) +
+                           ")):(ss(8)) w lp pt 4 lc rgb '#17becf' t 'stratified ss4..16', \\\n"
+                           "  '' every ::1 u (ss(" +
+                           std::to_string(c) + ")):(ss(8)):2 w labels offset 0,-1 notitle, \\\n"
+                     : std::string())
       << "  '' every ::1 u (lab('plain'," << c
       << ")):(lab('plain',8)) w p pt 9 ps 1.5 lc rgb '#000000' t 'plain', \\\n"
       << "  '' every ::1 u (lab('dorn'," << c
@@ -252,6 +281,17 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
     else
       md << r.front[s.front_index].label << " | " << fmt("%.1fx", s.model) << " | "
          << fmt("%.1fx", s.measured) << (s.compiled ? " compiled" : " evaluator") << " |\n";
+  }
+  {
+    const StratifiedSpeedup st = stratified_speedup16(r);
+    md << "\nStratified supersampling in the shader (ssN: the plain program at N fixed offsets, "
+          "compiler/supersample.hpp; compiled times only, the model cannot price it): ";
+    if (st.label.empty())
+      md << "no ssN baseline reaches MSAA-16's error, or a time is missing.\n";
+    else
+      md << "the cheapest at MSAA-16's error is " << st.label << " (" << fmt("%.2f", st.ss_ns)
+         << " ns/px compiled); the fastest front point or LOD pair at that error takes "
+         << fmt("%.2f", st.ours_ns) << " ns/px: **" << fmt("%.1fx", st.measured) << "** less time.\n";
   }
   md << "\n## Footprint LOD at MSAA-16's error\n\n"
         "Two front points chosen per pixel by its footprint (the larger of sigma_u and sigma_v): the near "
@@ -356,13 +396,14 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
   csv << "scene,nodes,search_s,finalize_s,front_size,msaa16_error,best_error,speedup16_model,speedup16_"
          "measured,"
          "reaches_10x,model_vs_compiled_median,model_vs_compiled_worst,lod_speedup16_model,lod_speedup16_"
-         "measured,reaches_10x_with_lod\n";
+         "measured,reaches_10x_with_lod,stratified16,speedup16_vs_stratified_measured\n";
   md << "# Tuning summary\n\n| scene | nodes | search s | front | MSAA-16 RMS | best RMS | time at MSAA-16 "
         "error "
         "(model / measured speed-up) | >= 10x | model vs compiled (median / worst) | footprint LOD at "
-        "MSAA-16's error (model / measured) | >= 10x with LOD "
-        "|\n|---|---|---|---|---|---|---|---|---|---|---|\n";
-  int count_single = 0, count_lod = 0;
+        "MSAA-16's error (model / measured) | >= 10x with LOD | vs stratified supersampling at MSAA-16's "
+        "error (measured) "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  int count_single = 0, count_lod = 0, count_ss = 0, with_ss = 0;
   // Beside it, where each scene stands against >= 10x by the model: what to cut, time or error.
   std::ostringstream gaps;
   auto pct = [](double cut) { return cut <= 0 ? std::string("none") : fmt("%.0f%%", 100 * cut); };
@@ -387,11 +428,15 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
        << (r.lod ? r.lod->near + " + " + r.lod->far + ": " + fmt("%.1fx", ls.model) + " / " +
                        (ls.measured > 0 ? fmt("%.1fx", ls.measured) : std::string("-"))
                  : std::string("-"))
-       << " | " << (ten_lod ? "yes" : "no") << " |\n";
+       << " | " << (ten_lod ? "yes" : "no") << " | ";
+    const StratifiedSpeedup st = stratified_speedup16(r);
+    md << (st.label.empty() ? std::string("-") : st.label + ": " + fmt("%.1fx", st.measured)) << " |\n";
+    with_ss += !st.label.empty();
+    count_ss += st.measured >= 10;
     csv << r.scene << "," << r.nodes << "," << r.search_seconds << "," << r.finalize_seconds << ","
         << r.front.size() << "," << s16.msaa_error << "," << best << "," << s16.model << "," << s16.measured
         << "," << (ten ? 1 : 0) << "," << acc.median << "," << acc.worst << "," << ls.model << ","
-        << ls.measured << "," << (ten_lod ? 1 : 0) << "\n";
+        << ls.measured << "," << (ten_lod ? 1 : 0) << "," << st.label << "," << st.measured << "\n";
     const TenfoldGap g = tenfold_gap(r, s16, 10);
     gaps << "| " << r.scene << " | "
          << (g.at_error < 0 ? std::string("none") : r.front[g.at_error].label + fmt(" (%.1fx)", s16.model))
@@ -411,6 +456,11 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
      << count_single << " of " << rs.size()
      << " scenes reach MSAA-16's error at >= 10x less model time with one program; " << count_lod
      << " with a footprint-LOD pair of front points (tuner/lod.hpp) or one program.\n";
+  if (with_ss > 0)
+    md << "\nAgainst the cheapest stratified supersampling in the shader at MSAA-16's error (ssN, a fixed "
+          "pattern as GPU MSAA uses; compiled times): "
+       << count_ss << " of the " << with_ss
+       << " scenes compared at >= 10x less time (one program or the LOD pair).\n";
   md << "\n## What >= 10x (model) at MSAA-16's error still needs\n\n"
         "Either side closes the gap: the model time of the fastest point at MSAA-16's error, or the "
         "error of the most accurate point already at >= 10x less model time (its measured speed-up in "

@@ -24,6 +24,7 @@ json to(const Measured& m) {
   return {{"label", m.label},
           {"schedule", m.schedule},
           {"msaa", m.msaa},
+          {"supersample", m.supersample},
           {"model_ns", num(m.model_ns)},
           {"search_error", num(m.search_error)},
           {"error", num(m.error)},
@@ -43,6 +44,7 @@ Measured from(const json& j) {
   m.label = j.at("label");
   m.schedule = j.at("schedule");
   m.msaa = j.at("msaa");
+  m.supersample = j.value("supersample", 0);  // files before stop 34 have none
   m.model_ns = num(j.at("model_ns"));
   m.search_error = num(j.at("search_error"));
   m.error = num(j.at("error"));
