@@ -84,9 +84,10 @@ LoadedSchedule load_schedule(const std::string& spec, const ir::Graph& g) {
     if (r.text.rfind("all ", 0) == 0) {  // a uniform baseline ("all dorn")
       r.schedule = uniform_schedule(g, rules::parse_rule(r.text.substr(4)));
     } else if (f[c_kind] == "baseline" && r.text.rfind("plain x ", 0) == 0) {
-      throw std::invalid_argument(where + " (" + r.label +
-                                  "): a supersampling baseline is not a schedule (render it with blrender "
-                                  "--msaa N, or --supersample N for the stratified ssN)");
+      throw std::invalid_argument(
+          where + " (" + r.label +
+          "): an MSAA baseline (or a stratified ssN one) is not a schedule (render it "
+          "with blrender --msaa N, or --supersample N)");
     } else {
       r.schedule = parse_schedule(g, r.text, where + " (" + r.label + ")");
     }
