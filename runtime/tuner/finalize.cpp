@@ -291,6 +291,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   };
   uniform("plain", "none");
   const Measured plain = res.baselines.front();
+  const auto plain_program = t.lower_plain();  // what MSAA-N and ssN run
   std::vector<Image> truth, msaa_frame0;
   for (const render::Frame& f : frames) truth.push_back(render::render_truth(s, f, cache));
   for (int n : {2, 4, 8, 16, 32}) {
@@ -311,7 +312,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
       if (fi == 0) msaa_frame0.push_back(img);
     }
     set_error(m, std::sqrt(sq / frames.size()));
-    measure(t, *t.lower_plain(), gl, &m, n, plain.eval_ms);
+    measure(t, *plain_program, gl, &m, n, plain.eval_ms);
     m.glsl_ms = plain.glsl_ms >= 0 ? n * plain.glsl_ms : -1;
     m.mix["none"] = 1;
     res.baselines.push_back(m);
@@ -320,7 +321,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   // places its samples; 8 of them reach MSAA-16's error on every suite scene (docs/tuning.md, stop 34).
   for (int n : kSupersampleBaselines) {
     const compiler::Program ss =
-        compiler::supersample(*t.lower_plain(), compiler::supersample_offsets(n, s.sigma_px));
+        compiler::supersample(*plain_program, compiler::supersample_offsets(n, s.sigma_px));
     Measured m;
     m.label = "ss" + std::to_string(n);
     m.schedule = "plain x " + std::to_string(n) + " stratified samples in the shader";
