@@ -1,5 +1,6 @@
 #include "compiler/schedule_csv.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <stdexcept>
 #include <utility>
@@ -62,6 +63,13 @@ LoadedSchedule load_schedule(const std::string& spec, const ir::Graph& g) {
   const std::vector<std::string> header = csv_fields(line);
   const int c_label = column(header, "label", r.file), c_sched = column(header, "schedule", r.file),
             c_hash = column(header, "graph_hash", r.file), c_kind = column(header, "kind", r.file);
+  // Sample counts of the MSAA-N and ssN baselines (files from stop 35 on; older ones say "plain x N"
+  // in the schedule column instead).
+  auto optional = [&](const char* name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    return it == header.end() ? -1 : static_cast<int>(it - header.begin());
+  };
+  const int c_msaa = optional("msaa"), c_ss = optional("supersample");
   std::string known;
   while (std::getline(in, line)) {
     ++line_no;
@@ -83,7 +91,8 @@ LoadedSchedule load_schedule(const std::string& spec, const ir::Graph& g) {
     r.text = f[c_sched];
     if (r.text.rfind("all ", 0) == 0) {  // a uniform baseline ("all dorn")
       r.schedule = uniform_schedule(g, rules::parse_rule(r.text.substr(4)));
-    } else if (f[c_kind] == "baseline" && r.text.rfind("plain x ", 0) == 0) {
+    } else if (f[c_kind] == "baseline" && (c_msaa >= 0 && c_ss >= 0 ? f[c_msaa] != "0" || f[c_ss] != "0"
+                                                                    : r.text.rfind("plain x ", 0) == 0)) {
       throw std::invalid_argument(
           where + " (" + r.label +
           "): an MSAA baseline (or a stratified ssN one) is not a schedule (render it "

@@ -160,6 +160,17 @@ double CostModel::cost(const compiler::Program& p) const {
   return latency_bound(throughput(p), critical_path(p), window_ns);
 }
 
+double CostModel::sequential_cost(const compiler::Program& sample, int n) const {
+  if (n < 1) throw std::invalid_argument("cost model: " + std::to_string(n) + " samples (at least 1)");
+  auto op = [&](const char* name) {
+    const auto it = op_ns.find(name);
+    return it == op_ns.end() ? 0.0 : it->second;
+  };
+  const double outputs = static_cast<double>(sample.outputs.size());
+  const double once = op("pixel") + outputs * op("output");
+  return n * (cost(sample) - once) + once + (n - 1) * outputs * op("add");
+}
+
 double CostModel::critical_path(const compiler::Program& p) const {
   return trace_critical_path(p, nullptr);
 }

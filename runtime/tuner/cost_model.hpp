@@ -106,6 +106,14 @@ struct CostModel {
   // std::out_of_range naming an op or function the model lacks.
   double cost(const compiler::Program& p) const;
   double throughput(const compiler::Program& p) const;  // the sum alone (+ overhead)
+  // ns per pixel of n copies of `sample` run one after another in one pixel (supersampling in the
+  // shader, compiler/supersample.hpp: `sample` is one sample's program, its input shifts included):
+  // n x (cost(sample) less the per-pixel loop and output stores), plus those once and the n - 1 sums
+  // per output. The samples' latency chains do not overlap: one sample of a latency-bound shader is
+  // far longer than the out-of-order window (fire_none: ss4 compiles to 4.1x plain), while cost() of
+  // the whole supersampled program would overlap them (216 ns/px for 600 compiled). Throws
+  // std::invalid_argument for n < 1.
+  double sequential_cost(const compiler::Program& sample, int n) const;
   // Where cost(p) goes (bltune --explain): the throughput's parts, which sum to throughput(p), and
   // the latency bound's terms.
   struct Breakdown {

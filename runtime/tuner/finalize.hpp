@@ -19,8 +19,8 @@ struct Measured {
   std::string schedule;  // compiler::schedule_to_text; "all RULE" or "plain x N ..." for baselines
   int msaa = 0;          // MSAA sample count (baselines), 0 otherwise
   // ssN baselines: N, the plain program at N fixed stratified offsets inside the shader
-  // (compiler/supersample.hpp); 0 otherwise. The model cannot price them (it overlaps the samples'
-  // chains, which compiled per-pixel code does not): compare their compiled times.
+  // (compiler/supersample.hpp); 0 otherwise. model_ns is CostModel::sequential_cost (the samples one
+  // after another, as compiled per-pixel code runs them).
   int supersample = 0;
   double model_ns = 0;      // cost model, ns per pixel
   double search_error = 0;  // on the pixel sample (front points; NaN for baselines)

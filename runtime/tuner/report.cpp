@@ -56,7 +56,7 @@ ModelAccuracy model_accuracy(const SceneResult& r) {
   ModelAccuracy a;
   for (const auto* list : {&r.front, &r.baselines})
     for (const Measured& m : *list)
-      if (m.compiled_ns > 0 && m.model_ns > 0 && m.supersample == 0) {  // ssN: not priceable (finalize.hpp)
+      if (m.compiled_ns > 0 && m.model_ns > 0) {
         const double ratio = m.model_ns / m.compiled_ns;
         e.push_back(std::fabs(ratio - 1));
         if (e.back() > kModelTolerance) a.outside.push_back(m.label + " (" + fmt("%.2f", ratio) + ")");
@@ -135,20 +135,28 @@ StratifiedSpeedup stratified_speedup16(const SceneResult& r) {
   StratifiedSpeedup out;
   const Speedup s16 = speedup16(r);
   if (s16.msaa != 16) return out;
-  double ours = s16.front_index >= 0 ? r.front[s16.front_index].compiled_ns : -1;
-  if (r.lod && r.lod->compiled_ns > 0 && r.lod->error <= s16.msaa_error &&
-      (ours <= 0 || r.lod->compiled_ns < ours))
-    ours = r.lod->compiled_ns;
-  const Measured* ss = nullptr;
+  const Measured* ss = nullptr;  // the fewest samples at MSAA-16's error
   for (const Measured& b : r.baselines)
-    if (b.supersample > 0 && b.error <= s16.msaa_error && b.compiled_ns > 0 &&
-        (ss == nullptr || b.compiled_ns < ss->compiled_ns))
+    if (b.supersample > 0 && b.error <= s16.msaa_error && (ss == nullptr || b.supersample < ss->supersample))
       ss = &b;
-  if (ss == nullptr || !(ours > 0)) return out;
+  if (ss == nullptr || s16.front_index < 0) return out;
+  const Measured& point = r.front[s16.front_index];
+  const bool lod = r.lod && r.lod->error <= s16.msaa_error;
   out.label = ss->label;
-  out.ss_ns = ss->compiled_ns;
-  out.ours_ns = ours;
-  out.measured = ss->compiled_ns / ours;
+  double ours = point.compiled_ns;
+  if (lod && r.lod->compiled_ns > 0 && (ours <= 0 || r.lod->compiled_ns < ours)) ours = r.lod->compiled_ns;
+  if (ss->compiled_ns > 0 && ours > 0) {
+    out.ss_ns = ss->compiled_ns;
+    out.ours_ns = ours;
+    out.measured = ss->compiled_ns / ours;
+  }
+  double ours_model = point.model_ns;
+  if (lod && r.lod->model_ns > 0 && r.lod->model_ns < ours_model) ours_model = r.lod->model_ns;
+  if (ss->model_ns > 0 && ours_model > 0) {
+    out.ss_model_ns = ss->model_ns;
+    out.ours_model_ns = ours_model;
+    out.model = ss->model_ns / ours_model;
+  }
   return out;
 }
 
@@ -164,13 +172,13 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
     csv << "kind,label,model_ns_per_pixel,model_ms_per_frame,eval_ms_per_frame,glsl_ms_per_frame,search_"
            "error,"
            "rms_display,psnr_db,refined,compiled_ns_per_pixel,compiled_ms_per_frame,rule_mix,schedule,"
-           "nonfinite_pixels,out_of_range_pixels,graph_hash\n";
+           "nonfinite_pixels,out_of_range_pixels,graph_hash,msaa,supersample\n";
     auto row = [&](const char* kind, const Measured& m) {
       csv << kind << "," << m.label << "," << m.model_ns << "," << m.model_ns * px * 1e-6 << "," << m.eval_ms
           << "," << m.glsl_ms << "," << m.search_error << "," << m.error << "," << m.psnr << ","
           << (m.refined ? 1 : 0) << "," << m.compiled_ns << "," << m.compiled_ms << ",\"" << mix_text(m)
           << "\",\"" << m.schedule << "\"," << m.nonfinite << "," << m.out_of_range << "," << r.graph_hash
-          << "\n";
+          << "," << m.msaa << "," << m.supersample << "\n";
     };
     for (const Measured& m : r.front) row("front", m);
     for (const Measured& m : r.baselines) row("baseline", m);
@@ -183,8 +191,9 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
     << "set ylabel 'RMS error (display space)'\nf = '" << csv << "'\n"
     << "front(c) = strcol(1) eq 'front' ? column(c) : NaN\n"
     << "lab(name, c) = strcol(2) eq name ? column(c) : NaN\n"
-    << "msaa(c) = strcol(2)[1:4] eq 'msaa' ? column(c) : NaN\n"
-    << "ss(c) = strcol(1) eq 'baseline' && strcol(2)[1:2] eq 'ss' ? column(c) : NaN\n"
+    // front.csv's last two columns: MSAA's and ssN's sample counts (0 on other rows)
+    << "msaa(c) = column(18) > 0 ? column(c) : NaN\n"
+    << "ss(c) = column(19) > 0 ? column(c) : NaN\n"
     << "set multiplot layout 1,2 title '" << r.scene
     << ": Pareto front vs MSAA, plain, all-Dorn, all-Gaussian'\n";
   for (int panel = 0; panel < 2; ++panel) {
@@ -197,14 +206,9 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
       << "'\n"
       << "plot f every ::1 u (front(" << c << ")):(front(8)) w lp pt 7 lc rgb '#d62728' t 'tuned front', \\\n"
       << "  '' every ::1 u (msaa(" << c << ")):(msaa(8)) w lp pt 5 lc rgb '#1f77b4' t 'MSAA 2..32', \\\n"
-      << "  '' every ::1 u (msaa(" << c
-      << ")):(msaa(8)):2 w labels offset 0,1 notitle, \\\n"
-      // ssN on the measured panel only: the model cannot price it (finalize.hpp).
-      << (panel == 1 ? "  '' every ::1 u (ss(" + std::to_string(c) +
-                           ")):(ss(8)) w lp pt 4 lc rgb '#17becf' t 'stratified ss4..16', \\\n"
-                           "  '' every ::1 u (ss(" +
-                           std::to_string(c) + ")):(ss(8)):2 w labels offset 0,-1 notitle, \\\n"
-                     : std::string())
+      << "  '' every ::1 u (msaa(" << c << ")):(msaa(8)):2 w labels offset 0,1 notitle, \\\n"
+      << "  '' every ::1 u (ss(" << c << ")):(ss(8)) w lp pt 4 lc rgb '#17becf' t 'stratified ss4..16', \\\n"
+      << "  '' every ::1 u (ss(" << c << ")):(ss(8)):2 w labels offset 0,-1 notitle, \\\n"
       << "  '' every ::1 u (lab('plain'," << c
       << ")):(lab('plain',8)) w p pt 9 ps 1.5 lc rgb '#000000' t 'plain', \\\n"
       << "  '' every ::1 u (lab('dorn'," << c
@@ -285,13 +289,15 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
   {
     const StratifiedSpeedup st = stratified_speedup16(r);
     md << "\nStratified supersampling in the shader (ssN: the plain program at N fixed offsets, "
-          "compiler/supersample.hpp; compiled times only, the model cannot price it): ";
+          "compiler/supersample.hpp; the model prices its samples one after another): ";
     if (st.label.empty())
-      md << "no ssN baseline reaches MSAA-16's error, or a time is missing.\n";
+      md << "no ssN baseline reaches MSAA-16's error.\n";
     else
-      md << "the cheapest at MSAA-16's error is " << st.label << " (" << fmt("%.2f", st.ss_ns)
-         << " ns/px compiled); the fastest front point or LOD pair at that error takes "
-         << fmt("%.2f", st.ours_ns) << " ns/px: **" << fmt("%.1fx", st.measured) << "** less time.\n";
+      md << "the cheapest at MSAA-16's error is " << st.label << " (" << fmt("%.2f", st.ss_model_ns)
+         << " ns/px model, " << fmt("%.2f", st.ss_ns)
+         << " compiled); the fastest front point or LOD pair at that error takes "
+         << fmt("%.2f", st.ours_model_ns) << " model, " << fmt("%.2f", st.ours_ns) << " compiled: **"
+         << fmt("%.1fx", st.model) << "** / **" << fmt("%.1fx", st.measured) << "** less time.\n";
   }
   md << "\n## Footprint LOD at MSAA-16's error\n\n"
         "Two front points chosen per pixel by its footprint (the larger of sigma_u and sigma_v): the near "
@@ -396,14 +402,15 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
   csv << "scene,nodes,search_s,finalize_s,front_size,msaa16_error,best_error,speedup16_model,speedup16_"
          "measured,"
          "reaches_10x,model_vs_compiled_median,model_vs_compiled_worst,lod_speedup16_model,lod_speedup16_"
-         "measured,reaches_10x_with_lod,stratified16,speedup16_vs_stratified_measured\n";
+         "measured,reaches_10x_with_lod,stratified16,speedup16_vs_stratified_model,speedup16_vs_stratified_"
+         "measured\n";
   md << "# Tuning summary\n\n| scene | nodes | search s | front | MSAA-16 RMS | best RMS | time at MSAA-16 "
         "error "
         "(model / measured speed-up) | >= 10x | model vs compiled (median / worst) | footprint LOD at "
         "MSAA-16's error (model / measured) | >= 10x with LOD | vs stratified supersampling at MSAA-16's "
-        "error (measured) "
+        "error (model / measured) "
         "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  int count_single = 0, count_lod = 0, count_ss = 0, with_ss = 0;
+  int count_single = 0, count_lod = 0, count_ss = 0, count_ss_model = 0, with_ss = 0;
   // Beside it, where each scene stands against >= 10x by the model: what to cut, time or error.
   std::ostringstream gaps;
   auto pct = [](double cut) { return cut <= 0 ? std::string("none") : fmt("%.0f%%", 100 * cut); };
@@ -430,13 +437,18 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
                  : std::string("-"))
        << " | " << (ten_lod ? "yes" : "no") << " | ";
     const StratifiedSpeedup st = stratified_speedup16(r);
-    md << (st.label.empty() ? std::string("-") : st.label + ": " + fmt("%.1fx", st.measured)) << " |\n";
+    auto ratio = [](double x) { return x > 0 ? fmt("%.1fx", x) : std::string("-"); };
+    md << (st.label.empty() ? std::string("-")
+                            : st.label + ": " + ratio(st.model) + " / " + ratio(st.measured))
+       << " |\n";
     with_ss += !st.label.empty();
     count_ss += st.measured >= 10;
+    count_ss_model += st.model >= 10;
     csv << r.scene << "," << r.nodes << "," << r.search_seconds << "," << r.finalize_seconds << ","
         << r.front.size() << "," << s16.msaa_error << "," << best << "," << s16.model << "," << s16.measured
         << "," << (ten ? 1 : 0) << "," << acc.median << "," << acc.worst << "," << ls.model << ","
-        << ls.measured << "," << (ten_lod ? 1 : 0) << "," << st.label << "," << st.measured << "\n";
+        << ls.measured << "," << (ten_lod ? 1 : 0) << "," << st.label << "," << st.model << "," << st.measured
+        << "\n";
     const TenfoldGap g = tenfold_gap(r, s16, 10);
     gaps << "| " << r.scene << " | "
          << (g.at_error < 0 ? std::string("none") : r.front[g.at_error].label + fmt(" (%.1fx)", s16.model))
@@ -458,8 +470,8 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
      << " with a footprint-LOD pair of front points (tuner/lod.hpp) or one program.\n";
   if (with_ss > 0)
     md << "\nAgainst the cheapest stratified supersampling in the shader at MSAA-16's error (ssN, a fixed "
-          "pattern as GPU MSAA uses; compiled times): "
-       << count_ss << " of the " << with_ss
+          "pattern as GPU MSAA uses): "
+       << count_ss_model << " (model) / " << count_ss << " (measured) of the " << with_ss
        << " scenes compared at >= 10x less time (one program or the LOD pair).\n";
   md << "\n## What >= 10x (model) at MSAA-16's error still needs\n\n"
         "Either side closes the gap: the model time of the fastest point at MSAA-16's error, or the "

@@ -29,14 +29,16 @@ struct LodSpeedup {
   double model = 0, measured = 0;
 };
 LodSpeedup lod_speedup16(const SceneResult& r);
-// Against stratified supersampling (the ssN baselines): the cheapest by compiled time whose error is
-// at most MSAA-16's (ss_ns), and the fastest of ours at that error by compiled time (ours_ns: the
-// point speedup16 reads, or the footprint-LOD pair); measured = ss_ns / ours_ns. Compiled times
-// only: the model cannot price ssN. label "" (and zeros) when no ssN reaches that error or a time
-// is missing (results before stop 34 have no ssN).
+// Against stratified supersampling (the ssN baselines): the one with the fewest samples whose error is
+// at most MSAA-16's, and ours at that error: the point speedup16 reads or the footprint-LOD pair,
+// whichever is faster (by compiled time for `measured`, by the model for `model`). measured = ssN's
+// compiled time / ours (0 when a compiled time is missing); model = ssN's model time / ours (finalize
+// prices ssN with CostModel::sequential_cost). label "" (and zeros) when no ssN reaches that error
+// (results before stop 34 have no ssN).
 struct StratifiedSpeedup {
-  std::string label;  // ssN
-  double ss_ns = 0, ours_ns = 0, measured = 0;
+  std::string label;                            // ssN
+  double ss_ns = 0, ours_ns = 0, measured = 0;  // compiled
+  double ss_model_ns = 0, ours_model_ns = 0, model = 0;
 };
 StratifiedSpeedup stratified_speedup16(const SceneResult& r);
 // The speed-up at MSAA-16's error (msaa 0 when the scene has no MSAA-16 baseline).

@@ -125,6 +125,15 @@ TEST(ScheduleCsv, LoadsByLabelAndRefusesAnotherGraph) {
   EXPECT_HAS(e, "tuned for graph " + hash);
   EXPECT_HAS(e, compiler::graph_hash_text(other));
   EXPECT_HAS(error_of([&] { compiler::load_schedule(csv + ":msaa16", g); }), "MSAA baseline");
+  // Files from stop 35 on name the baselines' sample counts in columns: those decide, not the text.
+  const std::string counted = temp_file(
+      "counted.csv", "kind,label,schedule,graph_hash,msaa,supersample\nbaseline,ss8,\"eight stratified\"," +
+                         hash + ",0,8\nbaseline,msaa4,\"four\"," + hash +
+                         ",4,0\nbaseline,dorn,\"all dorn\"," + hash + ",0,0\n");
+  EXPECT_HAS(error_of([&] { compiler::load_schedule(counted + ":ss8", g); }), "--supersample N");
+  EXPECT_HAS(error_of([&] { compiler::load_schedule(counted + ":msaa4", g); }), "MSAA baseline");
+  EXPECT_TRUE(compiler::load_schedule(counted + ":dorn", g).schedule ==
+              compiler::uniform_schedule(g, rules::parse_rule("dorn")));
   EXPECT_HAS(error_of([&] { compiler::load_schedule(csv, g); }), "expected FILE.csv:LABEL");
   EXPECT_HAS(error_of([&] { compiler::load_schedule("/nonexistent/front.csv:front00", g); }),
              "/nonexistent/front.csv: cannot open");
