@@ -34,7 +34,7 @@ LodSpeedup lod_speedup16(const SceneResult& r);
 // whichever is faster (by compiled time for `measured`, by the model for `model`). measured = ssN's
 // compiled time / ours (0 when a compiled time is missing); model = ssN's model time / ours (finalize
 // prices ssN with CostModel::sequential_cost). label "" (and zeros) when no ssN reaches that error
-// (results before stop 34 have no ssN).
+// (results before stop 34 have no ssN); ours_* and the ratios 0 when no point of ours reaches it.
 struct StratifiedSpeedup {
   std::string label;                            // ssN
   double ss_ns = 0, ours_ns = 0, measured = 0;  // compiled

@@ -657,10 +657,6 @@ TEST(Report, FootprintLodIsReportedCountedAndSaved) {
       << sm;
 }
 
-// Stratified supersampling (ssN baselines) is compared by compiled time, by hand: MSAA-16's error is
-// 0.03; ss4 misses it, ss8 (100 ns) is the cheapest that reaches it, ss16 reaches it dearer. Ours at
-// that error: front01 (40 ns) or the LOD pair (25 ns), so 100 / 25 = 4x, 100 / 40 = 2.5x without the
-// pair. The model's ss prices are left out of the model's accuracy (it cannot price ssN).
 // Against stratified supersampling: the ssN with the fewest samples at MSAA-16's error (ss8; ss16
 // is more accurate), against the fastest of ours at that error, by compiled time and by the model
 // (ssN priced by CostModel::sequential_cost, so it counts in the model's accuracy). By hand:
@@ -731,7 +727,27 @@ TEST(Report, StratifiedSupersamplingIsComparedByModelAndCompiledTime) {
   EXPECT_EQ(st.label, "ss8");
   EXPECT_DOUBLE_EQ(st.measured, 0);
   EXPECT_DOUBLE_EQ(st.model, 10);
-  // None reaches MSAA-16's error: no comparison, and the summary says "-".
+  // Ours misses MSAA-16's error: ss8 is named, nothing is compared.
+  r.lod.reset();
+  for (Measured& f : r.front) f.error = 0.04;
+  st = stratified_speedup16(r);
+  EXPECT_EQ(st.label, "ss8");
+  EXPECT_DOUBLE_EQ(st.model, 0);
+  EXPECT_DOUBLE_EQ(st.ss_model_ns, 90);
+  write_scene_report(r, dir);
+  std::ifstream in2(dir + "/report.md");
+  const std::string md2((std::istreambuf_iterator<char>(in2)), std::istreambuf_iterator<char>());
+  EXPECT_NE(
+      md2.find("the cheapest at MSAA-16's error is ss8 (90.00 ns/px model, - compiled); no front point or "
+               "LOD pair reaches that error."),
+      std::string::npos)
+      << md2;
+  write_suite_summary({r}, dir);
+  std::ifstream sin2(dir + "/summary.md");
+  const std::string sm2((std::istreambuf_iterator<char>(sin2)), std::istreambuf_iterator<char>());
+  EXPECT_NE(sm2.find("| ss8: not reached |"), std::string::npos) << sm2;
+  EXPECT_EQ(sm2.find("scenes compared"), std::string::npos) << sm2;  // none compared
+  // No ssN reaches MSAA-16's error: no comparison, and the summary says "-".
   for (Measured& b : r.baselines)
     if (b.supersample > 0) b.error = 0.05;
   EXPECT_TRUE(stratified_speedup16(r).label.empty());
