@@ -192,21 +192,22 @@ TEST(CostModel, OrdersAllMc32AboveAllNoneAndRoundTrips) {
   EXPECT_FALSE(partial.covers_all());
 }
 
-// The cost formula on a hand-built model with round numbers: T = per-pixel overhead + outputs x
-// store cost + every instruction's cost (a function's weighted over the scene's |x| bands), L = the
-// longest chain of latencies, cost = max(T, L x min(1, T / window)). Expected values by hand.
-TEST(CostModel, FormulaOnAHandBuiltModel) {
-  using compiler::Inst;
-  using compiler::LOp;
+// A hand-built compiled model with round numbers, and the two-input program u + v -> (u+v)^2
+// (outputs (sum)^2, sum, (sum)^2) that FormulaOnAHandBuiltModel prices by hand.
+static CostModel hand_built_model() {
   CostModel m;
   m.method = "compiled";
   m.op_ns = {{"pixel", 1}, {"output", 0.5}, {"in_mean", 0.25}, {"add", 2}, {"mul", 3}};
   m.op_lat_ns = {{"add", 4}, {"mul", 5}};
-  const int fract = compiler::find_function("bl::plain::fract");
-  ASSERT_GE(fract, 0);
   m.fn_ns = {{"bl::plain::fract", 10}};
   m.fn_lat_ns = {{"bl::plain::fract", 20}};  // latency / throughput = 2 in every band
   m.fn_band_ns = {{"bl::plain::fract", {10, 30, 50, 70, 90, 110, 130}}};
+  return m;
+}
+
+static compiler::Program square_of_sum() {
+  using compiler::Inst;
+  using compiler::LOp;
   compiler::Program p;
   p.input_count = 2;
   auto inst = [&](LOp op, int a = -1, int b = -1) {
@@ -219,6 +220,20 @@ TEST(CostModel, FormulaOnAHandBuiltModel) {
   const int u = inst(LOp::InMean, 0), v = inst(LOp::InMean, 1);
   const int sum = inst(LOp::Add, u, v), sq = inst(LOp::Mul, sum, sum);
   p.outputs = {sq, sum, sq};
+  return p;
+}
+
+// The cost formula on a hand-built model with round numbers: T = per-pixel overhead + outputs x
+// store cost + every instruction's cost (a function's weighted over the scene's |x| bands), L = the
+// longest chain of latencies, cost = max(T, L x min(1, T / window)). Expected values by hand.
+TEST(CostModel, FormulaOnAHandBuiltModel) {
+  using compiler::Inst;
+  using compiler::LOp;
+  CostModel m = hand_built_model();
+  const int fract = compiler::find_function("bl::plain::fract");
+  ASSERT_GE(fract, 0);
+  compiler::Program p = square_of_sum();
+  const int sum = 2, sq = 3;
   // T = 1 + 3 x 0.5 + 2 x 0.25 + 2 + 3 = 8; L = add 4 + mul 5 = 9 (inputs have no latency).
   EXPECT_DOUBLE_EQ(m.throughput(p), 8);
   EXPECT_DOUBLE_EQ(m.critical_path(p), 9);
@@ -291,28 +306,10 @@ TEST(CostModel, FormulaOnAHandBuiltModel) {
 // (its L is one sample's plus the sums) and prices them lower: what compiled code does not do
 // (fire_none ss4 is 4.1x its plain program compiled, docs/tuning.md stop 35).
 TEST(CostModel, SupersampledSamplesArePricedOneAfterAnother) {
-  using compiler::Inst;
-  using compiler::LOp;
-  CostModel m;
-  m.method = "compiled";
-  m.op_ns = {{"pixel", 1}, {"output", 0.5},     {"in_mean", 0.25},   {"add", 2},
-             {"mul", 3},   {"in_grad_x", 0.25}, {"in_grad_y", 0.25}, {"const", 0}};
-  m.op_lat_ns = {{"add", 4}, {"mul", 5}};
-  m.fn_ns = {{"bl::plain::fract", 10}};
-  m.fn_lat_ns = {{"bl::plain::fract", 20}};  // the model has latencies (none called here)
+  CostModel m = hand_built_model();
+  m.op_ns.insert({{"in_grad_x", 0.25}, {"in_grad_y", 0.25}, {"const", 0}});  // ssN's input shifts
   m.window_ns = 4;
-  compiler::Program p;
-  p.input_count = 2;
-  auto inst = [&](LOp op, int a = -1, int b = -1) {
-    Inst in;
-    in.op = op;
-    in.arg[0] = a, in.arg[1] = b;
-    p.insts.push_back(in);
-    return static_cast<int>(p.insts.size()) - 1;
-  };
-  const int u = inst(LOp::InMean, 0), v = inst(LOp::InMean, 1);
-  const int sum = inst(LOp::Add, u, v), sq = inst(LOp::Mul, sum, sum);
-  p.outputs = {sq, sum, sq};
+  const compiler::Program p = square_of_sum();
   const double one = std::pow(8.0 * 8 * 8 * 8 + 9.0 * 9 * 9 * 9, 0.25);  // FormulaOnAHandBuiltModel
   ASSERT_NEAR(m.cost(p), one, 1e-12);
   EXPECT_NEAR(m.sequential_cost(p, 1), one, 1e-12);
