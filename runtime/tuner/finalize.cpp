@@ -19,6 +19,7 @@
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
 #include "tuner/lod.hpp"
+#include "tuner/lod_pricing.hpp"
 #include "tuner/polish.hpp"
 #include "tuner/report.hpp"
 
@@ -129,6 +130,22 @@ void measure(const SceneTuner& t, const compiler::Program& p, Timer& gl, Measure
   }
 }
 
+// A footprint pair compiled into one loop (jit::CompiledProgram's LOD form): ns per pixel of frame 0,
+// -1 without a compiler.
+double time_pair(const SceneTuner& t, const compiler::Program& near, const compiler::Program& far,
+                 float limit, Timer& gl) {
+  if (!gl.jit_error.empty()) return -1;
+  try {
+    const jit::CompiledProgram cp(near, far, limit, gl.opt->jit);
+    const render::Frame f = render::frames(t.scene()).front();
+    return render::time_program(t.scene(), f, near, render::compiled_runner(cp), 0, gl.opt->trials)
+        .ns_per_pixel;
+  } catch (const jit::Error& e) {
+    gl.jit_error = e.what();
+    return -1;
+  }
+}
+
 // The fastest footprint-LOD pair of the measured front at MSAA-16's full error e16 (lod.hpp), kept
 // when it is faster by the model than every single front point at that error; its compiled time is
 // the pair in one loop (jit::CompiledProgram's LOD form).
@@ -171,29 +188,12 @@ std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measure
   double single = std::numeric_limits<double>::infinity();
   for (const Measured& m : front)
     if (m.error <= e16) single = std::min(single, m.model_ns);
-  const CostModel& cm = t.cost_model();
-  double dispatch = 0;  // the footprint's max and the branch's compare
-  for (const char* op : {"max", "less"})
-    if (const auto it = cm.op_ns.find(op); it != cm.op_ns.end()) dispatch += it->second;
-  // Candidates by the all-pixel prices, then each priced on its own pixels: the near program under
-  // the argument profile of the pixels below the limit, the far one above (cost_model_over).
+  const double dispatch = lod_dispatch_ns(t.cost_model());
+  // Candidates by the all-pixel prices, then each priced on its own pixels (lod_pricing.hpp).
   const auto cands =
       lod_candidates(sq, all.footprints(), model_ns, all.miss_sq(), all.count(), e16, dispatch, 64, 48);
-  std::map<float, std::pair<CostModel, CostModel>> priced;  // by limit: near and far pixels' models
-  LodChoice c;
-  for (LodChoice k : cands) {
-    auto it = priced.find(k.limit);
-    if (it == priced.end()) {
-      const PixelSample& smp = t.search_sample();
-      it = priced
-               .emplace(k.limit, std::make_pair(t.cost_model_over(smp.subset(k.limit, true)),
-                                                t.cost_model_over(smp.subset(k.limit, false))))
-               .first;
-    }
-    k.model_ns = k.near_share * it->second.first.cost(*programs[k.near]) +
-                 (1 - k.near_share) * it->second.second.cost(*programs[k.far]) + dispatch;
-    if (c.near < 0 || k.model_ns < c.model_ns) c = k;
-  }
+  const LodChoice c = fastest_on_own_pixels(
+      t, cands, [&](const CostModel& m, int k) { return m.cost(*programs[k]); }, dispatch);
   if (c.near < 0 || !(c.model_ns < single)) return std::nullopt;
   LodResult r;
   r.near = labels[c.near];
@@ -204,17 +204,7 @@ std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measure
   r.near_share = c.near_share;
   r.model_ns = c.model_ns;
   r.error = c.error;
-  if (gl.jit_error.empty()) {
-    try {
-      const jit::CompiledProgram cp(*programs[c.near], *programs[c.far], c.limit, gl.opt->jit);
-      const render::Frame f = render::frames(t.scene()).front();
-      r.compiled_ns = render::time_program(t.scene(), f, *programs[c.near], render::compiled_runner(cp), 0,
-                                           gl.opt->trials)
-                          .ns_per_pixel;
-    } catch (const jit::Error& e) {
-      gl.jit_error = e.what();
-    }
-  }
+  r.compiled_ns = time_pair(t, *programs[c.near], *programs[c.far], c.limit, gl);
   std::fprintf(
       stderr,
       "finalize: %s: footprint LOD %s below %.3g, %s above (%.0f%% of pixels near): %.2f ns/px model, "
@@ -222,6 +212,25 @@ std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measure
       t.scene().name.c_str(), r.near.c_str(), r.limit, r.far.c_str(), 100 * r.near_share, r.model_ns,
       r.compiled_ns, r.error, e16);
   return r;
+}
+
+// The footprint-adaptive stratified supersampler at MSAA-16's error (adaptive_supersampling.hpp),
+// its pair compiled into one loop like the LOD pair.
+std::optional<AdaptiveSupersampling> find_adaptive_supersampling(const SceneTuner& t, double e16, Timer& gl) {
+  std::optional<AdaptiveSupersampling> a = adaptive_supersampling(t, e16);
+  if (!a) return a;
+  const auto plain = t.lower_plain();
+  const double sigma_px = t.scene().sigma_px;
+  const compiler::Program near = stratified_samples(*plain, a->near_samples, sigma_px),
+                          far = stratified_samples(*plain, a->far_samples, sigma_px);
+  a->compiled_ns = time_pair(t, near, far, a->limit, gl);
+  std::fprintf(
+      stderr,
+      "finalize: %s: adaptive supersampling %d sample(s) below %.3g, %d above (%.0f%% of pixels near): "
+      "%.2f ns/px model, %.2f compiled, error %.5f (MSAA-16 %.5f)\n",
+      t.scene().name.c_str(), a->near_samples, a->limit, a->far_samples, 100 * a->near_share, a->model_ns,
+      a->compiled_ns, a->error, e16);
+  return a;
 }
 
 }  // namespace
@@ -432,6 +441,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     measure(t, *t.lower(front_schedules[i]), gl, &res.front[i]);
   }
   if (e16 > 0) res.lod = find_lod(t, res.front, front_schedules, front, e16, gl);
+  if (e16 > 0) res.adaptive_ss = find_adaptive_supersampling(t, e16, gl);
   uniform("dorn", "dorn");
   uniform("gaussian", "gaussian");
   // Images of frame 0: truth | variant | MSAA of the nearest model time, for the fastest and the most

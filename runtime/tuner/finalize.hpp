@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "jit/jit.hpp"
+#include "tuner/adaptive_supersampling.hpp"
 #include "tuner/scene_tuner.hpp"
 
 namespace bl::tuner {
@@ -63,6 +64,9 @@ struct SceneResult {
   // (time_breakdown_markdown, report.hpp); "" when no point reaches that error.
   std::string anchor_breakdown;
   std::optional<LodResult> lod;  // none: no pair beats the single points at MSAA-16's error
+  // The footprint-adaptive stratified supersampler at MSAA-16's error (adaptive_supersampling.hpp);
+  // none when no pair of sample counts reaches it, or in results before stop 35.
+  std::optional<AdaptiveSupersampling> adaptive_ss;
 };
 
 // The stratified supersampling baselines (ssN) finalize measures beside MSAA-N.

@@ -131,6 +131,20 @@ LodSpeedup lod_speedup16(const SceneResult& r) {
   return s;
 }
 
+Ours16 ours16(const SceneResult& r) {
+  Ours16 o;
+  const Speedup s16 = speedup16(r);
+  if (s16.msaa != 16 || s16.front_index < 0) return o;  // no pair either: a pair is kept only beside a point
+  const Measured& point = r.front[s16.front_index];
+  const bool lod = r.lod && r.lod->error <= s16.msaa_error;
+  o.compiled_ns = point.compiled_ns > 0 ? point.compiled_ns : 0;
+  if (lod && r.lod->compiled_ns > 0 && (o.compiled_ns <= 0 || r.lod->compiled_ns < o.compiled_ns))
+    o.compiled_ns = r.lod->compiled_ns;
+  o.model_ns = point.model_ns;
+  if (lod && r.lod->model_ns > 0 && r.lod->model_ns < o.model_ns) o.model_ns = r.lod->model_ns;
+  return o;
+}
+
 StratifiedSpeedup stratified_speedup16(const SceneResult& r) {
   StratifiedSpeedup out;
   const Speedup s16 = speedup16(r);
@@ -143,21 +157,25 @@ StratifiedSpeedup stratified_speedup16(const SceneResult& r) {
   out.label = ss->label;
   out.ss_ns = ss->compiled_ns > 0 ? ss->compiled_ns : 0;
   out.ss_model_ns = ss->model_ns;
-  if (s16.front_index < 0) return out;  // ours does not reach that error (nor does a pair: lod.hpp)
-  const Measured& point = r.front[s16.front_index];
-  const bool lod = r.lod && r.lod->error <= s16.msaa_error;
-  double ours = point.compiled_ns;
-  if (lod && r.lod->compiled_ns > 0 && (ours <= 0 || r.lod->compiled_ns < ours)) ours = r.lod->compiled_ns;
-  if (ss->compiled_ns > 0 && ours > 0) {
-    out.ours_ns = ours;
-    out.measured = ss->compiled_ns / ours;
+  const Ours16 o = ours16(r);
+  if (ss->compiled_ns > 0 && o.compiled_ns > 0) {
+    out.ours_ns = o.compiled_ns;
+    out.measured = ss->compiled_ns / o.compiled_ns;
   }
-  double ours_model = point.model_ns;
-  if (lod && r.lod->model_ns > 0 && r.lod->model_ns < ours_model) ours_model = r.lod->model_ns;
-  if (ss->model_ns > 0 && ours_model > 0) {
-    out.ours_model_ns = ours_model;
-    out.model = ss->model_ns / ours_model;
+  if (ss->model_ns > 0 && o.model_ns > 0) {
+    out.ours_model_ns = o.model_ns;
+    out.model = ss->model_ns / o.model_ns;
   }
+  return out;
+}
+
+AdaptiveSpeedup adaptive_speedup16(const SceneResult& r) {
+  AdaptiveSpeedup out;
+  const Ours16 o = ours16(r);
+  if (!r.adaptive_ss) return out;
+  if (o.model_ns > 0) out.model = r.adaptive_ss->model_ns / o.model_ns;
+  if (o.compiled_ns > 0 && r.adaptive_ss->compiled_ns > 0)
+    out.measured = r.adaptive_ss->compiled_ns / o.compiled_ns;
   return out;
 }
 
@@ -222,12 +240,23 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
                          : panel == 0 ? r.lod->model_ns
                          : compiled   ? r.lod->compiled_ns * px * 1e-6
                                       : -1;
-    if (lod_x > 0)
+    // The footprint-adaptive supersampler likewise.
+    const double ad_x = !r.adaptive_ss ? -1
+                        : panel == 0   ? r.adaptive_ss->model_ns
+                        : compiled     ? r.adaptive_ss->compiled_ns * px * 1e-6
+                                       : -1;
+    std::string data;  // the inline points' data blocks, after the plot command
+    if (lod_x > 0) {
       g << ", \\\n  '-' u 1:2 w p pt 15 ps 2 lc rgb '#9467bd' t 'footprint LOD (" << r.lod->near << " + "
-        << r.lod->far << ")'\n"
-        << lod_x << "," << r.lod->error << "\ne\n";  // the script reads comma-separated data
-    else
-      g << "\n";
+        << r.lod->far << ")'";
+      data += fmt("%g", lod_x) + "," + fmt("%g", r.lod->error) + "\ne\n";  // the script reads commas
+    }
+    if (ad_x > 0) {
+      g << ", \\\n  '-' u 1:2 w p pt 6 ps 2 lc rgb '#17becf' t 'adaptive supersampling ("
+        << r.adaptive_ss->near_samples << " / " << r.adaptive_ss->far_samples << " samples)'";
+      data += fmt("%g", ad_x) + "," + fmt("%g", r.adaptive_ss->error) + "\ne\n";
+    }
+    g << "\n" << data;
   }
   g << "unset multiplot\n";
   const bool plotted = run_gnuplot(g.str());
@@ -305,6 +334,23 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
          << " compiled); the fastest front point or LOD pair at that error takes " << ns(st.ours_model_ns)
          << " model, " << ns(st.ours_ns) << " compiled: **" << ratio(st.model) << "** / **"
          << ratio(st.measured) << "** less time.\n";
+    md << "\nFootprint-adaptive stratified supersampling (tuner/adaptive_supersampling.hpp: two sample "
+          "counts "
+          "chosen per pixel by its footprint, as the LOD pair chooses two programs): ";
+    if (!r.adaptive_ss) {
+      md << "no pair of sample counts reaches MSAA-16's error.\n";
+    } else {
+      const AdaptiveSupersampling& a = *r.adaptive_ss;
+      const AdaptiveSpeedup as = adaptive_speedup16(r);
+      md << a.near_samples << " sample(s) below a footprint of " << fmt("%.3g", a.limit) << ", "
+         << a.far_samples << " above (" << fmt("%.0f%%", 100 * a.near_share)
+         << " of pixels near): " << ns(a.model_ns) << " ns/px model, " << ns(a.compiled_ns)
+         << " compiled, error " << fmt("%.5f", a.error) << "; "
+         << (as.model > 0 || as.measured > 0
+                 ? "the fastest front point or LOD pair at MSAA-16's error takes **" + ratio(as.model) +
+                       "** / **" + ratio(as.measured) + "** less time.\n"
+                 : std::string("no front point or LOD pair reaches that error.\n"));
+    }
   }
   md << "\n## Footprint LOD at MSAA-16's error\n\n"
         "Two front points chosen per pixel by its footprint (the larger of sigma_u and sigma_v): the near "
@@ -410,14 +456,15 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
          "measured,"
          "reaches_10x,model_vs_compiled_median,model_vs_compiled_worst,lod_speedup16_model,lod_speedup16_"
          "measured,reaches_10x_with_lod,stratified16,speedup16_vs_stratified_model,speedup16_vs_stratified_"
-         "measured\n";
+         "measured,adaptive_ss,speedup16_vs_adaptive_model,speedup16_vs_adaptive_measured\n";
   md << "# Tuning summary\n\n| scene | nodes | search s | front | MSAA-16 RMS | best RMS | time at MSAA-16 "
         "error "
         "(model / measured speed-up) | >= 10x | model vs compiled (median / worst) | footprint LOD at "
         "MSAA-16's error (model / measured) | >= 10x with LOD | vs stratified supersampling at MSAA-16's "
-        "error (model / measured) "
-        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "error (model / measured) | vs footprint-adaptive supersampling (model / measured) "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   int count_single = 0, count_lod = 0, count_ss = 0, count_ss_model = 0, with_ss = 0;
+  int count_ad = 0, count_ad_model = 0, with_ad = 0;
   // Beside it, where each scene stands against >= 10x by the model: what to cut, time or error.
   std::ostringstream gaps;
   auto pct = [](double cut) { return cut <= 0 ? std::string("none") : fmt("%.0f%%", 100 * cut); };
@@ -449,7 +496,19 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
     md << (st.label.empty() ? std::string("-")
            : compared       ? st.label + ": " + ratio(st.model) + " / " + ratio(st.measured)
                             : st.label + ": not reached")
+       << " | ";
+    const AdaptiveSpeedup as = adaptive_speedup16(r);
+    const std::string ad_label = r.adaptive_ss ? std::to_string(r.adaptive_ss->near_samples) + "/" +
+                                                     std::to_string(r.adaptive_ss->far_samples)
+                                               : std::string();
+    const bool ad_compared = as.model > 0 || as.measured > 0;
+    md << (!r.adaptive_ss ? std::string("-")
+           : ad_compared  ? ad_label + ": " + ratio(as.model) + " / " + ratio(as.measured)
+                          : ad_label + ": not reached")
        << " |\n";
+    with_ad += ad_compared;
+    count_ad += as.measured >= 10;
+    count_ad_model += as.model >= 10;
     with_ss += compared;
     count_ss += st.measured >= 10;
     count_ss_model += st.model >= 10;
@@ -457,7 +516,7 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
         << r.front.size() << "," << s16.msaa_error << "," << best << "," << s16.model << "," << s16.measured
         << "," << (ten ? 1 : 0) << "," << acc.median << "," << acc.worst << "," << ls.model << ","
         << ls.measured << "," << (ten_lod ? 1 : 0) << "," << st.label << "," << st.model << "," << st.measured
-        << "\n";
+        << "," << ad_label << "," << as.model << "," << as.measured << "\n";
     const TenfoldGap g = tenfold_gap(r, s16, 10);
     gaps << "| " << r.scene << " | "
          << (g.at_error < 0 ? std::string("none") : r.front[g.at_error].label + fmt(" (%.1fx)", s16.model))
@@ -482,6 +541,12 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
           "pattern as GPU MSAA uses): "
        << count_ss_model << " (model) / " << count_ss << " (measured) of the " << with_ss
        << " scenes compared at >= 10x less time (one program or the LOD pair).\n";
+  if (with_ad > 0)
+    md << "\nAgainst footprint-adaptive stratified supersampling at MSAA-16's error (two sample counts "
+          "chosen "
+          "per pixel by the footprint, near/far samples in the column; tuner/adaptive_supersampling.hpp): "
+       << count_ad_model << " (model) / " << count_ad << " (measured) of the " << with_ad
+       << " scenes compared at >= 10x less time.\n";
   md << "\n## What >= 10x (model) at MSAA-16's error still needs\n\n"
         "Either side closes the gap: the model time of the fastest point at MSAA-16's error, or the "
         "error of the most accurate point already at >= 10x less model time (its measured speed-up in "

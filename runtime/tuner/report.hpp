@@ -41,6 +41,18 @@ struct StratifiedSpeedup {
   double ss_model_ns = 0, ours_model_ns = 0, model = 0;
 };
 StratifiedSpeedup stratified_speedup16(const SceneResult& r);
+// Ours at MSAA-16's error: the fastest front point there (speedup16's) or the footprint-LOD pair,
+// whichever is faster, by the model and by compiled time (0: none reaches it, or not timed).
+struct Ours16 {
+  double model_ns = 0, compiled_ns = 0;
+};
+Ours16 ours16(const SceneResult& r);
+// Against the footprint-adaptive stratified supersampler (SceneResult::adaptive_ss): its time over
+// ours16's, by the model and measured (compiled); 0 where either is missing.
+struct AdaptiveSpeedup {
+  double model = 0, measured = 0;
+};
+AdaptiveSpeedup adaptive_speedup16(const SceneResult& r);
 // The speed-up at MSAA-16's error (msaa 0 when the scene has no MSAA-16 baseline).
 Speedup speedup16(const SceneResult& r);
 

@@ -89,6 +89,14 @@ std::string result_to_json(const SceneResult& r) {
                                    {"error", r.lod->error},
                                    {"compiled_ns", r.lod->compiled_ns}}
                             : json()},
+              {"adaptive_ss", r.adaptive_ss ? json{{"near_samples", r.adaptive_ss->near_samples},
+                                                   {"far_samples", r.adaptive_ss->far_samples},
+                                                   {"limit", r.adaptive_ss->limit},
+                                                   {"near_share", r.adaptive_ss->near_share},
+                                                   {"model_ns", r.adaptive_ss->model_ns},
+                                                   {"error", r.adaptive_ss->error},
+                                                   {"compiled_ns", r.adaptive_ss->compiled_ns}}
+                                            : json()},
               {"front", f},
               {"baselines", b}}
       .dump(1);
@@ -123,6 +131,18 @@ SceneResult result_from_json(const std::string& text) {
     lod.error = l.at("error");
     lod.compiled_ns = l.at("compiled_ns");
     r.lod = lod;
+  }
+  if (j.contains("adaptive_ss") && !j.at("adaptive_ss").is_null()) {  // results from stop 35 on
+    const json& l = j.at("adaptive_ss");
+    AdaptiveSupersampling a;
+    a.near_samples = l.at("near_samples");
+    a.far_samples = l.at("far_samples");
+    a.limit = l.at("limit");
+    a.near_share = l.at("near_share");
+    a.model_ns = l.at("model_ns");
+    a.error = l.at("error");
+    a.compiled_ns = l.at("compiled_ns");
+    r.adaptive_ss = a;
   }
   for (const json& m : j.at("front")) r.front.push_back(from(m));
   for (const json& m : j.at("baselines")) r.baselines.push_back(from(m));
