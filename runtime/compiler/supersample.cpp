@@ -94,4 +94,8 @@ Program supersample(const Program& plain, const std::vector<std::array<float, 2>
   return optimize(out);
 }
 
+Program stratified_samples(const Program& plain, int n, double sigma_px) {
+  return n == 1 ? plain : supersample(plain, supersample_offsets(n, sigma_px));
+}
+
 }  // namespace bl::compiler

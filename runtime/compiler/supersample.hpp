@@ -24,4 +24,8 @@ std::vector<std::array<float, 2>> supersample_offsets(int n, double sigma_px);
 // plain or `offsets` is empty.
 Program supersample(const Program& plain, const std::vector<std::array<float, 2>>& offsets);
 
+// ssN for a sample count: supersample(plain, supersample_offsets(n, sigma_px)), and `plain` itself
+// for n = 1 (the footprint-adaptive supersampler's choices, tuner/adaptive_supersampling.hpp).
+Program stratified_samples(const Program& plain, int n, double sigma_px);
+
 }  // namespace bl::compiler

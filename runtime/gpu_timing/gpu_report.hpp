@@ -9,8 +9,9 @@
 namespace bl::gpu_timing {
 
 struct ProgramTime {
-  // kind: "baseline" (plain, msaaN, uniform rules), "front", or "lod" (bltune's footprint-LOD pair of
-  // two front programs chosen per fragment by its footprint, tuner/lod.hpp; at most one per scene)
+  // kind: "baseline" (plain, msaaN, ssN, uniform rules), "front", "lod" (bltune's footprint-LOD pair of
+  // two front programs chosen per fragment by its footprint, tuner/lod.hpp; at most one per scene) or
+  // "adaptive" (its footprint-adaptive supersampler, tuner/adaptive_supersampling.hpp; at most one)
   std::string label, kind;
   int msaa = 0;             // samples per fragment (0: one evaluation)
   double error = 0;         // RMS vs truth as bltune measured it (CPU); may be +inf (infeasible)
@@ -37,6 +38,10 @@ struct SceneSummary {
   // The footprint-LOD pair (kind "lod") when it reaches MSAA-16's error: its GPU ns per pixel and
   // MSAA-16's time over its time on each clock (< 0: no pair, not timed, or not at that error).
   double lod_ns = -1, lod_gpu_speedup = -1, lod_cpu_speedup = -1;
+  // The footprint-adaptive supersampler (kind "adaptive") when it reaches MSAA-16's error: its GPU ns
+  // per pixel and its time over ours (the faster of the fastest point and the pair there) on each
+  // clock (< 0: none, not timed, or ours does not reach that error).
+  double adaptive_ns = -1, adaptive_gpu_speedup = -1, adaptive_cpu_speedup = -1;
   double max_compile_ms = -1;
   int failures = 0;
 };

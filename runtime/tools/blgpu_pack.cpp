@@ -168,6 +168,34 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
                         {"limit", limit},
                         {"frag", frag}});
   }
+  // The footprint-adaptive supersampler (result.json "adaptive_ss": two sample counts and the limit),
+  // the plain program at each count through the same dispatcher.
+  if (const auto it = result.find("adaptive_ss"); it != result.end() && !it->is_null()) {
+    const json& a = *it;
+    const compiler::Program plain = compiler::lower(g, compiler::load_schedule(csv + ":plain", g).schedule);
+    const int nn = a.at("near_samples").get<int>(), nf = a.at("far_samples").get<int>();
+    const compiler::Program near = compiler::stratified_samples(plain, nn, s.sigma_px),
+                            far = compiler::stratified_samples(plain, nf, s.sigma_px);
+    const float limit = a.at("limit").get<float>();
+    render::FragmentOptions fo;
+    fo.tiled = true;
+    const std::string frag = name + "/adaptive_ss.frag";
+    write_file(out / frag,
+               render::glsl_version_line("450") +
+                   compiler::emit_glsl_lod(near, far, limit, "bl_shade",
+                                           "scene " + name + ": adaptive supersampling " +
+                                               std::to_string(nn) + " / " + std::to_string(nf) + " samples") +
+                   "\n" + render::glsl_fragment_main(near, "bl_shade", fo));
+    programs.push_back({{"label", "adaptive_ss"},
+                        {"kind", "adaptive"},
+                        {"msaa", 0},
+                        {"error", a.at("error")},
+                        {"compiled_ns", a.value("compiled_ns", -1.0)},
+                        {"model_ns", a.value("model_ns", -1.0)},
+                        {"mix", json::object()},
+                        {"limit", limit},
+                        {"frag", frag}});
+  }
   json uniforms = json::array();
   for (const gl::Uniform& u : render::glsl_frame_uniforms(s, render::frames(s).front()))
     uniforms.push_back(uniform_json(u));

@@ -9,10 +9,6 @@
 
 namespace bl::tuner {
 
-compiler::Program stratified_samples(const compiler::Program& plain, int n, double sigma_px) {
-  return n == 1 ? plain : compiler::supersample(plain, compiler::supersample_offsets(n, sigma_px));
-}
-
 std::optional<AdaptiveSupersampling> adaptive_supersampling(const SceneTuner& t, double target) {
   const auto plain = t.lower_plain();
   if (!plain) return std::nullopt;
@@ -27,7 +23,7 @@ std::optional<AdaptiveSupersampling> adaptive_supersampling(const SceneTuner& t,
     one.push_back(n == 1
                       ? *plain
                       : compiler::supersample(*plain, {compiler::supersample_offsets(n, sigma_px).front()}));
-    sq.push_back(all.pixel_sq(stratified_samples(*plain, n, sigma_px)));
+    sq.push_back(all.pixel_sq(compiler::stratified_samples(*plain, n, sigma_px)));
     model_ns.push_back(t.cost_model().sequential_cost(one.back(), n));
   }
   const double dispatch = lod_dispatch_ns(t.cost_model());

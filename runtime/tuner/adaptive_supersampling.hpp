@@ -27,9 +27,6 @@ struct AdaptiveSupersampling {
   double compiled_ns = -1;                // the pair compiled into one loop, frame 0; -1: not timed
 };
 
-// The plain program at n stratified offsets (compiler::supersample), or `plain` itself for n = 1.
-compiler::Program stratified_samples(const compiler::Program& plain, int n, double sigma_px);
-
 // The fastest pair at error <= target (none when no pair reaches it); compiled_ns is not set here.
 std::optional<AdaptiveSupersampling> adaptive_supersampling(const SceneTuner& t, double target);
 

@@ -221,8 +221,8 @@ std::optional<AdaptiveSupersampling> find_adaptive_supersampling(const SceneTune
   if (!a) return a;
   const auto plain = t.lower_plain();
   const double sigma_px = t.scene().sigma_px;
-  const compiler::Program near = stratified_samples(*plain, a->near_samples, sigma_px),
-                          far = stratified_samples(*plain, a->far_samples, sigma_px);
+  const compiler::Program near = compiler::stratified_samples(*plain, a->near_samples, sigma_px),
+                          far = compiler::stratified_samples(*plain, a->far_samples, sigma_px);
   a->compiled_ns = time_pair(t, near, far, a->limit, gl);
   std::fprintf(
       stderr,

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # blgpu_pack packs bltune's footprint-LOD pair (result.json "lod") as <scene>/lod.frag beside the
-# front points, and blgpu_time compiles, draws and reports it beside the single points (here on
+# front points (and the adaptive supersampler, "adaptive_ss", as adaptive_ss.frag), and blgpu_time
+# compiles, draws and reports them beside the single points (here on
 # whatever GL driver there is: llvmpipe in CI). The scene is the record's first with a pair.
 set -euo pipefail
 blgpu_pack=$1 blgpu_time=$2 root=$3 work=$4
@@ -16,11 +17,14 @@ done
 [ -n "$scene" ] || { echo "no scene of docs/tuning/suite has a footprint-LOD pair"; exit 1; }
 "$blgpu_pack" --suite "$root/docs/tuning/suite" --scenes "$root/scenes/suite" --only "$scene" --tile 1 \
   --fronts 1 --baselines plain,msaa16 --out "$work/pack" > "$work/pack.log" 2>&1 || { cat "$work/pack.log"; exit 1; }
-# plain, MSAA-16, the fastest front point at MSAA-16's error and the pair.
-grep -q "1 scenes, 4 fragment shaders" "$work/pack.log" || { cat "$work/pack.log"; exit 1; }
+# plain, MSAA-16, the fastest front point at MSAA-16's error, the pair and the adaptive supersampler.
+grep -q "1 scenes, 5 fragment shaders" "$work/pack.log" || { cat "$work/pack.log"; exit 1; }
 grep -q '"kind": "lod"' "$work/pack/manifest.json" || { echo "manifest.json has no lod entry"; exit 1; }
-for f in "void bl_shade_near(" "void bl_shade_far(" "void bl_shade(" "void main()"; do
-  grep -qF "$f" "$work/pack/$scene/lod.frag" || { echo "lod.frag lacks '$f'"; exit 1; }
+grep -q '"kind": "adaptive"' "$work/pack/manifest.json" || { echo "manifest.json has no adaptive entry"; exit 1; }
+for frag in lod adaptive_ss; do
+  for f in "void bl_shade_near(" "void bl_shade_far(" "void bl_shade(" "void main()"; do
+    grep -qF "$f" "$work/pack/$scene/$frag.frag" || { echo "$frag.frag lacks '$f'"; exit 1; }
+  done
 done
 "$blgpu_time" "$work/pack" --out "$work/gpu" --budget-ms 2 > "$work/gpu.log" 2> "$work/gpu.err" ||
   { cat "$work/gpu.err"; exit 1; }
@@ -31,4 +35,5 @@ row=$(grep "^| $scene |" "$report") || { cat "$report"; exit 1; }
 echo "$row" | awk -F'|' '{ if ($10 !~ /^ [0-9]+\.[0-9]+ $/ || $11 !~ /x \/ [0-9.]+x/) exit 1 }' ||
   { echo "no timed pair in: $row"; exit 1; }
 grep -q "^With the footprint-LOD pair where it is faster (1 scene(s)" "$report" || { cat "$report"; exit 1; }
+grep -q "^Against footprint-adaptive supersampling at MSAA-16's error (1 scene(s))" "$report" || { cat "$report"; exit 1; }
 echo ok

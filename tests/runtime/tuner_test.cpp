@@ -1171,8 +1171,8 @@ TEST(AdaptiveSupersampling, ReachesTheTargetWithThePairItNames) {
   const auto plain = t.lower_plain();
   ASSERT_TRUE(plain);
   const double sigma_px = t.scene().sigma_px;
-  EXPECT_EQ(stratified_samples(*plain, 1, sigma_px).insts.size(), plain->insts.size());
-  EXPECT_EQ(stratified_samples(*plain, 4, sigma_px).insts.size(),
+  EXPECT_EQ(compiler::stratified_samples(*plain, 1, sigma_px).insts.size(), plain->insts.size());
+  EXPECT_EQ(compiler::stratified_samples(*plain, 4, sigma_px).insts.size(),
             compiler::supersample(*plain, compiler::supersample_offsets(4, sigma_px)).insts.size());
   const PixelSample& all = t.full_sample();
   auto rms = [&](const std::vector<double>& sq) {
@@ -1181,15 +1181,17 @@ TEST(AdaptiveSupersampling, ReachesTheTargetWithThePairItNames) {
     return std::sqrt(sum / (3.0 * all.count()));
   };
   const double plain_error = rms(all.pixel_sq(*plain));
-  const double target = rms(all.pixel_sq(stratified_samples(*plain, 8, sigma_px)));
+  const double target = rms(all.pixel_sq(compiler::stratified_samples(*plain, 8, sigma_px)));
   ASSERT_LT(target, plain_error);
   const std::optional<AdaptiveSupersampling> a = adaptive_supersampling(t, target);
   ASSERT_TRUE(a);
   EXPECT_LE(a->error, target);
   EXPECT_GE(a->near_share, 0);
   EXPECT_LE(a->near_share, 1);
-  const std::vector<double> near = all.pixel_sq(stratified_samples(*plain, a->near_samples, sigma_px)),
-                            far = all.pixel_sq(stratified_samples(*plain, a->far_samples, sigma_px));
+  const std::vector<double> near =
+                                all.pixel_sq(compiler::stratified_samples(*plain, a->near_samples, sigma_px)),
+                            far =
+                                all.pixel_sq(compiler::stratified_samples(*plain, a->far_samples, sigma_px));
   const std::vector<float> fp = all.footprints();
   std::vector<double> pair(fp.size());
   double share = 0;
