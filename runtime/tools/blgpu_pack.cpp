@@ -137,8 +137,30 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
     if (static_cast<int>(fronts.size()) > sel.fronts) fronts.resize(sel.fronts);
   }
   for (const json& f : fronts) add(f, "front");
-  // The footprint-LOD pair (bltune's result.json "lod": two front schedules and the footprint limit),
-  // as the fragment a renderer would run: both functions and the dispatcher of compiler::emit_glsl_lod.
+  // A footprint pair as the fragment a renderer would run: both functions and the dispatcher of
+  // compiler::emit_glsl_lod, `label`.frag, with the result's error and times.
+  auto add_pair = [&](const std::string& label, const std::string& kind, const compiler::Program& near,
+                      const compiler::Program& far, const json& r, const std::string& what, json entry) {
+    const float limit = r.at("limit").get<float>();
+    render::FragmentOptions fo;
+    fo.tiled = true;
+    const std::string frag = name + "/" + label + ".frag";
+    write_file(out / frag,
+               render::glsl_version_line("450") +
+                   compiler::emit_glsl_lod(near, far, limit, "bl_shade", "scene " + name + ": " + what) +
+                   "\n" + render::glsl_fragment_main(near, "bl_shade", fo));
+    entry.update({{"label", label},
+                  {"kind", kind},
+                  {"msaa", 0},
+                  {"error", r.at("error")},
+                  {"compiled_ns", r.value("compiled_ns", -1.0)},
+                  {"model_ns", r.value("model_ns", -1.0)},
+                  {"mix", json::object()},
+                  {"limit", limit},
+                  {"frag", frag}});
+    programs.push_back(entry);
+  };
+  // The footprint-LOD pair (bltune's result.json "lod": two front schedules and the footprint limit).
   if (const auto it = result.find("lod"); it != result.end() && !it->is_null()) {
     const json& l = *it;
     const std::string where = (result_dir / "result.json").string() + ": lod.";
@@ -146,27 +168,9 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
         g, compiler::parse_schedule(g, l.at("near_schedule").get<std::string>(), where + "near_schedule"));
     const compiler::Program far = compiler::lower(
         g, compiler::parse_schedule(g, l.at("far_schedule").get<std::string>(), where + "far_schedule"));
-    const float limit = l.at("limit").get<float>();
-    render::FragmentOptions fo;
-    fo.tiled = true;
-    const std::string frag = name + "/lod.frag";
-    write_file(out / frag, render::glsl_version_line("450") +
-                               compiler::emit_glsl_lod(near, far, limit, "bl_shade",
-                                                       "scene " + name + ": footprint LOD " +
-                                                           l.at("near").get<std::string>() + " + " +
-                                                           l.at("far").get<std::string>()) +
-                               "\n" + render::glsl_fragment_main(near, "bl_shade", fo));
-    programs.push_back({{"label", "lod"},
-                        {"kind", "lod"},
-                        {"msaa", 0},
-                        {"error", l.at("error")},
-                        {"compiled_ns", l.value("compiled_ns", -1.0)},
-                        {"model_ns", l.value("model_ns", -1.0)},
-                        {"mix", json::object()},
-                        {"near", l.at("near")},
-                        {"far", l.at("far")},
-                        {"limit", limit},
-                        {"frag", frag}});
+    add_pair("lod", "lod", near, far, l,
+             "footprint LOD " + l.at("near").get<std::string>() + " + " + l.at("far").get<std::string>(),
+             {{"near", l.at("near")}, {"far", l.at("far")}});
   }
   // The footprint-adaptive supersampler (result.json "adaptive_ss": two sample counts and the limit),
   // the plain program at each count through the same dispatcher.
@@ -174,27 +178,10 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
     const json& a = *it;
     const compiler::Program plain = compiler::lower(g, compiler::load_schedule(csv + ":plain", g).schedule);
     const int nn = a.at("near_samples").get<int>(), nf = a.at("far_samples").get<int>();
-    const compiler::Program near = compiler::stratified_samples(plain, nn, s.sigma_px),
-                            far = compiler::stratified_samples(plain, nf, s.sigma_px);
-    const float limit = a.at("limit").get<float>();
-    render::FragmentOptions fo;
-    fo.tiled = true;
-    const std::string frag = name + "/adaptive_ss.frag";
-    write_file(out / frag,
-               render::glsl_version_line("450") +
-                   compiler::emit_glsl_lod(near, far, limit, "bl_shade",
-                                           "scene " + name + ": adaptive supersampling " +
-                                               std::to_string(nn) + " / " + std::to_string(nf) + " samples") +
-                   "\n" + render::glsl_fragment_main(near, "bl_shade", fo));
-    programs.push_back({{"label", "adaptive_ss"},
-                        {"kind", "adaptive"},
-                        {"msaa", 0},
-                        {"error", a.at("error")},
-                        {"compiled_ns", a.value("compiled_ns", -1.0)},
-                        {"model_ns", a.value("model_ns", -1.0)},
-                        {"mix", json::object()},
-                        {"limit", limit},
-                        {"frag", frag}});
+    add_pair("adaptive_ss", "adaptive", compiler::stratified_samples(plain, nn, s.sigma_px),
+             compiler::stratified_samples(plain, nf, s.sigma_px), a,
+             "adaptive supersampling " + std::to_string(nn) + " / " + std::to_string(nf) + " samples",
+             json::object());
   }
   json uniforms = json::array();
   for (const gl::Uniform& u : render::glsl_frame_uniforms(s, render::frames(s).front()))
