@@ -98,4 +98,8 @@ Program stratified_samples(const Program& plain, int n, double sigma_px) {
   return n == 1 ? plain : supersample(plain, supersample_offsets(n, sigma_px));
 }
 
+Program one_sample(const Program& plain, int n, double sigma_px) {
+  return n == 1 ? plain : supersample(plain, {supersample_offsets(n, sigma_px).front()});
+}
+
 }  // namespace bl::compiler

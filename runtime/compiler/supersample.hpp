@@ -27,5 +27,8 @@ Program supersample(const Program& plain, const std::vector<std::array<float, 2>
 // ssN for a sample count: supersample(plain, supersample_offsets(n, sigma_px)), and `plain` itself
 // for n = 1 (the footprint-adaptive supersampler's choices, tuner/adaptive_supersampling.hpp).
 Program stratified_samples(const Program& plain, int n, double sigma_px);
+// One sample of ssN (the plain program at its first offset, input shifts included; `plain` itself
+// for n = 1): what the cost model prices n times (CostModel::sequential_cost).
+Program one_sample(const Program& plain, int n, double sigma_px);
 
 }  // namespace bl::compiler

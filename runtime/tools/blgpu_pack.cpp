@@ -101,9 +101,9 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
     // supersampled in the shader (compiler/supersample.hpp).
     const compiler::Schedule sched =
         compiler::load_schedule(csv + ":" + (msaa > 0 || ss > 0 ? "plain" : label), g).schedule;
-    const compiler::Program p = ss > 0 ? compiler::supersample(compiler::lower(g, sched),
-                                                               compiler::supersample_offsets(ss, s.sigma_px))
-                                       : compiler::lower(g, sched);
+    const compiler::Program p = ss > 0
+                                    ? compiler::stratified_samples(compiler::lower(g, sched), ss, s.sigma_px)
+                                    : compiler::lower(g, sched);
     render::FragmentOptions fo;
     fo.samples = msaa;
     fo.tiled = true;

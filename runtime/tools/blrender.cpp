@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
     std::vector<compiler::Program> ss_programs;
     std::vector<std::unique_ptr<jit::CompiledProgram>> ss_compiled;
     for (int n : supersample) {
-      ss_programs.push_back(compiler::supersample(plain, compiler::supersample_offsets(n, s.sigma_px)));
+      ss_programs.push_back(compiler::stratified_samples(plain, n, s.sigma_px));
       ss_compiled.push_back(jit_error.empty() ? std::make_unique<jit::CompiledProgram>(ss_programs.back(), jo)
                                               : nullptr);
     }

@@ -20,9 +20,7 @@ std::optional<AdaptiveSupersampling> adaptive_supersampling(const SceneTuner& t,
   std::vector<double> model_ns;
   for (int n : kAdaptiveSampleCounts) {
     counts.push_back(n);
-    one.push_back(n == 1
-                      ? *plain
-                      : compiler::supersample(*plain, {compiler::supersample_offsets(n, sigma_px).front()}));
+    one.push_back(compiler::one_sample(*plain, n, sigma_px));
     sq.push_back(all.pixel_sq(compiler::stratified_samples(*plain, n, sigma_px)));
     model_ns.push_back(t.cost_model().sequential_cost(one.back(), n));
   }

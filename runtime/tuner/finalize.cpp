@@ -329,15 +329,14 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   // Stratified supersampling in the shader (compiler/supersample.hpp): a fixed pattern, as GPU MSAA
   // places its samples; 8 of them reach MSAA-16's error on every suite scene (docs/tuning.md, stop 34).
   for (int n : kSupersampleBaselines) {
-    const auto offsets = compiler::supersample_offsets(n, s.sigma_px);
-    const compiler::Program ss = compiler::supersample(*plain_program, offsets);
+    const compiler::Program ss = compiler::stratified_samples(*plain_program, n, s.sigma_px);
     Measured m;
     m.label = "ss" + std::to_string(n);
     m.schedule = "plain x " + std::to_string(n) + " stratified samples in the shader";
     m.supersample = n;
     // The model's price: n samples one after another (CostModel::sequential_cost), one sample being
     // the plain program at one offset; cost(ss) would overlap the samples' latency chains.
-    m.model_ns = t.cost_model().sequential_cost(compiler::supersample(*plain_program, {offsets.front()}), n);
+    m.model_ns = t.cost_model().sequential_cost(compiler::one_sample(*plain_program, n, s.sigma_px), n);
     m.search_error = std::numeric_limits<double>::quiet_NaN();
     set_score(m, t.full_score(ss));
     measure(t, ss, gl, &m);
