@@ -82,6 +82,21 @@ std::string read_text(const std::string& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
+// A measured point of a hand-made SceneResult (the report tests).
+Measured measured(const std::string& label, double model, double compiled, double error, int msaa = 0,
+                  int supersample = 0) {
+  Measured m;
+  m.label = label, m.model_ns = model, m.compiled_ns = compiled, m.error = error, m.msaa = msaa;
+  m.supersample = supersample;
+  return m;
+}
+
+// r written as dir/result.json and read back.
+SceneResult json_round_trip(const SceneResult& r, const std::string& dir) {
+  std::ofstream(dir + "/result.json") << result_to_json(r);
+  return load_result(dir + "/result.json");
+}
+
 bool same_front(const std::vector<Point>& a, const std::vector<Point>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i)
@@ -588,12 +603,9 @@ TEST(Report, AnchorBreakdownIsReportedAndSaved) {
   write_scene_report(r, dir);
   const std::string md = read_text(dir + "/report.md");
   EXPECT_NE(md.find(r.anchor_breakdown), std::string::npos);
-  {
-    std::ofstream out(dir + "/result.json");
-    out << result_to_json(r);
-  }
-  EXPECT_EQ(load_result(dir + "/result.json").anchor_breakdown, r.anchor_breakdown);
-  EXPECT_FALSE(load_result(dir + "/result.json").lod);
+  const SceneResult back = json_round_trip(r, dir);
+  EXPECT_EQ(back.anchor_breakdown, r.anchor_breakdown);
+  EXPECT_FALSE(back.lod);
   EXPECT_NE(md.find("None: no pair reaches MSAA-16's error"), std::string::npos) << md;
 }
 
@@ -638,11 +650,7 @@ TEST(Report, FootprintLodIsReportedCountedAndSaved) {
   EXPECT_NE(md.find("| front00 | front01 | 0.0125 | 75% | 10.00 | 25.00 | 0.02900 | 16.0x / 8.0x |"),
             std::string::npos)
       << md;
-  {
-    std::ofstream out(dir + "/result.json");
-    out << result_to_json(r);
-  }
-  const SceneResult back = load_result(dir + "/result.json");
+  const SceneResult back = json_round_trip(r, dir);
   ASSERT_TRUE(back.lod);
   EXPECT_EQ(back.lod->far, "front01");
   EXPECT_FLOAT_EQ(back.lod->limit, 0.0125f);
@@ -663,17 +671,11 @@ TEST(Report, FootprintLodIsReportedCountedAndSaved) {
 // compiled 100 / 40 = 2.5, model 90 / 40 = 2.25; with a LOD pair at that error 100 / 25 = 4 and
 // 90 / 9 = 10.
 TEST(Report, StratifiedSupersamplingIsComparedByModelAndCompiledTime) {
-  auto point = [](const char* label, double model, double compiled, double error, int msaa = 0, int ss = 0) {
-    Measured m;
-    m.label = label, m.model_ns = model, m.compiled_ns = compiled, m.error = error, m.msaa = msaa;
-    m.supersample = ss;
-    return m;
-  };
   SceneResult r;
   r.scene = "toy";
-  r.baselines = {point("msaa16", 160, 200, 0.03, 16), point("ss4", 45, 50, 0.04, 0, 4),
-                 point("ss16", 100, 190, 0.015, 0, 16), point("ss8", 90, 100, 0.025, 0, 8)};
-  r.front = {point("front00", 8, 10, 0.05), point("front01", 40, 40, 0.02)};
+  r.baselines = {measured("msaa16", 160, 200, 0.03, 16), measured("ss4", 45, 50, 0.04, 0, 4),
+                 measured("ss16", 100, 190, 0.015, 0, 16), measured("ss8", 90, 100, 0.025, 0, 8)};
+  r.front = {measured("front00", 8, 10, 0.05), measured("front01", 40, 40, 0.02)};
   StratifiedSpeedup st = stratified_speedup16(r);
   EXPECT_EQ(st.label, "ss8");
   EXPECT_DOUBLE_EQ(st.ss_ns, 100);
@@ -713,11 +715,7 @@ TEST(Report, StratifiedSupersamplingIsComparedByModelAndCompiledTime) {
   EXPECT_NE(fcsv.find("baseline,ss8,90,"), std::string::npos);
   EXPECT_NE(fcsv.find(",0,8\n"), std::string::npos) << fcsv;
   EXPECT_NE(fcsv.find(",16,0\n"), std::string::npos) << fcsv;
-  {
-    std::ofstream out(dir + "/result.json");
-    out << result_to_json(r);
-  }
-  EXPECT_EQ(load_result(dir + "/result.json").baselines[3].supersample, 8);
+  EXPECT_EQ(json_round_trip(r, dir).baselines[3].supersample, 8);
   // No compiled times: the model's comparison alone.
   for (Measured& b : r.baselines) b.compiled_ns = 0;
   st = stratified_speedup16(r);
@@ -1209,15 +1207,10 @@ TEST(AdaptiveSupersampling, ReachesTheTargetWithThePairItNames) {
 // ours at MSAA-16's error is the LOD pair (12 model, 20 compiled) so 5x / 4x; the summary counts
 // neither at 10x, the JSON keeps it, and a scene where ours misses that error says so.
 TEST(Report, AdaptiveSupersamplingIsComparedCountedAndSaved) {
-  auto point = [](const char* label, double model, double compiled, double error, int msaa = 0) {
-    Measured m;
-    m.label = label, m.model_ns = model, m.compiled_ns = compiled, m.error = error, m.msaa = msaa;
-    return m;
-  };
   SceneResult r;
   r.scene = "toy";
-  r.baselines = {point("msaa16", 160, 200, 0.03, 16)};
-  r.front = {point("front00", 8, 10, 0.05), point("front01", 40, 40, 0.02)};
+  r.baselines = {measured("msaa16", 160, 200, 0.03, 16)};
+  r.front = {measured("front00", 8, 10, 0.05), measured("front01", 40, 40, 0.02)};
   LodResult lod;
   lod.near = "front00", lod.far = "front01", lod.error = 0.029, lod.compiled_ns = 20, lod.model_ns = 12;
   r.lod = lod;
@@ -1246,11 +1239,7 @@ TEST(Report, AdaptiveSupersamplingIsComparedCountedAndSaved) {
               "**5.0x** / **4.0x** less time."),
       std::string::npos)
       << md;
-  {
-    std::ofstream out(dir + "/result.json");
-    out << result_to_json(r);
-  }
-  const SceneResult back = load_result(dir + "/result.json");
+  const SceneResult back = json_round_trip(r, dir);
   ASSERT_TRUE(back.adaptive_ss);
   EXPECT_EQ(back.adaptive_ss->far_samples, 8);
   EXPECT_DOUBLE_EQ(back.adaptive_ss->model_ns, 60);
