@@ -164,10 +164,14 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
   if (const auto it = result.find("lod"); it != result.end() && !it->is_null()) {
     const json& l = *it;
     const std::string where = (result_dir / "result.json").string() + ": lod.";
-    const compiler::Program near = compiler::lower(
-        g, compiler::parse_schedule(g, l.at("near_schedule").get<std::string>(), where + "near_schedule"));
-    const compiler::Program far = compiler::lower(
-        g, compiler::parse_schedule(g, l.at("far_schedule").get<std::string>(), where + "far_schedule"));
+    // A side may be the plain schedule at N stratified samples (near_samples / far_samples, from stop 36).
+    auto side = [&](const std::string& key) {
+      const compiler::Program p = compiler::lower(
+          g,
+          compiler::parse_schedule(g, l.at(key + "_schedule").get<std::string>(), where + key + "_schedule"));
+      return compiler::stratified_samples(p, l.value(key + "_samples", 1), s.sigma_px);
+    };
+    const compiler::Program near = side("near"), far = side("far");
     add_pair("lod", "lod", near, far, l,
              "footprint LOD " + l.at("near").get<std::string>() + " + " + l.at("far").get<std::string>(),
              {{"near", l.at("near")}, {"far", l.at("far")}});

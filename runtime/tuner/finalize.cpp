@@ -18,8 +18,8 @@
 #include "render/compiled_frame.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
-#include "tuner/lod.hpp"
-#include "tuner/lod_pricing.hpp"
+#include "tuner/adaptive_supersampling.hpp"
+#include "tuner/lod_pair.hpp"
 #include "tuner/polish.hpp"
 #include "tuner/report.hpp"
 
@@ -146,22 +146,19 @@ double time_pair(const SceneTuner& t, const compiler::Program& near, const compi
   }
 }
 
-// The fastest footprint-LOD pair of the measured front at MSAA-16's full error e16 (lod.hpp), kept
-// when it is faster by the model than every single front point at that error; its compiled time is
-// the pair in one loop (jit::CompiledProgram's LOD form).
+// The fastest footprint-LOD pair at MSAA-16's full error e16 (lod_pair.hpp), kept when it is faster
+// by the model than every single front point at that error; its compiled time is the pair in one
+// loop (jit::CompiledProgram's LOD form). Its points: the measured front, and the search's front
+// points that are not among them (labelled searchNN by their place in the search front; many lie
+// between the measured ones).
 std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measured>& front,
                                   const std::vector<compiler::Schedule>& schedules,
                                   const std::vector<Point>& search_front, double e16, Timer& gl) {
-  // The candidates: the measured front points, and the search's front points that are not among
-  // them (labelled searchNN by their place in the search front; many lie between the measured ones).
-  std::vector<std::string> labels, texts;
-  std::vector<compiler::Schedule> cand;
-  std::vector<double> model_ns;
+  std::vector<std::pair<std::string, compiler::Schedule>> points;
+  std::vector<std::string> texts;
   for (std::size_t i = 0; i < front.size(); ++i) {
-    labels.push_back(front[i].label);
+    points.emplace_back(front[i].label, schedules[i]);
     texts.push_back(front[i].schedule);
-    cand.push_back(schedules[i]);
-    model_ns.push_back(front[i].model_ns);
   }
   for (std::size_t i = 0; i < search_front.size(); ++i) {
     const compiler::Schedule sch = t.schedule(search_front[i].genome);
@@ -171,40 +168,29 @@ std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measure
       continue;
     char label[32];
     std::snprintf(label, sizeof label, "search%02zu", i);
-    labels.push_back(label);
+    points.emplace_back(label, sch);
     texts.push_back(text);
-    cand.push_back(sch);
-    model_ns.push_back(search_front[i].obj.time);
   }
-  if (cand.size() < 2) return std::nullopt;
-  const PixelSample& all = t.full_sample();
-  std::vector<std::unique_ptr<compiler::Program>> programs;
-  std::vector<std::vector<double>> sq;
-  for (const compiler::Schedule& sch : cand) {
-    programs.push_back(t.lower(sch));
-    if (!programs.back()) return std::nullopt;  // front points lower; a table change would show here
-    sq.push_back(all.pixel_sq(*programs.back()));
-  }
+  const std::vector<LodSide> sides = lod_sides(t, points);
+  if (sides.size() < 2) return std::nullopt;
+  const LodChoice c = fastest_lod_pair(t, sides, e16);
   double single = std::numeric_limits<double>::infinity();
   for (const Measured& m : front)
     if (m.error <= e16) single = std::min(single, m.model_ns);
-  const double dispatch = lod_dispatch_ns(t.cost_model());
-  // Candidates by the all-pixel prices, then each priced on its own pixels (lod_pricing.hpp).
-  const auto cands =
-      lod_candidates(sq, all.footprints(), model_ns, all.miss_sq(), all.count(), e16, dispatch, 64, 48);
-  const LodChoice c = fastest_on_own_pixels(
-      t, cands, [&](const CostModel& m, int k) { return m.cost(*programs[k]); }, dispatch);
   if (c.near < 0 || !(c.model_ns < single)) return std::nullopt;
+  const LodSide &near = sides[c.near], &far = sides[c.far];
   LodResult r;
-  r.near = labels[c.near];
-  r.far = labels[c.far];
-  r.near_schedule = texts[c.near];
-  r.far_schedule = texts[c.far];
+  r.near = near.label;
+  r.far = far.label;
+  r.near_schedule = near.schedule;
+  r.far_schedule = far.schedule;
+  r.near_samples = near.samples;
+  r.far_samples = far.samples;
   r.limit = c.limit;
   r.near_share = c.near_share;
   r.model_ns = c.model_ns;
   r.error = c.error;
-  r.compiled_ns = time_pair(t, *programs[c.near], *programs[c.far], c.limit, gl);
+  r.compiled_ns = time_pair(t, near.program, far.program, c.limit, gl);
   std::fprintf(
       stderr,
       "finalize: %s: footprint LOD %s below %.3g, %s above (%.0f%% of pixels near): %.2f ns/px model, "

@@ -40,12 +40,17 @@ struct Measured {
 // The fastest footprint-LOD pair (tuner/lod.hpp) at MSAA-16's error, of the measured front points and
 // the search's front points, when it is faster by the model than every single measured point there.
 struct LodResult {
-  std::string near, far;  // front labels (frontNN), or searchNN: row NN of front_search.csv (not measured)
+  // front labels (frontNN), searchNN: row NN of front_search.csv (not measured), or ssN: the plain
+  // program at N stratified samples
+  std::string near, far;
   std::string near_schedule, far_schedule;  // their schedules (compiler::schedule_to_text)
-  float limit = 0;                          // footprint (max of sigma_u, sigma_v) where `far` takes over
-  double near_share = 0;                    // share of the hit pixels (all frames) below it
-  double model_ns = 0;                      // near_share T(near) + (1 - near_share) T(far) + the dispatch
-  double error = 0;                         // RMS display, every pixel of every frame
+  // Stratified samples of each side's schedule (compiler::stratified_samples): 1, the schedule itself;
+  // N > 1 only for the plain schedule, labelled ssN (finalize's find_lod). Older results: 1.
+  int near_samples = 1, far_samples = 1;
+  float limit = 0;          // footprint (max of sigma_u, sigma_v) where `far` takes over
+  double near_share = 0;    // share of the hit pixels (all frames) below it
+  double model_ns = 0;      // near_share T(near) + (1 - near_share) T(far) + the dispatch
+  double error = 0;         // RMS display, every pixel of every frame
   double compiled_ns = -1;  // the pair compiled into one loop (jit), frame 0; -1 without a compiler
 };
 

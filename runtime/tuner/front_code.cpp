@@ -7,6 +7,7 @@
 
 #include "compiler/emit.hpp"
 #include "compiler/schedule_text.hpp"
+#include "compiler/supersample.hpp"
 
 namespace bl::tuner {
 
@@ -33,13 +34,13 @@ int write_front_code(const SceneTuner& t, const SceneResult& r, const std::strin
     ++n;
   }
   if (r.lod) {  // the footprint-LOD pair as one function of each language
-    auto program = [&](const std::string& text, const std::string& label) {
+    auto program = [&](const std::string& text, const std::string& label, int samples) {
       auto p = t.lower(compiler::parse_schedule(t.graph(), text, "footprint LOD point " + label));
       if (!p) throw std::logic_error("write_front_code: footprint LOD point " + label + " no longer lowers");
-      return p;
+      return compiler::stratified_samples(*p, samples, t.scene().sigma_px);
     };
-    const auto near = program(r.lod->near_schedule, r.lod->near),
-               far = program(r.lod->far_schedule, r.lod->far);
+    const compiler::Program near = program(r.lod->near_schedule, r.lod->near, r.lod->near_samples),
+                            far = program(r.lod->far_schedule, r.lod->far, r.lod->far_samples);
     char banner[320];
     std::snprintf(
         banner, sizeof banner,
@@ -47,8 +48,8 @@ int write_front_code(const SceneTuner& t, const SceneResult& r, const std::strin
         "(every pixel of %d frame(s) vs ground truth), cost model %.1f ns/pixel",
         t.scene().name.c_str(), r.lod->near.c_str(), r.lod->limit, r.lod->far.c_str(), r.lod->error, r.frames,
         r.lod->model_ns);
-    std::ofstream(out + "/lod.hpp") << compiler::emit_cpp_lod(*near, *far, r.lod->limit, "shade", banner);
-    std::ofstream(out + "/lod.glsl") << compiler::emit_glsl_lod(*near, *far, r.lod->limit, "shade", banner);
+    std::ofstream(out + "/lod.hpp") << compiler::emit_cpp_lod(near, far, r.lod->limit, "shade", banner);
+    std::ofstream(out + "/lod.glsl") << compiler::emit_glsl_lod(near, far, r.lod->limit, "shade", banner);
   }
   return n;
 }

@@ -83,6 +83,8 @@ std::string result_to_json(const SceneResult& r) {
                                    {"far", r.lod->far},
                                    {"near_schedule", r.lod->near_schedule},
                                    {"far_schedule", r.lod->far_schedule},
+                                   {"near_samples", r.lod->near_samples},
+                                   {"far_samples", r.lod->far_samples},
                                    {"limit", r.lod->limit},
                                    {"near_share", r.lod->near_share},
                                    {"model_ns", r.lod->model_ns},
@@ -125,6 +127,8 @@ SceneResult result_from_json(const std::string& text) {
     lod.far = l.at("far");
     lod.near_schedule = l.value("near_schedule", std::string());
     lod.far_schedule = l.value("far_schedule", std::string());
+    lod.near_samples = l.value("near_samples", 1);  // results from stop 36 on
+    lod.far_samples = l.value("far_samples", 1);
     lod.limit = l.at("limit");
     lod.near_share = l.at("near_share");
     lod.model_ns = l.at("model_ns");

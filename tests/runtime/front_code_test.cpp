@@ -16,6 +16,7 @@
 #include "compiler/lower.hpp"
 #include "compiler/schedule_csv.hpp"
 #include "compiler/schedule_text.hpp"
+#include "compiler/supersample.hpp"
 #include "image/display.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
@@ -143,8 +144,9 @@ TEST(FrontCode, EveryFrontPointCompilesAndMatchesTheEvaluator) {
     EXPECT_EQ(fs::exists(dir + "/front/lod.glsl"), res.lod.has_value());
     EXPECT_EQ(fs::exists(dir + "/front/lod.hpp"), res.lod.has_value());
     if (res.lod) {
-      const compiler::Program near =
-          compiler::lower(g, compiler::parse_schedule(g, res.lod->near_schedule, "lod near"));
+      const compiler::Program near = compiler::stratified_samples(
+          compiler::lower(g, compiler::parse_schedule(g, res.lod->near_schedule, "lod near")),
+          res.lod->near_samples, s.sigma_px);
       const std::string glsl = read(dir + "/front/lod.glsl");
       EXPECT_NE(glsl.find("footprint LOD of scene " + std::string(name)), std::string::npos);
       validate((work / (std::string(name) + "_lod")).string(), glsl, near);

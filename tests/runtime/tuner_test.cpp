@@ -10,10 +10,12 @@
 
 #include "compiler/functions.hpp"
 #include "compiler/lower.hpp"
+#include "compiler/schedule_text.hpp"
 #include "compiler/supersample.hpp"
 #include "image/metrics.hpp"
 #include "ir/atomics.hpp"
 #include "render/render.hpp"
+#include "rules/rule.hpp"
 #include "shaders/shader.hpp"
 #include "tuner/adaptive_supersampling.hpp"
 #include "tuner/calibrate.hpp"
@@ -21,6 +23,7 @@
 #include "tuner/finalize.hpp"
 #include "tuner/genetic.hpp"
 #include "tuner/lod.hpp"
+#include "tuner/lod_pair.hpp"
 #include "tuner/magnitude_profile.hpp"
 #include "tuner/pareto.hpp"
 #include "tuner/pixel_sample.hpp"
@@ -665,6 +668,65 @@ TEST(Report, FootprintLodIsReportedCountedAndSaved) {
       << sm;
 }
 
+// A LOD pair with a supersampled side (ss4: the plain schedule at 4 stratified samples) where no front
+// point reaches MSAA-16's error: it is ours there (model 40, compiled 50: 4x by both against MSAA-16's
+// 160 / 200, 1.5x / 1.6x against the adaptive supersampler's 60 / 80), the summary counts the scene
+// as reached with the pair only, the report names the samples, and result.json keeps them (older
+// files, without them: the schedules themselves).
+TEST(Report, SupersampledLodSideReachesWhereNoPointDoes) {
+  SceneResult r;
+  r.scene = "toy";
+  r.baselines = {measured("msaa16", 160, 200, 0.03, 16)};
+  r.front = {measured("front00", 8, 10, 0.05), measured("front01", 40, 40, 0.031)};
+  LodResult lod;
+  lod.near = "ss4", lod.far = "front01", lod.limit = 0.5f, lod.near_share = 0.9;
+  lod.near_schedule = "0:none 1:none", lod.far_schedule = "0:gaussian 1:box", lod.near_samples = 4;
+  lod.error = 0.0299, lod.model_ns = 40, lod.compiled_ns = 50;
+  r.lod = lod;
+  AdaptiveSupersampling a;
+  a.near_samples = 2, a.far_samples = 8, a.model_ns = 60, a.compiled_ns = 80, a.error = 0.028;
+  r.adaptive_ss = a;
+  EXPECT_EQ(speedup16(r).front_index, -1);
+  EXPECT_DOUBLE_EQ(ours16(r).model_ns, 40);
+  EXPECT_DOUBLE_EQ(ours16(r).compiled_ns, 50);
+  EXPECT_DOUBLE_EQ(adaptive_speedup16(r).model, 1.5);
+  EXPECT_DOUBLE_EQ(adaptive_speedup16(r).measured, 1.6);
+  const std::string dir = temp_dir("lod_ss_report");
+  write_scene_report(r, dir);
+  const std::string md = read_text(dir + "/report.md");
+  EXPECT_NE(md.find("| ss4 | front01 | 0.5 | 90% | 40.00 | 50.00 | 0.02990 | 4.0x / 4.0x |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("Schedules: near `0:none 1:none` at 4 stratified samples; far `0:gaussian 1:box`."),
+            std::string::npos)
+      << md;
+  write_suite_summary({r}, dir);
+  const std::string sm = read_text(dir + "/summary.md");
+  EXPECT_NE(sm.find("| not reached | no |"), std::string::npos) << sm;
+  EXPECT_NE(sm.find("| ss4 + front01: 4.0x / 4.0x | no |"), std::string::npos) << sm;
+  EXPECT_NE(
+      sm.find("0 of 1 scenes reach MSAA-16's error with one program; 1 with a footprint-LOD pair or one "
+              "program."),
+      std::string::npos)
+      << sm;
+  SceneResult back = json_round_trip(r, dir);
+  ASSERT_TRUE(back.lod);
+  EXPECT_EQ(back.lod->near_samples, 4);
+  EXPECT_EQ(back.lod->far_samples, 1);
+  // A result.json from before stop 36 has no sample counts: each side is its schedule.
+  std::string text = read_text(dir + "/result.json");
+  for (const char* key : {"\"near_samples\"", "\"far_samples\""}) {
+    const std::size_t at = text.find(key, text.find("\"lod\""));  // not adaptive_ss's
+    ASSERT_NE(at, std::string::npos) << key;
+    text.erase(at, text.find('\n', at) + 1 - at);
+  }
+  std::ofstream(dir + "/result.json") << text;
+  back = load_result(dir + "/result.json");
+  ASSERT_TRUE(back.lod);
+  EXPECT_EQ(back.lod->near_samples, 1);
+  EXPECT_EQ(back.lod->near, "ss4");
+}
+
 // Against stratified supersampling: the ssN with the fewest samples at MSAA-16's error (ss8; ss16
 // is more accurate), against the fastest of ours at that error, by compiled time and by the model
 // (ssN priced by CostModel::sequential_cost, so it counts in the model's accuracy). By hand:
@@ -1201,6 +1263,60 @@ TEST(AdaptiveSupersampling, ReachesTheTargetWithThePairItNames) {
   EXPECT_NEAR(a->near_share, share / fp.size(), 1e-12);
   EXPECT_GT(a->model_ns, t.cost_model().cost(*plain));  // samples cost more than one plain pass
   EXPECT_FALSE(adaptive_supersampling(t, 0.0));
+}
+
+// The LOD pair's sides on the tiny checkerboard: the points in order, then the plain program at 2..16
+// stratified samples priced sample by sample. The pair it picks reaches the target with one smoothed
+// side, and its error is what the two sides give when each pixel takes the one its footprint selects
+// (recomputed here). The target is the error of ss4 below the median footprint and all-Gaussian above
+// it (a pair the search tries), so a pair exists; with the plain point alone no pair qualifies, even
+// where supersamplers reach the target (they are the adaptive supersampler's pairs).
+TEST(FootprintLod, SidesMaySupersamplePlainAndOneIsSmoothed) {
+  const std::string cache = temp_dir("cache_lod_sides");
+  SceneTuner t(tiny_scene(), quick_model(), tiny_options(cache));
+  const ir::Graph& g = t.graph();
+  const compiler::Schedule none = compiler::uniform_schedule(g, rules::parse_rule("none")),
+                           gauss = compiler::uniform_schedule(g, rules::parse_rule("gaussian"));
+  const std::vector<LodSide> sides = lod_sides(t, {{"front00", none}, {"front01", gauss}});
+  ASSERT_EQ(sides.size(), 2u + 7u);  // ss2, 3, 4, 6, 8, 12, 16
+  EXPECT_FALSE(sides[0].smoothed);
+  EXPECT_TRUE(sides[1].smoothed);
+  EXPECT_EQ(sides[1].schedule, compiler::schedule_to_text(g, gauss));
+  const auto plain = t.lower_plain();
+  const double sigma_px = t.scene().sigma_px;
+  for (std::size_t k = 2; k < sides.size(); ++k) {
+    const LodSide& sd = sides[k];
+    SCOPED_TRACE(sd.label);
+    EXPECT_EQ(sd.label, "ss" + std::to_string(sd.samples));
+    EXPECT_FALSE(sd.smoothed);
+    EXPECT_EQ(sd.schedule, sides[0].schedule);
+    EXPECT_EQ(sd.program.insts.size(),
+              compiler::stratified_samples(*plain, sd.samples, sigma_px).insts.size());
+    EXPECT_DOUBLE_EQ(
+        sd.price(t.cost_model()),
+        t.cost_model().sequential_cost(compiler::one_sample(*plain, sd.samples, sigma_px), sd.samples));
+  }
+  EXPECT_EQ(sides[4].label, "ss4");
+  const PixelSample& all = t.full_sample();
+  const std::vector<float> fp = all.footprints();
+  auto pair_error = [&](const compiler::Program& near, const compiler::Program& far, float limit) {
+    const std::vector<double> a = all.pixel_sq(near), b = all.pixel_sq(far);
+    double sum = all.miss_sq();
+    for (std::size_t i = 0; i < fp.size(); ++i) sum += fp[i] < limit ? a[i] : b[i];
+    return std::sqrt(sum / (3.0 * all.count()));
+  };
+  std::vector<float> sorted = fp;
+  std::sort(sorted.begin(), sorted.end());
+  const float median = sorted[sorted.size() / 2];
+  const double target = pair_error(sides[4].program, sides[1].program, median) * (1 + 1e-12);
+  const LodChoice c = fastest_lod_pair(t, sides, target);
+  ASSERT_GE(c.near, 0);
+  EXPECT_TRUE(sides[c.near].smoothed || sides[c.far].smoothed);
+  EXPECT_LE(c.error, target);
+  EXPECT_NEAR(c.error, pair_error(sides[c.near].program, sides[c.far].program, c.limit), 1e-9);
+  const std::vector<LodSide> unsmoothed = lod_sides(t, {{"front00", none}});
+  EXPECT_EQ(fastest_lod_pair(t, unsmoothed, 10.0).near, -1);  // every supersampler pair reaches 10
+  EXPECT_TRUE(lod_sides(t, {}).size() == 7u);
 }
 
 // The adaptive supersampler in the reports, by hand: it takes 60 ns/px by the model and 80 compiled;

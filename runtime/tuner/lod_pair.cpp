@@ -1,0 +1,75 @@
+// See lod_pair.hpp.
+#include "tuner/lod_pair.hpp"
+
+#include "compiler/lower.hpp"
+#include "compiler/schedule_text.hpp"
+#include "compiler/supersample.hpp"
+#include "rules/rule.hpp"
+#include "tuner/adaptive_supersampling.hpp"
+#include "tuner/lod_pricing.hpp"
+
+namespace bl::tuner {
+
+namespace {
+
+// lod_candidates keeps this many pairs for fastest_on_own_pixels to re-price.
+constexpr int kRepriced = 48;
+
+}  // namespace
+
+double LodSide::price(const CostModel& m) const {
+  return samples > 1 ? m.sequential_cost(one, samples) : m.cost(program);
+}
+
+std::vector<LodSide> lod_sides(const SceneTuner& t,
+                               const std::vector<std::pair<std::string, compiler::Schedule>>& points) {
+  const auto plain = t.lower_plain();
+  if (!plain) return {};
+  const std::string plain_text =
+      compiler::schedule_to_text(t.graph(), compiler::uniform_schedule(t.graph(), rules::parse_rule("none")));
+  std::vector<LodSide> sides;
+  for (const auto& [label, schedule] : points) {
+    const auto p = t.lower(schedule);
+    if (!p) return {};
+    LodSide sd;
+    sd.label = label;
+    sd.schedule = compiler::schedule_to_text(t.graph(), schedule);
+    sd.smoothed = sd.schedule != plain_text;
+    sd.program = *p;
+    sides.push_back(std::move(sd));
+  }
+  const double sigma_px = t.scene().sigma_px;
+  for (int n : kAdaptiveSampleCounts) {
+    if (n == 1) continue;  // plain itself is a side only as a point
+    LodSide sd;
+    sd.label = "ss" + std::to_string(n);
+    sd.schedule = plain_text;
+    sd.samples = n;
+    sd.smoothed = false;
+    sd.program = compiler::stratified_samples(*plain, n, sigma_px);
+    sd.one = compiler::one_sample(*plain, n, sigma_px);
+    sides.push_back(std::move(sd));
+  }
+  return sides;
+}
+
+LodChoice fastest_lod_pair(const SceneTuner& t, const std::vector<LodSide>& sides, double target) {
+  const PixelSample& all = t.full_sample();
+  std::vector<std::vector<double>> sq;
+  std::vector<double> model_ns;
+  for (const LodSide& sd : sides) {
+    sq.push_back(all.pixel_sq(sd.program));
+    model_ns.push_back(sd.price(t.cost_model()));
+  }
+  const double dispatch = lod_dispatch_ns(t.cost_model());
+  std::vector<LodChoice> cands;
+  for (const LodChoice& c :
+       lod_candidates(sq, all.footprints(), model_ns, all.miss_sq(), all.count(), target, dispatch, 64, -1)) {
+    if (sides[c.near].smoothed || sides[c.far].smoothed) cands.push_back(c);
+    if (static_cast<int>(cands.size()) == kRepriced) break;
+  }
+  return fastest_on_own_pixels(
+      t, cands, [&](const CostModel& m, int k) { return sides[k].price(m); }, dispatch);
+}
+
+}  // namespace bl::tuner
