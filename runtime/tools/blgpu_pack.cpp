@@ -160,32 +160,32 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
                   {"frag", frag}});
     programs.push_back(entry);
   };
-  // The footprint-LOD pair (bltune's result.json "lod": two front schedules and the footprint limit).
+  // A footprint pair of result.json: each side its schedule at its stratified samples (the plain
+  // program where the schedule is absent: stop 35's adaptive_ss).
+  const compiler::Program plain = compiler::lower(g, compiler::load_schedule(csv + ":plain", g).schedule);
+  auto pair_side = [&](const json& l, const std::string& where, const std::string& key) {
+    const std::string text = l.value(key + "_schedule", std::string());
+    const compiler::Program p =
+        text.empty() ? plain
+                     : compiler::lower(g, compiler::parse_schedule(g, text, where + key + "_schedule"));
+    return compiler::stratified_samples(p, l.value(key + "_samples", 1), s.sigma_px);
+  };
+  auto pair_what = [](const json& l) {
+    return l.value("near", std::string("near")) + " + " + l.value("far", std::string("far"));
+  };
+  // The footprint-LOD pair (bltune's result.json "lod": two front points or ssN and the limit).
   if (const auto it = result.find("lod"); it != result.end() && !it->is_null()) {
     const json& l = *it;
     const std::string where = (result_dir / "result.json").string() + ": lod.";
-    // A side may be the plain schedule at N stratified samples (near_samples / far_samples, from stop 36).
-    auto side = [&](const std::string& key) {
-      const compiler::Program p = compiler::lower(
-          g,
-          compiler::parse_schedule(g, l.at(key + "_schedule").get<std::string>(), where + key + "_schedule"));
-      return compiler::stratified_samples(p, l.value(key + "_samples", 1), s.sigma_px);
-    };
-    const compiler::Program near = side("near"), far = side("far");
-    add_pair("lod", "lod", near, far, l,
-             "footprint LOD " + l.at("near").get<std::string>() + " + " + l.at("far").get<std::string>(),
-             {{"near", l.at("near")}, {"far", l.at("far")}});
+    add_pair("lod", "lod", pair_side(l, where, "near"), pair_side(l, where, "far"), l,
+             "footprint LOD " + pair_what(l), {{"near", l.at("near")}, {"far", l.at("far")}});
   }
-  // The footprint-adaptive supersampler (result.json "adaptive_ss": two sample counts and the limit),
-  // the plain program at each count through the same dispatcher.
+  // The footprint-adaptive supersampler (result.json "adaptive_ss": plain or ssN on each side).
   if (const auto it = result.find("adaptive_ss"); it != result.end() && !it->is_null()) {
     const json& a = *it;
-    const compiler::Program plain = compiler::lower(g, compiler::load_schedule(csv + ":plain", g).schedule);
-    const int nn = a.at("near_samples").get<int>(), nf = a.at("far_samples").get<int>();
-    add_pair("adaptive_ss", "adaptive", compiler::stratified_samples(plain, nn, s.sigma_px),
-             compiler::stratified_samples(plain, nf, s.sigma_px), a,
-             "adaptive supersampling " + std::to_string(nn) + " / " + std::to_string(nf) + " samples",
-             json::object());
+    const std::string where = (result_dir / "result.json").string() + ": adaptive_ss.";
+    add_pair("adaptive_ss", "adaptive", pair_side(a, where, "near"), pair_side(a, where, "far"), a,
+             "adaptive supersampling " + pair_what(a), json::object());
   }
   json uniforms = json::array();
   for (const gl::Uniform& u : render::glsl_frame_uniforms(s, render::frames(s).front()))

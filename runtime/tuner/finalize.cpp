@@ -146,11 +146,22 @@ double time_pair(const SceneTuner& t, const compiler::Program& near, const compi
   }
 }
 
+// A picked pair compiled into one loop and timed (time_pair), logged as `what`.
+LodResult timed(const SceneTuner& t, const PickedPair& p, const char* what, double e16, Timer& gl) {
+  LodResult r = p.result;
+  r.compiled_ns = time_pair(t, p.near, p.far, r.limit, gl);
+  std::fprintf(stderr,
+               "finalize: %s: %s %s below %.3g, %s above (%.0f%% of pixels near): %.2f ns/px model, %.2f "
+               "compiled, error %.5f (MSAA-16 %.5f)\n",
+               t.scene().name.c_str(), what, r.near.c_str(), r.limit, r.far.c_str(), 100 * r.near_share,
+               r.model_ns, r.compiled_ns, r.error, e16);
+  return r;
+}
+
 // The fastest footprint-LOD pair at MSAA-16's full error e16 (lod_pair.hpp), kept when it is faster
-// by the model than every single front point at that error; its compiled time is the pair in one
-// loop (jit::CompiledProgram's LOD form). Its points: the measured front, and the search's front
-// points that are not among them (labelled searchNN by their place in the search front; many lie
-// between the measured ones).
+// by the model than every single front point at that error, then timed. Its points: the measured
+// front, and the search's front points that are not among them (labelled searchNN by their place in
+// the search front; many lie between the measured ones).
 std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measured>& front,
                                   const std::vector<compiler::Schedule>& schedules,
                                   const std::vector<Point>& search_front, double e16, Timer& gl) {
@@ -173,50 +184,12 @@ std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measure
   }
   const std::vector<LodSide> sides = lod_sides(t, points);
   if (sides.size() < 2) return std::nullopt;
-  const LodChoice c = fastest_lod_pair(t, sides, e16);
+  const std::optional<PickedPair> p = fastest_pair(t, sides, e16, true);
   double single = std::numeric_limits<double>::infinity();
   for (const Measured& m : front)
     if (m.error <= e16) single = std::min(single, m.model_ns);
-  if (c.near < 0 || !(c.model_ns < single)) return std::nullopt;
-  const LodSide &near = sides[c.near], &far = sides[c.far];
-  LodResult r;
-  r.near = near.label;
-  r.far = far.label;
-  r.near_schedule = near.schedule;
-  r.far_schedule = far.schedule;
-  r.near_samples = near.samples;
-  r.far_samples = far.samples;
-  r.limit = c.limit;
-  r.near_share = c.near_share;
-  r.model_ns = c.model_ns;
-  r.error = c.error;
-  r.compiled_ns = time_pair(t, near.program, far.program, c.limit, gl);
-  std::fprintf(
-      stderr,
-      "finalize: %s: footprint LOD %s below %.3g, %s above (%.0f%% of pixels near): %.2f ns/px model, "
-      "%.2f compiled, error %.5f (MSAA-16 %.5f)\n",
-      t.scene().name.c_str(), r.near.c_str(), r.limit, r.far.c_str(), 100 * r.near_share, r.model_ns,
-      r.compiled_ns, r.error, e16);
-  return r;
-}
-
-// The footprint-adaptive stratified supersampler at MSAA-16's error (adaptive_supersampling.hpp),
-// its pair compiled into one loop like the LOD pair.
-std::optional<AdaptiveSupersampling> find_adaptive_supersampling(const SceneTuner& t, double e16, Timer& gl) {
-  std::optional<AdaptiveSupersampling> a = adaptive_supersampling(t, e16);
-  if (!a) return a;
-  const auto plain = t.lower_plain();
-  const double sigma_px = t.scene().sigma_px;
-  const compiler::Program near = compiler::stratified_samples(*plain, a->near_samples, sigma_px),
-                          far = compiler::stratified_samples(*plain, a->far_samples, sigma_px);
-  a->compiled_ns = time_pair(t, near, far, a->limit, gl);
-  std::fprintf(
-      stderr,
-      "finalize: %s: adaptive supersampling %d sample(s) below %.3g, %d above (%.0f%% of pixels near): "
-      "%.2f ns/px model, %.2f compiled, error %.5f (MSAA-16 %.5f)\n",
-      t.scene().name.c_str(), a->near_samples, a->limit, a->far_samples, 100 * a->near_share, a->model_ns,
-      a->compiled_ns, a->error, e16);
-  return a;
+  if (!p || !(p->result.model_ns < single)) return std::nullopt;
+  return timed(t, *p, "footprint LOD", e16, gl);
 }
 
 }  // namespace
@@ -426,7 +399,9 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     measure(t, *t.lower(front_schedules[i]), gl, &res.front[i]);
   }
   if (e16 > 0) res.lod = find_lod(t, res.front, front_schedules, front, e16, gl);
-  if (e16 > 0) res.adaptive_ss = find_adaptive_supersampling(t, e16, gl);
+  if (e16 > 0)
+    if (const std::optional<PickedPair> a = adaptive_supersampling(t, e16))
+      res.adaptive_ss = timed(t, *a, "adaptive supersampling", e16, gl);
   uniform("dorn", "dorn");
   uniform("gaussian", "gaussian");
   // Images of frame 0: truth | variant | MSAA of the nearest model time, for the fastest and the most

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "jit/jit.hpp"
-#include "tuner/adaptive_supersampling.hpp"
+#include "tuner/lod_pair.hpp"
 #include "tuner/scene_tuner.hpp"
 
 namespace bl::tuner {
@@ -37,23 +37,6 @@ struct Measured {
   std::map<std::string, double> mix;  // share of genes per rule family
 };
 
-// The fastest footprint-LOD pair (tuner/lod.hpp) at MSAA-16's error, of the measured front points and
-// the search's front points, when it is faster by the model than every single measured point there.
-struct LodResult {
-  // front labels (frontNN), searchNN: row NN of front_search.csv (not measured), or ssN: the plain
-  // program at N stratified samples
-  std::string near, far;
-  std::string near_schedule, far_schedule;  // their schedules (compiler::schedule_to_text)
-  // Stratified samples of each side's schedule (compiler::stratified_samples): 1, the schedule itself;
-  // N > 1 only for the plain schedule, labelled ssN (finalize's find_lod). Older results: 1.
-  int near_samples = 1, far_samples = 1;
-  float limit = 0;          // footprint (max of sigma_u, sigma_v) where `far` takes over
-  double near_share = 0;    // share of the hit pixels (all frames) below it
-  double model_ns = 0;      // near_share T(near) + (1 - near_share) T(far) + the dispatch
-  double error = 0;         // RMS display, every pixel of every frame
-  double compiled_ns = -1;  // the pair compiled into one loop (jit), frame 0; -1 without a compiler
-};
-
 struct SceneResult {
   std::string scene;
   std::string graph_hash;  // compiler::graph_hash_text of the traced graph the schedules are for
@@ -68,10 +51,12 @@ struct SceneResult {
   // Markdown: where the model time of the fastest front point at MSAA-16's error goes
   // (time_breakdown_markdown, report.hpp); "" when no point reaches that error.
   std::string anchor_breakdown;
-  std::optional<LodResult> lod;  // none: no pair beats the single points at MSAA-16's error
+  // The fastest footprint-LOD pair (lod_pair.hpp) at MSAA-16's error, of the measured front points,
+  // the search's front points and supersampled plain; none: no pair beats the single points there.
+  std::optional<LodResult> lod;
   // The footprint-adaptive stratified supersampler at MSAA-16's error (adaptive_supersampling.hpp);
   // none when no pair of sample counts reaches it, or in results before stop 35.
-  std::optional<AdaptiveSupersampling> adaptive_ss;
+  std::optional<LodResult> adaptive_ss;
 };
 
 // The stratified supersampling baselines (ssN) finalize measures beside MSAA-N.

@@ -5,7 +5,6 @@
 #include "compiler/schedule_text.hpp"
 #include "compiler/supersample.hpp"
 #include "rules/rule.hpp"
-#include "tuner/adaptive_supersampling.hpp"
 #include "tuner/lod_pricing.hpp"
 
 namespace bl::tuner {
@@ -39,7 +38,7 @@ std::vector<LodSide> lod_sides(const SceneTuner& t,
     sides.push_back(std::move(sd));
   }
   const double sigma_px = t.scene().sigma_px;
-  for (int n : kAdaptiveSampleCounts) {
+  for (int n : kSupersampleCounts) {
     if (n == 1) continue;  // plain itself is a side only as a point
     LodSide sd;
     sd.label = "ss" + std::to_string(n);
@@ -53,7 +52,8 @@ std::vector<LodSide> lod_sides(const SceneTuner& t,
   return sides;
 }
 
-LodChoice fastest_lod_pair(const SceneTuner& t, const std::vector<LodSide>& sides, double target) {
+std::optional<PickedPair> fastest_pair(const SceneTuner& t, const std::vector<LodSide>& sides, double target,
+                                       bool smoothed_side) {
   const PixelSample& all = t.full_sample();
   std::vector<std::vector<double>> sq;
   std::vector<double> model_ns;
@@ -65,11 +65,26 @@ LodChoice fastest_lod_pair(const SceneTuner& t, const std::vector<LodSide>& side
   std::vector<LodChoice> cands;
   for (const LodChoice& c :
        lod_candidates(sq, all.footprints(), model_ns, all.miss_sq(), all.count(), target, dispatch, 64, -1)) {
-    if (sides[c.near].smoothed || sides[c.far].smoothed) cands.push_back(c);
+    if (!smoothed_side || sides[c.near].smoothed || sides[c.far].smoothed) cands.push_back(c);
     if (static_cast<int>(cands.size()) == kRepriced) break;
   }
-  return fastest_on_own_pixels(
+  const LodChoice c = fastest_on_own_pixels(
       t, cands, [&](const CostModel& m, int k) { return sides[k].price(m); }, dispatch);
+  if (c.near < 0) return std::nullopt;
+  const LodSide &near = sides[c.near], &far = sides[c.far];
+  PickedPair p{{}, near.program, far.program};
+  LodResult& r = p.result;
+  r.near = near.label;
+  r.far = far.label;
+  r.near_schedule = near.schedule;
+  r.far_schedule = far.schedule;
+  r.near_samples = near.samples;
+  r.far_samples = far.samples;
+  r.limit = c.limit;
+  r.near_share = c.near_share;
+  r.model_ns = c.model_ns;
+  r.error = c.error;
+  return p;
 }
 
 }  // namespace bl::tuner

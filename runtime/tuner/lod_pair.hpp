@@ -1,11 +1,15 @@
-// The footprint-LOD pair of tuned programs (lod.hpp) and what its sides may be: the scene's front
-// points, and the plain program at 2..16 stratified samples (ssN, compiler::stratified_samples). Near
-// pixels, where plain is nearly right, can buy their accuracy with a few samples and far ones with
-// smoothing: circles_bumps reaches MSAA-16's error only so (ss4 on 94% of its pixels, a smoothed
-// point beyond; docs/tuning.md, stop 36). One side must be smoothed: two supersamplers are the
-// footprint-adaptive supersampler, the comparator (adaptive_supersampling.hpp).
+// Footprint pairs: two programs of one scene chosen per pixel by its footprint (lod.hpp), as a
+// renderer picks shader variants by distance. Two kinds, one description:
+// - the footprint-LOD pair of tuned programs: sides are the scene's front points and the plain
+//   program at 2..16 stratified samples (ssN, compiler::stratified_samples), one side smoothed. Near
+//   pixels, where plain is nearly right, can buy their accuracy with a few samples and far ones with
+//   smoothing: circles_bumps reaches MSAA-16's error only so (ss4 on 94% of its pixels, a smoothed
+//   point beyond; docs/tuning.md, stop 36);
+// - the footprint-adaptive supersampler, the comparator (adaptive_supersampling.hpp): plain and ssN
+//   only.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +20,9 @@
 #include "tuner/scene_tuner.hpp"
 
 namespace bl::tuner {
+
+// Sample counts of the supersampled sides (1: the plain program itself).
+constexpr int kSupersampleCounts[] = {1, 2, 3, 4, 6, 8, 12, 16};
 
 struct LodSide {
   std::string label;          // the point's label, or ssN
@@ -28,14 +35,35 @@ struct LodSide {
   double price(const CostModel& m) const;
 };
 
-// The points' sides (labels and schedules, in order) and then ss2 .. ss16 (kAdaptiveSampleCounts).
-// Empty when a schedule does not lower (front points lower; a table change would show here).
+// A footprint pair as result.json keeps it (SceneResult::lod and ::adaptive_ss).
+struct LodResult {
+  // Labels: front points (frontNN), searchNN (row NN of front_search.csv, not measured), plain, or
+  // ssN (the plain program at N stratified samples).
+  std::string near, far;
+  std::string near_schedule, far_schedule;  // compiler::schedule_to_text ("" in older adaptive_ss)
+  int near_samples = 1, far_samples = 1;    // stratified samples of each schedule (1: the schedule)
+  float limit = 0;                          // footprint (max of sigma_u, sigma_v) where `far` takes over
+  double near_share = 0;                    // share of the hit pixels (all frames) below it
+  double model_ns = 0;                      // near_share T(near) + (1 - near_share) T(far) + the dispatch
+  double error = 0;                         // RMS display, every pixel of every frame
+  double compiled_ns = -1;  // the pair compiled into one loop (jit), frame 0; -1 without a compiler
+};
+
+// A pair picked, with its two programs (to time, emit, render).
+struct PickedPair {
+  LodResult result;  // compiled_ns not set
+  compiler::Program near, far;
+};
+
+// The points' sides (labels and schedules, in order), then ss2 .. ss16. Empty when a schedule does
+// not lower (front points lower; a table change would show here).
 std::vector<LodSide> lod_sides(const SceneTuner& t,
                                const std::vector<std::pair<std::string, compiler::Schedule>>& points);
 
-// The fastest pair of `sides` with a smoothed side whose error over every pixel of every frame is <=
-// target (lod_candidates by each side's all-pixel price, then fastest_on_own_pixels); near = -1
-// when none reaches it.
-LodChoice fastest_lod_pair(const SceneTuner& t, const std::vector<LodSide>& sides, double target);
+// The fastest pair of `sides` whose error over every pixel of every frame is <= target, with a
+// smoothed side when `smoothed_side` (lod_candidates by each side's all-pixel price, then
+// fastest_on_own_pixels, lod_pricing.hpp); none when no pair reaches it.
+std::optional<PickedPair> fastest_pair(const SceneTuner& t, const std::vector<LodSide>& sides, double target,
+                                       bool smoothed_side);
 
 }  // namespace bl::tuner

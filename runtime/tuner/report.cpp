@@ -349,7 +349,7 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
     if (!r.adaptive_ss) {
       md << "no pair of sample counts reaches MSAA-16's error.\n";
     } else {
-      const AdaptiveSupersampling& a = *r.adaptive_ss;
+      const LodResult& a = *r.adaptive_ss;
       const AdaptiveSpeedup as = adaptive_speedup16(r);
       md << a.near_samples << " sample(s) below a footprint of " << fmt("%.3g", a.limit) << ", "
          << a.far_samples << " above (" << fmt("%.0f%%", 100 * a.near_share)

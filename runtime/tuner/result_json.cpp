@@ -20,6 +20,41 @@ double num(const json& j) {
   return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>();
 }
 
+// A footprint pair (SceneResult::lod and ::adaptive_ss).
+json to(const LodResult& p) {
+  return {{"near", p.near},
+          {"far", p.far},
+          {"near_schedule", p.near_schedule},
+          {"far_schedule", p.far_schedule},
+          {"near_samples", p.near_samples},
+          {"far_samples", p.far_samples},
+          {"limit", p.limit},
+          {"near_share", p.near_share},
+          {"model_ns", p.model_ns},
+          {"error", p.error},
+          {"compiled_ns", p.compiled_ns}};
+}
+// Older files: a LOD pair without sample counts (before stop 36: each side its schedule); an
+// adaptive supersampler with sample counts only (stop 35: labelled here plain or ssN, schedules "").
+LodResult pair_from(const json& l) {
+  LodResult p;
+  p.near_samples = l.value("near_samples", 1);
+  p.far_samples = l.value("far_samples", 1);
+  auto label = [](int samples) {
+    return samples > 1 ? "ss" + std::to_string(samples) : std::string("plain");
+  };
+  p.near = l.contains("near") ? l.at("near").get<std::string>() : label(p.near_samples);
+  p.far = l.contains("far") ? l.at("far").get<std::string>() : label(p.far_samples);
+  p.near_schedule = l.value("near_schedule", std::string());
+  p.far_schedule = l.value("far_schedule", std::string());
+  p.limit = l.at("limit");
+  p.near_share = l.at("near_share");
+  p.model_ns = l.at("model_ns");
+  p.error = l.at("error");
+  p.compiled_ns = l.at("compiled_ns");
+  return p;
+}
+
 json to(const Measured& m) {
   return {{"label", m.label},
           {"schedule", m.schedule},
@@ -79,26 +114,8 @@ std::string result_to_json(const SceneResult& r) {
               {"gl_renderer", r.gl_renderer},
               {"compiled_note", r.compiled_note},
               {"anchor_breakdown", r.anchor_breakdown},
-              {"lod", r.lod ? json{{"near", r.lod->near},
-                                   {"far", r.lod->far},
-                                   {"near_schedule", r.lod->near_schedule},
-                                   {"far_schedule", r.lod->far_schedule},
-                                   {"near_samples", r.lod->near_samples},
-                                   {"far_samples", r.lod->far_samples},
-                                   {"limit", r.lod->limit},
-                                   {"near_share", r.lod->near_share},
-                                   {"model_ns", r.lod->model_ns},
-                                   {"error", r.lod->error},
-                                   {"compiled_ns", r.lod->compiled_ns}}
-                            : json()},
-              {"adaptive_ss", r.adaptive_ss ? json{{"near_samples", r.adaptive_ss->near_samples},
-                                                   {"far_samples", r.adaptive_ss->far_samples},
-                                                   {"limit", r.adaptive_ss->limit},
-                                                   {"near_share", r.adaptive_ss->near_share},
-                                                   {"model_ns", r.adaptive_ss->model_ns},
-                                                   {"error", r.adaptive_ss->error},
-                                                   {"compiled_ns", r.adaptive_ss->compiled_ns}}
-                                            : json()},
+              {"lod", r.lod ? to(*r.lod) : json()},
+              {"adaptive_ss", r.adaptive_ss ? to(*r.adaptive_ss) : json()},
               {"front", f},
               {"baselines", b}}
       .dump(1);
@@ -120,34 +137,9 @@ SceneResult result_from_json(const std::string& text) {
   r.gl_renderer = j.at("gl_renderer");
   r.compiled_note = j.value("compiled_note", std::string());
   r.anchor_breakdown = j.value("anchor_breakdown", std::string());
-  if (j.contains("lod") && !j.at("lod").is_null()) {
-    const json& l = j.at("lod");
-    LodResult lod;
-    lod.near = l.at("near");
-    lod.far = l.at("far");
-    lod.near_schedule = l.value("near_schedule", std::string());
-    lod.far_schedule = l.value("far_schedule", std::string());
-    lod.near_samples = l.value("near_samples", 1);  // results from stop 36 on
-    lod.far_samples = l.value("far_samples", 1);
-    lod.limit = l.at("limit");
-    lod.near_share = l.at("near_share");
-    lod.model_ns = l.at("model_ns");
-    lod.error = l.at("error");
-    lod.compiled_ns = l.at("compiled_ns");
-    r.lod = lod;
-  }
-  if (j.contains("adaptive_ss") && !j.at("adaptive_ss").is_null()) {  // results from stop 35 on
-    const json& l = j.at("adaptive_ss");
-    AdaptiveSupersampling a;
-    a.near_samples = l.at("near_samples");
-    a.far_samples = l.at("far_samples");
-    a.limit = l.at("limit");
-    a.near_share = l.at("near_share");
-    a.model_ns = l.at("model_ns");
-    a.error = l.at("error");
-    a.compiled_ns = l.at("compiled_ns");
-    r.adaptive_ss = a;
-  }
+  if (j.contains("lod") && !j.at("lod").is_null()) r.lod = pair_from(j.at("lod"));
+  if (j.contains("adaptive_ss") && !j.at("adaptive_ss").is_null())
+    r.adaptive_ss = pair_from(j.at("adaptive_ss"));
   for (const json& m : j.at("front")) r.front.push_back(from(m));
   for (const json& m : j.at("baselines")) r.baselines.push_back(from(m));
   return r;

@@ -9,7 +9,7 @@ rm -rf "$work"
 mkdir -p "$work"
 scene=""
 for r in "$root"/docs/tuning/suite/*/result.json; do
-  if grep -q '"near_schedule"' "$r"; then
+  if grep -q '"lod": {' "$r"; then
     scene=$(basename "$(dirname "$r")")
     break
   fi

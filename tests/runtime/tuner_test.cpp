@@ -5,8 +5,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <set>
+#include <tuple>
 
 #include "compiler/functions.hpp"
 #include "compiler/lower.hpp"
@@ -683,7 +685,7 @@ TEST(Report, SupersampledLodSideReachesWhereNoPointDoes) {
   lod.near_schedule = "0:none 1:none", lod.far_schedule = "0:gaussian 1:box", lod.near_samples = 4;
   lod.error = 0.0299, lod.model_ns = 40, lod.compiled_ns = 50;
   r.lod = lod;
-  AdaptiveSupersampling a;
+  LodResult a;
   a.near_samples = 2, a.far_samples = 8, a.model_ns = 60, a.compiled_ns = 80, a.error = 0.028;
   r.adaptive_ss = a;
   EXPECT_EQ(speedup16(r).front_index, -1);
@@ -1243,8 +1245,18 @@ TEST(AdaptiveSupersampling, ReachesTheTargetWithThePairItNames) {
   const double plain_error = rms(all.pixel_sq(*plain));
   const double target = rms(all.pixel_sq(compiler::stratified_samples(*plain, 8, sigma_px)));
   ASSERT_LT(target, plain_error);
-  const std::optional<AdaptiveSupersampling> a = adaptive_supersampling(t, target);
-  ASSERT_TRUE(a);
+  const std::optional<PickedPair> picked = adaptive_supersampling(t, target);
+  ASSERT_TRUE(picked);
+  const LodResult* a = &picked->result;
+  for (const auto& [label, samples, schedule, program] :
+       {std::tie(a->near, a->near_samples, a->near_schedule, picked->near),
+        std::tie(a->far, a->far_samples, a->far_schedule, picked->far)}) {
+    SCOPED_TRACE(label);
+    EXPECT_EQ(label, samples > 1 ? "ss" + std::to_string(samples) : std::string("plain"));
+    EXPECT_EQ(schedule, compiler::schedule_to_text(
+                            t.graph(), compiler::uniform_schedule(t.graph(), rules::parse_rule("none"))));
+    EXPECT_EQ(program.insts.size(), compiler::stratified_samples(*plain, samples, sigma_px).insts.size());
+  }
   EXPECT_LE(a->error, target);
   EXPECT_GE(a->near_share, 0);
   EXPECT_LE(a->near_share, 1);
@@ -1309,13 +1321,24 @@ TEST(FootprintLod, SidesMaySupersamplePlainAndOneIsSmoothed) {
   std::sort(sorted.begin(), sorted.end());
   const float median = sorted[sorted.size() / 2];
   const double target = pair_error(sides[4].program, sides[1].program, median) * (1 + 1e-12);
-  const LodChoice c = fastest_lod_pair(t, sides, target);
-  ASSERT_GE(c.near, 0);
-  EXPECT_TRUE(sides[c.near].smoothed || sides[c.far].smoothed);
+  const std::optional<PickedPair> p = fastest_pair(t, sides, target, true);
+  ASSERT_TRUE(p);
+  const LodResult& c = p->result;
+  auto side = [&](const std::string& label) {
+    return std::find_if(sides.begin(), sides.end(), [&](const LodSide& sd) { return sd.label == label; });
+  };
+  ASSERT_NE(side(c.near), sides.end());
+  ASSERT_NE(side(c.far), sides.end());
+  EXPECT_TRUE(side(c.near)->smoothed || side(c.far)->smoothed);
+  EXPECT_EQ(c.near_samples, side(c.near)->samples);
+  EXPECT_EQ(c.far_schedule, side(c.far)->schedule);
   EXPECT_LE(c.error, target);
-  EXPECT_NEAR(c.error, pair_error(sides[c.near].program, sides[c.far].program, c.limit), 1e-9);
+  EXPECT_NEAR(c.error, pair_error(p->near, p->far, c.limit), 1e-9);
+  EXPECT_NEAR(c.error, pair_error(side(c.near)->program, side(c.far)->program, c.limit), 1e-9);
   const std::vector<LodSide> unsmoothed = lod_sides(t, {{"front00", none}});
-  EXPECT_EQ(fastest_lod_pair(t, unsmoothed, 10.0).near, -1);  // every supersampler pair reaches 10
+  EXPECT_FALSE(fastest_pair(t, unsmoothed, 10.0, true));  // every supersampler pair reaches 10
+  EXPECT_TRUE(fastest_pair(t, unsmoothed, 10.0, false));  // ... and counts without the smoothed side
+  EXPECT_FALSE(fastest_pair(t, sides, 0.0, false));
   EXPECT_TRUE(lod_sides(t, {}).size() == 7u);
 }
 
@@ -1330,7 +1353,7 @@ TEST(Report, AdaptiveSupersamplingIsComparedCountedAndSaved) {
   LodResult lod;
   lod.near = "front00", lod.far = "front01", lod.error = 0.029, lod.compiled_ns = 20, lod.model_ns = 12;
   r.lod = lod;
-  AdaptiveSupersampling a;
+  LodResult a;
   a.near_samples = 2, a.far_samples = 8, a.limit = 0.05f, a.near_share = 0.75, a.model_ns = 60,
   a.error = 0.028;
   a.compiled_ns = 80;
@@ -1360,6 +1383,17 @@ TEST(Report, AdaptiveSupersamplingIsComparedCountedAndSaved) {
   EXPECT_EQ(back.adaptive_ss->far_samples, 8);
   EXPECT_DOUBLE_EQ(back.adaptive_ss->model_ns, 60);
   EXPECT_DOUBLE_EQ(back.adaptive_ss->compiled_ns, 80);
+  {  // stop 35 wrote sample counts only: the sides are labelled by them
+    nlohmann::json j = nlohmann::json::parse(read_text(dir + "/result.json"));
+    for (const char* key : {"near", "far", "near_schedule", "far_schedule"}) j["adaptive_ss"].erase(key);
+    std::ofstream(dir + "/result.json") << j.dump(1);
+    const SceneResult old = load_result(dir + "/result.json");
+    ASSERT_TRUE(old.adaptive_ss);
+    EXPECT_EQ(old.adaptive_ss->near, "ss2");
+    EXPECT_EQ(old.adaptive_ss->far, "ss8");
+    EXPECT_EQ(old.adaptive_ss->far_schedule, "");
+    EXPECT_DOUBLE_EQ(old.adaptive_ss->model_ns, 60);
+  }
   // Ours misses MSAA-16's error: the pair is named, nothing compared.
   r.lod.reset();
   for (Measured& f : r.front) f.error = 0.04;
