@@ -53,7 +53,7 @@ std::vector<LodSide> lod_sides(const SceneTuner& t,
 }
 
 std::optional<PickedPair> fastest_pair(const SceneTuner& t, const std::vector<LodSide>& sides, double target,
-                                       bool smoothed_side) {
+                                       bool smoothed_far) {
   const PixelSample& all = t.full_sample();
   std::vector<std::vector<double>> sq;
   std::vector<double> model_ns;
@@ -65,7 +65,7 @@ std::optional<PickedPair> fastest_pair(const SceneTuner& t, const std::vector<Lo
   std::vector<LodChoice> cands;
   for (const LodChoice& c :
        lod_candidates(sq, all.footprints(), model_ns, all.miss_sq(), all.count(), target, dispatch, 64, -1)) {
-    if (!smoothed_side || sides[c.near].smoothed || sides[c.far].smoothed) cands.push_back(c);
+    if (!smoothed_far || sides[c.far].smoothed) cands.push_back(c);
     if (static_cast<int>(cands.size()) == kRepriced) break;
   }
   const LodChoice c = fastest_on_own_pixels(

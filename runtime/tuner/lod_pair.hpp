@@ -1,10 +1,12 @@
 // Footprint pairs: two programs of one scene chosen per pixel by its footprint (lod.hpp), as a
 // renderer picks shader variants by distance. Two kinds, one description:
 // - the footprint-LOD pair of tuned programs: sides are the scene's front points and the plain
-//   program at 2..16 stratified samples (ssN, compiler::stratified_samples), one side smoothed. Near
-//   pixels, where plain is nearly right, can buy their accuracy with a few samples and far ones with
-//   smoothing: circles_bumps reaches MSAA-16's error only so (ss4 on 94% of its pixels, a smoothed
-//   point beyond; docs/tuning.md, stop 36);
+//   program at 2..16 stratified samples (ssN, compiler::stratified_samples), the far side smoothed.
+//   Near pixels, where plain is nearly right, can buy their accuracy with a few samples; far ones,
+//   where the pattern aliases, are smoothing's: circles_bumps reaches MSAA-16's error only so (ss4 on
+//   94% of its pixels, a smoothed point beyond; docs/tuning.md, stop 36). A supersampled far side
+//   would credit smoothing with the supersampler's work (fire_ripples: a nearly plain point near and
+//   ss8 far is the adaptive supersampler's plain + ss8 within 0.2%);
 // - the footprint-adaptive supersampler, the comparator (adaptive_supersampling.hpp): plain and ssN
 //   only.
 #pragma once
@@ -61,9 +63,9 @@ std::vector<LodSide> lod_sides(const SceneTuner& t,
                                const std::vector<std::pair<std::string, compiler::Schedule>>& points);
 
 // The fastest pair of `sides` whose error over every pixel of every frame is <= target, with a
-// smoothed side when `smoothed_side` (lod_candidates by each side's all-pixel price, then
+// smoothed far side when `smoothed_far` (lod_candidates by each side's all-pixel price, then
 // fastest_on_own_pixels, lod_pricing.hpp); none when no pair reaches it.
 std::optional<PickedPair> fastest_pair(const SceneTuner& t, const std::vector<LodSide>& sides, double target,
-                                       bool smoothed_side);
+                                       bool smoothed_far);
 
 }  // namespace bl::tuner

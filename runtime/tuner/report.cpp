@@ -550,7 +550,7 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
      << " with a footprint-LOD pair or one program.\n\n"
      << count_single << " of " << rs.size()
      << " scenes reach MSAA-16's error at >= 10x less model time with one program; " << count_lod
-     << " with a footprint-LOD pair of front points (tuner/lod.hpp) or one program.\n";
+     << " with a footprint-LOD pair (tuner/lod_pair.hpp) or one program.\n";
   if (with_ss > 0)
     md << "\nAgainst the cheapest stratified supersampling in the shader at MSAA-16's error (ssN, a fixed "
           "pattern as GPU MSAA uses): "
