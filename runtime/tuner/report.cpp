@@ -97,9 +97,10 @@ Speedup speedup16(const SceneResult& r) {
 
 namespace {
 
-// " at N stratified samples" after a footprint-LOD side's schedule, "" for the schedule itself.
-std::string samples_note(int samples) {
-  return samples > 1 ? " at " + std::to_string(samples) + " stratified samples" : std::string();
+// A footprint-LOD side for the report: its schedule, or "plain at N stratified samples" (an ssN side:
+// the plain schedule, every node none, is not worth a line).
+std::string side_text(const std::string& schedule, int samples) {
+  return samples > 1 ? "plain at " + std::to_string(samples) + " stratified samples" : "`" + schedule + "`";
 }
 
 TenfoldGap tenfold_gap(const SceneResult& r, const Speedup& s16, double factor) {
@@ -376,9 +377,9 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
        << (r.lod->compiled_ns > 0 ? fmt("%.2f", r.lod->compiled_ns) : "-") << " | "
        << fmt("%.5f", r.lod->error) << " | " << fmt("%.1fx", ls.model) << " / "
        << (ls.measured > 0 ? fmt("%.1fx", ls.measured) : "-") << " |\n\n"
-       << "Code: `front/lod.glsl`, `front/lod.hpp`. Schedules: near `" << r.lod->near_schedule << "`"
-       << samples_note(r.lod->near_samples) << "; far `" << r.lod->far_schedule << "`"
-       << samples_note(r.lod->far_samples) << ".\n";
+       << "Code: `front/lod.glsl`, `front/lod.hpp`. Schedules: near "
+       << side_text(r.lod->near_schedule, r.lod->near_samples) << "; far "
+       << side_text(r.lod->far_schedule, r.lod->far_samples) << ".\n";
   } else {
     md << "None: no pair reaches MSAA-16's error faster than the fastest single point there.\n";
   }
