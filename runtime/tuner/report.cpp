@@ -364,9 +364,11 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
   }
   md << "\n## Footprint LOD at MSAA-16's error\n\n"
         "Two programs chosen per pixel by its footprint (the larger of sigma_u and sigma_v): the near "
-        "one below the limit, the far one above, compiled into one loop (tuner/lod.hpp). Each is a front "
+        "one below the limit, the far one above, compiled into one loop (tuner/lod_pair.hpp). Each is a "
+        "front "
         "point, a search front point (searchNN: row NN of front_search.csv, not measured on its own) or "
-        "the plain program at N stratified samples (ssN); one of them is smoothed. The fastest pair at "
+        "the plain program at N stratified samples (ssN, near only); the far one is smoothed. The fastest "
+        "pair at "
         "MSAA-16's error is kept when it beats every single point there.\n\n";
   if (r.lod) {
     const LodSpeedup ls = lod_speedup16(r);
