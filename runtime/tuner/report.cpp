@@ -97,6 +97,12 @@ Speedup speedup16(const SceneResult& r) {
 
 namespace {
 
+// The footprint-LOD pair is at MSAA-16's error (s16: speedup16(r)); it may be where no single point
+// is (a side supersampled, from stop 36).
+bool lod_at16(const SceneResult& r, const Speedup& s16) {
+  return s16.msaa == 16 && r.lod && r.lod->error <= s16.msaa_error;
+}
+
 // A footprint-LOD side for the report: its schedule, or "plain at N stratified samples" (an ssN side:
 // the plain schedule, every node none, is not worth a line).
 std::string side_text(const std::string& schedule, int samples) {
@@ -141,8 +147,7 @@ Ours16 ours16(const SceneResult& r) {
   Ours16 o;
   const Speedup s16 = speedup16(r);
   if (s16.msaa != 16) return o;
-  // The pair may reach where no single point does (a side supersampled, from stop 36).
-  const bool lod = r.lod && r.lod->error <= s16.msaa_error;
+  const bool lod = lod_at16(r, s16);
   if (s16.front_index >= 0) {
     const Measured& point = r.front[s16.front_index];
     o.compiled_ns = point.compiled_ns > 0 ? point.compiled_ns : 0;
@@ -492,7 +497,7 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
     count_single += ten;
     count_lod += ten_lod;
     reach_single += s16.front_index >= 0;
-    reach_lod += s16.front_index >= 0 || (s16.msaa == 16 && r.lod && r.lod->error <= s16.msaa_error);
+    reach_lod += s16.front_index >= 0 || lod_at16(r, s16);
     const ModelAccuracy acc = model_accuracy(r);
     md << "| " << r.scene << " | " << r.nodes << " | " << fmt("%.1f", r.search_seconds) << " | "
        << r.front.size() << " | " << fmt("%.5f", s16.msaa_error) << " | " << fmt("%.5f", best) << " | "
@@ -537,7 +542,7 @@ void write_suite_summary(const std::vector<SceneResult>& rs, const std::string& 
     gaps << "| " << r.scene << " | "
          << (g.at_error < 0 ? std::string("none") : r.front[g.at_error].label + fmt(" (%.1fx)", s16.model))
          << " | " << (g.at_error < 0 ? std::string("-") : pct(g.time_cut)) << " | "
-         << (ls.model > 0 && r.lod->error <= s16.msaa_error
+         << (lod_at16(r, s16) && ls.model > 0
                  ? r.lod->near + " + " + r.lod->far + fmt(" (%.1fx): ", ls.model) + pct(1 - ls.model / 10)
                  : std::string("-"))
          << " | ";
