@@ -1,10 +1,8 @@
 // See lod_pair.hpp.
 #include "tuner/lod_pair.hpp"
 
-#include "compiler/lower.hpp"
 #include "compiler/schedule_text.hpp"
 #include "compiler/supersample.hpp"
-#include "rules/rule.hpp"
 #include "tuner/lod_pricing.hpp"
 
 namespace bl::tuner {
@@ -24,8 +22,7 @@ std::vector<LodSide> lod_sides(const SceneTuner& t,
                                const std::vector<std::pair<std::string, compiler::Schedule>>& points) {
   const auto plain = t.lower_plain();
   if (!plain) return {};
-  const std::string plain_text =
-      compiler::schedule_to_text(t.graph(), compiler::uniform_schedule(t.graph(), rules::parse_rule("none")));
+  const std::string plain_text = compiler::schedule_to_text(t.graph(), t.plain_schedule());
   std::vector<LodSide> sides;
   for (const auto& [label, schedule] : points) {
     const auto p = t.lower(schedule);

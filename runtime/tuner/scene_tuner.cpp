@@ -67,8 +67,12 @@ CostModel SceneTuner::cost_model_over(const PixelSample& sample) const {
   return m;
 }
 
+compiler::Schedule SceneTuner::plain_schedule() const {
+  return compiler::uniform_schedule(graph_, rules::parse_rule("none"));
+}
+
 std::unique_ptr<compiler::Program> SceneTuner::lower_plain() const {
-  return lower(compiler::uniform_schedule(graph_, rules::parse_rule("none")));
+  return lower(plain_schedule());
 }
 
 std::unique_ptr<compiler::Program> SceneTuner::lower(const compiler::Schedule& s) const {

@@ -40,7 +40,9 @@ class SceneTuner {
   // Lowered program, or nullptr when lowering needs a function the generated table lacks (a rule
   // not available yet for some node: "infeasible"). Other lowering errors propagate.
   std::unique_ptr<compiler::Program> lower(const compiler::Schedule& s) const;
-  // The plain program (rule none on every node): MSAA-n is n of it, and speed-ups are read against it.
+  // The plain schedule (rule none on every node) and its program: MSAA-n is n of it, and speed-ups are
+  // read against it.
+  compiler::Schedule plain_schedule() const;
   std::unique_ptr<compiler::Program> lower_plain() const;
   // Model time and sample error. Infeasible: both +inf when lowering lacks a function; error +inf
   // when any sampled pixel has a NaN or infinite channel (counted in nonfinite_rejections()).
