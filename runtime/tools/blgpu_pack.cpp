@@ -162,12 +162,12 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
   };
   // A footprint pair of result.json: each side its schedule at its stratified samples (the plain
   // program where the schedule is absent: stop 35's adaptive_ss).
-  const compiler::Program plain = compiler::lower(g, compiler::load_schedule(csv + ":plain", g).schedule);
   auto pair_side = [&](const json& l, const std::string& where, const std::string& key) {
     const std::string text = l.value(key + "_schedule", std::string());
-    const compiler::Program p =
-        text.empty() ? plain
-                     : compiler::lower(g, compiler::parse_schedule(g, text, where + key + "_schedule"));
+    const compiler::Schedule sched = text.empty()
+                                         ? compiler::load_schedule(csv + ":plain", g).schedule
+                                         : compiler::parse_schedule(g, text, where + key + "_schedule");
+    const compiler::Program p = compiler::lower(g, sched);
     return compiler::stratified_samples(p, l.value(key + "_samples", 1), s.sigma_px);
   };
   auto pair_what = [](const json& l) {

@@ -2,7 +2,8 @@
 // program's price over all pixels, but a program costs more on some pixels than on others (the far
 // ones), so the pick re-prices each candidate with the near program under the cost model of the
 // search sample's pixels below the limit and the far one above (SceneTuner::cost_model_over).
-// Used by finalize's LOD pair of tuned programs and by the footprint-adaptive supersampler.
+// Used by fastest_pair (lod_pair.hpp), which picks both the LOD pair of tuned programs and the
+// footprint-adaptive supersampler.
 #pragma once
 
 #include <functional>
