@@ -170,8 +170,12 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
     const compiler::Program p = compiler::lower(g, sched);
     return compiler::stratified_samples(p, l.value(key + "_samples", 1), s.sigma_px);
   };
-  auto pair_what = [](const json& l) {
-    return l.value("near", std::string("near")) + " + " + l.value("far", std::string("far"));
+  auto pair_what = [](const json& l) {  // sides without labels (stop 35): plain or ssN by their samples
+    auto side = [&](const std::string& key) {
+      const int n = l.value(key + "_samples", 1);
+      return l.value(key, n > 1 ? "ss" + std::to_string(n) : std::string("plain"));
+    };
+    return side("near") + " + " + side("far");
   };
   // The footprint-LOD pair (bltune's result.json "lod": two front points or ssN and the limit).
   if (const auto it = result.find("lod"); it != result.end() && !it->is_null()) {
