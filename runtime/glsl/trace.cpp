@@ -152,11 +152,13 @@ class Walker {
   int components(const TIntermTyped* n) const {
     const glslang::TType& t = n->getType();
     if (t.getBasicType() == glslang::EbtVoid) return 0;
-    if (t.isMatrix()) unsupported(n, "matrix type '" + std::string(t.getCompleteString().c_str()) + "'");
     if (t.isStruct()) unsupported(n, "struct type");
     if (t.getBasicType() == glslang::EbtSampler) unsupported(n, "use of a sampler as a value");
     if (t.getBasicType() == glslang::EbtDouble) unsupported(n, "double precision");
-    const int per = t.getVectorSize() > 0 ? t.getVectorSize() : 1;
+    // A matrix is its columns one after another (column-major, as GLSL lays it out): m[i] is the
+    // i-th run of `rows` components.
+    const int per = t.isMatrix() ? t.getMatrixCols() * t.getMatrixRows()
+                                 : (t.getVectorSize() > 0 ? t.getVectorSize() : 1);
     if (t.isArray()) {
       if (!t.isSizedArray()) unsupported(n, "unsized array");
       return t.getCumulativeArraySize() * per;
@@ -168,6 +170,60 @@ class Walker {
     return b == glslang::EbtInt || b == glslang::EbtUint;
   }
   Value zeros(int n) const { return Value{std::vector<Var>(n, Var(0.0))}; }
+
+  // ---------- matrices (column-major: element (column c, row r) of an R-row matrix is c[c * R + r])
+  // ---------- The linear-algebra product of an ra x ca and an rb x cb matrix (ca == rb), column-major; a
+  // vector on the left is a row (1 x n), on the right a column (n x 1).
+  Value matmul(const TIntermNode* n, const Value& a, int ra, int ca, const Value& b, int rb, int cb) {
+    if (ca != rb || a.size() != ra * ca || b.size() != rb * cb) fail(n, "matrix product of mismatched sizes");
+    Value r;
+    for (int c = 0; c < cb; ++c)
+      for (int i = 0; i < ra; ++i) {
+        Var sum = mul(a.c[i], b.c[c * rb]);
+        for (int k = 1; k < ca; ++k) sum = add(sum, mul(a.c[k * ra + i], b.c[c * rb + k]));
+        r.c.push_back(sum);
+      }
+    return r;
+  }
+  // matrix * vector, vector * matrix and matrix * matrix (also as *=), shapes from the operands' types.
+  Value linear_product(glslang::TIntermBinary* b, TOperator op, const Value& x, const Value& y) {
+    const glslang::TType &lt = b->getLeft()->getType(), &rt = b->getRight()->getType();
+    const bool row_left = op == glslang::EOpVectorTimesMatrix,
+               column_right = op == glslang::EOpMatrixTimesVector;
+    const int ra = row_left ? 1 : lt.getMatrixRows(), ca = row_left ? x.size() : lt.getMatrixCols();
+    const int rb = column_right ? y.size() : rt.getMatrixRows(), cb = column_right ? 1 : rt.getMatrixCols();
+    return matmul(b, x, ra, ca, y, rb, cb);
+  }
+  // The determinant of an n x n matrix by cofactor expansion along row 0 (n <= 4 in GLSL).
+  Var det_of(const std::vector<Var>& m, int n) {
+    if (n == 1) return m[0];
+    Var d(0.0);
+    for (int j = 0; j < n; ++j) {
+      const Var t = mul(m[j * n], det_of(minor_of(m, n, 0, j), n - 1));
+      d = j % 2 ? sub(d, t) : add(d, t);
+    }
+    return d;
+  }
+  // m without row `row` and column `col`.
+  static std::vector<Var> minor_of(const std::vector<Var>& m, int n, int row, int col) {
+    std::vector<Var> r;
+    for (int c = 0; c < n; ++c)
+      for (int i = 0; i < n && c != col; ++i)
+        if (i != row) r.push_back(m[c * n + i]);
+    return r;
+  }
+  // inverse(m) = adjugate / determinant: element (c, r) is the (r, c) cofactor over det. A singular
+  // matrix gives inf/NaN, as GLSL leaves it undefined.
+  Value inverse_of(const std::vector<Var>& m, int n) {
+    const Var det = det_of(m, n);
+    Value r;
+    for (int c = 0; c < n; ++c)
+      for (int i = 0; i < n; ++i) {
+        const Var cof = n == 1 ? Var(1.0) : det_of(minor_of(m, n, c, i), n - 1);
+        r.c.push_back(div((c + i) % 2 ? -cof : cof, det));
+      }
+    return r;
+  }
 
   // ---------- masks ----------
   Var active() { return land(land(st_.alive, st_.brk), st_.cont); }
@@ -482,7 +538,12 @@ class Walker {
         return zip({x, y}, [&](const std::vector<Var>& a) { return sub(a[0], a[1]); });
       case glslang::EOpMul:
       case glslang::EOpVectorTimesScalar:
+      case glslang::EOpMatrixTimesScalar:
         return zip({x, y}, [&](const std::vector<Var>& a) { return mul(a[0], a[1]); });
+      case glslang::EOpVectorTimesMatrix:
+      case glslang::EOpMatrixTimesVector:
+      case glslang::EOpMatrixTimesMatrix:
+        return linear_product(b, op, x, y);
       case glslang::EOpDiv:
         if (integer) return int_binary(b, op, x, y);
         return zip({x, y}, [&](const std::vector<Var>& a) { return div(a[0], a[1]); });
@@ -506,7 +567,12 @@ class Walker {
         return glslang::EOpSub;
       case glslang::EOpMulAssign:
       case glslang::EOpVectorTimesScalarAssign:
+      case glslang::EOpMatrixTimesScalarAssign:
         return glslang::EOpMul;
+      case glslang::EOpVectorTimesMatrixAssign:
+        return glslang::EOpVectorTimesMatrix;
+      case glslang::EOpMatrixTimesMatrixAssign:
+        return glslang::EOpMatrixTimesMatrix;
       case glslang::EOpDivAssign:
         return glslang::EOpDiv;
       case glslang::EOpModAssign:
@@ -596,11 +662,6 @@ class Walker {
         for (int i = 0; i < x.size(); ++i) all = land(all, equal(x.c[i], y.c[i]));
         return Value{{op == glslang::EOpEqual ? all : lnot(all)}};
       }
-      case glslang::EOpVectorTimesMatrix:
-      case glslang::EOpMatrixTimesVector:
-      case glslang::EOpMatrixTimesScalar:
-      case glslang::EOpMatrixTimesMatrix:
-        unsupported(b, "matrix arithmetic");
       default:
         return arith(b, op, x, y, is_integer(b));
     }
@@ -685,6 +746,23 @@ class Walker {
 
   Value construct(TIntermAggregate* a, const std::vector<Value>& args) {
     const int n = components(a);
+    const glslang::TType& type = a->getType();
+    if (type.isMatrix() && !type.isArray() && args.size() == 1) {
+      // matN(s): s on the diagonal; matN(m): m's overlapping part, the identity elsewhere.
+      const glslang::TType& from = a->getSequence()[0]->getAsTyped()->getType();
+      const int cols = type.getMatrixCols(), rows = type.getMatrixRows();
+      const int fc = from.isMatrix() ? from.getMatrixCols() : 0,
+                fr = from.isMatrix() ? from.getMatrixRows() : 0;
+      if (from.isMatrix() || args[0].size() == 1) {
+        Value r;
+        for (int c = 0; c < cols; ++c)
+          for (int i = 0; i < rows; ++i)
+            r.c.push_back(c < fc && i < fr ? args[0].c[c * fr + i]
+                          : c == i         ? (fc ? Var(1.0) : args[0].c[0])
+                                           : Var(0.0));
+        return r;
+      }
+    }
     const auto to = a->getBasicType();
     Value flat;
     for (std::size_t i = 0; i < args.size(); ++i) {
@@ -892,6 +970,31 @@ class Walker {
       }
       case glslang::EOpVectorLogicalNot:
         return zip({x[0]}, [&](const std::vector<Var>& a) { return lnot(a[0]); });
+      case glslang::EOpMul:  // matrixCompMult
+        return zip(x, [&](const std::vector<Var>& a) { return mul(a[0], a[1]); });
+      case glslang::EOpOuterProduct: {  // column c times row r: |c| rows, |r| columns
+        Value r;
+        for (Var rj : x[1].c)
+          for (Var ci : x[0].c) r.c.push_back(mul(ci, rj));
+        return r;
+      }
+      case glslang::EOpTranspose: {
+        const glslang::TType& t = n->getAsAggregate()
+                                      ? n->getAsAggregate()->getSequence()[0]->getAsTyped()->getType()
+                                      : n->getAsUnaryNode()->getOperand()->getType();
+        const int cols = t.getMatrixCols(), rows = t.getMatrixRows();
+        Value r;
+        for (int i = 0; i < rows; ++i)
+          for (int c = 0; c < cols; ++c) r.c.push_back(x[0].c[c * rows + i]);
+        return r;
+      }
+      case glslang::EOpDeterminant:
+      case glslang::EOpMatrixInverse: {
+        int k = 1;
+        while (k * k < x[0].size()) ++k;
+        if (k * k != x[0].size()) fail(n, "determinant or inverse of a non-square matrix");
+        return op == glslang::EOpDeterminant ? Value{{det_of(x[0].c, k)}} : inverse_of(x[0].c, k);
+      }
       case glslang::EOpAtan:
         unsupported(n, "built-in atan (no catalog atomic; use a polynomial approximation)");
       case glslang::EOpAsin:

@@ -211,6 +211,100 @@ vec3 shade(vec2 uv, float time) {
                 5e-5);
 }
 
+// Matrices as GLSL lays them out (column-major: mat2(a, b, c, d) has columns (a, b) and (c, d)), the
+// references written out by hand from the GLSL specification's definitions.
+TEST(GlslFrontEnd, MatricesMultiplyColumnMajor) {
+  expect_values(R"(
+mat2 rot(float a) { float c = cos(a), s = sin(a); return mat2(c, s, -s, c); }
+vec3 shade(vec2 uv, float time) {
+  vec2 p = rot(0.5 + time) * uv;       // matrix * column vector
+  vec2 q = uv * rot(0.3);              // row vector * matrix: the transpose's product
+  mat2 m = rot(0.2) * mat2(1.0, 2.0, 3.0, 4.0);
+  m += mat2(uv.x);                     // uv.x on the diagonal
+  m = m * 0.5 - mat2(0.0, 1.0, 0.0, 0.0);
+  vec2 r = uv;
+  r *= rot(-0.4);                      // vector *= matrix
+  m *= rot(0.1);                       // matrix *= matrix
+  m[1][0] += uv.y;                     // column 1, row 0
+  m[0] = m[0].yx;
+  return vec3(p.x + 2.0 * q.y, m[0][0] + 3.0 * m[0][1] + 5.0 * m[1][0] + 7.0 * m[1][1], r.x - r.y + p.y);
+})",
+                [](double u, double v, double t) {
+                  // rot(a) has columns (c, s) and (-s, c): M v = (c x - s y, s x + c y).
+                  using M2 = std::array<double, 4>;  // column-major
+                  const auto rot = [](double a) {
+                    return M2{std::cos(a), std::sin(a), -std::sin(a), std::cos(a)};
+                  };
+                  const auto mv = [](const M2& m, double x, double y) {
+                    return std::array<double, 2>{m[0] * x + m[2] * y, m[1] * x + m[3] * y};
+                  };
+                  const auto vm = [](double x, double y, const M2& m) {  // (v . column 0, v . column 1)
+                    return std::array<double, 2>{x * m[0] + y * m[1], x * m[2] + y * m[3]};
+                  };
+                  const auto mm = [](const M2& a, const M2& b) {
+                    return M2{a[0] * b[0] + a[2] * b[1], a[1] * b[0] + a[3] * b[1], a[0] * b[2] + a[2] * b[3],
+                              a[1] * b[2] + a[3] * b[3]};
+                  };
+                  const auto p = mv(rot(0.5 + t), u, v);
+                  const auto q = vm(u, v, rot(0.3));
+                  M2 m = mm(rot(0.2), M2{1, 2, 3, 4});
+                  m[0] += u;
+                  m[3] += u;
+                  for (double& e : m) e *= 0.5;
+                  m[1] -= 1;
+                  const auto r = vm(u, v, rot(-0.4));
+                  m = mm(m, rot(0.1));
+                  m[2] += v;
+                  std::swap(m[0], m[1]);
+                  return V3{p[0] + 2 * q[1], m[0] + 3 * m[1] + 5 * m[2] + 7 * m[3], r[0] - r[1] + p[1]};
+                });
+}
+
+TEST(GlslFrontEnd, MatrixConstructorsAndBuiltIns) {
+  expect_values(
+      R"(
+vec3 shade(vec2 uv, float time) {
+  mat3 m = mat3(vec3(2.0, uv.x, 0.5), vec3(0.25, 3.0, uv.y), 1.0, 0.5, 4.0);  // columns, then scalars
+  mat2 a = mat2(m);                    // upper-left 2x2
+  mat3 b = mat3(a);                    // a, the identity elsewhere
+  mat2x3 n = mat2x3(1.0, 0.5, -0.5, 0.25, 1.0, 0.75);  // 2 columns of 3 rows
+  vec3 o = n * uv + outerProduct(vec3(1.0, 2.0, 3.0), vec2(0.1, 0.2))[1];
+  mat3 i = inverse(m);
+  mat2 c = matrixCompMult(a, mat2(1.0, 2.0, 3.0, 4.0));
+  mat3 tr = transpose(m);
+  float d = determinant(m) + determinant(a);
+  return vec3(i[0][1] + 2.0 * i[2][0] + 3.0 * i[1][2] + d, b[2][2] + 2.0 * b[0][1] + c[1][0] + tr[0][1],
+              o.x + 2.0 * o.y + 3.0 * o.z + (m * i)[1][1]);
+})",
+      [](double u, double v, double) {
+        // m's columns: (2, u, 0.5), (0.25, 3, v), (1, 0.5, 4); M[r][c] row-major here.
+        const double M[3][3] = {{2, 0.25, 1}, {u, 3, 0.5}, {0.5, v, 4}};
+        const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                           M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                           M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+        // The inverse by Cramer's rule: inv[r][c] = cofactor(c, r) / det.
+        const auto cof = [&](int r, int c) {
+          int rs[2], cs[2], k = 0, l = 0;
+          for (int i = 0; i < 3; ++i) {
+            if (i != r) rs[k++] = i;
+            if (i != c) cs[l++] = i;
+          }
+          const double mnr = M[rs[0]][cs[0]] * M[rs[1]][cs[1]] - M[rs[0]][cs[1]] * M[rs[1]][cs[0]];
+          return (r + c) % 2 ? -mnr : mnr;
+        };
+        const auto inv = [&](int r, int c) { return cof(c, r) / det; };
+        // GLSL i[col][row]: i[0][1] = inv row 1 col 0, i[2][0] = row 0 col 2, i[1][2] = row 2 col 1.
+        const double x = inv(1, 0) + 2 * inv(0, 2) + 3 * inv(2, 1) + det + (2 * 3 - 0.25 * u);
+        // b = mat3(a): b[2][2] = 1, b[0][1] = a row 1 col 0 = u; c[1][0] = a(row 0, col 1) * 3 = 0.75;
+        // transpose(m)[0][1] = m[1][0] = 0.25.
+        const double y = 1 + 2 * u + 0.25 * 3 + 0.25;
+        // n's columns (1, 0.5, -0.5), (0.25, 1, 0.75); outerProduct(c, r)[1] = c * r[1] = c * 0.2.
+        const double o[3] = {1 * u + 0.25 * v + 0.2, 0.5 * u + 1 * v + 0.4, -0.5 * u + 0.75 * v + 0.6};
+        return V3{x, y, o[0] + 2 * o[1] + 3 * o[2] + 1};  // (m * inverse(m))[1][1] = 1
+      },
+      1e-4);
+}
+
 TEST(GlslFrontEnd, SineHashAndPreludeAtomics) {
   expect_values(
       R"(
@@ -298,7 +392,7 @@ TEST(GlslFrontEnd, ErrorsNameFileLineAndColumn) {
       {"  float a[3] = float[](1.0, 2.0, 3.0);\n  int i = int(uv.x);\n  return vec3(a[i]);\n}\n",
        "test.glsl:4:17: unsupported dynamic array indexing"},
       {"  return vec3(dFdx(uv.x));\n}\n", "test.glsl:2:23: unsupported screen-space derivatives"},
-      {"  mat2 m = mat2(1.0);\n  return vec3(m[0][0]);\n}\n", "unsupported matrix"},
+      {"  dmat2 m = dmat2(1.0);\n  return vec3(float(m[0][0]));\n}\n", "unsupported double precision"},
   };
   for (const auto& c : cases)
     EXPECT_NE(error_of(head + c.body).find(c.want), std::string::npos) << error_of(head + c.body);
