@@ -1531,7 +1531,7 @@ float bl_plain_ceil(float x) {
 }
 
 float bl_plain_trunc(float x) {
-  return (1.0 + x) + (-1.0) * bl_plain_fract(x) + (-1.0) * bl_plain_step(x);
+  return trunc(x);
 }
 
 float bl_plain_tan(float x) {
@@ -8817,6 +8817,7 @@ float bl_tent_ceil_sq(float x, float sigma) {
 }
 
 float bl_gaussian_trunc(float x, float sigma) {
+  if (sigma == (0.0)) return bl_plain_trunc(x);
   // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
     if (sigma >= (1e-30) && sigma < (0.18106228898026977)) {
       float n0 = floor(x);
@@ -8856,6 +8857,7 @@ float bl_gaussian_trunc(float x, float sigma) {
 }
 
 float bl_gaussian_trunc_sq_raw(float x, float sigma) {
+  if (sigma == (0.0)) return bl_plain_trunc(x) * bl_plain_trunc(x);
   // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
     if (sigma >= (1e-30) && sigma < (0.17504451970780102)) {
       float n0 = floor(x);
@@ -9342,6 +9344,7 @@ float bl_gaussian_trunc_sq(float x, float sigma) {
 }
 
 float bl_box_trunc(float x, float sigma) {
+  if (sigma == (0.0)) return bl_plain_trunc(x);
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     float hw = BL_SQRT3 * sigma;
     if (sigma > (0.0) && hw <= (2.0)) {
@@ -9390,6 +9393,7 @@ float bl_box_trunc(float x, float sigma) {
 }
 
 float bl_box_trunc_sq_raw(float x, float sigma) {
+  if (sigma == (0.0)) return bl_plain_trunc(x) * bl_plain_trunc(x);
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     float hw = BL_SQRT3 * sigma;
     if (sigma > (0.0) && hw <= (2.0)) {
@@ -9449,6 +9453,7 @@ float bl_box_trunc_sq(float x, float sigma) {
 }
 
 float bl_tent_trunc(float x, float sigma) {
+  if (sigma == (0.0)) return bl_plain_trunc(x);
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     float hw = BL_SQRT6 * sigma;
     if (sigma > (0.0) && hw <= (3.0)) {
@@ -9513,6 +9518,7 @@ float bl_tent_trunc(float x, float sigma) {
 }
 
 float bl_tent_trunc_sq_raw(float x, float sigma) {
+  if (sigma == (0.0)) return bl_plain_trunc(x) * bl_plain_trunc(x);
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     float hw = BL_SQRT6 * sigma;
     if (sigma > (0.0) && hw <= (3.0)) {

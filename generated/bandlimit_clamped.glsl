@@ -787,7 +787,7 @@ float bl_clamped_plain_ceil(float x) {
 }
 
 float bl_clamped_plain_trunc(float x) {
-  return (1.0 + x) + (-1.0) * bl_clamped_plain_fract(x) + (-1.0) * bl_clamped_plain_step(x);
+  return trunc(x);
 }
 
 float bl_clamped_plain_tan(float x) {

@@ -1381,9 +1381,15 @@ std::string body(const Derived& d, Lang lang, const std::vector<Derived>* ds) {
       if (b.empty()) b = body_periodic(d, s);
       break;
     case Body::Combination:
+      // sigma = 0 is the plain function: the built-in where the catalog names one, since the identity
+      // below is off on a measure-zero set (trunc at negative integers) the kernels never see.
+      if (d.atomic && !d.atomic->builtin.empty()) {
+        const std::string p = s.fn(plain_impl_name(d.atomic->name)) + "(x)";
+        b = "  if (sigma == " + s.dbl(0) + ") return " + (d.squared ? p + " * " + p : p) + ";\n";
+      }
       // gauss_staircase_near goes where the far sides (the periodic terms alone) do not apply.
-      b = box_tent_staircase_narrow(d, lang, ds) + gauss_staircase_narrow(d, lang, ds) +
-          body_combination(d, s, ds, gauss_staircase_near(d, lang, ds));
+      b += box_tent_staircase_narrow(d, lang, ds) + gauss_staircase_narrow(d, lang, ds) +
+           body_combination(d, s, ds, gauss_staircase_near(d, lang, ds));
       break;
     case Body::Antiderivative:
       b = body_antiderivative(d, s);
@@ -1482,7 +1488,11 @@ std::string plain_body(const sym::Atomic& a, const std::vector<Derived>& ds, Lan
              call("x", "p") + ";\n";
     }
     case sym::AtomicClass::Combination: {
-      // Same identity as the smoothed form, with the plain atomics.
+      // The built-in where the catalog names one (its identity holds only almost everywhere);
+      // otherwise the same identity as the smoothed form, with the plain atomics.
+      if (!a.builtin.empty())  // C++: std:: for float and double, found by ADL for other types
+        return (s.cpp() ? "  using std::" + a.builtin + ";\n" : std::string()) + "  return " + a.builtin +
+               "(x);\n";
       for (const Derived& d : ds) {
         if (d.atomic != &a) continue;
         std::string out = pre + "  return " + s.ex(d.poly);

@@ -333,7 +333,7 @@ Atomic parse_atomic_fields(const json& j, const Ctx& c) {
       {AtomicClass::Entire, {"f", "period"}},
       {AtomicClass::Piecewise, {"pieces"}},
       {AtomicClass::Periodic, {"pieces", "period"}},
-      {AtomicClass::Combination, {"of"}},
+      {AtomicClass::Combination, {"of", "builtin"}},
       {AtomicClass::Antiderivative,
        {"f", "F", "F2", "F_sq", "F2_sq", "period", "singular", "scale", "flat", "parity"}}};
   for (auto& [k, v] : j.items())
@@ -410,6 +410,14 @@ Atomic parse_atomic_fields(const json& j, const Ctx& c) {
     case AtomicClass::Combination:
       require(c, j, "of");
       a.of = string_field(c, j, "of");
+      if (j.contains("builtin")) {
+        // Built-ins with the same meaning in C++'s <cmath> (std::) and GLSL.
+        static const std::set<std::string> builtins = {"trunc", "floor", "ceil"};
+        a.builtin = string_field(c, j, "builtin");
+        if (!builtins.count(a.builtin))
+          c.fail("builtin",
+                 "'" + a.builtin + "' is not a built-in of both C++ and GLSL (trunc, floor, ceil)");
+      }
       break;
     case AtomicClass::Antiderivative: {
       for (const char* f : {"f", "F", "F_sq"}) require(c, j, f);

@@ -49,7 +49,7 @@ struct Atomic {
   Bound domain_lo, domain_hi;
   Bound range_lo, range_hi;
   std::vector<GiNaC::ex> jumps, kinks, singular;  // as declared (checked against the pieces)
-  bool jumps_at_integers = false;                  // combination: "jumps": ["integers"]
+  bool jumps_at_integers = false;                 // combination: "jumps": ["integers"]
   std::vector<Monotone> monotone;
   // antiderivative class: F' = f, F2' = F, F_sq' = f^2, F2_sq' = F_sq (F2 entries optional)
   GiNaC::ex F, F2, F_sq, F2_sq;
@@ -60,6 +60,10 @@ struct Atomic {
   std::optional<Flat> flat;  // f is constant to machine precision for |x| > beyond
   int parity = 0;            // +1 even, -1 odd, 0 neither (checked); rules evaluate x < 0 by symmetry
   std::string of;            // combination: linear identity in other atomics
+  // combination: the plain function is this C++ (std::) and GLSL built-in, for an identity that
+  // holds only almost everywhere (trunc = x - fract(x) + 1 - step(x) is off by one at negative
+  // integers, which the convolutions never see but a plain program, int(floor(y)) say, does).
+  std::string builtin;
   std::string comment;
 };
 

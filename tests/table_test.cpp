@@ -1,6 +1,8 @@
 // The generated table as a user links it: every registry entry in float and double obeys the
 // conventions (sigma = 0 gives f, bad sigma gives NaN), and selected entries match closed forms
 // from the literature. The exhaustive comparison with quadrature is blverify (test verify_all).
+#include "bandlimit/table.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,6 +39,36 @@ TEST(Table, SigmaZeroGivesTheFunctionAndBadSigmaGivesNaN) {
   }
 }
 
+// The plain staircases are exact at their jumps too, where a plain program evaluates them on whole
+// numbers (int(floor(y)) is trunc of a floor): the smoothed forms never see a measure-zero set, the
+// plain ones do. trunc's identity x - fract(x) + 1 - step(x) gave 0 at x = -1.
+template <class T>
+void expect_staircases() {
+  struct Row {
+    T x, floor, ceil, trunc;
+  };
+  const Row rows[] = {{T(-3), T(-3), T(-3), T(-3)},
+                      {T(-2.5), T(-3), T(-2), T(-2)},
+                      {T(-1), T(-1), T(-1), T(-1)},
+                      {T(-0.25), T(-1), T(0), T(0)},
+                      {T(0), T(0), T(0), T(0)},
+                      {T(0.75), T(0), T(1), T(0)},
+                      {T(2), T(2), T(2), T(2)},
+                      {T(7.5), T(7), T(8), T(7)},
+                      {T(-1e6), T(-1e6), T(-1e6), T(-1e6)},
+                      {T(-4097.5), T(-4098), T(-4097), T(-4097)}};
+  for (const Row& r : rows) {
+    EXPECT_EQ(bl::plain::floor(r.x), r.floor) << "floor(" << r.x << ")";
+    EXPECT_EQ(bl::plain::ceil(r.x), r.ceil) << "ceil(" << r.x << ")";
+    EXPECT_EQ(bl::plain::trunc(r.x), r.trunc) << "trunc(" << r.x << ")";
+  }
+}
+
+TEST(Table, PlainStaircasesAreExactAtWholeNumbers) {
+  expect_staircases<float>();
+  expect_staircases<double>();
+}
+
 TEST(Table, FloatAndDoubleInstantiationsAgree) {
   int nd = 0, nf = 0;
   const auto* ed = bl::registry::entries<double>(&nd);
@@ -49,7 +81,8 @@ TEST(Table, FloatAndDoubleInstantiationsAgree) {
         const double d = ed[i].smoothed(x, s);
         const float f = ef[i].smoothed(x, s);
         if (!std::isfinite(d)) continue;
-        EXPECT_LE(std::abs(f - d) / std::max(1.0, std::abs(d)), 2e-5) << ed[i].cpp << " x=" << x << " s=" << s;
+        EXPECT_LE(std::abs(f - d) / std::max(1.0, std::abs(d)), 2e-5)
+            << ed[i].cpp << " x=" << x << " s=" << s;
       }
 }
 

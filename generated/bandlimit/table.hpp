@@ -826,8 +826,8 @@ T plain_ceil(T x) {
 
 template <class T>
 T plain_trunc(T x) {
-  BL_MATH_USING
-  return (T(1) + x) + (T(-1)) * plain_fract<T>(x) + (T(-1)) * plain_step<T>(x);
+  using std::trunc;
+  return trunc(x);
 }
 
 template <class T>
@@ -10986,6 +10986,7 @@ T tent_ceil_sq(T x, T sigma) {
 template <class T>
 T gaussian_trunc(T x, T sigma) {
   BL_MATH_USING
+  if (sigma == T(0.0)) return plain_trunc<T>(x);
   // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
   if constexpr (std::is_same<T, float>::value) {
     if (sigma >= T(1e-30) && sigma < T(0.18106228898026977)) {
@@ -11062,6 +11063,7 @@ T gaussian_trunc(T x, T sigma) {
 template <class T>
 T gaussian_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  if (sigma == T(0.0)) return plain_trunc<T>(x) * plain_trunc<T>(x);
   // Narrow kernels: the nearest breaks' Phic sum (rulegen: gauss_staircase_narrow).
   if constexpr (std::is_same<T, float>::value) {
     if (sigma >= T(1e-30) && sigma < T(0.17504451970780102)) {
@@ -12332,6 +12334,7 @@ T gaussian_trunc_sq(T x, T sigma) {
 template <class T>
 T box_trunc(T x, T sigma) {
   BL_MATH_USING
+  if (sigma == T(0.0)) return plain_trunc<T>(x);
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt3<T>() * sigma;
     if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
@@ -12397,6 +12400,7 @@ T box_trunc(T x, T sigma) {
 template <class T>
 T box_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  if (sigma == T(0.0)) return plain_trunc<T>(x) * plain_trunc<T>(x);
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt3<T>() * sigma;
     if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
@@ -12470,6 +12474,7 @@ T box_trunc_sq(T x, T sigma) {
 template <class T>
 T tent_trunc(T x, T sigma) {
   BL_MATH_USING
+  if (sigma == T(0.0)) return plain_trunc<T>(x);
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
     if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest
@@ -12551,6 +12556,7 @@ T tent_trunc(T x, T sigma) {
 template <class T>
 T tent_trunc_sq_raw(T x, T sigma) {
   BL_MATH_USING
+  if (sigma == T(0.0)) return plain_trunc<T>(x) * plain_trunc<T>(x);
   {  // narrow kernels: the break sum centred on n0 = floor(x)
     const T hw = detail::k_sqrt6<T>() * sigma;
     if (hw >= T(1e-30) && hw <= T(0.5)) {  // one break in reach, the nearest

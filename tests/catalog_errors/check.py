@@ -18,6 +18,7 @@ EXPECT = {  # snippet -> (entry, field, words of the reason)
     "tanh_far_jump_F": ("tanh", "F", "at x = 10000"),
     # monotone proved where f' = q e^{ax}: q's real roots, not samples
     "cubic_not_monotone": ("cubic", "monotone", "f' = 0 at x = 0.6"),
+    "trunc_unknown_builtin": ("trunc", "builtin", "not a built-in of both C++ and GLSL"),
 }
 
 rulegen = sys.argv[1]
