@@ -261,12 +261,12 @@ class Walker {
       const TOperator op = b->getOp();
       if (op == glslang::EOpIndexDirect || op == glslang::EOpIndexIndirect) {
         LRef base = lvalue(b->getLeft());
-        const int idx = constant_index(b->getRight());
-        const int es = components(b);
-        if (idx < 0 || (idx + 1) * es > static_cast<int>(base.comps.size())) fail(b, "index out of range");
-        LRef r{base.id, {}, n, base.local};
-        for (int i = 0; i < es; ++i) r.comps.push_back(base.comps[idx * es + i]);
-        return r;
+        Var i;
+        if (!constant_scalar(b->getRight(), &i))
+          unsupported(b->getRight(),
+                      "traced index inside an assignment target (assign the whole element: a[i] = ... or "
+                      "a[i] += ...)");
+        return element_ref(b, base, i);
       }
       if (op == glslang::EOpVectorSwizzle) {
         LRef base = lvalue(b->getLeft());
@@ -278,6 +278,16 @@ class Walker {
       if (op == glslang::EOpIndexDirectStruct) unsupported(n, "struct member");
     }
     unsupported(n, "assignment target");
+  }
+  // Element i (a constant) of `base`, the whole of what `b` indexes.
+  LRef element_ref(glslang::TIntermBinary* b, const LRef& base, Var i) {
+    double k = 0;
+    cval(i, &k);
+    const int idx = static_cast<int>(k), es = components(b);
+    if (idx < 0 || (idx + 1) * es > static_cast<int>(base.comps.size())) fail(b, "index out of range");
+    LRef r{base.id, {}, b, base.local};
+    for (int j = 0; j < es; ++j) r.comps.push_back(base.comps[idx * es + j]);
+    return r;
   }
   Value read(const LRef& r) {
     const Value& v = st_.vars.at(r.id);
@@ -293,14 +303,6 @@ class Walker {
     const Var m = r.local ? land(st_.brk, st_.cont) : active();
     Value& v = st_.vars.at(r.id);
     for (std::size_t i = 0; i < r.comps.size(); ++i) v.c[r.comps[i]] = sel(m, x.c[i], v.c[r.comps[i]]);
-  }
-
-  int constant_index(TIntermTyped* idx) {
-    const Value v = eval(idx);
-    double k;
-    if (v.size() != 1 || !cval(v.c[0], &k))
-      unsupported(idx, "dynamic array indexing (index is not constant)");
-    return static_cast<int>(k);
   }
 
   // ---------- statements ----------
@@ -592,19 +594,62 @@ class Walker {
     }
   }
 
+  // An index that is not a constant: the element as a sum of steps of the index, element 0 plus, for
+  // each k >= 1, step(i - (k - 1/2)) (element k - element k-1). Indices are whole numbers, so at a
+  // pixel it picks element i; smoothed, each step is the probability that i >= k, and the mean is
+  // the exact mixture of the elements (a chain of selects would treat the steps as independent). An
+  // index outside the array reads the nearest end (GLSL leaves it undefined).
+  Value dynamic_element(const Value& base, Var i, int es) {
+    const int n = base.size() / es;
+    Value r{std::vector<Var>(base.c.begin(), base.c.begin() + es)};
+    for (int k = 1; k < n; ++k) {
+      const Var s = atomic("step", sub(i, Var(k - 0.5)));
+      for (int j = 0; j < es; ++j)
+        r.c[j] = add(r.c[j], mul(s, sub(base.c[k * es + j], base.c[(k - 1) * es + j])));
+    }
+    return r;
+  }
+  bool constant_scalar(TIntermTyped* n, Var* v) {
+    const Value x = eval(n);
+    if (x.size() != 1) fail(n, "expected a scalar index");
+    *v = x.c[0];
+    return cval(*v, nullptr);
+  }
+  // a[i] = y or a[i] op= y with i traced: every element k takes the new value where i == k.
+  Value dynamic_write(glslang::TIntermBinary* b, glslang::TIntermBinary* target, TOperator base_op, Var i,
+                      const Value& y) {
+    const LRef whole = lvalue(target->getLeft());
+    const int es = components(target);
+    const int n = static_cast<int>(whole.comps.size()) / es;
+    for (int k = 0; k < n; ++k) {
+      const LRef e{whole.id,
+                   std::vector<int>(whole.comps.begin() + k * es, whole.comps.begin() + (k + 1) * es), target,
+                   whole.local};
+      const Value old = read(e);
+      const Value now = base_op == glslang::EOpNull ? y : arith(b, base_op, old, y, is_integer(target));
+      if (now.size() != es) fail(b, "assignment of mismatched sizes");
+      write(e, select_value(equal(i, Var(static_cast<double>(k))), now, old));
+    }
+    return y;
+  }
+
   Value binary(glslang::TIntermBinary* b) {
     const TOperator op = b->getOp();
-    if (op == glslang::EOpAssign) {
-      const Value v = eval(b->getRight());
-      const LRef r = lvalue(b->getLeft());
-      if (static_cast<int>(r.comps.size()) != v.size()) fail(b, "assignment of mismatched sizes");
-      write(r, v);
-      return v;
-    }
-    if (const TOperator base = compound_base(op); base != glslang::EOpNull) {
+    if (op == glslang::EOpAssign || compound_base(op) != glslang::EOpNull) {
+      const TOperator base_op = op == glslang::EOpAssign ? glslang::EOpNull : compound_base(op);
       const Value y = eval(b->getRight());
-      const LRef r = lvalue(b->getLeft());
-      const Value v = arith(b, base, read(r), y, is_integer(b->getLeft()));
+      auto* target = b->getLeft()->getAsBinaryNode();
+      LRef r;
+      if (target && target->getOp() == glslang::EOpIndexIndirect) {
+        Var i;
+        if (!constant_scalar(target->getRight(), &i)) return dynamic_write(b, target, base_op, i, y);
+        r = element_ref(target, lvalue(target->getLeft()), i);
+      } else {
+        r = lvalue(b->getLeft());
+      }
+      const Value v =
+          base_op == glslang::EOpNull ? y : arith(b, base_op, read(r), y, is_integer(b->getLeft()));
+      if (static_cast<int>(r.comps.size()) != v.size()) fail(b, "assignment of mismatched sizes");
       write(r, v);
       return v;
     }
@@ -612,8 +657,12 @@ class Walker {
       case glslang::EOpIndexDirect:
       case glslang::EOpIndexIndirect: {
         const Value base = eval(b->getLeft());
-        const int idx = constant_index(b->getRight());
         const int es = components(b);
+        Var i;
+        if (!constant_scalar(b->getRight(), &i)) return dynamic_element(base, i, es);
+        double k = 0;
+        cval(i, &k);
+        const int idx = static_cast<int>(k);
         if (idx < 0 || (idx + 1) * es > base.size()) fail(b, "index out of range");
         return Value{std::vector<Var>(base.c.begin() + idx * es, base.c.begin() + (idx + 1) * es)};
       }
@@ -668,11 +717,47 @@ class Walker {
   }
 
   // Float -> int (and int -> float, bool <-> number) conversions; ints are carried as whole floats.
-  // int(x) of a traced float is trunc(x) (exact); integer arithmetic on it is limited above.
+  // int(x) of a traced float is trunc(x) (exact); integer arithmetic on it is limited above. A value
+  // that is already a whole number (a floor, a step, sums and products of them) converts to itself:
+  // int(floor(y)) is floor(y), one jump rather than a trunc smoothed on top of a smoothed floor.
   Var to_int(Var x) {
     double k;
     if (cval(x, &k)) return Var(std::trunc(k));
+    if (whole(x.id(), 0)) return x;
     return atomic("trunc", x);
+  }
+  // True when node `id` takes only whole-number values (depth bounds the walk on long sums).
+  bool whole(int id, int depth) const {
+    if (depth > 32) return false;
+    const ir::Node& n = g_.node(id);
+    switch (n.op) {
+      case ir::Op::Const:
+        return n.value == std::floor(n.value);
+      case ir::Op::Less:
+        return true;
+      case ir::Op::Add:
+      case ir::Op::Sub:
+      case ir::Op::Mul:
+      case ir::Op::Min:
+      case ir::Op::Max:
+        return whole(n.a, depth + 1) && whole(n.b, depth + 1);
+      case ir::Op::Neg:
+        return whole(n.a, depth + 1);
+      case ir::Op::Mod:
+        return n.value == std::floor(n.value) && whole(n.a, depth + 1);
+      case ir::Op::Select:
+        return whole(n.a, depth + 1) && whole(n.b, depth + 1);
+      case ir::Op::Call: {
+        static const int staircases[] = {ir::atomic_index("floor"), ir::atomic_index("ceil"),
+                                         ir::atomic_index("trunc"), ir::atomic_index("step"),
+                                         ir::atomic_index("sign"),  ir::atomic_index("square")};
+        for (int a : staircases)
+          if (n.atomic == a) return true;
+        return false;
+      }
+      default:
+        return false;
+    }
   }
   Var to_bool(Var x) { return lnot(equal(x, Var(0.0))); }
 

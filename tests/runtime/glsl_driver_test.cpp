@@ -99,6 +99,29 @@ vec3 shade(vec2 uv, float time) {
   }
 }
 
+TEST(GlslDriver, TracedIndicesTraceAsTheDriverRunsThem) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);
+  const std::string src = R"(#version 450
+const vec3 palette[5] = vec3[](vec3(0.9, 0.1, 0.1), vec3(0.1, 0.8, 0.2), vec3(0.2, 0.3, 0.9),
+                               vec3(0.7, 0.7, 0.1), vec3(0.5));
+vec3 shade(vec2 uv, float time) {
+  int i = int(mod(floor(uv.x * 1.7 + uv.y), 5.0));
+  float w[4] = float[](0.1, 0.2, 0.3, 0.4);
+  int j = int(clamp(floor(uv.y + 2.0), 0.0, 3.0));
+  w[j] = fract(uv.x);
+  w[3 - j] *= 2.0;
+  mat3 m = mat3(1.0, 0.5, 0.25, 0.1, 0.2, 0.3, 0.9, 0.8, 0.7);
+  vec3 col = m[int(clamp(floor(uv.x + 1.5), 0.0, 2.0))];
+  return 0.5 * palette[i] + 0.25 * vec3(w[0] + w[1], w[2], w[3]) + 0.25 * col;
+}
+)";
+  const Mismatch m = compare_with_driver(ctx, src, 0.0f, 1e-5);
+  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << av.reason << ")";
+}
+
 // The example patterns (scenes/glsl) without a large-gain hash: a pixel whose argument lies within
 // rounding of a jump may land on the other side in one of them, so a few pixels may differ; a
 // misread construct moves far more.

@@ -305,6 +305,59 @@ vec3 shade(vec2 uv, float time) {
       1e-4);
 }
 
+// A traced (whole-number) index reads and writes the element it names; out of range it reads the
+// nearest end (GLSL leaves that undefined).
+TEST(GlslFrontEnd, TracedIndicesPickTheElementTheyName) {
+  expect_values(
+      R"(
+const vec3 palette[4] = vec3[](vec3(0.9, 0.1, 0.1), vec3(0.1, 0.8, 0.2), vec3(0.2, 0.3, 0.9), vec3(0.7, 0.7, 0.1));
+vec3 shade(vec2 uv, float time) {
+  int i = int(mod(floor(uv.x), 4.0));
+  float a[3] = float[](10.0, 20.0, 30.0);
+  int j = int(clamp(floor(uv.y + 1.0), 0.0, 2.0));
+  a[j] = uv.x;
+  a[2 - j] += 5.0;
+  vec4 v = vec4(uv, 7.0, 8.0);
+  int k = int(floor(uv.y)) + 1;                 // -2 .. 3: the ends read v[0] and v[3]
+  return palette[i] + vec3(a[0], a[1] + 100.0 * a[2], v[k]);
+})",
+      [](double u, double v, double) {
+        const double pal[4][3] = {{0.9, 0.1, 0.1}, {0.1, 0.8, 0.2}, {0.2, 0.3, 0.9}, {0.7, 0.7, 0.1}};
+        const int i = static_cast<int>(std::fmod(std::fmod(std::floor(u), 4.0) + 4.0, 4.0));
+        double a[3] = {10, 20, 30};
+        const int j = static_cast<int>(std::clamp(std::floor(v + 1), 0.0, 2.0));
+        a[j] = u;
+        a[2 - j] += 5;
+        const double vv[4] = {u, v, 7, 8};
+        const int k = std::clamp(static_cast<int>(std::floor(v)) + 1, 0, 3);
+        return V3{pal[i][0] + a[0], pal[i][1] + a[1] + 100 * a[2], pal[i][2] + vv[k]};
+      },
+      1e-5);
+}
+
+// int() of a whole number (a floor, a step, their sums and products) is the number itself: no trunc
+// node on top of the floor (one jump to smooth, not two); of anything else it is trunc.
+TEST(GlslFrontEnd, IntOfAWholeNumberIsItself) {
+  const glsl::Pattern p = trace(R"(
+vec3 shade(vec2 uv, float time) {
+  int i = int(floor(uv.x)) + 2 * int(step(0.5, uv.y)) - int(mod(floor(uv.y), 3.0));
+  int j = int(uv.x * 0.5);
+  return vec3(float(i), float(j), 0.0);
+})");
+  EXPECT_EQ(count_calls(p.graph, "trunc"), 1);  // j's only
+  EXPECT_EQ(count_calls(p.graph, "floor"), 2);
+  expect_values(R"(
+vec3 shade(vec2 uv, float time) {
+  int i = int(floor(uv.x)) + 2 * int(step(0.5, uv.y)) - int(mod(floor(uv.y), 3.0));
+  int j = int(uv.x * 0.5);
+  return vec3(float(i), float(j), 0.0);
+})",
+                [](double u, double v, double) {
+                  const double m = std::floor(v) - 3 * std::floor(std::floor(v) / 3);
+                  return V3{std::floor(u) + 2 * (v >= 0.5 ? 1 : 0) - m, std::trunc(u * 0.5), 0};
+                });
+}
+
 TEST(GlslFrontEnd, SineHashAndPreludeAtomics) {
   expect_values(
       R"(
@@ -389,8 +442,9 @@ TEST(GlslFrontEnd, ErrorsNameFileLineAndColumn) {
       {"  int i = int(uv.x);\n  return vec3(float(i % 3));\n}\n",
        "test.glsl:3:23: unsupported integer modulo"},
       {"  int i = int(uv.x);\n  return vec3(float(i & 3));\n}\n", "test.glsl:3:23: unsupported integer bit"},
-      {"  float a[3] = float[](1.0, 2.0, 3.0);\n  int i = int(uv.x);\n  return vec3(a[i]);\n}\n",
-       "test.glsl:4:17: unsupported dynamic array indexing"},
+      {"  vec2 a[3] = vec2[](vec2(1.0), vec2(2.0), vec2(3.0));\n  int i = int(uv.x);\n  a[i].x = 1.0;\n"
+       "  return vec3(a[1], 0.0);\n}\n",
+       "test.glsl:4:5: unsupported traced index inside an assignment target"},
       {"  return vec3(dFdx(uv.x));\n}\n", "test.glsl:2:23: unsupported screen-space derivatives"},
       {"  dmat2 m = dmat2(1.0);\n  return vec3(float(m[0][0]));\n}\n", "unsupported double precision"},
   };
