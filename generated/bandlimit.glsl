@@ -1558,6 +1558,10 @@ float bl_plain_inv2(float x) {
   return (1.0/(x*x));
 }
 
+float bl_plain_atan(float x) {
+  return atan(x);
+}
+
 // ---- entries ----
 
 float bl_gaussian_sin_raw(float x, float sigma) {
@@ -10226,6 +10230,128 @@ float bl_tent_inv2_sq_raw(float x, float sigma) {
 float bl_tent_inv2_sq(float x, float sigma) {
   float v = bl_tent_inv2_sq_raw(x, sigma);
   if (v < 0.0) return 0.0;
+  return v;
+}
+
+float bl_box_atan_series(float x, float hh) {
+  if (hh == (0.0)) return atan(x);  // no smoothing: f(x)
+  float u_atan = atan(x);
+  float q = hh * hh;
+  return u_atan + q * (((-1.0/3.0)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))*x) + q * (((1.0/5.0)*((-(x*x*x)) + x)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/21.0)*(((-10.0)*(x*x*x)) + (3.0*(x*x*x*x*x)) + (3.0*x))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((1.0/9.0)*(((-7.0)*(x*x*x)) + (-(x*x*x*x*x*x*x)) + (7.0*(x*x*x*x*x)) + x)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((1.0/55.0)*(((-126.0)*(x*x*x*x*x)) + ((-5.0)*(x*x*x*x*x*x*x*x*x)) + ((-5.0)*x) + (60.0*(x*x*x)) + (60.0*(x*x*x*x*x*x*x)))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/39.0)*(((-198.0)*(x*x*x*x*x)) + ((-3.0)*x) + ((-55.0)*(x*x*x*x*x*x*x*x*x)) + (198.0*(x*x*x*x*x*x*x)) + (3.0*(x*x*x*x*x*x*x*x*x*x*x)) + (55.0*(x*x*x)))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0)))))))))));
+}
+
+float bl_box_atan_diff(float x, float hh) {
+  return ((((-1.0/2.0)*log(((((-hh) + (-x))*((-hh) + (-x))) + 1.0))) + (-((-hh) + (-x))*atan((hh + x)))) - ((((-hh) + x)*atan(((-hh) + x))) + ((-1.0/2.0)*log(((((-hh) + x)*((-hh) + x)) + 1.0))))) / ((2.0) * hh);
+}
+
+float bl_box_atan_raw(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  float sx = x < (0.0) ? (-1.0) : (1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
+  float hh = (sigma*sqrt(3.0));
+  if (x - hh > (1e+16)) return sx * ((1.5707963267948966));  // flat to machine precision
+  if (x + hh < (-1e+16)) return sx * ((-1.5707963267948966));
+  if (hh <= bl_series_reach() * ((-1.0/2.0)*((-1.0) + (-abs(x)))*sqrt(2.0))) {
+    return sx * (bl_box_atan_series(x, hh));
+  }
+  return sx * (bl_box_atan_diff(x, hh));
+}
+
+float bl_box_atan(float x, float sigma) {
+  float v = bl_box_atan_raw(x, sigma);
+  if (v < ((-1.0/2.0)*bl_pi())) return ((-1.0/2.0)*bl_pi());
+  if (v > ((1.0/2.0)*bl_pi())) return ((1.0/2.0)*bl_pi());
+  return v;
+}
+
+float bl_box_atan_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (atan(x)*atan(x));  // no smoothing: f(x)
+  float u_atan = atan(x);
+  float q = hh * hh;
+  return (u_atan*u_atan) + q * (((1.0/3.0)*(((-2.0)*u_atan*x) + 1.0)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((1.0/15.0)*(((-6.0)*(x*x*x)*u_atan) + (-2.0) + (6.0*u_atan*x) + (9.0*(x*x)))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/315.0)*(((-225.0)*(x*x*x*x)) + ((-300.0)*(x*x*x)*u_atan) + (-23.0) + (300.0*(x*x)) + (90.0*(x*x*x*x*x)*u_atan) + (90.0*u_atan*x))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/945.0)*(((-1127.0)*(x*x)) + ((-1470.0)*(x*x*x*x*x)*u_atan) + ((-210.0)*u_atan*x) + ((-735.0)*(x*x*x*x*x*x)) + (1470.0*(x*x*x)*u_atan) + (210.0*(x*x*x*x*x*x*x)*u_atan) + (2450.0*(x*x*x*x)) + 44.0)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/17325.0)*(((-101430.0)*(x*x*x*x)) + ((-14175.0)*(x*x*x*x*x*x*x*x)) + ((-37800.0)*(x*x*x)*u_atan) + ((-37800.0)*(x*x*x*x*x*x*x)*u_atan) + (-563.0) + (23760.0*(x*x)) + (3150.0*(x*x*x*x*x*x*x*x*x)*u_atan) + (3150.0*u_atan*x) + (79380.0*(x*x*x*x*x)*u_atan) + (88200.0*(x*x*x*x*x*x)))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/135135.0)*(((-114345.0)*(x*x*x*x*x*x*x*x*x*x)) + ((-1372140.0)*(x*x*x*x*x)*u_atan) + ((-204369.0)*(x*x)) + ((-20790.0)*u_atan*x) + ((-2454606.0)*(x*x*x*x*x*x)) + ((-381150.0)*(x*x*x*x*x*x*x*x*x)*u_atan) + (1143450.0*(x*x*x*x*x*x*x*x)) + (1372140.0*(x*x*x*x*x*x*x)*u_atan) + (1437480.0*(x*x*x*x)) + (20790.0*(x*x*x*x*x*x*x*x*x*x*x)*u_atan) + (381150.0*(x*x*x)*u_atan) + 3254.0)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0)))))))))));
+}
+
+float bl_box_atan_sq_diff(float x, float hh) {
+  return (((-((-hh) + (-x))*(atan((hh + x))*atan((hh + x)))) + (-atan((hh + x))*log(((((-hh) + (-x))*((-hh) + (-x))) + 1.0))) + (-bl_clausen2((((-2.0)*atan((hh + x))) + bl_pi()))) + (2.0*atan((hh + x))*log(2.0))) - ((((-hh) + x)*(atan(((-hh) + x))*atan(((-hh) + x)))) + (-atan(((-hh) + x))*log(((((-hh) + x)*((-hh) + x)) + 1.0))) + (-bl_clausen2((((-2.0)*atan(((-hh) + x))) + bl_pi()))) + (2.0*atan(((-hh) + x))*log(2.0)))) / ((2.0) * hh);
+}
+
+float bl_box_atan_sq_raw(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  x = abs(x);  // even
+  float hh = (sigma*sqrt(3.0));
+  if (x - hh > (1e+16)) return (2.4674011002723395);  // flat to machine precision
+  if (x + hh < (-1e+16)) return (2.4674011002723395);
+  if (hh <= bl_series_reach() * ((-1.0/2.0)*((-1.0) + (-abs(x)))*sqrt(2.0))) {
+    return bl_box_atan_sq_series(x, hh);
+  }
+  return bl_box_atan_sq_diff(x, hh);
+}
+
+float bl_box_atan_sq(float x, float sigma) {
+  float v = bl_box_atan_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > ((1.0/4.0)*(bl_pi()*bl_pi()))) return ((1.0/4.0)*(bl_pi()*bl_pi()));
+  return v;
+}
+
+float bl_tent_atan_series(float x, float hh) {
+  if (hh == (0.0)) return atan(x);  // no smoothing: f(x)
+  float u_atan = atan(x);
+  float q = hh * hh;
+  return u_atan + q * (((-1.0/6.0)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))*x) + q * (((1.0/15.0)*((-(x*x*x)) + x)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/84.0)*(((-10.0)*(x*x*x)) + (3.0*(x*x*x*x*x)) + (3.0*x))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((1.0/45.0)*(((-7.0)*(x*x*x)) + (-(x*x*x*x*x*x*x)) + (7.0*(x*x*x*x*x)) + x)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((1.0/330.0)*(((-126.0)*(x*x*x*x*x)) + ((-5.0)*(x*x*x*x*x*x*x*x*x)) + ((-5.0)*x) + (60.0*(x*x*x)) + (60.0*(x*x*x*x*x*x*x)))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/273.0)*(((-198.0)*(x*x*x*x*x)) + ((-3.0)*x) + ((-55.0)*(x*x*x*x*x*x*x*x*x)) + (198.0*(x*x*x*x*x*x*x)) + (3.0*(x*x*x*x*x*x*x*x*x*x*x)) + (55.0*(x*x*x)))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0)))))))))));
+}
+
+float bl_tent_atan_diff(float x, float hh) {
+  return ((((-1.0/2.0)*atan((hh + x))) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*atan((hh + x))) + ((1.0/2.0)*((-hh) + (-x))*log(((((-hh) + (-x))*((-hh) + (-x))) + 1.0)))) - (2.0) * (((-1.0/2.0)*atan(x)) + ((-1.0/2.0)*log(((x*x) + 1.0))*x) + ((1.0/2.0)*(x*x)*atan(x))) + (((-1.0/2.0)*((-hh) + x)*log(((((-hh) + x)*((-hh) + x)) + 1.0))) + ((-1.0/2.0)*atan(((-hh) + x))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*atan(((-hh) + x))))) / (hh * hh);
+}
+
+float bl_tent_atan_raw(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  float sx = x < (0.0) ? (-1.0) : (1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
+  float hh = (sigma*sqrt(6.0));
+  if (x - hh > (1e+16)) return sx * ((1.5707963267948966));  // flat to machine precision
+  if (x + hh < (-1e+16)) return sx * ((-1.5707963267948966));
+  if (hh <= bl_series_reach() * ((-1.0/2.0)*((-1.0) + (-abs(x)))*sqrt(2.0))) {
+    return sx * (bl_tent_atan_series(x, hh));
+  }
+  return sx * (bl_tent_atan_diff(x, hh));
+}
+
+float bl_tent_atan(float x, float sigma) {
+  float v = bl_tent_atan_raw(x, sigma);
+  if (v < ((-1.0/2.0)*bl_pi())) return ((-1.0/2.0)*bl_pi());
+  if (v > ((1.0/2.0)*bl_pi())) return ((1.0/2.0)*bl_pi());
+  return v;
+}
+
+float bl_tent_atan_sq_series(float x, float hh) {
+  if (hh == (0.0)) return (atan(x)*atan(x));  // no smoothing: f(x)
+  float u_atan = atan(x);
+  float q = hh * hh;
+  return (u_atan*u_atan) + q * (((1.0/6.0)*(((-2.0)*u_atan*x) + 1.0)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((1.0/45.0)*(((-6.0)*(x*x*x)*u_atan) + (-2.0) + (6.0*u_atan*x) + (9.0*(x*x)))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/1260.0)*(((-225.0)*(x*x*x*x)) + ((-300.0)*(x*x*x)*u_atan) + (-23.0) + (300.0*(x*x)) + (90.0*(x*x*x*x*x)*u_atan) + (90.0*u_atan*x))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/4725.0)*(((-1127.0)*(x*x)) + ((-1470.0)*(x*x*x*x*x)*u_atan) + ((-210.0)*u_atan*x) + ((-735.0)*(x*x*x*x*x*x)) + (1470.0*(x*x*x)*u_atan) + (210.0*(x*x*x*x*x*x*x)*u_atan) + (2450.0*(x*x*x*x)) + 44.0)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/103950.0)*(((-101430.0)*(x*x*x*x)) + ((-14175.0)*(x*x*x*x*x*x*x*x)) + ((-37800.0)*(x*x*x)*u_atan) + ((-37800.0)*(x*x*x*x*x*x*x)*u_atan) + (-563.0) + (23760.0*(x*x)) + (3150.0*(x*x*x*x*x*x*x*x*x)*u_atan) + (3150.0*u_atan*x) + (79380.0*(x*x*x*x*x)*u_atan) + (88200.0*(x*x*x*x*x*x)))*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))) + q * (((-1.0/945945.0)*(((-114345.0)*(x*x*x*x*x*x*x*x*x*x)) + ((-1372140.0)*(x*x*x*x*x)*u_atan) + ((-204369.0)*(x*x)) + ((-20790.0)*u_atan*x) + ((-2454606.0)*(x*x*x*x*x*x)) + ((-381150.0)*(x*x*x*x*x*x*x*x*x)*u_atan) + (1143450.0*(x*x*x*x*x*x*x*x)) + (1372140.0*(x*x*x*x*x*x*x)*u_atan) + (1437480.0*(x*x*x*x)) + (20790.0*(x*x*x*x*x*x*x*x*x*x*x)*u_atan) + (381150.0*(x*x*x)*u_atan) + 3254.0)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0)))))))))));
+}
+
+float bl_tent_atan_sq_diff(float x, float hh) {
+  return (((((-hh) + (-x))*atan((hh + x))*log(((((-hh) + (-x))*((-hh) + (-x))) + 1.0))) + (((-hh) + (-x))*bl_clausen2((((-2.0)*atan((hh + x))) + bl_pi()))) + ((-1.0/2.0)*(atan((hh + x))*atan((hh + x)))) + ((-1.0/2.0)*log(((((-hh) + (-x))*((-hh) + (-x))) + 1.0))) + ((-2.0)*((-hh) + (-x))*atan((hh + x))*log(2.0)) + ((1.0/2.0)*(((-hh) + (-x))*((-hh) + (-x)))*(atan((hh + x))*atan((hh + x)))) + (-((-hh) + (-x))*atan((hh + x)))) - (2.0) * (((-1.0/2.0)*(atan(x)*atan(x))) + ((-1.0/2.0)*log(((x*x) + 1.0))) + ((1.0/2.0)*(atan(x)*atan(x))*(x*x)) + (-atan(x)*log(((x*x) + 1.0))*x) + (-bl_clausen2((((-2.0)*atan(x)) + bl_pi()))*x) + (2.0*atan(x)*log(2.0)*x) + (atan(x)*x)) + ((((-hh) + x)*atan(((-hh) + x))) + ((-1.0/2.0)*(atan(((-hh) + x))*atan(((-hh) + x)))) + ((-1.0/2.0)*log(((((-hh) + x)*((-hh) + x)) + 1.0))) + ((1.0/2.0)*(((-hh) + x)*((-hh) + x))*(atan(((-hh) + x))*atan(((-hh) + x)))) + (-((-hh) + x)*atan(((-hh) + x))*log(((((-hh) + x)*((-hh) + x)) + 1.0))) + (-((-hh) + x)*bl_clausen2((((-2.0)*atan(((-hh) + x))) + bl_pi()))) + (2.0*((-hh) + x)*atan(((-hh) + x))*log(2.0)))) / (hh * hh);
+}
+
+float bl_tent_atan_sq_raw(float x, float sigma) {
+  if (!(sigma >= (0.0))) return bl_nan();  // sigma < 0 or NaN
+  x = abs(x);  // even
+  float hh = (sigma*sqrt(6.0));
+  if (x - hh > (1e+16)) return (2.4674011002723395);  // flat to machine precision
+  if (x + hh < (-1e+16)) return (2.4674011002723395);
+  if (hh <= bl_series_reach() * ((-1.0/2.0)*((-1.0) + (-abs(x)))*sqrt(2.0))) {
+    return bl_tent_atan_sq_series(x, hh);
+  }
+  return bl_tent_atan_sq_diff(x, hh);
+}
+
+float bl_tent_atan_sq(float x, float sigma) {
+  float v = bl_tent_atan_sq_raw(x, sigma);
+  if (v < 0.0) return 0.0;
+  if (v > ((1.0/4.0)*(bl_pi()*bl_pi()))) return ((1.0/4.0)*(bl_pi()*bl_pi()));
   return v;
 }
 

@@ -508,3 +508,69 @@ vec2 bl_rule2_inv2(float mu, float sigma) {
   return vec2(y, sigma * sigma * exp(2.0 * ly));
 }
 
+float bl_rule2_atan_q0(float x, float mu, float sigma) {
+  return ((-mu) + (2.0*(1.0/(((-(x*x)) + (-1.0))))*(sigma*sigma)*x) + x);
+}
+
+float bl_rule2_atan_dq0(float x, float mu, float sigma) {
+  return ((((-2.0)*(sigma*sigma)) + (2.0*(sigma*sigma)*(x*x)) + (2.0*(x*x)) + (x*x*x*x) + 1.0)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0)))));
+}
+
+vec2 bl_rule2_atan(float mu, float sigma) {
+  if (!(sigma >= 0.0)) return vec2(bl_nan());  // sigma < 0 or NaN
+  float x = bl_nan();
+  float y = x;
+  float fp = x;
+  {
+    if (sigma == 0.0) {
+      x = mu;
+    } else {
+    float a = mu;
+    float b = a;
+    float qa = bl_rule2_atan_q0(a, mu, sigma);
+    float qb = qa;
+    float d = abs(qa) + sigma * sigma;
+    if (qa <= 0.0) {
+      for (int i = 0; i < 200 && qb <= 0.0; ++i) {
+        a = b;
+        qa = qb;
+        b = b + d;
+        d *= 2.0;
+        qb = bl_rule2_atan_q0(b, mu, sigma);
+      }
+    } else {
+      for (int i = 0; i < 200 && qa > 0.0; ++i) {
+        b = a;
+        qb = qa;
+        a = a - d;
+        d *= 2.0;
+        qa = bl_rule2_atan_q0(a, mu, sigma);
+      }
+    }
+    if (qa <= 0.0 && qb > 0.0) {
+      x = a + (b - a) / 2.0;
+      for (int i = 0; i < 100; ++i) {
+        float qx = bl_rule2_atan_q0(x, mu, sigma);
+        if (qx <= 0.0) {
+          a = x;
+        } else {
+          b = x;
+        }
+        float xn = x - qx / bl_rule2_atan_dq0(x, mu, sigma);
+        if (!(xn > a && xn < b)) xn = a + (b - a) / 2.0;  // Newton left the bracket: bisect
+        bool done = abs(xn - x) <= 4.8e-7 * (abs(x) + sigma) || !(b - a > 4.8e-7 * (abs(x) + sigma));
+        x = xn;
+        if (done) break;
+      }
+    }
+    }
+    y = atan(x);
+    fp = (-(1.0/(((-(x*x)) + (-1.0)))));
+  }
+  if (sigma == 0.0) return vec2(y, 0.0);
+  if (!(x - x == 0.0)) return vec2(bl_nan());  // no mode on the piece
+  float dz = (x - mu) / sigma;
+  float ly = log(abs(fp)) + dz * dz / 2.0;  // log(sigma_Y / sigma)
+  return vec2(y, sigma * sigma * exp(2.0 * ly));
+}
+

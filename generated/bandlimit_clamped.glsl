@@ -630,6 +630,14 @@ float bl_deriv_inv2_d2(float x) {
   return (6.0*(1.0/(x*x*x*x)));
 }
 
+float bl_deriv_atan_d1(float x) {
+  return (-(1.0/(((-(x*x)) + (-1.0)))));
+}
+
+float bl_deriv_atan_d2(float x) {
+  return ((-2.0)*(1.0/(((-(x*x)) + (-1.0))*((-(x*x)) + (-1.0))))*x);
+}
+
 float bl_clamped_plain_sin(float x) {
   return sin(x);
 }
@@ -812,6 +820,10 @@ float bl_clamped_plain_inv(float x) {
 
 float bl_clamped_plain_inv2(float x) {
   return (1.0/(x*x));
+}
+
+float bl_clamped_plain_atan(float x) {
+  return atan(x);
 }
 
 vec2 bl_rule3_sin(float mu, float sigma) {
@@ -1116,6 +1128,15 @@ vec2 bl_rule3_inv2(float mu, float sigma) {
   float c = m.mean;
   vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_inv2(c), bl_deriv_inv2_d1(c), bl_deriv_inv2_d2(c), m);
   return bl_rule3_in_range(s, 0.0, BL_INF);
+}
+
+vec2 bl_rule3_atan(float mu, float sigma) {
+  if (!(sigma >= 0.0) || mu != mu) return vec2(bl_nan());
+  float k2 = sigma * sigma;  // the whole line: nothing truncated
+  BlTruncMoments m = BlTruncMoments(1.0, mu, k2, 0.0, 3.0 * k2 * k2);
+  float c = m.mean;
+  vec2 s = bl_rule3_from_derivatives(bl_clamped_plain_atan(c), bl_deriv_atan_d1(c), bl_deriv_atan_d2(c), m);
+  return bl_rule3_in_range(s, ((-1.0/2.0)*bl_pi()), ((1.0/2.0)*bl_pi()));
 }
 
 vec2 bl_rule1_expect_log(int kernel, vec3 p, float a, float b) {

@@ -1164,8 +1164,9 @@ std::string body_antiderivative(const Derived& d, const Syntax& s) {
     out += "  if constexpr (sizeof(T) == sizeof(double)) {\n    if (r < T(1e-3)) " +
            ret("T(" + impl_name(d) + "_diff<long double>((long double)x, (long double)hh))") + "\n  }\n";
   // A tent's second difference of F2 (~ x^2 growth) over hh^2 overflows float once hh^2 does
-  // (sigma ~ 1e19): C++ takes the difference in double there.
-  if (s.cpp() && d.kernel == Kernel::Tent)
+  // (sigma ~ 1e19), and a box's F may square its argument (atan's log(1 + x^2) at |x| ~ 1e19): C++
+  // takes the difference in double there.
+  if (s.cpp() && (d.kernel == Kernel::Tent || d.kernel == Kernel::Box))
     out += "  if constexpr (sizeof(T) < sizeof(double)) {\n    if (hh > T(1e15)) " +
            ret("T(" + impl_name(d) + "_diff<double>(double(x), double(hh)))") + "\n  }\n";
   out += "  " + ret(s.fn(impl_name(d) + "_diff") + "(x, hh)") + "\n";

@@ -431,10 +431,18 @@ Atomic parse_atomic_fields(const json& j, const Ctx& c) {
         a.singular = parse_points(c, "singular", j["singular"]);
       }
       if (j.contains("scale")) {
+        // A positive constant, or a positive expression in x where the Taylor radius grows with
+        // |x| (atan: sqrt(1 + x^2), the distance to its poles at +-i).
         c.field = "scale";
-        a.scale = parse_value(c, "scale", j["scale"]);
-        if (!(real_constant(c, "scale", *a.scale, j["scale"].dump()) > 0))
-          c.fail("scale", "must be a positive constant");
+        a.scale = parse_fn(c, "scale", j["scale"]);
+        for (double x : {-1e6, -30.0, -1.0, -0.25, 0.0, 0.5, 3.0, 1e6}) {
+          if (!(x > a.domain_lo.to_double() && x < a.domain_hi.to_double())) continue;
+          const numeric v = real_constant(c, "scale", a.scale->subs(var_x() == x),
+                                          j["scale"].dump() + " at x = " + std::to_string(x));
+          if (!(v > 0))
+            c.fail("scale",
+                   "must be positive, is " + std::to_string(v.to_double()) + " at x = " + std::to_string(x));
+        }
       }
       if (j.contains("flat")) {
         c.field = "flat";

@@ -151,6 +151,10 @@ template <class T>
 T deriv_inv2_d1(T x);
 template <class T>
 T deriv_inv2_d2(T x);
+template <class T>
+T deriv_atan_d1(T x);
+template <class T>
+T deriv_atan_d2(T x);
 
 // cos(x)
 template <class T>
@@ -724,6 +728,20 @@ T deriv_inv2_d2(T x) {
   return (T(6)*(T(1)/(x*x*x*x)));
 }
 
+// (-(((-(x)^(2)) + (-1)))^((-1)))
+template <class T>
+T deriv_atan_d1(T x) {
+  BL_MATH_USING
+  return (-(T(1)/(((-(x*x)) + (T(-1))))));
+}
+
+// ((-2)*(((-(x)^(2)) + (-1)))^((-2))*x)
+template <class T>
+T deriv_atan_d2(T x) {
+  BL_MATH_USING
+  return ((T(-2))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))*x);
+}
+
 // Rule 3: second-order Taylor of sin at the mean of N(mu, sigma^2) truncated to the domain.
 template <class T>
 stat<T> rule3_sin(T mu, T sigma) {
@@ -1188,6 +1206,20 @@ stat<T> rule3_inv2(T mu, T sigma) {
   return {T(r.mean), T(r.var)};
 }
 
+// Rule 3: second-order Taylor of atan at the mean of N(mu, sigma^2) truncated to the domain.
+template <class T>
+stat<T> rule3_atan(T mu, T sigma) {
+  const double lo = -truncnorm::detail::inf(), hi = truncnorm::detail::inf();
+  if (!(sigma >= T(0)) || mu != mu || (sigma == T(0) && !(double(mu) >= lo && double(mu) <= hi)))
+    return {detail::nan<T>(), detail::nan<T>()};
+  const double k2 = double(sigma) * double(sigma);  // the whole line: nothing truncated
+  const truncnorm::Moments<double> m{1.0, double(mu), k2, 0.0, 3.0 * k2 * k2};
+  const double c = m.mean;
+  const stat<double> s = rule3::from_derivatives<double>(plain_atan<double>(c), deriv_atan_d1<double>(c), deriv_atan_d2<double>(c), m);
+  const stat<double> r = rule3::in_range<double>(s, (-1.5707963267948966), (1.5707963267948966));  // f's range
+  return {T(r.mean), T(r.var)};
+}
+
 // Rule 1 (gaussian): X with mean mu and deviation sigma, the kernel renormalized on the domain of log.
 template <class T>
 stat<T> rule1_gaussian_log(T mu, T sigma) {
@@ -1553,6 +1585,10 @@ inline float inv2_d1(float x) { return ::bl::detail::gen::deriv_inv2_d1<float>(x
 inline double inv2_d1(double x) { return ::bl::detail::gen::deriv_inv2_d1<double>(x); }
 inline float inv2_d2(float x) { return ::bl::detail::gen::deriv_inv2_d2<float>(x); }
 inline double inv2_d2(double x) { return ::bl::detail::gen::deriv_inv2_d2<double>(x); }
+inline float atan_d1(float x) { return ::bl::detail::gen::deriv_atan_d1<float>(x); }
+inline double atan_d1(double x) { return ::bl::detail::gen::deriv_atan_d1<double>(x); }
+inline float atan_d2(float x) { return ::bl::detail::gen::deriv_atan_d2<float>(x); }
+inline double atan_d2(double x) { return ::bl::detail::gen::deriv_atan_d2<double>(x); }
 }  // namespace deriv
 
 namespace rule3 {
@@ -1624,6 +1660,8 @@ inline stat<float> inv(float mu, float sigma) { return ::bl::detail::gen::rule3_
 inline stat<double> inv(double mu, double sigma) { return ::bl::detail::gen::rule3_inv<double>(mu, sigma); }
 inline stat<float> inv2(float mu, float sigma) { return ::bl::detail::gen::rule3_inv2<float>(mu, sigma); }
 inline stat<double> inv2(double mu, double sigma) { return ::bl::detail::gen::rule3_inv2<double>(mu, sigma); }
+inline stat<float> atan(float mu, float sigma) { return ::bl::detail::gen::rule3_atan<float>(mu, sigma); }
+inline stat<double> atan(double mu, double sigma) { return ::bl::detail::gen::rule3_atan<double>(mu, sigma); }
 }  // namespace rule3
 
 namespace rule1 {
@@ -1775,6 +1813,8 @@ const DerivativeEntry<T>* derivative_entries(int* count) {
       {&kAtomics[32], 2, "bl::deriv::inv_d2", "bl_deriv_inv_d2", &detail::gen::deriv_inv_d2<T>},
       {&kAtomics[33], 1, "bl::deriv::inv2_d1", "bl_deriv_inv2_d1", &detail::gen::deriv_inv2_d1<T>},
       {&kAtomics[33], 2, "bl::deriv::inv2_d2", "bl_deriv_inv2_d2", &detail::gen::deriv_inv2_d2<T>},
+      {&kAtomics[34], 1, "bl::deriv::atan_d1", "bl_deriv_atan_d1", &detail::gen::deriv_atan_d1<T>},
+      {&kAtomics[34], 2, "bl::deriv::atan_d2", "bl_deriv_atan_d2", &detail::gen::deriv_atan_d2<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;
@@ -1818,6 +1858,7 @@ const RuleEntry<T>* clamped_rule_entries(int* count) {
       {&kAtomics[31], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::sqrt", "bl_rule3_sqrt", &detail::gen::rule3_sqrt<T>},
       {&kAtomics[32], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv", "bl_rule3_inv", &detail::gen::rule3_inv<T>},
       {&kAtomics[33], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::inv2", "bl_rule3_inv2", &detail::gen::rule3_inv2<T>},
+      {&kAtomics[34], "rule3", "gaussian", "closed form (truncated-normal moments)", "bl::rule3::atan", "bl_rule3_atan", &detail::gen::rule3_atan<T>},
       {&kAtomics[30], "rule1", "gaussian", "newton (natural parameters, <= 40 steps) + tanh-sinh quadrature", "bl::rule1::gaussian::log", "bl_rule1_gaussian_log", &detail::gen::rule1_gaussian_log<T>},
       {&kAtomics[30], "rule1", "box", "explicit kernel + tanh-sinh quadrature", "bl::rule1::box::log", "bl_rule1_box_log", &detail::gen::rule1_box_log<T>},
       {&kAtomics[30], "rule1", "tent", "explicit kernel + tanh-sinh quadrature", "bl::rule1::tent::log", "bl_rule1_tent_log", &detail::gen::rule1_tent_log<T>},

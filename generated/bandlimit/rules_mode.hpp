@@ -641,6 +641,87 @@ stat<T> inv2(T mu, T sigma) {
   return detail::gen_rule2::inv2_in<T>(mu, sigma);
 }
 
+template <class T>
+T mode_atan_q0(T x, T mu, T sigma) {
+  BL_MATH_USING
+  (void)mu;
+  (void)sigma;
+  return ((-mu) + (T(2)*(T(1)/(((-(x*x)) + (T(-1)))))*(sigma*sigma)*x) + x);
+}
+
+template <class T>
+T mode_atan_dq0(T x, T mu, T sigma) {
+  BL_MATH_USING
+  (void)mu;
+  (void)sigma;
+  return ((((T(-2))*(sigma*sigma)) + (T(2)*(sigma*sigma)*(x*x)) + (T(2)*(x*x)) + (x*x*x*x) + T(1))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1))))));
+}
+
+// newton (bracket from x0 = mu by doubling steps, safeguarded Newton <= 100 iterations, |dx| <= 4 eps (|x| + sigma))
+template <class T>
+stat<T> atan(T mu, T sigma) {
+  BL_MATH_USING
+  if constexpr (sizeof(T) < sizeof(double)) {
+    const stat<double> r = detail::gen_rule2::atan<double>(mu, sigma);
+    return {T(r.mean), T(r.var)};
+  }
+  if (!(sigma >= T(0))) return {detail::nan<T>(), detail::nan<T>()};  // sigma < 0 or NaN
+  T x = detail::nan<T>();
+  T y = x;
+  T fp = x;
+  {
+    if (sigma == T(0)) {
+      x = mu;
+    } else {
+    T a = mu;
+    T b = a;
+    T qa = mode_atan_q0<T>(a, mu, sigma);
+    T qb = qa;
+    T d = abs(qa) + sigma * sigma;
+    if (qa <= T(0)) {
+      for (int i = 0; i < 200 && qb <= T(0); ++i) {
+        a = b;
+        qa = qb;
+        b = b + d;
+        d *= T(2.0);
+        qb = mode_atan_q0<T>(b, mu, sigma);
+      }
+    } else {
+      for (int i = 0; i < 200 && qa > T(0); ++i) {
+        b = a;
+        qb = qa;
+        a = a - d;
+        d *= T(2.0);
+        qa = mode_atan_q0<T>(a, mu, sigma);
+      }
+    }
+    if (qa <= T(0) && qb > T(0)) {
+      x = a + (b - a) / T(2.0);
+      for (int i = 0; i < 100; ++i) {
+        const T qx = mode_atan_q0<T>(x, mu, sigma);
+        if (qx <= T(0)) {
+          a = x;
+        } else {
+          b = x;
+        }
+        T xn = x - qx / mode_atan_dq0<T>(x, mu, sigma);
+        if (!(xn > a && xn < b)) xn = a + (b - a) / T(2.0);  // Newton left the bracket: bisect
+        const bool done = abs(xn - x) <= T(4) * std::numeric_limits<T>::epsilon() * (abs(x) + sigma) || !(b - a > T(4) * std::numeric_limits<T>::epsilon() * (abs(x) + sigma));
+        x = xn;
+        if (done) break;
+      }
+    }
+    }
+    y = atan(x);
+    fp = (-(T(1)/(((-(x*x)) + (T(-1))))));
+  }
+  if (sigma == T(0)) return {y, T(0)};
+  if (!(x - x == T(0))) return {detail::nan<T>(), detail::nan<T>()};  // no mode on the piece
+  const T dz = (x - mu) / sigma;
+  const T ly = log(abs(fp)) + dz * dz / T(2.0);  // log(sigma_Y / sigma)
+  return {y, sigma * sigma * exp(T(2.0) * ly)};
+}
+
 }  // namespace gen_rule2
 }  // namespace detail
 
@@ -665,6 +746,8 @@ inline stat<float> inv(float mu, float sigma) { return detail::gen_rule2::inv<fl
 inline stat<double> inv(double mu, double sigma) { return detail::gen_rule2::inv<double>(mu, sigma); }
 inline stat<float> inv2(float mu, float sigma) { return detail::gen_rule2::inv2<float>(mu, sigma); }
 inline stat<double> inv2(double mu, double sigma) { return detail::gen_rule2::inv2<double>(mu, sigma); }
+inline stat<float> atan(float mu, float sigma) { return detail::gen_rule2::atan<float>(mu, sigma); }
+inline stat<double> atan(double mu, double sigma) { return detail::gen_rule2::atan<double>(mu, sigma); }
 }  // namespace rule2
 
 namespace registry {
@@ -682,6 +765,7 @@ const RuleEntry<T>* rule2_entries(int* count) {
       {&kAtomics[31], "rule2", "gaussian", "closed form", "bl::rule2::sqrt", "bl_rule2_sqrt", &detail::gen_rule2::sqrt<T>},
       {&kAtomics[32], "rule2", "gaussian", "closed form", "bl::rule2::inv", "bl_rule2_inv", &detail::gen_rule2::inv<T>},
       {&kAtomics[33], "rule2", "gaussian", "closed form", "bl::rule2::inv2", "bl_rule2_inv2", &detail::gen_rule2::inv2<T>},
+      {&kAtomics[34], "rule2", "gaussian", "newton (bracket from x0 = mu by doubling steps, safeguarded Newton <= 100 iterations, |dx| <= 4 eps (|x| + sigma))", "bl::rule2::atan", "bl_rule2_atan", &detail::gen_rule2::atan<T>},
   };
   *count = static_cast<int>(sizeof(e) / sizeof(e[0]));
   return e;

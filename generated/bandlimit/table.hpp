@@ -82,6 +82,8 @@ T plain_inv(T x);
 template <class T>
 T plain_inv2(T x);
 template <class T>
+T plain_atan(T x);
+template <class T>
 T gaussian_sin(T x, T sigma);
 template <class T>
 T gaussian_sin_sq(T x, T sigma);
@@ -610,6 +612,30 @@ T tent_inv2_sq_series(T x, T hh);
 template <class T>
 T tent_inv2_sq_diff(T x, T hh);
 template <class T>
+T box_atan(T x, T sigma);
+template <class T>
+T box_atan_series(T x, T hh);
+template <class T>
+T box_atan_diff(T x, T hh);
+template <class T>
+T box_atan_sq(T x, T sigma);
+template <class T>
+T box_atan_sq_series(T x, T hh);
+template <class T>
+T box_atan_sq_diff(T x, T hh);
+template <class T>
+T tent_atan(T x, T sigma);
+template <class T>
+T tent_atan_series(T x, T hh);
+template <class T>
+T tent_atan_diff(T x, T hh);
+template <class T>
+T tent_atan_sq(T x, T sigma);
+template <class T>
+T tent_atan_sq_series(T x, T hh);
+template <class T>
+T tent_atan_sq_diff(T x, T hh);
+template <class T>
 T gaussian_moment(int n, T x, T sigma);
 template <class T>
 T box_moment(int n, T x, T sigma);
@@ -864,6 +890,12 @@ template <class T>
 T plain_inv2(T x) {
   BL_MATH_USING
   return (T(1)/(x*x));
+}
+
+template <class T>
+T plain_atan(T x) {
+  BL_MATH_USING
+  return atan(x);
 }
 
 //   (exp(((-1/2)*(sigma)^(2)))*sin(x))
@@ -12680,6 +12712,9 @@ T box_tan(T x, T sigma) {
   if constexpr (sizeof(T) == sizeof(double)) {
     if (r < T(1e-3)) return sx * (T(box_tan_diff<long double>((long double)x, (long double)hh)));
   }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return sx * (T(box_tan_diff<double>(double(x), double(hh))));
+  }
   return sx * (box_tan_diff<T>(x, hh));
 }
 
@@ -12719,6 +12754,9 @@ T box_tan_sq_raw(T x, T sigma) {
   }
   if constexpr (sizeof(T) == sizeof(double)) {
     if (r < T(1e-3)) return T(box_tan_sq_diff<long double>((long double)x, (long double)hh));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_tan_sq_diff<double>(double(x), double(hh)));
   }
   return box_tan_sq_diff<T>(x, hh);
 }
@@ -12858,6 +12896,9 @@ T box_tanh_raw(T x, T sigma) {
     using W = detail::wide_t<T>;
     return sx * (T(box_tanh_series<W>(W(x), W(hh))));
   }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return sx * (T(box_tanh_diff<double>(double(x), double(hh))));
+  }
   return sx * (box_tanh_diff<T>(x, hh));
 }
 
@@ -12898,6 +12939,9 @@ T box_tanh_sq_raw(T x, T sigma) {
   if (hh <= detail::series_reach<T>() * ((T(1)/T(2))*detail::pi<T>())) {
     using W = detail::wide_t<T>;
     return T(box_tanh_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_tanh_sq_diff<double>(double(x), double(hh)));
   }
   return box_tanh_sq_diff<T>(x, hh);
 }
@@ -13034,6 +13078,9 @@ T box_log(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_log_series<W>(W(x), W(hh)));
   }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_log_diff<double>(double(x), double(hh)));
+  }
   return box_log_diff<T>(x, hh);
 }
 
@@ -13071,6 +13118,9 @@ T box_log_sq_raw(T x, T sigma) {
   if (hh <= detail::series_reach<T>() * r) {
     using W = detail::wide_t<T>;
     return T(box_log_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_log_sq_diff<double>(double(x), double(hh)));
   }
   return box_log_sq_diff<T>(x, hh);
 }
@@ -13204,6 +13254,9 @@ T box_sqrt_raw(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_sqrt_series<W>(W(x), W(hh)));
   }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_sqrt_diff<double>(double(x), double(hh)));
+  }
   return box_sqrt_diff<T>(x, hh);
 }
 
@@ -13246,6 +13299,9 @@ T box_sqrt_sq_raw(T x, T sigma) {
   if (hh <= detail::series_reach<T>() * r) {
     using W = detail::wide_t<T>;
     return T(box_sqrt_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_sqrt_sq_diff<double>(double(x), double(hh)));
   }
   return box_sqrt_sq_diff<T>(x, hh);
 }
@@ -13381,6 +13437,9 @@ T box_inv(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_inv_series<W>(W(x), W(hh)));
   }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_inv_diff<double>(double(x), double(hh)));
+  }
   return box_inv_diff<T>(x, hh);
 }
 
@@ -13415,6 +13474,9 @@ T box_inv_sq_raw(T x, T sigma) {
   if (hh <= detail::series_reach<T>() * r) {
     using W = detail::wide_t<T>;
     return T(box_inv_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_inv_sq_diff<double>(double(x), double(hh)));
   }
   return box_inv_sq_diff<T>(x, hh);
 }
@@ -13541,6 +13603,9 @@ T box_inv2_raw(T x, T sigma) {
     using W = detail::wide_t<T>;
     return T(box_inv2_series<W>(W(x), W(hh)));
   }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_inv2_diff<double>(double(x), double(hh)));
+  }
   return box_inv2_diff<T>(x, hh);
 }
 
@@ -13580,6 +13645,9 @@ T box_inv2_sq_raw(T x, T sigma) {
   if (hh <= detail::series_reach<T>() * r) {
     using W = detail::wide_t<T>;
     return T(box_inv2_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_inv2_sq_diff<double>(double(x), double(hh)));
   }
   return box_inv2_sq_diff<T>(x, hh);
 }
@@ -13677,6 +13745,195 @@ template <class T>
 T tent_inv2_sq(T x, T sigma) {
   const T v = tent_inv2_sq_raw<T>(x, sigma);
   return v < T(0) ? T(0) : v;
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_atan_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return atan(x);  // no smoothing: f(x)
+  const T u_atan = atan(x);
+  const T q = hh * hh;
+  return u_atan + q * (((T(-1)/T(3))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))*x) + q * (((T(1)/T(5))*((-(x*x*x)) + x)*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(21))*(((T(-10))*(x*x*x)) + (T(3)*(x*x*x*x*x)) + (T(3)*x))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(1)/T(9))*(((T(-7))*(x*x*x)) + (-(x*x*x*x*x*x*x)) + (T(7)*(x*x*x*x*x)) + x)*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(1)/T(55))*(((T(-126))*(x*x*x*x*x)) + ((T(-5))*(x*x*x*x*x*x*x*x*x)) + ((T(-5))*x) + (T(60)*(x*x*x)) + (T(60)*(x*x*x*x*x*x*x)))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(39))*(((T(-198))*(x*x*x*x*x)) + ((T(-3))*x) + ((T(-55))*(x*x*x*x*x*x*x*x*x)) + (T(198)*(x*x*x*x*x*x*x)) + (T(3)*(x*x*x*x*x*x*x*x*x*x*x)) + (T(55)*(x*x*x)))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1))))))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_atan_diff(T x, T hh) {
+  BL_MATH_USING
+  return ((((T(-1)/T(2))*log(((((-hh) + (-x))*((-hh) + (-x))) + T(1)))) + (-((-hh) + (-x))*atan((hh + x)))) - ((((-hh) + x)*atan(((-hh) + x))) + ((T(-1)/T(2))*log(((((-hh) + x)*((-hh) + x)) + T(1)))))) / (T(2.0) * hh);
+}
+
+//   (F(x+hh) - F(x-hh))/(2 hh), F = (((-1/2)*log(((x)^(2) + 1))) + (atan(x)*x)), hh = sqrt(3)
+//   sigma; Taylor series in hh (7 terms) where the difference cancels (hh <= scale/20 in double,
+//   0.35 scale in float)
+template <class T>
+T box_atan_raw(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  const T sx = x < T(0.0) ? T(-1.0) : T(1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
+  const T hh = (sigma*sqrt(T(3)));
+  if (x - hh > T(1e+16)) return sx * (T(1.5707963267948966));  // flat to machine precision
+  if (x + hh < T(-1e+16)) return sx * (T(-1.5707963267948966));
+  if (hh <= detail::series_reach<T>() * ((T(-1)/T(2))*((-abs(x)) + (T(-1)))*sqrt(T(2)))) {
+    using W = detail::wide_t<T>;
+    return sx * (T(box_atan_series<W>(W(x), W(hh))));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return sx * (T(box_atan_diff<double>(double(x), double(hh))));
+  }
+  return sx * (box_atan_diff<T>(x, hh));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_atan(T x, T sigma) {
+  const T v = box_atan_raw<T>(x, sigma);
+  static const T lo = ((T(-1)/T(2))*detail::pi<T>());
+  static const T hi = ((T(1)/T(2))*detail::pi<T>());
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T box_atan_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (atan(x)*atan(x));  // no smoothing: f(x)
+  const T u_atan = atan(x);
+  const T q = hh * hh;
+  return (u_atan*u_atan) + q * (((T(1)/T(3))*(((T(-2))*u_atan*x) + T(1))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(1)/T(15))*(((T(-6))*(x*x*x)*u_atan) + (T(-2)) + (T(6)*u_atan*x) + (T(9)*(x*x)))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(315))*(((T(-225))*(x*x*x*x)) + ((T(-300))*(x*x*x)*u_atan) + (T(-23)) + (T(300)*(x*x)) + (T(90)*(x*x*x*x*x)*u_atan) + (T(90)*u_atan*x))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(945))*(((T(-1127))*(x*x)) + ((T(-1470))*(x*x*x*x*x)*u_atan) + ((T(-210))*u_atan*x) + ((T(-735))*(x*x*x*x*x*x)) + (T(1470)*(x*x*x)*u_atan) + (T(210)*(x*x*x*x*x*x*x)*u_atan) + (T(2450)*(x*x*x*x)) + T(44))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(17325))*(((T(-101430))*(x*x*x*x)) + ((T(-14175))*(x*x*x*x*x*x*x*x)) + ((T(-37800))*(x*x*x)*u_atan) + ((T(-37800))*(x*x*x*x*x*x*x)*u_atan) + (T(-563)) + (T(23760)*(x*x)) + (T(3150)*(x*x*x*x*x*x*x*x*x)*u_atan) + (T(3150)*u_atan*x) + (T(79380)*(x*x*x*x*x)*u_atan) + (T(88200)*(x*x*x*x*x*x)))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(135135))*(((T(-114345))*(x*x*x*x*x*x*x*x*x*x)) + ((T(-1372140))*(x*x*x*x*x)*u_atan) + ((T(-204369))*(x*x)) + ((T(-20790))*u_atan*x) + ((T(-2454606))*(x*x*x*x*x*x)) + ((T(-381150))*(x*x*x*x*x*x*x*x*x)*u_atan) + (T(1143450)*(x*x*x*x*x*x*x*x)) + (T(1372140)*(x*x*x*x*x*x*x)*u_atan) + (T(1437480)*(x*x*x*x)) + (T(20790)*(x*x*x*x*x*x*x*x*x*x*x)*u_atan) + (T(381150)*(x*x*x)*u_atan) + T(3254))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1))))))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T box_atan_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return (((-((-hh) + (-x))*(atan((hh + x))*atan((hh + x)))) + (-atan((hh + x))*log(((((-hh) + (-x))*((-hh) + (-x))) + T(1)))) + (-detail::clausen2((((T(-2))*atan((hh + x))) + detail::pi<T>()))) + (T(2)*atan((hh + x))*log(T(2)))) - ((((-hh) + x)*(atan(((-hh) + x))*atan(((-hh) + x)))) + (-atan(((-hh) + x))*log(((((-hh) + x)*((-hh) + x)) + T(1)))) + (-detail::clausen2((((T(-2))*atan(((-hh) + x))) + detail::pi<T>()))) + (T(2)*atan(((-hh) + x))*log(T(2))))) / (T(2.0) * hh);
+}
+
+//   (F(x+hh) - F(x-hh))/(2 hh), F = (((atan(x))^(2)*x) + (-atan(x)*log(((x)^(2) + 1))) +
+//   (-clausen2((((-2)*atan(x)) + pi))) + (2*atan(x)*log(2))), hh = sqrt(3) sigma; Taylor series
+//   in hh (7 terms) where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
+template <class T>
+T box_atan_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  x = abs(x);  // even
+  const T hh = (sigma*sqrt(T(3)));
+  if (x - hh > T(1e+16)) return T(2.4674011002723395);  // flat to machine precision
+  if (x + hh < T(-1e+16)) return T(2.4674011002723395);
+  if (hh <= detail::series_reach<T>() * ((T(-1)/T(2))*((-abs(x)) + (T(-1)))*sqrt(T(2)))) {
+    using W = detail::wide_t<T>;
+    return T(box_atan_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(box_atan_sq_diff<double>(double(x), double(hh)));
+  }
+  return box_atan_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T box_atan_sq(T x, T sigma) {
+  const T v = box_atan_sq_raw<T>(x, sigma);
+  static const T hi = ((T(1)/T(4))*(detail::pi<T>()*detail::pi<T>()));
+  return v < T(0) ? T(0) : (v > hi ? hi : v);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_atan_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return atan(x);  // no smoothing: f(x)
+  const T u_atan = atan(x);
+  const T q = hh * hh;
+  return u_atan + q * (((T(-1)/T(6))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))*x) + q * (((T(1)/T(15))*((-(x*x*x)) + x)*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(84))*(((T(-10))*(x*x*x)) + (T(3)*(x*x*x*x*x)) + (T(3)*x))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(1)/T(45))*(((T(-7))*(x*x*x)) + (-(x*x*x*x*x*x*x)) + (T(7)*(x*x*x*x*x)) + x)*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(1)/T(330))*(((T(-126))*(x*x*x*x*x)) + ((T(-5))*(x*x*x*x*x*x*x*x*x)) + ((T(-5))*x) + (T(60)*(x*x*x)) + (T(60)*(x*x*x*x*x*x*x)))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(273))*(((T(-198))*(x*x*x*x*x)) + ((T(-3))*x) + ((T(-55))*(x*x*x*x*x*x*x*x*x)) + (T(198)*(x*x*x*x*x*x*x)) + (T(3)*(x*x*x*x*x*x*x*x*x*x*x)) + (T(55)*(x*x*x)))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1))))))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_atan_diff(T x, T hh) {
+  BL_MATH_USING
+  return ((((T(-1)/T(2))*atan((hh + x))) + ((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*atan((hh + x))) + ((T(1)/T(2))*((-hh) + (-x))*log(((((-hh) + (-x))*((-hh) + (-x))) + T(1))))) - T(2.0) * (((T(-1)/T(2))*atan(x)) + ((T(-1)/T(2))*log(((x*x) + T(1)))*x) + ((T(1)/T(2))*(x*x)*atan(x))) + (((T(-1)/T(2))*((-hh) + x)*log(((((-hh) + x)*((-hh) + x)) + T(1)))) + ((T(-1)/T(2))*atan(((-hh) + x))) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*atan(((-hh) + x))))) / (hh * hh);
+}
+
+//   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-1/2)*((-(x)^(2)) + 1)*atan(x)) +
+//   ((-1/2)*log(((x)^(2) + 1))*x) + ((1/2)*x)), hh = sqrt(6) sigma; Taylor series in hh (7 terms)
+//   where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
+template <class T>
+T tent_atan_raw(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  const T sx = x < T(0.0) ? T(-1.0) : T(1.0);
+  x = abs(x);  // odd: f(-x) = -f(x)
+  const T hh = (sigma*sqrt(T(6)));
+  if (x - hh > T(1e+16)) return sx * (T(1.5707963267948966));  // flat to machine precision
+  if (x + hh < T(-1e+16)) return sx * (T(-1.5707963267948966));
+  if (hh <= detail::series_reach<T>() * ((T(-1)/T(2))*((-abs(x)) + (T(-1)))*sqrt(T(2)))) {
+    using W = detail::wide_t<T>;
+    return sx * (T(tent_atan_series<W>(W(x), W(hh))));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return sx * (T(tent_atan_diff<double>(double(x), double(hh))));
+  }
+  return sx * (tent_atan_diff<T>(x, hh));
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_atan(T x, T sigma) {
+  const T v = tent_atan_raw<T>(x, sigma);
+  static const T lo = ((T(-1)/T(2))*detail::pi<T>());
+  static const T hi = ((T(1)/T(2))*detail::pi<T>());
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
+// Taylor series of the entry below in its half-width hh.
+template <class T>
+T tent_atan_sq_series(T x, T hh) {
+  BL_MATH_USING
+  if (hh == T(0.0)) return (atan(x)*atan(x));  // no smoothing: f(x)
+  const T u_atan = atan(x);
+  const T q = hh * hh;
+  return (u_atan*u_atan) + q * (((T(1)/T(6))*(((T(-2))*u_atan*x) + T(1))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(1)/T(45))*(((T(-6))*(x*x*x)*u_atan) + (T(-2)) + (T(6)*u_atan*x) + (T(9)*(x*x)))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(1260))*(((T(-225))*(x*x*x*x)) + ((T(-300))*(x*x*x)*u_atan) + (T(-23)) + (T(300)*(x*x)) + (T(90)*(x*x*x*x*x)*u_atan) + (T(90)*u_atan*x))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(4725))*(((T(-1127))*(x*x)) + ((T(-1470))*(x*x*x*x*x)*u_atan) + ((T(-210))*u_atan*x) + ((T(-735))*(x*x*x*x*x*x)) + (T(1470)*(x*x*x)*u_atan) + (T(210)*(x*x*x*x*x*x*x)*u_atan) + (T(2450)*(x*x*x*x)) + T(44))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(103950))*(((T(-101430))*(x*x*x*x)) + ((T(-14175))*(x*x*x*x*x*x*x*x)) + ((T(-37800))*(x*x*x)*u_atan) + ((T(-37800))*(x*x*x*x*x*x*x)*u_atan) + (T(-563)) + (T(23760)*(x*x)) + (T(3150)*(x*x*x*x*x*x*x*x*x)*u_atan) + (T(3150)*u_atan*x) + (T(79380)*(x*x*x*x*x)*u_atan) + (T(88200)*(x*x*x*x*x*x)))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))))) + q * (((T(-1)/T(945945))*(((T(-114345))*(x*x*x*x*x*x*x*x*x*x)) + ((T(-1372140))*(x*x*x*x*x)*u_atan) + ((T(-204369))*(x*x)) + ((T(-20790))*u_atan*x) + ((T(-2454606))*(x*x*x*x*x*x)) + ((T(-381150))*(x*x*x*x*x*x*x*x*x)*u_atan) + (T(1143450)*(x*x*x*x*x*x*x*x)) + (T(1372140)*(x*x*x*x*x*x*x)*u_atan) + (T(1437480)*(x*x*x*x)) + (T(20790)*(x*x*x*x*x*x*x*x*x*x*x)*u_atan) + (T(381150)*(x*x*x)*u_atan) + T(3254))*(T(1)/(((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1)))*((-(x*x)) + (T(-1))))))))))));
+}
+
+// Difference quotient of the entry below at half-width hh.
+template <class T>
+T tent_atan_sq_diff(T x, T hh) {
+  BL_MATH_USING
+  return (((((-hh) + (-x))*atan((hh + x))*log(((((-hh) + (-x))*((-hh) + (-x))) + T(1)))) + (((-hh) + (-x))*detail::clausen2((((T(-2))*atan((hh + x))) + detail::pi<T>()))) + ((T(-1)/T(2))*(atan((hh + x))*atan((hh + x)))) + ((T(-1)/T(2))*log(((((-hh) + (-x))*((-hh) + (-x))) + T(1)))) + ((T(-2))*((-hh) + (-x))*atan((hh + x))*log(T(2))) + ((T(1)/T(2))*(((-hh) + (-x))*((-hh) + (-x)))*(atan((hh + x))*atan((hh + x)))) + (-((-hh) + (-x))*atan((hh + x)))) - T(2.0) * (((T(-1)/T(2))*(atan(x)*atan(x))) + ((T(-1)/T(2))*log(((x*x) + T(1)))) + ((T(1)/T(2))*(atan(x)*atan(x))*(x*x)) + (-atan(x)*log(((x*x) + T(1)))*x) + (-detail::clausen2((((T(-2))*atan(x)) + detail::pi<T>()))*x) + (T(2)*atan(x)*log(T(2))*x) + (atan(x)*x)) + ((((-hh) + x)*atan(((-hh) + x))) + ((T(-1)/T(2))*(atan(((-hh) + x))*atan(((-hh) + x)))) + ((T(-1)/T(2))*log(((((-hh) + x)*((-hh) + x)) + T(1)))) + ((T(1)/T(2))*(((-hh) + x)*((-hh) + x))*(atan(((-hh) + x))*atan(((-hh) + x)))) + (-((-hh) + x)*atan(((-hh) + x))*log(((((-hh) + x)*((-hh) + x)) + T(1)))) + (-((-hh) + x)*detail::clausen2((((T(-2))*atan(((-hh) + x))) + detail::pi<T>()))) + (T(2)*((-hh) + x)*atan(((-hh) + x))*log(T(2))))) / (hh * hh);
+}
+
+//   (F2(x+hh) - 2 F2(x) + F2(x-hh))/hh^2, F2 = (((-1/2)*((-(x)^(2)) + 1)*(atan(x))^(2)) +
+//   ((-1/2)*log(((x)^(2) + 1))) + (-(((-2)*log(2)) + (-1) + log(((x)^(2) + 1)))*atan(x)*x) +
+//   (-clausen2((((-2)*atan(x)) + pi))*x)), hh = sqrt(6) sigma; Taylor series in hh (7 terms)
+//   where the difference cancels (hh <= scale/20 in double, 0.35 scale in float)
+template <class T>
+T tent_atan_sq_raw(T x, T sigma) {
+  BL_MATH_USING
+  if (!(sigma >= T(0.0))) return detail::nan<T>();  // sigma < 0 or NaN
+  x = abs(x);  // even
+  const T hh = (sigma*sqrt(T(6)));
+  if (x - hh > T(1e+16)) return T(2.4674011002723395);  // flat to machine precision
+  if (x + hh < T(-1e+16)) return T(2.4674011002723395);
+  if (hh <= detail::series_reach<T>() * ((T(-1)/T(2))*((-abs(x)) + (T(-1)))*sqrt(T(2)))) {
+    using W = detail::wide_t<T>;
+    return T(tent_atan_sq_series<W>(W(x), W(hh)));
+  }
+  if constexpr (sizeof(T) < sizeof(double)) {
+    if (hh > T(1e15)) return T(tent_atan_sq_diff<double>(double(x), double(hh)));
+  }
+  return tent_atan_sq_diff<T>(x, hh);
+}
+
+// The entry above, kept inside the range of the true value (rounding can leave it).
+template <class T>
+T tent_atan_sq(T x, T sigma) {
+  const T v = tent_atan_sq_raw<T>(x, sigma);
+  static const T hi = ((T(1)/T(4))*(detail::pi<T>()*detail::pi<T>()));
+  return v < T(0) ? T(0) : (v > hi ? hi : v);
 }
 
 template <class T>
@@ -15107,6 +15364,8 @@ inline float inv(float x) { return detail::gen::plain_inv<float>(x); }
 inline double inv(double x) { return detail::gen::plain_inv<double>(x); }
 inline float inv2(float x) { return detail::gen::plain_inv2<float>(x); }
 inline double inv2(double x) { return detail::gen::plain_inv2<double>(x); }
+inline float atan(float x) { return detail::gen::plain_atan<float>(x); }
+inline double atan(double x) { return detail::gen::plain_atan<double>(x); }
 }  // namespace plain
 
 namespace gaussian {
@@ -15369,6 +15628,10 @@ inline float inv2(float x, float sigma) { return detail::gen::box_inv2<float>(x,
 inline double inv2(double x, double sigma) { return detail::gen::box_inv2<double>(x, sigma); }
 inline float inv2_sq(float x, float sigma) { return detail::gen::box_inv2_sq<float>(x, sigma); }
 inline double inv2_sq(double x, double sigma) { return detail::gen::box_inv2_sq<double>(x, sigma); }
+inline float atan(float x, float sigma) { return detail::gen::box_atan<float>(x, sigma); }
+inline double atan(double x, double sigma) { return detail::gen::box_atan<double>(x, sigma); }
+inline float atan_sq(float x, float sigma) { return detail::gen::box_atan_sq<float>(x, sigma); }
+inline double atan_sq(double x, double sigma) { return detail::gen::box_atan_sq<double>(x, sigma); }
 inline float moment(int n, float x, float sigma) { return detail::gen::box_moment<float>(n, x, sigma); }
 inline double moment(int n, double x, double sigma) { return detail::gen::box_moment<double>(n, x, sigma); }
 }  // namespace box
@@ -15510,6 +15773,10 @@ inline float inv2(float x, float sigma) { return detail::gen::tent_inv2<float>(x
 inline double inv2(double x, double sigma) { return detail::gen::tent_inv2<double>(x, sigma); }
 inline float inv2_sq(float x, float sigma) { return detail::gen::tent_inv2_sq<float>(x, sigma); }
 inline double inv2_sq(double x, double sigma) { return detail::gen::tent_inv2_sq<double>(x, sigma); }
+inline float atan(float x, float sigma) { return detail::gen::tent_atan<float>(x, sigma); }
+inline double atan(double x, double sigma) { return detail::gen::tent_atan<double>(x, sigma); }
+inline float atan_sq(float x, float sigma) { return detail::gen::tent_atan_sq<float>(x, sigma); }
+inline double atan_sq(double x, double sigma) { return detail::gen::tent_atan_sq<double>(x, sigma); }
 inline float moment(int n, float x, float sigma) { return detail::gen::tent_moment<float>(n, x, sigma); }
 inline double moment(int n, double x, double sigma) { return detail::gen::tent_moment<double>(n, x, sigma); }
 }  // namespace tent

@@ -55,14 +55,15 @@ BL_DSL_ATOMIC(xexp)
 BL_DSL_ATOMIC(laplace)
 BL_DSL_ATOMIC(exp_decay)
 BL_DSL_ATOMIC(exp_ramp)
+BL_DSL_ATOMIC(atan)
 #undef BL_DSL_ATOMIC
 
 // The atomics above, by name (the test compares them with the registry).
 inline constexpr const char* kDslAtomics[] = {
-    "sin",  "cos",  "tan",   "exp",  "log",   "sqrt",  "sinh",     "cosh",       "tanh",  "abs",
-    "sign", "step", "floor", "ceil", "fract", "trunc", "saturate", "smoothstep", "pow2",  "pow3",
-    "pow4", "pow5", "pow6",  "pow7", "pow8",  "inv",   "inv2",     "triangle",   "square",
-    "pulse30", "xexp", "laplace", "exp_decay", "exp_ramp"};
+    "sin",      "cos",    "tan",     "exp",   "log",     "sqrt",      "sinh",     "cosh",     "tanh",
+    "abs",      "sign",   "step",    "floor", "ceil",    "fract",     "trunc",    "saturate", "smoothstep",
+    "pow2",     "pow3",   "pow4",    "pow5",  "pow6",    "pow7",      "pow8",     "inv",      "inv2",
+    "triangle", "square", "pulse30", "xexp",  "laplace", "exp_decay", "exp_ramp", "atan"};
 
 // Operators beyond + - * /. less(a, b) is 1 where a < b, else 0; select(c, a, b) = c a + (1 - c) b
 // for a 0/1 condition c (branches become selects); mod(a, c) = a - c floor(a / c), c a constant.

@@ -926,6 +926,17 @@ class Walker {
   Var smooth(Var e0, Var e1, Var x) {
     return atomic("smoothstep", div(sub(x, e0), sub(e1, e0)));  // the edges may be traced values too
   }
+  // GLSL's atan(y, x) in [-pi, pi] through the atan atomic of a ratio in [0, 1], the way libm
+  // computes it: t = atan(min(|x|, |y|) / max(|x|, |y|)), reflected into the octant of (x, y). Every
+  // reflection meets its neighbour continuously (at |x| = |y|, x = 0, y = 0 with x > 0), so the
+  // selects blend equal values there; the only jump is GLSL's own, on the negative x axis.
+  Var atan2_of(Var y, Var x) {
+    const Var ax = atomic("abs", x), ay = atomic("abs", y);
+    Var t = atomic("atan", div(dsl::min(ax, ay), dsl::max(ax, ay)));
+    t = sel(less(ax, ay), sub(Var(M_PI / 2), t), t);
+    t = sel(less(x, Var(0.0)), sub(Var(M_PI), t), t);
+    return sel(less(y, Var(0.0)), -t, t);
+  }
   Var dot_of(const Value& a, const Value& b) {
     Var s(0.0);
     for (int i = 0; i < a.size(); ++i) s = add(s, mul(a.c[i], b.c[i]));
@@ -1081,10 +1092,16 @@ class Walker {
         return op == glslang::EOpDeterminant ? Value{{det_of(x[0].c, k)}} : inverse_of(x[0].c, k);
       }
       case glslang::EOpAtan:
-        unsupported(n, "built-in atan (no catalog atomic; use a polynomial approximation)");
-      case glslang::EOpAsin:
+        if (x.size() == 1) return each("atan");
+        return zip(x, [&](const std::vector<Var>& a) { return atan2_of(a[0], a[1]); });
+      case glslang::EOpAsin:  // atan(x, sqrt(1 - x^2)): no division by 0 at x = +-1
+        return zip({x[0]}, [&](const std::vector<Var>& a) {
+          return atan2_of(a[0], atomic("sqrt", sub(Var(1.0), atomic("pow2", a[0]))));
+        });
       case glslang::EOpAcos:
-        unsupported(n, "built-in asin/acos (no catalog atomic)");
+        return zip({x[0]}, [&](const std::vector<Var>& a) {
+          return atan2_of(atomic("sqrt", sub(Var(1.0), atomic("pow2", a[0]))), a[0]);
+        });
       case glslang::EOpDPdx:
       case glslang::EOpDPdy:
       case glslang::EOpFwidth:

@@ -31,7 +31,7 @@ bool monotone_each_side(const char* name) {
   static const char* const names[] = {"exp",  "sinh",     "cosh",       "pow2",  "pow3", "pow4",
                                       "pow5", "pow6",     "pow7",       "pow8",  "abs",  "sign",
                                       "step", "saturate", "smoothstep", "floor", "ceil", "trunc",
-                                      "tanh", "log",      "sqrt",       "inv",   "inv2"};
+                                      "tanh", "log",      "sqrt",       "inv",   "inv2", "atan"};
   for (const char* n : names)
     if (std::strcmp(n, name) == 0) return true;
   return false;

@@ -19,6 +19,7 @@ EXPECT = {  # snippet -> (entry, field, words of the reason)
     # monotone proved where f' = q e^{ax}: q's real roots, not samples
     "cubic_not_monotone": ("cubic", "monotone", "f' = 0 at x = 0.6"),
     "trunc_unknown_builtin": ("trunc", "builtin", "not a built-in of both C++ and GLSL"),
+    "atan_negative_scale": ("atan", "scale", "must be positive, is -1000000"),
 }
 
 rulegen = sys.argv[1]

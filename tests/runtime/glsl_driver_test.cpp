@@ -122,6 +122,26 @@ vec3 shade(vec2 uv, float time) {
   EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << av.reason << ")";
 }
 
+// Polar angles: GLSL's atan(y, x) jumps by 2 pi on the negative x axis; a pixel within rounding of
+// it may land on the other side. The driver's atan is a low-precision approximation (llvmpipe:
+// 1.3e-4 off here; GLSL allows thousands of ulp), so this checks quadrants and argument order, and
+// InverseTrigonometry (glsl_frontend_test) the values against <cmath>.
+TEST(GlslDriver, InverseTrigonometryTracesAsTheDriverRunsIt) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);
+  const std::string src = R"(#version 450
+vec3 shade(vec2 uv, float time) {
+  float angle = atan(uv.y - 0.3, uv.x + 0.2);
+  float r = length(uv);
+  return vec3(0.5 + 0.15 * angle, 0.5 + 0.3 * atan(3.0 * uv.x - uv.y), 0.25 * (asin(0.3 * uv.x) + acos(0.3 * uv.y)));
+}
+)";
+  const Mismatch m = compare_with_driver(ctx, src, 0.0f, 1e-3);
+  EXPECT_LE(m.pixels, 2) << "worst difference " << m.worst << " (" << av.reason << ")";
+}
+
 // The example patterns (scenes/glsl) without a large-gain hash: a pixel whose argument lies within
 // rounding of a jump may land on the other side in one of them, so a few pixels may differ; a
 // misread construct moves far more.

@@ -358,6 +358,25 @@ vec3 shade(vec2 uv, float time) {
                 });
 }
 
+// atan (the catalog atomic), atan(y, x) in every quadrant, asin and acos, against <cmath>.
+TEST(GlslFrontEnd, InverseTrigonometry) {
+  expect_values(R"(
+vec3 shade(vec2 uv, float time) {
+  float a = atan(uv.x * 3.0) + atan(uv.y, uv.x);
+  float b = atan(uv.x, -uv.y) + 2.0 * atan(-uv.y * 0.1, uv.x * 10.0);
+  float c = asin(uv.x / 3.0) + acos(uv.y / 3.0) + acos(-1.0) + asin(1.0);
+  return vec3(a, b, c);
+})",
+                [](double u, double v, double) {
+                  return V3{std::atan(u * 3) + std::atan2(v, u),
+                            std::atan2(u, -v) + 2 * std::atan2(-v * 0.1, u * 10),
+                            std::asin(u / 3) + std::acos(v / 3) + M_PI + M_PI / 2};
+                },
+                2e-6);
+  const glsl::Pattern p = trace("vec3 shade(vec2 uv, float time) { return vec3(atan(uv.y, uv.x)); }");
+  EXPECT_EQ(count_calls(p.graph, "atan"), 1);
+}
+
 TEST(GlslFrontEnd, SineHashAndPreludeAtomics) {
   expect_values(
       R"(
