@@ -149,21 +149,34 @@ class Walker {
   }
 
   // ---------- types ----------
-  int components(const TIntermTyped* n) const {
-    const glslang::TType& t = n->getType();
+  int components(const TIntermTyped* n) const { return components(n, n->getType()); }
+  // A struct is its members one after another; an array its elements. (n names the culprit.)
+  int components(const TIntermNode* n, const glslang::TType& t) const {
     if (t.getBasicType() == glslang::EbtVoid) return 0;
-    if (t.isStruct()) unsupported(n, "struct type");
     if (t.getBasicType() == glslang::EbtSampler) unsupported(n, "use of a sampler as a value");
     if (t.getBasicType() == glslang::EbtDouble) unsupported(n, "double precision");
-    // A matrix is its columns one after another (column-major, as GLSL lays it out): m[i] is the
-    // i-th run of `rows` components.
-    const int per = t.isMatrix() ? t.getMatrixCols() * t.getMatrixRows()
-                                 : (t.getVectorSize() > 0 ? t.getVectorSize() : 1);
+    int per = 0;
+    if (t.isStruct()) {
+      for (const glslang::TTypeLoc& m : *t.getStruct()) per += components(n, *m.type);
+    } else {
+      // A matrix is its columns one after another (column-major, as GLSL lays it out): m[i] is the
+      // i-th run of `rows` components.
+      per = t.isMatrix() ? t.getMatrixCols() * t.getMatrixRows()
+                         : (t.getVectorSize() > 0 ? t.getVectorSize() : 1);
+    }
     if (t.isArray()) {
       if (!t.isSizedArray()) unsupported(n, "unsized array");
       return t.getCumulativeArraySize() * per;
     }
     return per;
+  }
+  // Member `index` of the struct `b` indexes: its first component and its size.
+  std::pair<int, int> member(glslang::TIntermBinary* b) {
+    const int index = b->getRight()->getAsConstantUnion()->getConstArray()[0].getIConst();
+    const glslang::TTypeList& members = *b->getLeft()->getType().getStruct();
+    int offset = 0;
+    for (int i = 0; i < index; ++i) offset += components(b, *members[i].type);
+    return {offset, components(b, *members[index].type)};
   }
   bool is_integer(const TIntermTyped* n) const {
     const auto b = n->getType().getBasicType();
@@ -275,7 +288,13 @@ class Walker {
           r.comps.push_back(base.comps.at(k->getAsConstantUnion()->getConstArray()[0].getIConst()));
         return r;
       }
-      if (op == glslang::EOpIndexDirectStruct) unsupported(n, "struct member");
+      if (op == glslang::EOpIndexDirectStruct) {
+        const LRef base = lvalue(b->getLeft());
+        const auto [offset, size] = member(b);
+        return LRef{base.id,
+                    std::vector<int>(base.comps.begin() + offset, base.comps.begin() + offset + size), n,
+                    base.local};
+      }
     }
     unsupported(n, "assignment target");
   }
@@ -673,8 +692,11 @@ class Walker {
           r.c.push_back(base.c.at(k->getAsConstantUnion()->getConstArray()[0].getIConst()));
         return r;
       }
-      case glslang::EOpIndexDirectStruct:
-        unsupported(b, "struct member");
+      case glslang::EOpIndexDirectStruct: {
+        const Value base = eval(b->getLeft());
+        const auto [offset, size] = member(b);
+        return Value{std::vector<Var>(base.c.begin() + offset, base.c.begin() + offset + size)};
+      }
       case glslang::EOpComma:
         eval(b->getLeft());
         return eval(b->getRight());
@@ -860,7 +882,8 @@ class Walker {
         flat.c.push_back(v);
       }
     }
-    if (flat.size() == 1 && n > 1 && !a->getType().isArray()) flat.c.assign(n, flat.c[0]);
+    if (flat.size() == 1 && n > 1 && !a->getType().isArray() && !a->getType().isStruct())
+      flat.c.assign(n, flat.c[0]);
     if (flat.size() < n) fail(a, "constructor has too few components");
     flat.c.resize(n);
     return flat;

@@ -122,6 +122,29 @@ vec3 shade(vec2 uv, float time) {
   EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << av.reason << ")";
 }
 
+TEST(GlslDriver, StructsTraceAsTheDriverRunsThem) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);
+  const std::string src = R"(#version 450
+struct Wave { vec2 dir; float freq; float amp; };
+struct Mix { Wave waves[3]; vec3 base; mat2 turn; };
+float height(Wave w, vec2 p) { return w.amp * sin(w.freq * dot(w.dir, p)); }
+vec3 shade(vec2 uv, float time) {
+  Mix m = Mix(Wave[3](Wave(vec2(1.0, 0.0), 2.0, 0.2), Wave(vec2(0.6, 0.8), 3.0, 0.15),
+                      Wave(vec2(-0.8, 0.6), 5.0, 0.1)), vec3(0.3, 0.4, 0.5), mat2(0.8, 0.6, -0.6, 0.8));
+  m.waves[2].amp *= 0.5;
+  vec2 p = m.turn * uv;
+  float h = 0.0;
+  for (int i = 0; i < 3; i++) h += height(m.waves[i], p);
+  return m.base + vec3(h, 0.5 * h, -h);
+}
+)";
+  const Mismatch m = compare_with_driver(ctx, src, 0.0f, 1e-4);
+  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << av.reason << ")";
+}
+
 // Polar angles: GLSL's atan(y, x) jumps by 2 pi on the negative x axis; a pixel within rounding of
 // it may land on the other side. The driver's atan is a low-precision approximation (llvmpipe:
 // 1.3e-4 off here; GLSL allows thousands of ulp), so this checks quadrants and argument order, and

@@ -377,6 +377,32 @@ vec3 shade(vec2 uv, float time) {
   EXPECT_EQ(count_calls(p.graph, "atan"), 1);
 }
 
+// Structs: members one after another, nested, in arrays, as parameters and return values.
+TEST(GlslFrontEnd, StructsCarryTheirMembers) {
+  expect_values(R"(
+struct Layer { vec2 scale; float weight; mat2 turn; };
+struct Stack { Layer layers[2]; vec3 tint; };
+Layer make(float s, float w) { return Layer(vec2(s, 2.0 * s), w, mat2(1.0)); }
+float apply(Layer l, vec2 uv) { vec2 p = l.turn * (uv * l.scale); return l.weight * (p.x + p.y); }
+vec3 shade(vec2 uv, float time) {
+  Stack st = Stack(Layer[2](make(1.0, 0.5), make(3.0, 0.25)), vec3(0.1, 0.2, 0.3));
+  st.layers[1].turn[0] = vec2(0.0, 1.0);   // column 0 of layer 1's matrix
+  st.layers[0].weight += uv.x;
+  Layer l = st.layers[1];
+  l.scale.y = -1.0;
+  bool same = l == st.layers[1];
+  return st.tint + vec3(apply(st.layers[0], uv), apply(st.layers[1], uv), apply(l, uv) + float(same));
+})",
+                [](double u, double v, double) {
+                  // layer 0: scale (1, 2), weight 0.5 + u, identity; layer 1: scale (3, 6), weight 0.25,
+                  // columns (0, 1) and (0, 1): p = (0, sx + sy) for s = (3u, 6v).
+                  const double a0 = (0.5 + u) * (u + 2 * v);
+                  const double a1 = 0.25 * (3 * u + 6 * v);
+                  const double a2 = 0.25 * (3 * u - v);  // scale (3, -1)
+                  return V3{0.1 + a0, 0.2 + a1, 0.3 + a2};
+                });
+}
+
 TEST(GlslFrontEnd, SineHashAndPreludeAtomics) {
   expect_values(
       R"(
