@@ -345,7 +345,7 @@ class Walker {
     }
     if (auto* l = n->getAsLoopNode()) return loop(l);
     if (auto* b = n->getAsBranchNode()) return jump(b);
-    if (n->getAsSwitchNode()) unsupported(n, "switch statement");
+    if (auto* sw = n->getAsSwitchNode()) return switch_statement(sw);
     if (auto* t = n->getAsTyped()) {
       eval(t);
       return;
@@ -422,6 +422,37 @@ class Walker {
     st_.brk = saved_brk;
     st_.cont = saved_cont;
   }
+  // switch: the body's statements in order, each under "some label at or above it matched" (a
+  // case's value equal to the selector, or default when none is), so control falls through until a
+  // break, which ends the switch for the lanes that take it (the loop's break mask, saved around it).
+  // A constant selector runs only the matching path.
+  void switch_statement(glslang::TIntermSwitch* sw) {
+    const Var c = scalar(sw->getCondition()->getAsTyped());
+    const glslang::TIntermSequence& body = sw->getBody()->getSequence();
+    auto label = [](TIntermNode* s) -> glslang::TIntermBranch* {
+      auto* b = s->getAsBranchNode();
+      return b && (b->getFlowOp() == glslang::EOpCase || b->getFlowOp() == glslang::EOpDefault) ? b : nullptr;
+    };
+    Var none(1.0);  // no case value equals the selector: default's condition
+    for (TIntermNode* s : body)
+      if (auto* b = label(s); b && b->getFlowOp() == glslang::EOpCase)
+        none = land(none, lnot(equal(c, scalar(b->getExpression()))));
+    const Var saved_brk = st_.brk;
+    st_.brk = Var(1.0);
+    Var entered(0.0);
+    for (TIntermNode* s : body) {
+      if (dead()) break;
+      if (auto* b = label(s)) {
+        entered =
+            lor(entered, b->getFlowOp() == glslang::EOpCase ? equal(c, scalar(b->getExpression())) : none);
+        continue;
+      }
+      branch_on(
+          entered, [&] { exec(s); }, [] {});
+    }
+    st_.brk = saved_brk;
+  }
+
   void jump(glslang::TIntermBranch* b) {
     switch (b->getFlowOp()) {
       case glslang::EOpReturn: {

@@ -145,6 +145,29 @@ vec3 shade(vec2 uv, float time) {
   EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << av.reason << ")";
 }
 
+TEST(GlslDriver, SwitchTracesAsTheDriverRunsIt) {
+  const auto av = gl::Context::availability();
+  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+  gl::Context ctx;
+  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);
+  const std::string src = R"(#version 450
+vec3 shade(vec2 uv, float time) {
+  int i = int(mod(floor(uv.x * 1.3 + 0.5 * uv.y), 5.0));
+  vec3 c = vec3(0.1);
+  switch (i) {
+    case 0: c.r = 0.9; break;
+    case 1: c.g = 0.8;
+    case 3: c.b = 0.7 + 0.1 * sin(uv.y); break;
+    case 2: return vec3(0.5, 0.25 * fract(uv.x), 0.0);
+    default: c = vec3(0.3, 0.6, 0.9);
+  }
+  return c;
+}
+)";
+  const Mismatch m = compare_with_driver(ctx, src, 0.0f, 1e-5);
+  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << av.reason << ")";
+}
+
 // Polar angles: GLSL's atan(y, x) jumps by 2 pi on the negative x axis; a pixel within rounding of
 // it may land on the other side. The driver's atan is a low-precision approximation (llvmpipe:
 // 1.3e-4 off here; GLSL allows thousands of ulp), so this checks quadrants and argument order, and

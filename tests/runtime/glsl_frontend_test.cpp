@@ -403,6 +403,34 @@ vec3 shade(vec2 uv, float time) {
                 });
 }
 
+// switch on a traced selector (fall-through, default, break) and on a constant one, also with a
+// continue of the enclosing loop.
+TEST(GlslFrontEnd, SwitchFallsThroughUntilBreak) {
+  expect_values(R"(
+vec3 shade(vec2 uv, float time) {
+  int i = int(mod(floor(uv.x), 4.0));
+  float a = 0.0, b = 0.0;
+  switch (i) {
+    case 0: a = 1.0; break;
+    case 1: a = 2.0;          // falls through
+    case 2: b = 5.0 + uv.y; break;
+    default: a = -1.0; b = -1.0;
+  }
+  float c = 0.0;
+  switch (2) { case 1: c = 10.0; break; case 2: c = 20.0; case 3: c += 1.0; break; default: c = -5.0; }
+  for (int k = 0; k < 3; k++) {
+    switch (k) { case 1: continue; default: c += 100.0; }
+    c += 1000.0;
+  }
+  return vec3(a, b, c);
+})",
+                [](double u, double v, double) {
+                  const int i = static_cast<int>(std::floor(u) - 4 * std::floor(std::floor(u) / 4));
+                  const double a[4] = {1, 2, 0, -1}, b[4] = {0, 5 + v, 5 + v, -1};
+                  return V3{a[i], b[i], 2221};
+                });
+}
+
 TEST(GlslFrontEnd, SineHashAndPreludeAtomics) {
   expect_values(
       R"(
