@@ -184,9 +184,10 @@ class Walker {
   }
   Value zeros(int n) const { return Value{std::vector<Var>(n, Var(0.0))}; }
 
-  // ---------- matrices (column-major: element (column c, row r) of an R-row matrix is c[c * R + r])
-  // ---------- The linear-algebra product of an ra x ca and an rb x cb matrix (ca == rb), column-major; a
-  // vector on the left is a row (1 x n), on the right a column (n x 1).
+  // ---------- matrices ----------
+  // Column-major: element (column j, row i) of an R-row matrix is component j * R + i.
+  // The linear-algebra product of an ra x ca and an rb x cb matrix (ca == rb); a vector on the left
+  // is a row (1 x n), on the right a column (n x 1).
   Value matmul(const TIntermNode* n, const Value& a, int ra, int ca, const Value& b, int rb, int cb) {
     if (ca != rb || a.size() != ra * ca || b.size() != rb * cb) fail(n, "matrix product of mismatched sizes");
     Value r;
@@ -437,8 +438,7 @@ class Walker {
     for (TIntermNode* s : body)
       if (auto* b = label(s); b && b->getFlowOp() == glslang::EOpCase)
         none = land(none, lnot(equal(c, scalar(b->getExpression()))));
-    const Var saved_brk = st_.brk;
-    st_.brk = Var(1.0);
+    const Var saved_brk = st_.brk;  // a break ends the switch only: restored after it
     Var entered(0.0);
     for (TIntermNode* s : body) {
       if (dead()) break;

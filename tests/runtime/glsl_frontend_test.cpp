@@ -431,6 +431,26 @@ vec3 shade(vec2 uv, float time) {
                 });
 }
 
+// Lanes that left a loop under a traced condition stay out of a switch later in its body: their
+// writes there are masked (a break inside the switch ends the switch only).
+TEST(GlslFrontEnd, SwitchInsideALoopKeepsItsMasks) {
+  expect_values(R"(
+vec3 shade(vec2 uv, float time) {
+  float b = 0.0, c = 0.0;
+  for (int i = 0; i < 3; i++) {
+    if (uv.x > float(i) - 1.0) break;       // u > -1 leaves at i = 0, u > 0 at i = 1, ...
+    switch (i) { case 0: b += 10.0; break; default: b += 1.0; }
+    c += 1.0;
+  }
+  return vec3(b, c, 0.0);
+})",
+                [](double u, double, double) {
+                  int n = 0;  // iterations before the break
+                  while (n < 3 && !(u > n - 1.0)) ++n;
+                  return V3{n >= 1 ? 10.0 + (n - 1) : 0.0, double(n), 0.0};
+                });
+}
+
 TEST(GlslFrontEnd, SineHashAndPreludeAtomics) {
   expect_values(
       R"(
