@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "gl/egl_runner.hpp"
@@ -68,10 +69,21 @@ Mismatch compare_with_driver(gl::Context& ctx, const std::string& file_text, flo
   return m;
 }
 
-TEST(GlslDriver, MatricesTraceAsTheDriverRunsThem) {
-  const auto av = gl::Context::availability();
-  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
-  gl::Context ctx;
+// The driver (skipped where there is none), leaving uniforms a pattern does not read alone.
+class GlslDriver : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto av = gl::Context::availability();
+    if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
+    renderer_ = av.reason;
+    ctx_ = std::make_unique<gl::Context>();
+    ctx_->set_unknown_uniform(gl::UnknownUniform::kIgnore);  // most patterns do not read the time
+  }
+  std::unique_ptr<gl::Context> ctx_;
+  std::string renderer_;
+};
+
+TEST_F(GlslDriver, MatricesTraceAsTheDriverRunsThem) {
   // Every matrix form the front end maps, on smooth functions (no pixel sits at a jump).
   const std::string src = R"(#version 450
 mat2 rot(float a) { float c = cos(a), s = sin(a); return mat2(c, s, -s, c); }
@@ -94,16 +106,12 @@ vec3 shade(vec2 uv, float time) {
 }
 )";
   for (float time : {0.0f, 1.3f}) {
-    const Mismatch m = compare_with_driver(ctx, src, time, 2e-4);
-    EXPECT_EQ(m.pixels, 0) << "time " << time << ": worst difference " << m.worst << " (" << av.reason << ")";
+    const Mismatch m = compare_with_driver(*ctx_, src, time, 2e-4);
+    EXPECT_EQ(m.pixels, 0) << "time " << time << ": worst difference " << m.worst << " (" << renderer_ << ")";
   }
 }
 
-TEST(GlslDriver, TracedIndicesTraceAsTheDriverRunsThem) {
-  const auto av = gl::Context::availability();
-  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
-  gl::Context ctx;
-  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);
+TEST_F(GlslDriver, TracedIndicesTraceAsTheDriverRunsThem) {
   const std::string src = R"(#version 450
 const vec3 palette[5] = vec3[](vec3(0.9, 0.1, 0.1), vec3(0.1, 0.8, 0.2), vec3(0.2, 0.3, 0.9),
                                vec3(0.7, 0.7, 0.1), vec3(0.5));
@@ -118,15 +126,11 @@ vec3 shade(vec2 uv, float time) {
   return 0.5 * palette[i] + 0.25 * vec3(w[0] + w[1], w[2], w[3]) + 0.25 * col;
 }
 )";
-  const Mismatch m = compare_with_driver(ctx, src, 0.0f, 1e-5);
-  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << av.reason << ")";
+  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-5);
+  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << renderer_ << ")";
 }
 
-TEST(GlslDriver, StructsTraceAsTheDriverRunsThem) {
-  const auto av = gl::Context::availability();
-  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
-  gl::Context ctx;
-  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);
+TEST_F(GlslDriver, StructsTraceAsTheDriverRunsThem) {
   const std::string src = R"(#version 450
 struct Wave { vec2 dir; float freq; float amp; };
 struct Mix { Wave waves[3]; vec3 base; mat2 turn; };
@@ -141,15 +145,11 @@ vec3 shade(vec2 uv, float time) {
   return m.base + vec3(h, 0.5 * h, -h);
 }
 )";
-  const Mismatch m = compare_with_driver(ctx, src, 0.0f, 1e-4);
-  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << av.reason << ")";
+  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-4);
+  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << renderer_ << ")";
 }
 
-TEST(GlslDriver, SwitchTracesAsTheDriverRunsIt) {
-  const auto av = gl::Context::availability();
-  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
-  gl::Context ctx;
-  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);
+TEST_F(GlslDriver, SwitchTracesAsTheDriverRunsIt) {
   const std::string src = R"(#version 450
 vec3 shade(vec2 uv, float time) {
   int i = int(mod(floor(uv.x * 1.3 + 0.5 * uv.y), 5.0));
@@ -164,19 +164,15 @@ vec3 shade(vec2 uv, float time) {
   return c;
 }
 )";
-  const Mismatch m = compare_with_driver(ctx, src, 0.0f, 1e-5);
-  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << av.reason << ")";
+  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-5);
+  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << renderer_ << ")";
 }
 
 // Polar angles: GLSL's atan(y, x) jumps by 2 pi on the negative x axis; a pixel within rounding of
 // it may land on the other side. The driver's atan is a low-precision approximation (llvmpipe:
 // 1.3e-4 off here; GLSL allows thousands of ulp), so this checks quadrants and argument order, and
 // InverseTrigonometry (glsl_frontend_test) the values against <cmath>.
-TEST(GlslDriver, InverseTrigonometryTracesAsTheDriverRunsIt) {
-  const auto av = gl::Context::availability();
-  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
-  gl::Context ctx;
-  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);
+TEST_F(GlslDriver, InverseTrigonometryTracesAsTheDriverRunsIt) {
   const std::string src = R"(#version 450
 vec3 shade(vec2 uv, float time) {
   float angle = atan(uv.y - 0.3, uv.x + 0.2);
@@ -184,23 +180,19 @@ vec3 shade(vec2 uv, float time) {
   return vec3(0.5 + 0.15 * angle, 0.5 + 0.3 * atan(3.0 * uv.x - uv.y), 0.25 * (asin(0.3 * uv.x) + acos(0.3 * uv.y)));
 }
 )";
-  const Mismatch m = compare_with_driver(ctx, src, 0.0f, 1e-3);
-  EXPECT_LE(m.pixels, 2) << "worst difference " << m.worst << " (" << av.reason << ")";
+  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-3);
+  EXPECT_LE(m.pixels, 2) << "worst difference " << m.worst << " (" << renderer_ << ")";
 }
 
 // The example patterns (scenes/glsl) without a large-gain hash: a pixel whose argument lies within
 // rounding of a jump may land on the other side in one of them, so a few pixels may differ; a
 // misread construct moves far more.
-TEST(GlslDriver, ExamplePatternsTraceAsTheDriverRunsThem) {
-  const auto av = gl::Context::availability();
-  if (!av.ok) GTEST_SKIP() << "no OpenGL driver: " << av.reason;
-  gl::Context ctx;
-  ctx.set_unknown_uniform(gl::UnknownUniform::kIgnore);  // most patterns do not read the time
+TEST_F(GlslDriver, ExamplePatternsTraceAsTheDriverRunsThem) {
   for (const char* name : {"rotated_tiles", "checkerboard", "circles", "color_circles", "bricks", "zigzag",
-                           "quadratic_sine", "fire", "rings", "stripes"}) {
+                           "quadratic_sine", "fire", "rings", "stripes", "sunburst"}) {
     const std::string src = read(std::string(BL_SCENES_DIR) + "/glsl/" + name + ".glsl");
     ASSERT_FALSE(src.empty()) << name;
-    const Mismatch m = compare_with_driver(ctx, src, 0.7f, 1e-3);
+    const Mismatch m = compare_with_driver(*ctx_, src, 0.7f, 1e-3);
     EXPECT_LE(m.pixels, kSize * kSize / 200)
         << name << ": " << m.pixels << " of " << kSize * kSize << " pixels differ, worst " << m.worst;
   }
