@@ -672,9 +672,7 @@ class Walker {
     const int es = components(target);
     const int n = static_cast<int>(whole.comps.size()) / es;
     for (int k = 0; k < n; ++k) {
-      const LRef e{whole.id,
-                   std::vector<int>(whole.comps.begin() + k * es, whole.comps.begin() + (k + 1) * es), target,
-                   whole.local};
+      const LRef e = element_ref(target, whole, Var(static_cast<double>(k)));
       const Value old = read(e);
       const Value now = base_op == glslang::EOpNull ? y : arith(b, base_op, old, y, is_integer(target));
       if (now.size() != es) fail(b, "assignment of mismatched sizes");
@@ -1269,24 +1267,24 @@ ir::Graph compact(const ir::Graph& g) {
 
 }  // namespace
 
+std::string without_version_line(const std::string& source) {
+  std::istringstream in(source);
+  std::string line, out;
+  bool seen_code = false;
+  while (std::getline(in, line)) {
+    const auto p = line.find_first_not_of(" \t");
+    if (!seen_code && p != std::string::npos && line.compare(p, 8, "#version") == 0)
+      line = "";
+    else if (p != std::string::npos && line.compare(p, 2, "//") != 0)
+      seen_code = true;
+    out += line + "\n";
+  }
+  return out;
+}
+
 Pattern trace_source(const std::string& source, const std::string& file) {
   init_glslang();
-  // The user's own #version line (if any) is blanked, keeping line numbers: we parse as 450.
-  std::string user = source;
-  {
-    std::istringstream in(source);
-    std::string line, out;
-    bool seen_code = false;
-    while (std::getline(in, line)) {
-      const auto p = line.find_first_not_of(" \t");
-      if (!seen_code && p != std::string::npos && line.compare(p, 8, "#version") == 0)
-        line = "";
-      else if (p != std::string::npos && line.compare(p, 2, "//") != 0)
-        seen_code = true;
-      out += line + "\n";
-    }
-    user = out;
-  }
+  const std::string user = without_version_line(source);
   const std::string pre = "#version 450\n" + prelude();
   const char* strings[2] = {pre.c_str(), user.c_str()};
   const int lengths[2] = {static_cast<int>(pre.size()), static_cast<int>(user.size())};

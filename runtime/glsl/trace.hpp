@@ -26,6 +26,9 @@ struct Pattern {
   bool uses_time = false;             // "time" reaches an output
 };
 
+// `source` with its #version line (if any, before the first code) blanked, line numbers kept: the
+// front end parses the user's file as GLSL 450 behind its prelude.
+std::string without_version_line(const std::string& source);
 // Traces `source` (named `file` in messages). Throws Error.
 Pattern trace_source(const std::string& source, const std::string& file);
 // Reads and traces a file. Throws Error (also when the file cannot be read).

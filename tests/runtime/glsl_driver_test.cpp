@@ -25,14 +25,6 @@ std::string read(const std::string& path) {
   return ss.str();
 }
 
-// The user's file without its #version line, as the front end reads it.
-std::string without_version(const std::string& src) {
-  std::istringstream in(src);
-  std::string line, out;
-  while (std::getline(in, line)) out += (line.rfind("#version", 0) == 0 ? "" : line) + "\n";
-  return out;
-}
-
 constexpr int kSize = 96;
 constexpr double kLo = -2.7, kHi = 3.1;  // surface coordinates spanned by the grid
 
@@ -45,7 +37,8 @@ struct Mismatch {
 Mismatch compare_with_driver(gl::Context& ctx, const std::string& file_text, float time, double tol) {
   const glsl::Pattern p = glsl::trace_source(file_text, "pattern.glsl");
   const glsl::NativeProgram prog(p.graph);
-  const std::string frag = "#version 450\n" + glsl::prelude() + "\n#line 1\n" + without_version(file_text) +
+  const std::string frag = "#version 450\n" + glsl::prelude() + "\n#line 1\n" +
+                           glsl::without_version_line(file_text) +
                            "\nuniform float bl_time;\nout vec4 bl_colour;\nvoid main() {\n"
                            "  vec2 uv = " +
                            std::to_string(kLo) + " + " + std::to_string(kHi - kLo) + " * gl_FragCoord.xy / " +
