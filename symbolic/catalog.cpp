@@ -432,7 +432,8 @@ Atomic parse_atomic_fields(const json& j, const Ctx& c) {
       }
       if (j.contains("scale")) {
         // A positive constant, or a positive expression in x where the Taylor radius grows with
-        // |x| (atan: sqrt(1 + x^2), the distance to its poles at +-i).
+        // |x| (atan: (|x| + 1)/sqrt(2), a lower bound of sqrt(1 + x^2), its distance to the poles
+        // at +-i). Checked positive at sample points of the domain.
         c.field = "scale";
         a.scale = parse_fn(c, "scale", j["scale"]);
         for (double x : {-1e6, -30.0, -1.0, -0.25, 0.0, 0.5, 3.0, 1e6}) {
