@@ -17,6 +17,7 @@
 #include "compiler/plain_eval.hpp"
 #include "ir/atomics.hpp"
 #include "ir/graph.hpp"
+#include "ir/plain_ops.hpp"
 
 namespace bl::compiler {
 
@@ -360,7 +361,9 @@ class GraphFacts {
     return f == "floor" || f == "ceil";
   }
 
-  Lattice lattice_sources(int i) const {
+  Lattice lattice_sources(int i) const { return lattice_sources_from(i, lattice); }
+  // The same over other facts for node i's arguments (lat: a mixture branch's, lower.cpp).
+  Lattice lattice_sources_from(int i, const std::vector<Lattice>& lat) const {
     const ir::Node& n = g.node(i);
     if (n.op == ir::Op::Const) return Lattice{true, {}};
     if (integer_source(i)) return Lattice{true, {i}};
@@ -368,8 +371,8 @@ class GraphFacts {
     Lattice out{true, {}};
     for (int a : {n.a, n.b, n.c}) {
       if (a < 0) continue;
-      if (!lattice[a].ok) return Lattice{};
-      for (int d : lattice[a].src)
+      if (!lat[a].ok) return Lattice{};
+      for (int d : lat[a].src)
         if (std::find(out.src.begin(), out.src.end(), d) == out.src.end()) out.src.push_back(d);
     }
     std::sort(out.src.begin(), out.src.end());
@@ -381,11 +384,104 @@ class GraphFacts {
     return out;
   }
 
+  // The mean and variance of lattice node i's value over the whole lattice: its plain sub-DAG in
+  // double with the sources at the 1024 integers (one source) or the 32 x 32 integer pairs (two) from
+  // 0 and from 1e4 on. ok only where the two regions agree (the means within a quarter of the spread,
+  // the variances within 2x): a hash of the cell, not the cell index itself, whose mean over the
+  // lattice does not exist. The points are fixed and the pair grid symmetric, so two traces of one
+  // shader numbered differently get the same moments.
+  struct LatticeMoments {
+    bool ok = false;
+    double mean = 0, var = 0;
+  };
+  // In a mixture branch (lower.cpp) pass its fixed comparisons and lattice facts: a fixed
+  // comparison is its value and a fixed select the branch it passes (not cached).
+  LatticeMoments lattice_moments(int i, const std::map<int, int>* fixed = nullptr,
+                                 const std::vector<Lattice>* lat = nullptr) const {
+    if (!fixed) {
+      auto it = moments_.find(i);
+      if (it != moments_.end()) return it->second;
+      return moments_[i] = lattice_moments_of(i, {}, lattice);
+    }
+    return lattice_moments_of(i, *fixed, *lat);
+  }
+  LatticeMoments lattice_moments_of(int i, const std::map<int, int>& fixed,
+                                    const std::vector<Lattice>& lat) const {
+    const std::vector<int>& src = lat.at(i).src;
+    LatticeMoments out;
+    if (!lat[i].ok || src.empty()) return out;
+    auto fixed_select = [&](const ir::Node& n) {
+      return n.op == ir::Op::Select ? fixed.find(n.a) : fixed.end();
+    };
+    // The sub-DAG from the sources to i, in node order.
+    std::vector<bool> need(g.size(), false);
+    need[i] = true;
+    for (int x = i; x >= 0; --x) {
+      if (!need[x] || std::find(src.begin(), src.end(), x) != src.end() || fixed.count(x)) continue;
+      const ir::Node& n = g.node(x);
+      const auto f = fixed_select(n);
+      if (f != fixed.end()) {
+        need[f->second ? n.b : n.c] = true;
+        continue;
+      }
+      for (int a : {n.a, n.b, n.c})
+        if (a >= 0) need[a] = true;
+    }
+    const int floor_index = ir::atomic_index("floor");
+    auto floor_fn = [floor_index](double x) { return ir::plain_atomic(floor_index, x); };
+    std::vector<double> val(g.size(), 0);
+    const int count = 1024;
+    double mean[2] = {0, 0}, var[2] = {0, 0};
+    for (int region = 0; region < 2; ++region) {
+      const double base = region ? 10000 : 0;
+      double s1 = 0, s2 = 0;
+      for (int t = 0; t < count; ++t) {
+        for (int x = 0; x <= i; ++x) {
+          if (!need[x]) continue;
+          const ir::Node& n = g.node(x);
+          const auto at = std::find(src.begin(), src.end(), x);
+          if (at != src.end()) {
+            val[x] = src.size() == 1 ? base + t : base + (at == src.begin() ? t % 32 : t / 32);
+            continue;
+          }
+          if (fixed.count(x)) {
+            val[x] = fixed.at(x);
+            continue;
+          }
+          if (const auto f = fixed_select(n); f != fixed.end()) {
+            val[x] = val[f->second ? n.b : n.c];
+            continue;
+          }
+          const double a = n.a >= 0 ? val[n.a] : 0, b = n.b >= 0 ? val[n.b] : 0, c = n.c >= 0 ? val[n.c] : 0;
+          if (ir::plain_arith(n.op, a, b, c, n.value, floor_fn, &val[x])) continue;
+          if (n.op == ir::Op::Const)
+            val[x] = n.value;
+          else if (n.op == ir::Op::Call)
+            val[x] = ir::plain_atomic(n.atomic, a);
+          else
+            return out;  // not a lattice function after all
+        }
+        if (!std::isfinite(val[i])) return out;
+        s1 += val[i];
+        s2 += val[i] * val[i];
+      }
+      mean[region] = s1 / count;
+      var[region] = std::max(0.0, s2 / count - mean[region] * mean[region]);
+    }
+    const double spread = std::sqrt(std::max(var[0], var[1]));
+    const bool same_var = std::min(var[0], var[1]) * 2 >= std::max(var[0], var[1]);
+    out.ok = spread > 0 && same_var && std::fabs(mean[0] - mean[1]) <= 0.25 * spread;
+    out.mean = 0.5 * (mean[0] + mean[1]);
+    out.var = 0.5 * (var[0] + var[1]);
+    return out;
+  }
+
   // A lattice node (not a source) that some non-lattice node or an output reads.
-  bool lattice_boundary(int i) const {
-    if (!lattice[i].ok || lattice[i].src.empty() || integer_source(i)) return false;
+  bool lattice_boundary(int i) const { return lattice_boundary_in(i, lattice); }
+  bool lattice_boundary_in(int i, const std::vector<Lattice>& lat) const {
+    if (!lat[i].ok || lat[i].src.empty() || integer_source(i)) return false;
     for (int c : consumers[i])
-      if (c < 0 || !lattice[c].ok) return true;
+      if (c < 0 || !lat[c].ok) return true;
     return false;
   }
 
@@ -397,6 +493,39 @@ class GraphFacts {
     for (int c : consumers[i])
       if (c >= 0 && g.node(c).op == ir::Op::Select && g.node(c).a == i) return true;
     return false;
+  }
+
+  // ---- Select cascades (last writer wins) ----
+  // `if (c) x = A;` traced in a loop or in sequence gives s_n = select(c_n, A_n, s_{n-1}), ...,
+  // s_1 = select(c_1, A_1, x0): the value is the A of the last condition that holds. A link is a
+  // condition and the value of it that passes x on to the link below (0: the select's else side; 1
+  // when the chain continues through the then side, as `if (!c) ... else x = A` traces).
+  struct Link {
+    int cond;
+    int pass;
+  };
+  // The cascade from select s down, top first; is_cond says which conditions qualify (the Bernoulli
+  // ones). A condition met twice ends it (the two links would not be independent outcomes).
+  template <class Pred>
+  std::vector<Link> cascade(int s, const Pred& is_cond) const {
+    std::vector<Link> out;
+    auto link_at = [&](int j) { return j >= 0 && g.node(j).op == ir::Op::Select && is_cond(g.node(j).a); };
+    while (link_at(s)) {
+      const ir::Node& n = g.node(s);
+      for (const Link& l : out)
+        if (l.cond == n.a) return out;
+      const bool down_else = link_at(n.c), down_then = !down_else && link_at(n.b);
+      out.push_back(Link{n.a, down_then ? 1 : 0});
+      s = down_else ? n.c : down_then ? n.b : -1;
+    }
+    return out;
+  }
+  // How many selects read node c as their condition.
+  int selects_reading(int c) const {
+    int k = 0;
+    for (int r : consumers[c])
+      if (r >= 0 && g.node(r).op == ir::Op::Select && g.node(r).a == c) ++k;
+    return k;
   }
 
   // Every node that reads node i, directly or not (i excluded); indices ascend (topological).
@@ -435,7 +564,8 @@ class GraphFacts {
   std::vector<Lattice> lattice;
 
  private:
-  mutable std::map<int, bool> cell_cont;  // cell_continuous per floor argument
+  mutable std::map<int, bool> cell_cont;           // cell_continuous per floor argument
+  mutable std::map<int, LatticeMoments> moments_;  // lattice_moments per node
 };
 
 }  // namespace bl::compiler

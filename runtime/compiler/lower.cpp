@@ -175,12 +175,12 @@ class Lowering {
       if (a >= 0) args.push_back(&vals_[a]);
     bool random = false;
     for (Val* a : args) random = random || a->var >= 0;
-    if (random && r.kind != Kind::MonteCarlo && !facts_.lattice_boundary(i)) {
+    if (random && r.kind != Kind::MonteCarlo && !lattice_boundary(i)) {
       Val pv;
       if (floor_pulse(i, r, pv) || fract_window(i, r, pv) || fract_step(i, r, pv)) return pv;
     }
     if (r.kind == Kind::None || !random) return Val{plain(n, args), -1};
-    if (r.kind != Kind::MonteCarlo && facts_.lattice_boundary(i)) return lattice_mixture(i, r);
+    if (r.kind != Kind::MonteCarlo && lattice_boundary(i)) return lattice_mixture(i, r);
     if (r.kind == Kind::MonteCarlo) return monte_carlo(i, n, r, args);
     if (n.op == Op::Call) {
       if (r.kind == Kind::Dorn) return in_range(i, call_node(i, n, r, *args[0]));
@@ -1079,6 +1079,41 @@ class Lowering {
     condition(y, w, held, depth + 1);
   }
 
+  // The select cascade (GraphFacts::cascade) output o mixes over, as a group key: -1, the number of
+  // links n, their comparisons (bern indices, top first), the value of each that passes down; {} when
+  // o reads none of at least kMinCascade links. Among several, the one whose every condition the
+  // most selects share, then the longest: Voronoi's nearest distance and nearest cell (hence its
+  // colour) follow the `d < best` conditions; the second nearest's chain interleaves conditions only
+  // it reads, and mixing over it would leave the nearest cell unresolved in half its branches.
+  static constexpr std::size_t kMinCascade = kMaxJoint + 1;
+  std::vector<int> output_cascade(int o, const std::vector<int>& where) const {
+    std::vector<bool> anc(g_.size(), false);
+    anc[o] = true;
+    for (int x = o; x >= 0; --x)
+      if (anc[x])
+        for (int a : {g_.node(x).a, g_.node(x).b, g_.node(x).c})
+          if (a >= 0) anc[a] = true;
+    auto is_cond = [&](int c) { return c >= 0 && where[c] >= 0; };
+    std::vector<GraphFacts::Link> best;
+    int best_share = 0;
+    for (int s = o; s >= 0; --s) {
+      if (!anc[s] || g_.node(s).op != Op::Select || !is_cond(g_.node(s).a)) continue;
+      const std::vector<GraphFacts::Link> links = facts_.cascade(s, is_cond);
+      if (links.size() < kMinCascade) continue;
+      int share = g_.size();
+      for (const auto& l : links) share = std::min(share, facts_.selects_reading(l.cond));
+      if (share > best_share || (share == best_share && links.size() > best.size())) {
+        best = links;
+        best_share = share;
+      }
+    }
+    if (best.empty()) return {};
+    std::vector<int> key{-1, static_cast<int>(best.size())};
+    for (const auto& l : best) key.push_back(where[l.cond]);
+    for (const auto& l : best) key.push_back(l.pass);
+    return key;
+  }
+
   void bernoulli_mixtures() {
     std::vector<int> bern;
     for (int i = 0; i < g_.size(); ++i)
@@ -1086,18 +1121,42 @@ class Lowering {
     if (bern.empty()) return;
     std::vector<std::vector<bool>> desc;
     for (int c : bern) desc.push_back(facts_.descendants(c));
-    // Outputs grouped by the comparisons they depend on.
-    std::map<std::vector<int>, std::vector<int>> groups;  // bern indices -> output nodes
+    // Outputs grouped by the branches they mix: the outcomes of their longest select cascade (the
+    // last condition that holds picks the value: n + 1 branches, the conditions below the winner left
+    // to their rules), else every combination of the first kMaxJoint comparisons they depend on.
+    // Key: the comparisons (bern indices); a cascade's is output_cascade's, then any joint extra.
+    std::map<std::vector<int>, std::vector<int>> groups;
+    std::vector<int> where(g_.size(), -1);  // node -> its index in bern
+    for (std::size_t b = 0; b < bern.size(); ++b) where[bern[b]] = static_cast<int>(b);
     for (int o : g_.outputs()) {
-      std::vector<int> set;
-      for (std::size_t b = 0; b < bern.size() && static_cast<int>(set.size()) < kMaxJoint; ++b)
-        if (desc[b][o]) set.push_back(static_cast<int>(b));
+      std::vector<int> set = output_cascade(o, where);
+      if (!set.empty()) {
+        // Beside the cascade, the first other comparison that picks a vector (several selects read
+        // it: a bump's cap or flat normal) stays joint with it.
+        const int n = set[1];
+        for (std::size_t b = 0; b < bern.size(); ++b)
+          if (desc[b][o] && facts_.selects_reading(bern[b]) >= 2 &&
+              std::find(set.begin() + 2, set.begin() + 2 + n, static_cast<int>(b)) == set.begin() + 2 + n) {
+            set.push_back(static_cast<int>(b));
+            break;
+          }
+      }
+      if (set.empty()) {
+        for (std::size_t b = 0; b < bern.size() && static_cast<int>(set.size()) < kMaxJoint; ++b)
+          if (desc[b][o]) set.push_back(static_cast<int>(b));
+      }
       if (set.empty()) continue;
       auto& outs = groups[set];
       if (std::find(outs.begin(), outs.end(), o) == outs.end()) outs.push_back(o);  // r = g = b for grey
     }
     std::map<int, Val> mixed;
-    for (const auto& [set, outs] : groups) {
+    for (const auto& [key, outs] : groups) {
+      const bool is_cascade = key.front() < 0;
+      const int links = is_cascade ? key[1] : 0;
+      std::vector<int> set = is_cascade ? std::vector<int>(key.begin() + 2, key.begin() + 2 + links) : key;
+      const std::vector<int> pass(is_cascade ? key.begin() + 2 + links : key.end(),
+                                  is_cascade ? key.begin() + 2 + 2 * links : key.end());
+      if (is_cascade) set.insert(set.end(), key.begin() + 2 + 2 * links, key.end());  // joint extras
       // The conditioned operand of each comparison (-1: none) and the nodes each branch re-lowers.
       std::vector<int> operand(set.size(), -1);
       std::vector<bool> redo(g_.size(), false);
@@ -1131,11 +1190,32 @@ class Lowering {
       std::map<int, int> sum_m, sum_m2;  // output node -> instruction
       const std::vector<Val> base = vals_;
       const std::vector<int> base_slope = slope_;
-      for (int mask = 0; mask < (1 << set.size()); ++mask) {
+      // Per branch, per comparison of the set: the value it is fixed to (-1: left to its rule).
+      std::vector<std::vector<int>> branches;
+      if (is_cascade) {
+        // Outcome j: links above j pass x down, link j takes its A; outcome n: every link passes.
+        const std::size_t n = pass.size(), extra = set.size() - n;
+        for (std::size_t j = 0; j <= n; ++j)
+          for (int mask = 0; mask < (1 << extra); ++mask) {
+            std::vector<int> bits(set.size(), -1);
+            for (std::size_t l = 0; l < n && l <= j; ++l) bits[l] = l < j ? pass[l] : 1 - pass[l];
+            for (std::size_t e = 0; e < extra; ++e) bits[n + e] = (mask >> e) & 1;
+            branches.push_back(bits);
+          }
+      } else {
+        for (int mask = 0; mask < (1 << set.size()); ++mask) {
+          std::vector<int> bits(set.size());
+          for (std::size_t j = 0; j < set.size(); ++j) bits[j] = (mask >> j) & 1;
+          branches.push_back(bits);
+        }
+      }
+      for (const std::vector<int>& bits : branches) {
         int w = -1;
         std::set<int> held;
+        fixed_.clear();
         for (std::size_t j = 0; j < set.size(); ++j) {
-          const int c = bern[set[j]], bit = (mask >> j) & 1;
+          const int c = bern[set[j]], bit = bits[j];
+          if (bit < 0) continue;
           fixed_[c] = bit;
           w = w < 0 ? (bit ? p[j] : sub(k(1), p[j])) : mul(w, bit ? p[j] : sub(k(1), p[j]));
           if (operand[j] < 0) continue;
@@ -1145,11 +1225,13 @@ class Lowering {
           const int t = vals_[is_a ? n.b : n.a].mean;
           condition(operand[j], truncated(vals_[operand[j]], t, is_a == (bit == 1)), held);
         }
+        set_branch_lattice();
         for (int x = 0; x < g_.size(); ++x)
           if (redo[x] && !held.count(x)) {
             slope_[x] = -1;
             vals_[x] = node(x);
           }
+        branch_lattice_.clear();
         for (int o : outs) {
           Val& v = vals_[o];
           const int m2 = v.var < 0 ? sq(v.mean) : add(v.var, sq(v.mean));
@@ -1173,7 +1255,7 @@ class Lowering {
   // A lattice node as the finite mixture over its sources' values (GraphFacts::Lattice): floor/ceil
   // of N(m, s^2) is K-1, K or K+1 with Gaussian interval probabilities; the plain sub-DAG per pair.
   Val lattice_mixture(int i, const Rule& r) {
-    const std::vector<int>& src = facts_.lattice[i].src;
+    const std::vector<int> src = lattice_of(i).src;
     struct Choice {
       std::vector<int> value, weight;  // instruction per candidate
     };
@@ -1200,9 +1282,20 @@ class Lowering {
         ch[d].weight.push_back(p);
       }
     }
-    int sum_w = -1, sum_h = -1, sum_h2 = -1;
-    const int combos = src.size() == 1 ? 3 : 9;
+    const GraphFacts::LatticeMoments far = branch_lattice_.empty()
+                                               ? facts_.lattice_moments(i)
+                                               : facts_.lattice_moments(i, &fixed_, &branch_lattice_);
+    // A cheaper rule than the Gaussian on a node whose cells' edges the output hides: the cell of the
+    // mean alone, the rest of the mass at the lattice average (one evaluation instead of 3 or 9:
+    // exact while the footprint is within a quarter cell, the average for a wide one, coarser
+    // between).
+    bool one_cell = r.kind != Kind::Gaussian && far.ok;
+    for (int d : src) one_cell = one_cell && facts_.cell_continuous(g_.node(d).a);
+    int sum_w = -1, sum_h = -1;
+    std::vector<int> ws, hs;
+    const int combos = src.size() == 1 ? 3 : 9, centre = src.size() == 1 ? 1 : 4;
     for (int c = 0; c < combos; ++c) {
+      if (one_cell && c != centre) continue;
       std::map<int, int> memo;
       int w = -1;
       for (std::size_t d = 0; d < src.size(); ++d) {
@@ -1213,21 +1306,49 @@ class Lowering {
       const int h = lattice_eval(i, memo);
       sum_w = sum_w < 0 ? w : add(sum_w, w);
       sum_h = sum_h < 0 ? mul(w, h) : add(sum_h, mul(w, h));
-      sum_h2 = sum_h2 < 0 ? mul(w, sq(h)) : add(sum_h2, mul(w, sq(h)));
+      ws.push_back(w);
+      hs.push_back(h);
+    }
+    Val v;
+    // Centred second moments below: E[h^2] - mean^2 cancels in float (at h ~ 7e4 to an error of
+    // ~300, and the next rule's e^{-var/2} wipes a sine of h out); sum w (h - mean)^2 is exactly 0
+    // where one cell has all the weight.
+    auto centred = [&](int mean) {
+      int d2 = -1;
+      for (std::size_t c = 0; c < hs.size(); ++c) {
+        const int t = mul(ws[c], sq(sub(hs[c], mean)));
+        d2 = d2 < 0 ? t : add(d2, t);
+      }
+      return d2;
+    };
+    if (far.ok) {
+      // The cells beyond K +- 1 (a footprint wider than a cell) hold the rest of the mass, 1 - sum w:
+      // they take the node's mean and variance over the whole lattice, so a wide footprint tends to
+      // the pattern's average instead of renormalising three cells (noise in the far field).
+      const int rest = op(LOp::Max, sub(k(1), sum_w), k(0));
+      const int gm = k(static_cast<float>(far.mean));
+      v.mean = add(sum_h, mul(rest, gm));
+      v.var = add(centred(v.mean), mul(rest, add(k(static_cast<float>(far.var)), sq(sub(gm, v.mean)))));
+      return v;
     }
     const int inv = div(k(1), op(LOp::Max, sum_w, k(1e-30f)));
-    Val v;
     v.mean = mul(sum_h, inv);
-    v.var = op(LOp::NonNeg, sub(mul(sum_h2, inv), sq(v.mean)));
+    v.var = mul(centred(v.mean), inv);
     return v;
   }
-  // The plain value of lattice node i with its sources fixed (memo: node -> instruction).
+  // The plain value of lattice node i with its sources fixed (memo: node -> instruction); in a
+  // mixture branch, through the selects and comparisons it fixes.
   int lattice_eval(int i, std::map<int, int>& memo) {
     auto it = memo.find(i);
     if (it != memo.end()) return it->second;
     const ir::Node& n = g_.node(i);
     int out;
-    if (n.op == Op::Const) {
+    auto f = fixed_.find(i);
+    if (f != fixed_.end()) {
+      out = k(static_cast<float>(f->second));
+    } else if (n.op == Op::Select && (f = fixed_.find(n.a)) != fixed_.end()) {
+      out = lattice_eval(f->second ? n.b : n.c, memo);
+    } else if (n.op == Op::Const) {
       out = k(static_cast<float>(n.value));
     } else {
       std::vector<int> x;
@@ -1249,6 +1370,33 @@ class Lowering {
   std::vector<int> slope_;
   // While a Bernoulli mixture lowers one branch: comparison node -> its value (0 or 1).
   std::map<int, int> fixed_;
+  // The lattice facts in that branch (empty outside one): set_branch_lattice.
+  std::vector<Lattice> branch_lattice_;
+
+  // A fixed select is the branch it passes on and a fixed comparison a constant, so in a branch the
+  // hash of the cell a cascade picks (Voronoi's colour of the nearest cell) is a lattice function:
+  // evaluated plain per cell instead of smoothed (a hash's gain turns any spread of its argument,
+  // or any difference in rounding from the plain shader, into noise).
+  void set_branch_lattice() {
+    branch_lattice_.assign(g_.size(), Lattice{});
+    for (int x = 0; x < g_.size(); ++x) {
+      const ir::Node& n = g_.node(x);
+      auto f = fixed_.find(x);
+      if (f != fixed_.end())
+        branch_lattice_[x] = Lattice{true, {}};
+      else if (n.op == Op::Select && (f = fixed_.find(n.a)) != fixed_.end())
+        branch_lattice_[x] = branch_lattice_[f->second ? n.b : n.c];
+      else
+        branch_lattice_[x] = facts_.lattice_sources_from(x, branch_lattice_);
+    }
+  }
+  const Lattice& lattice_of(int i) const {
+    return branch_lattice_.empty() ? facts_.lattice[i] : branch_lattice_[i];
+  }
+  bool lattice_boundary(int i) const {
+    return branch_lattice_.empty() ? facts_.lattice_boundary(i)
+                                   : facts_.lattice_boundary_in(i, branch_lattice_);
+  }
 };
 
 }  // namespace

@@ -121,6 +121,72 @@ TEST(BernoulliMixture, ABranchSeesItsOperandTruncated) {
     }
 }
 
+TEST(BernoulliMixture, ACascadeMixesOverItsWinner) {
+  // `x = 0; if (u < tu) x = 0.5; if (v < tv) x = -1; if (w < tw) x = 1;` then exp(2x): the last
+  // condition that holds picks x, so with independent u, v, w the mean is exactly
+  // pw e^2 + (1 - pw)(pv e^-2 + (1 - pv)(pu e^1 + (1 - pu) e^0)). Three links are more than the
+  // kMaxJoint comparisons mixed jointly; the third one's select averaged its branches before exp.
+  ir::Graph g;
+  dsl::Tracer t(g);
+  const dsl::Var u = dsl::Var::input("u", true), v = dsl::Var::input("v", true),
+                 w = dsl::Var::input("w", true);
+  const double tu = 0.3, tv = -0.2, tw = 0.6;
+  dsl::Var x = dsl::select(dsl::less(u, dsl::Var(tu)), dsl::Var(0.5), dsl::Var(0.0));
+  x = dsl::select(dsl::less(v, dsl::Var(tv)), dsl::Var(-1.0), x);
+  x = dsl::select(dsl::less(w, dsl::Var(tw)), dsl::Var(1.0), x);
+  g.add_output("r", dsl::exp(x * 2.0).id());
+  const compiler::Program p =
+      compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
+  for (double m : {0.0, 0.3, -0.2, 0.6, 2.0})
+    for (double s : {1e-4, 0.1, 0.5, 3.0}) {
+      const double pu = Phi((tu - m) / s), pv = Phi((tv - m) / s), pw = Phi((tw - m) / s);
+      const double want =
+          pw * std::exp(2.0) + (1 - pw) * (pv * std::exp(-2.0) + (1 - pv) * (pu * std::exp(1.0) + (1 - pu)));
+      const float mf = static_cast<float>(m), sf = static_cast<float>(s);
+      // The uniform rule reads each input's sd; the gradients feed only rho modes it does not use.
+      EXPECT_NEAR(testing::run_one_pixel(p, {mf, mf, mf}, {sf, sf, sf}, {sf, 0, 0}, {0, sf, 0}), want,
+                  2e-5 * std::exp(2.0))
+          << "m " << m << " s " << s;
+    }
+}
+
+TEST(BernoulliMixture, TheHashOfTheCellACascadePicksIsAMixtureOfCells) {
+  // id = floor(u); if (v < t1) id = floor(u) + 1; if (v < t2) id = floor(u) + 2; if (v < t3) id = floor(u) +
+  // 3; then h(id), h a lattice hash: in each outcome of the cascade h(floor(u) + k) is a function of the cell
+  // alone, so E = sum_k w_k sum_K P(floor(u) = K) h(K + k), exactly (u, v independent). Smoothing h of the
+  // picked id's (mean, variance) instead gives ~ its average over the whole hash.
+  const auto h = [](double i) {
+    const double x = std::sin(i * 1.7 + 0.3) * 13.37;
+    return x - std::floor(x);
+  };
+  ir::Graph g;
+  dsl::Tracer t(g);
+  const dsl::Var u = dsl::Var::input("u", true), v = dsl::Var::input("v", true);
+  const double th[3] = {0.5, 0.0, -0.4};
+  const dsl::Var cell = dsl::floor(u);
+  dsl::Var id = cell;
+  for (int k = 0; k < 3; ++k) id = dsl::select(dsl::less(v, dsl::Var(th[k])), cell + double(k + 1), id);
+  g.add_output("r", dsl::fract(dsl::sin(id * 1.7 + 0.3) * 13.37).id());
+  const compiler::Program p =
+      compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
+  for (double mu : {3.5, 3.2, -6.7})
+    for (double mv : {0.0, 0.5, -0.3})
+      for (double s : {0.01, 0.1, 0.3}) {
+        double want = 0, above = 1;  // above: P(no link above holds)
+        for (int k = 3; k >= 0; --k) {
+          const double pk = k > 0 ? Phi((th[k - 1] - mv) / s) : 1.0, w = above * pk;
+          above *= 1 - pk;
+          for (int o = -2; o <= 2; ++o) {
+            const double K = std::floor(mu) + o, pK = Phi((K + 1 - mu) / s) - Phi((K - mu) / s);
+            want += w * pK * h(K + k);
+          }
+        }
+        const float m = static_cast<float>(mu), n = static_cast<float>(mv), sf = static_cast<float>(s);
+        EXPECT_NEAR(testing::run_one_pixel(p, {m, n}, {sf, sf}, {sf / 0.5f, 0}, {0, sf / 0.5f}), want, 2e-3)
+            << "mu " << mu << " mv " << mv << " s " << s;
+      }
+}
+
 TEST(BernoulliMixture, BumpRimsMatchQuadrature) {
   // Footprints across a cap's rim (|fu, fv| = R at u = 0.45, v = 0.27): the cap's and the flat
   // normal lit separately and mixed. Merged into one mean normal the error was 0.07-0.3 here.

@@ -153,6 +153,49 @@ TEST(Rules, AHashOfAFloorIsAFiniteMixture) {
   EXPECT_NEAR(run1(g2, "gaussian", 3.5f, 0.01f), std::sin(6 * h(3)), 1e-4);
 }
 
+TEST(Rules, ALatticeMixturesVarianceDoesNotCancel) {
+  // sin(31.17 floor(u) + 0.001 u) at u ~ N(2185.5, 0.1^2): the lattice node h = 31.17 floor(u) ~ 6.9e4
+  // is a mixture whose neighbours weigh Phi(-5) = 2.9e-7 each, so Var h = 5.6e-4. E[h^2] - E[h]^2 in
+  // float cancels to an error of ~300 (h^2 ~ 4.7e9), and the next rule's e^{-var/2} then wipes the
+  // sine out; sum w (h - mean)^2 does not. Reference: the exact mixture, in double.
+  const ir::Graph g = one_input([](dsl::Var u) { return dsl::sin(dsl::floor(u) * 31.17 + u * 0.001); });
+  for (double mu : {2184.5, 2186.5, 2187.5}) {  // where the old form failed (49 of 139 such cells)
+    const double s = 0.1;
+    double want = 0;
+    for (int o = -1; o <= 1; ++o) {
+      const double K = std::floor(mu) + o;
+      const double p = 0.5 * (std::erfc(-(K + 1 - mu) / (s * std::sqrt(2.0))) -
+                              std::erfc(-(K - mu) / (s * std::sqrt(2.0))));
+      want += p * std::sin(31.17 * K + 0.001 * mu);
+    }
+    ASSERT_GT(std::fabs(want), 0.3) << "mu " << mu;  // the setup: a sine that can be wiped out
+    // Float: the argument ~6.9e4 carries an ulp of 0.008.
+    EXPECT_NEAR(run1(g, "gaussian", static_cast<float>(mu), static_cast<float>(s)), want, 0.02)
+        << "mu " << mu;
+  }
+}
+
+TEST(Rules, AWideFootprintTakesTheLatticeAverage) {
+  // h(floor(u)) with a footprint of many cells: the mixture covers K - 1..K + 1 and the cells beyond
+  // take h's mean and variance over the lattice (sampled on the plain graph at compile time), so the
+  // value tends to the pattern's average; renormalising three cells gives their average instead,
+  // a different ~random value per pixel (noise in the far field). Reference: the exact sum over
+  // cells, in double.
+  const auto h = [](double i) { return fract(std::sin(i * 1.7 + 0.3) * 13.37); };
+  const ir::Graph g =
+      one_input([](dsl::Var u) { return dsl::fract(dsl::sin(dsl::floor(u) * 1.7 + 0.3) * 13.37); });
+  for (double mu : {3.5, 10.2, -7.7, 100.3, 41.9})
+    for (double s : {100.0, 300.0}) {  // the truth over ~240+ cells: within ~0.02 of the average
+      double want = 0;
+      for (double K = std::floor(mu - 8 * s); K <= mu + 8 * s; ++K)
+        want += (0.5 * std::erfc(-(K + 1 - mu) / (s * std::sqrt(2.0))) -
+                 0.5 * std::erfc(-(K - mu) / (s * std::sqrt(2.0)))) *
+                h(K);
+      EXPECT_NEAR(run1(g, "gaussian", static_cast<float>(mu), static_cast<float>(s)), want, 0.04)
+          << "mu " << mu << " s " << s;
+    }
+}
+
 TEST(Rules, SurfaceCoordinatesAreCorrelatedByTheirScreenGradients) {
   // u and v with parallel screen gradients are one variable: u - v = mu - mv exactly, so
   // step(u - v + 0.3 s) is 1 (independence would give Phi(0.3 / sqrt 2) = 0.58); orthogonal
