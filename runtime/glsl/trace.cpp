@@ -1154,6 +1154,22 @@ class Walker {
         return zip({x[0]}, [&](const std::vector<Var>& a) {
           return atan2_of(atomic("sqrt", sub(Var(1.0), atomic("pow2", a[0]))), a[0]);
         });
+      // The inverse hyperbolic functions through log, as GLSL drivers write them (asinh odd by
+      // construction: log(|x| + sqrt(x^2 + 1)) loses nothing to cancellation for negative x).
+      case glslang::EOpAsinh:
+        return zip({x[0]}, [&](const std::vector<Var>& a) {
+          const Var r =
+              atomic("log", add(atomic("abs", a[0]), atomic("sqrt", add(atomic("pow2", a[0]), Var(1.0)))));
+          return mul(atomic("sign", a[0]), r);
+        });
+      case glslang::EOpAcosh:  // x >= 1 (GLSL: undefined below)
+        return zip({x[0]}, [&](const std::vector<Var>& a) {
+          return atomic("log", add(a[0], atomic("sqrt", sub(atomic("pow2", a[0]), Var(1.0)))));
+        });
+      case glslang::EOpAtanh:  // |x| < 1
+        return zip({x[0]}, [&](const std::vector<Var>& a) {
+          return mul(Var(0.5), atomic("log", div(add(Var(1.0), a[0]), sub(Var(1.0), a[0]))));
+        });
       case glslang::EOpDPdx:
       case glslang::EOpDPdy:
       case glslang::EOpFwidth:

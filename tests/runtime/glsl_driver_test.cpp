@@ -177,9 +177,20 @@ vec3 shade(vec2 uv, float time) {
   EXPECT_LE(m.pixels, 2) << "worst difference " << m.worst << " (" << renderer_ << ")";
 }
 
-// The example patterns (scenes/glsl) without a large-gain hash: a pixel whose argument lies within
-// rounding of a jump may land on the other side in one of them, so a few pixels may differ; a
-// misread construct moves far more.
+// asinh, acosh and atanh (through log in the front end) as the driver computes them.
+TEST_F(GlslDriver, InverseHyperbolicFunctionsTraceAsTheDriverRunsThem) {
+  const std::string src = R"(#version 450
+vec3 shade(vec2 uv, float time) {
+  return vec3(0.5 + 0.1 * asinh(5.0 * uv.x), 0.2 * acosh(1.0 + uv.y * uv.y), 0.5 + 0.2 * atanh(0.3 * uv.x));
+}
+)";
+  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-4);
+  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << renderer_ << ")";
+}
+
+// The example patterns (scenes/glsl) without a large-gain hash// The example patterns (scenes/glsl) without a
+// large-gain hash: a pixel whose argument lies within rounding of a jump may land on the other side in one of
+// them, so a few pixels may differ; a misread construct moves far more.
 TEST_F(GlslDriver, ExamplePatternsTraceAsTheDriverRunsThem) {
   for (const char* name : {"rotated_tiles", "checkerboard", "circles", "color_circles", "bricks", "zigzag",
                            "quadratic_sine", "fire", "rings", "stripes", "sunburst"}) {

@@ -377,6 +377,19 @@ vec3 shade(vec2 uv, float time) {
   EXPECT_EQ(count_calls(p.graph, "atan"), 1);
 }
 
+// asinh (both signs, large |x|), acosh (x >= 1) and atanh (|x| < 1), against <cmath>.
+TEST(GlslFrontEnd, InverseHyperbolicFunctions) {
+  expect_values(R"(
+vec3 shade(vec2 uv, float time) {
+  return vec3(asinh(uv.x * 40.0) + asinh(-0.3), acosh(1.0 + uv.y * uv.y), atanh(uv.x / 3.1) + atanh(0.5));
+})",
+                [](double u, double v, double) {
+                  return V3{std::asinh(u * 40) + std::asinh(-0.3), std::acosh(1 + v * v),
+                            std::atanh(u / 3.1) + std::atanh(0.5)};
+                },
+                2e-5);
+}
+
 // Structs: members one after another, nested, in arrays, as parameters and return values.
 TEST(GlslFrontEnd, StructsCarryTheirMembers) {
   expect_values(R"(
