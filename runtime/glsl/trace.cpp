@@ -278,26 +278,59 @@ class Walker {
         Var i;
         if (!constant_scalar(b->getRight(), &i))
           unsupported(b->getRight(),
-                      "traced index inside an assignment target (assign the whole element: a[i] = ... or "
-                      "a[i] += ...)");
+                      "traced index in an out or inout argument (copy the element to a local)");
         return element_ref(b, base, i);
       }
-      if (op == glslang::EOpVectorSwizzle) {
-        LRef base = lvalue(b->getLeft());
-        LRef r{base.id, {}, n, base.local};
-        for (TIntermNode* k : b->getRight()->getAsAggregate()->getSequence())
-          r.comps.push_back(base.comps.at(k->getAsConstantUnion()->getConstArray()[0].getIConst()));
-        return r;
-      }
-      if (op == glslang::EOpIndexDirectStruct) {
-        const LRef base = lvalue(b->getLeft());
-        const auto [offset, size] = member(b);
-        return LRef{base.id,
-                    std::vector<int>(base.comps.begin() + offset, base.comps.begin() + offset + size), n,
-                    base.local};
-      }
+      if (op == glslang::EOpVectorSwizzle || op == glslang::EOpIndexDirectStruct)
+        return part_ref(b, lvalue(b->getLeft()));
     }
     unsupported(n, "assignment target");
+  }
+  // The swizzle or struct member b selects from `base`, the whole of what b's left side names.
+  LRef part_ref(glslang::TIntermBinary* b, const LRef& base) {
+    if (b->getOp() == glslang::EOpVectorSwizzle) {
+      LRef r{base.id, {}, b, base.local};
+      for (TIntermNode* k : b->getRight()->getAsAggregate()->getSequence())
+        r.comps.push_back(base.comps.at(k->getAsConstantUnion()->getConstArray()[0].getIConst()));
+      return r;
+    }
+    const auto [offset, size] = member(b);
+    return LRef{base.id, std::vector<int>(base.comps.begin() + offset, base.comps.begin() + offset + size), b,
+                base.local};
+  }
+  // What an assignment writes: one reference, or with a traced index on the way (a[i].x, m[i][j],
+  // s.items[i].w) one per element it may name, each written where the index equals it.
+  struct Target {
+    Var mask;
+    LRef ref;
+  };
+  std::vector<Target> targets(TIntermTyped* n) {
+    auto* b = n->getAsBinaryNode();
+    const TOperator op = b ? b->getOp() : glslang::EOpNull;
+    if (op == glslang::EOpIndexDirect || op == glslang::EOpIndexIndirect) {
+      std::vector<Target> base = targets(b->getLeft());
+      Var i;
+      const bool fixed = constant_scalar(b->getRight(), &i);
+      std::vector<Target> out;
+      for (const Target& t : base) {
+        if (fixed) {
+          out.push_back({t.mask, element_ref(b, t.ref, i)});
+          continue;
+        }
+        const int count = static_cast<int>(t.ref.comps.size()) / components(b);
+        for (int k = 0; k < count; ++k) {
+          const Var kk(static_cast<double>(k));
+          out.push_back({land(t.mask, equal(i, kk)), element_ref(b, t.ref, kk)});
+        }
+      }
+      return out;
+    }
+    if (op == glslang::EOpVectorSwizzle || op == glslang::EOpIndexDirectStruct) {
+      std::vector<Target> out = targets(b->getLeft());
+      for (Target& t : out) t.ref = part_ref(b, t.ref);
+      return out;
+    }
+    return {Target{Var(1.0), lvalue(n)}};
   }
   // Element i (a constant) of `base`, the whole of what `b` indexes.
   LRef element_ref(glslang::TIntermBinary* b, const LRef& base, Var i) {
@@ -665,40 +698,20 @@ class Walker {
     *v = x.c[0];
     return cval(*v, nullptr);
   }
-  // a[i] = y or a[i] op= y with i traced: every element k takes the new value where i == k.
-  Value dynamic_write(glslang::TIntermBinary* b, glslang::TIntermBinary* target, TOperator base_op, Var i,
-                      const Value& y) {
-    const LRef whole = lvalue(target->getLeft());
-    const int es = components(target);
-    const int n = static_cast<int>(whole.comps.size()) / es;
-    for (int k = 0; k < n; ++k) {
-      const LRef e = element_ref(target, whole, Var(static_cast<double>(k)));
-      const Value old = read(e);
-      const Value now = base_op == glslang::EOpNull ? y : arith(b, base_op, old, y, is_integer(target));
-      if (now.size() != es) fail(b, "assignment of mismatched sizes");
-      write(e, select_value(equal(i, Var(static_cast<double>(k))), now, old));
-    }
-    return y;
-  }
-
   Value binary(glslang::TIntermBinary* b) {
     const TOperator op = b->getOp();
     if (op == glslang::EOpAssign || compound_base(op) != glslang::EOpNull) {
       const TOperator base_op = op == glslang::EOpAssign ? glslang::EOpNull : compound_base(op);
       const Value y = eval(b->getRight());
-      auto* target = b->getLeft()->getAsBinaryNode();
-      LRef r;
-      if (target && target->getOp() == glslang::EOpIndexIndirect) {
-        Var i;
-        if (!constant_scalar(target->getRight(), &i)) return dynamic_write(b, target, base_op, i, y);
-        r = element_ref(target, lvalue(target->getLeft()), i);
-      } else {
-        r = lvalue(b->getLeft());
+      // With a traced index on the way every element it may name takes the new value where the
+      // index names it (a[i] = y, a[i].x += y).
+      Value v = y;
+      for (const Target& t : targets(b->getLeft())) {
+        const Value old = read(t.ref);
+        v = base_op == glslang::EOpNull ? y : arith(b, base_op, old, y, is_integer(b->getLeft()));
+        if (static_cast<int>(t.ref.comps.size()) != v.size()) fail(b, "assignment of mismatched sizes");
+        write(t.ref, select_value(t.mask, v, old));
       }
-      const Value v =
-          base_op == glslang::EOpNull ? y : arith(b, base_op, read(r), y, is_integer(b->getLeft()));
-      if (static_cast<int>(r.comps.size()) != v.size()) fail(b, "assignment of mismatched sizes");
-      write(r, v);
       return v;
     }
     switch (op) {
@@ -820,11 +833,13 @@ class Walker {
       case glslang::EOpPostDecrement:
       case glslang::EOpPreIncrement:
       case glslang::EOpPreDecrement: {
-        const LRef r = lvalue(arg);
-        const Value old = read(r);
         const double d = op == glslang::EOpPostIncrement || op == glslang::EOpPreIncrement ? 1 : -1;
-        const Value now = zip({old}, [&](const std::vector<Var>& a) { return add(a[0], Var(d)); });
-        write(r, now);
+        Value old, now;
+        for (const Target& t : targets(arg)) {
+          old = read(t.ref);
+          now = zip({old}, [&](const std::vector<Var>& a) { return add(a[0], Var(d)); });
+          write(t.ref, select_value(t.mask, now, old));
+        }
         return op == glslang::EOpPostIncrement || op == glslang::EOpPostDecrement ? old : now;
       }
       default:

@@ -115,8 +115,11 @@ vec3 shade(vec2 uv, float time) {
   w[j] = fract(uv.x);
   w[3 - j] *= 2.0;
   mat3 m = mat3(1.0, 0.5, 0.25, 0.1, 0.2, 0.3, 0.9, 0.8, 0.7);
-  vec3 col = m[int(clamp(floor(uv.x + 1.5), 0.0, 2.0))];
-  return 0.5 * palette[i] + 0.25 * vec3(w[0] + w[1], w[2], w[3]) + 0.25 * col;
+  int c = int(clamp(floor(uv.x + 1.5), 0.0, 2.0));
+  m[c].y = 0.5 * fract(uv.y);  // a traced index inside the target
+  m[2 - c][c] -= 0.2;
+  vec3 col = m[c];
+  return 0.5 * palette[i] + 0.25 * vec3(w[0] + w[1], w[2], w[3]) + 0.25 * col + 0.1 * m[1];
 }
 )";
   const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-5);
