@@ -351,9 +351,15 @@ class Walker {
   // Writes under the active mask (select against the old value where some lanes are inactive).
   // A local is not masked by an earlier return (so a while loop's counter stays constant after a
   // conditional return); globals and parameters are, since the caller reads them.
+  // A local declared inside the innermost loop (after its start: its counter's `int j = 0` in an
+  // outer loop's body, a temporary of the body) is written unmasked: no lane reads it once the
+  // loop ends, and lanes that broke or continued no longer read it in this iteration either
+  // (everything they could reach is written under the masks). So an inner loop's counter stays
+  // a constant after a traced break of the outer loop, and the inner loop unrolls.
   void write(const LRef& r, const Value& x) {
     if (dead()) return;
-    const Var m = r.local ? land(st_.brk, st_.cont) : active();
+    const bool fresh = r.local && !loop_vars_.empty() && !loop_vars_.back().count(r.id);
+    const Var m = fresh ? Var(1.0) : r.local ? land(st_.brk, st_.cont) : active();
     Value& v = st_.vars.at(r.id);
     for (std::size_t i = 0; i < r.comps.size(); ++i) v.c[r.comps[i]] = sel(m, x.c[i], v.c[r.comps[i]]);
   }
@@ -430,7 +436,11 @@ class Walker {
 
   void loop(glslang::TIntermLoop* l) {
     const Var saved_brk = st_.brk, saved_cont = st_.cont;
-    st_.brk = Var(1.0);
+    // Lanes that broke out of (or continued) an enclosing loop do not run this one.
+    st_.brk = land(saved_brk, saved_cont);
+    std::set<int> existing;
+    for (const auto& [id, v] : st_.vars) existing.insert(id);
+    loop_vars_.push_back(std::move(existing));
     auto test = [&]() -> bool {
       if (!l->getTest()) return true;
       const Var c = with_masks_off([&] { return scalar(l->getTest()); });
@@ -455,6 +465,7 @@ class Walker {
     }
     st_.brk = saved_brk;
     st_.cont = saved_cont;
+    loop_vars_.pop_back();
   }
   // switch: the body's statements in order, each under "some label at or above it matched" (a
   // case's value equal to the selector, or default when none is), so control falls through until a
@@ -1259,6 +1270,8 @@ class Walker {
   std::set<std::string> active_;
   std::vector<std::string> textures_;
   State st_;
+  // Per enclosing loop, innermost last: the variables that existed when it began (write).
+  std::vector<std::set<int>> loop_vars_;
 };
 
 // True when an output depends on node `id`.

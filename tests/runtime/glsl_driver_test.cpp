@@ -180,6 +180,28 @@ vec3 shade(vec2 uv, float time) {
   EXPECT_LE(m.pixels, 2) << "worst difference " << m.worst << " (" << renderer_ << ")";
 }
 
+// Nested loops after a traced break and continue of the outer loop.
+TEST_F(GlslDriver, NestedLoopsWithTracedBreaksTraceAsTheDriverRunsThem) {
+  const std::string src = R"(#version 450
+vec3 shade(vec2 uv, float time) {
+  float acc = 0.0, hits = 0.0;
+  for (int i = 0; i < 4; i++) {
+    if (uv.x < float(i) - 1.5) break;
+    if (uv.y < float(i) - 2.0) continue;
+    for (int j = 0; j < 3; j++) {
+      float t = float(i * 3 + j);
+      if (uv.y > t * 0.5 - 2.0) break;
+      acc += t;
+    }
+    hits += 1.0;
+  }
+  return vec3(0.02 * acc, 0.2 * hits, 0.5);
+}
+)";
+  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-5);
+  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << renderer_ << ")";
+}
+
 // asinh, acosh and atanh (through log in the front end) as the driver computes them.
 TEST_F(GlslDriver, InverseHyperbolicFunctionsTraceAsTheDriverRunsThem) {
   const std::string src = R"(#version 450

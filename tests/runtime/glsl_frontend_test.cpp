@@ -143,6 +143,41 @@ vec3 shade(vec2 uv, float time) {
                 });
 }
 
+// Nested loops after a traced break or continue of the outer loop: the inner loop's counter is
+// declared in the outer body (written unmasked, so it stays constant and the loop unrolls), and
+// lanes that left the outer loop do not run the inner one.
+TEST(GlslFrontEnd, InnerLoopsAfterATracedBreakOfTheOuterLoop) {
+  expect_values(R"(
+vec3 shade(vec2 uv, float time) {
+  float acc = 0.0, hits = 0.0;
+  for (int i = 0; i < 4; i++) {
+    if (uv.x < float(i) - 1.5) break;
+    if (uv.y < float(i) - 2.0) continue;
+    for (int j = 0; j < 3; j++) {
+      float t = float(i * 3 + j);
+      if (uv.y > t * 0.5 - 2.0) break;
+      acc += t;
+    }
+    hits += 1.0;
+  }
+  return vec3(acc, hits, 0.0);
+})",
+                [](double u, double v, double) {
+                  double acc = 0, hits = 0;
+                  for (int i = 0; i < 4; i++) {
+                    if (u < i - 1.5) break;
+                    if (v < i - 2.0) continue;
+                    for (int j = 0; j < 3; j++) {
+                      const double t = i * 3 + j;
+                      if (v > t * 0.5 - 2) break;
+                      acc += t;
+                    }
+                    hits += 1;
+                  }
+                  return V3{acc, hits, 0};
+                });
+}
+
 TEST(GlslFrontEnd, BranchesSelectsAndEarlyReturn) {
   expect_values(R"(
 float f(float x) {
