@@ -398,12 +398,8 @@ class GraphFacts {
   // comparison is its value and a fixed select the branch it passes (not cached).
   LatticeMoments lattice_moments(int i, const std::map<int, int>* fixed = nullptr,
                                  const std::vector<Lattice>* lat = nullptr) const {
-    if (!fixed) {
-      auto it = moments_.find(i);
-      if (it != moments_.end()) return it->second;
-      return moments_[i] = lattice_moments_of(i, {}, lattice);
-    }
-    return lattice_moments_of(i, *fixed, *lat);
+    static const std::map<int, int> none;
+    return lattice_moments_of(i, fixed ? *fixed : none, lat ? *lat : lattice);
   }
   LatticeMoments lattice_moments_of(int i, const std::map<int, int>& fixed,
                                     const std::vector<Lattice>& lat) const {
@@ -427,6 +423,17 @@ class GraphFacts {
       for (int a : {n.a, n.b, n.c})
         if (a >= 0) need[a] = true;
     }
+    // Cached per node and the fixed comparisons its sub-DAG meets (each lowering of each branch
+    // asks again).
+    std::pair<int, std::vector<std::pair<int, int>>> key{i, {}};
+    for (int x = 0; x <= i; ++x) {
+      if (!need[x]) continue;
+      if (fixed.count(x)) key.second.emplace_back(x, fixed.at(x));
+      if (const auto f = fixed_select(g.node(x)); f != fixed.end())
+        key.second.emplace_back(f->first, f->second);
+    }
+    const auto it = moments_.find(key);
+    if (it != moments_.end()) return it->second;
     const int floor_index = ir::atomic_index("floor");
     auto floor_fn = [floor_index](double x) { return ir::plain_atomic(floor_index, x); };
     std::vector<double> val(g.size(), 0);
@@ -473,7 +480,7 @@ class GraphFacts {
     out.ok = spread > 0 && same_var && std::fabs(mean[0] - mean[1]) <= 0.25 * spread;
     out.mean = 0.5 * (mean[0] + mean[1]);
     out.var = 0.5 * (var[0] + var[1]);
-    return out;
+    return moments_[key] = out;
   }
 
   // A lattice node (not a source) that some non-lattice node or an output reads.
@@ -564,8 +571,9 @@ class GraphFacts {
   std::vector<Lattice> lattice;
 
  private:
-  mutable std::map<int, bool> cell_cont;           // cell_continuous per floor argument
-  mutable std::map<int, LatticeMoments> moments_;  // lattice_moments per node
+  mutable std::map<int, bool> cell_cont;  // cell_continuous per floor argument
+  // lattice_moments per node and the fixed comparisons it meets.
+  mutable std::map<std::pair<int, std::vector<std::pair<int, int>>>, LatticeMoments> moments_;
 };
 
 }  // namespace bl::compiler
