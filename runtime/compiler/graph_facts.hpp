@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -423,17 +425,22 @@ class GraphFacts {
       for (int a : {n.a, n.b, n.c})
         if (a >= 0) need[a] = true;
     }
-    // Cached per node and the fixed comparisons its sub-DAG meets (each lowering of each branch
-    // asks again).
-    std::pair<int, std::vector<std::pair<int, int>>> key{i, {}};
+    // Cached for the process per graph, node and the fixed comparisons its sub-DAG meets: every
+    // lowering (the tuner's thousands) of every mixture branch asks again.
+    MomentKey key{graph_hash(), i, {}};
+    std::vector<int> order;  // the sub-DAG's nodes, in node order
     for (int x = 0; x <= i; ++x) {
       if (!need[x]) continue;
-      if (fixed.count(x)) key.second.emplace_back(x, fixed.at(x));
+      order.push_back(x);
+      if (fixed.count(x)) key.fixed.emplace_back(x, fixed.at(x));
       if (const auto f = fixed_select(g.node(x)); f != fixed.end())
-        key.second.emplace_back(f->first, f->second);
+        key.fixed.emplace_back(f->first, f->second);
     }
-    const auto it = moments_.find(key);
-    if (it != moments_.end()) return it->second;
+    {
+      std::lock_guard<std::mutex> lock(moment_mutex());
+      const auto it = moment_cache().find(key);
+      if (it != moment_cache().end()) return it->second;
+    }
     const int floor_index = ir::atomic_index("floor");
     auto floor_fn = [floor_index](double x) { return ir::plain_atomic(floor_index, x); };
     std::vector<double> val(g.size(), 0);
@@ -443,16 +450,15 @@ class GraphFacts {
       const double base = region ? 10000 : 0;
       double s1 = 0, s2 = 0;
       for (int t = 0; t < count; ++t) {
-        for (int x = 0; x <= i; ++x) {
-          if (!need[x]) continue;
+        for (int x : order) {
           const ir::Node& n = g.node(x);
           const auto at = std::find(src.begin(), src.end(), x);
           if (at != src.end()) {
             val[x] = src.size() == 1 ? base + t : base + (at == src.begin() ? t % 32 : t / 32);
             continue;
           }
-          if (fixed.count(x)) {
-            val[x] = fixed.at(x);
+          if (const auto f = fixed.find(x); f != fixed.end()) {
+            val[x] = f->second;
             continue;
           }
           if (const auto f = fixed_select(n); f != fixed.end()) {
@@ -480,7 +486,8 @@ class GraphFacts {
     out.ok = spread > 0 && same_var && std::fabs(mean[0] - mean[1]) <= 0.25 * spread;
     out.mean = 0.5 * (mean[0] + mean[1]);
     out.var = 0.5 * (var[0] + var[1]);
-    return moments_[key] = out;
+    std::lock_guard<std::mutex> lock(moment_mutex());
+    return moment_cache()[key] = out;
   }
 
   // A lattice node (not a source) that some non-lattice node or an output reads.
@@ -572,8 +579,27 @@ class GraphFacts {
 
  private:
   mutable std::map<int, bool> cell_cont;  // cell_continuous per floor argument
-  // lattice_moments per node and the fixed comparisons it meets.
-  mutable std::map<std::pair<int, std::vector<std::pair<int, int>>>, LatticeMoments> moments_;
+  struct MomentKey {
+    std::uint64_t graph;
+    int node;
+    std::vector<std::pair<int, int>> fixed;
+    bool operator<(const MomentKey& o) const {
+      return std::tie(graph, node, fixed) < std::tie(o.graph, o.node, o.fixed);
+    }
+  };
+  static std::map<MomentKey, LatticeMoments>& moment_cache() {
+    static std::map<MomentKey, LatticeMoments> cache;
+    return cache;
+  }
+  static std::mutex& moment_mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::uint64_t graph_hash() const {
+    if (!hash_) hash_ = g.hash();
+    return *hash_;
+  }
+  mutable std::optional<std::uint64_t> hash_;
 };
 
 }  // namespace bl::compiler
