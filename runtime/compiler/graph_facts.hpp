@@ -125,6 +125,15 @@ class GraphFacts {
   bool cell_continuous(int a) const {
     auto it = cell_cont.find(a);
     if (it != cell_cont.end()) return it->second;
+    // Also cached for the process (each lowering builds its own facts; the probes walk the graph
+    // thousands of times).
+    static std::map<std::pair<std::uint64_t, int>, bool> probed;
+    static std::mutex m;
+    {
+      std::lock_guard<std::mutex> lock(m);
+      const auto p = probed.find({graph_hash(), a});
+      if (p != probed.end()) return cell_cont[a] = p->second;
+    }
     bool ok = true;
     int probes = 0;
     std::mt19937_64 rng(0xC0FFEEull + static_cast<std::uint64_t>(a));
@@ -164,7 +173,8 @@ class GraphFacts {
         break;  // one jump per probe point
       }
     }
-    return cell_cont[a] = ok && probes >= 3;
+    std::lock_guard<std::mutex> lock(m);
+    return cell_cont[a] = probed[{graph_hash(), a}] = ok && probes >= 3;
   }
 
   // Node i as (base, n) with i = base^n: pow<n> atomics and products of powers of one base.
