@@ -261,30 +261,12 @@ class Walker {
     return st_.vars[s->getId()] = zeros(components(s));
   }
 
+  // An out or inout argument: the one reference it names (no traced index on the way).
   LRef lvalue(TIntermTyped* n) {
-    if (auto* s = n->getAsSymbolNode()) {
-      LRef r;
-      r.id = s->getId();
-      r.node = n;
-      r.local = s->getQualifier().storage == glslang::EvqTemporary;
-      const int k = var(s).size();
-      for (int i = 0; i < k; ++i) r.comps.push_back(i);
-      return r;
-    }
-    if (auto* b = n->getAsBinaryNode()) {
-      const TOperator op = b->getOp();
-      if (op == glslang::EOpIndexDirect || op == glslang::EOpIndexIndirect) {
-        LRef base = lvalue(b->getLeft());
-        Var i;
-        if (!constant_scalar(b->getRight(), &i))
-          unsupported(b->getRight(),
-                      "traced index in an out or inout argument (copy the element to a local)");
-        return element_ref(b, base, i);
-      }
-      if (op == glslang::EOpVectorSwizzle || op == glslang::EOpIndexDirectStruct)
-        return part_ref(b, lvalue(b->getLeft()));
-    }
-    unsupported(n, "assignment target");
+    TIntermTyped* traced = nullptr;
+    std::vector<Target> t = targets(n, &traced);
+    if (traced) unsupported(traced, "traced index in an out or inout argument (copy the element to a local)");
+    return t.front().ref;
   }
   // The swizzle or struct member b selects from `base`, the whole of what b's left side names.
   LRef part_ref(glslang::TIntermBinary* b, const LRef& base) {
@@ -299,18 +281,29 @@ class Walker {
                 base.local};
   }
   // What an assignment writes: one reference, or with a traced index on the way (a[i].x, m[i][j],
-  // s.items[i].w) one per element it may name, each written where the index equals it.
+  // s.items[i].w) one per element it may name, each written where the index equals it. *traced,
+  // when asked for, is set to the first traced index met.
   struct Target {
     Var mask;
     LRef ref;
   };
-  std::vector<Target> targets(TIntermTyped* n) {
+  std::vector<Target> targets(TIntermTyped* n, TIntermTyped** traced = nullptr) {
+    if (auto* s = n->getAsSymbolNode()) {
+      LRef r;
+      r.id = s->getId();
+      r.node = n;
+      r.local = s->getQualifier().storage == glslang::EvqTemporary;
+      const int k = var(s).size();
+      for (int i = 0; i < k; ++i) r.comps.push_back(i);
+      return {Target{Var(1.0), r}};
+    }
     auto* b = n->getAsBinaryNode();
     const TOperator op = b ? b->getOp() : glslang::EOpNull;
     if (op == glslang::EOpIndexDirect || op == glslang::EOpIndexIndirect) {
-      std::vector<Target> base = targets(b->getLeft());
+      std::vector<Target> base = targets(b->getLeft(), traced);
       Var i;
       const bool fixed = constant_scalar(b->getRight(), &i);
+      if (!fixed && traced && !*traced) *traced = b->getRight();
       std::vector<Target> out;
       for (const Target& t : base) {
         if (fixed) {
@@ -326,11 +319,11 @@ class Walker {
       return out;
     }
     if (op == glslang::EOpVectorSwizzle || op == glslang::EOpIndexDirectStruct) {
-      std::vector<Target> out = targets(b->getLeft());
+      std::vector<Target> out = targets(b->getLeft(), traced);
       for (Target& t : out) t.ref = part_ref(b, t.ref);
       return out;
     }
-    return {Target{Var(1.0), lvalue(n)}};
+    unsupported(n, "assignment target");
   }
   // Element i (a constant) of `base`, the whole of what `b` indexes.
   LRef element_ref(glslang::TIntermBinary* b, const LRef& base, Var i) {
