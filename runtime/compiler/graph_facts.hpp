@@ -406,30 +406,21 @@ class GraphFacts {
     bool ok = false;
     double mean = 0, var = 0;
   };
-  // In a mixture branch (lower.cpp) pass its fixed comparisons and lattice facts: a fixed
-  // comparison is its value and a fixed select the branch it passes (not cached).
-  LatticeMoments lattice_moments(int i, const std::map<int, int>* fixed = nullptr,
-                                 const std::vector<Lattice>* lat = nullptr) const {
-    static const std::map<int, int> none;
-    return lattice_moments_of(i, fixed ? *fixed : none, lat ? *lat : lattice);
-  }
-  LatticeMoments lattice_moments_of(int i, const std::map<int, int>& fixed,
-                                    const std::vector<Lattice>& lat) const {
+  // fixed: the comparisons a mixture branch (lower.cpp) fixes, empty outside one; lat: the lattice
+  // facts there (`lattice` outside one).
+  LatticeMoments lattice_moments(int i, const std::map<int, int>& fixed,
+                                 const std::vector<Lattice>& lat) const {
     const std::vector<int>& src = lat.at(i).src;
     LatticeMoments out;
     if (!lat[i].ok || src.empty()) return out;
-    auto fixed_select = [&](const ir::Node& n) {
-      return n.op == ir::Op::Select ? fixed.find(n.a) : fixed.end();
-    };
     // The sub-DAG from the sources to i, in node order.
     std::vector<bool> need(g.size(), false);
     need[i] = true;
     for (int x = i; x >= 0; --x) {
       if (!need[x] || std::find(src.begin(), src.end(), x) != src.end() || fixed.count(x)) continue;
       const ir::Node& n = g.node(x);
-      const auto f = fixed_select(n);
-      if (f != fixed.end()) {
-        need[f->second ? n.b : n.c] = true;
+      if (const int p = passed(n, fixed); p >= 0) {
+        need[p] = true;
         continue;
       }
       for (int a : {n.a, n.b, n.c})
@@ -437,19 +428,22 @@ class GraphFacts {
     }
     // Cached for the process per graph, node and the fixed comparisons its sub-DAG meets: every
     // lowering (the tuner's thousands) of every mixture branch asks again.
-    MomentKey key{graph_hash(), i, {}};
+    using Key = std::tuple<std::uint64_t, int, std::vector<std::pair<int, int>>>;
+    static std::map<Key, LatticeMoments> cache;
+    static std::mutex m;
+    Key key{graph_hash(), i, {}};
     std::vector<int> order;  // the sub-DAG's nodes, in node order
     for (int x = 0; x <= i; ++x) {
       if (!need[x]) continue;
       order.push_back(x);
-      if (fixed.count(x)) key.fixed.emplace_back(x, fixed.at(x));
-      if (const auto f = fixed_select(g.node(x)); f != fixed.end())
-        key.fixed.emplace_back(f->first, f->second);
+      const ir::Node& n = g.node(x);
+      if (fixed.count(x)) std::get<2>(key).emplace_back(x, fixed.at(x));
+      if (passed(n, fixed) >= 0) std::get<2>(key).emplace_back(n.a, fixed.at(n.a));
     }
     {
-      std::lock_guard<std::mutex> lock(moment_mutex());
-      const auto it = moment_cache().find(key);
-      if (it != moment_cache().end()) return it->second;
+      std::lock_guard<std::mutex> lock(m);
+      const auto it = cache.find(key);
+      if (it != cache.end()) return it->second;
     }
     const int floor_index = ir::atomic_index("floor");
     auto floor_fn = [floor_index](double x) { return ir::plain_atomic(floor_index, x); };
@@ -471,8 +465,8 @@ class GraphFacts {
             val[x] = f->second;
             continue;
           }
-          if (const auto f = fixed_select(n); f != fixed.end()) {
-            val[x] = val[f->second ? n.b : n.c];
+          if (const int p = passed(n, fixed); p >= 0) {
+            val[x] = val[p];
             continue;
           }
           const double a = n.a >= 0 ? val[n.a] : 0, b = n.b >= 0 ? val[n.b] : 0, c = n.c >= 0 ? val[n.c] : 0;
@@ -496,8 +490,14 @@ class GraphFacts {
     out.ok = spread > 0 && same_var && std::fabs(mean[0] - mean[1]) <= 0.25 * spread;
     out.mean = 0.5 * (mean[0] + mean[1]);
     out.var = 0.5 * (var[0] + var[1]);
-    std::lock_guard<std::mutex> lock(moment_mutex());
-    return moment_cache()[key] = out;
+    std::lock_guard<std::mutex> lock(m);
+    return cache[key] = out;
+  }
+  // The argument a select passes on when a mixture branch fixes its condition, else -1.
+  static int passed(const ir::Node& n, const std::map<int, int>& fixed) {
+    if (n.op != ir::Op::Select) return -1;
+    const auto f = fixed.find(n.a);
+    return f == fixed.end() ? -1 : f->second ? n.b : n.c;
   }
 
   // A lattice node (not a source) that some non-lattice node or an output reads.
@@ -512,12 +512,7 @@ class GraphFacts {
   // ---- Bernoulli comparisons (selects of branches) ----
   // A less node that some select reads as its condition: the select picks one of two lobes, which
   // the mixture rule (lower.cpp, bernoulli_mixture) keeps apart instead of averaging them.
-  bool select_condition(int i) const {
-    if (g.node(i).op != ir::Op::Less) return false;
-    for (int c : consumers[i])
-      if (c >= 0 && g.node(c).op == ir::Op::Select && g.node(c).a == i) return true;
-    return false;
-  }
+  bool select_condition(int i) const { return g.node(i).op == ir::Op::Less && selects_reading(i) > 0; }
 
   // ---- Select cascades (last writer wins) ----
   // `if (c) x = A;` traced in a loop or in sequence gives s_n = select(c_n, A_n, s_{n-1}), ...,
@@ -589,22 +584,6 @@ class GraphFacts {
 
  private:
   mutable std::map<int, bool> cell_cont;  // cell_continuous per floor argument
-  struct MomentKey {
-    std::uint64_t graph;
-    int node;
-    std::vector<std::pair<int, int>> fixed;
-    bool operator<(const MomentKey& o) const {
-      return std::tie(graph, node, fixed) < std::tie(o.graph, o.node, o.fixed);
-    }
-  };
-  static std::map<MomentKey, LatticeMoments>& moment_cache() {
-    static std::map<MomentKey, LatticeMoments> cache;
-    return cache;
-  }
-  static std::mutex& moment_mutex() {
-    static std::mutex m;
-    return m;
-  }
   std::uint64_t graph_hash() const {
     if (!hash_) hash_ = g.hash();
     return *hash_;

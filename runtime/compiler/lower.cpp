@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "compiler/graph_facts.hpp"
@@ -165,10 +166,8 @@ class Lowering {
         break;
     }
     if (!fixed_.empty()) {  // a branch of a Bernoulli mixture: the comparison is known
-      auto f = fixed_.find(i);
-      if (f != fixed_.end()) return Val{k(static_cast<float>(f->second)), -1};
-      if (n.op == Op::Select && (f = fixed_.find(n.a)) != fixed_.end())
-        return f->second ? vals_[n.b] : vals_[n.c];
+      if (const auto f = fixed_.find(i); f != fixed_.end()) return Val{k(static_cast<float>(f->second)), -1};
+      if (const int p = GraphFacts::passed(n, fixed_); p >= 0) return vals_[p];
     }
     std::vector<Val*> args;
     for (int a : {n.a, n.b, n.c})
@@ -1079,14 +1078,20 @@ class Lowering {
     condition(y, w, held, depth + 1);
   }
 
-  // The select cascade (GraphFacts::cascade) output o mixes over, as a group key: -1, the number of
-  // links n, their comparisons (bern indices, top first), the value of each that passes down; {} when
-  // o reads none of at least kMinCascade links. Among several, the one whose every condition the
+  // What a group of outputs mixes over: comparisons (bern indices). A cascade's first pass.size()
+  // are its links, top first, with the value of each that passes down, and any after them are mixed
+  // jointly with its outcomes; with pass empty, every combination of them.
+  struct Mix {
+    std::vector<int> set, pass;
+    bool operator<(const Mix& o) const { return std::tie(set, pass) < std::tie(o.set, o.pass); }
+  };
+  // The select cascade (GraphFacts::cascade) output o mixes over; empty when o reads none of at
+  // least kMinCascade links. Among several, the one whose every condition the
   // most selects share, then the longest: Voronoi's nearest distance and nearest cell (hence its
   // colour) follow the `d < best` conditions; the second nearest's chain interleaves conditions only
   // it reads, and mixing over it would leave the nearest cell unresolved in half its branches.
   static constexpr std::size_t kMinCascade = kMaxJoint + 1;
-  std::vector<int> output_cascade(int o, const std::vector<int>& where) const {
+  Mix output_cascade(int o, const std::vector<int>& where) const {
     std::vector<bool> anc(g_.size(), false);
     anc[o] = true;
     for (int x = o; x >= 0; --x)
@@ -1107,11 +1112,12 @@ class Lowering {
         best_share = share;
       }
     }
-    if (best.empty()) return {};
-    std::vector<int> key{-1, static_cast<int>(best.size())};
-    for (const auto& l : best) key.push_back(where[l.cond]);
-    for (const auto& l : best) key.push_back(l.pass);
-    return key;
+    Mix mix;
+    for (const auto& l : best) {
+      mix.set.push_back(where[l.cond]);
+      mix.pass.push_back(l.pass);
+    }
+    return mix;
   }
 
   void bernoulli_mixtures() {
@@ -1121,22 +1127,21 @@ class Lowering {
     if (bern.empty()) return;
     std::vector<std::vector<bool>> desc;
     for (int c : bern) desc.push_back(facts_.descendants(c));
-    // Outputs grouped by the branches they mix: the outcomes of their longest select cascade (the
+    // Outputs grouped by the branches they mix: the outcomes of the select cascade they read (the
     // last condition that holds picks the value: n + 1 branches, the conditions below the winner left
     // to their rules), else every combination of the first kMaxJoint comparisons they depend on.
-    // Key: the comparisons (bern indices); a cascade's is output_cascade's, then any joint extra.
-    std::map<std::vector<int>, std::vector<int>> groups;
-    std::vector<int> where(g_.size(), -1);  // node -> its index in bern
+    std::map<Mix, std::vector<int>> groups;  // -> output nodes
+    std::vector<int> where(g_.size(), -1);   // node -> its index in bern
     for (std::size_t b = 0; b < bern.size(); ++b) where[bern[b]] = static_cast<int>(b);
     for (int o : g_.outputs()) {
-      std::vector<int> set = output_cascade(o, where);
+      Mix mix = output_cascade(o, where);
+      std::vector<int>& set = mix.set;
       if (!set.empty()) {
         // Beside the cascade, the first other comparison that picks a vector (several selects read
         // it: a bump's cap or flat normal) stays joint with it.
-        const int n = set[1];
         for (std::size_t b = 0; b < bern.size(); ++b)
           if (desc[b][o] && facts_.selects_reading(bern[b]) >= 2 &&
-              std::find(set.begin() + 2, set.begin() + 2 + n, static_cast<int>(b)) == set.begin() + 2 + n) {
+              std::find(set.begin(), set.end(), static_cast<int>(b)) == set.end()) {
             set.push_back(static_cast<int>(b));
             break;
           }
@@ -1146,17 +1151,13 @@ class Lowering {
           if (desc[b][o]) set.push_back(static_cast<int>(b));
       }
       if (set.empty()) continue;
-      auto& outs = groups[set];
+      auto& outs = groups[mix];
       if (std::find(outs.begin(), outs.end(), o) == outs.end()) outs.push_back(o);  // r = g = b for grey
     }
     std::map<int, Val> mixed;
-    for (const auto& [key, outs] : groups) {
-      const bool is_cascade = key.front() < 0;
-      const int links = is_cascade ? key[1] : 0;
-      std::vector<int> set = is_cascade ? std::vector<int>(key.begin() + 2, key.begin() + 2 + links) : key;
-      const std::vector<int> pass(is_cascade ? key.begin() + 2 + links : key.end(),
-                                  is_cascade ? key.begin() + 2 + 2 * links : key.end());
-      if (is_cascade) set.insert(set.end(), key.begin() + 2 + 2 * links, key.end());  // joint extras
+    for (const auto& [mix, outs] : groups) {
+      const std::vector<int>& set = mix.set;
+      const std::vector<int>& pass = mix.pass;
       // The conditioned operand of each comparison (-1: none) and the nodes each branch re-lowers.
       std::vector<int> operand(set.size(), -1);
       std::vector<bool> redo(g_.size(), false);
@@ -1192,7 +1193,7 @@ class Lowering {
       const std::vector<int> base_slope = slope_;
       // Per branch, per comparison of the set: the value it is fixed to (-1: left to its rule).
       std::vector<std::vector<int>> branches;
-      if (is_cascade) {
+      if (!pass.empty()) {
         // Outcome j: links above j pass x down, link j takes its A; outcome n: every link passes.
         const std::size_t n = pass.size(), extra = set.size() - n;
         for (std::size_t j = 0; j <= n; ++j)
@@ -1212,7 +1213,6 @@ class Lowering {
       for (const std::vector<int>& bits : branches) {
         int w = -1;
         std::set<int> held;
-        fixed_.clear();
         for (std::size_t j = 0; j < set.size(); ++j) {
           const int c = bern[set[j]], bit = bits[j];
           if (bit < 0) continue;
@@ -1255,7 +1255,7 @@ class Lowering {
   // A lattice node as the finite mixture over its sources' values (GraphFacts::Lattice): floor/ceil
   // of N(m, s^2) is K-1, K or K+1 with Gaussian interval probabilities; the plain sub-DAG per pair.
   Val lattice_mixture(int i, const Rule& r) {
-    const std::vector<int> src = lattice_of(i).src;
+    const std::vector<int> src = lattices()[i].src;
     struct Choice {
       std::vector<int> value, weight;  // instruction per candidate
     };
@@ -1282,9 +1282,7 @@ class Lowering {
         ch[d].weight.push_back(p);
       }
     }
-    const GraphFacts::LatticeMoments far = branch_lattice_.empty()
-                                               ? facts_.lattice_moments(i)
-                                               : facts_.lattice_moments(i, &fixed_, &branch_lattice_);
+    const GraphFacts::LatticeMoments far = facts_.lattice_moments(i, fixed_, lattices());
     // A cheaper rule than the Gaussian on a node whose cells' edges the output hides: the cell of the
     // mean alone, the rest of the mass at the lattice average (one evaluation instead of 3 or 9:
     // exact while the footprint is within a quarter cell, the average for a wide one, coarser
@@ -1343,11 +1341,11 @@ class Lowering {
     if (it != memo.end()) return it->second;
     const ir::Node& n = g_.node(i);
     int out;
-    auto f = fixed_.find(i);
-    if (f != fixed_.end()) {
+    const int p = GraphFacts::passed(n, fixed_);
+    if (const auto f = fixed_.find(i); f != fixed_.end()) {
       out = k(static_cast<float>(f->second));
-    } else if (n.op == Op::Select && (f = fixed_.find(n.a)) != fixed_.end()) {
-      out = lattice_eval(f->second ? n.b : n.c, memo);
+    } else if (p >= 0) {
+      out = lattice_eval(p, memo);
     } else if (n.op == Op::Const) {
       out = k(static_cast<float>(n.value));
     } else {
@@ -1380,23 +1378,19 @@ class Lowering {
   void set_branch_lattice() {
     branch_lattice_.assign(g_.size(), Lattice{});
     for (int x = 0; x < g_.size(); ++x) {
-      const ir::Node& n = g_.node(x);
-      auto f = fixed_.find(x);
-      if (f != fixed_.end())
+      const int p = GraphFacts::passed(g_.node(x), fixed_);
+      if (fixed_.count(x))
         branch_lattice_[x] = Lattice{true, {}};
-      else if (n.op == Op::Select && (f = fixed_.find(n.a)) != fixed_.end())
-        branch_lattice_[x] = branch_lattice_[f->second ? n.b : n.c];
+      else if (p >= 0)
+        branch_lattice_[x] = branch_lattice_[p];
       else
         branch_lattice_[x] = facts_.lattice_sources_from(x, branch_lattice_);
     }
   }
-  const Lattice& lattice_of(int i) const {
-    return branch_lattice_.empty() ? facts_.lattice[i] : branch_lattice_[i];
+  const std::vector<Lattice>& lattices() const {
+    return branch_lattice_.empty() ? facts_.lattice : branch_lattice_;
   }
-  bool lattice_boundary(int i) const {
-    return branch_lattice_.empty() ? facts_.lattice_boundary(i)
-                                   : facts_.lattice_boundary_in(i, branch_lattice_);
-  }
+  bool lattice_boundary(int i) const { return facts_.lattice_boundary_in(i, lattices()); }
 };
 
 }  // namespace
