@@ -19,7 +19,6 @@
 #include "compiler/plain_eval.hpp"
 #include "ir/atomics.hpp"
 #include "ir/graph.hpp"
-#include "ir/plain_ops.hpp"
 
 namespace bl::compiler {
 
@@ -445,8 +444,6 @@ class GraphFacts {
       const auto it = cache.find(key);
       if (it != cache.end()) return it->second;
     }
-    const int floor_index = ir::atomic_index("floor");
-    auto floor_fn = [floor_index](double x) { return ir::plain_atomic(floor_index, x); };
     std::vector<double> val(g.size(), 0);
     const int count = 1024;
     double mean[2] = {0, 0}, var[2] = {0, 0};
@@ -470,13 +467,7 @@ class GraphFacts {
             continue;
           }
           const double a = n.a >= 0 ? val[n.a] : 0, b = n.b >= 0 ? val[n.b] : 0, c = n.c >= 0 ? val[n.c] : 0;
-          if (ir::plain_arith(n.op, a, b, c, n.value, floor_fn, &val[x])) continue;
-          if (n.op == ir::Op::Const)
-            val[x] = n.value;
-          else if (n.op == ir::Op::Call)
-            val[x] = ir::plain_atomic(n.atomic, a);
-          else
-            return out;  // not a lattice function after all
+          if (!plain_node(n, a, b, c, &val[x])) return out;  // an input: not a lattice function after all
         }
         if (!std::isfinite(val[i])) return out;
         s1 += val[i];

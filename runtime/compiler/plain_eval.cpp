@@ -10,24 +10,31 @@ namespace bl::compiler {
 
 using ir::Op;
 
+bool plain_node(const ir::Node& n, double a, double b, double c, double* y) {
+  static const int floor_index = ir::atomic_index("floor");
+  auto floor_fn = [](double x) { return ir::plain_atomic(floor_index, x); };
+  if (ir::plain_arith(n.op, a, b, c, n.value, floor_fn, y)) return true;
+  if (n.op == Op::Const) {
+    *y = n.value;
+    return true;
+  }
+  if (n.op == Op::Call) {
+    *y = ir::plain_atomic(n.atomic, a);
+    return true;
+  }
+  return false;
+}
+
 std::vector<double> plain_values(const ir::Graph& g, const std::vector<double>& inputs,
                                  const std::vector<const texture::Texture*>* textures) {
   std::vector<double> v(g.size());
-  const int floor_index = ir::atomic_index("floor");
-  auto floor_fn = [floor_index](double x) { return ir::plain_atomic(floor_index, x); };
   for (int i = 0; i < g.size(); ++i) {
     const ir::Node& n = g.node(i);
     const double a = n.a >= 0 ? v[n.a] : 0, b = n.b >= 0 ? v[n.b] : 0, c = n.c >= 0 ? v[n.c] : 0;
-    if (ir::plain_arith(n.op, a, b, c, n.value, floor_fn, &v[i])) continue;
+    if (plain_node(n, a, b, c, &v[i])) continue;
     switch (n.op) {
-      case Op::Const:
-        v[i] = n.value;
-        break;
       case Op::Input:
         v[i] = inputs.at(static_cast<int>(n.value));
-        break;
-      case Op::Call:
-        v[i] = ir::plain_atomic(n.atomic, a);
         break;
       case Op::Texture:
         if (!textures) {
@@ -39,7 +46,7 @@ std::vector<double> plain_values(const ir::Graph& g, const std::vector<double>& 
                                       "' is not bound");
         v[i] = (*textures)[int(n.value)]->plain(static_cast<float>(a), static_cast<float>(b), n.atomic);
         break;
-      default:  // arithmetic: plain_arith above
+      default:  // arithmetic, constants and calls: plain_node above
         break;
     }
   }

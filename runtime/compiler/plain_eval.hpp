@@ -10,6 +10,10 @@
 
 namespace bl::compiler {
 
+// The plain value of node n (arithmetic, constant or atomic call) from its arguments' values a, b,
+// c; false for an input or a texture, whose values the caller holds.
+bool plain_node(const ir::Node& n, double a, double b, double c, double* y);
+
 // Per node, in node order. `inputs` is indexed by input slot. Texture nodes read the textures
 // (indexed by texture slot; an unbound slot throws, naming it); without textures they are NaN.
 std::vector<double> plain_values(const ir::Graph& g, const std::vector<double>& inputs,
