@@ -22,8 +22,23 @@
 
 namespace bl::compiler {
 
+// The process-wide memo tables of GraphFacts (continuity probes, lattice moments) serve the tuner's
+// thousands of lowerings of one graph. An embedding that compiles shader after shader would grow
+// them without end, so each is emptied when it holds this many entries (results never depend on
+// them, only the time to lower). Settable for tests.
+inline std::size_t& process_memo_limit() {
+  static std::size_t limit = 1u << 14;
+  return limit;
+}
+
 class GraphFacts {
  public:
+  // Entries in the two process-wide memo tables (for tests of their bound).
+  static std::size_t process_memo_entries() {
+    std::lock_guard<std::mutex> a(probe_memo().m), b(moment_memo().m);
+    return probe_memo().map.size() + moment_memo().map.size();
+  }
+
   explicit GraphFacts(const ir::Graph& graph) : g(graph), consumers(graph.size()) {
     for (int i = 0; i < g.size(); ++i)
       for (int a : {g.node(i).a, g.node(i).b, g.node(i).c})
@@ -126,12 +141,11 @@ class GraphFacts {
     if (it != cell_cont.end()) return it->second;
     // Also cached for the process (each lowering builds its own facts; the probes walk the graph
     // thousands of times).
-    static std::map<std::pair<std::uint64_t, int>, bool> probed;
-    static std::mutex m;
+    auto& memo = probe_memo();
     {
-      std::lock_guard<std::mutex> lock(m);
-      const auto p = probed.find({graph_hash(), a});
-      if (p != probed.end()) return cell_cont[a] = p->second;
+      std::lock_guard<std::mutex> lock(memo.m);
+      const auto p = memo.map.find({graph_hash(), a});
+      if (p != memo.map.end()) return cell_cont[a] = p->second;
     }
     bool ok = true;
     int probes = 0;
@@ -172,8 +186,9 @@ class GraphFacts {
         break;  // one jump per probe point
       }
     }
-    std::lock_guard<std::mutex> lock(m);
-    return cell_cont[a] = probed[{graph_hash(), a}] = ok && probes >= 3;
+    std::lock_guard<std::mutex> lock(memo.m);
+    if (memo.map.size() >= process_memo_limit()) memo.map.clear();
+    return cell_cont[a] = memo.map[{graph_hash(), a}] = ok && probes >= 3;
   }
 
   // Node i as (base, n) with i = base^n: pow<n> atomics and products of powers of one base.
@@ -427,10 +442,8 @@ class GraphFacts {
     }
     // Cached for the process per graph, node and the fixed comparisons its sub-DAG meets: every
     // lowering (the tuner's thousands) of every mixture branch asks again.
-    using Key = std::tuple<std::uint64_t, int, std::vector<std::pair<int, int>>>;
-    static std::map<Key, LatticeMoments> cache;
-    static std::mutex m;
-    Key key{graph_hash(), i, {}};
+    auto& memo = moment_memo();
+    MomentKey key{graph_hash(), i, {}};
     std::vector<int> order;  // the sub-DAG's nodes, in node order
     for (int x = 0; x <= i; ++x) {
       if (!need[x]) continue;
@@ -440,9 +453,9 @@ class GraphFacts {
       if (passed(n, fixed) >= 0) std::get<2>(key).emplace_back(n.a, fixed.at(n.a));
     }
     {
-      std::lock_guard<std::mutex> lock(m);
-      const auto it = cache.find(key);
-      if (it != cache.end()) return it->second;
+      std::lock_guard<std::mutex> lock(memo.m);
+      const auto it = memo.map.find(key);
+      if (it != memo.map.end()) return it->second;
     }
     std::vector<double> val(g.size(), 0);
     const int count = 1024;
@@ -481,8 +494,9 @@ class GraphFacts {
     out.ok = spread > 0 && same_var && std::fabs(mean[0] - mean[1]) <= 0.25 * spread;
     out.mean = 0.5 * (mean[0] + mean[1]);
     out.var = 0.5 * (var[0] + var[1]);
-    std::lock_guard<std::mutex> lock(m);
-    return cache[key] = out;
+    std::lock_guard<std::mutex> lock(memo.m);
+    if (memo.map.size() >= process_memo_limit()) memo.map.clear();
+    return memo.map[key] = out;
   }
   // The argument a select passes on when a mixture branch fixes its condition, else -1.
   static int passed(const ir::Node& n, const std::map<int, int>& fixed) {
@@ -580,6 +594,22 @@ class GraphFacts {
     return *hash_;
   }
   mutable std::optional<std::uint64_t> hash_;
+  // The process-wide memo tables, keyed by the graph's hash.
+  template <class Key, class Value>
+  struct Memo {
+    std::map<Key, Value> map;
+    std::mutex m;
+  };
+  static Memo<std::pair<std::uint64_t, int>, bool>& probe_memo() {
+    static Memo<std::pair<std::uint64_t, int>, bool> memo;
+    return memo;
+  }
+  // (graph, node, the fixed comparisons its sub-DAG meets)
+  using MomentKey = std::tuple<std::uint64_t, int, std::vector<std::pair<int, int>>>;
+  static Memo<MomentKey, LatticeMoments>& moment_memo() {
+    static Memo<MomentKey, LatticeMoments> memo;
+    return memo;
+  }
 };
 
 }  // namespace bl::compiler

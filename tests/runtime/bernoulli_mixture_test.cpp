@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "compiler/evaluator.hpp"
+#include "compiler/graph_facts.hpp"
 #include "compiler/lower.hpp"
 #include "dsl/math.hpp"
 #include "shaders/effects.hpp"
@@ -185,6 +186,36 @@ TEST(BernoulliMixture, TheHashOfTheCellACascadePicksIsAMixtureOfCells) {
         EXPECT_NEAR(testing::run_one_pixel(p, {m, n}, {sf, sf}, {sf / 0.5f, 0}, {0, sf / 0.5f}), want, 2e-3)
             << "mu " << mu << " mv " << mv << " s " << s;
       }
+}
+
+TEST(BernoulliMixture, TheProcessMemoOfLatticeFactsStaysBounded) {
+  // Lowering memoises the lattice facts of each graph for the process; shader after shader (an
+  // embedding) must not grow that memo without end, and a cleared memo must give the same program.
+  auto graph = [](double gain) {
+    ir::Graph g;
+    dsl::Tracer t(g);
+    const dsl::Var u = dsl::Var::input("u", true), v = dsl::Var::input("v", true);
+    const dsl::Var cell = dsl::floor(u);
+    const dsl::Var id = dsl::select(dsl::less(v, dsl::Var(0.25)), cell + 1.0, cell);
+    g.add_output("r", dsl::fract(dsl::sin(id * 1.7 + 0.3) * gain).id());
+    return g;
+  };
+  const std::size_t saved = compiler::process_memo_limit();
+  compiler::process_memo_limit() = 6;
+  auto value = [&](double gain) {
+    const ir::Graph g = graph(gain);
+    const compiler::Program p =
+        compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
+    return testing::run_one_pixel(p, {3.3f, 0.2f}, {0.2f, 0.2f}, {0.4f, 0}, {0, 0.4f});
+  };
+  const float first = value(13.37);
+  for (int k = 0; k < 20; ++k) {
+    value(13.37 + k);
+    EXPECT_LE(compiler::GraphFacts::process_memo_entries(), 2 * compiler::process_memo_limit())
+        << "graph " << k;
+  }
+  EXPECT_EQ(value(13.37), first);  // its memo entries long cleared
+  compiler::process_memo_limit() = saved;
 }
 
 TEST(BernoulliMixture, BumpRimsMatchQuadrature) {
