@@ -77,7 +77,12 @@ std::vector<Interval> node_ranges(const Graph& g) {
         r[i] = {-a.hi, -a.lo};
         break;
       case Op::Mul:
-        r[i] = hull({a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi});
+        if (n.a == n.b) {  // a square (x * x, as (u - c) * (u - c) traces): never negative
+          const double l2 = a.lo * a.lo, h2 = a.hi * a.hi;
+          r[i] = {a.lo <= 0 && a.hi >= 0 ? 0.0 : std::min(l2, h2), std::max(l2, h2)};
+        } else {
+          r[i] = hull({a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi});
+        }
         break;
       case Op::Div:
         if (b.lo > 0 || b.hi < 0) r[i] = hull({a.lo / b.lo, a.lo / b.hi, a.hi / b.lo, a.hi / b.hi});

@@ -29,7 +29,11 @@ TEST(Ranges, HandBuiltGraph) {
   const int bad = g.add({ir::Op::Div, -1, p8, sn});  // divisor straddles 0: unbounded
   const int sel = g.add({ir::Op::Select, -1, g.add({ir::Op::Less, -1, u, g.constant(0)}), ex, lin});
   const int md = g.add({ir::Op::Mod, -1, u, -1, -1, 2.5});
-  const int lg = g.call("log", sq);  // log at 0: the catalog's range
+  const int lg = g.call("log", sq);               // log at 0: the catalog's range
+  const int uu = g.add({ir::Op::Mul, -1, u, u});  // a square of an unbounded input: [0, inf)
+  const int shifted = g.add({ir::Op::Add, -1, sn, g.constant(2)});
+  const int ss = g.add({ir::Op::Mul, -1, shifted, shifted});  // [1, 3]^2 = [1, 9]
+  const int sx = g.add({ir::Op::Mul, -1, sn, ex});            // two factors: the hull, [-e, e]
   const auto r = ir::node_ranges(g);
   auto expect = [&](int n, double lo, double hi) {
     EXPECT_NEAR(r[n].lo, lo, 1e-12) << g.to_string();
@@ -47,6 +51,10 @@ TEST(Ranges, HandBuiltGraph) {
   expect(sel, 0.05, std::exp(1.0));
   expect(md, 0, 2.5);
   EXPECT_TRUE(std::isinf(r[lg].lo) && std::isinf(r[lg].hi));
+  EXPECT_EQ(r[uu].lo, 0);
+  EXPECT_TRUE(std::isinf(r[uu].hi));
+  expect(ss, 1, 9);
+  expect(sx, -std::exp(1.0), std::exp(1.0));
 }
 
 // 0.05 + 0.9 pow8(saturate(u)) with a wide footprint: Dorn's Gaussian mean of pow8 with the capped
