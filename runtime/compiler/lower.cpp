@@ -987,6 +987,7 @@ class Lowering {
   // (a cap's height sqrt(saturate(R^2 - r2)) given r2 < R^2). Joint over the first kMaxJoint
   // comparisons an output depends on (treated as independent): 2^kMaxJoint branches.
   static constexpr int kMaxJoint = 2;
+  static constexpr int kBothSides = -2;  // operand of a comparison whose two sides are both conditioned
 
   bool bernoulli(int i) const {
     const Kind kd = s_.at(i).kind;
@@ -1009,6 +1010,29 @@ class Lowering {
     const int al = mul(alpha, lambda);
     v.var = op(LOp::NonNeg, mul(x.var, sub(upper ? sub(k(1), al) : add(k(1), al), sq(lambda))));
     return v;
+  }
+
+  // Comparison c = less(a, b) with both sides random, fixed to a < b (below) or a >= b: z = a - b
+  // (a and b taken independent) is truncated at 0, and each side regressed on z (the Gaussian
+  // conditional: mean shift var_side / var_z of z's, variance drop by the share z's variance lost).
+  // A cascade's winner x_j < best: without it the branch kept the footprint where x_j loses, and
+  // Voronoi's border term sqrt(second) - sqrt(best) went negative there (borders too dark).
+  void condition_both(int c, bool below, std::set<int>& held) {
+    const ir::Node& n = g_.node(c);
+    Val z;
+    z.mean = sub(vals_[n.a].mean, vals_[n.b].mean);
+    z.var = add(vals_[n.a].var, vals_[n.b].var);
+    const Val zt = truncated(z, k(0), below);
+    const int vz = op(LOp::Max, z.var, k(1e-30f));
+    const int dm = sub(zt.mean, z.mean), lost = sub(k(1), div(zt.var, vz));
+    const Val a = vals_[n.a], b = vals_[n.b];
+    for (const auto& [side, x] : {std::pair{n.a, a}, std::pair{n.b, b}}) {
+      const int f = div(x.var, vz);  // b enters z negated
+      Val v;
+      v.mean = side == n.a ? add(x.mean, mul(f, dm)) : sub(x.mean, mul(f, dm));
+      v.var = op(LOp::NonNeg, sub(x.var, mul(mul(f, x.var), lost)));
+      condition(side, in_range(side, v), held);  // (a regressed squared distance can fall below 0)
+    }
   }
 
   // Node x takes the branch's moments v: its sources are conditioned back along sums (independent
@@ -1166,13 +1190,17 @@ class Lowering {
         const ir::Node& n = g_.node(c);
         const bool ra = vals_[n.a].var >= 0, rb = vals_[n.b].var >= 0;
         if (ra != rb) operand[j] = ra ? n.a : n.b;
+        if (ra && rb && j < pass.size()) operand[j] = kBothSides;  // a cascade link: x_j < best
         for (int x = 0; x < g_.size(); ++x) redo[x] = redo[x] || desc[set[j]][x];
-        if (operand[j] >= 0) {
+        const std::vector<int> sides =
+            operand[j] == kBothSides ? std::vector<int>{n.a, n.b} : std::vector<int>{operand[j]};
+        for (const int side : sides) {
+          if (side < 0) continue;
           // Everything between the operand's sources and the selects' values.
           const std::vector<bool> anc = facts_.branch_ancestors(c);
           std::vector<bool> up(g_.size(), false);  // the operand and its ancestors
-          up[operand[j]] = true;
-          for (int x = operand[j]; x >= 0; --x)
+          up[side] = true;
+          for (int x = side; x >= 0; --x)
             if (up[x])
               for (int a : {g_.node(x).a, g_.node(x).b, g_.node(x).c})
                 if (a >= 0) up[a] = true;
@@ -1213,17 +1241,35 @@ class Lowering {
       for (const std::vector<int>& bits : branches) {
         int w = -1;
         std::set<int> held;
+        std::vector<std::size_t> passing;  // cascade links above the winner, conditioned after it
+        int winner = -1;                   // the winning link's x_j (conditioned)
         for (std::size_t j = 0; j < set.size(); ++j) {
           const int c = bern[set[j]], bit = bits[j];
           if (bit < 0) continue;
           fixed_[c] = bit;
           w = w < 0 ? (bit ? p[j] : sub(k(1), p[j])) : mul(w, bit ? p[j] : sub(k(1), p[j]));
+          if (operand[j] == kBothSides) {
+            if (bit == pass[j]) {
+              passing.push_back(j);
+            } else {
+              winner = g_.node(c).a;
+              condition_both(c, bit == 1, held);
+            }
+            continue;
+          }
           if (operand[j] < 0) continue;
           // c = less(a, b) = 1: a < b (a truncated above at b, or b below at a); c = 0: the other side.
           const ir::Node& n = g_.node(c);
           const bool is_a = operand[j] == n.a;
           const int t = vals_[is_a ? n.b : n.a].mean;
-          condition(operand[j], truncated(vals_[operand[j]], t, is_a == (bit == 1)), held);
+          condition(operand[j], in_range(operand[j], truncated(vals_[operand[j]], t, is_a == (bit == 1))),
+                    held);
+        }
+        // A link above the winner passes: its x_l >= best, which is the winner's x_j in this branch.
+        for (std::size_t j : passing) {
+          const int a = g_.node(bern[set[j]]).a;
+          if (winner >= 0 && !held.count(a))
+            condition(a, in_range(a, truncated(vals_[a], vals_[winner].mean, bits[j] == 1)), held);
         }
         set_branch_lattice();
         for (int x = 0; x < g_.size(); ++x)
