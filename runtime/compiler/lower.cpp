@@ -1012,6 +1012,13 @@ class Lowering {
     return v;
   }
 
+  // The candidate side of a cascade link's comparison (d in `d < best` or `best > d`): the side that
+  // is not the running value, a select of the links below.
+  int candidate(int c) const {
+    const ir::Node& n = g_.node(c);
+    return g_.node(n.a).op == Op::Select ? n.b : n.a;
+  }
+
   // Comparison c = less(a, b) with both sides random, fixed to a < b (below) or a >= b: z = a - b
   // (a and b taken independent) is truncated at 0, and each side regressed on z (the Gaussian
   // conditional: mean shift var_side / var_z of z's, variance drop by the share z's variance lost).
@@ -1252,7 +1259,7 @@ class Lowering {
             if (bit == pass[j]) {
               passing.push_back(j);
             } else {
-              winner = g_.node(c).a;
+              winner = candidate(c);
               condition_both(c, bit == 1, held);
             }
             continue;
@@ -1267,10 +1274,11 @@ class Lowering {
         }
         // A link above the winner passes: its x_l >= best, which is the winner's x_j in this branch.
         for (std::size_t j : passing) {
-          const int a = g_.node(bern[set[j]]).a;
-          if (winner >= 0 && !held.count(a)) {
-            vals_[a] = in_range(a, truncated(vals_[a], vals_[winner].mean, bits[j] == 1));
-            held.insert(a);
+          const int c = bern[set[j]], x = candidate(c);
+          if (winner >= 0 && !held.count(x)) {
+            vals_[x] =
+                in_range(x, truncated(vals_[x], vals_[winner].mean, (x == g_.node(c).a) == (bits[j] == 1)));
+            held.insert(x);
           }
         }
         set_branch_lattice();
