@@ -34,10 +34,7 @@ inline std::size_t& process_memo_limit() {
 class GraphFacts {
  public:
   // Entries in the two process-wide memo tables (for tests of their bound).
-  static std::size_t process_memo_entries() {
-    std::lock_guard<std::mutex> a(probe_memo().m), b(moment_memo().m);
-    return probe_memo().map.size() + moment_memo().map.size();
-  }
+  static std::size_t process_memo_entries() { return probe_memo().size() + moment_memo().size(); }
 
   explicit GraphFacts(const ir::Graph& graph) : g(graph), consumers(graph.size()) {
     for (int i = 0; i < g.size(); ++i)
@@ -141,12 +138,7 @@ class GraphFacts {
     if (it != cell_cont.end()) return it->second;
     // Also cached for the process (each lowering builds its own facts; the probes walk the graph
     // thousands of times).
-    auto& memo = probe_memo();
-    {
-      std::lock_guard<std::mutex> lock(memo.m);
-      const auto p = memo.map.find({graph_hash(), a});
-      if (p != memo.map.end()) return cell_cont[a] = p->second;
-    }
+    if (const auto p = probe_memo().find({graph_hash(), a})) return cell_cont[a] = *p;
     bool ok = true;
     int probes = 0;
     std::mt19937_64 rng(0xC0FFEEull + static_cast<std::uint64_t>(a));
@@ -186,9 +178,7 @@ class GraphFacts {
         break;  // one jump per probe point
       }
     }
-    std::lock_guard<std::mutex> lock(memo.m);
-    if (memo.map.size() >= process_memo_limit()) memo.map.clear();
-    return cell_cont[a] = memo.map[{graph_hash(), a}] = ok && probes >= 3;
+    return cell_cont[a] = probe_memo().put({graph_hash(), a}, ok && probes >= 3);
   }
 
   // Node i as (base, n) with i = base^n: pow<n> atomics and products of powers of one base.
@@ -442,7 +432,6 @@ class GraphFacts {
     }
     // Cached for the process per graph, node and the fixed comparisons its sub-DAG meets: every
     // lowering (the tuner's thousands) of every mixture branch asks again.
-    auto& memo = moment_memo();
     MomentKey key{graph_hash(), i, {}};
     std::vector<int> order;  // the sub-DAG's nodes, in node order
     for (int x = 0; x <= i; ++x) {
@@ -452,11 +441,7 @@ class GraphFacts {
       if (fixed.count(x)) std::get<2>(key).emplace_back(x, fixed.at(x));
       if (passed(n, fixed) >= 0) std::get<2>(key).emplace_back(n.a, fixed.at(n.a));
     }
-    {
-      std::lock_guard<std::mutex> lock(memo.m);
-      const auto it = memo.map.find(key);
-      if (it != memo.map.end()) return it->second;
-    }
+    if (const auto hit = moment_memo().find(key)) return *hit;
     std::vector<double> val(g.size(), 0);
     const int count = 1024;
     double mean[2] = {0, 0}, var[2] = {0, 0};
@@ -494,9 +479,7 @@ class GraphFacts {
     out.ok = spread > 0 && same_var && std::fabs(mean[0] - mean[1]) <= 0.25 * spread;
     out.mean = 0.5 * (mean[0] + mean[1]);
     out.var = 0.5 * (var[0] + var[1]);
-    std::lock_guard<std::mutex> lock(memo.m);
-    if (memo.map.size() >= process_memo_limit()) memo.map.clear();
-    return memo.map[key] = out;
+    return moment_memo().put(key, out);
   }
   // The argument a select passes on when a mixture branch fixes its condition, else -1.
   static int passed(const ir::Node& n, const std::map<int, int>& fixed) {
@@ -594,11 +577,29 @@ class GraphFacts {
     return *hash_;
   }
   mutable std::optional<std::uint64_t> hash_;
-  // The process-wide memo tables, keyed by the graph's hash.
+  // A process-wide memo table, keyed by the graph's hash: thread-safe, emptied when it reaches
+  // process_memo_limit() entries.
   template <class Key, class Value>
-  struct Memo {
-    std::map<Key, Value> map;
-    std::mutex m;
+  class Memo {
+   public:
+    std::optional<Value> find(const Key& k) {
+      std::lock_guard<std::mutex> lock(m_);
+      const auto it = map_.find(k);
+      return it == map_.end() ? std::nullopt : std::optional<Value>(it->second);
+    }
+    Value put(const Key& k, const Value& v) {
+      std::lock_guard<std::mutex> lock(m_);
+      if (map_.size() >= process_memo_limit()) map_.clear();
+      return map_[k] = v;
+    }
+    std::size_t size() {
+      std::lock_guard<std::mutex> lock(m_);
+      return map_.size();
+    }
+
+   private:
+    std::map<Key, Value> map_;
+    std::mutex m_;
   };
   static Memo<std::pair<std::uint64_t, int>, bool>& probe_memo() {
     static Memo<std::pair<std::uint64_t, int>, bool> memo;
