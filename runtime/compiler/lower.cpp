@@ -1012,6 +1012,13 @@ class Lowering {
     return v;
   }
 
+  // Side x of comparison c = less(a, b) fixed to `bit` against the other side's value t: c = 1 is
+  // a < b (a truncated above at t, or b below at t), c = 0 the other way; its mean kept inside x's
+  // range (a squared distance truncated below its threshold can have a Gaussian mean below 0).
+  Val side_of(int c, int x, int t, int bit) {
+    return in_range(x, truncated(vals_[x], t, (x == g_.node(c).a) == (bit == 1)));
+  }
+
   // The candidate side of a cascade link's comparison (d in `d < best` or `best > d`): the side that
   // is not the running value, a select of the links below.
   int candidate(int c) const {
@@ -1265,19 +1272,15 @@ class Lowering {
             continue;
           }
           if (operand[j] < 0) continue;
-          // c = less(a, b) = 1: a < b (a truncated above at b, or b below at a); c = 0: the other side.
           const ir::Node& n = g_.node(c);
-          const bool is_a = operand[j] == n.a;
-          const int t = vals_[is_a ? n.b : n.a].mean;
-          condition(operand[j], in_range(operand[j], truncated(vals_[operand[j]], t, is_a == (bit == 1))),
-                    held);
+          const int t = vals_[operand[j] == n.a ? n.b : n.a].mean;
+          condition(operand[j], side_of(c, operand[j], t, bit), held);
         }
         // A link above the winner passes: its x_l >= best, which is the winner's x_j in this branch.
         for (std::size_t j : passing) {
           const int c = bern[set[j]], x = candidate(c);
           if (winner >= 0 && !held.count(x)) {
-            vals_[x] =
-                in_range(x, truncated(vals_[x], vals_[winner].mean, (x == g_.node(c).a) == (bits[j] == 1)));
+            vals_[x] = side_of(c, x, vals_[winner].mean, bits[j]);
             held.insert(x);
           }
         }
