@@ -214,7 +214,7 @@ int main(int argc, char** argv) {
                << " (GL driver, incl. upload) | - | - | " << rms_display(gimg, truth) << " | "
                << psnr_display(gimg, truth) << " | " << ssim_display(gimg, truth) << " | "
                << check_pixels(gimg, range).nonfinite << " | " << check_pixels(gimg, range).out_of_range
-               << " | | |\n";
+               << " | | | - |\n";
         write_png(out_dir + "/" + tag + "_" + rules_text + "_glsl.png", gimg);
         std::printf("  %s %-12s GL %9.2f ms  RMS %.5f; GLSL vs evaluator: RMS %.2e (display)\n", tag,
                     (rules_text + "_glsl").c_str(), ms, rms_display(gimg, truth), rms_display(gimg, img));
@@ -223,16 +223,17 @@ int main(int argc, char** argv) {
     // Rounding alone moves a compiled image this far only when the output depends on it: say so where
     // a user compares with images from their own renderer.
     if (worst_drift > 1e-3) {
-      char b[512];
-      std::snprintf(b, sizeof b,
-                    "The compiled code's image differs from the evaluator's by display RMS %.4f (%s): this "
-                    "shader's output depends on rounding (a large-gain hash such as fract(sin(x) * "
-                    "43758.5453) turns a contracted multiply-add into another value). The errors above are "
-                    "in the evaluator's arithmetic, the ground truth's; a renderer (or GPU driver) that "
-                    "rounds differently sees its own hash values.",
-                    worst_drift, worst_drift_row.c_str());
+      char rms[32];
+      std::snprintf(rms, sizeof rms, "%.4f", worst_drift);
+      const std::string b =
+          std::string("The compiled code's image differs from the evaluator's by display RMS ") + rms + " (" +
+          worst_drift_row +
+          "): this shader's output depends on rounding (a large-gain hash such as fract(sin(x) * 43758.5453) "
+          "turns a contracted multiply-add into another value). The errors above are in the evaluator's "
+          "arithmetic, the ground truth's; a renderer (or GPU driver) that rounds differently sees its own "
+          "hash values.";
       report << "\n" << b << "\n";
-      std::printf("note: %s\n", b);
+      std::printf("note: %s\n", b.c_str());
     }
     std::printf("wrote %s/report.md\n", out_dir.c_str());
   } catch (const std::exception& e) {
