@@ -72,6 +72,12 @@ class GlslDriver : public ::testing::Test {
     ctx_ = std::make_unique<gl::Context>();
     ctx_->set_unknown_uniform(gl::UnknownUniform::kIgnore);  // most patterns do not read the time
   }
+  // The traced graph and the driver agree on src at `time` within tol on all but `allowed` pixels.
+  void expect_driver_agrees(const std::string& src, double tol, int allowed = 0, float time = 0.0f) {
+    const Mismatch m = compare_with_driver(*ctx_, src, time, tol);
+    EXPECT_LE(m.pixels, allowed) << "time " << time << ": worst difference " << m.worst << " (" << renderer_
+                                 << ")";
+  }
   std::unique_ptr<gl::Context> ctx_;
   std::string renderer_;
 };
@@ -98,10 +104,7 @@ vec3 shade(vec2 uv, float time) {
               0.5 + 0.25 * sin(o.z + z.y + c[1][1] + o.x));
 }
 )";
-  for (float time : {0.0f, 1.3f}) {
-    const Mismatch m = compare_with_driver(*ctx_, src, time, 2e-4);
-    EXPECT_EQ(m.pixels, 0) << "time " << time << ": worst difference " << m.worst << " (" << renderer_ << ")";
-  }
+  for (float time : {0.0f, 1.3f}) expect_driver_agrees(src, 2e-4, 0, time);
 }
 
 TEST_F(GlslDriver, TracedIndicesTraceAsTheDriverRunsThem) {
@@ -122,8 +125,7 @@ vec3 shade(vec2 uv, float time) {
   return 0.5 * palette[i] + 0.25 * vec3(w[0] + w[1], w[2], w[3]) + 0.25 * col + 0.1 * m[1];
 }
 )";
-  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-5);
-  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << renderer_ << ")";
+  expect_driver_agrees(src, 1e-5);
 }
 
 TEST_F(GlslDriver, StructsTraceAsTheDriverRunsThem) {
@@ -141,8 +143,7 @@ vec3 shade(vec2 uv, float time) {
   return m.base + vec3(h, 0.5 * h, -h);
 }
 )";
-  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-4);
-  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << renderer_ << ")";
+  expect_driver_agrees(src, 1e-4);
 }
 
 TEST_F(GlslDriver, SwitchTracesAsTheDriverRunsIt) {
@@ -160,8 +161,7 @@ vec3 shade(vec2 uv, float time) {
   return c;
 }
 )";
-  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-5);
-  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << renderer_ << ")";
+  expect_driver_agrees(src, 1e-5);
 }
 
 // Polar angles: GLSL's atan(y, x) jumps by 2 pi on the negative x axis; a pixel within rounding of
@@ -176,8 +176,7 @@ vec3 shade(vec2 uv, float time) {
   return vec3(0.5 + 0.15 * angle, 0.5 + 0.3 * atan(3.0 * uv.x - uv.y), 0.25 * (asin(0.3 * uv.x) + acos(0.3 * uv.y)));
 }
 )";
-  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-3);
-  EXPECT_LE(m.pixels, 2) << "worst difference " << m.worst << " (" << renderer_ << ")";
+  expect_driver_agrees(src, 1e-3, 2);
 }
 
 // Nested loops after a traced break and continue of the outer loop.
@@ -198,8 +197,7 @@ vec3 shade(vec2 uv, float time) {
   return vec3(0.02 * acc, 0.2 * hits, 0.5);
 }
 )";
-  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-5);
-  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << renderer_ << ")";
+  expect_driver_agrees(src, 1e-5);
 }
 
 // asinh, acosh and atanh (through log in the front end) as the driver computes them.
@@ -209,13 +207,12 @@ vec3 shade(vec2 uv, float time) {
   return vec3(0.5 + 0.1 * asinh(5.0 * uv.x), 0.2 * acosh(1.0 + uv.y * uv.y), 0.5 + 0.2 * atanh(0.3 * uv.x));
 }
 )";
-  const Mismatch m = compare_with_driver(*ctx_, src, 0.0f, 1e-4);
-  EXPECT_EQ(m.pixels, 0) << "worst difference " << m.worst << " (" << renderer_ << ")";
+  expect_driver_agrees(src, 1e-4);
 }
 
-// The example patterns (scenes/glsl) without a large-gain hash// The example patterns (scenes/glsl) without a
-// large-gain hash: a pixel whose argument lies within rounding of a jump may land on the other side in one of
-// them, so a few pixels may differ; a misread construct moves far more.
+// The example patterns (scenes/glsl) without a large-gain hash: a pixel whose argument lies within rounding
+// of a jump may land on the other side in one of them, so a few pixels may differ; a misread construct moves
+// far more.
 TEST_F(GlslDriver, ExamplePatternsTraceAsTheDriverRunsThem) {
   for (const char* name : {"rotated_tiles", "checkerboard", "circles", "color_circles", "bricks", "zigzag",
                            "quadratic_sine", "fire", "rings", "stripes", "sunburst"}) {
