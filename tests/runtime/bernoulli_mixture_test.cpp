@@ -54,14 +54,14 @@ float run(const ir::Graph& g, const std::string& rule, float mu, float mv, float
   return testing::run_one_pixel(p, {mu, mv}, {s, s}, {s / 0.5f, 0}, {0, s / 0.5f});
 }
 
-// E[shade(U, V)] by the midpoint rule on +-6 s in each axis (n^2 points).
-double expect2(double mu, double mv, double s, int n = 400) {
+// E[f(U, V)] by the midpoint rule on +-6 s in each axis (n^2 points); f is shade by default.
+double expect2(double mu, double mv, double s, int n = 400, double (*f)(double, double) = shade<double>) {
   double sum = 0, wsum = 0;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const double zu = -6 + (i + 0.5) * 12.0 / n, zv = -6 + (j + 0.5) * 12.0 / n;
       const double w = std::exp(-0.5 * (zu * zu + zv * zv));
-      sum += w * shade<double>(mu + s * zu, mv + s * zv);
+      sum += w * f(mu + s * zu, mv + s * zv);
       wsum += w;
     }
   return sum / wsum;
@@ -241,16 +241,7 @@ TEST(BernoulliMixture, ACascadesWinnerIsNearerThanTheOthers) {
   for (const auto& [mu, mv] : {std::pair{0.5, 0.3}, std::pair{0.45, 0.5}, std::pair{0.6, 0.55},
                                std::pair{0.2, 0.2}, std::pair{0.55, 0.05}})
     for (double s : {1e-4, 0.01, 0.03, 0.06, 0.1}) {
-      double want = 0, wsum = 0;
-      const int q = 300;
-      for (int i = 0; i < q; ++i)
-        for (int j = 0; j < q; ++j) {
-          const double zu = -6 + (i + 0.5) * 12.0 / q, zv = -6 + (j + 0.5) * 12.0 / q;
-          const double w = std::exp(-0.5 * (zu * zu + zv * zv));
-          want += w * border(mu + s * zu, mv + s * zv);
-          wsum += w;
-        }
-      want /= wsum;
+      const double want = expect2(mu, mv, s, 300, border);
       const double got =
           run(g, "gaussian", static_cast<float>(mu), static_cast<float>(mv), static_cast<float>(s));
       EXPECT_NEAR(got, want, 0.2) << "mu " << mu << ", " << mv << " s " << s;  // without: up to 0.36 off
