@@ -1,5 +1,6 @@
 // bl_tuner: Pareto ranking, genome operators, cost model, determinism, resumption, error measure.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -41,7 +42,10 @@ using namespace bl::tuner;
 namespace {
 
 std::string temp_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("bl_tuner_test_" + name);
+  // Per process: two runs at once (two checkouts, CI beside a developer's ctest) removed each other's
+  // jit sources mid-compile.
+  const auto d =
+      std::filesystem::temp_directory_path() / ("bl_tuner_test_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d.string();
