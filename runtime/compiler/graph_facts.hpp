@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -30,6 +31,31 @@ inline std::size_t& process_memo_limit() {
   static std::size_t limit = 1u << 14;
   return limit;
 }
+
+// A process-wide memo table, keyed by the graph's hash: thread-safe, emptied when it reaches
+// process_memo_limit() entries.
+template <class Key, class Value>
+class ProcessMemo {
+ public:
+  std::optional<Value> find(const Key& k) {
+    std::lock_guard<std::mutex> lock(m_);
+    const auto it = map_.find(k);
+    return it == map_.end() ? std::nullopt : std::optional<Value>(it->second);
+  }
+  Value put(const Key& k, const Value& v) {
+    std::lock_guard<std::mutex> lock(m_);
+    if (map_.size() >= process_memo_limit()) map_.clear();
+    return map_[k] = v;
+  }
+  std::size_t size() {
+    std::lock_guard<std::mutex> lock(m_);
+    return map_.size();
+  }
+
+ private:
+  std::map<Key, Value> map_;
+  std::mutex m_;
+};
 
 class GraphFacts {
  public:
@@ -133,12 +159,18 @@ class GraphFacts {
   // compare the outputs on both sides (1e-4). Value noise and Truchet tiles are continuous across
   // their cells' edges (a hash of the cell is hidden by the blend or the mortar there);
   // checkerboard's floor(u + 0.5) - floor(u) is not.
-  bool cell_continuous(int a) const {
-    auto it = cell_cont.find(a);
+  // With a period P != 1 the jumps are those of floor(a / P): a mod(a, P)'s (GLSL's mod(p, s) - s / 2
+  // of a hexagonal or rectangular tiling, whose consumers see |.| or a squared length, continuous).
+  bool cell_continuous(int a, double period = 1) const {
+    const std::pair<int, double> key{a, period};
+    auto it = cell_cont.find(key);
     if (it != cell_cont.end()) return it->second;
     // Also cached for the process (each lowering builds its own facts; the probes walk the graph
-    // thousands of times).
-    if (const auto p = probe_memo().find({graph_hash(), a})) return cell_cont[a] = *p;
+    // thousands of times). Period 1 keys on the graph's hash alone, another period mixes it in.
+    std::uint64_t period_bits = 0;
+    if (period != 1) std::memcpy(&period_bits, &period, sizeof period);
+    const std::pair<std::uint64_t, int> memo_key{graph_hash() ^ (period_bits * 0x9E3779B97F4A7C15ull), a};
+    if (const auto p = probe_memo().find(memo_key)) return cell_cont[key] = *p;
     bool ok = true;
     int probes = 0;
     std::mt19937_64 rng(0xC0FFEEull + static_cast<std::uint64_t>(a));
@@ -149,7 +181,7 @@ class GraphFacts {
         auto at = [&](double w) {
           std::vector<double> all;
           const auto out = axis == 0 ? plain_graph(w, v0, &all) : plain_graph(u0, w, &all);
-          return std::make_pair(std::floor(all[a]), out);
+          return std::make_pair(std::floor(all[a] / period), out);
         };
         const double w0 = axis == 0 ? u0 : v0;
         const double f0 = at(w0).first;
@@ -178,7 +210,7 @@ class GraphFacts {
         break;  // one jump per probe point
       }
     }
-    return cell_cont[a] = probe_memo().put({graph_hash(), a}, ok && probes >= 3);
+    return cell_cont[key] = probe_memo().put(memo_key, ok && probes >= 3);
   }
 
   // Node i as (base, n) with i = base^n: pow<n> atomics and products of powers of one base.
@@ -571,44 +603,20 @@ class GraphFacts {
   std::vector<Lattice> lattice;
 
  private:
-  mutable std::map<int, bool> cell_cont;  // cell_continuous per floor argument
+  mutable std::map<std::pair<int, double>, bool> cell_cont;  // cell_continuous per floor argument, period
   std::uint64_t graph_hash() const {
     if (!hash_) hash_ = g.hash();
     return *hash_;
   }
   mutable std::optional<std::uint64_t> hash_;
-  // A process-wide memo table, keyed by the graph's hash: thread-safe, emptied when it reaches
-  // process_memo_limit() entries.
-  template <class Key, class Value>
-  class Memo {
-   public:
-    std::optional<Value> find(const Key& k) {
-      std::lock_guard<std::mutex> lock(m_);
-      const auto it = map_.find(k);
-      return it == map_.end() ? std::nullopt : std::optional<Value>(it->second);
-    }
-    Value put(const Key& k, const Value& v) {
-      std::lock_guard<std::mutex> lock(m_);
-      if (map_.size() >= process_memo_limit()) map_.clear();
-      return map_[k] = v;
-    }
-    std::size_t size() {
-      std::lock_guard<std::mutex> lock(m_);
-      return map_.size();
-    }
-
-   private:
-    std::map<Key, Value> map_;
-    std::mutex m_;
-  };
-  static Memo<std::pair<std::uint64_t, int>, bool>& probe_memo() {
-    static Memo<std::pair<std::uint64_t, int>, bool> memo;
+  static ProcessMemo<std::pair<std::uint64_t, int>, bool>& probe_memo() {
+    static ProcessMemo<std::pair<std::uint64_t, int>, bool> memo;
     return memo;
   }
   // (graph, node, the fixed comparisons its sub-DAG meets)
   using MomentKey = std::tuple<std::uint64_t, int, std::vector<std::pair<int, int>>>;
-  static Memo<MomentKey, LatticeMoments>& moment_memo() {
-    static Memo<MomentKey, LatticeMoments> memo;
+  static ProcessMemo<MomentKey, LatticeMoments>& moment_memo() {
+    static ProcessMemo<MomentKey, LatticeMoments> memo;
     return memo;
   }
 };

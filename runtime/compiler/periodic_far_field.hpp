@@ -1,0 +1,48 @@
+// Nodes that see the surface only through fract / mod of affine functions of (u, v): a tiling
+// (hexagons from two offset mod lattices, circles on a fract grid). Once the footprint covers more
+// than a period of every such source, the smoothed value of such a node is its spatial average (a
+// Gaussian of sd w periods keeps exp(-2 pi^2 w^2) of the first harmonic: 0.7% at w = 1/2), which no
+// moment-propagating rule gives: the Gaussian stand-in for a uniform fract pushed through |.|, max
+// and smoothstep drew a hexagonal tiling's far field 0.1-0.3 too dark.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "ir/graph.hpp"
+
+namespace bl::compiler {
+
+class PeriodicFarField {
+ public:
+  explicit PeriodicFarField(const ir::Graph& g);
+
+  // The fract / mod nodes through which node i alone sees u and v (sorted); empty when i reads any
+  // other input, a texture, or u / v by another path, or is constant.
+  const std::vector<int>& sources(int i) const { return sources_[i]; }
+
+  // i is an output with sources: where the far field applies. Only outputs: an intermediate value's
+  // spatial moments are not what a nonlinear reader needs (applied to every outermost periodic node,
+  // the bump normals that Phong lighting reads and the tiles' fract of value noise and Truchet moved
+  // all-Gaussian errors by -5% to +4%: rings +1.7%, value_noise_none +3.6%, truchet -4.7%).
+  bool periodic_output(int i) const { return output_[i]; }
+
+  // The period of source j in its argument's units (1 for fract, |c| for mod(x, c)).
+  double period(int j) const;
+
+  struct Moments {
+    double mean = 0, second = 0;  // spatial mean of the node and of its square
+    bool ok = false;              // false: a source is constant over the plane, or a value not finite
+  };
+  // Over a square covering 32 periods of the longest source, 128 x 128 jittered points of the plain
+  // graph (double); memoised for the process by the graph's hash.
+  Moments spatial(int i) const;
+
+ private:
+  const ir::Graph& g_;
+  std::vector<std::vector<int>> sources_;
+  std::vector<bool> output_;
+  mutable std::uint64_t hash_ = 0;
+};
+
+}  // namespace bl::compiler
