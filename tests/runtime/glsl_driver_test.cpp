@@ -214,8 +214,9 @@ vec3 shade(vec2 uv, float time) {
 // of a jump may land on the other side in one of them, so a few pixels may differ; a misread construct moves
 // far more.
 TEST_F(GlslDriver, ExamplePatternsTraceAsTheDriverRunsThem) {
-  for (const char* name : {"rotated_tiles", "checkerboard", "circles", "color_circles", "bricks", "zigzag",
-                           "quadratic_sine", "fire", "rings", "stripes", "sunburst"}) {
+  for (const char* name :
+       {"rotated_tiles", "checkerboard", "circles", "color_circles", "bricks", "zigzag", "quadratic_sine",
+        "fire", "rings", "stripes", "sunburst", "hex_tiles", "plaid", "log_spiral"}) {
     const std::string src = read(std::string(BL_SCENES_DIR) + "/glsl/" + name + ".glsl");
     ASSERT_FALSE(src.empty()) << name;
     const Mismatch m = compare_with_driver(*ctx_, src, 0.7f, 1e-3);
