@@ -142,6 +142,28 @@ TEST(PeriodicFarField, WideFootprintsGiveTheTilingsAverage) {
     EXPECT_NEAR(run(g, mu, mv, 1.0), avg, 3e-3) << mu << ", " << mv;
 }
 
+TEST(PeriodicFarField, HardInputsStayFiniteAndConverge) {
+  const ir::Graph g = discs_graph();
+  double avg = 0;
+  constexpr int n = 1000;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) avg += discs((i + 0.5) / n * 0.5, (j + 0.5) / n * 0.5);
+  avg /= double(n) * n;
+  // sigma -> 0: the plain pattern (inside a disc's rim, outside it, on the flat between).
+  for (const auto& [mu, mv] : {std::pair{0.25, 0.25}, std::pair{0.1, 0.2}, std::pair{0.0, 0.0}})
+    for (double s : {0.0, 1e-7})
+      EXPECT_NEAR(run(g, mu, mv, s), discs(mu, mv), 1e-4) << mu << ", " << mv << " s " << s;
+  // Huge footprints and huge |u|: the average (float inputs: |u| = 1e4 keeps 1e-3 of a period).
+  for (double s : {10.0, 1e3, 1e6}) EXPECT_NEAR(run(g, 0.3, 0.1, s), avg, 3e-3) << s;
+  EXPECT_NEAR(run(g, 1e4 + 0.1, -1e4, 2.0), avg, 3e-3);
+  // Across the blend (0.3 to 0.5 periods: s = 0.15 to 0.25 here) and around it: finite, in [0, 1].
+  for (double mu : {0.0, 0.13, 0.25, 7.7})
+    for (double s = 0.01; s < 20; s *= 1.3) {
+      const double y = run(g, mu, 0.4 * mu, s);
+      EXPECT_TRUE(y >= 0 && y <= 1) << mu << " s " << s << ": " << y;
+    }
+}
+
 TEST(PeriodicFarField, AHexagonalTilingsModSeamsKeepTheSideTheFootprintHolds) {
   // Footprints on the seams of the mod lattices (3u or 3v - sqrt(3)/2 at a whole period) and inside
   // tiles, at 1-10% of a tile: all-Gaussian against 2D quadrature. mod's full rule averaged both
