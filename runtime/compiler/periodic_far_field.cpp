@@ -64,6 +64,27 @@ ProcessMemo<std::pair<std::uint64_t, int>, PeriodicFarField::Moments>& moments_m
   return memo;
 }
 
+ProcessMemo<std::pair<std::uint64_t, int>, PeriodicFarField::Axes>& axes_memo() {
+  static ProcessMemo<std::pair<std::uint64_t, int>, PeriodicFarField::Axes> memo;
+  return memo;
+}
+
+// The smallest common multiple of the periods p (each > 0) among k * max(p), k = 1..16, within a
+// relative 1e-6; 0 when there is none (incommensurate or too long).
+double common_period(const std::vector<double>& p) {
+  const double longest = *std::max_element(p.begin(), p.end());
+  for (int k = 1; k <= 16; ++k) {
+    const double L = k * longest;
+    bool all = true;
+    for (double q : p) {
+      const double r = L / q;
+      all = all && std::fabs(r - std::round(r)) <= 1e-6 * r;
+    }
+    if (all) return L;
+  }
+  return 0;
+}
+
 }  // namespace
 
 PeriodicFarField::PeriodicFarField(const ir::Graph& g) : g_(g), sources_(g.size()), output_(g.size(), false) {
@@ -139,6 +160,80 @@ PeriodicFarField::Moments PeriodicFarField::spatial(int i) const {
   out.second = sum2 / (kGrid * kGrid);
   out.ok = true;
   return moments_memo().put({hash_, i}, out);
+}
+
+PeriodicFarField::Axes PeriodicFarField::axes(int i) const {
+  if (sources_[i].empty()) return {};
+  if (hash_ == 0) hash_ = g_.hash();
+  if (const auto m = axes_memo().find({hash_, i})) return *m;
+  Axes out;
+  std::vector<double> in(g_.inputs().size(), 0.0);
+  int slot[2] = {-1, -1};
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    if (g_.inputs()[k].name == "u") slot[0] = static_cast<int>(k);
+    if (g_.inputs()[k].name == "v") slot[1] = static_cast<int>(k);
+  }
+  auto values = [&](double u, double v) {
+    if (slot[0] >= 0) in[slot[0]] = u;
+    if (slot[1] >= 0) in[slot[1]] = v;
+    return plain_values(g_, in);
+  };
+  // Each source reads one axis: its period along that axis, in units of u or v.
+  const std::vector<double> x0 = values(0, 0), xu = values(1, 0), xv = values(0, 1);
+  std::vector<double> periods[2];
+  for (int j : sources_[i]) {
+    const int a = g_.node(j).a;
+    const double du = xu[a] - x0[a], dv = xv[a] - x0[a];
+    if (du != 0 && dv != 0) return axes_memo().put({hash_, i}, out);  // a rotated or sheared source
+    const int axis = du != 0 ? 0 : 1;
+    const double d = axis == 0 ? du : dv;
+    if (!(std::isfinite(d) && d != 0)) return axes_memo().put({hash_, i}, out);
+    periods[axis].push_back(period(j) / std::fabs(d));
+  }
+  double L[2] = {0, 0};
+  for (int axis = 0; axis < 2; ++axis) {
+    if (periods[axis].empty()) continue;
+    L[axis] = common_period(periods[axis]);
+    if (!(L[axis] > 0)) return axes_memo().put({hash_, i}, out);
+  }
+  constexpr int kAlong = 256, kAcross = 128;
+  for (int axis = 0; axis < 2; ++axis) {
+    Series& s = axis == 0 ? out.u : out.v;
+    if (L[axis] == 0) continue;  // constant along this axis
+    s.input = slot[axis];
+    s.period = L[axis];
+    const double across = L[1 - axis];  // 0: constant across, one sample
+    const int n_across = across > 0 ? kAcross : 1;
+    std::vector<double> F(kAlong);
+    for (int p = 0; p < kAlong; ++p) {
+      const double x = L[axis] * (p + 0.5) / kAlong;
+      double sum = 0;
+      for (int q = 0; q < n_across; ++q) {
+        const double y = across * (q + 0.5) / n_across;
+        const double f = (axis == 0 ? values(x, y) : values(y, x))[i];
+        if (!std::isfinite(f)) return axes_memo().put({hash_, i}, Axes{});
+        sum += f;
+      }
+      F[p] = sum / n_across;
+    }
+    for (double f : F) s.a0 += f / kAlong;
+    for (int m = 1; m <= kSeriesTerms; ++m) {
+      double a = 0, b = 0;
+      for (int p = 0; p < kAlong; ++p) {
+        const double t = 2 * M_PI * m * (p + 0.5) / kAlong;
+        a += F[p] * std::cos(t);
+        b += F[p] * std::sin(t);
+      }
+      s.a.push_back(2 * a / kAlong);
+      s.b.push_back(2 * b / kAlong);
+    }
+    while (!s.a.empty() && std::fabs(s.a.back()) < kSeriesFloor && std::fabs(s.b.back()) < kSeriesFloor) {
+      s.a.pop_back();
+      s.b.pop_back();
+    }
+  }
+  out.ok = true;
+  return axes_memo().put({hash_, i}, out);
 }
 
 }  // namespace bl::compiler

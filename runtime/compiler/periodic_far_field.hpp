@@ -38,6 +38,26 @@ class PeriodicFarField {
   // graph (double); memoised for the process by the graph's hash.
   Moments spatial(int i) const;
 
+  // An axis-aligned tiling (every source reads u alone or v alone, their periods commensurate: a
+  // common period L per axis): per axis the Fourier series of the output averaged over the other
+  // axis, F(x) = a0 + sum_m a_m cos(2 pi m x / L) + b_m sin(2 pi m x / L). Under a Gaussian of sd s
+  // along x the m-th term is damped by exp(-2 pi^2 m^2 s^2 / L^2): the exact smoothed value once the
+  // footprint covers the other axis (the band below a horizon, where it covers v and not u).
+  struct Series {
+    int input = -1;     // the axis's input slot; -1: the output does not depend on this axis
+    double period = 0;  // L
+    double a0 = 0;
+    std::vector<double> a, b;  // m = 1..M, trailing terms below kSeriesFloor dropped
+  };
+  struct Axes {
+    bool ok = false;
+    Series u, v;
+  };
+  static constexpr int kSeriesTerms = 16;       // M: the damping exp(-2 pi^2 17^2 w^2) < 6e-3 for w >= 0.03
+  static constexpr double kSeriesFloor = 1e-3;  // a term whose |a|, |b| stay below this is not emitted
+  // 256 points along the axis x 128 across (one period each, midpoint rule); memoised like spatial().
+  Axes axes(int i) const;
+
  private:
   const ir::Graph& g_;
   std::vector<std::vector<int>> sources_;
