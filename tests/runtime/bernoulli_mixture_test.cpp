@@ -15,6 +15,7 @@
 #include "dsl/math.hpp"
 #include "shaders/effects.hpp"
 #include "tests/runtime/one_pixel.hpp"
+#include "tests/runtime/quadrature2d.hpp"
 
 namespace bl {
 namespace {
@@ -54,17 +55,9 @@ float run(const ir::Graph& g, const std::string& rule, float mu, float mv, float
   return testing::run_one_pixel(p, {mu, mv}, {s, s}, {s / 0.5f, 0}, {0, s / 0.5f});
 }
 
-// E[f(U, V)] by the midpoint rule on +-6 s in each axis (n^2 points); f is shade by default.
+// E[f(U, V)], U ~ N(mu, s^2), V ~ N(mv, s^2); f is shade by default.
 double expect2(double mu, double mv, double s, int n = 400, double (*f)(double, double) = shade<double>) {
-  double sum = 0, wsum = 0;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double zu = -6 + (i + 0.5) * 12.0 / n, zv = -6 + (j + 0.5) * 12.0 / n;
-      const double w = std::exp(-0.5 * (zu * zu + zv * zv));
-      sum += w * f(mu + s * zu, mv + s * zv);
-      wsum += w;
-    }
-  return sum / wsum;
+  return testing::gaussian_mean_2d(f, mu, mv, s, s, n);
 }
 
 ir::Graph one_input(const std::function<dsl::Var(dsl::Var)>& f) {

@@ -13,6 +13,7 @@
 #include "dsl/math.hpp"
 #include "rules/rule.hpp"
 #include "tests/runtime/one_pixel.hpp"
+#include "tests/runtime/quadrature2d.hpp"
 
 namespace bl {
 namespace {
@@ -27,14 +28,6 @@ ir::Graph two_inputs(const std::function<Var(Var, Var)>& f) {
   return g;
 }
 
-double run(const ir::Graph& g, double mu, double mv, double s) {
-  const compiler::Program p =
-      compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
-  const float sf = static_cast<float>(s);
-  return testing::run_one_pixel(p, {static_cast<float>(mu), static_cast<float>(mv)}, {sf, sf}, {sf / 0.5f, 0},
-                                {0, sf / 0.5f});
-}
-
 double run(const ir::Graph& g, double mu, double mv, double su, double sv) {
   const compiler::Program p =
       compiler::lower(g, compiler::uniform_schedule(g, rules::parse_rule("gaussian")));
@@ -43,18 +36,13 @@ double run(const ir::Graph& g, double mu, double mv, double su, double sv) {
                                 {0, fv / 0.5f});
 }
 
-// E[f(mu + su Z1, mv + sv Z2)], midpoint rule on +-6 sd, n^2 points.
+double run(const ir::Graph& g, double mu, double mv, double s) {
+  return run(g, mu, mv, s, s);
+}
+
 double expect2(const std::function<double(double, double)>& f, double mu, double mv, double su, double sv,
                int n = 400) {
-  double sum = 0, wsum = 0;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double zu = -6 + (i + 0.5) * 12.0 / n, zv = -6 + (j + 0.5) * 12.0 / n;
-      const double w = std::exp(-0.5 * (zu * zu + zv * zv));
-      sum += w * f(mu + su * zu, mv + sv * zv);
-      wsum += w;
-    }
-  return sum / wsum;
+  return testing::gaussian_mean_2d(f, mu, mv, su, sv, n);
 }
 double expect2(const std::function<double(double, double)>& f, double mu, double mv, double s, int n = 400) {
   return expect2(f, mu, mv, s, s, n);
