@@ -168,6 +168,8 @@ class Lowering {
         return (exact_[n.a] && fixed(n.b)) || (fixed(n.a) && exact_[n.b]);
       case Op::Div:
         return exact_[n.a] && fixed(n.b);
+      case Op::Select:  // p a + (1 - p) b with p exact (a fused fract step) and a, b not random
+        return exact_[n.a] && fixed(n.b) && fixed(n.c);
       case Op::Call: {
         // An atomic of one input's affine map under the Gaussian rule: the table's entry is the exact
         // convolution (fract(u) alone), unless fract takes its mode or the rule scales sigma.
@@ -192,14 +194,14 @@ class Lowering {
   static constexpr float kFarW0 = 0.3f;
   static constexpr float kFarW1 = 0.5f;
   Val far_field(int i, Val v) {
-    if (s_.at(i).kind != Kind::Gaussian || v.var < 0 || exact_[i] || !far_.periodic_output(i)) return v;
+    if (s_.at(i).kind != Kind::Gaussian || exact_[i] || !far_.periodic_output(i)) return v;
     const PeriodicFarField::Moments m = far_.spatial(i);
     if (!m.ok) return v;
     const PeriodicFarField::Axes ax = far_.axes(i);
-    if (ax.ok) {
-      Val out;
-      if (axis_far_field(v, m, ax, out)) return out;
-    }
+    // The series reads the footprint from the inputs themselves: a plain pattern under a Gaussian
+    // output still gets its far field and band (R is then the plain value).
+    if (ax.ok) return axis_far_field(v.var < 0 ? Val{v.mean, k(0)} : v, m, ax);
+    if (v.var < 0) return v;
     int w = -1;
     for (int j : far_.sources(i)) {
       Val& x = vals_[g_.node(j).a];
@@ -218,14 +220,12 @@ class Lowering {
 
   // An axis-aligned tiling (PeriodicFarField::axes): t_x = the far-field weight of axis x (0.3 to 0.5
   // periods), X_x = the damped series of the output averaged over the other axis where the series
-  // converges (r_x: 0.02 to 0.03 periods along x), else the rule's value R:
+  // converges (r_x: 0.035 to 0.045 periods along x), else the rule's value R:
   //   E = (1 - t_u)(1 - t_v) R + t_v X_u + t_u (1 - t_v) X_v
   // (both covered: X_u, exact there and tending to the mean; blending into the sampled mean instead
   // cost a stripe pattern 0.008 at 0.4 periods). An axis the output does not depend on counts as
   // covered (t = 1): a stripe pattern is its series.
-  // False (the caller falls back) when an axis's input is not random under this schedule.
-  bool axis_far_field(const Val& v, const PeriodicFarField::Moments& m, const PeriodicFarField::Axes& ax,
-                      Val& out) {
+  Val axis_far_field(const Val& v, const PeriodicFarField::Moments& m, const PeriodicFarField::Axes& ax) {
     int t[2], X[2];
     for (int axis = 0; axis < 2; ++axis) {
       const PeriodicFarField::Series& se = axis == 0 ? ax.u : ax.v;
@@ -234,17 +234,18 @@ class Lowering {
         X[axis] = v.mean;  // not read: the other axis's weight (1 - t) is 0
         continue;
       }
-      int in = -1;
-      for (int j = 0; j < g_.size() && in < 0; ++j)
-        if (g_.node(j).op == Op::Input && static_cast<int>(g_.node(j).value) == se.input) in = j;
-      if (in < 0 || vals_[in].var < 0) return false;
-      Val& x = vals_[in];
+      Inst in;
+      in.op = LOp::InMean;
+      in.arg[0] = se.input;
+      const int mean = emit(in);
+      in.op = LOp::InSd;
+      const int sdev = emit(in);
       const float L = static_cast<float>(se.period);
-      const int w = mul(sd(x), k(1 / L));
+      const int w = mul(sdev, k(1 / L));
       t[axis] = call(plain_name("saturate"), {mul(sub(w, k(kFarW0)), k(1.0f / (kFarW1 - kFarW0)))});
-      const int r = call(plain_name("saturate"), {mul(sub(w, k(0.02f)), k(100.0f))});
+      const int r = call(plain_name("saturate"), {mul(sub(w, k(0.035f)), k(100.0f))});
       // cos, sin of m theta by the angle-sum recurrence; the damping q^(m^2) by q^(2m + 1) steps.
-      const int th = mul(k(6.2831853f), call(plain_name("fract"), {mul(x.mean, k(1 / L))}));
+      const int th = mul(k(6.2831853f), call(plain_name("fract"), {mul(mean, k(1 / L))}));
       const int c1 = call(plain_name("cos"), {th}), s1 = call(plain_name("sin"), {th});
       const int q = call(plain_name("exp"), {mul(k(-19.7392088f), sq(w))});  // exp(-2 pi^2 w^2)
       const int q2 = sq(q);
@@ -271,12 +272,13 @@ class Lowering {
     }
     const int nu = sub(k(1), t[0]), nv = sub(k(1), t[1]);
     const int near = mul(nu, nv);
+    Val out;
     out.mean = add(add(mul(near, v.mean), mul(t[1], X[0])), mul(mul(t[0], nv), X[1]));
     // The second moment: the rule's where no axis is covered, the spatial one elsewhere.
     const int m2 =
         add(mul(near, add(v.var, sq(v.mean))), mul(sub(k(1), near), k(static_cast<float>(m.second))));
     out.var = op(LOp::NonNeg, sub(m2, sq(out.mean)));
-    return true;
+    return out;
   }
 
   Val node_rule(int i) {

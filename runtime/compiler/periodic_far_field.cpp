@@ -110,8 +110,45 @@ PeriodicFarField::PeriodicFarField(const ir::Graph& g) : g_(g), sources_(g.size(
     }
     if (bad[i]) sources_[i].clear();
   }
-  for (int o : g.outputs())
-    if (!sources_[o].empty()) output_[o] = true;
+  // Nodes every path of which to the outputs is +, -, * or / by constants (a mix of two colours by a
+  // tiling's mask, per channel): their far field passes to the outputs exactly, so it is taken once
+  // at the deepest such node with sources (the mask) instead of at each channel.
+  std::vector<bool> affine_out(g.size(), false);
+  for (int o : g.outputs()) affine_out[o] = true;
+  std::vector<std::vector<int>> readers(g.size());
+  for (int i = 0; i < g.size(); ++i)
+    for (int a : {g.node(i).a, g.node(i).b, g.node(i).c})
+      if (a >= 0) readers[a].push_back(i);
+  auto constant_affine = [&](int r, int of) {  // r is of op a constant
+    const ir::Node& n = g.node(r);
+    auto cst = [&](int j) { return j >= 0 && g.node(j).op == ir::Op::Const; };
+    switch (n.op) {
+      case ir::Op::Neg:
+        return true;
+      case ir::Op::Add:
+      case ir::Op::Sub:
+      case ir::Op::Mul:
+        return (n.a == of && cst(n.b)) || (n.b == of && cst(n.a));
+      case ir::Op::Div:
+        return n.a == of && cst(n.b);
+      default:
+        return false;
+    }
+  };
+  for (int i = g.size() - 1; i >= 0; --i) {
+    if (readers[i].empty()) continue;
+    bool all = true;
+    for (int r : readers[i]) all = all && affine_out[r] && constant_affine(r, i);
+    affine_out[i] = affine_out[i] || all;
+  }
+  for (int i = 0; i < g.size(); ++i) {
+    if (sources_[i].empty() || !affine_out[i]) continue;
+    const ir::Node& n = g.node(i);
+    bool deepest = true;  // not itself a constant map of a node that qualifies
+    for (int a : {n.a, n.b})
+      if (a >= 0 && !sources_[a].empty() && affine_out[a] && constant_affine(i, a)) deepest = false;
+    output_[i] = deepest;
+  }
 }
 
 double PeriodicFarField::period(int j) const {
@@ -196,7 +233,7 @@ PeriodicFarField::Axes PeriodicFarField::axes(int i) const {
     L[axis] = common_period(periods[axis]);
     if (!(L[axis] > 0)) return axes_memo().put({hash_, i}, out);
   }
-  constexpr int kAlong = 256, kAcross = 128;
+  constexpr int kAlong = 1024, kAcross = 128;
   for (int axis = 0; axis < 2; ++axis) {
     Series& s = axis == 0 ? out.u : out.v;
     if (L[axis] == 0) continue;  // constant along this axis
