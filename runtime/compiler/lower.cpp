@@ -152,9 +152,9 @@ class Lowering {
   }
 
   // The mean of node i is exact under its kernel: a fused pulse, window or step (exact at every
-  // width), an atomic of an input's affine map, or such a node under +, -, *, / with values that are
-  // not random. The far field leaves
-  // those alone (its spatial average is a sampled estimate and ignores the last harmonics' share).
+  // width), an atomic of an input's affine map, such a node under +, -, *, / with values that are
+  // not random, or a select of such values by it. The far field leaves those alone (its mean and
+  // series are sampled from the plain graph and truncated).
   bool exact_linear(int i) const {
     const ir::Node& n = g_.node(i);
     auto fixed = [&](int j) { return vals_[j].var < 0; };
@@ -186,9 +186,10 @@ class Lowering {
     }
   }
 
-  // A tiling's output (PeriodicFarField) at footprints wider than its periods: blended into its
-  // spatial moments as the footprint grows from kFarW0 to kFarW1 periods of the source it covers
-  // least (Gaussian rule only: a box or tent kernel's harmonics decay like 1 / w, not exp(-w^2)).
+  // A tiling's mask (PeriodicFarField::periodic_output) at footprints wider than its periods:
+  // axis-aligned tilings take the series below; others blend into their spatial moments as the
+  // footprint grows from kFarW0 to kFarW1 periods of the source they cover least (Gaussian rule
+  // only: a box or tent kernel's harmonics decay like 1 / w, not exp(-w^2)).
   // Measured all-Gaussian, hexagonal tiles: 0.0788 -> 0.0558 (0.2/0.4: 0.0506, 0.4/0.6: 0.0592);
   // circles_none 0.02128 -> 0.02111.
   static constexpr float kFarW0 = 0.3f;
