@@ -151,6 +151,20 @@ PeriodicFarField::PeriodicFarField(const ir::Graph& g) : g_(g), sources_(g.size(
   }
 }
 
+int PeriodicFarField::surface_slot(const char* name) const {
+  for (std::size_t k = 0; k < g_.inputs().size(); ++k)
+    if (g_.inputs()[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
+std::vector<double> PeriodicFarField::plain_at(double u, double v) const {
+  std::vector<double> in(g_.inputs().size(), 0.0);
+  const int su = surface_slot("u"), sv = surface_slot("v");
+  if (su >= 0) in[su] = u;
+  if (sv >= 0) in[sv] = v;
+  return plain_values(g_, in);
+}
+
 double PeriodicFarField::period(int j) const {
   const ir::Node& n = g_.node(j);
   return n.op == ir::Op::Mod ? std::fabs(n.value) : 1.0;
@@ -160,19 +174,8 @@ PeriodicFarField::Moments PeriodicFarField::spatial(int i) const {
   if (sources_[i].empty()) return {};
   if (hash_ == 0) hash_ = g_.hash();
   if (const auto m = moments_memo().find({hash_, i})) return *m;
-  std::vector<double> in(g_.inputs().size(), 0.0);
-  int su = -1, sv = -1;
-  for (std::size_t k = 0; k < in.size(); ++k) {
-    if (g_.inputs()[k].name == "u") su = static_cast<int>(k);
-    if (g_.inputs()[k].name == "v") sv = static_cast<int>(k);
-  }
-  auto values = [&](double u, double v) {
-    if (su >= 0) in[su] = u;
-    if (sv >= 0) in[sv] = v;
-    return plain_values(g_, in);
-  };
   // Each source's frequency (periods per unit of u, v): its argument is affine, so differences are exact.
-  const std::vector<double> x0 = values(0, 0), xu = values(1, 0), xv = values(0, 1);
+  const std::vector<double> x0 = plain_at(0, 0), xu = plain_at(1, 0), xv = plain_at(0, 1);
   double longest = 0;
   Moments out;
   for (int j : sources_[i]) {
@@ -188,7 +191,7 @@ PeriodicFarField::Moments PeriodicFarField::spatial(int i) const {
   double sum = 0, sum2 = 0;
   for (int r = 0; r < kGrid; ++r)
     for (int c = 0; c < kGrid; ++c) {
-      const double y = values(side * (c + U(rng)) / kGrid, side * (r + U(rng)) / kGrid)[i];
+      const double y = plain_at(side * (c + U(rng)) / kGrid, side * (r + U(rng)) / kGrid)[i];
       if (!std::isfinite(y)) return moments_memo().put({hash_, i}, out);
       sum += y;
       sum2 += y * y;
@@ -204,19 +207,9 @@ PeriodicFarField::Axes PeriodicFarField::axes(int i) const {
   if (hash_ == 0) hash_ = g_.hash();
   if (const auto m = axes_memo().find({hash_, i})) return *m;
   Axes out;
-  std::vector<double> in(g_.inputs().size(), 0.0);
-  int slot[2] = {-1, -1};
-  for (std::size_t k = 0; k < in.size(); ++k) {
-    if (g_.inputs()[k].name == "u") slot[0] = static_cast<int>(k);
-    if (g_.inputs()[k].name == "v") slot[1] = static_cast<int>(k);
-  }
-  auto values = [&](double u, double v) {
-    if (slot[0] >= 0) in[slot[0]] = u;
-    if (slot[1] >= 0) in[slot[1]] = v;
-    return plain_values(g_, in);
-  };
+  const int slot[2] = {surface_slot("u"), surface_slot("v")};
   // Each source reads one axis: its period along that axis, in units of u or v.
-  const std::vector<double> x0 = values(0, 0), xu = values(1, 0), xv = values(0, 1);
+  const std::vector<double> x0 = plain_at(0, 0), xu = plain_at(1, 0), xv = plain_at(0, 1);
   std::vector<double> periods[2];
   for (int j : sources_[i]) {
     const int a = g_.node(j).a;
@@ -247,7 +240,7 @@ PeriodicFarField::Axes PeriodicFarField::axes(int i) const {
       double sum = 0;
       for (int q = 0; q < n_across; ++q) {
         const double y = across * (q + 0.5) / n_across;
-        const double f = (axis == 0 ? values(x, y) : values(y, x))[i];
+        const double f = (axis == 0 ? plain_at(x, y) : plain_at(y, x))[i];
         if (!std::isfinite(f)) return axes_memo().put({hash_, i}, Axes{});
         sum += f;
       }

@@ -65,6 +65,10 @@ class PeriodicFarField {
   Axes axes(int i) const;
 
  private:
+  int surface_slot(const char* name) const;  // the input slot named u or v; -1 if none
+  // Every node's plain value (double) at surface point (u, v), other inputs 0.
+  std::vector<double> plain_at(double u, double v) const;
+
   const ir::Graph& g_;
   std::vector<std::vector<int>> sources_;
   std::vector<bool> output_;
