@@ -140,14 +140,9 @@ class GraphFacts {
   }
 
   // ---- floors whose jumps the output does not show ----
-  // The plain graph in double at surface point (u, v) (other inputs: time 0, view and light (0,0,1)).
+  // The plain graph's outputs in double at surface point (u, v) (plain_at_surface).
   std::vector<double> plain_graph(double u, double v, std::vector<double>* all = nullptr) const {
-    std::vector<double> in(g.inputs().size());
-    for (std::size_t k = 0; k < in.size(); ++k) {
-      const std::string& nm = g.inputs()[k].name;
-      in[k] = nm == "u" ? u : nm == "v" ? v : (nm == "view_z" || nm == "light_z") ? 1 : 0;
-    }
-    const std::vector<double> x = plain_values(g, in);  // textures: NaN (no probe)
+    const std::vector<double> x = plain_at_surface(g, u, v);  // textures: NaN (no probe)
     std::vector<double> out;
     for (int o : g.outputs()) out.push_back(x[o]);
     if (all) *all = x;

@@ -130,6 +130,13 @@ class Lowering {
     for (int a : args) in.arg[j++] = a;
     return emit(in);
   }
+  // The pixel's value of input `slot`: its mean (InMean), footprint sd (InSd) or gradient.
+  int input(LOp o, int slot) {
+    Inst in;
+    in.op = o;
+    in.arg[0] = slot;
+    return emit(in);
+  }
   Val from_stat(int st) { return Val{op(LOp::Mean, st), op(LOp::Var, st)}; }
   void note(const std::string& s) { notes_.insert(s); }
 
@@ -178,8 +185,7 @@ class Lowering {
         if (r.kind != Kind::Gaussian || r.sigma_scale != 1 || base < 0 || g_.node(base).op != Op::Input ||
             vals_[n.a].var < 0)
           return false;
-        return !(std::string(ir::atomic_name(n.atomic)) == "fract" &&
-                 (facts_.wrap_continuous(i) || facts_.cell_continuous(n.a)));
+        return !fract_takes_mode(i);
       }
       default:
         return false;
@@ -210,7 +216,7 @@ class Lowering {
       const int wj = mul(sd(x), k(static_cast<float>(1 / far_.period(j))));
       w = w < 0 ? wj : op(LOp::Min, w, wj);
     }
-    const int t = call(plain_name("saturate"), {mul(sub(w, k(kFarW0)), k(1.0f / (kFarW1 - kFarW0)))});
+    const int t = ramp(w, kFarW0, 1.0f / (kFarW1 - kFarW0));
     const int u = sub(k(1), t);
     Val out;
     out.mean = add(mul(u, v.mean), mul(t, k(static_cast<float>(m.mean))));
@@ -235,16 +241,11 @@ class Lowering {
         X[axis] = v.mean;  // not read: the other axis's weight (1 - t) is 0
         continue;
       }
-      Inst in;
-      in.op = LOp::InMean;
-      in.arg[0] = se.input;
-      const int mean = emit(in);
-      in.op = LOp::InSd;
-      const int sdev = emit(in);
+      const int mean = input(LOp::InMean, se.input), sdev = input(LOp::InSd, se.input);
       const float L = static_cast<float>(se.period);
       const int w = mul(sdev, k(1 / L));
-      t[axis] = call(plain_name("saturate"), {mul(sub(w, k(kFarW0)), k(1.0f / (kFarW1 - kFarW0)))});
-      const int r = call(plain_name("saturate"), {mul(sub(w, k(0.035f)), k(100.0f))});
+      t[axis] = ramp(w, kFarW0, 1.0f / (kFarW1 - kFarW0));
+      const int r = ramp(w, 0.035f, 100.0f);
       // cos, sin of m theta by the angle-sum recurrence; the damping q^(m^2) by q^(2m + 1) steps.
       const int th = mul(k(6.2831853f), call(plain_name("fract"), {mul(mean, k(1 / L))}));
       const int c1 = call(plain_name("cos"), {th}), s1 = call(plain_name("sin"), {th});
@@ -290,14 +291,10 @@ class Lowering {
         return Val{k(static_cast<float>(n.value)), -1};
       case Op::Input: {
         const int slot = static_cast<int>(n.value);
-        Inst in;
-        in.op = LOp::InMean;
-        in.arg[0] = slot;
         Val v;
-        v.mean = emit(in);
+        v.mean = input(LOp::InMean, slot);
         if (g_.inputs()[slot].varying && r.kind != Kind::None) {
-          in.op = LOp::InSd;
-          v.sd = emit(in);
+          v.sd = input(LOp::InSd, slot);
           v.var = sq(v.sd);
         }
         return v;
@@ -448,12 +445,19 @@ class Lowering {
     return v;
   }
 
+  // Call node i is a fract whose jump the output does not see (wrap-continuous consumers, or cells
+  // the output hides): under the Gaussian rule it reports the side its footprint holds (mode_fract).
+  bool fract_takes_mode(int i) const {
+    const ir::Node& n = g_.node(i);
+    return n.op == Op::Call && std::string(ir::atomic_name(n.atomic)) == "fract" &&
+           (facts_.wrap_continuous(i) || facts_.cell_continuous(n.a));
+  }
+
   Val call_node(int i, const ir::Node& n, const Rule& r, Val& x) {
     const std::string f = ir::atomic_name(n.atomic);
     const int s = scaled_sd(x, r);
     if (r.kind == Kind::Gaussian) {
-      if (f == "fract" && (facts_.wrap_continuous(i) || facts_.cell_continuous(n.a)))
-        return mode_fract(x.mean, s);
+      if (fract_takes_mode(i)) return mode_fract(x.mean, s);
       if (f == "floor" || f == "ceil") return shifted(f, x.mean, s, x.var);
     }
     switch (r.kind) {
@@ -637,8 +641,11 @@ class Lowering {
   }
 
   // 0 below kModeS0, 1 above kModeS1: the weight of the full rule against the mode's.
-  int mode_blend(int s) {
-    return call(plain_name("saturate"), {mul(sub(s, k(kModeS0)), k(1.0f / (kModeS1 - kModeS0)))});
+  int mode_blend(int s) { return ramp(s, kModeS0, 1.0f / (kModeS1 - kModeS0)); }
+
+  // saturate((x - lo) * inv_width): 0 below lo, 1 from lo + 1 / inv_width on, linear between.
+  int ramp(int x, float lo, float inv_width) {
+    return call(plain_name("saturate"), {mul(sub(x, k(lo)), k(inv_width))});
   }
 
   // floor and ceil commute with integer shifts: smoothing at m - K, K = floor(m) (plain, exact in
@@ -751,14 +758,7 @@ class Lowering {
       // Cov(A, B) ~ sigma_px^2 (ga . gb) with Stein slopes (smoothed_slope): it fades as a wide
       // footprint averages the jumps out, where the normalised dot product stays at +-1.
       // sigma_px^2 is read off input 0 (the surface u): its sd over its screen gradient's length.
-      Inst in;
-      in.arg[0] = 0;
-      in.op = LOp::InSd;
-      const int s0 = emit(in);
-      in.op = LOp::InGradX;
-      const int g0x = emit(in);
-      in.op = LOp::InGradY;
-      const int g0y = emit(in);
+      const int s0 = input(LOp::InSd, 0), g0x = input(LOp::InGradX, 0), g0y = input(LOp::InGradY, 0);
       const int sig2 = div(sq(s0), op(LOp::Max, add(sq(g0x), sq(g0y)), k(1e-30f)));
       const int den = op(LOp::Max, mul(sd(vals_[n.a]), sd(vals_[n.b])), k(1e-30f));
       return op(LOp::Min, op(LOp::Max, div(mul(dot, sig2), den), k(-1)), k(1));
@@ -968,9 +968,7 @@ class Lowering {
     if (r.kind == Kind::None || r.kind == Kind::MonteCarlo || x.var < 0)
       return call("bl::deriv::" + f + "_d1", {x.mean});
     // A fract reported as one side of its jump (mode_fract) has slope 1 there, not the jump's.
-    if (r.kind == Kind::Gaussian && f == "fract" &&
-        (facts_.wrap_continuous(i) || facts_.cell_continuous(n.a)))
-      return k(1);
+    if (r.kind == Kind::Gaussian && fract_takes_mode(i)) return k(1);
     const std::string kern = kernel_name(kernel_for("gaussian", f), f, false);
     const int s = scaled_sd(x, r), h = add(mul(k(0.5f), s), k(1e-4f));
     return div(sub(call(kern, {add(x.mean, h), s}), call(kern, {sub(x.mean, h), s})), mul(k(2), h));
@@ -997,12 +995,8 @@ class Lowering {
           set(k(0), k(0));
           break;
         }
-        Inst in;
-        in.arg[0] = slot;
-        in.op = LOp::InGradX;
-        const int gx = emit(in);
-        in.op = LOp::InGradY;
-        set(gx, emit(in));
+        const int gx = input(LOp::InGradX, slot);
+        set(gx, input(LOp::InGradY, slot));
         break;
       }
       case Op::Add:
@@ -1088,12 +1082,8 @@ class Lowering {
   }
   // InGradX and InGradY of input node i.
   std::pair<int, int> input_gradient(int i) {
-    Inst in;
-    in.arg[0] = static_cast<int>(g_.node(i).value);
-    in.op = LOp::InGradX;
-    const int gx = emit(in);
-    in.op = LOp::InGradY;
-    return {gx, emit(in)};
+    const int slot = static_cast<int>(g_.node(i).value), gx = input(LOp::InGradX, slot);
+    return {gx, input(LOp::InGradY, slot)};
   }
 
   // The correlation of binary node n's operands when the rule says rho 0 but the graph knows

@@ -157,14 +157,6 @@ int PeriodicFarField::surface_slot(const char* name) const {
   return -1;
 }
 
-std::vector<double> PeriodicFarField::plain_at(double u, double v) const {
-  std::vector<double> in(g_.inputs().size(), 0.0);
-  const int su = surface_slot("u"), sv = surface_slot("v");
-  if (su >= 0) in[su] = u;
-  if (sv >= 0) in[sv] = v;
-  return plain_values(g_, in);
-}
-
 double PeriodicFarField::period(int j) const {
   const ir::Node& n = g_.node(j);
   return n.op == ir::Op::Mod ? std::fabs(n.value) : 1.0;
@@ -175,7 +167,8 @@ PeriodicFarField::Moments PeriodicFarField::spatial(int i) const {
   if (hash_ == 0) hash_ = g_.hash();
   if (const auto m = moments_memo().find({hash_, i})) return *m;
   // Each source's frequency (periods per unit of u, v): its argument is affine, so differences are exact.
-  const std::vector<double> x0 = plain_at(0, 0), xu = plain_at(1, 0), xv = plain_at(0, 1);
+  const std::vector<double> x0 = plain_at_surface(g_, 0, 0), xu = plain_at_surface(g_, 1, 0),
+                            xv = plain_at_surface(g_, 0, 1);
   double longest = 0;
   Moments out;
   for (int j : sources_[i]) {
@@ -191,7 +184,7 @@ PeriodicFarField::Moments PeriodicFarField::spatial(int i) const {
   double sum = 0, sum2 = 0;
   for (int r = 0; r < kGrid; ++r)
     for (int c = 0; c < kGrid; ++c) {
-      const double y = plain_at(side * (c + U(rng)) / kGrid, side * (r + U(rng)) / kGrid)[i];
+      const double y = plain_at_surface(g_, side * (c + U(rng)) / kGrid, side * (r + U(rng)) / kGrid)[i];
       if (!std::isfinite(y)) return moments_memo().put({hash_, i}, out);
       sum += y;
       sum2 += y * y;
@@ -209,7 +202,8 @@ PeriodicFarField::Axes PeriodicFarField::axes(int i) const {
   Axes out;
   const int slot[2] = {surface_slot("u"), surface_slot("v")};
   // Each source reads one axis: its period along that axis, in units of u or v.
-  const std::vector<double> x0 = plain_at(0, 0), xu = plain_at(1, 0), xv = plain_at(0, 1);
+  const std::vector<double> x0 = plain_at_surface(g_, 0, 0), xu = plain_at_surface(g_, 1, 0),
+                            xv = plain_at_surface(g_, 0, 1);
   std::vector<double> periods[2];
   for (int j : sources_[i]) {
     const int a = g_.node(j).a;
@@ -240,7 +234,7 @@ PeriodicFarField::Axes PeriodicFarField::axes(int i) const {
       double sum = 0;
       for (int q = 0; q < n_across; ++q) {
         const double y = across * (q + 0.5) / n_across;
-        const double f = (axis == 0 ? plain_at(x, y) : plain_at(y, x))[i];
+        const double f = (axis == 0 ? plain_at_surface(g_, x, y) : plain_at_surface(g_, y, x))[i];
         if (!std::isfinite(f)) return axes_memo().put({hash_, i}, Axes{});
         sum += f;
       }

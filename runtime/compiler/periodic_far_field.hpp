@@ -66,8 +66,6 @@ class PeriodicFarField {
 
  private:
   int surface_slot(const char* name) const;  // the input slot named u or v; -1 if none
-  // Every node's plain value (double) at surface point (u, v), other inputs 0.
-  std::vector<double> plain_at(double u, double v) const;
 
   const ir::Graph& g_;
   std::vector<std::vector<int>> sources_;

@@ -53,4 +53,13 @@ std::vector<double> plain_values(const ir::Graph& g, const std::vector<double>& 
   return v;
 }
 
+std::vector<double> plain_at_surface(const ir::Graph& g, double u, double v) {
+  std::vector<double> in(g.inputs().size());
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    const std::string& nm = g.inputs()[k].name;
+    in[k] = nm == "u" ? u : nm == "v" ? v : (nm == "view_z" || nm == "light_z") ? 1 : 0;
+  }
+  return plain_values(g, in);
+}
+
 }  // namespace bl::compiler

@@ -19,4 +19,9 @@ bool plain_node(const ir::Node& n, double a, double b, double c, double* y);
 std::vector<double> plain_values(const ir::Graph& g, const std::vector<double>& inputs,
                                  const std::vector<const texture::Texture*>* textures = nullptr);
 
+// Per node, at surface point (u, v): the inputs named u and v, view_z and light_z 1 (view and light
+// along the normal), every other input 0; textures NaN. The compile-time probes of the lowering
+// (continuity across cells, a tiling's spatial moments) read the plain shader here.
+std::vector<double> plain_at_surface(const ir::Graph& g, double u, double v);
+
 }  // namespace bl::compiler
