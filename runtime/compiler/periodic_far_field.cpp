@@ -157,6 +157,16 @@ int PeriodicFarField::surface_slot(const char* name) const {
   return -1;
 }
 
+std::pair<double, double> PeriodicFarField::argument_slope(int j) const {
+  if (at00_.empty()) {  // the argument is affine, so differences of plain values are exact
+    at00_ = plain_at_surface(g_, 0, 0);
+    at10_ = plain_at_surface(g_, 1, 0);
+    at01_ = plain_at_surface(g_, 0, 1);
+  }
+  const int a = g_.node(j).a;
+  return {at10_[a] - at00_[a], at01_[a] - at00_[a]};
+}
+
 double PeriodicFarField::period(int j) const {
   const ir::Node& n = g_.node(j);
   return n.op == ir::Op::Mod ? std::fabs(n.value) : 1.0;
@@ -166,14 +176,12 @@ PeriodicFarField::Moments PeriodicFarField::spatial(int i) const {
   if (sources_[i].empty()) return {};
   if (hash_ == 0) hash_ = g_.hash();
   if (const auto m = moments_memo().find({hash_, i})) return *m;
-  // Each source's frequency (periods per unit of u, v): its argument is affine, so differences are exact.
-  const std::vector<double> x0 = plain_at_surface(g_, 0, 0), xu = plain_at_surface(g_, 1, 0),
-                            xv = plain_at_surface(g_, 0, 1);
+  // Each source's frequency (periods per unit of u, v).
   double longest = 0;
   Moments out;
   for (int j : sources_[i]) {
-    const int a = g_.node(j).a;
-    const double f = std::hypot(xu[a] - x0[a], xv[a] - x0[a]) / period(j);
+    const auto [du, dv] = argument_slope(j);
+    const double f = std::hypot(du, dv) / period(j);
     if (!(f > 0) || !std::isfinite(f)) return moments_memo().put({hash_, i}, out);
     longest = std::max(longest, 1 / f);
   }
@@ -202,12 +210,9 @@ PeriodicFarField::Axes PeriodicFarField::axes(int i) const {
   Axes out;
   const int slot[2] = {surface_slot("u"), surface_slot("v")};
   // Each source reads one axis: its period along that axis, in units of u or v.
-  const std::vector<double> x0 = plain_at_surface(g_, 0, 0), xu = plain_at_surface(g_, 1, 0),
-                            xv = plain_at_surface(g_, 0, 1);
   std::vector<double> periods[2];
   for (int j : sources_[i]) {
-    const int a = g_.node(j).a;
-    const double du = xu[a] - x0[a], dv = xv[a] - x0[a];
+    const auto [du, dv] = argument_slope(j);
     if (du != 0 && dv != 0) return axes_memo().put({hash_, i}, out);  // a rotated or sheared source
     const int axis = du != 0 ? 0 : 1;
     const double d = axis == 0 ? du : dv;

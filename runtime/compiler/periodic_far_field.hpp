@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "ir/graph.hpp"
@@ -66,11 +67,14 @@ class PeriodicFarField {
 
  private:
   int surface_slot(const char* name) const;  // the input slot named u or v; -1 if none
+  // d/du and d/dv of source j's argument (from the plain graph at (0, 0), (1, 0), (0, 1), once).
+  std::pair<double, double> argument_slope(int j) const;
 
   const ir::Graph& g_;
   std::vector<std::vector<int>> sources_;
   std::vector<bool> output_;
   mutable std::uint64_t hash_ = 0;
+  mutable std::vector<double> at00_, at10_, at01_;  // argument_slope's plain graphs
 };
 
 }  // namespace bl::compiler
