@@ -15,7 +15,7 @@
 #include "dsl/math.hpp"
 #include "shaders/effects.hpp"
 #include "tests/runtime/one_pixel.hpp"
-#include "tests/runtime/quadrature2d.hpp"
+#include "tests/runtime/quadrature.hpp"
 
 namespace bl {
 namespace {

@@ -18,6 +18,7 @@
 #include "ir/atomics.hpp"
 #include "tests/runtime/fixture_list.hpp"
 #include "tests/runtime/one_pixel.hpp"
+#include "tests/runtime/quadrature.hpp"
 #include "tests/runtime/random_pixels.hpp"
 
 namespace bl {
@@ -264,13 +265,9 @@ TEST(Compiler, StatEntryServesMeanAndVarianceTogether) {
     // From 0.02 periods on the output (a tiling of u) is its damped Fourier series (PeriodicFarField):
     // against 1D quadrature (the closed form above was 0.07 off at s = 0.2, 0.022 at s = 1).
     for (float sw : {0.2f, 1.0f}) {
-      double sum = 0, wsum = 0;
-      for (int k = 0; k < 8000; ++k) {
-        const double z = -8 + (k + 0.5) * 16.0 / 8000, w = std::exp(-0.5 * z * z), x = mu + sw * z;
-        sum += w * std::sin(3 * (x - std::floor(x)));
-        wsum += w;
-      }
-      EXPECT_NEAR(run1(g, "gaussian", mu, sw), sum / wsum, 2e-3) << mu << " " << sw;
+      const double want =
+          testing::gaussian_mean_1d([](double x) { return std::sin(3 * (x - std::floor(x))); }, mu, sw, 8000);
+      EXPECT_NEAR(run1(g, "gaussian", mu, sw), want, 2e-3) << mu << " " << sw;
     }
   }
   const ir::Graph mean_only = one_input([](dsl::Var u) { return dsl::fract(u); });
@@ -484,14 +481,10 @@ TEST(Compiler, FractStepWithAVaryingEdge) {
   for (float mu : {0.05f, 0.3f, 0.62f})
     for (float s : {0.01f, 0.2f}) {
       const float mv = 0.2f, sv = 0.1f;
-      double ref = 0, wsum = 0;
-      for (int j = -800; j < 800; ++j) {
-        const double z = (j + 0.5) / 100.0, w = std::exp(-0.5 * z * z);
-        ref += w * window_reference("gaussian", mu, s, 0.0, 0.35 + 0.25 * std::sin(mv + sv * z));
-        wsum += w;
-      }
-      EXPECT_NEAR(testing::run_one_pixel(p, {mu, mv}, {s, sv}, {0, 0}, {0, 0}), ref / wsum, 2e-4)
-          << mu << " " << s;
+      const double ref = testing::gaussian_mean_1d(
+          [&](double v) { return window_reference("gaussian", mu, s, 0.0, 0.35 + 0.25 * std::sin(v)); }, mv,
+          sv, 1600);
+      EXPECT_NEAR(testing::run_one_pixel(p, {mu, mv}, {s, sv}, {0, 0}, {0, 0}), ref, 2e-4) << mu << " " << s;
     }
 }
 

@@ -13,7 +13,7 @@
 #include "dsl/math.hpp"
 #include "rules/rule.hpp"
 #include "tests/runtime/one_pixel.hpp"
-#include "tests/runtime/quadrature2d.hpp"
+#include "tests/runtime/quadrature.hpp"
 
 namespace bl {
 namespace {
@@ -59,6 +59,13 @@ double smooth(double e0, double e1, double x) {
 // Dark discs on a grid of period 1/2: smoothstep(0.25, 0.3, |fract(2 uv) - 1/2|).
 double discs(double u, double v) {
   return smooth(0.25, 0.3, std::hypot(fract(2 * u) - 0.5, fract(2 * v) - 0.5));
+}
+// The discs' area average: an n^2 midpoint rule over one period.
+double discs_area_average(int n) {
+  double sum = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) sum += discs((i + 0.5) / n * 0.5, (j + 0.5) / n * 0.5);
+  return sum / (double(n) * n);
 }
 ir::Graph discs_graph() {
   return two_inputs([](Var u, Var v) {
@@ -130,11 +137,7 @@ TEST(PeriodicFarField, SpatialMomentsMatchClosedForms) {
 TEST(PeriodicFarField, WideFootprintsGiveTheTilingsAverage) {
   // The reference: the discs' area average by a 2000^2 midpoint rule over one period (at s = 1, two
   // periods, a Gaussian keeps exp(-8 pi^2) of the first harmonic).
-  double avg = 0;
-  constexpr int n = 2000;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) avg += discs((i + 0.5) / n * 0.5, (j + 0.5) / n * 0.5);
-  avg /= double(n) * n;
+  const double avg = discs_area_average(2000);
   const ir::Graph g = discs_graph();
   // Without the far field: 0.9986 where the average is 0.762 (the Gaussian stand-in for a uniform
   // fract puts the disc edge's distance beyond 0.3 nearly everywhere).
@@ -144,11 +147,7 @@ TEST(PeriodicFarField, WideFootprintsGiveTheTilingsAverage) {
 
 TEST(PeriodicFarField, HardInputsStayFiniteAndConverge) {
   const ir::Graph g = discs_graph();
-  double avg = 0;
-  constexpr int n = 1000;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) avg += discs((i + 0.5) / n * 0.5, (j + 0.5) / n * 0.5);
-  avg /= double(n) * n;
+  const double avg = discs_area_average(1000);
   // sigma -> 0: the plain pattern (inside a disc's rim, outside it, on the flat between).
   for (const auto& [mu, mv] : {std::pair{0.25, 0.25}, std::pair{0.1, 0.2}, std::pair{0.0, 0.0}})
     for (double s : {0.0, 1e-7})
@@ -178,13 +177,7 @@ TEST(PeriodicFarField, AStripePatternIsItsDampedFourierSeries) {
   double worst = 0;
   for (double mu : {0.0, 0.11, 0.15, 0.26, 0.4, 13.37})
     for (double s : {0.025, 0.03, 0.06, 0.1, 0.2}) {
-      double sum = 0, wsum = 0;
-      for (int k = 0; k < 4000; ++k) {
-        const double z = -8 + (k + 0.5) * 16.0 / 4000, w = std::exp(-0.5 * z * z);
-        sum += w * stripe(mu + s * z);
-        wsum += w;
-      }
-      const double want = sum / wsum, got = run(g, mu, 0.3, s, 0.01);
+      const double want = testing::gaussian_mean_1d(stripe, mu, s, 4000), got = run(g, mu, 0.3, s, 0.01);
       EXPECT_NEAR(got, want, 2e-3) << mu << " s " << s;  // without: up to 0.21 off
       worst = std::max(worst, std::fabs(got - want));
     }

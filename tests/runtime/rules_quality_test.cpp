@@ -13,6 +13,7 @@
 #include "dsl/math.hpp"
 #include "shaders/shader.hpp"
 #include "tests/runtime/one_pixel.hpp"
+#include "tests/runtime/quadrature.hpp"
 
 namespace bl {
 namespace {
@@ -34,17 +35,7 @@ float run1(const ir::Graph& g, const std::string& rule, float mu, float sigma) {
 // E[f(X)], X ~ N(mu, s^2), by the midpoint rule on +-10 s (f piecewise smooth: 2e5 points put the
 // error far below the tolerances used here).
 double expect(const std::function<double(double)>& f, double mu, double s) {
-  const int n = 200000;
-  const double h = 20 * s / n;
-  double sum = 0, wsum = 0;
-  for (int i = 0; i < n; ++i) {
-    const double z = -10 + (i + 0.5) * 20.0 / n;
-    const double w = std::exp(-0.5 * z * z);
-    sum += w * f(mu + s * z);
-    wsum += w;
-  }
-  (void)h;
-  return sum / wsum;
+  return testing::gaussian_mean_1d(f, mu, s, 200000, 10);
 }
 
 double fract(double x) {
