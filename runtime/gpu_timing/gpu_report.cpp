@@ -22,7 +22,53 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+std::string err(double v) { return v >= 0 ? fmt("%.4f", v) : std::string("-"); }
+
 }  // namespace
+
+std::string errors_markdown(const std::vector<SceneTimes>& scenes) {
+  bool any = false;
+  for (const SceneTimes& s : scenes)
+    for (const ProgramTime& p : s.programs) any = any || p.gpu_error >= 0;
+  if (!any) return "";
+  std::ostringstream os;
+  os << "\n## Errors on this GPU\n\nEvery program drawn at the scene's size at each frame and measured "
+        "against the GPU truth (the plain program at the scene's truth sample count in one fragment) in "
+        "display space, as bltune measures against the CPU truth. CPU = bltune's error; \"by GPU errors\": "
+        "the fastest front point or LOD pair whose GPU error is at most MSAA-16's GPU error.\n\n"
+        "| scene | plain error CPU / GPU | MSAA-16 error CPU / GPU | fastest point at MSAA-16's error (CPU "
+        "errors): error CPU / GPU | by GPU errors: fastest | its ns/px | its GPU speed-up | largest GPU / CPU "
+        "error | programs with NaN / out-of-range pixels |\n|---|---|---|---|---|---|---|---|---|\n";
+  int reached = 0, ten = 0, nonfinite = 0;
+  std::vector<double> ups;
+  double worst = -1;
+  std::string worst_at;
+  for (const SceneTimes& s : scenes) {
+    const SceneSummary r = summarize(s);
+    os << "| " << s.scene << " | " << err(r.plain_error) << " / " << err(r.plain_gpu_error) << " | "
+       << err(r.msaa16_error) << " / " << err(r.msaa16_gpu_error) << " | "
+       << (r.gpu_label.empty() ? std::string("-")
+                               : r.gpu_label + ": " + err(r.gpu_point_cpu_error) + " / " + err(r.gpu_point_error))
+       << " | " << (r.by_gpu_label.empty() ? "not reached" : r.by_gpu_label) << " | "
+       << (r.by_gpu_ns >= 0 ? fmt("%.3f", r.by_gpu_ns) : "-") << " | "
+       << (r.by_gpu_speedup > 0 ? fmt("%.1fx", r.by_gpu_speedup) : "-") << " | "
+       << (r.worst_error_ratio >= 0 ? fmt("%.3f", r.worst_error_ratio) + " (" + r.worst_error_label + ")" : "-")
+       << " | " << r.nonfinite_programs << " / " << r.out_of_range_programs << " |\n";
+    nonfinite += r.nonfinite_programs;
+    if (r.by_gpu_speedup > 0) {
+      ++reached;
+      ten += r.by_gpu_speedup >= 10;
+      ups.push_back(r.by_gpu_speedup);
+    }
+    if (r.worst_error_ratio > worst) worst = r.worst_error_ratio, worst_at = s.scene + "/" + r.worst_error_label;
+  }
+  os << "\nBy the errors measured on this GPU: MSAA-16's error reached on " << reached << " of " << scenes.size()
+     << " scenes, at >= 10x less GPU time on " << ten << "; median speed-up "
+     << (ups.empty() ? "-" : fmt("%.1fx", median(ups))) << "; " << nonfinite
+     << " program(s) with NaN or infinite pixels; the largest GPU / CPU error ratio "
+     << (worst >= 0 ? fmt("%.3f", worst) + " (" + worst_at + ")" : std::string("-")) << ".\n";
+  return os.str();
+}
 
 SceneSummary summarize(const SceneTimes& s) {
   SceneSummary r;
@@ -32,14 +78,36 @@ SceneSummary summarize(const SceneTimes& s) {
   for (const ProgramTime& p : s.programs) {
     if (!p.failure.empty()) ++r.failures;
     r.max_compile_ms = std::max(r.max_compile_ms, p.compile_ms);
+    if (p.kind == "truth") continue;
+    r.nonfinite_programs += p.nonfinite > 0;
+    r.out_of_range_programs += p.out_of_range > 0;
+    if (p.gpu_error >= 0 && p.error > 0 && std::isfinite(p.error) && p.gpu_error / p.error > r.worst_error_ratio) {
+      r.worst_error_ratio = p.gpu_error / p.error;
+      r.worst_error_label = p.label;
+    }
     if (p.kind != "baseline") continue;
+    if (p.label == "plain") r.plain_error = p.error, r.plain_gpu_error = p.gpu_error;
     if (p.label == "plain" && p.gpu_ms >= 0) r.plain_ns = ns(p);
     if (p.label == "gaussian" && p.gpu_ms >= 0) r.gaussian_ns = ns(p);
     if (p.msaa == 16) msaa16 = &p;
   }
   if (msaa16 == nullptr) return r;
   r.msaa16_error = msaa16->error;
+  r.msaa16_gpu_error = msaa16->gpu_error;
   if (msaa16->gpu_ms >= 0) r.msaa16_ns = ns(*msaa16);
+  // By the GPU's own errors: the fastest front point or pair at MSAA-16's GPU error.
+  if (msaa16->gpu_error >= 0 && msaa16->gpu_ms >= 0) {
+    const ProgramTime* best = nullptr;
+    for (const ProgramTime& p : s.programs)
+      if ((p.kind == "front" || p.kind == "lod") && p.gpu_ms > 0 && p.gpu_error >= 0 &&
+          p.gpu_error <= msaa16->gpu_error && (best == nullptr || p.gpu_ms < best->gpu_ms))
+        best = &p;
+    if (best != nullptr) {
+      r.by_gpu_label = best->label;
+      r.by_gpu_ns = ns(*best);
+      r.by_gpu_speedup = msaa16->gpu_ms / best->gpu_ms;
+    }
+  }
   // The fastest front point that reaches MSAA-16's error, by each clock.
   const ProgramTime *gpu = nullptr, *cpu = nullptr;
   for (const ProgramTime& p : s.programs) {
@@ -51,6 +119,8 @@ SceneSummary summarize(const SceneTimes& s) {
     r.gpu_label = gpu->label;
     r.gpu_ns = ns(*gpu);
     r.gpu_speedup = msaa16->gpu_ms / gpu->gpu_ms;
+    r.gpu_point_cpu_error = gpu->error;
+    r.gpu_point_error = gpu->gpu_error;
   }
   if (cpu != nullptr && msaa16->compiled_ns >= 0) {
     r.cpu_label = cpu->label;
@@ -143,6 +213,7 @@ std::string report_markdown(const std::vector<SceneTimes>& scenes, const std::st
        << std::max(ad_gpu.size(), ad_cpu.size()) << " scene(s)): ours takes " << range(ad_gpu)
        << " less time (GPU), " << range(ad_cpu) << " (CPU compiled).\n";
   }
+  os << errors_markdown(scenes);
   return os.str();
 }
 

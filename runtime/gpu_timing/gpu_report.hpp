@@ -19,6 +19,10 @@ struct ProgramTime {
   double gpu_ms = -1;       // ms per frame of the tiled target (< 0: not timed)
   double compile_ms = -1;   // driver compile + link, ms
   std::string failure;      // compile or draw failure (then gpu_ms < 0)
+  // Measured on the GPU (blgpu_time's merge): RMS against the GPU truth over every frame, as bltune
+  // measures on the CPU (< 0: not measured), and the pixels no metric may hide (image/pixel_check).
+  double gpu_error = -1;
+  long nonfinite = 0, out_of_range = 0;
 };
 
 struct SceneTimes {
@@ -44,9 +48,22 @@ struct SceneSummary {
   double adaptive_ns = -1, adaptive_gpu_speedup = -1, adaptive_cpu_speedup = -1;
   double max_compile_ms = -1;
   int failures = 0;
+  // By the errors measured on the GPU (< 0 / "": not measured). gpu_point_error: the GPU error of
+  // gpu_label's point (chosen by bltune's errors). by_gpu_*: the fastest front point or LOD pair
+  // whose GPU error is at most MSAA-16's GPU error, and MSAA-16's GPU time over its.
+  double plain_error = -1, plain_gpu_error = -1, msaa16_gpu_error = -1;
+  double gpu_point_cpu_error = -1, gpu_point_error = -1;
+  std::string by_gpu_label;
+  double by_gpu_ns = -1, by_gpu_speedup = -1;
+  // The largest GPU error / bltune error over the scene's programs (not the truth), and which.
+  double worst_error_ratio = -1;
+  std::string worst_error_label;
+  int nonfinite_programs = 0, out_of_range_programs = 0;  // programs with such pixels on the GPU
 };
 
 SceneSummary summarize(const SceneTimes& s);
+// The section on errors measured on the GPU ("" where no program has one); report_markdown ends with it.
+std::string errors_markdown(const std::vector<SceneTimes>& scenes);
 std::string report_markdown(const std::vector<SceneTimes>& scenes, const std::string& renderer, int tile);
 
 }  // namespace bl::gpu_timing

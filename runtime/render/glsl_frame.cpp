@@ -155,7 +155,8 @@ void main() {
      << R"(  uint pixel = uint(p.y) * uint(bl_size.x) + uint(p.x);
   vec3 acc = vec3(0.0);
   for (int j = 0; j < bl_samples; ++j) {
-    uint h1 = bl_hash(pixel + bl_hash(uint(j))), h2 = bl_hash(h1 ^ 0x5851F42Du);
+)" << "    uint h1 = bl_hash(pixel + bl_hash(uint(j)"
+     << (o.first_sample != 0 ? " + " + std::to_string(o.first_sample) + "u" : std::string()) << R"()), h2 = bl_hash(h1 ^ 0x5851F42Du);
     float u1 = (float(h1 >> 8u) + 1.0) * (1.0 / 16777216.0), u2 = float(h2 >> 8u) * (1.0 / 16777216.0);
     float r = bl_pixel_sigma * sqrt(-2.0 * log(u1)), a = 6.2831853 * u2;
     vec3 d = bl_ray(p + r * vec2(cos(a), sin(a)));

@@ -21,6 +21,9 @@ struct FragmentOptions {
   // Shade pixel gl_FragCoord mod bl_size: a target larger than the scene repeats the scene's image,
   // so a GPU can be filled with exactly the scene's per-pixel work (timing).
   bool tiled = false;
+  // Supersampling's sample j draws from the hash of (pixel, j + first_sample): a reference image of
+  // many samples (blgpu_pack's GPU truth) starts past MSAA-n's samples so the two are independent.
+  unsigned first_sample = 0;
 };
 
 // The complete fragment shader (with its #version line) for `program` in scene `s`.

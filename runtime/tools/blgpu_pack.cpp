@@ -3,9 +3,10 @@
 // docs/gpu_timing.md). For each scene directory of a `bltune --suite` output: every front point's
 // smoothed shader, the plain shader, MSAA-n of it (n samples per fragment) and the uniform rules,
 // each as a complete fragment shader; the image is tiled so one draw fills a GPU with exactly the
-// scene's per-pixel work; the footprint-LOD pair (result.json "lod") as one more shader, lod.frag.
-// manifest.json holds the uniforms of the scene's first frame and, per
-// program, the error and compiled-C++ time bltune measured (the timing tool only adds GPU times).
+// scene's per-pixel work; the footprint-LOD pair (result.json "lod") as one more shader, lod.frag;
+// the GPU truth (the plain program at the scene's truth sample count) as truth.frag, drawn but not
+// timed. manifest.json holds each frame's uniforms and, per program, the error and compiled-C++
+// time bltune measured (the timing tool adds GPU times and errors on the GPU).
 //
 //   blgpu_pack --suite docs/tuning/suite --scenes scenes/suite --out build/gpu_pack [--tile 10]
 //   blgpu_pack --suite out/tune/mine --scene my/pattern.json --out build/gpu_pack   (one scene)
@@ -74,14 +75,19 @@ void write_file(const fs::path& path, const std::string& text) {
 struct Selection {
   std::vector<std::string> baselines;  // empty: all
   int fronts = -1;                     // < 0: all
+  int truth_samples = 0;               // the GPU truth's samples per pixel (0: the scene's)
 };
 
 json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const std::string& scene_override,
                 const fs::path& out, int tile, const Selection& sel) {
   const json result = read_json(result_dir / "result.json");
   const std::string name = result.at("scene").get<std::string>();
-  const fs::path scene_file =
-      scene_override.empty() ? scenes_dir / (name + ".json") : fs::path(scene_override);
+  // The scene file: --scene, else <scenes>/<scene name>.json, else <scenes>/<result dir>.json
+  // (docs/tuning/glsl/hex_tiles tuned scenes/glsl/hex_tiles.json, whose scene is hex_tiles_glsl).
+  fs::path scene_file = scene_override.empty() ? scenes_dir / (name + ".json") : fs::path(scene_override);
+  if (scene_override.empty() && !fs::exists(scene_file) &&
+      fs::exists(scenes_dir / (result_dir.filename().string() + ".json")))
+    scene_file = scenes_dir / (result_dir.filename().string() + ".json");
   const scene::Scene s = scene::load_scene(scene_file.string());
   if (!s.texture_files.empty())
     throw std::invalid_argument(scene_file.string() +
@@ -191,12 +197,37 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
     add_pair("adaptive_ss", "adaptive", pair_side(a, where, "near"), pair_side(a, where, "far"), a,
              "adaptive supersampling " + pair_what(a), json::object());
   }
-  json uniforms = json::array();
-  for (const gl::Uniform& u : render::glsl_frame_uniforms(s, render::frames(s).front()))
-    uniforms.push_back(uniform_json(u));
+  // The GPU's own ground truth: the plain program at the scene's truth sample count in one fragment
+  // (the CPU truth's kernel and count), its samples past every MSAA-n's so the two are independent.
+  // blgpu_time renders it and every program at each frame and measures errors as bltune does; it
+  // is never timed. (The CPU truth would not do for a hash pattern: fract(sin(x) * 43758.5) is
+  // another pattern on another GPU's sin.)
+  {
+    render::FragmentOptions fo;
+    fo.samples = sel.truth_samples > 0 ? sel.truth_samples : s.truth_samples;
+    fo.tiled = true;
+    fo.first_sample = 1u << 24;
+    const std::string frag = name + "/truth.frag";
+    write_file(out / frag,
+               render::glsl_fragment_source(s, compiler::lower(g, compiler::load_schedule(csv + ":plain", g).schedule),
+                                            "450", fo));
+    programs.push_back({{"label", "truth"},
+                        {"kind", "truth"},
+                        {"msaa", fo.samples},
+                        {"error", nullptr},
+                        {"frag", frag}});
+  }
+  // Every frame's uniforms (views and times): errors are over all of them, as bltune's are; the
+  // timings draw the first.
+  json frames = json::array();
+  for (const render::Frame& f : render::frames(s)) {
+    json uniforms = json::array();
+    for (const gl::Uniform& u : render::glsl_frame_uniforms(s, f)) uniforms.push_back(uniform_json(u));
+    frames.push_back({{"view", f.view}, {"time", f.time}, {"uniforms", uniforms}});
+  }
   return {{"scene", name},           {"scene_width", s.width},    {"scene_height", s.height},
-          {"width", s.width * tile}, {"height", s.height * tile}, {"uniforms", uniforms},
-          {"programs", programs}};
+          {"width", s.width * tile}, {"height", s.height * tile}, {"uniforms", frames.front().at("uniforms")},
+          {"frames", frames},        {"programs", programs}};
 }
 
 }  // namespace
@@ -223,6 +254,10 @@ int main(int argc, char** argv) {
   app.add_option(
       "--fronts", sel.fronts,
       "pack only the N fastest front points (compiled C++) at MSAA-16's error (default: every point)");
+  app.add_option("--truth-samples", sel.truth_samples,
+                 "samples per pixel of the GPU truth the errors are measured against (default: the scene's "
+                 "ground_truth.samples; fewer for a quick check on a CPU driver)")
+      ->check(CLI::Range(1, 1 << 20));
   CLI11_PARSE(app, argc, argv);
   try {
     std::vector<fs::path> dirs;

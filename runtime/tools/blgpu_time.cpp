@@ -7,6 +7,11 @@
 //                                                   then time them holding OUT/.timing.lock, so
 //                                                   compiles run in parallel and timings never overlap
 //   blgpu_time PACK --out OUT --merge               join OUT/shard_*.json into the report
+//
+// Each program is also drawn once per frame of its scene at the scene's size (OUT/images, raw RGB
+// floats); the merge measures every image against the scene's GPU truth (the pack's "truth"
+// program, drawn but never timed) in display space, as bltune measures against the CPU truth, and
+// counts non-finite and out-of-range pixels: the errors on this driver, beside bltune's.
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -24,6 +29,8 @@
 
 #include "gl/egl_runner.hpp"
 #include "gpu_timing/gpu_report.hpp"
+#include "image/metrics.hpp"
+#include "image/pixel_check.hpp"
 
 using namespace bl;
 namespace fs = std::filesystem;
@@ -48,9 +55,10 @@ void write_text(const fs::path& p, const std::string& text) {
   fs::rename(p.string() + ".tmp", p);
 }
 
-std::vector<gl::Uniform> uniforms_of(const json& scene) {
+// `uniforms`: a manifest uniform list (a scene's first frame, or one of its "frames").
+std::vector<gl::Uniform> uniform_list(const json& uniforms) {
   std::vector<gl::Uniform> u;
-  for (const json& j : scene.at("uniforms")) {
+  for (const json& j : uniforms) {
     const std::string name = j.at("name");
     if (j.contains("float")) {
       u.push_back({name, j["float"].get<float>()});
@@ -70,6 +78,55 @@ std::vector<gl::Uniform> uniforms_of(const json& scene) {
     }
   }
   return u;
+}
+
+std::vector<gl::Uniform> uniforms_of(const json& scene) { return uniform_list(scene.at("uniforms")); }
+
+// Every frame's uniforms (a pack from before stop 41 has the first frame only).
+std::vector<json> frames_of(const json& scene) {
+  if (scene.contains("frames")) return scene["frames"].get<std::vector<json>>();
+  return {json{{"uniforms", scene.at("uniforms")}}};
+}
+
+fs::path image_path(const fs::path& out, const std::string& scene, const std::string& label, int frame) {
+  return out / "images" / (scene + "__" + label + "__f" + std::to_string(frame) + ".f32");
+}
+
+// Draws `program` at the scene's own size for each frame (the tiled target's first tile) and writes
+// the RGB floats, row 0 = top (bl::Image's layout).
+void write_images(gl::Context& ctx, const gl::Program& program, const json& sc, const fs::path& out,
+                  const std::string& label) {
+  const int w = sc.at("scene_width"), h = sc.at("scene_height");
+  const std::vector<json> frames = frames_of(sc);
+  for (int f = 0; f < static_cast<int>(frames.size()); ++f) {
+    const std::vector<float> rgba = ctx.render(program, w, h, uniform_list(frames[f].at("uniforms")));
+    std::vector<float> rgb(static_cast<std::size_t>(w) * h * 3);
+    for (std::size_t i = 0; i < rgb.size() / 3; ++i)
+      for (int c = 0; c < 3; ++c) rgb[3 * i + c] = rgba[4 * i + c];
+    const fs::path p = image_path(out, sc.at("scene"), label, f);
+    {
+      std::ofstream o(p.string() + ".tmp", std::ios::binary);
+      o.write(reinterpret_cast<const char*>(rgb.data()), static_cast<std::streamsize>(rgb.size() * sizeof(float)));
+      if (!o) throw std::runtime_error(p.string() + ": write failed");
+    }
+    fs::rename(p.string() + ".tmp", p);
+  }
+}
+
+// The images write_images wrote, or none when any frame is missing (not drawn, or failed).
+std::vector<Image> read_images(const fs::path& out, const json& sc, const std::string& label) {
+  const int w = sc.at("scene_width"), h = sc.at("scene_height");
+  std::vector<Image> images;
+  for (int f = 0; f < static_cast<int>(frames_of(sc).size()); ++f) {
+    std::ifstream in(image_path(out, sc.at("scene"), label, f), std::ios::binary);
+    if (!in) return {};
+    Image img(w, h);
+    in.read(reinterpret_cast<char*>(img.pixels.data()),
+            static_cast<std::streamsize>(img.pixels.size() * sizeof(float)));
+    if (!in) return {};
+    images.push_back(std::move(img));
+  }
+  return images;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -175,7 +232,7 @@ json run_shard(const fs::path& pack, const json& manifest, const fs::path& out, 
   // read 4-12x slow (plain at 1.3 ns/px instead of the 0.284 floor; the bricks rows, each shard's
   // first, in every run of docs/gpu_timing.md). Draw for a while before the first timing.
   for (const Job& j : jobs)
-    if (j.program.valid()) {
+    if (j.program.valid() && j.time.kind != "truth") {
       const json& sc = scenes[j.scene];
       const auto t0 = std::chrono::steady_clock::now();
       try {
@@ -190,7 +247,8 @@ json run_shard(const fs::path& pack, const json& manifest, const fs::path& out, 
     const int w = sc.at("width"), h = sc.at("height");
     if (j.program.valid()) {
       try {
-        j.time.gpu_ms = time_program(ctx, j.program, w, h, uniforms_of(sc), budget_ms);
+        if (j.time.kind != "truth") j.time.gpu_ms = time_program(ctx, j.program, w, h, uniforms_of(sc), budget_ms);
+        write_images(ctx, j.program, sc, out, j.time.label);
       } catch (const gl::Error& e) {
         j.time.failure = e.what();
       }
@@ -216,6 +274,9 @@ void merge(const json& manifest, const fs::path& out, const std::vector<json>& s
   std::vector<gpu_timing::SceneTimes> scenes;
   json all = json::array();
   for (const json& sc : manifest.at("scenes")) {
+    // The scene's GPU truth and the range its pixels may take ([0, 1] widened to the truth's values).
+    const std::vector<Image> truth = read_images(out, sc, "truth");
+    const ValueRange range = ValueRange::of(truth);
     gpu_timing::SceneTimes st;
     st.scene = sc.at("scene");
     st.width = sc.at("width");
@@ -227,9 +288,24 @@ void merge(const json& manifest, const fs::path& out, const std::vector<json>& s
       p.gpu_ms = it->second.at("gpu_ms");
       p.compile_ms = it->second.at("compile_ms");
       p.failure = it->second.at("failure");
+      const std::vector<Image> images = read_images(out, sc, p.label);
+      if (!truth.empty() && !images.empty() && p.kind != "truth") {
+        // As bltune: the RMS over frames of each frame's display-space RMS, NaN counting as 1.
+        double sq = 0;
+        for (std::size_t f = 0; f < images.size(); ++f) {
+          const double e = rms_display(images[f], truth[f]);
+          sq += e * e;
+          const PixelCounts c = check_pixels(images[f], range);
+          p.nonfinite += static_cast<long>(c.nonfinite);
+          p.out_of_range += static_cast<long>(c.out_of_range);
+        }
+        p.gpu_error = std::sqrt(sq / images.size());
+      }
       st.programs.push_back(p);
       json r = it->second;
       r["kind"] = p.kind, r["msaa"] = p.msaa, r["error"] = pj.at("error"), r["compiled_ns"] = p.compiled_ns;
+      r["gpu_error"] = p.gpu_error >= 0 ? json(p.gpu_error) : json(nullptr);
+      r["nonfinite_pixels"] = p.nonfinite, r["out_of_range_pixels"] = p.out_of_range;
       all.push_back(r);
     }
     if (!st.programs.empty()) scenes.push_back(st);
@@ -271,6 +347,7 @@ int main(int argc, char** argv) {
     if (!merge_only) {
       std::string renderer;
       if (!binaries.empty()) fs::create_directories(binaries);
+      fs::create_directories(fs::path(out) / "images");
       run_shard(pack, manifest, out, shard, shards, only, budget_ms, compile_seconds, binaries, renderer);
       if (shards > 1) return 0;  // the caller merges when every shard is done
     }
