@@ -145,15 +145,40 @@ std::string emit_cpp(const Program& p, const std::string& name, const std::strin
 
 namespace {
 
-// p as the GLSL function `name` (no library: the caller slices it for every function it emits).
-std::string glsl_function(const Program& p, const std::string& name) {
+// A hash: a plain sin or cos multiplied by a constant of magnitude >= 1024, as in
+// fract(sin(dot(floor(p), k)) * 43758.5). It turns a last-bit difference in sin's argument (~1e3)
+// into another value, and a GLSL compiler may fuse multiplies and adds (or reassociate) differently
+// in each program: on NVIDIA's driver the smoothed programs of a value-noise pattern drew another
+// noise than its plain program (errors 1.6-3.6x the CPU's; docs/gpu_timing.md, stop 41). A program
+// with a hash, and its library, computes as written (GLSL `precise` on every declaration), as the
+// C++ evaluator does. Not less: `precise` on the hash's argument alone left a smoothed floor's
+// library code fused and three Voronoi points 2x off; not more: elsewhere it costs up to 30% of
+// the GPU time (Voronoi) and nothing amplifies the rounding.
+bool has_hash(const Program& p) {
+  auto is_sin_cos = [&](int i) {
+    const Inst& in = p.insts[i];
+    return in.op == LOp::Call &&
+           (functions()[in.fn].glsl == "bl_plain_sin" || functions()[in.fn].glsl == "bl_plain_cos");
+  };
+  auto large = [&](int i) { return p.insts[i].op == LOp::Const && std::fabs(p.insts[i].k) >= 1024.0f; };
+  for (const Inst& in : p.insts)
+    if (in.op == LOp::Mul &&
+        ((is_sin_cos(in.arg[0]) && large(in.arg[1])) || (is_sin_cos(in.arg[1]) && large(in.arg[0]))))
+      return true;
+  return false;
+}
+
+// p as the GLSL function `name` (no library: the caller slices it for every function it emits);
+// `precise`: every declaration computed as written (a program with a hash, has_hash).
+std::string glsl_function(const Program& p, const std::string& name, bool precise) {
   std::ostringstream os;
   const int ni = std::max(1, p.input_count), no = static_cast<int>(p.outputs.size());
   os << "void " << name << "(in float bl_m[" << ni << "], in float bl_s[" << ni << "], in float bl_gx[" << ni
      << "], in float bl_gy[" << ni << "], out float bl_out[" << no << "]) {\n";
   for (std::size_t i = 0; i < p.insts.size(); ++i) {
     const char* type = p.pair_valued(static_cast<int>(i)) ? "vec2" : "float";
-    os << "  " << type << " t" << i << " = " << expr(p, static_cast<int>(i), Lang::Glsl) << ";\n";
+    os << "  " << (precise ? "precise " : "") << type << " t" << i << " = "
+       << expr(p, static_cast<int>(i), Lang::Glsl) << ";\n";
   }
   for (std::size_t o = 0; o < p.outputs.size(); ++o)
     os << "  bl_out[" << o << "] = t" << p.outputs[o] << ";\n";
@@ -162,11 +187,11 @@ std::string glsl_function(const Program& p, const std::string& name) {
 }
 
 // The generated library functions the programs call (and what they call), and the texture helpers.
-std::string glsl_prelude(const std::vector<const Program*>& ps) {
+std::string glsl_prelude(const std::vector<const Program*>& ps, bool precise) {
   std::vector<std::string> roots;
   for (const Program* p : ps)
     for (int f : p->used_functions()) roots.push_back(functions()[f].glsl);
-  std::string out = glsl_library_slice(roots) + "\n";
+  std::string out = glsl_library_slice(roots, precise) + "\n";
   if (ps.front()->uses_textures()) out += glsl_texture_library(ps.front()->texture_names.size()) + "\n";
   return out;
 }
@@ -195,17 +220,19 @@ std::pair<int, int> lod_slots(const Program& near, const Program& far, float lim
 }  // namespace
 
 std::string emit_glsl(const Program& p, const std::string& name, const std::string& comment) {
-  return banner(p, comment) + "\n" + glsl_prelude({&p}) + glsl_function(p, name);
+  const bool precise = has_hash(p);
+  return banner(p, comment) + "\n" + glsl_prelude({&p}, precise) + glsl_function(p, name, precise);
 }
 
 std::string emit_glsl_lod(const Program& near, const Program& far, float limit, const std::string& name,
                           const std::string& comment) {
   const auto [u, v] = lod_slots(near, far, limit, "emit_glsl_lod");
   const int ni = std::max(1, near.input_count), no = static_cast<int>(near.outputs.size());
+  const bool precise = has_hash(near) || has_hash(far);
   std::ostringstream os;
   os << banner(near, comment) << "\n"
-     << glsl_prelude({&near, &far}) << glsl_function(near, name + "_near") << "\n"
-     << glsl_function(far, name + "_far") << "\n"
+     << glsl_prelude({&near, &far}, precise) << glsl_function(near, name + "_near", precise) << "\n"
+     << glsl_function(far, name + "_far", precise) << "\n"
      << "// Footprint LOD: " << name << "_near where max(sd of u, sd of v) < " << float_literal_glsl(limit)
      << ", " << name << "_far elsewhere.\n"
      << "void " << name << "(in float bl_m[" << ni << "], in float bl_s[" << ni << "], in float bl_gx[" << ni

@@ -112,7 +112,40 @@ std::vector<Item> split(const std::string& src) {
 
 }  // namespace
 
-std::string glsl_library_slice(const std::vector<std::string>& roots) {
+std::string precise_declarations(const std::string& text) {
+  static const std::set<std::string> types{"float", "vec2", "vec3", "vec4", "mat2", "mat3", "mat4"};
+  std::string out;
+  int braces = 0, parens = 0;
+  bool statement_start = false;  // after '{', ';' or '}' inside braces, outside parentheses
+  bool in_struct = false;
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (ident_start(c)) {
+      std::size_t j = i;
+      while (j < text.size() && ident_char(text[j])) ++j;
+      const std::string w = text.substr(i, j - i);
+      if (braces == 0 && w == "struct") in_struct = true;
+      if (statement_start && !in_struct && types.count(w) != 0) out += "precise ";
+      out += w;
+      statement_start = false;
+      i = j;
+      continue;
+    }
+    out += c;
+    ++i;
+    if (c == '(') ++parens;
+    if (c == ')') --parens;
+    if (c == '{') ++braces;
+    if (c == '}' && --braces == 0) in_struct = false;
+    if (c == '{' || c == '}' || c == ';')
+      statement_start = braces > 0 && parens == 0;
+    else if (!std::isspace(static_cast<unsigned char>(c)))
+      statement_start = false;
+  }
+  return out;
+}
+
+std::string glsl_library_slice(const std::vector<std::string>& roots, bool precise) {
   static const std::vector<Item> items = split(glsl_library());
   std::map<std::string, std::vector<int>> by_name;
   for (std::size_t i = 0; i < items.size(); ++i) by_name[items[i].name].push_back(static_cast<int>(i));
@@ -135,7 +168,8 @@ std::string glsl_library_slice(const std::vector<std::string>& roots) {
   }
   std::string out = "// ---- bandlimit library (sliced from generated/bandlimit*.glsl) ----\n";
   for (std::size_t i = 0; i < items.size(); ++i)
-    if (keep.count(static_cast<int>(i)) || items[i].name == "#") out += items[i].text;
+    if (keep.count(static_cast<int>(i)) || items[i].name == "#")
+      out += precise ? precise_declarations(items[i].text) : items[i].text;
   return out;
 }
 

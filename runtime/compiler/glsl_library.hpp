@@ -11,8 +11,15 @@ namespace bl::compiler {
 const std::string& glsl_library();  // the whole library text, in include order
 
 // The definitions (functions, structs, constants) reachable from `roots`, in library order.
-// Throws std::invalid_argument naming a root the library does not define.
-std::string glsl_library_slice(const std::vector<std::string>& roots);
+// Throws std::invalid_argument naming a root the library does not define. `precise`: every local
+// float / vector / matrix declaration in the functions' bodies carries GLSL's `precise` qualifier
+// (computed as written: no fused multiply-add, no reassociation; see precise_declarations).
+std::string glsl_library_slice(const std::vector<std::string>& roots, bool precise = false);
+
+// `text` (GLSL without comments) with `precise ` before every declaration of a float, vecN or matN
+// that begins a statement inside braces (function bodies; not parameters, for-loop headers, struct
+// members or top-level constants, where GLSL allows no `precise` or nothing is computed).
+std::string precise_declarations(const std::string& text);
 
 // The texture lookups of a program reading `slots` textures: per slot the uniforms bl_tex<k>_mean
 // and bl_tex<k>_sq (mipmapped, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT, levels uploaded from

@@ -22,7 +22,9 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-std::string err(double v) { return v >= 0 ? fmt("%.4f", v) : std::string("-"); }
+std::string err(double v) {
+  return v >= 0 ? fmt("%.4f", v) : std::string("-");
+}
 
 }  // namespace
 
@@ -37,7 +39,8 @@ std::string errors_markdown(const std::vector<SceneTimes>& scenes) {
         "display space, as bltune measures against the CPU truth. CPU = bltune's error; \"by GPU errors\": "
         "the fastest front point or LOD pair whose GPU error is at most MSAA-16's GPU error.\n\n"
         "| scene | plain error CPU / GPU | MSAA-16 error CPU / GPU | fastest point at MSAA-16's error (CPU "
-        "errors): error CPU / GPU | by GPU errors: fastest | its ns/px | its GPU speed-up | largest GPU / CPU "
+        "errors): error CPU / GPU | by GPU errors: fastest | its ns/px | its GPU speed-up | largest GPU / "
+        "CPU "
         "error | programs with NaN / out-of-range pixels |\n|---|---|---|---|---|---|---|---|---|\n";
   int reached = 0, ten = 0, nonfinite = 0;
   std::vector<double> ups;
@@ -47,12 +50,14 @@ std::string errors_markdown(const std::vector<SceneTimes>& scenes) {
     const SceneSummary r = summarize(s);
     os << "| " << s.scene << " | " << err(r.plain_error) << " / " << err(r.plain_gpu_error) << " | "
        << err(r.msaa16_error) << " / " << err(r.msaa16_gpu_error) << " | "
-       << (r.gpu_label.empty() ? std::string("-")
-                               : r.gpu_label + ": " + err(r.gpu_point_cpu_error) + " / " + err(r.gpu_point_error))
+       << (r.gpu_label.empty()
+               ? std::string("-")
+               : r.gpu_label + ": " + err(r.gpu_point_cpu_error) + " / " + err(r.gpu_point_error))
        << " | " << (r.by_gpu_label.empty() ? "not reached" : r.by_gpu_label) << " | "
        << (r.by_gpu_ns >= 0 ? fmt("%.3f", r.by_gpu_ns) : "-") << " | "
        << (r.by_gpu_speedup > 0 ? fmt("%.1fx", r.by_gpu_speedup) : "-") << " | "
-       << (r.worst_error_ratio >= 0 ? fmt("%.3f", r.worst_error_ratio) + " (" + r.worst_error_label + ")" : "-")
+       << (r.worst_error_ratio >= 0 ? fmt("%.3f", r.worst_error_ratio) + " (" + r.worst_error_label + ")"
+                                    : "-")
        << " | " << r.nonfinite_programs << " / " << r.out_of_range_programs << " |\n";
     nonfinite += r.nonfinite_programs;
     if (r.by_gpu_speedup > 0) {
@@ -60,10 +65,11 @@ std::string errors_markdown(const std::vector<SceneTimes>& scenes) {
       ten += r.by_gpu_speedup >= 10;
       ups.push_back(r.by_gpu_speedup);
     }
-    if (r.worst_error_ratio > worst) worst = r.worst_error_ratio, worst_at = s.scene + "/" + r.worst_error_label;
+    if (r.worst_error_ratio > worst)
+      worst = r.worst_error_ratio, worst_at = s.scene + "/" + r.worst_error_label;
   }
-  os << "\nBy the errors measured on this GPU: MSAA-16's error reached on " << reached << " of " << scenes.size()
-     << " scenes, at >= 10x less GPU time on " << ten << "; median speed-up "
+  os << "\nBy the errors measured on this GPU: MSAA-16's error reached on " << reached << " of "
+     << scenes.size() << " scenes, at >= 10x less GPU time on " << ten << "; median speed-up "
      << (ups.empty() ? "-" : fmt("%.1fx", median(ups))) << "; " << nonfinite
      << " program(s) with NaN or infinite pixels; the largest GPU / CPU error ratio "
      << (worst >= 0 ? fmt("%.3f", worst) + " (" + worst_at + ")" : std::string("-")) << ".\n";
@@ -81,7 +87,8 @@ SceneSummary summarize(const SceneTimes& s) {
     if (p.kind == "truth") continue;
     r.nonfinite_programs += p.nonfinite > 0;
     r.out_of_range_programs += p.out_of_range > 0;
-    if (p.gpu_error >= 0 && p.error > 0 && std::isfinite(p.error) && p.gpu_error / p.error > r.worst_error_ratio) {
+    if (p.gpu_error >= 0 && p.error > 0 && std::isfinite(p.error) &&
+        p.gpu_error / p.error > r.worst_error_ratio) {
       r.worst_error_ratio = p.gpu_error / p.error;
       r.worst_error_label = p.label;
     }

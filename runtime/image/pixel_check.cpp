@@ -18,6 +18,14 @@ ValueRange ValueRange::of(const std::vector<Image>& truths) {
   return r;
 }
 
+ValueRange bounded(ValueRange seen, const DeclaredBounds& declared) {
+  for (int c = 0; c < Image::kChannels; ++c) {
+    if (std::isfinite(declared.lo[c])) seen.lo[c] = declared.lo[c];
+    if (std::isfinite(declared.hi[c])) seen.hi[c] = declared.hi[c];
+  }
+  return seen;
+}
+
 PixelCounts check_pixel(const float* rgb, const ValueRange& r) {
   bool nonfinite = false, outside = false;
   for (int c = 0; c < Image::kChannels; ++c) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -27,6 +28,13 @@ struct ValueRange {
     return 16 * 1.1920929e-7f * (m > 1 ? m : 1);
   }
 };
+
+// A shader's declared bounds per channel (render/value_range.hpp: interval analysis, with the
+// background), a non-finite entry where it declares none: they replace `seen` on the sides declared.
+struct DeclaredBounds {
+  std::array<float, Image::kChannels> lo{NAN, NAN, NAN}, hi{NAN, NAN, NAN};
+};
+ValueRange bounded(ValueRange seen, const DeclaredBounds& declared);
 
 struct PixelCounts {
   std::size_t nonfinite = 0;     // pixels with a NaN or infinite channel

@@ -9,8 +9,8 @@
 
 namespace bl::render {
 
-std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program& p, const std::string& version,
-                                 const FragmentOptions& options) {
+std::string glsl_fragment_source(const scene::Scene& s, const compiler::Program& p,
+                                 const std::string& version, const FragmentOptions& options) {
   return glsl_version_line(version) + compiler::emit_glsl(p, "bl_shade", "scene " + s.name) + "\n" +
          glsl_fragment_main(p, "bl_shade", options);
 }
@@ -53,7 +53,8 @@ std::string pixel_line(const FragmentOptions& o) {
 std::string input_lines(const compiler::Program& p, const std::string& indent) {
   std::ostringstream os;
   const int n = std::max(1, p.input_count);
-  os << indent << "float m[" << n << "]; float s[" << n << "]; float gx[" << n << "]; float gy[" << n << "];\n";
+  os << indent << "float m[" << n << "]; float s[" << n << "]; float gx[" << n << "]; float gy[" << n
+     << "];\n";
   if (p.input_count == 0) os << indent << "m[0] = 0.0; s[0] = 0.0; gx[0] = 0.0; gy[0] = 0.0;\n";
   for (int i = 0; i < p.input_count; ++i) {
     const std::string& name = p.input_names[i];
@@ -78,15 +79,16 @@ std::string input_lines(const compiler::Program& p, const std::string& indent) {
       mean = "bl_light.z";
     else
       throw std::invalid_argument("glsl frame: the program reads an unknown input '" + name + "'");
-    os << indent << "m[" << i << "] = " << mean << "; s[" << i << "] = " << sd << "; gx[" << i << "] = " << gxs
-       << "; gy[" << i << "] = " << gys << ";\n";
+    os << indent << "m[" << i << "] = " << mean << "; s[" << i << "] = " << sd << "; gx[" << i
+       << "] = " << gxs << "; gy[" << i << "] = " << gys << ";\n";
   }
   os << indent << "float o[" << p.outputs.size() << "];\n";
   return os.str();
 }
 
 // One evaluation at the pixel centre with the pixel's footprint (the smoothed renderer).
-std::string footprint_main(const compiler::Program& p, const std::string& function, const FragmentOptions& o) {
+std::string footprint_main(const compiler::Program& p, const std::string& function,
+                           const FragmentOptions& o) {
   std::ostringstream os;
   os << R"(// Phi(z) through the erfc fit of generated/bandlimit.glsl (relative error < 1.2e-7).
 float bl_cover_Phi(float z) {
@@ -141,7 +143,8 @@ void main() {
 // whose ray misses the plane takes the background. The offsets come from a 32-bit counter hash of
 // (pixel, sample) (PCG's output function), not from render/jitter.hpp's 64-bit one: desktop GLSL 4.5
 // has no 64-bit integers without an extension. Same kernel, different draws.
-std::string supersample_main(const compiler::Program& p, const std::string& function, const FragmentOptions& o) {
+std::string supersample_main(const compiler::Program& p, const std::string& function,
+                             const FragmentOptions& o) {
   std::ostringstream os;
   os << R"(uint bl_hash(uint x) {
   uint s = x * 747796405u + 2891336453u;
@@ -155,8 +158,10 @@ void main() {
      << R"(  uint pixel = uint(p.y) * uint(bl_size.x) + uint(p.x);
   vec3 acc = vec3(0.0);
   for (int j = 0; j < bl_samples; ++j) {
-)" << "    uint h1 = bl_hash(pixel + bl_hash(uint(j)"
-     << (o.first_sample != 0 ? " + " + std::to_string(o.first_sample) + "u" : std::string()) << R"()), h2 = bl_hash(h1 ^ 0x5851F42Du);
+)"
+     << "    uint h1 = bl_hash(pixel + bl_hash(uint(j)"
+     << (o.first_sample != 0 ? " + " + std::to_string(o.first_sample) + "u" : std::string())
+     << R"()), h2 = bl_hash(h1 ^ 0x5851F42Du);
     float u1 = (float(h1 >> 8u) + 1.0) * (1.0 / 16777216.0), u2 = float(h2 >> 8u) * (1.0 / 16777216.0);
     float r = bl_pixel_sigma * sqrt(-2.0 * log(u1)), a = 6.2831853 * u2;
     vec3 d = bl_ray(p + r * vec2(cos(a), sin(a)));
@@ -178,8 +183,8 @@ std::string glsl_fragment_main(const compiler::Program& p, const std::string& fu
                                const FragmentOptions& options) {
   if (options.samples < 0)
     throw std::invalid_argument("glsl frame: samples must be >= 0, got " + std::to_string(options.samples));
-  return kCameraPrelude +
-         (options.samples > 0 ? supersample_main(p, function, options) : footprint_main(p, function, options));
+  return kCameraPrelude + (options.samples > 0 ? supersample_main(p, function, options)
+                                               : footprint_main(p, function, options));
 }
 
 std::vector<gl::Uniform> glsl_frame_uniforms(const scene::Scene& s, const Frame& f) {

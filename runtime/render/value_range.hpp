@@ -16,4 +16,8 @@ namespace bl::render {
 // `truths`: the ground truth of every frame (render::frames order); renders the plain frames.
 ValueRange valid_range(const scene::Scene& s, const ir::Graph& g, const std::vector<Image>& truths);
 
+// The declared part alone: the output's interval bounds where finite, widened to the background.
+// (blgpu_pack packs them; blgpu_time widens [0, 1] by its own truth and plain images.)
+DeclaredBounds declared_bounds(const scene::Scene& s, const ir::Graph& g);
+
 }  // namespace bl::render

@@ -12,6 +12,7 @@
 //   blgpu_pack --suite out/tune/mine --scene my/pattern.json --out build/gpu_pack   (one scene)
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +26,7 @@
 #include "compiler/supersample.hpp"
 #include "render/glsl_frame.hpp"
 #include "render/render.hpp"
+#include "render/value_range.hpp"
 #include "scene/scene.hpp"
 #include "shaders/shader.hpp"
 
@@ -209,13 +211,10 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
     fo.first_sample = 1u << 24;
     const std::string frag = name + "/truth.frag";
     write_file(out / frag,
-               render::glsl_fragment_source(s, compiler::lower(g, compiler::load_schedule(csv + ":plain", g).schedule),
-                                            "450", fo));
-    programs.push_back({{"label", "truth"},
-                        {"kind", "truth"},
-                        {"msaa", fo.samples},
-                        {"error", nullptr},
-                        {"frag", frag}});
+               render::glsl_fragment_source(
+                   s, compiler::lower(g, compiler::load_schedule(csv + ":plain", g).schedule), "450", fo));
+    programs.push_back(
+        {{"label", "truth"}, {"kind", "truth"}, {"msaa", fo.samples}, {"error", nullptr}, {"frag", frag}});
   }
   // Every frame's uniforms (views and times): errors are over all of them, as bltune's are; the
   // timings draw the first.
@@ -225,9 +224,21 @@ json pack_scene(const fs::path& result_dir, const fs::path& scenes_dir, const st
     for (const gl::Uniform& u : render::glsl_frame_uniforms(s, f)) uniforms.push_back(uniform_json(u));
     frames.push_back({{"view", f.view}, {"time", f.time}, {"uniforms", uniforms}});
   }
-  return {{"scene", name},           {"scene_width", s.width},    {"scene_height", s.height},
-          {"width", s.width * tile}, {"height", s.height * tile}, {"uniforms", frames.front().at("uniforms")},
-          {"frames", frames},        {"programs", programs}};
+  // The valid range's declared part (render/value_range.hpp); blgpu_time widens [0, 1] on the
+  // undeclared sides by its own truth and plain images, as bltune does with the CPU's.
+  const DeclaredBounds d = render::declared_bounds(s, g);
+  auto bound = [](float v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json declared = json::array();
+  for (int c = 0; c < Image::kChannels; ++c) declared.push_back({bound(d.lo[c]), bound(d.hi[c])});
+  return {{"scene", name},
+          {"scene_width", s.width},
+          {"scene_height", s.height},
+          {"declared_range", declared},
+          {"width", s.width * tile},
+          {"height", s.height * tile},
+          {"uniforms", frames.front().at("uniforms")},
+          {"frames", frames},
+          {"programs", programs}};
 }
 
 }  // namespace

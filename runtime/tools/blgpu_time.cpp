@@ -80,7 +80,9 @@ std::vector<gl::Uniform> uniform_list(const json& uniforms) {
   return u;
 }
 
-std::vector<gl::Uniform> uniforms_of(const json& scene) { return uniform_list(scene.at("uniforms")); }
+std::vector<gl::Uniform> uniforms_of(const json& scene) {
+  return uniform_list(scene.at("uniforms"));
+}
 
 // Every frame's uniforms (a pack from before stop 41 has the first frame only).
 std::vector<json> frames_of(const json& scene) {
@@ -106,7 +108,8 @@ void write_images(gl::Context& ctx, const gl::Program& program, const json& sc, 
     const fs::path p = image_path(out, sc.at("scene"), label, f);
     {
       std::ofstream o(p.string() + ".tmp", std::ios::binary);
-      o.write(reinterpret_cast<const char*>(rgb.data()), static_cast<std::streamsize>(rgb.size() * sizeof(float)));
+      o.write(reinterpret_cast<const char*>(rgb.data()),
+              static_cast<std::streamsize>(rgb.size() * sizeof(float)));
       if (!o) throw std::runtime_error(p.string() + ": write failed");
     }
     fs::rename(p.string() + ".tmp", p);
@@ -247,7 +250,8 @@ json run_shard(const fs::path& pack, const json& manifest, const fs::path& out, 
     const int w = sc.at("width"), h = sc.at("height");
     if (j.program.valid()) {
       try {
-        if (j.time.kind != "truth") j.time.gpu_ms = time_program(ctx, j.program, w, h, uniforms_of(sc), budget_ms);
+        if (j.time.kind != "truth")
+          j.time.gpu_ms = time_program(ctx, j.program, w, h, uniforms_of(sc), budget_ms);
         write_images(ctx, j.program, sc, out, j.time.label);
       } catch (const gl::Error& e) {
         j.time.failure = e.what();
@@ -274,9 +278,19 @@ void merge(const json& manifest, const fs::path& out, const std::vector<json>& s
   std::vector<gpu_timing::SceneTimes> scenes;
   json all = json::array();
   for (const json& sc : manifest.at("scenes")) {
-    // The scene's GPU truth and the range its pixels may take ([0, 1] widened to the truth's values).
+    // The scene's GPU truth and the range its pixels may take, as bltune's (render/value_range.hpp):
+    // the declared bounds, else [0, 1] widened to what the truth and the plain program reach.
     const std::vector<Image> truth = read_images(out, sc, "truth");
-    const ValueRange range = ValueRange::of(truth);
+    std::vector<Image> seen = truth;
+    for (Image& img : read_images(out, sc, "plain")) seen.push_back(std::move(img));
+    DeclaredBounds declared;
+    if (sc.contains("declared_range"))
+      for (int c = 0; c < Image::kChannels; ++c) {
+        const json& b = sc["declared_range"].at(c);
+        if (b.at(0).is_number()) declared.lo[c] = b[0].get<float>();
+        if (b.at(1).is_number()) declared.hi[c] = b[1].get<float>();
+      }
+    const ValueRange range = bounded(ValueRange::of(seen), declared);
     gpu_timing::SceneTimes st;
     st.scene = sc.at("scene");
     st.width = sc.at("width");

@@ -131,5 +131,51 @@ TEST(GpuReport, TheAdaptiveSupersamplerIsComparedWithOurFastest) {
   EXPECT_EQ(md.find("Against footprint-adaptive"), std::string::npos) << md;
 }
 
+// Errors measured on the GPU (blgpu_time's merge): the fastest front point or pair whose GPU error is
+// at most MSAA-16's GPU error, the largest GPU / CPU error ratio and the programs with NaN pixels.
+// By hand: MSAA-16's GPU error is 0.041; front02 (0.0405, 1.6 ms) qualifies, front03 (0.05 on the
+// GPU against 0.02 on the CPU: ratio 2.5, the worst) does not, the pair (0.039, 0.5 ms) is the
+// fastest: 8 / 0.5 = 16x. front04 drew 3 NaN pixels; the truth is never compared.
+TEST(GpuReport, ErrorsMeasuredOnTheGpu) {
+  SceneTimes s = table();
+  EXPECT_EQ(errors_markdown({s}), "");  // nothing measured: no section (a pack from before stop 41)
+  const double gpu_error[] = {0.1002, 0.041, 0.03, 0.10, 0.06, 0.0405, 0.05, 0.2};
+  for (std::size_t i = 0; i < s.programs.size(); ++i) s.programs[i].gpu_error = gpu_error[i];
+  s.programs[7].nonfinite = 3;
+  ProgramTime lod;
+  lod.label = "lod", lod.kind = "lod", lod.error = 0.035, lod.compiled_ns = 7, lod.gpu_ms = 0.5,
+  lod.gpu_error = 0.039;
+  ProgramTime truth;
+  truth.label = "truth", truth.kind = "truth", truth.msaa = 1024, truth.error = INFINITY, truth.gpu_error = 5;
+  s.programs.push_back(lod);
+  s.programs.push_back(truth);
+  const SceneSummary r = summarize(s);
+  EXPECT_DOUBLE_EQ(r.msaa16_gpu_error, 0.041);
+  EXPECT_EQ(r.gpu_label, "front02");  // by bltune's errors, as before
+  EXPECT_DOUBLE_EQ(r.gpu_point_cpu_error, 0.04);
+  EXPECT_DOUBLE_EQ(r.gpu_point_error, 0.0405);
+  EXPECT_EQ(r.by_gpu_label, "lod");
+  EXPECT_DOUBLE_EQ(r.by_gpu_speedup, 16.0);
+  EXPECT_DOUBLE_EQ(r.worst_error_ratio, 2.5);
+  EXPECT_EQ(r.worst_error_label, "front03");
+  EXPECT_EQ(r.nonfinite_programs, 1);
+  const std::string md = report_markdown({s}, "toy GPU", 10);
+  EXPECT_NE(
+      md.find("| toy | 0.1000 / 0.1002 | 0.0400 / 0.0410 | front02: 0.0400 / 0.0405 | lod | 0.500 | 16.0x | "
+              "2.500 (front03) | 1 / 0 |"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(
+      md.find("MSAA-16's error reached on 1 of 1 scenes, at >= 10x less GPU time on 1; median speed-up "
+              "16.0x; 1 program(s) with NaN or infinite pixels; the largest GPU / CPU error ratio 2.500 "
+              "(toy/front03)."),
+      std::string::npos)
+      << md;
+  // The pair's GPU error above MSAA-16's: front02 is the fastest that qualifies (8 / 1.6 = 5x).
+  s.programs[8].gpu_error = 0.042;
+  EXPECT_EQ(summarize(s).by_gpu_label, "front02");
+  EXPECT_DOUBLE_EQ(summarize(s).by_gpu_speedup, 5.0);
+}
+
 }  // namespace
 }  // namespace bl::gpu_timing
