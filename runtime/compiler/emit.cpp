@@ -145,7 +145,7 @@ std::string emit_cpp(const Program& p, const std::string& name, const std::strin
 
 namespace {
 
-// A hash: a plain sin or cos multiplied by a constant of magnitude >= 1024, as in
+// A hash: a sin or cos multiplied by a constant of magnitude >= 1024, as in
 // fract(sin(dot(floor(p), k)) * 43758.5). It turns a last-bit difference in sin's argument (~1e3)
 // into another value, and a GLSL compiler may fuse multiplies and adds (or reassociate) differently
 // in each program: on NVIDIA's driver the smoothed programs of a value-noise pattern drew another
@@ -155,10 +155,15 @@ namespace {
 // library code fused and three Voronoi points 2x off; not more: elsewhere it costs up to 30% of
 // the GPU time (Voronoi) and nothing amplifies the rounding.
 bool has_hash(const Program& p) {
+  // sin or cos under any rule (a smoothed sin of a zero-variance argument is the plain one), or the
+  // mean of its (mean, var) entry.
   auto is_sin_cos = [&](int i) {
-    const Inst& in = p.insts[i];
-    return in.op == LOp::Call &&
-           (functions()[in.fn].glsl == "bl_plain_sin" || functions()[in.fn].glsl == "bl_plain_cos");
+    const Inst* in = &p.insts[i];
+    if (in->op == LOp::Mean) in = &p.insts[in->arg[0]];
+    if (in->op != LOp::Call && in->op != LOp::CallStat) return false;
+    const std::string& name = functions()[in->fn].cpp;
+    const std::string base = name.substr(name.rfind(':') + 1);
+    return base == "sin" || base == "cos" || base == "sin_stat" || base == "cos_stat";
   };
   auto large = [&](int i) { return p.insts[i].op == LOp::Const && std::fabs(p.insts[i].k) >= 1024.0f; };
   for (const Inst& in : p.insts)

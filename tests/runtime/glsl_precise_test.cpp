@@ -97,6 +97,17 @@ TEST(GlslPrecise, AHashMakesTheWholeProgramAndItsLibraryPrecise) {
 TEST(GlslPrecise, NoHashNoPrecise) {
   // A gain below 1024 amplifies no last-bit difference into another value: emitted as before.
   EXPECT_EQ(count(compiler::emit_glsl(gaussian(hash_graph(1000.0)), "shade"), "precise"), 0u);
+  // Under any rule: a smoothed sin times a large gain is a hash too (here of a varying argument).
+  {
+    ir::Graph g;
+    dsl::Tracer t(g);
+    const dsl::Var u = dsl::Var::input("u", true);
+    g.add_output("r", dsl::fract(dsl::sin(u * 127.1) * 43758.5).id());
+    const compiler::Program p = gaussian(g);
+    const std::string cpp = compiler::emit_cpp(p, "shade", "", compiler::CppForm::Header);
+    ASSERT_EQ(cpp.find("bl::plain::sin"), std::string::npos) << cpp;  // the sin is smoothed
+    EXPECT_EQ(precise_instructions(compiler::emit_glsl(p, "shade")), p.insts.size());
+  }
   // The gain's sign does not matter.
   EXPECT_EQ(count(compiler::emit_glsl(gaussian(hash_graph(-43758.5)), "shade"), "precise"),
             count(compiler::emit_glsl(gaussian(hash_graph(43758.5)), "shade"), "precise"));
