@@ -248,6 +248,9 @@ json run_shard(const fs::path& pack, const json& manifest, const fs::path& out, 
   for (Job& j : jobs) {
     const json& sc = scenes[j.scene];
     const int w = sc.at("width"), h = sc.at("height");
+    // An earlier run's images must not stand for a program that fails to draw now.
+    for (int f = 0; f < static_cast<int>(frames_of(sc).size()); ++f)
+      fs::remove(image_path(out, sc.at("scene"), j.time.label, f));
     if (j.program.valid()) {
       try {
         if (j.time.kind != "truth")
