@@ -71,7 +71,8 @@ std::string piece_table(const Syntax& s, const std::string& name, const std::vec
 
 // GLSL, sigma > 0 past the straight-line block: the generic per-piece sum of support.glsl
 // (bl_gauss_pw / bl_box_pw / bl_tent_pw: the same cores, conditions and order) written out piece by
-// piece with its bounds and coefficients as literals. A piece table would be a local array, which
+// piece with its bounds and coefficients as literals (Gaussian: bl_gauss_core_s, the core itself
+// without arrays, stop 41). A piece table would be a local array, which
 // NVIDIA's driver keeps in local memory and reserves per inlined call site whether or not it runs:
 // fire_bumps' all-Gaussian program drew at 25 ns/px with the tables and 3.6 without
 // (docs/gpu_timing.md, stop 28).
@@ -85,8 +86,12 @@ std::string pieces_written_out(const Syntax& s, Kernel kernel, const std::vector
     if (zero) continue;
     const std::string lo = s.bound(p.lo), hi = s.bound(p.hi), c = "float[8](" + piece_coeffs(s, p) + ")";
     if (kernel == Kernel::Gaussian) {
-      out += "  wide += bl_gauss_core(x, sigma, " + lo + " - x, " + hi + " - x, " + lo + ", " + hi + ", " +
-             c + ");\n";
+      // Scalars, the degree a literal (support.glsl bl_gauss_core_s): no array even in the core.
+      int degree = 0;
+      for (int k = 0; k < static_cast<int>(p.c.size()); ++k)
+        if (!p.c[k].is_zero()) degree = k;
+      out += "  wide += bl_gauss_core_s(x, sigma, " + lo + " - x, " + hi + " - x, " + lo + ", " + hi + ", " +
+             std::to_string(degree) + ", " + piece_coeffs(s, p) + ");\n";
       continue;
     }
     const std::string core = kernel == Kernel::Box ? "bl_box_core" : "bl_tent_core";

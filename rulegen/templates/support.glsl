@@ -249,6 +249,158 @@ float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float h
   return sum;
 }
 
+// bl_poly of scalar coefficients c0..c7 (Horner, the same order).
+float bl_horner8(float t, float c0, float c1, float c2, float c3, float c4, float c5, float c6, float c7) {
+  return ((((((c7 * t + c6) * t + c5) * t + c4) * t + c3) * t + c2) * t + c1) * t + c0;
+}
+
+// One Gauss-Legendre node pair of bl_gauss_core_s: the piece's polynomial times phi at mid +- hr n.
+float bl_gl_pair8(float mid, float hr, float cz, float hw, float n, float c0, float c1, float c2, float c3, float c4, float c5, float c6, float c7) {
+  return bl_horner8(mid + hr * n, c0, c1, c2, c3, c4, c5, c6, c7) * bl_phi(cz + hw * n) + bl_horner8(mid - hr * n, c0, c1, c2, c3, c4, c5, c6, c7) * bl_phi(cz - hw * n);
+}
+
+// bl_gauss_core with the piece's coefficients as scalars c0..c7 and its degree `deg` a literal of
+// each call (rulegen writes the piecewise entries' wide regime so): the same branches, conditions
+// and order, with no local array. NVIDIA's driver keeps a local array in local memory for every
+// inlined call site: bricks_bumps' most accurate points, which call bl_gauss_core 4-6 times, drew
+// at 143-179 ns/px (40x MSAA-16) and compiled in 35-40 s (docs/gpu_timing.md, stop 41).
+float bl_gauss_core_s(float xq, float sigma, float dl, float dh, float lo, float hi, int deg, float c0, float c1, float c2, float c3, float c4, float c5, float c6, float c7) {
+  if (!(hi > lo) || (deg == 0 && c0 == 0.0)) return 0.0;  // empty piece or f = 0 on it
+  bool loinf = bl_is_inf(lo);
+  bool hiinf = bl_is_inf(hi);
+  if (!loinf && !hiinf) {
+    if (dl >= 40.0 * sigma || dh <= -40.0 * sigma) return 0.0;
+    float hw = (hi - lo) / (2.0 * sigma);
+    float cz = (dl + dh) / (2.0 * sigma);
+    if (hw <= 1.0 && abs(cz) * hw <= 10.0) {
+      float mid = 0.5 * (lo + hi);
+      float hr = 0.5 * (hi - lo);
+      float s = 0.0;
+      s += 0.15275338713072584 * bl_gl_pair8(mid, hr, cz, hw, 0.076526521133497338, c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.14917298647260374 * bl_gl_pair8(mid, hr, cz, hw, 0.22778585114164507, c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.14209610931838204 * bl_gl_pair8(mid, hr, cz, hw, 0.37370608871541955, c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.13168863844917664 * bl_gl_pair8(mid, hr, cz, hw, 0.51086700195082713, c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.11819453196151841 * bl_gl_pair8(mid, hr, cz, hw, 0.63605368072651502, c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.10193011981724044 * bl_gl_pair8(mid, hr, cz, hw, 0.7463319064601508, c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.083276741576704755 * bl_gl_pair8(mid, hr, cz, hw, 0.83911697182221878, c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.062672048334109068 * bl_gl_pair8(mid, hr, cz, hw, 0.91223442825132595, c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.040601429800386939 * bl_gl_pair8(mid, hr, cz, hw, 0.96397192727791381, c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.017614007139152118 * bl_gl_pair8(mid, hr, cz, hw, 0.99312859918509488, c0, c1, c2, c3, c4, c5, c6, c7);
+      return hw * s;
+    }
+  }
+  float a = loinf ? -BL_ZMAX : clamp(dl / sigma, -BL_ZMAX, BL_ZMAX);
+  float b = hiinf ? BL_ZMAX : clamp(dh / sigma, -BL_ZMAX, BL_ZMAX);
+  // Taylor coefficients about xq (bl_taylor_shift unrolled).
+  float g0 = c0; float g1 = c1; float g2 = c2; float g3 = c3; float g4 = c4; float g5 = c5; float g6 = c6; float g7 = c7;
+  if (0 < deg && 6 < deg) g6 += xq * g7;
+  if (0 < deg && 5 < deg) g5 += xq * g6;
+  if (0 < deg && 4 < deg) g4 += xq * g5;
+  if (0 < deg && 3 < deg) g3 += xq * g4;
+  if (0 < deg && 2 < deg) g2 += xq * g3;
+  if (0 < deg && 1 < deg) g1 += xq * g2;
+  if (0 < deg && 0 < deg) g0 += xq * g1;
+  if (1 < deg && 6 < deg) g6 += xq * g7;
+  if (1 < deg && 5 < deg) g5 += xq * g6;
+  if (1 < deg && 4 < deg) g4 += xq * g5;
+  if (1 < deg && 3 < deg) g3 += xq * g4;
+  if (1 < deg && 2 < deg) g2 += xq * g3;
+  if (1 < deg && 1 < deg) g1 += xq * g2;
+  if (2 < deg && 6 < deg) g6 += xq * g7;
+  if (2 < deg && 5 < deg) g5 += xq * g6;
+  if (2 < deg && 4 < deg) g4 += xq * g5;
+  if (2 < deg && 3 < deg) g3 += xq * g4;
+  if (2 < deg && 2 < deg) g2 += xq * g3;
+  if (3 < deg && 6 < deg) g6 += xq * g7;
+  if (3 < deg && 5 < deg) g5 += xq * g6;
+  if (3 < deg && 4 < deg) g4 += xq * g5;
+  if (3 < deg && 3 < deg) g3 += xq * g4;
+  if (4 < deg && 6 < deg) g6 += xq * g7;
+  if (4 < deg && 5 < deg) g5 += xq * g6;
+  if (4 < deg && 4 < deg) g4 += xq * g5;
+  if (5 < deg && 6 < deg) g6 += xq * g7;
+  if (5 < deg && 5 < deg) g5 += xq * g6;
+  if (6 < deg && 6 < deg) g6 += xq * g7;
+  // Moments on [a, b] from non-negative tails (bl_upper_moments at ta and tb, unrolled): the
+  // branch (a < 0 < b, a >= 0, b <= 0) picks the tails and the signs as bl_gauss_core does.
+  int br = (a < 0.0 && b > 0.0) ? 0 : (a >= 0.0 ? 1 : 2);
+  float ta = min(br == 1 ? a : -a, BL_ZMAX);
+  float tb = min(br == 2 ? -b : b, BL_ZMAX);
+  float ea = bl_phi(ta);
+  float Ua0 = bl_Phic(ta);
+  float Ua1 = ea;
+  ea *= ta;
+  float Ua2 = (2 <= deg) ? ea + 1.0 * Ua0 : 0.0;
+  ea *= ta;
+  float Ua3 = (3 <= deg) ? ea + 2.0 * Ua1 : 0.0;
+  ea *= ta;
+  float Ua4 = (4 <= deg) ? ea + 3.0 * Ua2 : 0.0;
+  ea *= ta;
+  float Ua5 = (5 <= deg) ? ea + 4.0 * Ua3 : 0.0;
+  ea *= ta;
+  float Ua6 = (6 <= deg) ? ea + 5.0 * Ua4 : 0.0;
+  ea *= ta;
+  float Ua7 = (7 <= deg) ? ea + 6.0 * Ua5 : 0.0;
+  float eb = bl_phi(tb);
+  float Ub0 = bl_Phic(tb);
+  float Ub1 = eb;
+  eb *= tb;
+  float Ub2 = (2 <= deg) ? eb + 1.0 * Ub0 : 0.0;
+  eb *= tb;
+  float Ub3 = (3 <= deg) ? eb + 2.0 * Ub1 : 0.0;
+  eb *= tb;
+  float Ub4 = (4 <= deg) ? eb + 3.0 * Ub2 : 0.0;
+  eb *= tb;
+  float Ub5 = (5 <= deg) ? eb + 4.0 * Ub3 : 0.0;
+  eb *= tb;
+  float Ub6 = (6 <= deg) ? eb + 5.0 * Ub4 : 0.0;
+  eb *= tb;
+  float Ub7 = (7 <= deg) ? eb + 6.0 * Ub5 : 0.0;
+  float sum = 0.0;
+  float sk = 1.0;
+  if (0 <= deg) {
+    float ik = br == 0 ? 1.0 - (Ua0) - Ub0 : (br == 1 ? Ua0 - Ub0 : Ub0 - Ua0);
+    if (g0 != 0.0) sum += g0 * sk * ik;
+    if (0 < deg) sk *= sigma;
+  }
+  if (1 <= deg) {
+    float ik = br == 0 ? 0.0 - (-Ua1) - Ub1 : (br == 1 ? Ua1 - Ub1 : -(Ub1 - Ua1));
+    if (g1 != 0.0) sum += g1 * sk * ik;
+    if (1 < deg) sk *= sigma;
+  }
+  if (2 <= deg) {
+    float ik = br == 0 ? 1.0 - (Ua2) - Ub2 : (br == 1 ? Ua2 - Ub2 : Ub2 - Ua2);
+    if (g2 != 0.0) sum += g2 * sk * ik;
+    if (2 < deg) sk *= sigma;
+  }
+  if (3 <= deg) {
+    float ik = br == 0 ? 0.0 - (-Ua3) - Ub3 : (br == 1 ? Ua3 - Ub3 : -(Ub3 - Ua3));
+    if (g3 != 0.0) sum += g3 * sk * ik;
+    if (3 < deg) sk *= sigma;
+  }
+  if (4 <= deg) {
+    float ik = br == 0 ? 3.0 - (Ua4) - Ub4 : (br == 1 ? Ua4 - Ub4 : Ub4 - Ua4);
+    if (g4 != 0.0) sum += g4 * sk * ik;
+    if (4 < deg) sk *= sigma;
+  }
+  if (5 <= deg) {
+    float ik = br == 0 ? 0.0 - (-Ua5) - Ub5 : (br == 1 ? Ua5 - Ub5 : -(Ub5 - Ua5));
+    if (g5 != 0.0) sum += g5 * sk * ik;
+    if (5 < deg) sk *= sigma;
+  }
+  if (6 <= deg) {
+    float ik = br == 0 ? 15.0 - (Ua6) - Ub6 : (br == 1 ? Ua6 - Ub6 : Ub6 - Ua6);
+    if (g6 != 0.0) sum += g6 * sk * ik;
+    if (6 < deg) sk *= sigma;
+  }
+  if (7 <= deg) {
+    float ik = br == 0 ? 0.0 - (-Ua7) - Ub7 : (br == 1 ? Ua7 - Ub7 : -(Ub7 - Ua7));
+    if (g7 != 0.0) sum += g7 * sk * ik;
+    if (7 < deg) sk *= sigma;
+  }
+  return sum;
+}
+
 // Box integral of one piece on offsets: covered length from offsets, mean of t^k by divided
 // differences S_k = b S_{k-1} + a^k.
 float bl_box_core(float xq, float h, float dl, float dh, float lo, float hi, float c[8]) {
