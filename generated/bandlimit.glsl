@@ -56,14 +56,6 @@ float bl_poly(float c[8], float t) {
   return r;
 }
 
-// Taylor coefficients g[k] = q^(k)(t0)/k! by repeated synthetic division.
-void bl_taylor_shift(float c[8], int deg, float t0, out float g[8]) {
-  for (int k = 0; k < 8; ++k) g[k] = c[k];
-  for (int i = 0; i < 7; ++i)
-    for (int j = 6; j >= 0; --j)
-      if (i < deg && j >= i && j < deg) g[j] += t0 * g[j + 1];
-}
-
 // erfc with relative error < 1.2e-7 on the whole line (Numerical Recipes' Chebyshev fit of
 // erfc(z) e^{z^2}): GLSL has no erfc, and this keeps the Gaussian tails relatively accurate.
 float bl_erfc(float x) {
@@ -159,25 +151,36 @@ float bl_logcosh(float x) {
   return a + bl_log1p(exp(-2.0 * a)) - BL_LN2;
 }
 
-// U[k] = int_t^inf z^k phi, t >= 0 (clamped to 40, where everything is 0 in float), by the
-// positive upper-tail recursion.
-void bl_upper_moments(float t, int deg, out float U[8]) {
-  float tt = min(t, BL_ZMAX);
-  float e = bl_phi(tt);
-  U[0] = bl_Phic(tt);
-  U[1] = e;
-  for (int k = 2; k < 8; ++k) {
-    e *= tt;
-    U[k] = (k <= deg) ? e + float(k - 1) * U[k - 2] : 0.0;
-  }
+// Taylor coefficients g[k] = q^(k)(t0)/k! by repeated synthetic division.
+void bl_taylor_shift(float c[8], int deg, float t0, out float g[8]) {
+  for (int k = 0; k < 8; ++k) g[k] = c[k];
+  for (int i = 0; i < 7; ++i)
+    for (int j = 6; j >= 0; --j)
+      if (i < deg && j >= i && j < deg) g[j] += t0 * g[j + 1];
+}
+
+// bl_poly of scalar coefficients c0..c7 (Horner, the same order).
+float bl_horner8(float t, float c0, float c1, float c2, float c3, float c4, float c5, float c6, float c7) {
+  return ((((((c7 * t + c6) * t + c5) * t + c4) * t + c3) * t + c2) * t + c1) * t + c0;
+}
+
+// One Gauss-Legendre node pair of bl_gauss_core_s: the piece's polynomial times phi at mid +- hr n.
+float bl_gl_pair8(float mid, float hr, float cz, float hw, float n, float c0, float c1, float c2,
+                  float c3, float c4, float c5, float c6, float c7) {
+  return bl_horner8(mid + hr * n, c0, c1, c2, c3, c4, c5, c6, c7) * bl_phi(cz + hw * n) +
+         bl_horner8(mid - hr * n, c0, c1, c2, c3, c4, c5, c6, c7) * bl_phi(cz - hw * n);
 }
 
 // Gaussian integral of one piece on offsets (see gauss_core in support.hpp): 20-point
 // Gauss-Legendre for narrow pieces not deep in a tail, otherwise Taylor coefficients about the
-// centre times partial moments built from non-negative tails.
-float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float hi, float c[8]) {
-  int deg = bl_degree(c);
-  if (!(hi > lo) || (deg == 0 && c[0] == 0.0)) return 0.0;  // empty piece or f = 0 on it
+// centre times partial moments built from non-negative tails. The piece's coefficients are scalars
+// c0..c7 and its degree `deg` is a literal of each call where rulegen writes one (the piecewise
+// entries' wide regime): no local array. NVIDIA's driver keeps a local array in local memory for
+// every inlined call site; bricks_bumps' most accurate points, which called the array version 4-6
+// times, drew at 143-179 ns/px (40x MSAA-16) and compiled in 35-40 s (docs/gpu_timing.md, stop 41).
+float bl_gauss_core_s(float xq, float sigma, float dl, float dh, float lo, float hi, int deg, float c0,
+                      float c1, float c2, float c3, float c4, float c5, float c6, float c7) {
+  if (!(hi > lo) || (deg == 0 && c0 == 0.0)) return 0.0;  // empty piece or f = 0 on it
   bool loinf = bl_is_inf(lo);
   bool hiinf = bl_is_inf(hi);
   if (!loinf && !hiinf) {
@@ -190,108 +193,26 @@ float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float h
       float mid = 0.5 * (lo + hi);
       float hr = 0.5 * (hi - lo);
       float s = 0.0;
-      s += 0.15275338713072584 * (bl_poly(c, mid + hr * 0.076526521133497338) * bl_phi(cz + hw * 0.076526521133497338) +
-                  bl_poly(c, mid - hr * 0.076526521133497338) * bl_phi(cz - hw * 0.076526521133497338));
-      s += 0.14917298647260374 * (bl_poly(c, mid + hr * 0.22778585114164507) * bl_phi(cz + hw * 0.22778585114164507) +
-                  bl_poly(c, mid - hr * 0.22778585114164507) * bl_phi(cz - hw * 0.22778585114164507));
-      s += 0.14209610931838204 * (bl_poly(c, mid + hr * 0.37370608871541955) * bl_phi(cz + hw * 0.37370608871541955) +
-                  bl_poly(c, mid - hr * 0.37370608871541955) * bl_phi(cz - hw * 0.37370608871541955));
-      s += 0.13168863844917664 * (bl_poly(c, mid + hr * 0.51086700195082713) * bl_phi(cz + hw * 0.51086700195082713) +
-                  bl_poly(c, mid - hr * 0.51086700195082713) * bl_phi(cz - hw * 0.51086700195082713));
-      s += 0.11819453196151841 * (bl_poly(c, mid + hr * 0.63605368072651502) * bl_phi(cz + hw * 0.63605368072651502) +
-                  bl_poly(c, mid - hr * 0.63605368072651502) * bl_phi(cz - hw * 0.63605368072651502));
-      s += 0.10193011981724044 * (bl_poly(c, mid + hr * 0.7463319064601508) * bl_phi(cz + hw * 0.7463319064601508) +
-                  bl_poly(c, mid - hr * 0.7463319064601508) * bl_phi(cz - hw * 0.7463319064601508));
-      s += 0.083276741576704755 * (bl_poly(c, mid + hr * 0.83911697182221878) * bl_phi(cz + hw * 0.83911697182221878) +
-                  bl_poly(c, mid - hr * 0.83911697182221878) * bl_phi(cz - hw * 0.83911697182221878));
-      s += 0.062672048334109068 * (bl_poly(c, mid + hr * 0.91223442825132595) * bl_phi(cz + hw * 0.91223442825132595) +
-                  bl_poly(c, mid - hr * 0.91223442825132595) * bl_phi(cz - hw * 0.91223442825132595));
-      s += 0.040601429800386939 * (bl_poly(c, mid + hr * 0.96397192727791381) * bl_phi(cz + hw * 0.96397192727791381) +
-                  bl_poly(c, mid - hr * 0.96397192727791381) * bl_phi(cz - hw * 0.96397192727791381));
-      s += 0.017614007139152118 * (bl_poly(c, mid + hr * 0.99312859918509488) * bl_phi(cz + hw * 0.99312859918509488) +
-                  bl_poly(c, mid - hr * 0.99312859918509488) * bl_phi(cz - hw * 0.99312859918509488));
-      return hw * s;
-    }
-  }
-  float a = loinf ? -BL_ZMAX : clamp(dl / sigma, -BL_ZMAX, BL_ZMAX);
-  float b = hiinf ? BL_ZMAX : clamp(dh / sigma, -BL_ZMAX, BL_ZMAX);
-  float g[8];
-  bl_taylor_shift(c, deg, xq, g);
-  float Ua[8];
-  float Ub[8];
-  float sum = 0.0;
-  float sk = 1.0;
-  if (a < 0.0 && b > 0.0) {
-    bl_upper_moments(-a, deg, Ua);
-    bl_upper_moments(b, deg, Ub);
-    float m[8];
-    for (int k = 0; k < 8; ++k) {
-      if (k > deg) break;
-      m[k] = (k == 0) ? 1.0 : ((k == 1) ? 0.0 : float(k - 1) * m[k - 2]);
-      float ik = m[k] - (((k & 1) == 1) ? -Ua[k] : Ua[k]) - Ub[k];
-      if (g[k] != 0.0) sum += g[k] * sk * ik;
-      if (k < deg) sk *= sigma;
-    }
-    return sum;
-  }
-  if (a >= 0.0) {
-    bl_upper_moments(a, deg, Ua);
-    bl_upper_moments(b, deg, Ub);
-    for (int k = 0; k < 8; ++k) {
-      if (k > deg) break;
-      if (g[k] != 0.0) sum += g[k] * sk * (Ua[k] - Ub[k]);
-      if (k < deg) sk *= sigma;
-    }
-    return sum;
-  }
-  bl_upper_moments(-b, deg, Ub);
-  bl_upper_moments(-a, deg, Ua);
-  for (int k = 0; k < 8; ++k) {
-    if (k > deg) break;
-    float ik = Ub[k] - Ua[k];
-    if (g[k] != 0.0) sum += g[k] * sk * (((k & 1) == 1) ? -ik : ik);
-    if (k < deg) sk *= sigma;
-  }
-  return sum;
-}
-
-// bl_poly of scalar coefficients c0..c7 (Horner, the same order).
-float bl_horner8(float t, float c0, float c1, float c2, float c3, float c4, float c5, float c6, float c7) {
-  return ((((((c7 * t + c6) * t + c5) * t + c4) * t + c3) * t + c2) * t + c1) * t + c0;
-}
-
-// One Gauss-Legendre node pair of bl_gauss_core_s: the piece's polynomial times phi at mid +- hr n.
-float bl_gl_pair8(float mid, float hr, float cz, float hw, float n, float c0, float c1, float c2, float c3, float c4, float c5, float c6, float c7) {
-  return bl_horner8(mid + hr * n, c0, c1, c2, c3, c4, c5, c6, c7) * bl_phi(cz + hw * n) + bl_horner8(mid - hr * n, c0, c1, c2, c3, c4, c5, c6, c7) * bl_phi(cz - hw * n);
-}
-
-// bl_gauss_core with the piece's coefficients as scalars c0..c7 and its degree `deg` a literal of
-// each call (rulegen writes the piecewise entries' wide regime so): the same branches, conditions
-// and order, with no local array. NVIDIA's driver keeps a local array in local memory for every
-// inlined call site: bricks_bumps' most accurate points, which call bl_gauss_core 4-6 times, drew
-// at 143-179 ns/px (40x MSAA-16) and compiled in 35-40 s (docs/gpu_timing.md, stop 41).
-float bl_gauss_core_s(float xq, float sigma, float dl, float dh, float lo, float hi, int deg, float c0, float c1, float c2, float c3, float c4, float c5, float c6, float c7) {
-  if (!(hi > lo) || (deg == 0 && c0 == 0.0)) return 0.0;  // empty piece or f = 0 on it
-  bool loinf = bl_is_inf(lo);
-  bool hiinf = bl_is_inf(hi);
-  if (!loinf && !hiinf) {
-    if (dl >= 40.0 * sigma || dh <= -40.0 * sigma) return 0.0;
-    float hw = (hi - lo) / (2.0 * sigma);
-    float cz = (dl + dh) / (2.0 * sigma);
-    if (hw <= 1.0 && abs(cz) * hw <= 10.0) {
-      float mid = 0.5 * (lo + hi);
-      float hr = 0.5 * (hi - lo);
-      float s = 0.0;
-      s += 0.15275338713072584 * bl_gl_pair8(mid, hr, cz, hw, 0.076526521133497338, c0, c1, c2, c3, c4, c5, c6, c7);
-      s += 0.14917298647260374 * bl_gl_pair8(mid, hr, cz, hw, 0.22778585114164507, c0, c1, c2, c3, c4, c5, c6, c7);
-      s += 0.14209610931838204 * bl_gl_pair8(mid, hr, cz, hw, 0.37370608871541955, c0, c1, c2, c3, c4, c5, c6, c7);
-      s += 0.13168863844917664 * bl_gl_pair8(mid, hr, cz, hw, 0.51086700195082713, c0, c1, c2, c3, c4, c5, c6, c7);
-      s += 0.11819453196151841 * bl_gl_pair8(mid, hr, cz, hw, 0.63605368072651502, c0, c1, c2, c3, c4, c5, c6, c7);
-      s += 0.10193011981724044 * bl_gl_pair8(mid, hr, cz, hw, 0.7463319064601508, c0, c1, c2, c3, c4, c5, c6, c7);
-      s += 0.083276741576704755 * bl_gl_pair8(mid, hr, cz, hw, 0.83911697182221878, c0, c1, c2, c3, c4, c5, c6, c7);
-      s += 0.062672048334109068 * bl_gl_pair8(mid, hr, cz, hw, 0.91223442825132595, c0, c1, c2, c3, c4, c5, c6, c7);
-      s += 0.040601429800386939 * bl_gl_pair8(mid, hr, cz, hw, 0.96397192727791381, c0, c1, c2, c3, c4, c5, c6, c7);
-      s += 0.017614007139152118 * bl_gl_pair8(mid, hr, cz, hw, 0.99312859918509488, c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.15275338713072584 * bl_gl_pair8(mid, hr, cz, hw, 0.076526521133497338,
+                                              c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.14917298647260374 * bl_gl_pair8(mid, hr, cz, hw, 0.22778585114164507,
+                                              c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.14209610931838204 * bl_gl_pair8(mid, hr, cz, hw, 0.37370608871541955,
+                                              c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.13168863844917664 * bl_gl_pair8(mid, hr, cz, hw, 0.51086700195082713,
+                                              c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.11819453196151841 * bl_gl_pair8(mid, hr, cz, hw, 0.63605368072651502,
+                                              c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.10193011981724044 * bl_gl_pair8(mid, hr, cz, hw, 0.7463319064601508,
+                                              c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.083276741576704755 * bl_gl_pair8(mid, hr, cz, hw, 0.83911697182221878,
+                                              c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.062672048334109068 * bl_gl_pair8(mid, hr, cz, hw, 0.91223442825132595,
+                                              c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.040601429800386939 * bl_gl_pair8(mid, hr, cz, hw, 0.96397192727791381,
+                                              c0, c1, c2, c3, c4, c5, c6, c7);
+      s += 0.017614007139152118 * bl_gl_pair8(mid, hr, cz, hw, 0.99312859918509488,
+                                              c0, c1, c2, c3, c4, c5, c6, c7);
       return hw * s;
     }
   }
@@ -405,6 +326,11 @@ float bl_gauss_core_s(float xq, float sigma, float dl, float dh, float lo, float
     if (7 < deg) sk *= sigma;
   }
   return sum;
+}
+
+// bl_gauss_core_s of a piece table's coefficient array (the generic piecewise and periodic sums).
+float bl_gauss_core(float xq, float sigma, float dl, float dh, float lo, float hi, float c[8]) {
+  return bl_gauss_core_s(xq, sigma, dl, dh, lo, hi, bl_degree(c), c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]);
 }
 
 // Box integral of one piece on offsets: covered length from offsets, mean of t^k by divided
