@@ -84,20 +84,20 @@ std::string pieces_written_out(const Syntax& s, Kernel kernel, const std::vector
     bool zero = true;  // f = 0 on the piece: every core returns 0 there
     for (const auto& ck : p.c) zero = zero && ck.is_zero();
     if (zero) continue;
-    const std::string lo = s.bound(p.lo), hi = s.bound(p.hi), c = "float[8](" + piece_coeffs(s, p) + ")";
+    const std::string lo = s.bound(p.lo), hi = s.bound(p.hi), coeffs = piece_coeffs(s, p);
     if (kernel == Kernel::Gaussian) {
       // Scalars, the degree a literal (support.glsl bl_gauss_core_s): no array even in the core.
       int degree = 0;
       for (int k = 0; k < static_cast<int>(p.c.size()); ++k)
         if (!p.c[k].is_zero()) degree = k;
       out += "  wide += bl_gauss_core_s(x, sigma, " + lo + " - x, " + hi + " - x, " + lo + ", " + hi + ", " +
-             std::to_string(degree) + ", " + piece_coeffs(s, p) + ");\n";
+             std::to_string(degree) + ", " + coeffs + ");\n";
       continue;
     }
     const std::string core = kernel == Kernel::Box ? "bl_box_core" : "bl_tent_core";
     out += "  {\n    float dl = " + lo + " - x, dh = " + hi + " - x;\n";
-    out += "    if (dh > -hk && dl < hk) wide += " + core + "(x, hk, dl, dh, " + lo + ", " + hi + ", " + c +
-           ");\n  }\n";
+    out += "    if (dh > -hk && dl < hk) wide += " + core + "(x, hk, dl, dh, " + lo + ", " + hi +
+           ", float[8](" + coeffs + "));\n  }\n";
   }
   return out + "  return wide;\n";
 }

@@ -90,6 +90,10 @@ std::vector<json> frames_of(const json& scene) {
   return {json{{"uniforms", scene.at("uniforms")}}};
 }
 
+int frame_count(const json& scene) {
+  return scene.contains("frames") ? static_cast<int>(scene["frames"].size()) : 1;
+}
+
 fs::path image_path(const fs::path& out, const std::string& scene, const std::string& label, int frame) {
   return out / "images" / (scene + "__" + label + "__f" + std::to_string(frame) + ".f32");
 }
@@ -120,7 +124,7 @@ void write_images(gl::Context& ctx, const gl::Program& program, const json& sc, 
 std::vector<Image> read_images(const fs::path& out, const json& sc, const std::string& label) {
   const int w = sc.at("scene_width"), h = sc.at("scene_height");
   std::vector<Image> images;
-  for (int f = 0; f < static_cast<int>(frames_of(sc).size()); ++f) {
+  for (int f = 0; f < frame_count(sc); ++f) {
     std::ifstream in(image_path(out, sc.at("scene"), label, f), std::ios::binary);
     if (!in) return {};
     Image img(w, h);
@@ -249,8 +253,7 @@ json run_shard(const fs::path& pack, const json& manifest, const fs::path& out, 
     const json& sc = scenes[j.scene];
     const int w = sc.at("width"), h = sc.at("height");
     // An earlier run's images must not stand for a program that fails to draw now.
-    for (int f = 0; f < static_cast<int>(frames_of(sc).size()); ++f)
-      fs::remove(image_path(out, sc.at("scene"), j.time.label, f));
+    for (int f = 0; f < frame_count(sc); ++f) fs::remove(image_path(out, sc.at("scene"), j.time.label, f));
     if (j.program.valid()) {
       try {
         if (j.time.kind != "truth")
