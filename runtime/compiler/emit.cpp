@@ -145,44 +145,64 @@ std::string emit_cpp(const Program& p, const std::string& name, const std::strin
 
 namespace {
 
-// A hash: a sin or cos multiplied by a constant of magnitude >= 1024, as in
-// fract(sin(dot(floor(p), k)) * 43758.5). It turns a last-bit difference in sin's argument (~1e3)
-// into another value, and a GLSL compiler may fuse multiplies and adds (or reassociate) differently
-// in each program: on NVIDIA's driver the smoothed programs of a value-noise pattern drew another
-// noise than its plain program (errors 1.6-3.6x the CPU's; docs/gpu_timing.md, stop 41). A program
-// with a hash, and its library, computes as written (GLSL `precise` on every declaration), as the
-// C++ evaluator does. Not less: `precise` on the hash's argument alone left a smoothed floor's
-// library code fused and four Voronoi points 2x off; not more: it costs the hash patterns 1.06x
-// (MSAA) to 1.8x (smoothed points) of their GPU time, and elsewhere nothing amplifies the rounding.
-bool has_hash(const Program& p) {
-  // sin or cos under any rule (a smoothed sin of a zero-variance argument is the plain one), or the
-  // mean of its (mean, var) entry.
-  auto is_sin_cos = [&](int i) {
-    const Inst* in = &p.insts[i];
-    if (in->op == LOp::Mean) in = &p.insts[in->arg[0]];
-    if (in->op != LOp::Call && in->op != LOp::CallStat) return false;
-    const std::string& name = functions()[in->fn].cpp;
+// A hash: a sin or cos (under any rule: a smoothed sin of a zero-variance argument is the plain one)
+// multiplied by a constant of magnitude >= 1024, as in fract(sin(dot(floor(p), k)) * 43758.5). It
+// turns a last-bit difference in sin's argument (~1e3) into another value, and a GLSL compiler may
+// fuse multiplies and adds (or reassociate) differently in each program: on NVIDIA's driver the
+// smoothed programs of a value-noise pattern drew another noise than their plain program (errors
+// 1.6-3.6x the CPU's; docs/gpu_timing.md, stop 41). So the argument is computed as written (GLSL
+// `precise`), as the C++ evaluator computes it: every instruction it is computed from, and every
+// library function those call (Rule 3's floor feeding a Voronoi hash: without its body, three
+// points stayed 2x off), up to a step: a comparison or a plain piecewise-constant atomic (floor,
+// step, ...) passes a rounding difference in its argument on only at its jumps, where the plain
+// shader itself is a coin toss. Nothing else: `precise` on every declaration and the whole library
+// (stop 41) drew the same images (errors equal to 1e-6 on the H200) at up to 1.7x the GPU time
+// (fbm front08 2.72 ns/px, this scope 1.62; docs/gpu_timing.md, stop 42).
+std::vector<bool> hash_arguments(const Program& p) {
+  auto sin_cos = [&](int i) {  // the sin / cos call behind i, or -1
+    if (p.insts[i].op == LOp::Mean) i = p.insts[i].arg[0];
+    const Inst& in = p.insts[i];
+    if (in.op != LOp::Call && in.op != LOp::CallStat) return -1;
+    const std::string& name = functions()[in.fn].cpp;
     const std::string base = name.substr(name.rfind(':') + 1);
-    return base == "sin" || base == "cos" || base == "sin_stat" || base == "cos_stat";
+    return base == "sin" || base == "cos" || base == "sin_stat" || base == "cos_stat" ? i : -1;
   };
   auto large = [&](int i) { return p.insts[i].op == LOp::Const && std::fabs(p.insts[i].k) >= 1024.0f; };
+  std::vector<int> todo;
   for (const Inst& in : p.insts)
-    if (in.op == LOp::Mul &&
-        ((is_sin_cos(in.arg[0]) && large(in.arg[1])) || (is_sin_cos(in.arg[1]) && large(in.arg[0]))))
-      return true;
-  return false;
+    if (in.op == LOp::Mul)
+      for (int j = 0; j < 2; ++j)
+        if (const int c = sin_cos(in.arg[j]); c >= 0 && large(in.arg[1 - j]))
+          for (int a = 0; a < lop_arity(p.insts[c]); ++a) todo.push_back(p.insts[c].arg[a]);
+  auto step_like = [&](const Inst& in) {
+    if (in.op == LOp::Less) return true;
+    if (in.op != LOp::Call) return false;
+    static const std::set<std::string> steps{"bl::plain::floor", "bl::plain::ceil", "bl::plain::trunc",
+                                             "bl::plain::step",  "bl::plain::sign", "bl::plain::square"};
+    return steps.count(functions()[in.fn].cpp) != 0;
+  };
+  std::vector<bool> chain(p.insts.size(), false);
+  while (!todo.empty()) {
+    const int i = todo.back();
+    todo.pop_back();
+    if (chain[i]) continue;
+    chain[i] = true;
+    if (!step_like(p.insts[i]))
+      for (int a = 0; a < lop_arity(p.insts[i]); ++a) todo.push_back(p.insts[i].arg[a]);
+  }
+  return chain;
 }
 
-// p as the GLSL function `name` (no library: the caller slices it for every function it emits);
-// `precise`: every declaration computed as written (a program with a hash, has_hash).
-std::string glsl_function(const Program& p, const std::string& name, bool precise) {
+// p as the GLSL function `name` (no library: the caller slices it for every function it emits).
+std::string glsl_function(const Program& p, const std::string& name) {
   std::ostringstream os;
+  const std::vector<bool> precise = hash_arguments(p);
   const int ni = std::max(1, p.input_count), no = static_cast<int>(p.outputs.size());
   os << "void " << name << "(in float bl_m[" << ni << "], in float bl_s[" << ni << "], in float bl_gx[" << ni
      << "], in float bl_gy[" << ni << "], out float bl_out[" << no << "]) {\n";
   for (std::size_t i = 0; i < p.insts.size(); ++i) {
     const char* type = p.pair_valued(static_cast<int>(i)) ? "vec2" : "float";
-    os << "  " << (precise ? "precise " : "") << type << " t" << i << " = "
+    os << "  " << (precise[i] ? "precise " : "") << type << " t" << i << " = "
        << expr(p, static_cast<int>(i), Lang::Glsl) << ";\n";
   }
   for (std::size_t o = 0; o < p.outputs.size(); ++o)
@@ -191,11 +211,17 @@ std::string glsl_function(const Program& p, const std::string& name, bool precis
   return os.str();
 }
 
-// The generated library functions the programs call (and what they call), and the texture helpers.
-std::string glsl_prelude(const std::vector<const Program*>& ps, bool precise) {
-  std::vector<std::string> roots;
-  for (const Program* p : ps)
+// The generated library functions the programs call (and what they call), and the texture helpers;
+// those a hash's argument calls (hash_arguments) with their bodies computed as written.
+std::string glsl_prelude(const std::vector<const Program*>& ps) {
+  std::vector<std::string> roots, precise;
+  for (const Program* p : ps) {
     for (int f : p->used_functions()) roots.push_back(functions()[f].glsl);
+    const std::vector<bool> chain = hash_arguments(*p);
+    for (std::size_t i = 0; i < p->insts.size(); ++i)
+      if (chain[i] && (p->insts[i].op == LOp::Call || p->insts[i].op == LOp::CallStat))
+        precise.push_back(functions()[p->insts[i].fn].glsl);
+  }
   std::string out = glsl_library_slice(roots, precise) + "\n";
   if (ps.front()->uses_textures()) out += glsl_texture_library(ps.front()->texture_names.size()) + "\n";
   return out;
@@ -225,19 +251,17 @@ std::pair<int, int> lod_slots(const Program& near, const Program& far, float lim
 }  // namespace
 
 std::string emit_glsl(const Program& p, const std::string& name, const std::string& comment) {
-  const bool precise = has_hash(p);
-  return banner(p, comment) + "\n" + glsl_prelude({&p}, precise) + glsl_function(p, name, precise);
+  return banner(p, comment) + "\n" + glsl_prelude({&p}) + glsl_function(p, name);
 }
 
 std::string emit_glsl_lod(const Program& near, const Program& far, float limit, const std::string& name,
                           const std::string& comment) {
   const auto [u, v] = lod_slots(near, far, limit, "emit_glsl_lod");
   const int ni = std::max(1, near.input_count), no = static_cast<int>(near.outputs.size());
-  const bool precise = has_hash(near) || has_hash(far);
   std::ostringstream os;
   os << banner(near, comment) << "\n"
-     << glsl_prelude({&near, &far}, precise) << glsl_function(near, name + "_near", precise) << "\n"
-     << glsl_function(far, name + "_far", precise) << "\n"
+     << glsl_prelude({&near, &far}) << glsl_function(near, name + "_near") << "\n"
+     << glsl_function(far, name + "_far") << "\n"
      << "// Footprint LOD: " << name << "_near where max(sd of u, sd of v) < " << float_literal_glsl(limit)
      << ", " << name << "_far elsewhere.\n"
      << "void " << name << "(in float bl_m[" << ni << "], in float bl_s[" << ni << "], in float bl_gx[" << ni

@@ -145,31 +145,37 @@ std::string precise_declarations(const std::string& text) {
   return out;
 }
 
-std::string glsl_library_slice(const std::vector<std::string>& roots, bool precise) {
+std::string glsl_library_slice(const std::vector<std::string>& roots,
+                               const std::vector<std::string>& precise_roots) {
   static const std::vector<Item> items = split(glsl_library());
   std::map<std::string, std::vector<int>> by_name;
   for (std::size_t i = 0; i < items.size(); ++i) by_name[items[i].name].push_back(static_cast<int>(i));
-  std::set<int> keep;
-  std::vector<std::string> todo;
-  for (const auto& r : roots) {
-    if (!by_name.count(r)) throw std::invalid_argument("GLSL library has no definition of '" + r + "'");
-    todo.push_back(r);
-  }
-  std::set<std::string> done;
-  while (!todo.empty()) {
-    const std::string n = todo.back();
-    todo.pop_back();
-    if (!done.insert(n).second) continue;
-    for (int i : by_name[n]) {
-      keep.insert(i);
-      for (const auto& id : items[i].idents)
-        if (by_name.count(id) && !done.count(id)) todo.push_back(id);
+  // The items reachable from `from`.
+  auto reach = [&](const std::vector<std::string>& from) {
+    std::set<int> keep;
+    std::vector<std::string> todo;
+    for (const auto& r : from) {
+      if (!by_name.count(r)) throw std::invalid_argument("GLSL library has no definition of '" + r + "'");
+      todo.push_back(r);
     }
-  }
+    std::set<std::string> done;
+    while (!todo.empty()) {
+      const std::string n = todo.back();
+      todo.pop_back();
+      if (!done.insert(n).second) continue;
+      for (int i : by_name[n]) {
+        keep.insert(i);
+        for (const auto& id : items[i].idents)
+          if (by_name.count(id) && !done.count(id)) todo.push_back(id);
+      }
+    }
+    return keep;
+  };
+  const std::set<int> keep = reach(roots), precise = reach(precise_roots);
   std::string out = "// ---- bandlimit library (sliced from generated/bandlimit*.glsl) ----\n";
   for (std::size_t i = 0; i < items.size(); ++i)
     if (keep.count(static_cast<int>(i)) || items[i].name == "#")
-      out += precise ? precise_declarations(items[i].text) : items[i].text;
+      out += precise.count(static_cast<int>(i)) ? precise_declarations(items[i].text) : items[i].text;
   return out;
 }
 

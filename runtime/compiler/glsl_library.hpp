@@ -11,10 +11,12 @@ namespace bl::compiler {
 const std::string& glsl_library();  // the whole library text, in include order
 
 // The definitions (functions, structs, constants) reachable from `roots`, in library order.
-// Throws std::invalid_argument naming a root the library does not define. `precise`: every local
-// float / vector / matrix declaration in the functions' bodies carries GLSL's `precise` qualifier
-// (computed as written: no fused multiply-add, no reassociation; see precise_declarations).
-std::string glsl_library_slice(const std::vector<std::string>& roots, bool precise = false);
+// Throws std::invalid_argument naming a root the library does not define. The definitions reachable
+// from `precise_roots` (a subset of what `roots` reaches) have GLSL's `precise` on every local float /
+// vector / matrix declaration of their bodies (computed as written: no fused multiply-add, no
+// reassociation; see precise_declarations).
+std::string glsl_library_slice(const std::vector<std::string>& roots,
+                               const std::vector<std::string>& precise_roots = {});
 
 // `text` (GLSL without comments) with `precise ` before every declaration of a float, vecN or matN
 // that begins a statement inside braces (function bodies; not parameters, for-loop headers, struct
