@@ -11,6 +11,8 @@
 //   bltune --fit-window scenes/suite                     # refit the cost model's out-of-order window
 //   bltune --summarize out/tune                          # summary.md/csv again from <scene>/result.json
 //   bltune SCENE --explain out/tune/SCENE/front.csv:front03 # where that point's model time goes
+//   bltune SCENE --cost-model docs/gpu_timing/h200_cost_model.json \
+//     --cost-machine "NVIDIA H200 (GLSL, fitted)" --out DIR  # priced for a GPU (bench/gpu_cost_fit)
 //   mpirun -np 2 bltune_mpi --suite scenes/suite --out out/tune   # scenes x restarts over ranks
 //
 // Built twice from this file: bltune, and bltune_mpi (BL_TUNER_MPI) where MPI exists.
@@ -47,6 +49,7 @@ namespace {
 struct Config {
   std::vector<std::string> scene_paths;
   std::string out = "tune_out", cost_model = "build/cost_model.json";
+  std::string cost_machine;  // --cost-machine: another machine's entry (a fitted GPU model), never calibrated
   TuneOptions tune;
   FinalizeOptions fin;
   bool search_only = false;
@@ -369,6 +372,10 @@ int main(int argc, char** argv) {
   app.add_option("--cache", c.tune.cache_dir, "ground-truth cache directory (EXR)");
   app.add_option("--cost-model", c.cost_model,
                  "cost model JSON (calibrated and saved when this machine lacks one)");
+  app.add_option(
+      "--cost-machine", c.cost_machine,
+      "price with this machine's entry of --cost-model instead of this CPU's (a GPU model fitted by "
+      "bench/gpu_cost_fit; never calibrated here; the compiled-C++ columns still time this CPU)");
   app.add_flag("--calibrate", calibrate_only, "recalibrate the cost model, print the table, and exit");
   app.add_option("--summarize", summary_dir,
                  "write DIR/summary.md and summary.csv from DIR/<scene>/result.json, and exit");
@@ -422,6 +429,8 @@ int main(int argc, char** argv) {
     if (!summary_dir.empty()) {
       if (c.rank == 0) rc = summarize(summary_dir);
     } else if (calibrate_only) {
+      if (!c.cost_machine.empty())
+        throw std::invalid_argument("--calibrate measures this CPU; drop --cost-machine");
       if (c.rank == 0) {
         CalibrationOptions co;
         co.method = calibration == "evaluator" ? CalibrationOptions::Method::Evaluator
@@ -452,10 +461,18 @@ int main(int argc, char** argv) {
         so.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / c.size);
       // Rank 0 calibrates when needed; the others then read its file.
       CostModel cm;
-      if (c.rank == 0)
+      if (!c.cost_machine.empty()) {
+        if (!fit_dir.empty())
+          throw std::invalid_argument("--fit-window fits this CPU's model, not --cost-machine's");
+        cm = load_cost_model(c.cost_model, c.cost_machine);
+        if (!cm.covers_all())
+          throw std::invalid_argument(c.cost_model + ": machine '" + c.cost_machine + "' prices none of" +
+                                      cm.missing() + " (refit it with bench/gpu_cost_fit)");
+      } else if (c.rank == 0) {
         cm = load_or_calibrate(c.cost_model, true,
                                calibration == "evaluator" ? CalibrationOptions::Method::Evaluator
                                                           : CalibrationOptions::Method::Compiled);
+      }
       if (!explain_spec.empty()) {
         if (c.rank == 0) explain(c, scene_path, explain_spec, cm);
         c.scene_paths.clear();
@@ -466,7 +483,8 @@ int main(int argc, char** argv) {
         fit_and_save_window(c, suite_dir, cm);
 #ifdef BL_TUNER_MPI
       MPI_Barrier(MPI_COMM_WORLD);
-      if (c.rank != 0) cm = load_cost_model(c.cost_model, cpu_model());
+      if (c.rank != 0)
+        cm = load_cost_model(c.cost_model, c.cost_machine.empty() ? cpu_model() : c.cost_machine);
       if (!c.scene_paths.empty()) rc = run_mpi(c, cm);
 #else
       if (!c.scene_paths.empty()) rc = run_single(c, cm);

@@ -157,7 +157,7 @@ double CostModel::window_for(double t, double path, double measured) {
 }
 
 double CostModel::cost(const compiler::Program& p) const {
-  return latency_bound(throughput(p), critical_path(p), window_ns);
+  return std::max(floor_ns, latency_bound(throughput(p), critical_path(p), window_ns));
 }
 
 double CostModel::sequential_cost(const compiler::Program& sample, int n) const {
@@ -168,7 +168,11 @@ double CostModel::sequential_cost(const compiler::Program& sample, int n) const 
   };
   const double outputs = static_cast<double>(sample.outputs.size());
   const double once = op("pixel") + outputs * op("output");
-  return n * (cost(sample) - once) + once + (n - 1) * outputs * op("add");
+  // A floored model (a GPU's): the samples' sum against the floor, not each sample's; "sample": a
+  // fitted model's price of the shader's sample loop (none in a calibrated one).
+  const double body =
+      latency_bound(throughput(sample), critical_path(sample), window_ns) - once + op("sample");
+  return std::max(floor_ns, n * body + once + (n - 1) * outputs * op("add"));
 }
 
 double CostModel::critical_path(const compiler::Program& p) const {
@@ -280,7 +284,7 @@ CostModel::Breakdown CostModel::breakdown(const compiler::Program& p) const {
   b.throughput_ns = breakdown_throughput(p, &b);
   b.path_ns = trace_critical_path(p, &b.path);
   b.chain_ns = window_ns > 0 ? b.path_ns * std::min(1.0, b.throughput_ns / window_ns) : 0;
-  b.cost_ns = latency_bound(b.throughput_ns, b.path_ns, window_ns);
+  b.cost_ns = std::max(floor_ns, latency_bound(b.throughput_ns, b.path_ns, window_ns));
   return b;
 }
 
@@ -401,6 +405,7 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
   cm.op_ns = m.at("ops").get<std::map<std::string, double>>();
   cm.fn_ns = m.at("functions").get<std::map<std::string, double>>();
   cm.window_ns = m.value("window_ns", 0.0);
+  cm.floor_ns = m.value("floor_ns", 0.0);
   cm.window_kernel_ns = m.value("window_kernel_ns", cm.window_ns);
   cm.window_fit_programs = m.value("window_fit_programs", 0);
   cm.window_fit_source = m.value("window_fit_source", std::string());
@@ -434,6 +439,7 @@ void save_cost_model(const std::string& path, const CostModel& m) {
                               {"op_latency", m.op_lat_ns},
                               {"function_latency", m.fn_lat_ns},
                               {"window_ns", m.window_ns},
+                              {"floor_ns", m.floor_ns},
                               {"window_kernel_ns", m.window_kernel_ns},
                               {"window_fit_programs", m.window_fit_programs},
                               {"window_fit_source", m.window_fit_source},

@@ -89,6 +89,10 @@ struct CostModel {
   // load_or_calibrate recalibrates a file whose norm is not kLatencyNorm.
   double latency_norm = kLatencyNorm;
   static double latency_bound(double throughput, double path, double window);
+  // The least a pixel costs, whatever its program (0: none). A GPU model's (method "gpu-fit",
+  // gpu_fit.hpp): the fragment rate of the draw, below which a cheaper shader draws no faster (the
+  // H200's 0.284 ns/px, plain on most suite scenes).
+  double floor_ns = 0;
   // The window at which latency_bound(throughput, path, window) = measured (the inverse, for the
   // calibration's chain kernel); 1e9 when the program runs at its throughput (within 5%).
   static double window_for(double throughput, double path, double measured);
@@ -101,7 +105,7 @@ struct CostModel {
   // ns per pixel of one call of function `fn` (index into compiler::functions()) under band_share.
   double function_cost(int fn) const;
 
-  // ns per pixel of p: latency_bound(T, L, window_ns) with T the sum of per-instruction costs
+  // ns per pixel of p: max(floor_ns, latency_bound(T, L, window_ns)) with T the sum of per-instruction costs
   // (plus the per-pixel overhead and the output stores) and L the critical path of latencies. Throws
   // std::out_of_range naming an op or function the model lacks.
   double cost(const compiler::Program& p) const;
@@ -113,6 +117,7 @@ struct CostModel {
   // far longer than the out-of-order window (fire_none: ss4 compiles to 4.1x plain), while cost() of
   // the whole supersampled program would overlap them (216 ns/px for 600 compiled). Throws
   // std::invalid_argument for n < 1.
+  // A GPU model (floor_ns > 0) floors the whole, and prices the loop per sample (op "sample").
   double sequential_cost(const compiler::Program& sample, int n) const;
   // Where cost(p) goes (bltune --explain): the throughput's parts, which sum to throughput(p), and
   // the latency bound's terms.

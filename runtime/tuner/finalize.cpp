@@ -217,6 +217,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
   const std::vector<render::Frame> frames = render::frames(s);
   SceneResult res;
   res.scene = s.name;
+  if (t.cost_model().method == "gpu-fit") res.cost_machine = t.cost_model().machine;
   res.graph_hash = compiler::graph_hash_text(t.graph());
   res.nodes = t.graph().size();
   res.genes = t.problem().space.size();
@@ -267,7 +268,9 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.label = "msaa" + std::to_string(n);
     m.schedule = "plain x " + std::to_string(n) + " jittered samples";
     m.msaa = n;
-    m.model_ns = n * plain.model_ns;
+    // n plain programs; a GPU model's (floor_ns > 0) as one fragment's n samples, floored once.
+    m.model_ns =
+        t.cost_model().floor_ns > 0 ? t.cost_model().sequential_cost(*plain_program, n) : n * plain.model_ns;
     m.search_error = std::numeric_limits<double>::quiet_NaN();
     double sq = 0;
     for (std::size_t fi = 0; fi < frames.size(); ++fi) {

@@ -47,7 +47,10 @@ struct SceneResult {
   std::vector<Measured> front;      // sorted by model time
   std::vector<Measured> baselines;  // plain, msaa2..32, dorn, gaussian
   std::string gl_renderer;          // "" when GLSL was not timed
-  std::string compiled_note;        // why compiled times are missing ("" when measured)
+  // The model's machine when it is not a calibration of this CPU (bltune --cost-machine: a GPU model
+  // fitted on draws, "NVIDIA H200 (GLSL, fitted)"); "" for this CPU's.
+  std::string cost_machine;
+  std::string compiled_note;  // why compiled times are missing ("" when measured)
   // Markdown: where the model time of the fastest front point at MSAA-16's error goes
   // (time_breakdown_markdown, report.hpp); "" when no point reaches that error.
   std::string anchor_breakdown;

@@ -112,6 +112,7 @@ std::string result_to_json(const SceneResult& r) {
               {"evaluations", r.evaluations},
               {"rejected_nonfinite", r.rejected_nonfinite},
               {"gl_renderer", r.gl_renderer},
+              {"cost_machine", r.cost_machine},
               {"compiled_note", r.compiled_note},
               {"anchor_breakdown", r.anchor_breakdown},
               {"lod", r.lod ? to(*r.lod) : json()},
@@ -135,6 +136,7 @@ SceneResult result_from_json(const std::string& text) {
   r.evaluations = j.at("evaluations");
   r.rejected_nonfinite = j.value("rejected_nonfinite", -1L);
   r.gl_renderer = j.at("gl_renderer");
+  r.cost_machine = j.value("cost_machine", std::string());
   r.compiled_note = j.value("compiled_note", std::string());
   r.anchor_breakdown = j.value("anchor_breakdown", std::string());
   if (j.contains("lod") && !j.at("lod").is_null()) r.lod = pair_from(j.at("lod"));
