@@ -155,6 +155,68 @@ SceneSummary summarize(const SceneTimes& s) {
   return r;
 }
 
+namespace {
+
+// The adaptive supersampler's GPU ns per pixel when its GPU error reaches MSAA-16's GPU error (-1: not).
+double adaptive_at_msaa16(const SceneTimes& s, const SceneSummary& r) {
+  const double px = static_cast<double>(s.width) * s.height;
+  for (const ProgramTime& p : s.programs)
+    if (p.kind == "adaptive" && p.gpu_ms > 0 && p.gpu_error >= 0 && r.msaa16_gpu_error >= 0 &&
+        p.gpu_error <= r.msaa16_gpu_error)
+      return p.gpu_ms * 1e6 / px;
+  return -1;
+}
+
+}  // namespace
+
+std::string comparison_markdown(const std::vector<SceneTimes>& a, const std::vector<SceneTimes>& b,
+                                const std::string& name_a, const std::string& name_b) {
+  std::ostringstream os;
+  os << "By the errors measured on the GPU: each tuning's fastest front point or LOD pair whose GPU error is "
+        "at "
+        "most MSAA-16's GPU error (ns per pixel), "
+     << name_a << " / " << name_b << " (> 1: " << name_b
+     << " is faster), and each against its footprint-adaptive supersampler at that "
+        "error (its time / ours; > 1: ours is faster).\n\n| scene | MSAA-16 ns/px | "
+     << name_a << ": fastest | ns/px | " << name_b << ": fastest | ns/px | " << name_a << " / " << name_b
+     << " | " << name_a << " vs adaptive | " << name_b
+     << " vs adaptive |\n|---|---|---|---|---|---|---|---|---|\n";
+  auto label = [](const SceneSummary& r) {
+    return r.by_gpu_label.empty() ? std::string("not reached") : r.by_gpu_label;
+  };
+  auto ns = [](double v) { return v > 0 ? fmt("%.3f", v) : std::string("-"); };
+  auto x = [](double v) { return v > 0 ? fmt("%.2fx", v) : std::string("-"); };
+  int both = 0, faster = 0, slower = 0, win_a = 0, win_b = 0, vs_a = 0, vs_b = 0;
+  std::vector<double> ratios;
+  for (const SceneTimes& sa : a) {
+    const auto it =
+        std::find_if(b.begin(), b.end(), [&](const SceneTimes& s) { return s.scene == sa.scene; });
+    if (it == b.end()) continue;
+    const SceneSummary ra = summarize(sa), rb = summarize(*it);
+    const double ad_a = adaptive_at_msaa16(sa, ra), ad_b = adaptive_at_msaa16(*it, rb);
+    const double ratio = ra.by_gpu_ns > 0 && rb.by_gpu_ns > 0 ? ra.by_gpu_ns / rb.by_gpu_ns : -1;
+    const double va = ad_a > 0 && ra.by_gpu_ns > 0 ? ad_a / ra.by_gpu_ns : -1;
+    const double vb = ad_b > 0 && rb.by_gpu_ns > 0 ? ad_b / rb.by_gpu_ns : -1;
+    os << "| " << sa.scene << " | " << ns(ra.msaa16_ns) << " | " << label(ra) << " | " << ns(ra.by_gpu_ns)
+       << " | " << label(rb) << " | " << ns(rb.by_gpu_ns) << " | " << x(ratio) << " | " << x(va) << " | "
+       << x(vb) << " |\n";
+    if (ratio > 0) {
+      ++both;
+      ratios.push_back(ratio);
+      faster += ratio > 1.05;
+      slower += ratio < 1 / 1.05;
+    }
+    if (va > 0) ++vs_a, win_a += va > 1.05;
+    if (vb > 0) ++vs_b, win_b += vb > 1.05;
+  }
+  os << "\nBoth reach MSAA-16's GPU error on " << both << " scene(s): " << name_b << " faster (by > 5%) on "
+     << faster << ", slower on " << slower << ", median " << name_a << " / " << name_b << " "
+     << (ratios.empty() ? "-" : fmt("%.2fx", median(ratios)))
+     << ". Faster than the adaptive supersampler (by > 5%): " << name_a << " on " << win_a << " of " << vs_a
+     << ", " << name_b << " on " << win_b << " of " << vs_b << ".\n";
+  return os.str();
+}
+
 std::string report_markdown(const std::vector<SceneTimes>& scenes, const std::string& renderer, int tile) {
   std::ostringstream os;
   os << "GPU: " << renderer << "; each scene's image tiled " << tile << " x " << tile

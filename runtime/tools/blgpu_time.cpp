@@ -7,6 +7,7 @@
 //                                                   then time them holding OUT/.timing.lock, so
 //                                                   compiles run in parallel and timings never overlap
 //   blgpu_time PACK --out OUT --merge               join OUT/shard_*.json into the report
+//   blgpu_time --compare A.json B.json [--names a,b] two runs' gpu_times.json, scene by scene
 //
 // Each program is also drawn once per frame of its scene at the scene's size (OUT/images, raw RGB
 // floats); the merge measures every image against the scene's GPU truth (the pack's "truth"
@@ -167,6 +168,34 @@ gpu_timing::ProgramTime from_entry(const json& pj) {
   p.error = pj.at("error").is_number() ? pj["error"].get<double>() : INFINITY;  // null: infeasible
   p.compiled_ns = pj.value("compiled_ns", -1.0);
   return p;
+}
+
+// A merged run's gpu_times.json as the report's scenes (their pixel count from the records' ms and ns).
+std::vector<gpu_timing::SceneTimes> read_times(const std::string& path) {
+  const json j = json::parse(read_text(path));
+  std::vector<gpu_timing::SceneTimes> scenes;
+  for (const json& r : j.at("programs")) {
+    const std::string scene = r.at("scene");
+    auto it = std::find_if(scenes.begin(), scenes.end(), [&](const auto& s) { return s.scene == scene; });
+    if (it == scenes.end()) {
+      scenes.push_back({scene, 0, 1, {}});
+      it = scenes.end() - 1;
+    }
+    gpu_timing::ProgramTime p = from_entry(r);
+    p.gpu_ms = r.at("gpu_ms");
+    p.compile_ms = r.value("compile_ms", -1.0);
+    p.failure = r.value("failure", std::string());
+    p.gpu_error = r.value("gpu_error", json(nullptr)).is_number() ? r["gpu_error"].get<double>() : -1.0;
+    p.nonfinite = r.value("nonfinite_pixels", 0L);
+    p.out_of_range = r.value("out_of_range_pixels", 0L);
+    const double ns = r.value("gpu_ns_per_pixel", -1.0);
+    if (it->width == 0 && p.gpu_ms > 0 && ns > 0)
+      it->width = static_cast<int>(std::lround(p.gpu_ms * 1e6 / ns));
+    it->programs.push_back(p);
+  }
+  for (const auto& s : scenes)
+    if (s.width == 0) throw std::runtime_error(path + ": scene " + s.scene + " has no timed program");
+  return scenes;
 }
 
 json time_json(const std::string& scene, const gpu_timing::ProgramTime& p, double pixels) {
@@ -344,8 +373,16 @@ int main(int argc, char** argv) {
   std::string pack, out, only, binaries, shard_text = "0/1";
   double budget_ms = 40, compile_seconds = 1e9;
   bool merge_only = false;
-  app.add_option("pack", pack, "the directory blgpu_pack wrote (manifest.json)")->required();
-  app.add_option("--out", out, "where shard_<K>.json, gpu_times.json and report.md go")->required();
+  std::vector<std::string> compare;
+  std::string names = "A,B";
+  app.add_option("pack", pack, "the directory blgpu_pack wrote (manifest.json)");
+  app.add_option("--out", out, "where shard_<K>.json, gpu_times.json and report.md go");
+  app.add_option(
+         "--compare", compare,
+         "A.json B.json: two merged runs' gpu_times.json (two tunings of the same scenes), scene by scene "
+         "by the GPU's own errors; prints markdown and exits")
+      ->expected(2);
+  app.add_option("--names", names, "with --compare: the two runs' names, comma-separated");
   app.add_option("--only", only, "time only scenes whose name contains this");
   app.add_option("--shard", shard_text, "K/N: this process's share of the programs (see the file comment)");
   app.add_flag("--merge", merge_only, "only join OUT/shard_*.json into gpu_times.json and report.md");
@@ -358,6 +395,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 10000.0));
   CLI11_PARSE(app, argc, argv);
   try {
+    if (!compare.empty()) {
+      const auto comma = names.find(',');
+      if (comma == std::string::npos) throw std::invalid_argument("--names " + names + ": expected A,B");
+      std::fputs(gpu_timing::comparison_markdown(read_times(compare[0]), read_times(compare[1]),
+                                                 names.substr(0, comma), names.substr(comma + 1))
+                     .c_str(),
+                 stdout);
+      return 0;
+    }
+    if (pack.empty() || out.empty())
+      throw std::invalid_argument("give PACK and --out (or --compare A.json B.json)");
     const json manifest = json::parse(read_text(fs::path(pack) / "manifest.json"));
     fs::create_directories(out);
     int shard = 0, shards = 1;

@@ -177,5 +177,34 @@ TEST(GpuReport, ErrorsMeasuredOnTheGpu) {
   EXPECT_DOUBLE_EQ(summarize(s).by_gpu_speedup, 5.0);
 }
 
+// Two tunings of one scene side by side by the GPU's errors: A as table() with GPU errors (front02
+// the fastest at MSAA-16's GPU error, 1.6 ns), B faster (a point at 0.8 ns); each against its
+// adaptive supersampler at that error (A's 2.4 ns: 1.5x; B's error misses it: "-"). A scene only in
+// one run is left out.
+TEST(GpuReport, ComparesTwoTuningsByTheGpusErrors) {
+  SceneTimes a = table();
+  const double gpu_error[] = {0.1, 0.04, 0.03, 0.1, 0.05, 0.039, 0.02, 0.2};
+  for (std::size_t i = 0; i < a.programs.size(); ++i) a.programs[i].gpu_error = gpu_error[i];
+  ProgramTime ad;
+  ad.label = "adaptive_ss", ad.kind = "adaptive", ad.error = 0.039, ad.gpu_ms = 2.4, ad.gpu_error = 0.0395;
+  a.programs.push_back(ad);
+  SceneTimes b = a;
+  b.programs[5].gpu_ms = 0.8;            // front02: twice as fast
+  b.programs.back().gpu_error = 0.0401;  // B's adaptive supersampler misses MSAA-16's GPU error
+  SceneTimes other = a;
+  other.scene = "only_in_a";
+  const std::string md = comparison_markdown({a, other}, {b}, "cpu", "gpu");
+  EXPECT_NE(md.find("| toy | 8.000 | front02 | 1.600 | front02 | 0.800 | 2.00x | 1.50x | - |"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("only_in_a"), std::string::npos) << md;
+  EXPECT_NE(
+      md.find(
+          "Both reach MSAA-16's GPU error on 1 scene(s): gpu faster (by > 5%) on 1, slower on 0, median "
+          "cpu / gpu 2.00x. Faster than the adaptive supersampler (by > 5%): cpu on 1 of 1, gpu on 0 of 0."),
+      std::string::npos)
+      << md;
+}
+
 }  // namespace
 }  // namespace bl::gpu_timing
