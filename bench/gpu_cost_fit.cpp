@@ -7,6 +7,9 @@
 //     --machine "NVIDIA H200 (GLSL, fitted)" \
 //     docs/gpu_timing/h200_s41_suite.json=docs/tuning/suite:scenes/suite ...
 // Later record files replace earlier ones' (scene, label) draws (a re-timed scene).
+//   build/bin/gpu_cost_fit --judge docs/gpu_timing/h200_cost_model.json --machine "NVIDIA H200 (GLSL,
+//   fitted)" \
+//     NEW_DRAWS.json=SUITE_DIR:SCENES_DIR     # a saved model against draws it was not fitted on
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -125,7 +128,7 @@ void read_source(const Source& src, std::map<std::pair<std::string, std::string>
 
 int main(int argc, char** argv) {
   CLI::App app{"gpu_cost_fit: a GPU cost model fitted on blgpu_time's draws"};
-  std::string prior_path = "build/cost_model.json", out, machine = "GPU (GLSL, fitted)";
+  std::string prior_path = "build/cost_model.json", out, machine = "GPU (GLSL, fitted)", judge_path;
   std::vector<std::string> sources;
   std::vector<double> lambdas = {0.003, 0.01, 0.03, 0.1, 1, 10};
   double floor_ns = 0, min_over_floor = 1.5;
@@ -137,6 +140,9 @@ int main(int argc, char** argv) {
                  "ridge weights to judge, one per --lambda (the best by leave-one-scene-out is saved)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  app.add_option(
+      "--judge", judge_path,
+      "price the draws with this file's --machine entry (no fit): how a saved model does on new draws");
   app.add_option("--floor", floor_ns, "fragment floor in ns/px (default: the fastest draw)");
   app.add_option("--min-over-floor", min_over_floor, "fit on draws at least this many floors");
   app.add_option("sources", sources,
@@ -152,6 +158,25 @@ int main(int argc, char** argv) {
     if (floor_ns <= 0) {
       floor_ns = 1e30;
       for (const auto& s : all) floor_ns = std::min(floor_ns, s.measured_ns);
+    }
+    if (!judge_path.empty()) {
+      const tuner::CostModel m = tuner::load_cost_model(judge_path, machine);
+      std::printf("| scene | draws | median abs(pred/GPU - 1) | worst |\n|---|---|---|---|\n");
+      std::vector<double> every;
+      std::map<std::string, std::vector<const tuner::GpuSample*>> by_scene;
+      for (const auto& s : all) by_scene[s.scene].push_back(&s);
+      for (const auto& [scene, v] : by_scene) {
+        std::vector<double> e;
+        for (const tuner::GpuSample* s : v)
+          e.push_back(std::fabs(tuner::predict(m, s->x) / s->measured_ns - 1));
+        every.insert(every.end(), e.begin(), e.end());
+        std::printf("| %s | %zu | %.3f | %.3f |\n", scene.c_str(), e.size(), median(e),
+                    *std::max_element(e.begin(), e.end()));
+      }
+      const long in = std::count_if(every.begin(), every.end(), [](double v) { return v <= 0.25; });
+      std::printf("\n%zu draws: median abs(pred/GPU - 1) %.3f, %.0f%% within 25%%\n", every.size(),
+                  median(every), 100.0 * in / every.size());
+      return 0;
     }
     std::vector<std::string> scenes;
     for (const auto& s : all)
