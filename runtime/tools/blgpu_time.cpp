@@ -170,31 +170,51 @@ gpu_timing::ProgramTime from_entry(const json& pj) {
   return p;
 }
 
-// A merged run's gpu_times.json as the report's scenes (their pixel count from the records' ms and ns).
-std::vector<gpu_timing::SceneTimes> read_times(const std::string& path) {
-  const json j = json::parse(read_text(path));
-  std::vector<gpu_timing::SceneTimes> scenes;
-  for (const json& r : j.at("programs")) {
-    const std::string scene = r.at("scene");
-    auto it = std::find_if(scenes.begin(), scenes.end(), [&](const auto& s) { return s.scene == scene; });
-    if (it == scenes.end()) {
-      scenes.push_back({scene, 0, 1, {}});
-      it = scenes.end() - 1;
+// Merged runs' gpu_times.json as the report's scenes (their pixel count from the records' ms and ns);
+// `paths` comma-separated, a later file's scene replacing an earlier file's (a scene re-timed).
+std::vector<gpu_timing::SceneTimes> read_times(const std::string& paths) {
+  std::map<std::string, json> latest;  // scene -> its records from the last file that has it
+  std::vector<std::string> order;
+  for (std::size_t from = 0; from <= paths.size();) {
+    const std::size_t comma = std::min(paths.find(',', from), paths.size());
+    const std::string path = paths.substr(from, comma - from);
+    from = comma + 1;
+    if (path.empty()) continue;
+    const json j = json::parse(read_text(path));
+    std::map<std::string, json> here;
+    for (const json& r : j.at("programs")) {
+      const std::string scene = r.at("scene");
+      if (!here.count(scene)) here[scene] = json::array();
+      here[scene].push_back(r);
     }
-    gpu_timing::ProgramTime p = from_entry(r);
-    p.gpu_ms = r.at("gpu_ms");
-    p.compile_ms = r.value("compile_ms", -1.0);
-    p.failure = r.value("failure", std::string());
-    p.gpu_error = r.value("gpu_error", json(nullptr)).is_number() ? r["gpu_error"].get<double>() : -1.0;
-    p.nonfinite = r.value("nonfinite_pixels", 0L);
-    p.out_of_range = r.value("out_of_range_pixels", 0L);
-    const double ns = r.value("gpu_ns_per_pixel", -1.0);
-    if (it->width == 0 && p.gpu_ms > 0 && ns > 0)
-      it->width = static_cast<int>(std::lround(p.gpu_ms * 1e6 / ns));
-    it->programs.push_back(p);
+    for (auto& [scene, records] : here) {
+      if (!latest.count(scene)) order.push_back(scene);
+      latest[scene] = std::move(records);
+    }
   }
+  std::vector<gpu_timing::SceneTimes> scenes;
+  for (const std::string& scene : order)
+    for (const json& r : latest.at(scene)) {
+      const std::string scene = r.at("scene");
+      auto it = std::find_if(scenes.begin(), scenes.end(), [&](const auto& s) { return s.scene == scene; });
+      if (it == scenes.end()) {
+        scenes.push_back({scene, 0, 1, {}});
+        it = scenes.end() - 1;
+      }
+      gpu_timing::ProgramTime p = from_entry(r);
+      p.gpu_ms = r.at("gpu_ms");
+      p.compile_ms = r.value("compile_ms", -1.0);
+      p.failure = r.value("failure", std::string());
+      p.gpu_error = r.value("gpu_error", json(nullptr)).is_number() ? r["gpu_error"].get<double>() : -1.0;
+      p.nonfinite = r.value("nonfinite_pixels", 0L);
+      p.out_of_range = r.value("out_of_range_pixels", 0L);
+      const double ns = r.value("gpu_ns_per_pixel", -1.0);
+      if (it->width == 0 && p.gpu_ms > 0 && ns > 0)
+        it->width = static_cast<int>(std::lround(p.gpu_ms * 1e6 / ns));
+      it->programs.push_back(p);
+    }
   for (const auto& s : scenes)
-    if (s.width == 0) throw std::runtime_error(path + ": scene " + s.scene + " has no timed program");
+    if (s.width == 0) throw std::runtime_error(paths + ": scene " + s.scene + " has no timed program");
   return scenes;
 }
 
@@ -380,7 +400,8 @@ int main(int argc, char** argv) {
   app.add_option(
          "--compare", compare,
          "A.json B.json: two merged runs' gpu_times.json (two tunings of the same scenes), scene by scene "
-         "by the GPU's own errors; prints markdown and exits")
+         "by the GPU's own errors; prints markdown and exits. A side may list files a.json,b.json: a later "
+         "file's scene replaces an earlier one's")
       ->expected(2);
   app.add_option("--names", names, "with --compare: the two runs' names, comma-separated");
   app.add_option("--only", only, "time only scenes whose name contains this");
