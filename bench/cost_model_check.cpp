@@ -14,6 +14,7 @@
 
 #include "compiler/schedule_csv.hpp"
 #include "compiler/supersample.hpp"
+#include "median.hpp"
 #include "tuner/report.hpp"
 #include "tuner/result_json.hpp"
 #include "tuner/scene_tuner.hpp"
@@ -24,11 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
+using bench::median;
 
 }  // namespace
 

@@ -20,6 +20,7 @@
 
 #include "compiler/schedule_csv.hpp"
 #include "compiler/supersample.hpp"
+#include "median.hpp"
 #include "scene/scene.hpp"
 #include "shaders/shader.hpp"
 #include "tuner/gpu_fit.hpp"
@@ -30,11 +31,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
+using bench::median;
 
 // Spearman's rank correlation of a and b (no tie correction; -2 for fewer than 3 values).
 double spearman(const std::vector<double>& a, const std::vector<double>& b) {
