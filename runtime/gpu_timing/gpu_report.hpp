@@ -67,10 +67,10 @@ std::string errors_markdown(const std::vector<SceneTimes>& scenes);
 std::string report_markdown(const std::vector<SceneTimes>& scenes, const std::string& renderer, int tile);
 
 // Two tunings of the same scenes drawn on one GPU (blgpu_time --compare: the suite tuned with the CPU
-// model against the same tuned with a fitted GPU model, tuner/gpu_fit.hpp), by the GPU's own errors:
-// per scene both fastest programs (front point or LOD pair) at MSAA-16's GPU error, their ratio,
-// and each against its footprint-adaptive supersampler (kind "adaptive", when its GPU error reaches
-// MSAA-16's too). Scenes in only one of them are left out.
+// model against the same tuned with a fitted GPU model, tuner/gpu_fit.hpp): per scene both fastest
+// programs (front point or LOD pair) at MSAA-16's error, their ratio, and each against its
+// footprint-adaptive supersampler (kind "adaptive") at that error; one table by the GPU's own errors,
+// one by bltune's. Scenes in only one of them are left out.
 std::string comparison_markdown(const std::vector<SceneTimes>& a, const std::vector<SceneTimes>& b,
                                 const std::string& name_a, const std::string& name_b);
 

@@ -177,11 +177,11 @@ TEST(GpuReport, ErrorsMeasuredOnTheGpu) {
   EXPECT_DOUBLE_EQ(summarize(s).by_gpu_speedup, 5.0);
 }
 
-// Two tunings of one scene side by side by the GPU's errors: A as table() with GPU errors (front02
-// the fastest at MSAA-16's GPU error, 1.6 ns), B faster (a point at 0.8 ns); each against its
+// Two tunings of one scene side by side, by the GPU's errors and by bltune's: A as table() with GPU errors
+// (front02 the fastest at MSAA-16's GPU error, 1.6 ns), B faster (a point at 0.8 ns); each against its
 // adaptive supersampler at that error (A's 2.4 ns: 1.5x; B's error misses it: "-"). A scene only in
 // one run is left out.
-TEST(GpuReport, ComparesTwoTuningsByTheGpusErrors) {
+TEST(GpuReport, ComparesTwoTunings) {
   SceneTimes a = table();
   const double gpu_error[] = {0.1, 0.04, 0.03, 0.1, 0.05, 0.039, 0.02, 0.2};
   for (std::size_t i = 0; i < a.programs.size(); ++i) a.programs[i].gpu_error = gpu_error[i];
@@ -200,10 +200,17 @@ TEST(GpuReport, ComparesTwoTuningsByTheGpusErrors) {
   EXPECT_EQ(md.find("only_in_a"), std::string::npos) << md;
   EXPECT_NE(
       md.find(
-          "Both reach MSAA-16's GPU error on 1 scene(s): gpu faster (by > 5%) on 1, slower on 0, median "
-          "cpu / gpu 2.00x. Faster than the adaptive supersampler (by > 5%): cpu on 1 of 1, gpu on 0 of 0."),
+          "Both reach MSAA-16's error on 1 scene(s): gpu faster (by > 5%) on 1, slower on 0, median cpu / "
+          "gpu 2.00x. Faster than the adaptive supersampler (by > 5%): cpu on 1 of 1, gpu on 0 of 0."),
       std::string::npos)
       << md;
+  // By bltune's errors B's adaptive supersampler reaches MSAA-16's (0.039 <= 0.04): 2.4 / 0.8 = 3x.
+  const std::size_t cpu_table = md.find("By bltune's errors");
+  ASSERT_NE(cpu_table, std::string::npos) << md;
+  EXPECT_NE(md.find("| toy | 8.000 | front02 | 1.600 | front02 | 0.800 | 2.00x | 1.50x | 3.00x |", cpu_table),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("cpu on 1 of 1, gpu on 1 of 1.", cpu_table), std::string::npos) << md;
 }
 
 }  // namespace
