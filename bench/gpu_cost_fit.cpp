@@ -6,7 +6,8 @@
 //   build/bin/gpu_cost_fit --prior build/cost_model.json --out docs/gpu_timing/h200_cost_model.json \
 //     --machine "NVIDIA H200 (GLSL, fitted)" \
 //     docs/gpu_timing/h200_s41_suite.json=docs/tuning/suite:scenes/suite ...
-// Later record files replace earlier ones' (scene, label) draws (a re-timed scene).
+// A later record file of the same tuning directory replaces its (scene, label) draws (a re-timed
+// scene); another directory's draws of a scene (another tuning of it) add to them.
 //   build/bin/gpu_cost_fit --judge docs/gpu_timing/h200_cost_model.json --machine "NVIDIA H200 (GLSL,
 //   fitted)" \
 //     NEW_DRAWS.json=SUITE_DIR:SCENES_DIR     # a saved model against draws it was not fitted on
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include "compiler/schedule_csv.hpp"
 #include "compiler/supersample.hpp"
@@ -64,7 +66,11 @@ Source parse_source(const std::string& arg) {
 
 // The draws of one record file whose programs this checkout lowers: front points, plain and the
 // uniform baselines, MSAA-n and ssN (LOD pairs, the adaptive supersampler and the truth are left out).
-void read_source(const Source& src, std::map<std::pair<std::string, std::string>, tuner::GpuSample>& out) {
+// Draws by (tuning directory, scene, label): a later file re-timing a tuning's scene replaces its
+// draws; another tuning of the scene (another directory) adds its own.
+using DrawKey = std::tuple<std::string, std::string, std::string>;
+
+void read_source(const Source& src, std::map<DrawKey, tuner::GpuSample>& out) {
   std::map<std::string, fs::path> dir_of;
   for (const auto& e : fs::directory_iterator(src.suite))
     if (fs::exists(e.path() / "result.json"))
@@ -113,7 +119,7 @@ void read_source(const Source& src, std::map<std::pair<std::string, std::string>
       smp.x = tuner::repeated(tuner::throughput_features(compiler::one_sample(p, n, s.sigma_px)), n);
     } else
       smp.x = tuner::throughput_features(p);
-    out[{scene, label}] = std::move(smp);
+    out[{fs::weakly_canonical(src.suite).string(), scene, label}] = std::move(smp);
   }
   std::fprintf(
       stderr, "%s: %zu scenes%s\n", src.records.string().c_str(), scenes.size(),
@@ -148,7 +154,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     const tuner::CostModel prior = tuner::load_cost_model(prior_path, tuner::cpu_model());
-    std::map<std::pair<std::string, std::string>, tuner::GpuSample> by_key;
+    std::map<DrawKey, tuner::GpuSample> by_key;
     for (const std::string& a : sources) read_source(parse_source(a), by_key);
     std::vector<tuner::GpuSample> all;
     for (auto& [k, s] : by_key) all.push_back(std::move(s));
