@@ -135,6 +135,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> sources;
   std::vector<double> lambdas = {0.003, 0.01, 0.03, 0.1, 1, 10};
   double floor_ns = 0, min_over_floor = 1.5;
+  std::vector<double> norms = {0, 4};
   app.add_option("--prior", prior_path,
                  "the CPU cost model whose prices the fit starts from (this machine's)");
   app.add_option("--out", out, "cost model file to add the fitted machine entry to (none: judge only)");
@@ -148,6 +149,12 @@ int main(int argc, char** argv) {
       "price the draws with this file's --machine entry (no fit): how a saved model does on new draws");
   app.add_option("--floor", floor_ns, "fragment floor in ns/px (default: the fastest draw)");
   app.add_option("--min-over-floor", min_over_floor, "fit on draws at least this many floors");
+  app.add_option(
+         "--floor-norm", norms,
+         "how T meets the floor, one per --floor-norm (0: max(floor, T); k: (floor^k + T^k)^(1/k)); the best "
+         "by leave-one-scene-out is saved")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app.add_option("sources", sources,
                  "GPU_TIMES.json=SUITE_DIR:SCENES_DIR (later files replace earlier draws)")
       ->required();
@@ -187,8 +194,8 @@ int main(int argc, char** argv) {
     std::printf("%zu draws of %zu scenes; floor %.3f ns/px; fitted on draws >= %.1f floors\n\n", all.size(),
                 scenes.size(), floor_ns, min_over_floor);
     // Leave one scene out: fit on the others, price the scene's draws (all of them, floored).
-    auto judge = [&](double lambda, bool print) {
-      std::vector<double> err_fit, err_scaled;
+    auto judge = [&](double lambda, double norm, bool print) {
+      std::vector<double> err_fit, err_scaled, err_near;  // near: draws under 1.5 floors
       if (print)
         std::printf(
             "| scene | draws | median abs(pred/GPU - 1): fitted | CPU x ratio | rank corr. of the front "
@@ -202,6 +209,7 @@ int main(int argc, char** argv) {
         o.lambda = lambda;
         o.floor_ns = floor_ns;
         o.min_over_floor = min_over_floor;
+        o.floor_norm = norm;
         const tuner::GpuFit f = tuner::fit_gpu_cost_model(train, prior, o, "held-out");
         tuner::GpuFitOptions o0 = o;
         o0.lambda = 1e12;  // every d = 0: the prior times the ratio
@@ -212,6 +220,7 @@ int main(int argc, char** argv) {
           const double a = tuner::predict(f.model, s.x), b = tuner::predict(f0.model, s.x);
           ef.push_back(std::fabs(a / s.measured_ns - 1));
           es.push_back(std::fabs(b / s.measured_ns - 1));
+          if (s.measured_ns < 1.5 * floor_ns) err_near.push_back(ef.back());
           if (s.label.rfind("front", 0) == 0) {
             gpu.push_back(s.measured_ns);
             pf.push_back(a);
@@ -231,24 +240,27 @@ int main(int argc, char** argv) {
         return 100.0 * std::count_if(e.begin(), e.end(), [](double v) { return v <= 0.25; }) / e.size();
       };
       std::printf(
-          "%slambda %g: held-out draws' median abs(pred/GPU - 1) %.3f fitted (%.0f%% within 25%%), %.3f CPU "
-          "x ratio (%.0f%%)\n",
-          print ? "\n" : "", lambda, median(err_fit), within(err_fit), median(err_scaled),
-          within(err_scaled));
+          "%slambda %g, floor norm %g: held-out draws' median abs(pred/GPU - 1) %.3f fitted (%.0f%% within "
+          "25%%; under 1.5 floors %.3f), %.3f CPU x ratio (%.0f%%)\n",
+          print ? "\n" : "", lambda, norm, median(err_fit), within(err_fit), median(err_near),
+          median(err_scaled), within(err_scaled));
       return median(err_fit);
     };
-    double best = lambdas.front(), best_err = 1e30;
-    for (double l : lambdas)
-      if (const double e = judge(l, false); e < best_err) {
-        best_err = e;
-        best = l;
-      }
-    std::printf("\nLeaving each scene out at lambda %g:\n\n", best);
-    judge(best, true);
+    double best = lambdas.front(), best_norm = norms.front(), best_err = 1e30;
+    for (double k : norms)
+      for (double l : lambdas)
+        if (const double e = judge(l, k, false); e < best_err) {
+          best_err = e;
+          best = l;
+          best_norm = k;
+        }
+    std::printf("\nLeaving each scene out at lambda %g, floor norm %g:\n\n", best, best_norm);
+    judge(best, best_norm, true);
     tuner::GpuFitOptions o;
     o.lambda = best;
     o.floor_ns = floor_ns;
     o.min_over_floor = min_over_floor;
+    o.floor_norm = best_norm;
     const tuner::GpuFit f = tuner::fit_gpu_cost_model(all, prior, o, machine);
     std::printf("\nfitted on all: %d draws, %d prices, GPU / CPU ratio %.5f\n", f.used, f.fitted, f.alpha);
     if (!out.empty()) {

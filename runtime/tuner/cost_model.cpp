@@ -156,8 +156,14 @@ double CostModel::window_for(double t, double path, double measured) {
   return path * t / chain;
 }
 
+double CostModel::floored(double t, double floor, double norm) {
+  if (!(floor > 0)) return t;
+  if (!(norm > 0)) return std::max(floor, t);
+  return std::pow(std::pow(floor, norm) + std::pow(std::max(0.0, t), norm), 1 / norm);
+}
+
 double CostModel::cost(const compiler::Program& p) const {
-  return std::max(floor_ns, latency_bound(throughput(p), critical_path(p), window_ns));
+  return floored(latency_bound(throughput(p), critical_path(p), window_ns), floor_ns, floor_norm);
 }
 
 double CostModel::sequential_cost(const compiler::Program& sample, int n) const {
@@ -172,7 +178,7 @@ double CostModel::sequential_cost(const compiler::Program& sample, int n) const 
   // fitted model's price of the shader's sample loop (none in a calibrated one).
   const double body =
       latency_bound(throughput(sample), critical_path(sample), window_ns) - once + op("sample");
-  return std::max(floor_ns, n * body + once + (n - 1) * outputs * op("add"));
+  return floored(n * body + once + (n - 1) * outputs * op("add"), floor_ns, floor_norm);
 }
 
 double CostModel::critical_path(const compiler::Program& p) const {
@@ -284,7 +290,7 @@ CostModel::Breakdown CostModel::breakdown(const compiler::Program& p) const {
   b.throughput_ns = breakdown_throughput(p, &b);
   b.path_ns = trace_critical_path(p, &b.path);
   b.chain_ns = window_ns > 0 ? b.path_ns * std::min(1.0, b.throughput_ns / window_ns) : 0;
-  b.cost_ns = std::max(floor_ns, latency_bound(b.throughput_ns, b.path_ns, window_ns));
+  b.cost_ns = floored(latency_bound(b.throughput_ns, b.path_ns, window_ns), floor_ns, floor_norm);
   return b;
 }
 
@@ -406,6 +412,7 @@ CostModel load_cost_model(const std::string& path, const std::string& machine) {
   cm.fn_ns = m.at("functions").get<std::map<std::string, double>>();
   cm.window_ns = m.value("window_ns", 0.0);
   cm.floor_ns = m.value("floor_ns", 0.0);
+  cm.floor_norm = m.value("floor_norm", 0.0);
   cm.window_kernel_ns = m.value("window_kernel_ns", cm.window_ns);
   cm.window_fit_programs = m.value("window_fit_programs", 0);
   cm.window_fit_source = m.value("window_fit_source", std::string());
@@ -440,6 +447,7 @@ void save_cost_model(const std::string& path, const CostModel& m) {
                               {"function_latency", m.fn_lat_ns},
                               {"window_ns", m.window_ns},
                               {"floor_ns", m.floor_ns},
+                              {"floor_norm", m.floor_norm},
                               {"window_kernel_ns", m.window_kernel_ns},
                               {"window_fit_programs", m.window_fit_programs},
                               {"window_fit_source", m.window_fit_source},

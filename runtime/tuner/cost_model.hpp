@@ -93,6 +93,10 @@ struct CostModel {
   // gpu_fit.hpp): the fragment rate of the draw, below which a cheaper shader draws no faster (the
   // H200's 0.284 ns/px, plain on most suite scenes).
   double floor_ns = 0;
+  // How a program's throughput T meets the floor: 0, max(floor, T); k > 0, (floor^k + T^k)^(1/k)
+  // (a GPU's floor is soft: the H200 drew programs of T 0.26-0.27 ns at 0.31-0.35 against its 0.284).
+  double floor_norm = 0;
+  static double floored(double t, double floor, double norm);
   // The window at which latency_bound(throughput, path, window) = measured (the inverse, for the
   // calibration's chain kernel); 1e9 when the program runs at its throughput (within 5%).
   static double window_for(double throughput, double path, double measured);

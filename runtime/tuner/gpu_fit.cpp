@@ -107,7 +107,7 @@ double predict(const CostModel& m, const Features& x) {
       throw std::out_of_range("cost model (" + m.machine + ") has no price for '" + name + "'");
     t += c * fn->second;
   }
-  return std::max(m.floor_ns, t);
+  return CostModel::floored(t, m.floor_ns, m.floor_norm);
 }
 
 GpuFit fit_gpu_cost_model(const std::vector<GpuSample>& samples, const CostModel& prior,
@@ -115,6 +115,12 @@ GpuFit fit_gpu_cost_model(const std::vector<GpuSample>& samples, const CostModel
   std::vector<const GpuSample*> used;
   for (const GpuSample& s : samples)
     if (s.measured_ns >= o.min_over_floor * o.floor_ns && s.measured_ns > 0) used.push_back(&s);
+  // The throughput each draw implies: under a soft floor, T = (m^k - floor^k)^(1/k).
+  auto target = [&](const GpuSample* s) {
+    if (!(o.floor_norm > 0) || !(o.floor_ns > 0)) return s->measured_ns;
+    return std::pow(std::pow(s->measured_ns, o.floor_norm) - std::pow(o.floor_ns, o.floor_norm),
+                    1 / o.floor_norm);
+  };
   if (used.empty())
     throw std::invalid_argument("GPU cost fit: no draw above " + std::to_string(o.min_over_floor) +
                                 " x the floor");
@@ -137,7 +143,7 @@ GpuFit fit_gpu_cost_model(const std::vector<GpuSample>& samples, const CostModel
   // alpha: least squares of the relative error alpha P / measured - 1.
   double num = 0, den = 0;
   for (int i = 0; i < m; ++i) {
-    const double r = P[i] / used[i]->measured_ns;
+    const double r = P[i] / target(used[i]);
     num += r;
     den += r * r;
   }
@@ -156,7 +162,7 @@ GpuFit fit_gpu_cost_model(const std::vector<GpuSample>& samples, const CostModel
     for (int k = 0; k < f; ++k) at[free[k]] = k;
     std::vector<double> M(static_cast<std::size_t>(f) * f, 0.0), v(f, 0.0);
     for (int i = 0; i < m; ++i) {
-      const double mi = used[i]->measured_ns;
+      const double mi = target(used[i]);
       double b = (mi - alpha * P[i]) / mi;
       std::vector<std::pair<int, double>> row;
       for (const auto& [name, c] : used[i]->x) {
@@ -194,6 +200,7 @@ GpuFit fit_gpu_cost_model(const std::vector<GpuSample>& samples, const CostModel
   g.machine = machine;
   g.method = "gpu-fit";
   g.floor_ns = o.floor_ns;
+  g.floor_norm = o.floor_norm;
   g.kernels = CostModel::kKernels;
   g.latency_norm = CostModel::kLatencyNorm;
   g.window_ns = 0;  // a GPU hides latency with other fragments: throughput only

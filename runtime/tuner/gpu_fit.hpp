@@ -37,6 +37,7 @@ struct GpuFitOptions {
   double lambda = 1;            // ridge weight per fitted price (relative deviation from the prior)
   double floor_ns = 0;          // the fragment-rate floor (CostModel::floor_ns of the fitted model)
   double min_over_floor = 1.5;  // fit on draws at least this many floors (below, the floor hides T)
+  double floor_norm = 0;        // CostModel::floor_norm of the fitted model (0: a hard max)
 };
 
 struct GpuFit {
@@ -50,8 +51,8 @@ struct GpuFit {
 GpuFit fit_gpu_cost_model(const std::vector<GpuSample>& samples, const CostModel& prior,
                           const GpuFitOptions& o, const std::string& machine);
 
-// max(floor_ns, sum of prices x features): what CostModel::cost gives a program of those features
-// under a fitted GPU model.
+// CostModel::floored(sum of prices x features): what CostModel::cost gives a program of those
+// features under a fitted GPU model.
 double predict(const CostModel& m, const Features& x);
 
 }  // namespace bl::tuner

@@ -74,6 +74,21 @@ TEST(GpuFit, RecoversThePricesThatMadeTheDraws) {
   // A function no draw calls keeps the prior's price times the fitted GPU / CPU ratio.
   EXPECT_NEAR(f.model.fn_ns.at("bl::tent::sin"), f.alpha * p.fn_ns.at("bl::tent::sin"), 1e-12);
   EXPECT_TRUE(f.model.covers_all()) << f.model.missing();
+  // Draws under a soft floor ((floor^4 + T^4)^(1/4), every draw above 1.5 floors): the fit inverts it.
+  std::vector<GpuSample> soft = draws;
+  double least = 1e30;
+  for (const GpuSample& s : draws) least = std::min(least, s.measured_ns);
+  GpuFitOptions so = o;
+  so.floor_ns = least / 2, so.floor_norm = 4;
+  for (GpuSample& s : soft)
+    s.measured_ns = std::pow(std::pow(so.floor_ns, 4) + std::pow(s.measured_ns, 4), 0.25);
+  const GpuFit fs = fit_gpu_cost_model(soft, p, so, "test-gpu");
+  EXPECT_EQ(fs.used, 80);
+  EXPECT_DOUBLE_EQ(fs.model.floor_norm, 4);
+  for (const std::string& n : names) {
+    const double got = fs.model.op_ns.count(n) ? fs.model.op_ns.at(n) : fs.model.fn_ns.at(n);
+    EXPECT_NEAR(got / truth.at(n), 1.0, 1e-6) << n << " under a soft floor";
+  }
   // A strong ridge keeps every price at the scaled prior.
   o.lambda = 1e12;
   const GpuFit r = fit_gpu_cost_model(draws, p, o, "test-gpu");
@@ -104,10 +119,15 @@ TEST(GpuFit, FeaturesPriceAProgramAsTheCostModelDoes) {
     EXPECT_NEAR(m.sequential_cost(one, n), predict(m, repeated(throughput_features(one), n)), 1e-12) << n;
   }
   // The floor: a program cheaper than it costs the floor, alone and n times over.
+  const double tp = m.throughput(plain);
   m.floor_ns = 100;
   EXPECT_DOUBLE_EQ(m.cost(plain), 100);
   EXPECT_DOUBLE_EQ(m.sequential_cost(plain, 4), 100);
   EXPECT_DOUBLE_EQ(predict(m, throughput_features(plain)), 100);
+  // A soft floor: (floor^4 + T^4)^(1/4), in cost and predict alike.
+  m.floor_ns = tp, m.floor_norm = 4;
+  EXPECT_NEAR(m.cost(plain), tp * std::pow(2.0, 0.25), 1e-12 * tp);
+  EXPECT_NEAR(predict(m, throughput_features(plain)), tp * std::pow(2.0, 0.25), 1e-12 * tp);
 }
 
 TEST(GpuFit, SavedAndLoadedWithItsFloor) {
@@ -126,6 +146,7 @@ TEST(GpuFit, SavedAndLoadedWithItsFloor) {
   std::filesystem::remove(path);
   EXPECT_EQ(back.method, "gpu-fit");
   EXPECT_DOUBLE_EQ(back.floor_ns, 0.25);
+  EXPECT_DOUBLE_EQ(back.floor_norm, 0);  // a hard max unless fitted otherwise
   EXPECT_DOUBLE_EQ(back.op_ns.at("mul"), f.model.op_ns.at("mul"));
   EXPECT_NEAR(predict(back, s.x), 1.0, 1e-6);  // one draw, two prices, no ridge to speak of: exact
 }
