@@ -167,10 +167,6 @@ double adaptive_at_msaa16(const SceneTimes& s, const SceneSummary& r) {
   return -1;
 }
 
-}  // namespace
-
-namespace {
-
 // One tuning's answer for a scene under one reading of "at MSAA-16's error".
 struct Pick {
   std::string label;     // fastest front point or LOD pair there ("" = none)

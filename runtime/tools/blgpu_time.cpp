@@ -193,14 +193,9 @@ std::vector<gpu_timing::SceneTimes> read_times(const std::string& paths) {
     }
   }
   std::vector<gpu_timing::SceneTimes> scenes;
-  for (const std::string& scene : order)
+  for (const std::string& scene : order) {
+    gpu_timing::SceneTimes& st = scenes.emplace_back(gpu_timing::SceneTimes{scene, 0, 1, {}});
     for (const json& r : latest.at(scene)) {
-      const std::string scene = r.at("scene");
-      auto it = std::find_if(scenes.begin(), scenes.end(), [&](const auto& s) { return s.scene == scene; });
-      if (it == scenes.end()) {
-        scenes.push_back({scene, 0, 1, {}});
-        it = scenes.end() - 1;
-      }
       gpu_timing::ProgramTime p = from_entry(r);
       p.gpu_ms = r.at("gpu_ms");
       p.compile_ms = r.value("compile_ms", -1.0);
@@ -209,12 +204,12 @@ std::vector<gpu_timing::SceneTimes> read_times(const std::string& paths) {
       p.nonfinite = r.value("nonfinite_pixels", 0L);
       p.out_of_range = r.value("out_of_range_pixels", 0L);
       const double ns = r.value("gpu_ns_per_pixel", -1.0);
-      if (it->width == 0 && p.gpu_ms > 0 && ns > 0)
-        it->width = static_cast<int>(std::lround(p.gpu_ms * 1e6 / ns));
-      it->programs.push_back(p);
+      if (st.width == 0 && p.gpu_ms > 0 && ns > 0)
+        st.width = static_cast<int>(std::lround(p.gpu_ms * 1e6 / ns));
+      st.programs.push_back(p);
     }
-  for (const auto& s : scenes)
-    if (s.width == 0) throw std::runtime_error(paths + ": scene " + s.scene + " has no timed program");
+    if (st.width == 0) throw std::runtime_error(paths + ": scene " + scene + " has no timed program");
+  }
   return scenes;
 }
 
@@ -400,7 +395,8 @@ int main(int argc, char** argv) {
   app.add_option(
          "--compare", compare,
          "A.json B.json: two merged runs' gpu_times.json (two tunings of the same scenes), scene by scene "
-         "by the GPU's own errors; prints markdown and exits. A side may list files a.json,b.json: a later "
+         "by the GPU's own errors and by bltune's; prints markdown and exits. A side may list files "
+         "a.json,b.json: a later "
          "file's scene replaces an earlier one's")
       ->expected(2);
   app.add_option("--names", names, "with --compare: the two runs' names, comma-separated");

@@ -181,6 +181,25 @@ double CostModel::sequential_cost(const compiler::Program& sample, int n) const 
   return floored(n * body + once + (n - 1) * outputs * op("add"), floor_ns, floor_norm);
 }
 
+double CostModel::msaa_cost(const compiler::Program& plain, int n) const {
+  return floor_ns > 0 ? sequential_cost(plain, n) : n * cost(plain);
+}
+
+std::vector<char> CostModel::sincos_partners(const compiler::Program& p) {
+  static const int sin_fn = compiler::find_function("bl::plain::sin"),
+                   cos_fn = compiler::find_function("bl::plain::cos");
+  std::vector<int> sin_args;
+  for (const compiler::Inst& in : p.insts)
+    if (in.op == LOp::Call && in.fn == sin_fn) sin_args.push_back(in.arg[0]);
+  std::vector<char> partner(p.insts.size(), 0);
+  for (std::size_t i = 0; i < p.insts.size(); ++i) {
+    const compiler::Inst& in = p.insts[i];
+    partner[i] = in.op == LOp::Call && in.fn == cos_fn &&
+                 std::find(sin_args.begin(), sin_args.end(), in.arg[0]) != sin_args.end();
+  }
+  return partner;
+}
+
 double CostModel::critical_path(const compiler::Program& p) const {
   return trace_critical_path(p, nullptr);
 }
@@ -302,11 +321,7 @@ double CostModel::breakdown_throughput(const compiler::Program& p, Breakdown* b)
   const std::vector<int> live = fn_spill_ns.empty() ? std::vector<int>() : live_across(p);
   // Plain sin and cos of one argument: GCC emits one sincosf for the pair, so the cos costs only
   // kSincosExtra of its calibrated price and keeps nothing live of its own.
-  static const int sin_fn = compiler::find_function("bl::plain::sin"),
-                   cos_fn = compiler::find_function("bl::plain::cos");
-  std::vector<int> sin_args;
-  for (const compiler::Inst& in : p.insts)
-    if (in.op == LOp::Call && in.fn == sin_fn) sin_args.push_back(in.arg[0]);
+  const std::vector<char> sincos = sincos_partners(p);
   // f^2 entries beside their f entry on the same (x, sigma): the pair's calibrated extra.
   std::vector<std::array<int, 3>> calls;  // (fn, arg0, arg1) of the two-argument calls
   if (!fn_pair_ns.empty())
@@ -321,8 +336,7 @@ double CostModel::breakdown_throughput(const compiler::Program& p, Breakdown* b)
   };
   for (std::size_t i = 0; i < p.insts.size(); ++i) {
     const compiler::Inst& in = p.insts[i];
-    if (in.op == LOp::Call && in.fn == cos_fn &&
-        std::find(sin_args.begin(), sin_args.end(), in.arg[0]) != sin_args.end()) {
+    if (sincos[i]) {
       call(in, kSincosExtra * function_cost(in.fn));
       continue;
     }

@@ -109,9 +109,9 @@ struct CostModel {
   // ns per pixel of one call of function `fn` (index into compiler::functions()) under band_share.
   double function_cost(int fn) const;
 
-  // ns per pixel of p: max(floor_ns, latency_bound(T, L, window_ns)) with T the sum of per-instruction costs
-  // (plus the per-pixel overhead and the output stores) and L the critical path of latencies. Throws
-  // std::out_of_range naming an op or function the model lacks.
+  // ns per pixel of p: floored(latency_bound(T, L, window_ns), floor_ns, floor_norm) with T the sum of
+  // per-instruction costs (plus the per-pixel overhead and the output stores) and L the critical path of
+  // latencies. Throws std::out_of_range naming an op or function the model lacks.
   double cost(const compiler::Program& p) const;
   double throughput(const compiler::Program& p) const;  // the sum alone (+ overhead)
   // ns per pixel of n copies of `sample` run one after another in one pixel (supersampling in the
@@ -123,6 +123,9 @@ struct CostModel {
   // std::invalid_argument for n < 1.
   // A GPU model (floor_ns > 0) floors the whole, and prices the loop per sample (op "sample").
   double sequential_cost(const compiler::Program& sample, int n) const;
+  // MSAA-n in the shader: n plain programs (n x cost(plain)); under a floored model (a GPU's) one
+  // fragment's n samples, floored once (sequential_cost). What finalize and --explain quote.
+  double msaa_cost(const compiler::Program& plain, int n) const;
   // Where cost(p) goes (bltune --explain): the throughput's parts, which sum to throughput(p), and
   // the latency bound's terms.
   struct Breakdown {
@@ -149,6 +152,9 @@ struct CostModel {
   // ns on the tuning machine: (3.11 - 2.31) / 2.30 = 0.35) and no spill of its own. The ripples
   // parallax computes both of one phase; without this their plain programs were over-predicted.
   static constexpr double kSincosExtra = 0.35;
+  // Per instruction of p: 1 at a plain cos whose argument a plain sin of p also takes (priced at
+  // kSincosExtra), else 0. Shared by throughput() and the GPU fit's features (gpu_fit.hpp).
+  static std::vector<char> sincos_partners(const compiler::Program& p);
   // True when every LOp and every current generated function has an entry.
   bool covers_all() const;
   // The names covers_all() misses (for messages).

@@ -268,9 +268,7 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     m.label = "msaa" + std::to_string(n);
     m.schedule = "plain x " + std::to_string(n) + " jittered samples";
     m.msaa = n;
-    // n plain programs; a GPU model's (floor_ns > 0) as one fragment's n samples, floored once.
-    m.model_ns =
-        t.cost_model().floor_ns > 0 ? t.cost_model().sequential_cost(*plain_program, n) : n * plain.model_ns;
+    m.model_ns = t.cost_model().msaa_cost(*plain_program, n);
     m.search_error = std::numeric_limits<double>::quiet_NaN();
     double sq = 0;
     for (std::size_t fi = 0; fi < frames.size(); ++fi) {

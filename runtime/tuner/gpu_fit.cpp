@@ -18,16 +18,11 @@ Features throughput_features(const compiler::Program& p) {
   Features x;
   x["pixel"] = 1;
   x["output"] = static_cast<double>(p.outputs.size());
-  static const int sin_fn = compiler::find_function("bl::plain::sin"),
-                   cos_fn = compiler::find_function("bl::plain::cos");
-  std::vector<int> sin_args;
-  for (const compiler::Inst& in : p.insts)
-    if (in.op == LOp::Call && in.fn == sin_fn) sin_args.push_back(in.arg[0]);
-  for (const compiler::Inst& in : p.insts) {
+  const std::vector<char> sincos = CostModel::sincos_partners(p);
+  for (std::size_t i = 0; i < p.insts.size(); ++i) {
+    const compiler::Inst& in = p.insts[i];
     if (in.op == LOp::Call || in.op == LOp::CallStat) {
-      const bool sincos = in.op == LOp::Call && in.fn == cos_fn &&
-                          std::find(sin_args.begin(), sin_args.end(), in.arg[0]) != sin_args.end();
-      x[compiler::functions().at(in.fn).cpp] += sincos ? CostModel::kSincosExtra : 1.0;
+      x[compiler::functions().at(in.fn).cpp] += sincos[i] ? CostModel::kSincosExtra : 1.0;
     } else {
       x[lop_name(in.op)] += 1;
     }
@@ -115,15 +110,17 @@ GpuFit fit_gpu_cost_model(const std::vector<GpuSample>& samples, const CostModel
   std::vector<const GpuSample*> used;
   for (const GpuSample& s : samples)
     if (s.measured_ns >= o.min_over_floor * o.floor_ns && s.measured_ns > 0) used.push_back(&s);
-  // The throughput each draw implies: under a soft floor, T = (m^k - floor^k)^(1/k).
-  auto target = [&](const GpuSample* s) {
-    if (!(o.floor_norm > 0) || !(o.floor_ns > 0)) return s->measured_ns;
-    return std::pow(std::pow(s->measured_ns, o.floor_norm) - std::pow(o.floor_ns, o.floor_norm),
-                    1 / o.floor_norm);
-  };
   if (used.empty())
     throw std::invalid_argument("GPU cost fit: no draw above " + std::to_string(o.min_over_floor) +
                                 " x the floor");
+  // The throughput each draw implies: under a soft floor, T = (m^k - floor^k)^(1/k).
+  std::vector<double> target;
+  for (const GpuSample* s : used)
+    target.push_back(
+        !(o.floor_norm > 0) || !(o.floor_ns > 0)
+            ? s->measured_ns
+            : std::pow(std::pow(s->measured_ns, o.floor_norm) - std::pow(o.floor_ns, o.floor_norm),
+                       1 / o.floor_norm));
   // The features the draws use, their prior prices, each draw's price under the prior.
   std::map<std::string, int> index;
   std::vector<std::string> names;
@@ -143,7 +140,7 @@ GpuFit fit_gpu_cost_model(const std::vector<GpuSample>& samples, const CostModel
   // alpha: least squares of the relative error alpha P / measured - 1.
   double num = 0, den = 0;
   for (int i = 0; i < m; ++i) {
-    const double r = P[i] / target(used[i]);
+    const double r = P[i] / target[i];
     num += r;
     den += r * r;
   }
@@ -162,7 +159,7 @@ GpuFit fit_gpu_cost_model(const std::vector<GpuSample>& samples, const CostModel
     for (int k = 0; k < f; ++k) at[free[k]] = k;
     std::vector<double> M(static_cast<std::size_t>(f) * f, 0.0), v(f, 0.0);
     for (int i = 0; i < m; ++i) {
-      const double mi = target(used[i]);
+      const double mi = target[i];
       double b = (mi - alpha * P[i]) / mi;
       std::vector<std::pair<int, double>> row;
       for (const auto& [name, c] : used[i]->x) {
@@ -209,7 +206,7 @@ GpuFit fit_gpu_cost_model(const std::vector<GpuSample>& samples, const CostModel
   g.op_ns["sample"] = alpha * prior_price(prior, "sample");
   for (int j = 0; j < n; ++j) {
     const double price = alpha * p[j] * (1 + d[j]);
-    if (g.op_ns.count(names[j]) || names[j] == "sample")
+    if (g.op_ns.count(names[j]))  // ops, and the sample loop placed there above
       g.op_ns[names[j]] = price;
     else
       g.fn_ns[names[j]] = price;

@@ -472,9 +472,7 @@ std::string time_breakdown_markdown(const CostModel& m, const compiler::Program&
     md << "No latencies in this cost model (" << m.method << "): cost = "
        << (m.floor_ns > 0 ? "T against the floor of " + fmt("%.3f", m.floor_ns) + " ns" : std::string("T"))
        << " = **" << fmt("%.2f", b.cost_ns) << " ns/px**.\n\n";
-  // MSAA-16 as finalize prices it: 16 plain programs, or one fragment's 16 samples under a floor.
-  const double plain_ns = m.cost(plain);
-  const double msaa16_ns = m.floor_ns > 0 ? m.sequential_cost(plain, 16) : 16 * plain_ns;
+  const double plain_ns = m.cost(plain), msaa16_ns = m.msaa_cost(plain, 16);  // as finalize quotes it
   const double vs16 = msaa16_ns / b.cost_ns;
   md << "Plain program " << fmt("%.2f", plain_ns) << " ns/px: this schedule costs "
      << fmt("%.2f", b.cost_ns / plain_ns) << "x plain, " << fmt("%.1f", vs16 >= 1 ? vs16 : 1 / vs16) << "x "
