@@ -546,7 +546,10 @@ void bl_exp_moments(float L, float b, int deg, out float I[9]) {
       sum += term;
       if (term <= 3.0e-8 * sum) break;
     }
-    top = Lk[deg] * L * ey * sum;
+    float Ld = 0.0;  // Lk[deg], indexed by constants only (see bl_u_coefs)
+    for (int k = 0; k < 9; ++k)
+      if (k == deg) Ld = Lk[k];
+    top = Ld * L * ey * sum;
   } else {
     float kfact = 1.0;
     float bk1 = b;
@@ -1194,7 +1197,10 @@ void bl_u_coefs(float q[8], int deg, float o, float e, out float r[8]) {
     if (k > deg) break;
     r[k] = g[k - 1] + e * g[k];
   }
-  r[deg + 1] = g[deg];
+  // r[deg + 1] = g[deg] with constant indices: a run-time index sends both arrays to local memory
+  // on NVIDIA (bricks_bumps' box/tent floor^2 programs: 312-670 slots, stop 42).
+  for (int k = 0; k < 7; ++k)
+    if (k == deg) r[k + 1] = g[k];
 }
 
 // Tent with the centre inside the piece: both halves term by term, odd terms as differences
