@@ -14,6 +14,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -196,6 +198,23 @@ TEST(GlslConstantIndex, TheGeneratedLibraryIndexesByLoopCountersOnly) {
   const auto v = violations(
       {g + "/bandlimit.glsl", g + "/bandlimit_bivariate.glsl", g + "/bandlimit_clamped.glsl"}, kMain);
   EXPECT_TRUE(v.empty()) << describe(v);
+}
+
+// Whole emitted programs (bl_shade and its library slice): every .frag of the directory in
+// BL_FRAG_DIR (ctest runs this case on the compiled fixtures, tests/runtime/CMakeLists.txt).
+TEST(GlslConstantIndex, EveryFixtureProgram) {
+  const char* dir = std::getenv("BL_FRAG_DIR");
+  ASSERT_NE(dir, nullptr) << "set BL_FRAG_DIR to a directory of emitted .frag files";
+  int programs = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().extension() != ".frag") continue;
+    std::string src = read(e.path().string());
+    src = src.substr(src.find('\n') + 1);  // its own #version line
+    const auto v = violations({}, src);
+    EXPECT_TRUE(v.empty()) << e.path().string() << ":\n" << describe(v);
+    ++programs;
+  }
+  EXPECT_GT(programs, 0) << "no .frag files in " << dir;
 }
 
 // The check itself: a data-dependent index is named, a loop counter and a constant are not.
