@@ -6,7 +6,7 @@
 # repository root: bash tools/gpu_time_device.sh OUT (times every pack in it).
 #
 #   [ONLY=SUBSTR] [PACK_ARGS='--baselines plain,msaa16 --fronts 3'] [GLSL_SUITE=docs/tuning/glsl | GLSL_SUITE=]
-#     bash tools/gpu_timing.sh [SUITE_DIR] [TILE (10)]
+#     bash tools/gpu_timing.sh [SUITE_DIR | - (no suite pack)] [TILE (10)]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 suite="${1:-docs/tuning/suite}"
@@ -15,7 +15,9 @@ glsl_suite="${GLSL_SUITE-docs/tuning/glsl}"
 cmake --build build --target blgpu_pack blgpu_time >/dev/null
 rm -rf build/gpu_carry
 mkdir -p build/gpu_carry/lib
-build/bin/blgpu_pack --suite "$suite" --scenes scenes/suite --out build/gpu_carry/pack --tile "$tile" ${ONLY:+--only "$ONLY"} ${PACK_ARGS:-}
+if [ "$suite" != "-" ]; then  # "-": the patterns only
+  build/bin/blgpu_pack --suite "$suite" --scenes scenes/suite --out build/gpu_carry/pack --tile "$tile" ${ONLY:+--only "$ONLY"} ${PACK_ARGS:-}
+fi
 if [ -n "$glsl_suite" ]; then
   build/bin/blgpu_pack --suite "$glsl_suite" --scenes scenes/glsl --out build/gpu_carry/pack_glsl --tile "$tile" \
     ${ONLY:+--only "$ONLY"} ${PACK_ARGS:-}
