@@ -17,7 +17,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -40,54 +39,28 @@ struct Violation {
   int line;
 };
 
-// Walks one function body with the loop counters in scope.
-class IndexCheck {
+// Visits every subscript of the tree (glslang's traverser); the enclosing function and loops come from
+// the traversal's path of ancestors.
+class IndexCheck : public TIntermTraverser {
  public:
-  IndexCheck(std::vector<std::string> files, std::string function, std::vector<Violation>* out)
-      : files_(std::move(files)), function_(std::move(function)), out_(out) {}
+  IndexCheck(const std::vector<std::string>& files, std::vector<Violation>* out) : files_(files), out_(out) {}
 
-  void walk(TIntermNode* n, std::vector<long long>& counters) {
-    if (!n) return;
-    if (TIntermLoop* loop = n->getAsLoopNode()) {
-      const std::size_t before = counters.size();
-      if (TIntermTyped* t = loop->getTerminal()) counter_of(t, &counters);
-      walk(loop->getTest(), counters);
-      walk(loop->getTerminal(), counters);
-      walk(loop->getBody(), counters);
-      counters.resize(before);
-      return;
-    }
-    if (TIntermBinary* b = n->getAsBinaryNode()) {
-      if (b->getOp() == EOpIndexIndirect && is_local(b->getLeft())) check(b, counters);
-      walk(b->getLeft(), counters);
-      walk(b->getRight(), counters);
-      return;
-    }
-    if (TIntermUnary* u = n->getAsUnaryNode()) return walk(u->getOperand(), counters);
-    if (TIntermAggregate* a = n->getAsAggregate()) {
-      for (TIntermNode* c : a->getSequence()) walk(c, counters);
-      return;
-    }
-    if (TIntermSelection* s = n->getAsSelectionNode()) {
-      walk(s->getCondition(), counters);
-      walk(s->getTrueBlock(), counters);
-      walk(s->getFalseBlock(), counters);
-      return;
-    }
-    if (TIntermBranch* br = n->getAsBranchNode()) return walk(br->getExpression(), counters);
-    if (TIntermSwitch* sw = n->getAsSwitchNode()) {
-      walk(sw->getCondition(), counters);
-      walk(sw->getBody(), counters);
-    }
+  bool visitBinary(TVisit, TIntermBinary* b) override {
+    if (b->getOp() == EOpIndexIndirect && is_local(b->getLeft())) check(b);
+    return true;
   }
 
  private:
-  std::vector<std::string> files_;
-  std::string function_;
+  const std::vector<std::string>& files_;
   std::vector<Violation>* out_;
 
-  // ++i, i++, --i, i--, i += k, i -= k: the loop's counter.
-  static void counter_of(TIntermTyped* t, std::vector<long long>* counters) {
+  struct Symbols : TIntermTraverser {
+    std::vector<TIntermSymbol*> found;
+    void visitSymbol(TIntermSymbol* s) override { found.push_back(s); }
+  };
+
+  // ++i, i++, --i, i--, i += k, i -= k: the loop's counter (nullptr for any other terminal).
+  static TIntermSymbol* counter_of(TIntermTyped* t) {
     TIntermTyped* target = nullptr;
     if (TIntermUnary* u = t->getAsUnaryNode()) {
       const TOperator op = u->getOp();
@@ -96,7 +69,7 @@ class IndexCheck {
     } else if (TIntermBinary* b = t->getAsBinaryNode()) {
       if (b->getOp() == EOpAddAssign || b->getOp() == EOpSubAssign) target = b->getLeft();
     }
-    if (target && target->getAsSymbolNode()) counters->push_back(target->getAsSymbolNode()->getId());
+    return target ? target->getAsSymbolNode() : nullptr;
   }
 
   // An array or vector that lives in the function: a local or a parameter (not a uniform, a global
@@ -117,34 +90,26 @@ class IndexCheck {
     }
   }
 
-  static void symbols(TIntermNode* n, std::vector<TIntermSymbol*>* out) {
-    if (!n) return;
-    if (TIntermSymbol* s = n->getAsSymbolNode()) return out->push_back(s);
-    if (TIntermBinary* b = n->getAsBinaryNode()) {
-      symbols(b->getLeft(), out);
-      return symbols(b->getRight(), out);
+  void check(TIntermBinary* b) {
+    std::vector<long long> counters;  // of the loops around b
+    std::string function = "?";
+    for (TIntermNode* n : path) {
+      if (TIntermLoop* loop = n->getAsLoopNode())
+        if (TIntermSymbol* c = loop->getTerminal() ? counter_of(loop->getTerminal()) : nullptr)
+          counters.push_back(c->getId());
+      if (TIntermAggregate* a = n->getAsAggregate())
+        if (a->getOp() == EOpFunction) function = a->getName().c_str();
     }
-    if (TIntermUnary* u = n->getAsUnaryNode()) return symbols(u->getOperand(), out);
-    if (TIntermAggregate* a = n->getAsAggregate())
-      for (TIntermNode* c : a->getSequence()) symbols(c, out);
-    if (TIntermSelection* s = n->getAsSelectionNode()) {
-      symbols(s->getCondition(), out);
-      symbols(s->getTrueBlock(), out);
-      symbols(s->getFalseBlock(), out);
-    }
-  }
-
-  void check(TIntermBinary* b, const std::vector<long long>& counters) {
-    std::vector<TIntermSymbol*> used;
-    symbols(b->getRight(), &used);
-    for (TIntermSymbol* s : used) {
+    Symbols used;
+    b->getRight()->traverse(&used);
+    for (TIntermSymbol* s : used.found) {
       const bool counter = std::find(counters.begin(), counters.end(), s->getId()) != counters.end();
       const bool piece_count = s->getName() == "n" && s->getQualifier().storage != EvqTemporary;
       if (counter || piece_count) continue;
       const TSourceLoc& loc = b->getLoc();
       const std::string file =
           loc.string >= 0 && loc.string < static_cast<int>(files_.size()) ? files_[loc.string] : "?";
-      out_->push_back({file, function_, s->getName().c_str(), loc.line});
+      out_->push_back({file, function, s->getName().c_str(), loc.line});
     }
   }
 };
@@ -172,14 +137,8 @@ std::vector<Violation> violations(const std::vector<std::string>& files, const s
   if (!shader.parse(GetDefaultResources(), 450, ECoreProfile, false, false, EShMsgDefault))
     throw std::runtime_error(std::string("glslang: ") + shader.getInfoLog());
   std::vector<Violation> out;
-  TIntermAggregate* root = shader.getIntermediate()->getTreeRoot()->getAsAggregate();
-  for (TIntermNode* n : root->getSequence()) {
-    TIntermAggregate* fn = n->getAsAggregate();
-    if (!fn || fn->getOp() != EOpFunction) continue;
-    IndexCheck check(names, fn->getName().c_str(), &out);
-    std::vector<long long> counters;
-    check.walk(fn, counters);
-  }
+  IndexCheck check(names, &out);
+  shader.getIntermediate()->getTreeRoot()->traverse(&check);
   return out;
 }
 
