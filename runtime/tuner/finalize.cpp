@@ -363,6 +363,20 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
         refine_and_consider(q);
       }
     }
+    // From the cheapest uniform rule under each margin too (polish_from_uniform): the search's
+    // front can sit in a costlier basin than the one a uniform start descends into.
+    for (double m : kAnchorMargins) {
+      const std::optional<Point> q = polish_from_uniform(t, m * e16);
+      if (!q) continue;
+      std::fprintf(
+          stderr,
+          "finalize: %s: polished the cheapest uniform rule under %.5f: %.2f ns/px, sample error %.5f\n",
+          s.name.c_str(), m * e16, q->obj.time, q->obj.error);
+      if (std::find(polished.begin(), polished.end(), q->genome) == polished.end()) {
+        polished.push_back(q->genome);
+        refine_and_consider(*q);
+      }
+    }
     // And from below: the most accurate point cheaper than each anchor (any point when none is
     // under m e16) moved toward m e16 within the anchor's time (reach).
     for (double m : kAnchorMargins) {

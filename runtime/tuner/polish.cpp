@@ -106,4 +106,16 @@ Point polish(const SceneTuner& t, const Point& start, double limit, const Polish
   return cur;
 }
 
+std::optional<Point> polish_from_uniform(const SceneTuner& t, double limit, const PolishOptions& opt) {
+  const Problem& prob = t.problem();
+  std::optional<Point> start;
+  for (int r = 0; r < static_cast<int>(prob.palette.rules.size()); ++r) {
+    Point u{uniform_genome(prob.space, r), {}};
+    u.obj = t.evaluate(t.schedule(u.genome));
+    if (u.obj.error <= limit && (!start || u.obj.time < start->obj.time)) start = u;
+  }
+  if (!start) return std::nullopt;
+  return polish(t, *start, limit, opt);
+}
+
 }  // namespace bl::tuner
