@@ -53,15 +53,6 @@ std::vector<int> spread(int n, int k) {
   return idx;
 }
 
-// The cheapest point whose search error is <= limit (the first of equal times), -1 if none: the
-// anchors finalize measures and polishes.
-int cheapest_under(const std::vector<Point>& front, double limit) {
-  int best = -1;
-  for (int j = 0; j < static_cast<int>(front.size()); ++j)
-    if (front[j].obj.error <= limit && (best < 0 || front[j].obj.time < front[best].obj.time)) best = j;
-  return best;
-}
-
 }  // namespace
 
 std::vector<int> pick_front_points(const std::vector<Point>& front, int k,
@@ -365,8 +356,9 @@ SceneResult finalize(const SceneTuner& t, const std::vector<Point>& front, const
     }
     // From the cheapest uniform rule under each margin too (polish_from_uniform): the search's
     // front can sit in a costlier basin than the one a uniform start descends into.
+    const std::vector<Point> uniform = uniform_points(t);
     for (double m : kAnchorMargins) {
-      const std::optional<Point> q = polish_from_uniform(t, m * e16);
+      const std::optional<Point> q = polish_from_uniform(t, uniform, m * e16);
       if (!q) continue;
       std::fprintf(
           stderr,

@@ -106,16 +106,28 @@ Point polish(const SceneTuner& t, const Point& start, double limit, const Polish
   return cur;
 }
 
-std::optional<Point> polish_from_uniform(const SceneTuner& t, double limit, const PolishOptions& opt) {
-  const Problem& prob = t.problem();
-  std::optional<Point> start;
-  for (int r = 0; r < static_cast<int>(prob.palette.rules.size()); ++r) {
-    Point u{uniform_genome(prob.space, r), {}};
+int cheapest_under(const std::vector<Point>& pts, double limit) {
+  int best = -1;
+  for (int j = 0; j < static_cast<int>(pts.size()); ++j)
+    if (pts[j].obj.error <= limit && (best < 0 || pts[j].obj.time < pts[best].obj.time)) best = j;
+  return best;
+}
+
+std::vector<Point> uniform_points(const SceneTuner& t) {
+  std::vector<Point> out;
+  for (int r = 0; r < static_cast<int>(t.problem().palette.rules.size()); ++r) {
+    Point u{uniform_genome(t.problem().space, r), {}};
     u.obj = t.evaluate(t.schedule(u.genome));
-    if (u.obj.error <= limit && (!start || u.obj.time < start->obj.time)) start = u;
+    out.push_back(std::move(u));
   }
-  if (!start) return std::nullopt;
-  return polish(t, *start, limit, opt);
+  return out;
+}
+
+std::optional<Point> polish_from_uniform(const SceneTuner& t, const std::vector<Point>& uniform, double limit,
+                                         const PolishOptions& opt) {
+  const int i = cheapest_under(uniform, limit);
+  if (i < 0) return std::nullopt;
+  return polish(t, uniform[i], limit, opt);
 }
 
 }  // namespace bl::tuner

@@ -35,14 +35,22 @@ Point polish(const SceneTuner& t, const Point& start, double limit = -1, const P
 Point reach(const SceneTuner& t, const Point& start, double target, double budget,
             const PolishOptions& opt = {});
 
-// The same descent from a uniform rule: the cheapest uniform genome (one palette rule on every gene)
-// whose sample error is <= limit, polished with that limit; nullopt when no uniform genome reaches
+// The cheapest point whose search error is <= limit (the first of equal times), -1 if none: the
+// anchors finalize measures and polishes, and polish_from_uniform's start.
+int cheapest_under(const std::vector<Point>& pts, double limit);
+
+// Every uniform genome (one palette rule on every gene) with its objectives, in palette order.
+std::vector<Point> uniform_points(const SceneTuner& t);
+
+// The same descent from a uniform rule: the cheapest of `uniform` (uniform_points, evaluated once for
+// all limits) whose sample error is <= limit, polished with that limit; nullopt when none reaches
 // it. The genetic search's front can sit in another basin than the simple kernel mixes: at the
 // stop-43 calibration bricks_ripples' front offered 123.66 ns/px at MSAA-16's error (a mix of
 // gaussian rho=grad, rule3 and Gaussian steps, 1.96x plain), single-gene moves could not leave it,
 // and the descent from all-box, all-tent or all-Gaussian each ends at 76.51 ns/px (box/tent/none,
 // 1.21x plain) at the same error.
-std::optional<Point> polish_from_uniform(const SceneTuner& t, double limit, const PolishOptions& opt = {});
+std::optional<Point> polish_from_uniform(const SceneTuner& t, const std::vector<Point>& uniform, double limit,
+                                         const PolishOptions& opt = {});
 
 // Gene pairs the compiler fuses only when both carry one kernel and width (a floor pair's pulse,
 // floor(y + 1/2) - floor(y); a fract window's two steps, also as the second pair of a product chain):

@@ -1113,10 +1113,10 @@ TEST(Polish, ReachLowersTheErrorWithinTheTimeBudget) {
   EXPECT_EQ(same.obj.error, none.obj.error);
 }
 
-// The descent from a uniform rule (polish_from_uniform): it starts at the cheapest uniform genome
-// under the limit (found here by trying each rule), so it is never dearer than that genome and never
-// above the limit; nothing under a limit below every uniform genome's error; with no limit the
-// cheapest uniform genome is all-none, which no change makes cheaper.
+// The descent from a uniform rule (uniform_points, polish_from_uniform): it starts at the cheapest
+// uniform genome under the limit (found here by trying each rule), so it is never dearer than that
+// genome and never above the limit; nothing under a limit below every uniform genome's error; with
+// no limit the cheapest uniform genome is all-none, which no change makes cheaper.
 TEST(Polish, FromTheCheapestUniformRuleUnderTheLimit) {
   const std::string cache = temp_dir("cache_polish_uniform");
   TuneOptions o = tiny_options(cache);
@@ -1127,6 +1127,13 @@ TEST(Polish, FromTheCheapestUniformRuleUnderTheLimit) {
     const Genome g(t.problem().space.size(), static_cast<std::uint8_t>(r));
     uniform.push_back(Point{g, t.evaluate(t.schedule(g))});
   }
+  const std::vector<Point> listed = uniform_points(t);  // what finalize passes
+  ASSERT_EQ(listed.size(), uniform.size());
+  for (std::size_t r = 0; r < uniform.size(); ++r) {
+    EXPECT_EQ(listed[r].genome, uniform[r].genome);
+    EXPECT_EQ(listed[r].obj.time, uniform[r].obj.time);
+    EXPECT_EQ(listed[r].obj.error, uniform[r].obj.error);
+  }
   double lowest = std::numeric_limits<double>::infinity(), highest = 0;
   for (const Point& u : uniform) {
     lowest = std::min(lowest, u.obj.error);
@@ -1135,21 +1142,23 @@ TEST(Polish, FromTheCheapestUniformRuleUnderTheLimit) {
   ASSERT_LT(lowest, highest);
   PolishOptions few;
   few.max_steps = 3;
-  EXPECT_FALSE(polish_from_uniform(t, 0.99 * lowest, few).has_value());
+  EXPECT_FALSE(polish_from_uniform(t, uniform, 0.99 * lowest, few).has_value());
   const double limit = 0.5 * (lowest + highest);
   const Point* start = nullptr;
   for (const Point& u : uniform)
     if (u.obj.error <= limit && (!start || u.obj.time < start->obj.time)) start = &u;
   ASSERT_NE(start, nullptr);
-  const std::optional<Point> q = polish_from_uniform(t, limit, few);
+  const std::optional<Point> q = polish_from_uniform(t, uniform, limit, few);
   ASSERT_TRUE(q.has_value());
   EXPECT_LE(q->obj.time, start->obj.time);
   EXPECT_LE(q->obj.error, limit);
   const Objectives again = t.evaluate(t.schedule(q->genome));
   EXPECT_EQ(again.time, q->obj.time);
   EXPECT_EQ(again.error, q->obj.error);
-  const int none = static_cast<int>(std::find(pal.names.begin(), pal.names.end(), "none") - pal.names.begin());
-  const std::optional<Point> free = polish_from_uniform(t, std::numeric_limits<double>::infinity(), few);
+  const int none =
+      static_cast<int>(std::find(pal.names.begin(), pal.names.end(), "none") - pal.names.begin());
+  const std::optional<Point> free =
+      polish_from_uniform(t, uniform, std::numeric_limits<double>::infinity(), few);
   ASSERT_TRUE(free.has_value());
   EXPECT_EQ(free->genome, Genome(t.problem().space.size(), static_cast<std::uint8_t>(none)));
 }
