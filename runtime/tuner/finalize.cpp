@@ -20,6 +20,7 @@
 #include "render/render.hpp"
 #include "tuner/adaptive_supersampling.hpp"
 #include "tuner/lod_pair.hpp"
+#include "tuner/lod_polish.hpp"
 #include "tuner/polish.hpp"
 #include "tuner/report.hpp"
 
@@ -173,9 +174,44 @@ std::optional<LodResult> find_lod(const SceneTuner& t, const std::vector<Measure
     points.emplace_back(label, sch);
     texts.push_back(text);
   }
-  const std::vector<LodSide> sides = lod_sides(t, points);
+  std::vector<LodSide> sides = lod_sides(t, points);
   if (sides.size() < 2) return std::nullopt;
-  const std::optional<PickedPair> p = fastest_pair(t, sides, e16, true);
+  std::optional<PickedPair> p = fastest_pair(t, sides, e16, true);
+  // The pair descended as one program (lod_polish.hpp); its sides join the others and the pick runs
+  // again on full images (the descent reads the search sample).
+  if (p && p->result.near_samples == 1 && p->result.far_samples == 1) {
+    const LodResult r = p->result;
+    auto schedule_of = [&](const std::string& label) {
+      for (const auto& [l, sch] : points)
+        if (l == label) return sch;
+      return t.plain_schedule();
+    };
+    // First with the pair's headroom on full images (MSAA-16's error over its own) scaled onto the
+    // sample error; when the pick on full images takes none of that descent's sides (the sample
+    // misjudged the headroom), again at the start's own sample error.
+    const double headroom = e16 / r.error;
+    const compiler::Schedule near = schedule_of(r.near), far = schedule_of(r.far);
+    const std::size_t before = sides.size();
+    for (double scale : {headroom, 1.0}) {
+      const PolishedPair q = polish_pair(t, near, far, r.limit, r.near_share, scale);
+      std::fprintf(
+          stderr,
+          "finalize: %s: footprint LOD %s + %s descended as a pair (sample error up to %.3fx): %.2f -> "
+          "%.2f ns/px, sample error %.5f -> %.5f (%d steps, %d evaluations)\n",
+          t.scene().name.c_str(), r.near.c_str(), r.far.c_str(), scale, q.time_before, q.time_after,
+          q.error_before, q.error_after, q.steps, q.evaluations);
+      if (q.steps == 0) break;
+      sides.erase(sides.begin() + static_cast<std::ptrdiff_t>(before), sides.end());
+      for (const auto& [label, sch] : {std::pair{r.near + "-near", q.near}, std::pair{r.far + "-far", q.far}})
+        if (std::optional<LodSide> sd = lod_side(t, label, sch)) sides.push_back(std::move(*sd));
+      std::optional<PickedPair> again = fastest_pair(t, sides, e16, true);
+      if (again && again->result.model_ns < p->result.model_ns) {
+        p = std::move(again);
+        break;
+      }
+      if (headroom < 1.01) break;  // the second descent would be the first again
+    }
+  }
   double single = std::numeric_limits<double>::infinity();
   for (const Measured& m : front)
     if (m.error <= e16) single = std::min(single, m.model_ns);

@@ -84,6 +84,13 @@ SearchSpace SearchSpace::build(const ir::Graph& g) {
   return s;
 }
 
+Rule gene_rule(const SearchSpace& space, const Palette& pal, int k, int rule) {
+  Rule r = pal.rules.at(rule);
+  if (r.kind == Kind::Gaussian && r.rho == rules::Rho::Constant && pal.names[rule] == "gaussian:rho=const")
+    r.rho_value = space.rho_constant[space.genes[k]];
+  return r;
+}
+
 compiler::Schedule to_schedule(const ir::Graph& g, const SearchSpace& space, const Palette& pal,
                                const Genome& x) {
   if (static_cast<int>(x.size()) != space.size())
@@ -95,10 +102,7 @@ compiler::Schedule to_schedule(const ir::Graph& g, const SearchSpace& space, con
       throw std::invalid_argument("tuner: gene " + std::to_string(k) + " holds rule index " +
                                   std::to_string(x[k]) + ", the palette has " +
                                   std::to_string(pal.rules.size()));
-    Rule r = pal.rules[x[k]];
-    if (r.kind == Kind::Gaussian && r.rho == rules::Rho::Constant && pal.names[x[k]] == "gaussian:rho=const")
-      r.rho_value = space.rho_constant[space.genes[k]];
-    s[space.genes[k]] = r;
+    s[space.genes[k]] = gene_rule(space, pal, k, x[k]);
   }
   return s;
 }

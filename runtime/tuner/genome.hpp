@@ -42,6 +42,9 @@ struct SearchSpace {
   int size() const { return static_cast<int>(genes.size()); }
 };
 
+// Palette rule `rule` as gene k carries it (gaussian:rho=const takes the gene's estimated rho).
+rules::Rule gene_rule(const SearchSpace& space, const Palette& pal, int k, int rule);
+
 // The schedule of a genome: palette rules on the genes, "none" elsewhere (constants).
 compiler::Schedule to_schedule(const ir::Graph& g, const SearchSpace& space, const Palette& pal,
                                const Genome& x);

@@ -18,6 +18,18 @@ double LodSide::price(const CostModel& m) const {
   return samples > 1 ? m.sequential_cost(one, samples) : m.cost(program);
 }
 
+std::optional<LodSide> lod_side(const SceneTuner& t, const std::string& label,
+                                const compiler::Schedule& schedule) {
+  const auto p = t.lower(schedule);
+  if (!p) return std::nullopt;
+  LodSide sd;
+  sd.label = label;
+  sd.schedule = compiler::schedule_to_text(t.graph(), schedule);
+  sd.smoothed = sd.schedule != compiler::schedule_to_text(t.graph(), t.plain_schedule());
+  sd.program = *p;
+  return sd;
+}
+
 std::vector<LodSide> lod_sides(const SceneTuner& t,
                                const std::vector<std::pair<std::string, compiler::Schedule>>& points) {
   const auto plain = t.lower_plain();
@@ -25,14 +37,9 @@ std::vector<LodSide> lod_sides(const SceneTuner& t,
   const std::string plain_text = compiler::schedule_to_text(t.graph(), t.plain_schedule());
   std::vector<LodSide> sides;
   for (const auto& [label, schedule] : points) {
-    const auto p = t.lower(schedule);
-    if (!p) return {};
-    LodSide sd;
-    sd.label = label;
-    sd.schedule = compiler::schedule_to_text(t.graph(), schedule);
-    sd.smoothed = sd.schedule != plain_text;
-    sd.program = *p;
-    sides.push_back(std::move(sd));
+    std::optional<LodSide> sd = lod_side(t, label, schedule);
+    if (!sd) return {};
+    sides.push_back(std::move(*sd));
   }
   const double sigma_px = t.scene().sigma_px;
   for (int n : kSupersampleCounts) {

@@ -57,6 +57,10 @@ struct PickedPair {
   compiler::Program near, far;
 };
 
+// One point's side: nullopt when the schedule does not lower.
+std::optional<LodSide> lod_side(const SceneTuner& t, const std::string& label,
+                                const compiler::Schedule& schedule);
+
 // The points' sides (labels and schedules, in order), then ss2 .. ss16. Empty when a schedule does
 // not lower (front points lower; a table change would show here).
 std::vector<LodSide> lod_sides(const SceneTuner& t,

@@ -379,7 +379,9 @@ void write_scene_report(const SceneResult& r, const std::string& dir) {
         "Two programs chosen per pixel by its footprint (the larger of sigma_u and sigma_v): the near "
         "one below the limit, the far one above, compiled into one loop (tuner/lod_pair.hpp). Each is a "
         "front "
-        "point, a search front point (searchNN: row NN of front_search.csv, not measured on its own) or "
+        "point, a search front point (searchNN: row NN of front_search.csv, not measured on its own), "
+        "such a point descended as one side of the pair (frontNN-near, frontNN-far: "
+        "tuner/lod_polish.hpp) or "
         "the plain program at N stratified samples (ssN, near only); the far one is smoothed. The fastest "
         "pair at "
         "MSAA-16's error is kept when it beats every single point there.\n\n";

@@ -27,6 +27,7 @@
 #include "tuner/genetic.hpp"
 #include "tuner/lod.hpp"
 #include "tuner/lod_pair.hpp"
+#include "tuner/lod_polish.hpp"
 #include "tuner/magnitude_profile.hpp"
 #include "tuner/pareto.hpp"
 #include "tuner/pixel_sample.hpp"
@@ -1066,7 +1067,7 @@ TEST(Polish, LowersTheTimeWithinTheErrorLimit) {
   few.max_steps = 3;
   const Point free = polish(t, start, std::numeric_limits<double>::infinity(), few);
   EXPECT_LT(free.obj.time, start.obj.time);
-  const Point kept = polish(t, start, -1, few);  // limit: the start's own error
+  const Point kept = polish(t, start, 1, few);  // limit: the start's own error
   EXPECT_LE(kept.obj.time, start.obj.time);
   EXPECT_LE(kept.obj.error, start.obj.error);
   const Objectives again = t.evaluate(t.schedule(kept.genome));
@@ -1111,6 +1112,79 @@ TEST(Polish, ReachLowersTheErrorWithinTheTimeBudget) {
   const Point same = reach(t, none, gauss.obj.error, none.obj.time, few);
   EXPECT_EQ(same.genome, none.genome);
   EXPECT_EQ(same.obj.error, none.obj.error);
+}
+
+// The descent of a footprint pair as one program (lod_polish.hpp), from all-mc4 on both sides
+// (dear: every side has cheaper rules) switching at the search sample's median footprint: cheaper,
+// never above the start's error, and that error and time re-derived here another way (each side's
+// per-pixel errors over the whole sample, split by footprint; each side priced on its pixels);
+// the same with one thread and with three; all-none on both sides (nothing is cheaper) comes back
+// unchanged; a share outside [0, 1] is refused.
+TEST(Polish, PairDescendsBothSidesWithinThePairsError) {
+  const std::string cache = temp_dir("cache_polish_pair");
+  TuneOptions o = tiny_options(cache);
+  SceneTuner t(tiny_scene(), quick_model(), o);
+  const Palette& pal = t.problem().palette;
+  auto uniform_schedule = [&](const char* rule) {
+    const int r = static_cast<int>(std::find(pal.names.begin(), pal.names.end(), rule) - pal.names.begin());
+    EXPECT_LT(r, static_cast<int>(pal.names.size())) << rule;
+    return t.schedule(Genome(t.problem().space.size(), static_cast<std::uint8_t>(r)));
+  };
+  const PixelSample& sample = t.search_sample();
+  std::vector<float> fp = sample.footprints();
+  ASSERT_GT(fp.size(), 10u);
+  std::vector<float> sorted = fp;
+  std::sort(sorted.begin(), sorted.end());
+  const float limit = sorted[sorted.size() / 2];
+  double share = 0;
+  for (float f : fp) share += f < limit;
+  share /= fp.size();
+  ASSERT_GT(share, 0.2);
+  ASSERT_LT(share, 0.8);
+  const compiler::Schedule mc4 = uniform_schedule("mc4");
+  PolishOptions few;
+  few.max_steps = 4;
+  const PolishedPair q = polish_pair(t, mc4, mc4, limit, share, 1, few);
+  EXPECT_GT(q.steps, 0);
+  EXPECT_LT(q.time_after, q.time_before);
+  EXPECT_LE(q.error_after, q.error_before);
+  EXPECT_FALSE(q.near == mc4 && q.far == mc4);
+  // Error and time again: per-pixel errors of each side over the whole sample, split by footprint.
+  auto pair_error = [&](const compiler::Schedule& near, const compiler::Schedule& far) {
+    const std::vector<double> a = sample.pixel_sq(*t.lower(near)), b = sample.pixel_sq(*t.lower(far));
+    double sum = sample.miss_sq();
+    for (std::size_t i = 0; i < fp.size(); ++i) sum += fp[i] < limit ? a[i] : b[i];
+    return std::sqrt(sum / (3.0 * sample.count()));
+  };
+  EXPECT_NEAR(q.error_before, pair_error(mc4, mc4), 1e-12);
+  EXPECT_NEAR(q.error_after, pair_error(q.near, q.far), 1e-12);
+  const CostModel near_cost = t.cost_model_over(sample.subset(limit, true));
+  const CostModel far_cost = t.cost_model_over(sample.subset(limit, false));
+  EXPECT_NEAR(q.time_after,
+              share * near_cost.cost(*t.lower(q.near)) + (1 - share) * far_cost.cost(*t.lower(q.far)), 1e-9);
+  // Deterministic across thread counts.
+  TuneOptions one = o, three = o;
+  one.search.threads = 1;
+  three.search.threads = 3;
+  SceneTuner t1(tiny_scene(), quick_model(), one), t3(tiny_scene(), quick_model(), three);
+  const PolishedPair q1 = polish_pair(t1, mc4, mc4, limit, share, 1, few);
+  const PolishedPair q3 = polish_pair(t3, mc4, mc4, limit, share, 1, few);
+  EXPECT_TRUE(q1.near == q3.near && q1.far == q3.far);
+  EXPECT_EQ(q1.evaluations, q3.evaluations);
+  EXPECT_EQ(q1.time_after, q3.time_after);
+  // Nothing is cheaper than all-none.
+  const compiler::Schedule none = uniform_schedule("none");
+  const PolishedPair same = polish_pair(t, none, none, limit, share, 1, few);
+  EXPECT_EQ(same.steps, 0);
+  EXPECT_TRUE(same.near == none && same.far == none);
+  EXPECT_EQ(same.time_after, same.time_before);
+  EXPECT_THROW(polish_pair(t, mc4, mc4, limit, 1.5, 1, few), std::invalid_argument);
+  EXPECT_THROW(polish_pair(t, mc4, mc4, limit, std::nan(""), 1, few), std::invalid_argument);
+  EXPECT_THROW(polish_pair(t, mc4, mc4, limit, share, 0.9, few), std::invalid_argument);
+  // Headroom: allowed 1.2x the start's sample error, the descent stays within it.
+  const PolishedPair wide = polish_pair(t, mc4, mc4, limit, share, 1.2, few);
+  EXPECT_LE(wide.error_after, 1.2 * wide.error_before * (1 + 1e-12));
+  EXPECT_NEAR(wide.error_after, pair_error(wide.near, wide.far), 1e-12);
 }
 
 // The descent from a uniform rule (uniform_points, polish_from_uniform): it starts at the cheapest
