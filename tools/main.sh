@@ -19,7 +19,7 @@ echo "[main] verifying every emitted formula against quadrature"
 # (random jitter) and stratified supersampling with 8 samples (ss8: as accurate as MSAA 16 on every
 # suite scene, docs/tuning.md "Stop 34"), all as compiled C++ (and the point's GLSL on the GL driver).
 demo_scene=quadratic_sine_none
-demo_point=front05
+demo_point=front04
 echo "[main] rendering a demo scene: a tuned schedule vs plain, MSAA 4/16 and ss8, ground truth (build/demo)"
 ./build/bin/blrender "scenes/suite/$demo_scene.json" --schedule "docs/tuning/suite/$demo_scene/front.csv:$demo_point" \
   --msaa 4 16 --supersample 8 --glsl --out build/demo --cache build/truth_cache
