@@ -44,29 +44,18 @@ struct Move {
   double sq = std::numeric_limits<double>::quiet_NaN();  // its side's error sum; NaN: not evaluated
 };
 
-// Every single-gene change of `cur` and every change of a fused pair to one rule.
+// gene_moves of `cur` as schedules.
 std::vector<Move> side_moves(const Problem& prob, const std::vector<std::pair<int, int>>& fused,
                              const compiler::Schedule& cur, int side) {
-  const int rules = static_cast<int>(prob.palette.rules.size());
+  auto rule_of = [&](int gene, int r) { return gene_rule(prob.space, prob.palette, gene, r); };
   std::vector<Move> out;
-  for (int g = 0; g < prob.space.size(); ++g)
-    for (int r = 0; r < rules; ++r) {
-      const rules::Rule rule = gene_rule(prob.space, prob.palette, g, r);
-      if (cur[prob.space.genes[g]] == rule) continue;
-      Move m{side, cur};
-      m.schedule[prob.space.genes[g]] = rule;
-      out.push_back(std::move(m));
-    }
-  for (const auto& [ga, gb] : fused)
-    for (int r = 0; r < rules; ++r) {
-      const rules::Rule ra = gene_rule(prob.space, prob.palette, ga, r);
-      const rules::Rule rb = gene_rule(prob.space, prob.palette, gb, r);
-      if (cur[prob.space.genes[ga]] == ra || cur[prob.space.genes[gb]] == rb) continue;
-      Move m{side, cur};
-      m.schedule[prob.space.genes[ga]] = ra;
-      m.schedule[prob.space.genes[gb]] = rb;
-      out.push_back(std::move(m));
-    }
+  for (const GeneMove& g : gene_moves(
+           prob, fused, [&](int gene, int r) { return cur[prob.space.genes[gene]] == rule_of(gene, r); })) {
+    Move m{side, cur};
+    m.schedule[prob.space.genes[g.a]] = rule_of(g.a, g.rule);
+    if (g.b >= 0) m.schedule[prob.space.genes[g.b]] = rule_of(g.b, g.rule);
+    out.push_back(std::move(m));
+  }
   return out;
 }
 

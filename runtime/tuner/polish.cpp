@@ -29,29 +29,17 @@ namespace {
 // (lowering and the cost model only, no pixels), kept when keep(time).
 template <class Keep>
 std::vector<std::pair<double, Genome>> moves(const SceneTuner& t, const Genome& g, Keep keep) {
-  const Problem& prob = t.problem();
-  const int rules = static_cast<int>(prob.palette.rules.size());
   std::vector<std::pair<double, Genome>> out;
-  auto consider = [&](Genome x) {
+  for (const GeneMove& m :
+       gene_moves(t.problem(), fused_gene_pairs(t.problem()), [&](int k, int r) { return g[k] == r; })) {
+    Genome x = g;
+    x[m.a] = static_cast<std::uint8_t>(m.rule);
+    if (m.b >= 0) x[m.b] = static_cast<std::uint8_t>(m.rule);
     const auto p = t.lower(t.schedule(x));
-    if (!p) return;
+    if (!p) continue;
     const double time = t.cost_model().cost(*p);
     if (keep(time)) out.emplace_back(time, std::move(x));
-  };
-  for (int k = 0; k < prob.space.size(); ++k)
-    for (int r = 0; r < rules; ++r) {
-      if (r == g[k]) continue;
-      Genome x = g;
-      x[k] = static_cast<std::uint8_t>(r);
-      consider(std::move(x));
-    }
-  for (const auto& [ga, gb] : fused_gene_pairs(prob))
-    for (int r = 0; r < rules; ++r) {
-      if (r == g[ga] || r == g[gb]) continue;  // single-gene moves cover these
-      Genome x = g;
-      x[ga] = x[gb] = static_cast<std::uint8_t>(r);
-      consider(std::move(x));
-    }
+  }
   std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   return out;
 }

@@ -52,6 +52,30 @@ std::vector<Point> uniform_points(const SceneTuner& t);
 std::optional<Point> polish_from_uniform(const SceneTuner& t, const std::vector<Point>& uniform, double limit,
                                          const PolishOptions& opt = {});
 
+// A move of the descents (polish, reach, the pair's polish_pair): gene a (and b, when a fused pair
+// moves together; -1 otherwise) to palette rule `rule`.
+struct GeneMove {
+  int a = -1, b = -1;
+  int rule = 0;
+};
+
+// Every single-gene change and every change of a fused pair (fused_gene_pairs) to one rule, in that
+// order (genes, then rules); holds(gene, rule) says the current assignment already has it (a pair
+// moves only when neither gene holds the rule: single-gene moves cover the rest).
+template <class Holds>
+std::vector<GeneMove> gene_moves(const Problem& prob, const std::vector<std::pair<int, int>>& fused,
+                                 Holds holds) {
+  const int rules = static_cast<int>(prob.palette.rules.size());
+  std::vector<GeneMove> out;
+  for (int k = 0; k < prob.space.size(); ++k)
+    for (int r = 0; r < rules; ++r)
+      if (!holds(k, r)) out.push_back({k, -1, r});
+  for (const auto& [ga, gb] : fused)
+    for (int r = 0; r < rules; ++r)
+      if (!holds(ga, r) && !holds(gb, r)) out.push_back({ga, gb, r});
+  return out;
+}
+
 // Gene pairs the compiler fuses only when both carry one kernel and width (a floor pair's pulse,
 // floor(y + 1/2) - floor(y); a fract window's two steps, also as the second pair of a product chain):
 // a single-gene move breaks the fusion, so it cannot move the pair to another kernel (checkerboard's

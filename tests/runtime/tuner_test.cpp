@@ -1172,12 +1172,27 @@ TEST(Polish, PairDescendsBothSidesWithinThePairsError) {
   EXPECT_TRUE(q1.near == q3.near && q1.far == q3.far);
   EXPECT_EQ(q1.evaluations, q3.evaluations);
   EXPECT_EQ(q1.time_after, q3.time_after);
-  // Nothing is cheaper than all-none.
+  // From all-none, where no single-gene change is cheaper on either side's pixels (checked here
+  // first: the quick calibration is timed on the evaluator and a loaded machine can misprice a rule
+  // below none), nothing moves.
   const compiler::Schedule none = uniform_schedule("none");
+  bool cheaper = false;
+  for (const CostModel* m : {&near_cost, &far_cost}) {
+    const double base = m->cost(*t.lower(none));
+    for (int g = 0; g < t.problem().space.size(); ++g)
+      for (const rules::Rule& r : pal.rules) {
+        compiler::Schedule x = none;
+        x[t.problem().space.genes[g]] = r;
+        if (const auto p = t.lower(x); p && m->cost(*p) < base) cheaper = true;
+      }
+  }
   const PolishedPair same = polish_pair(t, none, none, limit, share, 1, few);
-  EXPECT_EQ(same.steps, 0);
-  EXPECT_TRUE(same.near == none && same.far == none);
-  EXPECT_EQ(same.time_after, same.time_before);
+  if (!cheaper) {
+    EXPECT_EQ(same.steps, 0);
+    EXPECT_TRUE(same.near == none && same.far == none);
+    EXPECT_EQ(same.time_after, same.time_before);
+  }
+  EXPECT_LE(same.time_after, same.time_before);
   EXPECT_THROW(polish_pair(t, mc4, mc4, limit, 1.5, 1, few), std::invalid_argument);
   EXPECT_THROW(polish_pair(t, mc4, mc4, limit, std::nan(""), 1, few), std::invalid_argument);
   EXPECT_THROW(polish_pair(t, mc4, mc4, limit, share, 0.9, few), std::invalid_argument);
@@ -1190,7 +1205,7 @@ TEST(Polish, PairDescendsBothSidesWithinThePairsError) {
 // The descent from a uniform rule (uniform_points, polish_from_uniform): it starts at the cheapest
 // uniform genome under the limit (found here by trying each rule), so it is never dearer than that
 // genome and never above the limit; nothing under a limit below every uniform genome's error; with
-// no limit the cheapest uniform genome is all-none, which no change makes cheaper.
+// no limit it is no dearer than any uniform genome.
 TEST(Polish, FromTheCheapestUniformRuleUnderTheLimit) {
   const std::string cache = temp_dir("cache_polish_uniform");
   TuneOptions o = tiny_options(cache);
@@ -1229,12 +1244,12 @@ TEST(Polish, FromTheCheapestUniformRuleUnderTheLimit) {
   const Objectives again = t.evaluate(t.schedule(q->genome));
   EXPECT_EQ(again.time, q->obj.time);
   EXPECT_EQ(again.error, q->obj.error);
-  const int none =
-      static_cast<int>(std::find(pal.names.begin(), pal.names.end(), "none") - pal.names.begin());
+  // With no limit: no dearer than any uniform genome. (Not "all-none" itself: the quick calibration
+  // is timed on the evaluator, and on a loaded machine it has priced all-box below all-none.)
   const std::optional<Point> free =
       polish_from_uniform(t, uniform, std::numeric_limits<double>::infinity(), few);
   ASSERT_TRUE(free.has_value());
-  EXPECT_EQ(free->genome, Genome(t.problem().space.size(), static_cast<std::uint8_t>(none)));
+  for (const Point& u : uniform) EXPECT_LE(free->obj.time, u.obj.time);
 }
 
 // The gene pairs polish moves together are the ones the compiler fuses: checkerboard's two floor
